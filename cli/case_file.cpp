@@ -1,0 +1,222 @@
+#include "case_file.hpp"
+
+#include <fstream>
+#include <sstream>
+
+namespace dcad::io {
+
+using nlohmann::json;
+
+namespace {
+
+/// SAX handler building a json DOM; floats are kept as their source text.
+class ExactBuilder {
+ public:
+  explicit ExactBuilder(json& root) : root_(root) {}
+  bool null() { return put(nullptr); }
+  bool boolean(bool b) { return put(b); }
+  bool number_integer(json::number_integer_t v) { return put(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return put(v); }
+  bool number_float(json::number_float_t, const std::string& text) { return put(text); }
+  bool string(std::string& s) { return put(s); }
+  bool binary(json::binary_t&) { return false; }
+  bool start_object(std::size_t) { return open(json::object()); }
+  bool key(std::string& k) {
+    key_ = k;
+    return true;
+  }
+  bool end_object() { return close(); }
+  bool start_array(std::size_t) { return open(json::array()); }
+  bool end_array() { return close(); }
+  bool parse_error(std::size_t pos, const std::string&, const nlohmann::detail::exception& e) {
+    error_pos_ = pos;
+    error_ = e.what();
+    return false;
+  }
+  std::size_t error_pos_ = 0;
+  std::string error_;
+
+ private:
+  json* place(json v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    json& top = *stack_.back();
+    if (top.is_array()) {
+      top.push_back(std::move(v));
+      return &top.back();
+    }
+    top[key_] = std::move(v);
+    return &top[key_];
+  }
+  bool put(json v) {
+    place(std::move(v));
+    return true;
+  }
+  bool open(json v) {
+    stack_.push_back(place(std::move(v)));
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+  json& root_;
+  std::vector<json*> stack_;
+  std::string key_;
+};
+
+std::string slurp(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file + ": cannot open the file for reading");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string path_or_root(const std::string& p) { return p.empty() ? "/" : p; }
+
+}  // namespace
+
+void Where::fail(const std::string& expected, const std::string& found) const {
+  throw InputError(file + ": " + path_or_root(path) + ": expected " + expected + ", found " + found);
+}
+
+std::string describe(const json& j) {
+  std::string s = j.dump();
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return std::string(j.type_name()) + " " + s;
+}
+
+json parse_json_exact(const std::string& text, const std::string& file) {
+  json root;
+  ExactBuilder b(root);
+  if (!json::sax_parse(text, &b)) {
+    std::size_t line = 1, col = 1;
+    for (std::size_t i = 0; i + 1 < b.error_pos_ && i < text.size(); ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
+    }
+    throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) +
+                     ": expected valid JSON, found a syntax error (" + b.error_ + ")");
+  }
+  return root;
+}
+
+Rational read_number(const json& j, const Where& at) {
+  if (j.is_number_integer()) return j.is_number_unsigned() ? Rational(j.get<std::uint64_t>()) : Rational(j.get<std::int64_t>());
+  if (!j.is_string()) at.fail("a number (JSON number or exact string such as \"-2/7\")", describe(j));
+  try {
+    return reference::parse_rational(j.get<std::string>());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(at.file + ": " + path_or_root(at.path) + ": " + e.what());
+  }
+}
+
+QMatrix read_matrix(const json& j, const Where& at, long rows, long cols) {
+  if (!j.is_array()) at.fail("a matrix (array of rows)", describe(j));
+  if (rows >= 0 && static_cast<long>(j.size()) != rows)
+    at.fail(std::to_string(rows) + " rows", std::to_string(j.size()) + " rows");
+  long c = cols;
+  if (c < 0) c = j.empty() ? 0 : (j[0].is_array() ? static_cast<long>(j[0].size()) : -1);
+  QMatrix m(j.size(), c < 0 ? 0 : c);
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const Where ri = at / i;
+    if (!j[i].is_array()) ri.fail("a row (array of numbers)", describe(j[i]));
+    if (static_cast<long>(j[i].size()) != c)
+      ri.fail("a row of length " + std::to_string(c), "length " + std::to_string(j[i].size()));
+    for (std::size_t k = 0; k < j[i].size(); ++k) m(i, k) = read_number(j[i][k], ri / k);
+  }
+  return m;
+}
+
+namespace {
+
+void require_skew_input(const QMatrix& w, const Where& at) {
+  if (!reference::is_square(w)) at.fail("a square matrix", reference::shape(w));
+  for (std::size_t i = 0; i < w.rows(); ++i)
+    for (std::size_t k = 0; k < w.cols(); ++k)
+      if (w(i, k) != -w(k, i))
+        (at / i / k).fail("a skew matrix (entry (" + std::to_string(i) + "," + std::to_string(k) + ") = -entry (" +
+                              std::to_string(k) + "," + std::to_string(i) + "))",
+                          w(i, k).str() + " vs " + w(k, i).str());
+}
+
+DiracInput read_dirac(const json& j, const Where& at, long n) {
+  if (!j.is_object() || j.empty()) at.fail("an object with one of presymplectic, distribution+form, poisson, basis", describe(j));
+  DiracInput d;
+  if (j.contains("presymplectic")) {
+    d.form = "presymplectic";
+    d.path = (at / "presymplectic").path;
+    d.w = read_matrix(j["presymplectic"], at / "presymplectic", n, n);
+    require_skew_input(d.w, at / "presymplectic");
+  } else if (j.contains("distribution")) {
+    d.form = "distribution";
+    d.path = (at / "distribution").path;
+    if (!j.contains("form")) at.fail("a `form` matrix next to `distribution`", "none");
+    d.w = read_matrix(j["form"], at / "form", n, n);
+    require_skew_input(d.w, at / "form");
+    d.b = read_matrix(j["distribution"], at / "distribution", -1, static_cast<long>(d.w.rows()));
+  } else if (j.contains("poisson")) {
+    d.form = "poisson";
+    d.path = (at / "poisson").path;
+    d.p = read_matrix(j["poisson"], at / "poisson", n, n);
+    require_skew_input(d.p, at / "poisson");
+  } else if (j.contains("basis")) {
+    d.form = "basis";
+    d.path = (at / "basis").path;
+    d.g = read_matrix(j["basis"], at / "basis", n, n < 0 ? -1 : 2 * n);
+    if (n < 0 && d.g.cols() != 2 * d.g.rows())
+      (at / "basis").fail("N rows of length 2N", reference::shape(d.g));
+  } else {
+    at.fail("one of the forms presymplectic, distribution (+form), poisson, basis", "keys " + describe(j));
+  }
+  return d;
+}
+
+}  // namespace
+
+CaseFile read_case(const std::string& file) {
+  const json j = parse_json_exact(slurp(file), file);
+  const Where root{file, ""};
+  if (!j.is_object()) root.fail("a JSON object (a dcad case file)", describe(j));
+  if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
+  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1))
+    (root / "dcad").fail("format version 1", describe(j["dcad"]));
+  CaseFile c;
+  c.file = file;
+  if (j.contains("name")) {
+    if (!j["name"].is_string()) (root / "name").fail("a string", describe(j["name"]));
+    c.name = j["name"].get<std::string>();
+  }
+  if (j.contains("description") && j["description"].is_string()) c.description = j["description"].get<std::string>();
+  long n = -1;
+  if (j.contains("variables")) {
+    const json& v = j["variables"];
+    if (!v.is_array()) (root / "variables").fail("an array of names", describe(v));
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (!v[i].is_string()) (root / "variables" / i).fail("a name (string)", describe(v[i]));
+      c.variables.push_back(v[i].get<std::string>());
+    }
+    n = static_cast<long>(v.size());
+  }
+  if (j.contains("dirac")) {
+    c.has_dirac = true;
+    c.dirac = read_dirac(j["dirac"], root / "dirac", n);
+    const QMatrix& m = c.dirac.form == "basis" ? c.dirac.g : c.dirac.form == "poisson" ? c.dirac.p : c.dirac.w;
+    c.n = m.rows();
+  } else if (!j.contains("pontryagin")) {
+    root.fail("a \"dirac\" or a \"pontryagin\" member", "neither");
+  }
+  if (c.variables.empty())
+    for (std::size_t i = 0; i < c.n; ++i) c.variables.push_back("x" + std::to_string(i + 1));
+  if (j.contains("expect")) c.expect = j["expect"];
+  return c;
+}
+
+}  // namespace dcad::io

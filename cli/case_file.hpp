@@ -1,0 +1,60 @@
+// Case files (.json) per ../shared/CONTRACT.md, read with exact numbers.
+// Errors are InputError: "FILE: JSON-PATH: expected …, found …" (or FILE:LINE:COLUMN for syntax).
+#pragma once
+
+#include "dcad/reference/matrix.hpp"
+#include "dcad/reference/rational.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dcad::io {
+
+using reference::Rational;
+using QMatrix = reference::Matrix<Rational>;
+
+struct InputError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Parses JSON text keeping every non-integer number as its exact source text (a string), so
+/// that 0.1 is read as 1/10, not as the double nearest to it.
+nlohmann::json parse_json_exact(const std::string& text, const std::string& file);
+
+/// The `dirac` member: one of the CONTRACT's forms.
+struct DiracInput {
+  std::string form;  ///< presymplectic | distribution | poisson | basis
+  std::string path;  ///< JSON path of the form's data, for messages
+  QMatrix w;         ///< presymplectic W, or the `form` of `distribution`
+  QMatrix b;         ///< `distribution` rows
+  QMatrix p;         ///< `poisson` P
+  QMatrix g;         ///< `basis` rows (v, α)
+};
+
+struct CaseFile {
+  std::string file, name, description;
+  std::size_t n = 0;
+  std::vector<std::string> variables;
+  bool has_dirac = false;
+  DiracInput dirac;
+  nlohmann::json expect;  ///< optional golden expectations (raw)
+};
+
+CaseFile read_case(const std::string& file);
+
+/// A reading context: file name plus JSON path, for messages.
+struct Where {
+  std::string file, path;
+  Where operator/(const std::string& key) const { return {file, path + "/" + key}; }
+  Where operator/(std::size_t i) const { return {file, path + "/" + std::to_string(i)}; }
+  [[noreturn]] void fail(const std::string& expected, const std::string& found) const;
+};
+
+Rational read_number(const nlohmann::json& j, const Where& at);
+QMatrix read_matrix(const nlohmann::json& j, const Where& at, long rows = -1, long cols = -1);
+std::string describe(const nlohmann::json& j);
+
+}  // namespace dcad::io

@@ -1,0 +1,68 @@
+// dcad: the command-line tool.  Exit codes per ../shared/CONTRACT.md:
+// 0 success, 1 bad input (file + line or JSON path, expected vs found), 2 bad usage.
+#include "case_file.hpp"
+#include "inspect.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#ifndef DCAD_VERSION
+#define DCAD_VERSION "0"
+#endif
+
+int main(int argc, char** argv) {
+  CLI::App app{"dcad: verified reference implementation of linear Dirac structures and constraint algorithms"};
+  app.set_version_flag("--version", std::string("dcad ") + DCAD_VERSION);
+  app.require_subcommand(1);
+
+  std::string file, backend = "reference";
+  bool as_json = false;
+  CLI::App* inspect = app.add_subcommand(
+      "inspect", "Inspect a Dirac structure given in a case file (any `dirac` form): validity (CEF Lemma 4.1), "
+                 "dim E_D, rank and kernel of omega_D (Prop. 4.3), presymplectic or Poisson.");
+  inspect->add_option("FILE", file, "case file (.json)")->required();
+  inspect->add_option("--backend", backend, "reference (exact) or fast (double, with certainty verdicts)")
+      ->check(CLI::IsMember({"reference", "fast"}));
+  inspect->add_flag("--json", as_json, "print the result as JSON");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    if (inspect->parsed()) {
+      const dcad::io::CaseFile c = dcad::io::read_case(file);
+      if (!c.has_dirac) {
+        std::cerr << file << ": /dirac: expected a `dirac` member for inspect, found a `pontryagin` case\n";
+        return 1;
+      }
+      dcad::cli::InspectReport r;
+      try {
+        r = backend == "fast" ? dcad::cli::inspect_fast(c) : dcad::cli::inspect_reference(c);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << file << ": " << c.dirac.path << ": " << e.what() << "\n";
+        return 1;
+      }
+      std::cout << (as_json ? dcad::cli::to_json(r).dump(2) + "\n" : dcad::cli::to_text(r, c));
+      if (!r.valid) {
+        std::cerr << file << ": " << c.dirac.path << ": expected a Dirac structure (CEF Lemma 4.1), found " << r.why
+                  << "\n";
+        return 1;
+      }
+    }
+  } catch (const dcad::io::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+// Linear Dirac structures in double; the twin of dcad/reference/dirac.hpp.  D is held by an
+// orthonormal basis of R^{2n} (columns (v, α)).
+#pragma once
+
+#include "dcad/fast/symplectic.hpp"
+
+namespace dcad::fast {
+
+struct DiracStructure {
+  int n = 0;
+  Subspace d = Subspace::zero(0);
+  MatrixXd v_part() const { return d.basis().topRows(n); }
+  MatrixXd alpha_part() const { return d.basis().bottomRows(n); }
+};
+
+/// Lemma 4.1: dim D = n and ⟨⟨D, D⟩⟩ = 0; `why` explains a negative answer.
+struct DiracCheck {
+  Answer valid;
+  std::string why;
+};
+DiracCheck dirac_defect(const DiracStructure& d, const Options& opt = {});
+void require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt = {});
+
+DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt = {});
+DiracStructure dirac_from_presymplectic(const MatrixXd& w);
+DiracStructure dirac_from_distribution(const Subspace& e, const MatrixXd& w);
+DiracStructure dirac_from_poisson(const MatrixXd& p);
+
+Subspace dirac_distribution(const DiracStructure& d, const Options& opt = {});
+AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Options& opt = {});
+Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt = {});
+PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt = {});
+Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt = {});
+Answer is_presymplectic(const DiracStructure& d, const Options& opt = {});
+Answer is_poisson(const DiracStructure& d, const Options& opt = {});
+
+}  // namespace dcad::fast

@@ -1,0 +1,71 @@
+// Subspaces of R^n by orthonormal bases (columns); the twin of dcad/reference/subspace.hpp.
+// Each subspace and each yes/no answer says whether every rank decision behind it was certain.
+#pragma once
+
+#include "dcad/fast/rank.hpp"
+
+namespace dcad::fast {
+
+/// A yes/no answer that may be uncertain.
+struct Answer {
+  bool value = false;
+  bool certain = true;
+};
+
+class Subspace {
+ public:
+  /// Column span of `cols` (n = rows); `scale` for the rank decision (<0: ‖cols‖₂).
+  static Subspace span(const MatrixXd& cols, double scale = -1, const Options& opt = {});
+  /// {x : equations · x = 0}.
+  static Subspace solutions(const MatrixXd& equations, double scale = -1, const Options& opt = {});
+  static Subspace zero(int n) { return Subspace(MatrixXd(n, 0), true); }
+  static Subspace whole(int n) { return Subspace(MatrixXd::Identity(n, n), true); }
+  /// An orthonormal basis, trusted as given (no decision).
+  static Subspace from_orthonormal(MatrixXd q, bool certain) { return Subspace(std::move(q), certain); }
+
+  int ambient() const { return static_cast<int>(basis_.rows()); }
+  int dim() const { return static_cast<int>(basis_.cols()); }
+  const MatrixXd& basis() const { return basis_; }  ///< orthonormal columns
+  bool certain() const { return certain_; }
+  /// The decision that produced this subspace, if any (its evidence).
+  const RankDecision& evidence() const { return evidence_; }
+  Subspace& and_certain(bool c) {
+    certain_ = certain_ && c;
+    return *this;
+  }
+
+ private:
+  Subspace(MatrixXd q, bool certain) : basis_(std::move(q)), certain_(certain) {}
+  MatrixXd basis_;
+  bool certain_ = true;
+  RankDecision evidence_;
+};
+
+Subspace sum(const Subspace& u, const Subspace& w, const Options& opt = {});
+Subspace annihilator(const Subspace& u);
+Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt = {});
+Subspace kernel(const MatrixXd& a, const Options& opt = {});
+Subspace image(const MatrixXd& a, const Options& opt = {});
+Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt = {});
+Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt = {});
+/// W ⊆ U.
+Answer contains(const Subspace& u, const Subspace& w, const Options& opt = {});
+/// x ∈ U.
+Answer contains(const Subspace& u, const VectorXd& x, const Options& opt = {});
+Answer equal(const Subspace& u, const Subspace& w, const Options& opt = {});
+
+/// sin of the largest principal angle between equal-dimensional subspaces (1 if dims differ).
+double largest_principal_angle_sin(const Subspace& u, const Subspace& w);
+
+/// An affine subspace p + U, or the empty set.
+struct AffineSubspace {
+  bool empty = true;
+  VectorXd point;
+  Subspace direction = Subspace::zero(0);
+  bool certain = true;
+};
+
+/// {x : A x = b}: solvable iff rank A = rank [A b] (both decided), least-squares point.
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {});
+
+}  // namespace dcad::fast

@@ -1,0 +1,82 @@
+#include "dcad/fast/rank.hpp"
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace dcad::fast {
+
+Svd full_svd(const MatrixXd& a) {
+  if (a.rows() == 0 || a.cols() == 0)
+    return {MatrixXd::Identity(a.rows(), a.rows()), MatrixXd::Identity(a.cols(), a.cols()), VectorXd(0)};
+  Eigen::BDCSVD<MatrixXd> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return {svd.matrixU(), svd.matrixV(), svd.singularValues()};
+}
+
+double norm2(const MatrixXd& a) {
+  if (a.size() == 0) return 0;
+  return Eigen::BDCSVD<MatrixXd>(a).singularValues()(0);
+}
+
+RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
+  const VectorXd s = a.size() ? Eigen::BDCSVD<MatrixXd>(a).singularValues() : VectorXd(0);
+  return decide_rank(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
+}
+
+RankDecision decide_rank(const VectorXd& s, int rows, int cols, double scale, const Options& opt) {
+  RankDecision d;
+  d.rows = rows;
+  d.cols = cols;
+  d.singular_values.assign(s.data(), s.data() + s.size());
+  d.scale = scale >= 0 ? scale : (s.size() ? s(0) : 0.0);
+  const double eps = std::numeric_limits<double>::epsilon();
+  d.zero_threshold = opt.zero_factor * std::max(rows, cols) * eps * d.scale;
+  d.nonzero_threshold = std::max(opt.nonzero_factor * d.scale, d.zero_threshold);
+  for (double x : d.singular_values) {
+    if (x > d.zero_threshold) ++d.rank;
+    if (x > d.zero_threshold && x <= d.nonzero_threshold) d.certain = false;
+  }
+  const bool deficient = d.rank < static_cast<int>(d.singular_values.size());
+  if (deficient && !opt.input_exact) d.certain = false;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double above = d.rank > 0 ? d.singular_values[d.rank - 1] : inf;
+  const double below = deficient ? d.singular_values[d.rank] : 0.0;
+  d.gap = below > 0 ? above / below : inf;
+  return d;
+}
+
+std::string RankDecision::describe() const {
+  std::ostringstream o;
+  o.precision(3);
+  o << "rank " << rank << " of " << rows << "x" << cols << (certain ? " (certain)" : " (UNCERTAIN)")
+    << ": sigma around the cut [";
+  const int lo = std::max(0, rank - 2), hi = std::min<int>(singular_values.size(), rank + 2);
+  for (int i = lo; i < hi; ++i) o << (i > lo ? ", " : "") << (i == rank ? "| " : "") << singular_values[i];
+  o << "], zero below " << zero_threshold << ", nonzero above " << nonzero_threshold << ", gap " << gap;
+  return o.str();
+}
+
+MatrixXd orthogonal_complement(const MatrixXd& q) {
+  const Eigen::Index n = q.rows(), k = q.cols();
+  if (k == 0) return MatrixXd::Identity(n, n);
+  Eigen::HouseholderQR<MatrixXd> qr(q);
+  const MatrixXd full = qr.householderQ() * MatrixXd::Identity(n, n);
+  return full.rightCols(n - k);
+}
+
+void require_finite(const MatrixXd& a, const std::string& fn) {
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < a.cols(); ++j)
+      if (!std::isfinite(a(i, j))) {
+        std::ostringstream o;
+        o << fn << ": expected finite entries, found " << a(i, j) << " at (" << i << ", " << j << ")";
+        throw std::invalid_argument(o.str());
+      }
+}
+
+}  // namespace dcad::fast

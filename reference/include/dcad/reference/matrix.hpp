@@ -1,0 +1,242 @@
+// Dense matrices over an exact field and exact row reduction.
+// Everything here is a literal textbook algorithm: no pivoting strategy, no tolerance;
+// a zero test is `x == 0`.  The scalar must be exact (std::numeric_limits<T>::is_exact).
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dcad::reference {
+
+template <class T>
+struct is_exact_field {
+  static constexpr bool value = std::numeric_limits<T>::is_specialized && std::numeric_limits<T>::is_exact &&
+                                !std::numeric_limits<T>::is_integer;
+};
+
+using Index = std::size_t;
+
+/// Row-major dense matrix over an exact field.  Vectors are r×1 or 1×c matrices or std::vector<T>.
+template <class T>
+class Matrix {
+  static_assert(is_exact_field<T>::value, "dcad::reference works over an exact field only (e.g. mpq_rational)");
+
+ public:
+  Matrix() = default;
+  Matrix(Index rows, Index cols) : rows_(rows), cols_(cols), a_(rows * cols, T(0)) {}
+  static Matrix identity(Index n) {
+    Matrix m(n, n);
+    for (Index i = 0; i < n; ++i) m(i, i) = T(1);
+    return m;
+  }
+  /// Rows given as vectors, all of length `cols`.
+  static Matrix from_rows(const std::vector<std::vector<T>>& rows, Index cols) {
+    Matrix m(rows.size(), cols);
+    for (Index i = 0; i < rows.size(); ++i) {
+      if (rows[i].size() != cols) throw std::invalid_argument("Matrix::from_rows: row length mismatch");
+      for (Index j = 0; j < cols; ++j) m(i, j) = rows[i][j];
+    }
+    return m;
+  }
+  static Matrix column(const std::vector<T>& v) { return from_rows({v}, v.size()).transpose(); }
+
+  Index rows() const { return rows_; }
+  Index cols() const { return cols_; }
+  T& operator()(Index i, Index j) { return a_[i * cols_ + j]; }
+  const T& operator()(Index i, Index j) const { return a_[i * cols_ + j]; }
+  std::vector<T> row(Index i) const { return std::vector<T>(a_.begin() + i * cols_, a_.begin() + (i + 1) * cols_); }
+  std::vector<T> col(Index j) const {
+    std::vector<T> v(rows_);
+    for (Index i = 0; i < rows_; ++i) v[i] = (*this)(i, j);
+    return v;
+  }
+  bool operator==(const Matrix& o) const { return rows_ == o.rows_ && cols_ == o.cols_ && a_ == o.a_; }
+  bool operator!=(const Matrix& o) const { return !(*this == o); }
+  bool is_zero() const {
+    for (const T& x : a_)
+      if (x != 0) return false;
+    return true;
+  }
+
+  Matrix transpose() const {
+    Matrix t(cols_, rows_);
+    for (Index i = 0; i < rows_; ++i)
+      for (Index j = 0; j < cols_; ++j) t(j, i) = (*this)(i, j);
+    return t;
+  }
+  /// Rows [r0, r1) and columns [c0, c1).
+  Matrix block(Index r0, Index r1, Index c0, Index c1) const {
+    Matrix b(r1 - r0, c1 - c0);
+    for (Index i = r0; i < r1; ++i)
+      for (Index j = c0; j < c1; ++j) b(i - r0, j - c0) = (*this)(i, j);
+    return b;
+  }
+
+ private:
+  Index rows_ = 0, cols_ = 0;
+  std::vector<T> a_;
+};
+
+template <class T>
+std::string shape(const Matrix<T>& m) {
+  return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
+}
+
+/// Throws std::invalid_argument "fn: expected …, found …".
+inline void require(bool ok, const std::string& fn, const std::string& expected, const std::string& found) {
+  if (!ok) throw std::invalid_argument(fn + ": expected " + expected + ", found " + found);
+}
+
+template <class T>
+Matrix<T> operator*(const Matrix<T>& a, const Matrix<T>& b) {
+  require(a.cols() == b.rows(), "operator*", "inner dimensions to agree", shape(a) + " * " + shape(b));
+  Matrix<T> c(a.rows(), b.cols());
+  for (Index i = 0; i < a.rows(); ++i)
+    for (Index k = 0; k < a.cols(); ++k) {
+      if (a(i, k) == 0) continue;
+      for (Index j = 0; j < b.cols(); ++j) c(i, j) += a(i, k) * b(k, j);
+    }
+  return c;
+}
+
+template <class T>
+Matrix<T> operator+(Matrix<T> a, const Matrix<T>& b) {
+  require(a.rows() == b.rows() && a.cols() == b.cols(), "operator+", "equal shapes", shape(a) + " + " + shape(b));
+  for (Index i = 0; i < a.rows(); ++i)
+    for (Index j = 0; j < a.cols(); ++j) a(i, j) += b(i, j);
+  return a;
+}
+
+template <class T>
+Matrix<T> operator-(const Matrix<T>& a) {
+  Matrix<T> m = a;
+  for (Index i = 0; i < m.rows(); ++i)
+    for (Index j = 0; j < m.cols(); ++j) m(i, j) = -m(i, j);
+  return m;
+}
+
+template <class T>
+Matrix<T> operator-(const Matrix<T>& a, const Matrix<T>& b) {
+  return a + (-b);
+}
+
+/// [a; b] (rows of a, then rows of b).
+template <class T>
+Matrix<T> vstack(const Matrix<T>& a, const Matrix<T>& b) {
+  require(a.cols() == b.cols(), "vstack", "equal column counts", shape(a) + " over " + shape(b));
+  Matrix<T> m(a.rows() + b.rows(), a.cols());
+  for (Index i = 0; i < a.rows(); ++i)
+    for (Index j = 0; j < a.cols(); ++j) m(i, j) = a(i, j);
+  for (Index i = 0; i < b.rows(); ++i)
+    for (Index j = 0; j < b.cols(); ++j) m(a.rows() + i, j) = b(i, j);
+  return m;
+}
+
+/// [a b] (columns of a, then columns of b).
+template <class T>
+Matrix<T> hstack(const Matrix<T>& a, const Matrix<T>& b) {
+  return vstack(a.transpose(), b.transpose()).transpose();
+}
+
+template <class T>
+bool is_square(const Matrix<T>& m) {
+  return m.rows() == m.cols();
+}
+
+template <class T>
+bool is_skew(const Matrix<T>& m) {
+  return is_square(m) && m == -m.transpose();
+}
+
+template <class T>
+bool is_symmetric(const Matrix<T>& m) {
+  return is_square(m) && m == m.transpose();
+}
+
+/// Reduced row echelon form with its pivot columns (Gauss–Jordan, exact).
+template <class T>
+struct Rref {
+  Matrix<T> r;
+  std::vector<Index> pivots;
+};
+
+template <class T>
+Rref<T> rref(Matrix<T> m) {
+  std::vector<Index> pivots;
+  Index row = 0;
+  for (Index col = 0; col < m.cols() && row < m.rows(); ++col) {
+    Index p = row;
+    while (p < m.rows() && m(p, col) == 0) ++p;
+    if (p == m.rows()) continue;
+    for (Index j = 0; j < m.cols(); ++j) std::swap(m(row, j), m(p, j));
+    const T inv = T(1) / m(row, col);
+    for (Index j = 0; j < m.cols(); ++j) m(row, j) *= inv;
+    for (Index i = 0; i < m.rows(); ++i) {
+      if (i == row || m(i, col) == 0) continue;
+      const T f = m(i, col);
+      for (Index j = 0; j < m.cols(); ++j) m(i, j) -= f * m(row, j);
+    }
+    pivots.push_back(col);
+    ++row;
+  }
+  return {m.block(0, row, 0, m.cols()), pivots};
+}
+
+template <class T>
+Index rank(const Matrix<T>& m) {
+  return rref(m).pivots.size();
+}
+
+/// A basis (as rows) of {x : m x = 0}, read off the RREF: one vector per free column.
+template <class T>
+Matrix<T> nullspace(const Matrix<T>& m) {
+  const Rref<T> e = rref(m);
+  std::vector<bool> is_pivot(m.cols(), false);
+  for (Index p : e.pivots) is_pivot[p] = true;
+  Matrix<T> k(m.cols() - e.pivots.size(), m.cols());
+  Index out = 0;
+  for (Index f = 0; f < m.cols(); ++f) {
+    if (is_pivot[f]) continue;
+    k(out, f) = T(1);
+    for (Index i = 0; i < e.pivots.size(); ++i) k(out, e.pivots[i]) = -e.r(i, f);
+    ++out;
+  }
+  return k;
+}
+
+/// One solution x of m x = b (as a vector), or nothing if the system is inconsistent.
+template <class T>
+bool solve_particular(const Matrix<T>& m, const std::vector<T>& b, std::vector<T>& x) {
+  require(b.size() == m.rows(), "solve_particular", "right-hand side of length " + std::to_string(m.rows()),
+          "length " + std::to_string(b.size()));
+  const Rref<T> e = rref(hstack(m, Matrix<T>::column(b)));
+  if (!e.pivots.empty() && e.pivots.back() == m.cols()) return false;  // pivot in b's column: 0 = 1
+  x.assign(m.cols(), T(0));
+  for (Index i = 0; i < e.pivots.size(); ++i) x[e.pivots[i]] = e.r(i, m.cols());
+  return true;
+}
+
+/// m is invertible: its inverse by Gauss–Jordan on [m I].
+template <class T>
+Matrix<T> inverse(const Matrix<T>& m) {
+  require(is_square(m), "inverse", "a square matrix", shape(m));
+  const Rref<T> e = rref(hstack(m, Matrix<T>::identity(m.rows())));
+  require(e.pivots.size() == m.rows() && (m.rows() == 0 || e.pivots.back() < m.rows()), "inverse",
+          "an invertible matrix", "a singular " + shape(m) + " matrix");
+  return e.r.block(0, m.rows(), m.rows(), 2 * m.rows());
+}
+
+template <class T>
+T dot(const std::vector<T>& a, const std::vector<T>& b) {
+  require(a.size() == b.size(), "dot", "vectors of equal length",
+          std::to_string(a.size()) + " and " + std::to_string(b.size()));
+  T s(0);
+  for (Index i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+}  // namespace dcad::reference

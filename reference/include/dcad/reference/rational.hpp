@@ -1,0 +1,61 @@
+// The exact field of the reference backend and exact reading of numbers (CONTRACT "Numbers").
+#pragma once
+
+#include <boost/multiprecision/gmp.hpp>
+
+#include <cctype>
+#include <stdexcept>
+#include <string>
+
+namespace dcad::reference {
+
+using Rational = boost::multiprecision::mpq_rational;
+
+/// Reads "3", "-2/7", "0.125", "1e-3", "-1.5E+2" exactly.  Throws std::invalid_argument
+/// "expected …, found …" on anything else (including a zero denominator).
+inline Rational parse_rational(const std::string& text) {
+  using boost::multiprecision::mpz_int;
+  const auto bad = [&](const std::string& why) {
+    return std::invalid_argument("expected an exact number such as \"3\", \"-2/7\", \"0.125\" or \"1e-3\", found \"" +
+                                 text + "\"" + (why.empty() ? "" : " (" + why + ")"));
+  };
+  std::size_t i = 0;
+  const auto digits = [&](std::string& out) {
+    const std::size_t start = i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) out += text[i++];
+    return i > start;
+  };
+  bool neg = false;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) neg = text[i++] == '-';
+  std::string whole, frac;
+  const bool has_whole = digits(whole);
+  bool has_frac = false;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    has_frac = digits(frac);
+  }
+  if (!has_whole && !has_frac) throw bad("");
+  Rational value(mpz_int(whole.empty() ? "0" : whole) * pow(mpz_int(10), frac.size()) + mpz_int(frac.empty() ? "0" : frac),
+                 pow(mpz_int(10), frac.size()));
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    bool eneg = false;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) eneg = text[i++] == '-';
+    std::string ex;
+    if (!digits(ex) || ex.size() > 6) throw bad("exponent");
+    const mpz_int scale = pow(mpz_int(10), static_cast<unsigned>(std::stoul(ex)));
+    value = eneg ? value / Rational(scale) : value * Rational(scale);
+  } else if (i < text.size() && text[i] == '/') {
+    ++i;
+    std::string den;
+    if (!has_whole || has_frac || !digits(den)) throw bad("a fraction is integer/integer");
+    if (mpz_int(den) == 0) throw bad("zero denominator");
+    value /= Rational(mpz_int(den));
+  }
+  if (i != text.size()) throw bad("");
+  return neg ? Rational(-value) : value;
+}
+
+inline std::string to_string(const Rational& q) { return q.str(); }
+
+}  // namespace dcad::reference
