@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -23,14 +24,14 @@ DiracCheck dirac_defect(const DiracStructure& d, const Options& opt) {
                                         std::to_string(d.n) + " has dim " + std::to_string(d.n) + ")"};
   // ⟨⟨a, b⟩⟩ = α_a·v_b + α_b·v_a: Gram matrix Aᵀ V + Vᵀ A in the orthonormal basis.
   const MatrixXd g = d.alpha_part().transpose() * d.v_part() + d.v_part().transpose() * d.alpha_part();
-  const RankDecision r = decide_rank(g, 1.0, opt);
+  const RankDecision r = decide_rank(g, d.d.conditioning(), opt);
   if (r.rank > 0) return {{false, r.certain && d.d.certain()}, "D is not isotropic: " + r.describe()};
   return {{true, r.certain && d.d.certain()}, ""};
 }
 
 void require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt) {
   const DiracCheck c = dirac_defect(d, opt);
-  if (!c.valid.value) throw std::invalid_argument(fn + ": expected a Dirac structure (Lemma 4.1), found " + c.why);
+  if (!c.valid.value && c.valid.certain) throw std::invalid_argument(fn + ": expected a Dirac structure (Lemma 4.1), found " + c.why);
 }
 
 DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
@@ -39,6 +40,7 @@ DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
                                 std::to_string(rows.cols()));
   DiracStructure d{static_cast<int>(rows.cols() / 2), Subspace::span(rows.transpose(), -1, opt)};
   require_dirac(d, "dirac_from_basis", opt);
+  d.d.and_certain(dirac_defect(d, opt).valid.certain);
   return d;
 }
 
@@ -82,7 +84,7 @@ Subspace dirac_distribution(const DiracStructure& d, const Options& opt) {
 
 AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Options& opt) {
   // (x, α) ∈ D  ⇔  x = V c, α = A c for some c.
-  const AffineSubspace c = solve(d.v_part(), x, opt);
+  const AffineSubspace c = solve(d.v_part(), x, opt, 1.0);  // v-part of an orthonormal basis
   AffineSubspace out;
   out.empty = c.empty;
   out.certain = c.certain && d.d.certain();
@@ -92,7 +94,7 @@ AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Opti
 }
 
 Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt) {
-  const Subspace c = preimage(d.v_part(), w, opt);  // {c : V c ∈ W}
+  const Subspace c = preimage(d.v_part(), w, opt, 1.0);  // {c : V c ∈ W}
   return Subspace::span(d.alpha_part() * c.basis(), 1.0, opt).and_certain(c.certain() && d.d.certain());
 }
 
@@ -107,12 +109,12 @@ PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
   const MatrixXd alphas = d.alpha_part() * (vplus * q);  // columns α_i
   MatrixXd g = alphas.transpose() * q;
   g = (g - g.transpose()) / 2;  // skew up to rounding; keep it exactly skew
-  PresymplecticForm f{e, q * g * q.transpose()};
-  return f;
+  // ω_D's entries are α(q) with ‖α‖ ≤ ‖A V⁺‖: that is the scale of its rank decisions.
+  return {e, q * g * q.transpose(), std::max(1.0, norm2(alphas))};
 }
 
 Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt) {
-  const Subspace c = preimage(d.v_part(), w, opt);
+  const Subspace c = preimage(d.v_part(), w, opt, 1.0);
   return Subspace::solutions((d.alpha_part() * c.basis()).transpose(), 1.0, opt).and_certain(c.certain() && d.d.certain());
 }
 

@@ -42,7 +42,7 @@ RankDecision decide_rank(const VectorXd& s, int rows, int cols, double scale, co
     if (x > d.zero_threshold && x <= d.nonzero_threshold) d.certain = false;
   }
   const bool deficient = d.rank < static_cast<int>(d.singular_values.size());
-  if (deficient && !opt.input_exact) d.certain = false;
+  if (deficient && !(opt.input_exact && opt.input_well_scaled)) d.certain = false;
   const double inf = std::numeric_limits<double>::infinity();
   const double above = d.rank > 0 ? d.singular_values[d.rank - 1] : inf;
   const double below = deficient ? d.singular_values[d.rank] : 0.0;
@@ -59,6 +59,17 @@ std::string RankDecision::describe() const {
   for (int i = lo; i < hi; ++i) o << (i > lo ? ", " : "") << (i == rank ? "| " : "") << singular_values[i];
   o << "], zero below " << zero_threshold << ", nonzero above " << nonzero_threshold << ", gap " << gap;
   return o.str();
+}
+
+void assess_input(const MatrixXd& a, Options& opt) {
+  double lo = 1, hi = 1;  // 1 is in the range: D pairs vectors (unit 1 in its basis) with covectors
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    const double x = std::abs(a.data()[i]);
+    if (x == 0) continue;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  if (hi > 0 && lo < hi * opt.nonzero_factor) opt.input_well_scaled = false;
 }
 
 MatrixXd orthogonal_complement(const MatrixXd& q) {

@@ -1,5 +1,6 @@
 #include "dcad/fast/subspace.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -51,11 +52,12 @@ Subspace kernel(const MatrixXd& a, const Options& opt) { return Subspace::soluti
 
 Subspace image(const MatrixXd& a, const Options& opt) { return Subspace::span(a, -1, opt); }
 
-Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt) {
+Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt, double scale) {
   if (a.rows() != w.ambient())
     throw std::invalid_argument("preimage: expected a map into R^" + std::to_string(w.ambient()) + ", found a " +
                                 std::to_string(a.rows()) + "x" + std::to_string(a.cols()) + " matrix");
-  return Subspace::solutions(annihilator(w).basis().transpose() * a, norm2(a), opt).and_certain(w.certain());
+  return Subspace::solutions(annihilator(w).basis().transpose() * a, scale >= 0 ? scale : norm2(a), opt)
+      .and_certain(w.certain());
 }
 
 Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt) {
@@ -91,15 +93,16 @@ double largest_principal_angle_sin(const Subspace& u, const Subspace& w) {
   return norm2(w.basis() - u.basis() * (u.basis().transpose() * w.basis()));
 }
 
-AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt) {
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, double scale) {
   require_finite(a, "solve");
   require_finite(b, "solve");
   AffineSubspace out;
   const Svd s = full_svd(a);
-  const RankDecision ra = decide_rank(s.sigma, a.rows(), a.cols(), -1, opt);
+  if (scale < 0) scale = s.sigma.size() ? s.sigma(0) : 0.0;
+  const RankDecision ra = decide_rank(s.sigma, a.rows(), a.cols(), scale, opt);
   MatrixXd ab(a.rows(), a.cols() + 1);
   ab << a, b;
-  const RankDecision rab = decide_rank(ab, -1, opt);
+  const RankDecision rab = decide_rank(ab, std::max(scale, b.norm()), opt);
   out.certain = ra.certain && rab.certain;
   out.direction = Subspace::from_orthonormal(s.v.rightCols(a.cols() - ra.rank), ra.certain);
   out.empty = rab.rank > ra.rank;

@@ -46,13 +46,13 @@ PresymplecticForm restrict_form(const MatrixXd& w, const Subspace& v) {
   if (w.rows() != v.ambient())
     throw std::invalid_argument("restrict_form: expected a form on R^" + std::to_string(v.ambient()) + ", found " +
                                 std::to_string(w.rows()) + "x" + std::to_string(w.cols()));
-  return {v, w};
+  return {v, w, norm2(w)};
 }
 
 PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, const Options& opt) {
   const Answer in = contains(f.space, u, opt);
   if (!in.value) throw std::invalid_argument("restrict_form: expected a subspace of the form's domain, found one outside it");
-  PresymplecticForm g{u, f.matrix};
+  PresymplecticForm g{u, f.matrix, f.scale};
   g.space.and_certain(in.certain);
   return g;
 }
@@ -60,7 +60,7 @@ PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, c
 MatrixXd gram(const PresymplecticForm& f) { return f.space.basis().transpose() * f.matrix * f.space.basis(); }
 
 RankDecision form_rank(const PresymplecticForm& f, const Options& opt) {
-  RankDecision d = decide_rank(gram(f), norm2(f.matrix), opt);
+  RankDecision d = decide_rank(gram(f), f.scale, opt);
   d.certain = d.certain && f.space.certain();
   return d;
 }
@@ -68,7 +68,7 @@ RankDecision form_rank(const PresymplecticForm& f, const Options& opt) {
 Subspace orthogonal(const PresymplecticForm& f, const Subspace& w, const Options& opt) {
   // v = Q c with ω(Q c, w_j) = cᵀ Qᵀ M w_j = 0 for all j.
   const MatrixXd& q = f.space.basis();
-  const Subspace c = Subspace::solutions((q.transpose() * f.matrix * w.basis()).transpose(), norm2(f.matrix), opt);
+  const Subspace c = Subspace::solutions((q.transpose() * f.matrix * w.basis()).transpose(), f.scale, opt);
   return Subspace::from_orthonormal(q * c.basis(), c.certain() && f.space.certain() && w.certain());
 }
 
@@ -76,7 +76,7 @@ Subspace form_kernel(const PresymplecticForm& f, const Options& opt) { return or
 
 Subspace flat(const PresymplecticForm& f, const Subspace& w, const Options& opt) {
   const MatrixXd images = f.matrix.transpose() * w.basis();  // columns: y ↦ wᵀ M y
-  return sum(Subspace::span(images, norm2(f.matrix), opt), annihilator(f.space), opt).and_certain(w.certain());
+  return sum(Subspace::span(images, f.scale, opt), annihilator(f.space), opt).and_certain(w.certain());
 }
 
 NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Options& opt) {
@@ -124,7 +124,7 @@ RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const 
   const MatrixXd y = w.transpose().fullPivLu().solve(gamma);    // columns Y_i = γ_i^♯
   const MatrixXd coeff = (gamma.transpose() * y).transpose();   // (i, j) = γ_j(Y_i)
   RestrictedSolution out;
-  out.lambda = solve(coeff, -(y.transpose() * beta), opt);
+  out.lambda = solve(coeff, -(y.transpose() * beta), opt, norm2(y));  // coeff may vanish exactly
   out.lambda.certain = out.lambda.certain && v.certain();
   out.x.empty = out.lambda.empty;
   out.x.certain = out.lambda.certain;
@@ -135,7 +135,7 @@ RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const 
 
 AffineSubspace solve_on_subspace(const PresymplecticForm& f, const VectorXd& beta, const Options& opt) {
   const MatrixXd& q = f.space.basis();
-  const AffineSubspace c = solve(gram(f).transpose(), q.transpose() * beta, opt);
+  const AffineSubspace c = solve(gram(f).transpose(), q.transpose() * beta, opt, f.scale);
   AffineSubspace out;
   out.empty = c.empty;
   out.certain = c.certain && f.space.certain();

@@ -19,6 +19,7 @@ struct DiracCheck {
   std::string why;
 };
 DiracCheck dirac_defect(const DiracStructure& d, const Options& opt = {});
+/// Throws if D is certainly not Dirac; an uncertain verdict is left to the caller (D.d.certain()).
 void require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt = {});
 
 DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt = {});

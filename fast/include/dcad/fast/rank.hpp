@@ -27,13 +27,23 @@ using Eigen::VectorXd;
 /// A dropped σ ≤ τ0 is *assumed* to be an exact zero: that is sound only under the separation
 /// hypothesis that the exact data's nonzero singular values exceed τ1 — true for the small-height
 /// rational data dcad is built for, and exactly what the `certified` backend will check.
-/// If the input was not exactly representable in double (`input_exact` false), no rank deficiency is
-/// ever certain: rounding the input may have destroyed the very degeneracy being decided.
+/// Two properties of the *input* void that hypothesis, and then no rank deficiency is ever certain:
+///  * `input_exact` false — some input value was not representable in double, so rounding the
+///    input may have destroyed the very degeneracy being decided (1 + 2^-60 reads as 1);
+///  * `input_well_scaled` false — the nonzero input entries span more than 1/τ1 in magnitude
+///    (graded data), so a singular value below τ0 may be a true one, not rounding.
+/// `assess_input` sets the second from each input matrix.  The scale passed to a decision must be
+/// that of the *data* (never the norm of a computed matrix that is zero in exact arithmetic).
 struct Options {
   double zero_factor = 8.0;
   double nonzero_factor = 1.4901161193847656e-08;  // √ε
   bool input_exact = true;
+  bool input_well_scaled = true;
 };
+
+/// Clears opt.input_well_scaled if the nonzero entries of `a`, together with 1, span more than
+/// 1/nonzero_factor in magnitude.
+void assess_input(const MatrixXd& a, Options& opt);
 
 struct RankDecision {
   int rank = 0;

@@ -29,6 +29,11 @@ class Subspace {
   bool certain() const { return certain_; }
   /// The decision that produced this subspace, if any (its evidence).
   const RankDecision& evidence() const { return evidence_; }
+  /// σ₁/σ_r of the spanning set this basis came from (1 for a basis built orthonormal): rounding
+  /// moves the subspace by about ε times this (Wedin), the scale of any test on its vectors.
+  double conditioning() const {
+    return evidence_.rank > 0 ? evidence_.singular_values[0] / evidence_.singular_values[evidence_.rank - 1] : 1.0;
+  }
   Subspace& and_certain(bool c) {
     certain_ = certain_ && c;
     return *this;
@@ -46,7 +51,8 @@ Subspace annihilator(const Subspace& u);
 Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt = {});
 Subspace kernel(const MatrixXd& a, const Options& opt = {});
 Subspace image(const MatrixXd& a, const Options& opt = {});
-Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt = {});
+/// `scale` < 0: ‖a‖₂ (pass the data's scale when a is computed and may vanish exactly).
+Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt = {}, double scale = -1);
 Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt = {});
 /// W ⊆ U.
 Answer contains(const Subspace& u, const Subspace& w, const Options& opt = {});
@@ -66,6 +72,6 @@ struct AffineSubspace {
 };
 
 /// {x : A x = b}: solvable iff rank A = rank [A b] (both decided), least-squares point.
-AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {});
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {}, double scale = -1);
 
 }  // namespace dcad::fast

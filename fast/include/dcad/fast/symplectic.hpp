@@ -20,6 +20,7 @@ Subspace symplectic_complement(const MatrixXd& w, const Subspace& v, const Optio
 struct PresymplecticForm {
   Subspace space = Subspace::zero(0);
   MatrixXd matrix;
+  double scale = 0;  ///< magnitude of the data ω was computed from: the scale of its rank decisions
 };
 PresymplecticForm restrict_form(const MatrixXd& w, const Subspace& v);
 PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, const Options& opt = {});

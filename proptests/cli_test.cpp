@@ -1,0 +1,129 @@
+// The dcad binary as a user runs it: golden cases (every cases/*.json with expect.inspect, both
+// backends) and bad input (exit 1 naming file, JSON path or line, expected and found; exit 2 for usage).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  int rc = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Outcome run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path();
+  const std::string out = (dir / "dcad_cli_out").string(), err = (dir / "dcad_cli_err").string();
+  const int status = std::system((std::string(DCAD_BINARY) + " " + args + " >" + out + " 2>" + err).c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+}  // namespace
+
+TEST(Golden, InspectEveryCase) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases")) {
+    if (entry.path().extension() != ".json") continue;
+    const nlohmann::json c = nlohmann::json::parse(slurp(entry.path()));
+    if (!c.contains("expect") || !c["expect"].contains("inspect")) continue;
+    for (const std::string backend : {"reference", "fast"}) {
+      const Outcome r = run("inspect " + entry.path().string() + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << entry.path() << " " << backend << ": " << r.err;
+      const nlohmann::json got = nlohmann::json::parse(r.out);
+      EXPECT_EQ(got["backend"], backend);
+      EXPECT_TRUE(got["certified"].get<bool>()) << entry.path() << " " << backend;
+      for (const auto& [key, want] : c["expect"]["inspect"].items())
+        EXPECT_EQ(got[key], want) << entry.path() << " " << backend << " key " << key;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 8);
+}
+
+TEST(Cli, HelpVersionUsage) {
+  EXPECT_EQ(run("--help").rc, 0);
+  const Outcome v = run("--version");
+  EXPECT_EQ(v.rc, 0);
+  EXPECT_NE(v.out.find("dcad "), std::string::npos);
+  EXPECT_EQ(run("").rc, 2);
+  EXPECT_EQ(run("inspect").rc, 2);
+  EXPECT_EQ(run("inspect x.json --backend magic").rc, 2);
+  EXPECT_EQ(run("frobnicate").rc, 2);
+}
+
+struct BadCase {
+  const char* name;
+  const char* text;
+  const char* needle;  // must appear in stderr
+};
+
+class BadInput : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ExitOneWithWhereExpectedFound) {
+  const BadCase& b = GetParam();
+  const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".json", b.text);
+  for (const std::string backend : {"reference", "fast"}) {
+    const Outcome r = run("inspect " + file + " --backend " + backend);
+    EXPECT_EQ(r.rc, 1) << b.name << " " << backend << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(b.needle), std::string::npos) << b.name << " " << backend << ": " << r.err;
+    EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("found"), std::string::npos) << r.err;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadInput,
+    testing::Values(
+        BadCase{"syntax", "{\"dcad\": 1,\n \"dirac\": {\"presymplectic\": [[0, 1], [-1 0]]}}", ":2:"},
+        BadCase{"empty", "", ":1:1"},
+        BadCase{"version", R"({"dcad": 2, "dirac": {"presymplectic": [[0]]}})", "/dcad"},
+        BadCase{"noversion", R"({"dirac": {"presymplectic": [[0]]}})", "\"dcad\""},
+        BadCase{"nonsquare", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0, 0]]}})", "/dirac/presymplectic/1"},
+        BadCase{"nonskew", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [2, 0]]}})", "/dirac/presymplectic/0/1"},
+        BadCase{"zerodiv", R"({"dcad": 1, "dirac": {"poisson": [["0", "1/0"], ["-1", "0"]]}})", "/dirac/poisson/0/1"},
+        BadCase{"notanumber", R"({"dcad": 1, "dirac": {"poisson": [[0, "one"], [-1, 0]]}})", "/dirac/poisson/0/1"},
+        BadCase{"nullentry", R"({"dcad": 1, "dirac": {"poisson": [[0, null], [-1, 0]]}})", "/dirac/poisson/0/1"},
+        BadCase{"unknownform", R"({"dcad": 1, "dirac": {"symplectic": [[0]]}})", "/dirac"},
+        BadCase{"mismatch", R"({"dcad": 1, "variables": ["a", "b", "c"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})",
+                "/dirac/presymplectic"},
+        BadCase{"basisshape", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0], [0, 1, 0]]}})", "/dirac/basis"},
+        BadCase{"notisotropic", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 1], [0, 1, 1, 0]]}})", "not isotropic"},
+        BadCase{"wrongdim", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 0], [2, 0, 0, 0]]}})", "dim D = 1"},
+        BadCase{"nodirac", R"({"dcad": 1, "energy": {}})", "\"dirac\""},
+        BadCase{"distrcols", R"({"dcad": 1, "dirac": {"distribution": [[1, 0, 0]], "form": [[0, 1], [-1, 0]]}})",
+                "/dirac/distribution/0"},
+        BadCase{"noform", R"({"dcad": 1, "dirac": {"distribution": [[1, 0]]}})", "form"}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+TEST(Cli, MissingFile) {
+  const Outcome r = run("inspect /nonexistent/case.json");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("/nonexistent/case.json"), std::string::npos);
+}
+
+TEST(Cli, TextReportNamesTheStructure) {
+  const Outcome r = run("inspect " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port-dirac.json");
+  EXPECT_EQ(r.rc, 0);
+  EXPECT_NE(r.out.find("dim E_D          = 10"), std::string::npos) << r.out;
+}

@@ -1,0 +1,44 @@
+// Exact → double conversion for fast-vs-reference properties.
+#pragma once
+
+#include "dcad/fast/dirac.hpp"
+#include "gen.hpp"
+
+namespace dcad::test {
+
+/// Rounds to double; with `opt`, records as the CLI does whether the input was exact and well scaled.
+inline Eigen::MatrixXd to_double(const QM& m, fast::Options* opt = nullptr) {
+  Eigen::MatrixXd d(m.rows(), m.cols());
+  for (Index i = 0; i < m.rows(); ++i)
+    for (Index j = 0; j < m.cols(); ++j) {
+      d(i, j) = m(i, j).convert_to<double>();
+      if (opt && Q(d(i, j)) != m(i, j)) opt->input_exact = false;
+    }
+  if (opt) fast::assess_input(d, *opt);
+  return d;
+}
+
+inline Eigen::VectorXd to_double(const std::vector<Q>& v) {
+  Eigen::VectorXd d(v.size());
+  for (Index i = 0; i < v.size(); ++i) d(i) = v[i].convert_to<double>();
+  return d;
+}
+
+/// The exact subspace as a fast one (for angles; small exact bases are well conditioned).
+inline fast::Subspace to_fast(const QSub& s) {
+  if (s.dim() == 0) return fast::Subspace::zero(static_cast<int>(s.ambient()));
+  return fast::Subspace::span(to_double(s.basis()).transpose());
+}
+
+/// 2-norm condition number of an exact square matrix, in double.
+inline double condition(const QM& a) {
+  const Eigen::MatrixXd d = to_double(a);
+  const auto s = fast::full_svd(d).sigma;
+  return s.size() ? s(0) / s(s.size() - 1) : 1.0;
+}
+
+/// Bound on sin θ(fast, exact): a backward-stable computation on data of condition κ
+/// perturbs a well-separated subspace by O(n ε κ) (Wedin); 1e3 covers the chain of steps.
+inline double angle_bound(Index n, double kappa) { return 1e3 * static_cast<double>(n + 1) * 2.2e-16 * kappa; }
+
+}  // namespace dcad::test
