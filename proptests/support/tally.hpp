@@ -7,7 +7,7 @@
 
 namespace dcad::test {
 
-constexpr long kDefaultCases = 60;  ///< per property; × DCAD_PROP_SCALE
+constexpr long kDefaultCases = 200;  ///< per property; × DCAD_PROP_SCALE
 
 struct Tally {
   long certain_agree = 0, uncertain = 0, disagree = 0;
