@@ -1,5 +1,6 @@
 #include "case_file.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -135,7 +136,47 @@ QMatrix read_matrix(const json& j, const Where& at, long rows, long cols) {
   return m;
 }
 
+std::vector<Rational> read_vector(const json& j, const Where& at, long size) {
+  if (!j.is_array()) at.fail("an array of numbers", describe(j));
+  if (size >= 0 && static_cast<long>(j.size()) != size) at.fail(std::to_string(size) + " numbers", std::to_string(j.size()));
+  std::vector<Rational> v;
+  for (std::size_t i = 0; i < j.size(); ++i) v.push_back(read_number(j[i], at / i));
+  return v;
+}
+
 namespace {
+
+void require_symmetric_input(const QMatrix& w, const Where& at) {
+  for (std::size_t i = 0; i < w.rows(); ++i)
+    for (std::size_t k = 0; k < w.cols(); ++k)
+      if (w(i, k) != w(k, i))
+        (at / i / k).fail("a symmetric matrix (entry (" + std::to_string(i) + "," + std::to_string(k) + ") = entry (" +
+                              std::to_string(k) + "," + std::to_string(i) + "))",
+                          w(i, k).str() + " vs " + w(k, i).str());
+}
+
+PontryaginInput read_pontryagin(const json& j, const Where& at) {
+  if (!j.is_object()) at.fail("an object {Q, constraints, lagrangian}", describe(j));
+  PontryaginInput p;
+  if (!j.contains("Q") || !j["Q"].is_number_integer() || j["Q"].get<long>() < 1)
+    (at / "Q").fail("a positive integer n = dim Q", j.contains("Q") ? describe(j["Q"]) : "nothing");
+  p.n = j["Q"].get<std::size_t>();
+  const long n = static_cast<long>(p.n);
+  p.k = j.contains("constraints") ? read_matrix(j["constraints"], at / "constraints", -1, n) : QMatrix(0, p.n);
+  const json lag = j.contains("lagrangian") ? j["lagrangian"] : json::object();
+  if (!lag.is_object()) (at / "lagrangian").fail("an object {vv, qv, qq, q, v}", describe(lag));
+  const Where l = at / "lagrangian";
+  p.vv = lag.contains("vv") ? read_matrix(lag["vv"], l / "vv", n, n) : QMatrix(p.n, p.n);
+  p.qv = lag.contains("qv") ? read_matrix(lag["qv"], l / "qv", n, n) : QMatrix(p.n, p.n);
+  p.qq = lag.contains("qq") ? read_matrix(lag["qq"], l / "qq", n, n) : QMatrix(p.n, p.n);
+  require_symmetric_input(p.vv, l / "vv");
+  require_symmetric_input(p.qq, l / "qq");
+  p.q = lag.contains("q") ? read_vector(lag["q"], l / "q", n) : std::vector<Rational>(p.n, 0);
+  p.v = lag.contains("v") ? read_vector(lag["v"], l / "v", n) : std::vector<Rational>(p.n, 0);
+  for (const auto& [key, value] : lag.items())
+    if (key != "vv" && key != "qv" && key != "qq" && key != "q" && key != "v") (l / key).fail("one of vv, qv, qq, q, v", "key " + key);
+  return p;
+}
 
 void require_skew_input(const QMatrix& w, const Where& at) {
   if (!reference::is_square(w)) at.fail("a square matrix", reference::shape(w));
@@ -205,16 +246,53 @@ CaseFile read_case(const std::string& file) {
     }
     n = static_cast<long>(v.size());
   }
+  if (j.contains("dirac") && j.contains("pontryagin")) root.fail("either \"dirac\" or \"pontryagin\"", "both");
   if (j.contains("dirac")) {
     c.has_dirac = true;
     c.dirac = read_dirac(j["dirac"], root / "dirac", n);
     const QMatrix& m = c.dirac.form == "basis" ? c.dirac.g : c.dirac.form == "poisson" ? c.dirac.p : c.dirac.w;
     c.n = m.rows();
-  } else if (!j.contains("pontryagin")) {
+  } else if (j.contains("pontryagin")) {
+    c.has_pontryagin = true;
+    c.pontryagin = read_pontryagin(j["pontryagin"], root / "pontryagin");
+    c.n = 3 * c.pontryagin.n;
+    if (n >= 0 && static_cast<std::size_t>(n) != c.n)
+      (root / "variables").fail(std::to_string(c.n) + " names (q, v, p for Q of dim " + std::to_string(c.pontryagin.n) + ")",
+                                std::to_string(n));
+    if (j.contains("energy")) (root / "energy").fail("no energy next to `pontryagin` (E = p·v − L)", describe(j["energy"]));
+  } else {
     root.fail("a \"dirac\" or a \"pontryagin\" member", "neither");
   }
-  if (c.variables.empty())
-    for (std::size_t i = 0; i < c.n; ++i) c.variables.push_back("x" + std::to_string(i + 1));
+  if (c.variables.empty()) {
+    if (c.has_pontryagin) {
+      for (const char* s : {"q", "v", "p"})
+        for (std::size_t i = 0; i < c.pontryagin.n; ++i) c.variables.push_back(s + std::to_string(i + 1));
+    } else {
+      for (std::size_t i = 0; i < c.n; ++i) c.variables.push_back("x" + std::to_string(i + 1));
+    }
+  }
+  const long nn = static_cast<long>(c.n);
+  c.energy.hessian = QMatrix(c.n, c.n);
+  c.energy.gradient.assign(c.n, 0);
+  if (j.contains("energy")) {
+    const json& e = j["energy"];
+    const Where at = root / "energy";
+    if (!e.is_object()) at.fail("an object {hessian, gradient, constant}", describe(e));
+    if (e.contains("hessian")) c.energy.hessian = read_matrix(e["hessian"], at / "hessian", nn, nn);
+    require_symmetric_input(c.energy.hessian, at / "hessian");
+    if (e.contains("gradient")) c.energy.gradient = read_vector(e["gradient"], at / "gradient", nn);
+    if (e.contains("constant")) c.energy.constant = read_number(e["constant"], at / "constant");
+  }
+  if (j.contains("coordinates")) {
+    const json& cs = j["coordinates"];
+    if (!cs.is_array()) (root / "coordinates").fail("an array of variable names", describe(cs));
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      const auto it = cs[i].is_string() ? std::find(c.variables.begin(), c.variables.end(), cs[i].get<std::string>())
+                                        : c.variables.end();
+      if (it == c.variables.end()) (root / "coordinates" / i).fail("one of the variables' names", describe(cs[i]));
+      c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
+    }
+  }
   if (j.contains("expect")) c.expect = j["expect"];
   return c;
 }

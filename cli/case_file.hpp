@@ -34,13 +34,31 @@ struct DiracInput {
   QMatrix g;         ///< `basis` rows (v, α)
 };
 
+/// The `pontryagin` member: L(q, v) = ½ vᵀ A v + qᵀ B v + ½ qᵀ C q + aᵀ q + bᵀ v, Δ = ker K.
+struct PontryaginInput {
+  std::size_t n = 0;
+  QMatrix k, vv, qv, qq;
+  std::vector<Rational> q, v;
+};
+
+/// E(x) = ½ xᵀ H x + gᵀ x + c.
+struct EnergyInput {
+  QMatrix hessian;
+  std::vector<Rational> gradient;
+  Rational constant = 0;
+};
+
 struct CaseFile {
   std::string file, name, description;
   std::size_t n = 0;
   std::vector<std::string> variables;
   bool has_dirac = false;
   DiracInput dirac;
-  nlohmann::json expect;  ///< optional golden expectations (raw)
+  EnergyInput energy;       ///< zero if absent (or for `pontryagin`)
+  bool has_pontryagin = false;
+  PontryaginInput pontryagin;
+  std::vector<std::size_t> coordinates;  ///< optional: variables to write the reduced equations in
+  nlohmann::json expect;    ///< optional golden expectations (raw)
 };
 
 CaseFile read_case(const std::string& file);
@@ -56,5 +74,6 @@ struct Where {
 Rational read_number(const nlohmann::json& j, const Where& at);
 QMatrix read_matrix(const nlohmann::json& j, const Where& at, long rows = -1, long cols = -1);
 std::string describe(const nlohmann::json& j);
+std::vector<Rational> read_vector(const nlohmann::json& j, const Where& at, long size);
 
 }  // namespace dcad::io

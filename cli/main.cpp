@@ -2,6 +2,7 @@
 // 0 success, 1 bad input (file + line or JSON path, expected vs found), 2 bad usage.
 #include "case_file.hpp"
 #include "inspect.hpp"
+#include "solve.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -25,6 +26,17 @@ int main(int argc, char** argv) {
   inspect->add_option("--backend", backend, "reference (exact) or fast (double, with certainty verdicts)")
       ->check(CLI::IsMember({"reference", "fast"}));
   inspect->add_flag("--json", as_json, "print the result as JSON");
+
+  std::string solve_file, solve_backend = "certified";
+  bool solve_json = false;
+  CLI::App* solve = app.add_subcommand(
+      "solve", "Run the constraint algorithm (CAD, CEF §5) on a case file: the constraint tower M_0 ⊇ M_1 ⊇ …, "
+               "the final constraint submanifold, the solution rank (Thm 5.4) and the equations of motion (5.12).");
+  solve->add_option("FILE", solve_file, "case file (.json)")->required();
+  solve->add_option("--backend", solve_backend,
+                    "certified (default: fast, recomputed exactly if any decision is uncertain), reference, fast")
+      ->check(CLI::IsMember({"reference", "fast", "certified"}));
+  solve->add_flag("--json", solve_json, "print the result JSON of the CONTRACT");
 
   try {
     app.parse(argc, argv);
@@ -59,6 +71,19 @@ int main(int argc, char** argv) {
                   << "\n";
         return 1;
       }
+    }
+    if (solve->parsed()) {
+      const dcad::io::CaseFile c = dcad::io::read_case(solve_file);
+      dcad::cli::SolveReport r;
+      try {
+        r = solve_backend == "reference" ? dcad::cli::solve_reference(c)
+            : solve_backend == "fast"    ? dcad::cli::solve_fast(c)
+                                         : dcad::cli::solve_certified(c);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << solve_file << ": " << (c.has_pontryagin ? "/pontryagin" : c.dirac.path) << ": " << e.what() << "\n";
+        return 1;
+      }
+      std::cout << (solve_json ? dcad::cli::to_json(r, c).dump(2) + "\n" : dcad::cli::to_text(r, c));
     }
   } catch (const dcad::io::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -58,6 +59,53 @@ TEST(Golden, InspectEveryCase) {
     }
   }
   EXPECT_GE(checked, 8);
+}
+
+/// Every case with solve expectations, on every backend: discrete keys exactly (fast: when it says
+/// certified), reduced equations exactly (reference, certified-exact) or to 1e-9 (fast).
+TEST(Golden, SolveEveryCase) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases")) {
+    if (entry.path().extension() != ".json") continue;
+    const nlohmann::json c = nlohmann::json::parse(slurp(entry.path()));
+    if (!c.contains("expect") || !c["expect"].contains("dims")) continue;
+    const nlohmann::json& want = c["expect"];
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + entry.path().string() + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << entry.path() << " " << backend << ": " << r.err;
+      const nlohmann::json got = nlohmann::json::parse(r.out);
+      for (const char* key : {"dcad", "backend", "certified", "dims", "steps", "consistent", "solution_rank", "unique"})
+        EXPECT_TRUE(got.contains(key)) << key;
+      if (backend != "fast") EXPECT_TRUE(got["certified"].get<bool>());
+      if (got["certified"].get<bool>())
+        for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique"})
+          if (want.contains(key)) EXPECT_EQ(got[key], want[key]) << entry.path() << " " << backend << " " << key;
+      if (!want.contains("reduced")) continue;
+      const nlohmann::json& wr = want["reduced"];
+      const nlohmann::json& gr = got["reduced"];
+      EXPECT_EQ(gr["coordinates"], wr["coordinates"]);
+      const bool exact = got["backend"] == "reference" || got["decisions"]["exact_recomputation"] == 1;
+      const auto num = [](const nlohmann::json& x) {
+        const std::string s = x.is_string() ? x.get<std::string>() : x.dump();
+        const auto slash = s.find('/');
+        return slash == std::string::npos ? std::stod(s) : std::stod(s.substr(0, slash)) / std::stod(s.substr(slash + 1));
+      };
+      for (const char* key : {"F", "f"}) {
+        if (!wr.contains(key)) continue;
+        if (exact) {
+          EXPECT_EQ(gr[key], wr[key]) << entry.path() << " " << backend << " " << key;
+          continue;
+        }
+        const nlohmann::json a = wr[key].is_array() && wr[key][0].is_array() ? wr[key] : nlohmann::json::array({wr[key]});
+        const nlohmann::json b = gr[key].is_array() && gr[key][0].is_array() ? gr[key] : nlohmann::json::array({gr[key]});
+        for (std::size_t i = 0; i < a.size(); ++i)
+          for (std::size_t j = 0; j < a[i].size(); ++j)
+            EXPECT_NEAR(num(b[i][j]), num(a[i][j]), 1e-9 * (1 + std::abs(num(a[i][j])))) << entry.path() << " " << key;
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
 }
 
 TEST(Cli, HelpVersionUsage) {

@@ -1,0 +1,107 @@
+#include "solve.hpp"
+
+#include <sstream>
+
+namespace dcad::cli {
+
+SolveReport solve_certified(const io::CaseFile& c) {
+  SolveReport fast = solve_fast(c);
+  if (fast.certified) {
+    fast.backend = "certified";
+    fast.note = "every decision certain in floating point";
+    return fast;
+  }
+  SolveReport exact = solve_reference(c);
+  exact.backend = "certified";
+  exact.decisions_float = fast.decisions_float;
+  exact.decisions_exact = 1;
+  exact.note = "a floating-point decision was uncertain: recomputed exactly from the exact input";
+  return exact;
+}
+
+namespace {
+
+std::string equation_text(const Equation& e, const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t j = 0; j < e.coeff.size(); ++j) {
+    if (e.coeff[j].empty()) continue;
+    std::string c = e.coeff[j];
+    const bool neg = c[0] == '-';
+    if (neg) c = c.substr(1);
+    s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
+    s += (c == "1" ? "" : c + "*") + names[j];
+  }
+  return (s.empty() ? "0" : s) + " = " + e.rhs;
+}
+
+std::string row_text(const std::vector<std::string>& coeff, const std::vector<std::string>& names, const std::string& constant) {
+  Equation e{coeff, ""};
+  std::string lhs = equation_text(e, names);
+  lhs = lhs.substr(0, lhs.size() - 3);  // drop " = "
+  if (constant != "0" && !constant.empty()) lhs += (constant[0] == '-' ? " - " + constant.substr(1) : " + " + constant);
+  return lhs;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
+  nlohmann::json j = {{"dcad", 1},        {"backend", r.backend},       {"certified", r.certified}, {"dims", r.dims},
+                      {"steps", r.steps}, {"consistent", r.consistent}, {"variables", c.variables}};
+  j["solution_rank"] = r.consistent ? nlohmann::json(r.solution_rank) : nlohmann::json(nullptr);
+  j["unique"] = r.consistent ? nlohmann::json(r.solution_rank == 0) : nlohmann::json(nullptr);
+  nlohmann::json tower = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.tower.size(); ++k) {
+    nlohmann::json eqs = nlohmann::json::array();
+    for (const Equation& e : r.tower[k].equations) eqs.push_back(equation_text(e, c.variables));
+    tower.push_back({{"k", k}, {"dim", r.tower[k].dim}, {"new_constraints", eqs}});
+  }
+  j["tower"] = tower;
+  if (r.has_reduced) {
+    std::vector<std::string> names;
+    for (std::size_t i : r.coords) names.push_back(c.variables[i]);
+    j["reduced"] = {{"coordinates", names}, {"F", r.f_matrix}, {"f", r.f}, {"G", r.g}};
+  }
+  j["decisions"] = {{"float", r.decisions_float}, {"exact_recomputation", r.decisions_exact}};
+  if (!r.note.empty()) j["note"] = r.note;
+  return j;
+}
+
+std::string to_text(const SolveReport& r, const io::CaseFile& c) {
+  std::ostringstream o;
+  o << c.file << (c.name.empty() ? "" : " (" + c.name + ")") << ": CAD (CEF §5), backend " << r.backend
+    << (r.certified ? ", certified" : ", NOT certified") << "\n";
+  for (std::size_t k = 0; k < r.tower.size(); ++k) {
+    o << "  M_" << k << ": " << (r.tower[k].dim < 0 ? std::string("empty") : "dim " + std::to_string(r.tower[k].dim)) << "\n";
+    for (const Equation& e : r.tower[k].equations) o << "      " << equation_text(e, c.variables) << "\n";
+  }
+  if (!r.consistent) {
+    o << "  inconsistent: M_" << r.steps << " is empty, the system has no solution\n";
+  } else {
+    o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << r.dims.back() << "\n";
+    o << "  solution rank dim(ker omega_D ∩ T M_c) = " << r.solution_rank << (r.solution_rank == 0 ? " (unique)" : " (not unique)") << "\n";
+  }
+  if (r.has_reduced) {
+    std::vector<std::string> names;
+    for (std::size_t i : r.coords) names.push_back(c.variables[i]);
+    std::vector<std::string> lambdas;
+    for (std::size_t k = 0; k < (r.g.empty() ? 0 : r.g[0].size()); ++k) lambdas.push_back("lambda" + std::to_string(k + 1));
+    o << "  equations of motion on M_c (CEF (5.12)) in coordinates (" ;
+    for (std::size_t i = 0; i < names.size(); ++i) o << (i ? ", " : "") << names[i];
+    o << "):\n";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      std::vector<std::string> coeff = r.f_matrix[i];
+      std::vector<std::string> all = names;
+      for (std::size_t k = 0; k < lambdas.size(); ++k) {
+        coeff.push_back(r.g[i][k] == "0" ? "" : r.g[i][k]);
+        all.push_back(lambdas[k]);
+      }
+      for (std::string& x : coeff)
+        if (x == "0") x = "";
+      o << "    d/dt " << names[i] << " = " << row_text(coeff, all, r.f[i]) << "\n";
+    }
+  }
+  if (!r.note.empty()) o << "  note: " << r.note << "\n";
+  return o.str();
+}
+
+}  // namespace dcad::cli

@@ -1,0 +1,46 @@
+// `dcad solve`: the CAD on a case file by one backend, as a report for people and as the JSON of
+// ../shared/CONTRACT.md.  Numbers are already formatted: exact "p/q" (reference) or %.17g (fast).
+#pragma once
+
+#include "case_file.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dcad::cli {
+
+/// a·x = b as coefficient strings per variable ("" = zero) and the right-hand side.
+struct Equation {
+  std::vector<std::string> coeff;
+  std::string rhs;
+};
+
+struct SolveReport {
+  std::string backend;
+  bool certified = true;
+  std::vector<long> dims;
+  long steps = 0;
+  bool consistent = true;
+  long solution_rank = 0;
+  struct Step {
+    long dim = 0;
+    std::vector<Equation> equations;  ///< constraints added to reach M_k
+  };
+  std::vector<Step> tower;
+  bool has_reduced = false;
+  std::vector<std::size_t> coords;
+  std::vector<std::vector<std::string>> f_matrix, g;
+  std::vector<std::string> f;
+  std::string note;  ///< e.g. why `certified` recomputed exactly
+  long decisions_float = 0, decisions_exact = 0;
+};
+
+SolveReport solve_reference(const io::CaseFile& c);
+SolveReport solve_fast(const io::CaseFile& c);
+/// fast; if any decision is uncertain, the whole result recomputed exactly from the exact input.
+SolveReport solve_certified(const io::CaseFile& c);
+
+nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c);
+std::string to_text(const SolveReport& r, const io::CaseFile& c);
+
+}  // namespace dcad::cli

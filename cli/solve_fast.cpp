@@ -1,0 +1,101 @@
+#include "dcad/fast/cad.hpp"
+#include "solve.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace dcad::cli {
+
+namespace fa = dcad::fast;
+
+namespace {
+
+Eigen::MatrixXd to_double(const io::QMatrix& m, fa::Options& opt) {
+  Eigen::MatrixXd d(m.rows(), m.cols());
+  for (std::size_t i = 0; i < m.rows(); ++i)
+    for (std::size_t k = 0; k < m.cols(); ++k) {
+      d(i, k) = m(i, k).convert_to<double>();
+      if (io::Rational(d(i, k)) != m(i, k)) opt.input_exact = false;
+    }
+  fa::assess_input(d, opt);
+  return d;
+}
+
+Eigen::VectorXd to_double(const std::vector<io::Rational>& v, fa::Options& opt) {
+  return to_double(io::QMatrix::from_rows({v}, v.size()), opt).transpose();
+}
+
+std::string num(double x) {
+  std::ostringstream o;
+  o.precision(17);
+  o << x;
+  return o.str();
+}
+
+fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
+  if (c.has_pontryagin) {
+    const io::PontryaginInput& p = c.pontryagin;
+    return fa::pontryagin_system(to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt),
+                                 to_double(p.q, opt), to_double(p.v, opt), opt);
+  }
+  const io::DiracInput& in = c.dirac;
+  fa::DiracStructure d;
+  if (in.form == "presymplectic") {
+    d = fa::dirac_from_presymplectic(to_double(in.w, opt));
+  } else if (in.form == "distribution") {
+    const Eigen::MatrixXd b = to_double(in.b, opt), w = to_double(in.w, opt);
+    d = fa::dirac_from_distribution(fa::Subspace::span(b.transpose(), -1, opt), w);
+  } else if (in.form == "poisson") {
+    d = fa::dirac_from_poisson(to_double(in.p, opt));
+  } else {
+    d = fa::dirac_from_basis(to_double(in.g, opt), opt);
+  }
+  return {d, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
+}
+
+}  // namespace
+
+SolveReport solve_fast(const io::CaseFile& c) {
+  fa::Options opt;
+  const fa::LinearSystem s = fast_system(c, opt);
+  const fa::CadResult r = fa::constraint_tower(s, opt);
+  SolveReport out;
+  out.backend = "fast";
+  out.certified = r.certain;
+  out.consistent = r.consistent;
+  out.steps = r.steps;
+  out.solution_rank = r.solution_rank;
+  out.decisions_float = static_cast<long>(r.decisions.size());
+  for (const auto& st : r.tower) {
+    SolveReport::Step step;
+    step.dim = st.dim();
+    for (Eigen::Index i = 0; i < st.equations.rows(); ++i) {
+      Equation e;
+      // display only: coefficients at rounding level of this (unit) row are shown as absent
+      for (Eigen::Index j = 0; j + 1 < st.equations.cols(); ++j)
+        e.coeff.push_back(std::abs(st.equations(i, j)) <= 1e-13 ? "" : num(st.equations(i, j)));
+      e.rhs = num(st.equations(i, st.equations.cols() - 1));
+      step.equations.push_back(e);
+    }
+    out.dims.push_back(step.dim);
+    out.tower.push_back(step);
+  }
+  if (r.consistent) {
+    std::vector<int> coords(c.coordinates.begin(), c.coordinates.end());
+    const fa::ReducedEquations red = fa::reduced_equations(s, r, coords, opt);
+    out.certified = out.certified && red.certain;
+    out.has_reduced = true;
+    out.coords.assign(red.coords.begin(), red.coords.end());
+    for (std::size_t i = 0; i < red.coords.size(); ++i) {
+      out.f_matrix.push_back({});
+      for (std::size_t j = 0; j < red.coords.size(); ++j) out.f_matrix.back().push_back(num(red.f_matrix(i, j)));
+      out.f.push_back(num(red.f(i)));
+      out.g.push_back({});
+      for (Eigen::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(num(red.g(i, j)));
+    }
+  }
+  if (!out.certified) out.note = "some rank decision was uncertain (see `dcad solve --backend certified`)";
+  return out;
+}
+
+}  // namespace dcad::cli

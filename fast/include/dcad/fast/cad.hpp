@@ -1,0 +1,53 @@
+// The CAD on linear systems in double; the twin of dcad/reference/cad.hpp.  Constraints are kept as
+// orthonormal rows A (with right-hand sides b), so M_k = {x : A x = b} = Aᵀ b + (row A)^⊥ needs no
+// further decision; each step projects the candidate equations ⟨H x + g, u⟩ = 0, u ∈ W_k^D, off the
+// old rows and decides (a) how many are new and (b) whether the rest is consistent.
+#pragma once
+
+#include "dcad/fast/dirac.hpp"
+
+namespace dcad::fast {
+
+struct LinearSystem {
+  DiracStructure d;
+  MatrixXd hessian;
+  VectorXd gradient;
+  double constant = 0;
+};
+
+/// Same formulas as dcad::reference::pontryagin_system (CEF §6), Δ = ker K decided here.
+LinearSystem pontryagin_system(const MatrixXd& k, const MatrixXd& vv, const MatrixXd& qv, const MatrixXd& qq,
+                               const VectorXd& q, const VectorXd& v, const Options& opt = {});
+
+struct CadStep {
+  AffineSubspace m;
+  MatrixXd equations;  ///< new equations [a | b] (orthonormal a, orthogonal to earlier ones)
+  Subspace w = Subspace::zero(0);
+  long dim() const { return m.empty ? -1 : m.direction.dim(); }
+};
+
+struct CadResult {
+  std::vector<CadStep> tower;
+  bool consistent = true;
+  int steps = 0;
+  int solution_rank = 0;
+  bool certain = true;                  ///< every decision below was certain
+  std::vector<RankDecision> decisions;  ///< every decision, in order (the trace's evidence)
+  bool unique() const { return consistent && solution_rank == 0; }
+  const CadStep& final_step() const { return tower.back(); }
+};
+
+CadResult constraint_tower(const LinearSystem& s, const Options& opt = {});
+
+struct ReducedEquations {
+  std::vector<int> coords;
+  MatrixXd f_matrix;
+  VectorXd f;
+  MatrixXd g;
+  bool certain = true;
+};
+/// Default coordinates as in the reference: the first variables, in order, independent on T M_c.
+ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords = {},
+                                   const Options& opt = {});
+
+}  // namespace dcad::fast

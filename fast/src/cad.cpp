@@ -1,0 +1,176 @@
+#include "dcad/fast/cad.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace dcad::fast {
+
+LinearSystem pontryagin_system(const MatrixXd& k, const MatrixXd& vv, const MatrixXd& qv, const MatrixXd& qq,
+                               const VectorXd& q, const VectorXd& v, const Options& opt) {
+  const int n = static_cast<int>(vv.rows());
+  for (const MatrixXd* m : {&k, &vv, &qv, &qq}) require_finite(*m, "pontryagin_system");
+  if (vv != vv.transpose() || qq != qq.transpose())
+    throw std::invalid_argument("pontryagin_system: expected symmetric vv and qq, found an asymmetric one");
+  const Subspace delta = k.rows() ? kernel(k, opt) : Subspace::whole(n);
+  MatrixXd e = MatrixXd::Zero(3 * n, delta.dim() + 2 * n);
+  e.topLeftCorner(n, delta.dim()) = delta.basis();
+  e.bottomRightCorner(2 * n, 2 * n).setIdentity();
+  MatrixXd w = MatrixXd::Zero(3 * n, 3 * n), h = MatrixXd::Zero(3 * n, 3 * n);
+  w.block(0, 2 * n, n, n).setIdentity();
+  w.block(2 * n, 0, n, n) = -MatrixXd::Identity(n, n);
+  h.block(0, 0, n, n) = -qq;
+  h.block(0, n, n, n) = -qv;
+  h.block(n, 0, n, n) = -qv.transpose();
+  h.block(n, n, n, n) = -vv;
+  h.block(n, 2 * n, n, n).setIdentity();
+  h.block(2 * n, n, n, n).setIdentity();
+  VectorXd g = VectorXd::Zero(3 * n);
+  g.head(n) = -q;
+  g.segment(n, n) = -v;
+  // the columns of e are orthonormal already: Δ's basis in the q-block, the identity below
+  return {dirac_from_distribution(Subspace::from_orthonormal(e, delta.certain()), w), h, g, 0.0};
+}
+
+namespace {
+
+void record(CadResult& r, const RankDecision& d) {
+  r.certain = r.certain && d.certain;
+  r.decisions.push_back(d);
+}
+
+}  // namespace
+
+CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
+  const int n = s.d.n;
+  require_finite(s.hessian, "constraint_tower");
+  require_finite(s.gradient, "constraint_tower");
+  if (s.hessian.rows() != n || s.hessian.cols() != n || s.gradient.size() != n)
+    throw std::invalid_argument("constraint_tower: expected an " + std::to_string(n) + "x" + std::to_string(n) +
+                                " Hessian and a gradient of length " + std::to_string(n) + ", found other sizes");
+  if (s.hessian != s.hessian.transpose())
+    throw std::invalid_argument("constraint_tower: expected a symmetric Hessian, found an asymmetric one");
+  CadResult out;
+  const Subspace e = dirac_distribution(s.d, opt);
+  out.certain = e.certain() && s.d.d.certain();
+  const double hscale = std::max(norm2(s.hessian), s.gradient.norm());
+  MatrixXd a(0, n);  // orthonormal rows
+  VectorXd b(0);
+  CadStep step;
+  step.m.empty = false;
+  step.m.point = VectorXd::Zero(n);
+  step.m.direction = Subspace::whole(n);
+  step.equations = MatrixXd(0, n + 1);
+  for (;;) {
+    step.w = intersection(step.m.direction, e, opt);
+    record(out, step.w.evidence());
+    out.tower.push_back(step);
+    const Subspace u = dirac_orthogonal(s.d, step.w, opt);
+    out.certain = out.certain && u.certain();
+    // candidates c x = β with c = uᵀ H, β = −uᵀ g; reduce modulo A x = b.
+    const MatrixXd ca = u.basis().transpose() * s.hessian;
+    const VectorXd cb = -(u.basis().transpose() * s.gradient);
+    const MatrixXd y = ca * a.transpose();
+    const MatrixXd ra = ca - y * a;
+    const VectorXd rb = cb - y * b;
+    const Svd sv = full_svd(ra);
+    const RankDecision d = decide_rank(sv.sigma, ra.rows(), ra.cols(), hscale, opt);
+    record(out, d);
+    // what is left of the right-hand side where the new rows vanish must be 0, else M_{k+1} = ∅
+    const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
+    const double xscale = hscale * (1 + step.m.point.norm()) + s.gradient.norm();
+    const RankDecision dc = decide_rank(MatrixXd(rest), xscale, opt);
+    record(out, dc);
+    if (dc.rank > 0) {
+      CadStep empty;
+      empty.m.empty = true;
+      empty.equations = MatrixXd(0, n + 1);
+      out.tower.push_back(empty);
+      out.consistent = false;
+      break;
+    }
+    if (d.rank == 0) break;  // M_{k+1} = M_k
+    const MatrixXd new_a = sv.v.leftCols(d.rank).transpose();
+    const VectorXd new_b = (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
+    MatrixXd a2(a.rows() + d.rank, n);
+    a2 << a, new_a;
+    VectorXd b2(b.size() + d.rank);
+    b2 << b, new_b;
+    a = a2;
+    b = b2;
+    step = CadStep();
+    step.m.empty = false;
+    step.m.point = a.transpose() * b;
+    step.m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
+    step.equations.resize(d.rank, n + 1);
+    step.equations << new_a, new_b;
+  }
+  out.steps = static_cast<int>(out.tower.size()) - 1;
+  if (out.consistent) {
+    const Subspace k = intersection(form_kernel(dirac_form(s.d, opt), opt), out.final_step().m.direction, opt);
+    record(out, k.evidence());
+    out.certain = out.certain && k.certain();
+    out.solution_rank = k.dim();
+  }
+  return out;
+}
+
+ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords, const Options& opt) {
+  if (!r.consistent) throw std::invalid_argument("reduced_equations: expected a consistent system, found M_c empty");
+  const int n = s.d.n;
+  const MatrixXd b = r.final_step().m.direction.basis();  // n × m
+  const int m = static_cast<int>(b.cols());
+  ReducedEquations red;
+  if (coords.empty()) {  // greedy: variable j joins if it raises the rank of the selected rows of B
+    MatrixXd rows(0, m);
+    for (int j = 0; j < n && static_cast<int>(coords.size()) < m; ++j) {
+      MatrixXd more(rows.rows() + 1, m);
+      more << rows, b.row(j);
+      const RankDecision d = decide_rank(more, 1.0, opt);
+      red.certain = red.certain && d.certain;
+      if (d.rank > rows.rows()) {
+        rows = more;
+        coords.push_back(j);
+      }
+    }
+  }
+  if (static_cast<int>(coords.size()) != m)
+    throw std::invalid_argument("reduced_equations: expected " + std::to_string(m) + " coordinates (dim M_c), found " +
+                                std::to_string(coords.size()));
+  MatrixXd sel = MatrixXd::Zero(m, n);
+  for (int i = 0; i < m; ++i) sel(i, coords[i]) = 1;
+  const MatrixXd t = sel * b;
+  const RankDecision dt = decide_rank(t, 1.0, opt);
+  if (dt.rank < m) throw std::invalid_argument("reduced_equations: expected coordinates that parametrize M_c, found variables that do not");
+  red.certain = red.certain && dt.certain;
+  const MatrixXd tinv = t.fullPivLu().inverse();
+  const VectorXd x0 = r.final_step().m.point;
+  // (B w, dE) ∈ D ⇔ B w = V c, dE = A c for some c: solve [V; A] c = [B w; dE] — in w and c jointly:
+  //   V c − B w = 0,  A c = H (x0 + B y) + g.
+  const MatrixXd dv = s.d.v_part(), da = s.d.alpha_part();
+  const int k = static_cast<int>(dv.cols());
+  MatrixXd lhs = MatrixXd::Zero(2 * n, k + m);
+  lhs.topLeftCorner(n, k) = dv;
+  lhs.topRightCorner(n, m) = -b;
+  lhs.bottomLeftCorner(n, k) = da;
+  const Svd sv = full_svd(lhs);
+  const RankDecision dl = decide_rank(sv.sigma, lhs.rows(), lhs.cols(), 1.0 + norm2(s.hessian), opt);
+  red.certain = red.certain && dl.certain;
+  MatrixXd pinv = MatrixXd::Zero(k + m, 2 * n);
+  for (int i = 0; i < dl.rank; ++i) pinv += sv.v.col(i) * sv.u.col(i).transpose() / sv.sigma(i);
+  MatrixXd rhs_y = MatrixXd::Zero(2 * n, m);
+  rhs_y.bottomRows(n) = s.hessian * b;
+  VectorXd rhs0 = VectorXd::Zero(2 * n);
+  rhs0.tail(n) = s.hessian * x0 + s.gradient;
+  const MatrixXd p = (pinv * rhs_y).bottomRows(m);
+  const VectorXd p0 = (pinv * rhs0).tail(m);
+  const MatrixXd kernel_w = sv.v.rightCols(k + m - dl.rank).bottomRows(m);  // w-parts of the null space
+  red.coords = coords;
+  red.f_matrix = t * p * tinv;
+  red.f = t * p0 - red.f_matrix * (sel * x0);
+  red.g = kernel_w.cols() ? MatrixXd(t * Subspace::span(kernel_w, 1.0, opt).basis()) : MatrixXd(m, 0);
+  return red;
+}
+
+}  // namespace dcad::fast
