@@ -7,17 +7,6 @@
 using namespace dcad::reference;
 using namespace dcad::test;
 
-namespace {
-/// One of the three generators, chosen by RapidCheck.
-DiracStructure<Q> any_dirac() {
-  switch (*rc::gen::inRange(0, 3)) {
-    case 0: return planted_dirac_from_distribution().d;
-    case 1: return planted_dirac_from_poisson().d;
-    default: return moved_lagrangian();
-  }
-}
-}  // namespace
-
 // Planted answers: dim E_D = k, rank ω_D = 2h, dim ker ω_D = k − 2h; presymplectic iff k = n.
 RC_GTEST_PROP(Dirac, PlantedDistribution, ()) {
   const PlantedDirac p = planted_dirac_from_distribution();

@@ -2,7 +2,7 @@
 // every choice is a RapidCheck pick (`*gen`), so failures shrink toward small n and few shears.
 #pragma once
 
-#include "dcad/reference/dirac.hpp"
+#include "dcad/reference/cad.hpp"
 #include "dcad/reference/rational.hpp"
 
 #include <rapidcheck.h>
@@ -38,6 +38,9 @@ inline QM integer_matrix(Index rows, Index cols, int bound = 3) {
     for (Index j = 0; j < cols; ++j) m(i, j) = Q(*rc::gen::inRange(-bound, bound + 1));
   return m;
 }
+
+/// A random covector/vector with small integer entries.
+inline std::vector<Q> integer_vector(Index n, int bound = 3) { return integer_matrix(1, n, bound).row(0); }
 
 /// The canonical form of rank 2h on Q^n: Ω(e_i, e_{h+i}) = 1 for i < h, zero elsewhere.
 inline QM canonical_form(Index n, Index h) {
@@ -195,6 +198,81 @@ inline reference::DiracStructure<Q> moved_lagrangian(Index max_n = 12) {
   return reference::dirac_from_basis(g);
 }
 
+/// One of the three Dirac generators, chosen by RapidCheck.
+inline reference::DiracStructure<Q> any_dirac(Index max_n = 12) {
+  switch (*rc::gen::inRange(0, 3)) {
+    case 0: return planted_dirac_from_distribution(max_n).d;
+    case 1: return planted_dirac_from_poisson(max_n).d;
+    default: return moved_lagrangian(max_n);
+  }
+}
+
+/// A symmetric integer matrix of planted rank ≤ r: Aᵀ diag(±1, …, 0) A.
+inline QM symmetric_matrix(Index n, Index r) {
+  QM d(n, n);
+  for (Index i = 0; i < r && i < n; ++i) d(i, i) = Q(*rc::gen::element(-2, -1, 1, 2));
+  const QM a = unimodular(n);
+  return a.transpose() * d * a;
+}
+
+/// A linear Dirac dynamical system in one of the input forms: a random Dirac structure with a
+/// quadratic energy of random rank (g often in the range of H, so both consistent and
+/// inconsistent systems occur), or a Lagrangian system on the Pontryagin bundle (CEF §6).
+inline reference::LinearSystem<Q> long_tower_system(Index max_m);
+inline reference::LinearSystem<Q> any_system(Index max_n = 8) {
+  if (*rc::gen::inRange(0, 5) == 0) return long_tower_system(std::max<Index>(1, (max_n - 1) / 2));
+  if (*rc::gen::arbitrary<bool>()) {
+    const Index n = pick_size(1, std::max<Index>(1, max_n / 3));
+    reference::PontryaginInput<Q> in;
+    in.n = n;
+    in.k = integer_matrix(*rc::gen::inRange<Index>(0, n + 1), n, 1);
+    in.vv = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+    in.qq = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+    in.qv = *rc::gen::arbitrary<bool>() ? integer_matrix(n, n, 1) : QM(n, n);
+    in.q = *rc::gen::arbitrary<bool>() ? integer_vector(n, 2) : std::vector<Q>(n, Q(0));
+    in.v = *rc::gen::arbitrary<bool>() ? integer_vector(n, 2) : std::vector<Q>(n, Q(0));
+    return reference::pontryagin_system(in);
+  }
+  reference::LinearSystem<Q> s;
+  s.d = any_dirac(max_n);
+  const Index n = s.d.n;
+  s.hessian = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  s.gradient = *rc::gen::arbitrary<bool>() ? (s.hessian * QM::column(integer_vector(n, 2))).col(0) : integer_vector(n, 2);
+  return s;
+}
+
+/// Pulls a system back by x = A y (A unimodular): D ↦ {(A^{-1} v, Aᵀ α)}, H ↦ Aᵀ H A, g ↦ Aᵀ g.
+inline reference::LinearSystem<Q> change_coordinates(const reference::LinearSystem<Q>& s, const QM& a) {
+  const Index n = s.d.n;
+  const QM ainv = reference::inverse(a);
+  QM t(2 * n, 2 * n);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < n; ++j) {
+      t(i, j) = ainv(i, j);
+      t(n + i, n + j) = a(j, i);
+    }
+  return {{n, QSub::span(s.d.d.basis() * t.transpose())}, a.transpose() * s.hessian * a,
+          (a.transpose() * QM::column(s.gradient)).col(0), s.constant};
+}
+
+/// A planted tower of full length c = N = 2m+1: coordinates (q_1..q_m, p_1..p_m, z), ω = Σ dq_i∧dp_i
+/// (z spans ker ω), E = z q_1 + Σ_{i<m} p_i q_{i+1} + ½ p_m².  Then M_1 = {q_1 = 0} and each
+/// tangency condition adds the next: q_2, …, q_m, p_m, …, p_1, z — dims N, N−1, …, 0.  Moved by a
+/// random unimodular change of coordinates.
+inline reference::LinearSystem<Q> long_tower_system(Index max_m = 4) {
+  const Index m = pick_size(1, max_m), n = 2 * m + 1, z = 2 * m;
+  QM w(n, n), h(n, n);
+  for (Index i = 0; i < m; ++i) {
+    w(i, m + i) = Q(1);
+    w(m + i, i) = Q(-1);
+  }
+  h(z, 0) = h(0, z) = Q(1);
+  for (Index i = 0; i + 1 < m; ++i) h(m + i, i + 1) = h(i + 1, m + i) = Q(1);
+  h(2 * m - 1, 2 * m - 1) = Q(1);
+  const reference::LinearSystem<Q> s{reference::dirac_from_presymplectic(w), h, std::vector<Q>(n, Q(0)), Q(0)};
+  return change_coordinates(s, unimodular(n));
+}
+
 /// A random subspace of a given subspace U (random integer combinations of its basis).
 inline QSub random_subspace_of(const QSub& u) {
   if (u.dim() == 0) return u;
@@ -202,7 +280,5 @@ inline QSub random_subspace_of(const QSub& u) {
   return QSub::span(integer_matrix(k, u.dim()) * u.basis());
 }
 
-/// A random covector/vector with small integer entries.
-inline std::vector<Q> integer_vector(Index n, int bound = 3) { return integer_matrix(1, n, bound).row(0); }
 
 }  // namespace dcad::test

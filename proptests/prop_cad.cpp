@@ -1,0 +1,166 @@
+// Properties of the exact CAD (CEF §5) on random linear systems in both input forms.
+#include "support/gen.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad::reference;
+using namespace dcad::test;
+
+namespace {
+
+/// A point of an affine subspace: its point plus an integer combination of its directions.
+std::vector<Q> some_point(const AffineSubspace<Q>& m) {
+  std::vector<Q> x = m.point;
+  const QM c = integer_matrix(1, m.direction.dim());
+  for (Index i = 0; i < m.direction.dim(); ++i)
+    for (Index k = 0; k < x.size(); ++k) x[k] += c(0, i) * m.direction.basis()(i, k);
+  return x;
+}
+
+void classify(const CadResult<Q>& r) {
+  RC_CLASSIFY(!r.consistent, "inconsistent");
+  RC_CLASSIFY(r.consistent && !r.unique(), "non-unique");
+  RC_TAG("c = " + std::to_string(r.steps));
+}
+
+}  // namespace
+
+// §5: M_{k+1} ⊆ M_k, strictly until it stops, and c ≤ N.
+RC_GTEST_PROP(Cad, TowerDecreasesAndStops, ()) {
+  const LinearSystem<Q> s = any_system();
+  const CadResult<Q> r = constraint_tower(s);
+  classify(r);
+  RC_ASSERT(r.steps <= s.d.n);
+  for (Index k = 1; k < r.tower.size(); ++k) {
+    const AffineSubspace<Q>& big = r.tower[k - 1].m;
+    const AffineSubspace<Q>& small = r.tower[k].m;
+    RC_ASSERT(r.tower[k].dim() < r.tower[k - 1].dim());
+    if (small.empty) continue;
+    RC_ASSERT(contains(big.direction, small.direction));
+    RC_ASSERT(big.contains_point(small.point));
+  }
+}
+
+// Planted long towers are recovered exactly: dims N, N−1, …, 0, c = N, consistent and unique.
+RC_GTEST_PROP(Cad, PlantedLongTower, ()) {
+  const LinearSystem<Q> s = long_tower_system(5);
+  const CadResult<Q> r = constraint_tower(s);
+  RC_ASSERT(r.consistent);
+  RC_ASSERT(r.steps == s.d.n);
+  for (Index k = 0; k < r.tower.size(); ++k) RC_ASSERT(r.tower[k].dim() == static_cast<long>(s.d.n - k));
+  RC_ASSERT(r.solution_rank == 0u);
+}
+
+// Lemma 5.1 (iv) ⇔ (vi) ⇔ (vii) at random points x, with W = W_k of the tower:
+// ⟨dE(x)|E_D, W^{ω_D}⟩ = 0  ⇔  dE(x) ∈ D^♭(W)  ⇔  ⟨dE(x), W^D⟩ = 0.
+RC_GTEST_PROP(Cad, Lemma5_1_Equivalences, ()) {
+  const LinearSystem<Q> s = any_system();
+  const CadResult<Q> r = constraint_tower(s);
+  const Index k = *rc::gen::inRange<Index>(0, r.tower.size());
+  if (r.tower[k].m.empty) return;
+  const Subspace<Q>& w = r.tower[k].w;
+  // a point of M_k half the time (where (vii) holds by construction of M_{k+1}… or not), else anywhere
+  const std::vector<Q> x = *rc::gen::arbitrary<bool>() ? some_point(r.tower[k].m) : integer_vector(s.d.n);
+  const std::vector<Q> de = energy_differential(s, x);
+  const auto kills = [&](const Subspace<Q>& u) {
+    for (Index i = 0; i < u.dim(); ++i)
+      if (dot(de, u.basis().row(i)) != 0) return false;
+    return true;
+  };
+  const bool iv = kills(orthogonal(dirac_form(s.d), w));
+  const bool vi = contains(dirac_flat(s.d, w), de);
+  const bool vii = kills(dirac_orthogonal(s.d, w));
+  RC_CLASSIFY(vii, "condition holds");
+  RC_ASSERT(iv == vi);
+  RC_ASSERT(vi == vii);
+  // and M_{k+1} is exactly where it holds, on M_k
+  if (k + 1 < r.tower.size() && r.tower[k].m.contains_point(x)) RC_ASSERT(vii == r.tower[k + 1].m.contains_point(x));
+}
+
+// Thm 5.4(b): the velocities solving (5.7)–(5.8) at a point of M_c form an affine space of
+// dimension d^(c) = dim(ker ω_D ∩ T M_c) — and they exist at every point of M_c.
+RC_GTEST_PROP(Cad, Theorem5_4_SolutionRank, ()) {
+  const LinearSystem<Q> s = any_system();
+  const CadResult<Q> r = constraint_tower(s);
+  classify(r);
+  if (!r.consistent) return;
+  const AffineSubspace<Q> v = velocities(s, r, some_point(r.final_step().m));
+  RC_ASSERT(!v.empty);
+  RC_ASSERT(v.direction.dim() == r.solution_rank);
+  RC_ASSERT(contains(r.final_step().w, v.direction));
+}
+
+// Solutions of the reduced equations (5.12) satisfy the original implicit system (1.1): for random
+// z ∈ M_c (in its coordinates) and λ, the ẋ built from ż is tangent to M_c and (ẋ, dE(x)) ∈ D.
+RC_GTEST_PROP(Cad, ReducedEquationsSolveTheImplicitSystem, ()) {
+  const LinearSystem<Q> s = any_system();
+  const CadResult<Q> r = constraint_tower(s);
+  if (!r.consistent) return;
+  const ReducedEquations<Q> red = reduced_equations(s, r);
+  const Index n = s.d.n, m = red.coords.size();
+  const std::vector<Q> x = some_point(r.final_step().m);
+  std::vector<Q> z(m);
+  for (Index i = 0; i < m; ++i) z[i] = x[red.coords[i]];
+  const std::vector<Q> lambda = integer_vector(red.g.cols());
+  std::vector<Q> zdot = (red.f_matrix * QM::column(z)).col(0);
+  for (Index i = 0; i < m; ++i) {
+    zdot[i] += red.f[i];
+    for (Index j = 0; j < lambda.size(); ++j) zdot[i] += red.g(i, j) * lambda[j];
+  }
+  // ẋ is the tangent vector of M_c with coordinates ż: ẋ = Bᵀ (S Bᵀ)^{-1} ż
+  const QM& b = r.final_step().m.direction.basis();
+  QM sel(m, n);
+  for (Index i = 0; i < m; ++i) sel(i, red.coords[i]) = Q(1);
+  const std::vector<Q> xdot = (b.transpose() * inverse(sel * b.transpose()) * QM::column(zdot)).col(0);
+  std::vector<Q> pair = xdot;
+  const std::vector<Q> de = energy_differential(s, x);
+  pair.insert(pair.end(), de.begin(), de.end());
+  RC_ASSERT(contains(s.d.d, pair));
+}
+
+// Discrete outputs are invariant under linear changes of coordinates x = A y (A unimodular):
+// D pulls back to {(A^{-1} v, Aᵀ α)}, H to Aᵀ H A, g to Aᵀ g.
+RC_GTEST_PROP(Cad, InvariantUnderLinearCoordinateChanges, ()) {
+  const LinearSystem<Q> s = any_system();
+  const Index n = s.d.n;
+  const LinearSystem<Q> moved = change_coordinates(s, unimodular(n));
+  const CadResult<Q> r1 = constraint_tower(s), r2 = constraint_tower(moved);
+  RC_ASSERT(r1.steps == r2.steps);
+  RC_ASSERT(r1.consistent == r2.consistent);
+  for (Index k = 0; k < r1.tower.size(); ++k) RC_ASSERT(r1.tower[k].dim() == r2.tower[k].dim());
+  RC_ASSERT(r1.solution_rank == r2.solution_rank);
+}
+
+// Remark 5.3 (and §5, constant D): the CAD equals Gotay–Nester run on each presymplectic leaf
+// x0 + E_D — M_k ∩ (x0 + E_D) is the k-th Gotay–Nester constraint set of (E_D, ω_D, E|leaf).
+RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
+  const LinearSystem<Q> s = any_system();
+  const CadResult<Q> r = constraint_tower(s);
+  const Subspace<Q> e = dirac_distribution(s.d);
+  const std::vector<Q> x0 = *rc::gen::arbitrary<bool>() && r.consistent ? some_point(r.final_step().m) : integer_vector(s.d.n);
+  // leaf coordinates y: x = x0 + Bᵀ y; ω_D and E pulled back; GN = CAD of the presymplectic D_ω.
+  const QM& b = e.basis();
+  const PresymplecticForm<Q> om = dirac_form(s.d);
+  LinearSystem<Q> leaf;
+  leaf.d = dirac_from_presymplectic(b * om.matrix * b.transpose());
+  leaf.hessian = b * s.hessian * b.transpose();
+  leaf.gradient = (b * QM::column(energy_differential(s, x0))).col(0);
+  const CadResult<Q> gn = constraint_tower(leaf);
+  // compare dim(M_k ∩ leaf) with the GN dims, up to the first empty set
+  const Subspace<Q> leaf_dir = e;
+  for (Index k = 0; k < std::max(r.tower.size(), gn.tower.size()); ++k) {
+    const CadStep<Q>& ck = r.tower[std::min(k, r.tower.size() - 1)];
+    const CadStep<Q>& gk = gn.tower[std::min(k, gn.tower.size() - 1)];
+    long cad_dim = -1;
+    if (!ck.m.empty) {  // M_k ∩ (x0 + E_D): solve x0 + Bᵀ y ∈ M_k
+      const QM eq = annihilator(ck.m.direction).basis();
+      std::vector<Q> rhs(eq.rows());
+      for (Index i = 0; i < eq.rows(); ++i) rhs[i] = dot(eq.row(i), ck.m.point) - dot(eq.row(i), x0);
+      const AffineSubspace<Q> meet = solve(eq * b.transpose(), rhs);
+      cad_dim = meet.empty ? -1 : static_cast<long>(meet.direction.dim());
+    }
+    RC_ASSERT(cad_dim == gk.dim());
+    if (cad_dim < 0) break;
+  }
+}
