@@ -38,8 +38,9 @@ std::string row_text(const std::vector<std::string>& coeff, const std::vector<st
   Equation e{coeff, ""};
   std::string lhs = equation_text(e, names);
   lhs = lhs.substr(0, lhs.size() - 3);  // drop " = "
-  if (constant != "0" && !constant.empty()) lhs += (constant[0] == '-' ? " - " + constant.substr(1) : " + " + constant);
-  return lhs;
+  if (constant == "0" || constant.empty()) return lhs;
+  if (lhs == "0") return constant;
+  return lhs + (constant[0] == '-' ? " - " + constant.substr(1) : " + " + constant);
 }
 
 }  // namespace

@@ -86,10 +86,13 @@ SolveReport solve_fast(const io::CaseFile& c) {
     out.certified = out.certified && red.certain;
     out.has_reduced = true;
     out.coords.assign(red.coords.begin(), red.coords.end());
+    // display: entries at rounding level relative to the largest are shown as 0
+    const double tiny = 1e-13 * (1 + red.f_matrix.cwiseAbs().maxCoeff() + red.f.cwiseAbs().maxCoeff());
+    const auto shown = [&](double x) { return num(std::abs(x) <= tiny ? 0.0 : x); };
     for (std::size_t i = 0; i < red.coords.size(); ++i) {
       out.f_matrix.push_back({});
-      for (std::size_t j = 0; j < red.coords.size(); ++j) out.f_matrix.back().push_back(num(red.f_matrix(i, j)));
-      out.f.push_back(num(red.f(i)));
+      for (std::size_t j = 0; j < red.coords.size(); ++j) out.f_matrix.back().push_back(shown(red.f_matrix(i, j)));
+      out.f.push_back(shown(red.f(i)));
       out.g.push_back({});
       for (Eigen::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(num(red.g(i, j)));
     }

@@ -75,7 +75,11 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
     const MatrixXd ra = ca - y * a;
     const VectorXd rb = cb - y * b;
     const Svd sv = full_svd(ra);
-    const RankDecision d = decide_rank(sv.sigma, ra.rows(), ra.cols(), hscale, opt);
+    RankDecision d = decide_rank(sv.sigma, ra.rows(), ra.cols(), hscale, opt);
+    if (d.rank > n - a.rows()) {  // more new rows than codimensions left: only rounding can say so
+      d.rank = static_cast<int>(n - a.rows());
+      d.certain = false;
+    }
     record(out, d);
     // what is left of the right-hand side where the new rows vanish must be 0, else M_{k+1} = ∅
     const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;

@@ -14,17 +14,19 @@ namespace dcad::fast {
 Svd full_svd(const MatrixXd& a) {
   if (a.rows() == 0 || a.cols() == 0)
     return {MatrixXd::Identity(a.rows(), a.rows()), MatrixXd::Identity(a.cols(), a.cols()), VectorXd(0)};
-  Eigen::BDCSVD<MatrixXd> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // JacobiSVD, not BDCSVD: Eigen 3.4.0's BDCSVD returned U Σ Vᵀ ≠ A (error 0.19 on a 16×16
+  // matrix with repeated singular values; regression case cases/regression-bdcsvd-16x16.json).
+  Eigen::JacobiSVD<MatrixXd> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return {svd.matrixU(), svd.matrixV(), svd.singularValues()};
 }
 
 double norm2(const MatrixXd& a) {
   if (a.size() == 0) return 0;
-  return Eigen::BDCSVD<MatrixXd>(a).singularValues()(0);
+  return Eigen::JacobiSVD<MatrixXd>(a).singularValues()(0);
 }
 
 RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
-  const VectorXd s = a.size() ? Eigen::BDCSVD<MatrixXd>(a).singularValues() : VectorXd(0);
+  const VectorXd s = a.size() ? Eigen::JacobiSVD<MatrixXd>(a).singularValues() : VectorXd(0);
   return decide_rank(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
 }
 

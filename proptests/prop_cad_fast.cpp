@@ -1,0 +1,42 @@
+// fast CAD = reference CAD on every discrete output (dims of every M_k, c, consistency, solution
+// rank) unless fast says uncertain; the reduced equations agree within a condition-aware bound.
+#include "support/convert.hpp"
+#include "support/tally.hpp"
+
+#include "dcad/fast/cad.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad;
+using namespace dcad::test;
+namespace ref = dcad::reference;
+
+RC_GTEST_PROP(FastVsReference, Cad, ()) {
+  const ref::LinearSystem<Q> s = any_system();
+  fast::Options opt;
+  const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
+                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
+  const ref::CadResult<Q> r = ref::constraint_tower(s);
+  const fast::CadResult f = fast::constraint_tower(fs, opt);
+  RC_CLASSIFY(!f.certain, "fast uncertain");
+  bool same_dims = f.tower.size() == r.tower.size();
+  for (Index k = 0; same_dims && k < r.tower.size(); ++k) same_dims = f.tower[k].dim() == r.tower[k].dim();
+  RC_ASSERT(!tally("CAD dims of M_k", f.certain, same_dims));
+  RC_ASSERT(!tally("CAD steps c", f.certain, static_cast<Index>(f.steps) == r.steps));
+  RC_ASSERT(!tally("CAD consistent", f.certain, f.consistent == r.consistent));
+  if (!r.consistent || !f.consistent) return;
+  RC_ASSERT(!tally("CAD solution rank", f.certain, static_cast<Index>(f.solution_rank) == r.solution_rank));
+  if (!f.certain || !same_dims) return;
+  // M_c as a subspace: principal angle against the exact one
+  const double bound = 1e6 * (s.d.n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian));
+  RC_ASSERT(fast::largest_principal_angle_sin(f.final_step().m.direction, to_fast(r.final_step().m.direction)) <= bound);
+  // reduced equations in the reference's coordinates: F and f agree modulo G when unique
+  if (!r.unique()) return;
+  const ref::ReducedEquations<Q> rr = ref::reduced_equations(s, r);
+  const std::vector<int> coords(rr.coords.begin(), rr.coords.end());
+  const fast::ReducedEquations fr = fast::reduced_equations(fs, f, coords, opt);
+  const double scale = 1 + to_double(rr.f_matrix).norm() + to_double(rr.f).norm();
+  RC_ASSERT((fr.f_matrix - to_double(rr.f_matrix)).norm() <= bound * scale * 1e3);
+  RC_ASSERT((fr.f - to_double(rr.f)).norm() <= bound * scale * 1e3);
+}
