@@ -164,6 +164,60 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"noform", R"({"dcad": 1, "dirac": {"distribution": [[1, 0]]}})", "form"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
+class BadSolveInput : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadSolveInput, ExitOneWithWhereExpectedFound) {
+  const BadCase& b = GetParam();
+  const std::string file = write_temp(std::string("dcad_badsolve_") + b.name + ".json", b.text);
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    const Outcome r = run("solve " + file + " --backend " + backend);
+    EXPECT_EQ(r.rc, 1) << b.name << " " << backend << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(b.needle), std::string::npos) << b.name << " " << backend << ": " << r.err;
+    EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadSolveInput,
+    testing::Values(
+        BadCase{"asymhessian", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hessian": [[1, 2], [0, 1]]}})",
+                "/energy/hessian/0/1"},
+        BadCase{"gradlen", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 2, 3]}})",
+                "/energy/gradient"},
+        BadCase{"zerodenominator", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"constant": "1/0"}})",
+                "/energy/constant"},
+        BadCase{"notdirac", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 1], [0, 1, 1, 0]]}})", "not isotropic"},
+        BadCase{"version", R"({"dcad": "1", "dirac": {"presymplectic": [[0]]}})", "/dcad"},
+        BadCase{"both", R"({"dcad": 1, "dirac": {"presymplectic": [[0]]}, "pontryagin": {"Q": 1}})", "both"},
+        BadCase{"pontQ", R"({"dcad": 1, "pontryagin": {"Q": 0}})", "/pontryagin/Q"},
+        BadCase{"pontsym", R"({"dcad": 1, "pontryagin": {"Q": 2, "lagrangian": {"vv": [[1, 1], [0, 1]]}}})",
+                "/pontryagin/lagrangian/vv/0/1"},
+        BadCase{"pontkcl", R"({"dcad": 1, "pontryagin": {"Q": 2, "constraints": [[1, 2, 3]]}})", "/pontryagin/constraints/0"},
+        BadCase{"pontkey", R"({"dcad": 1, "pontryagin": {"Q": 1, "lagrangian": {"vw": [[1]]}}})", "/pontryagin/lagrangian/vw"},
+        BadCase{"pontvars", R"({"dcad": 1, "variables": ["a"], "pontryagin": {"Q": 1}})", "/variables"},
+        BadCase{"coords", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "coordinates": ["nope"]})",
+                "/coordinates/0"},
+        BadCase{"badcoords",
+                R"({"dcad": 1, "variables": ["q", "v", "p"], "pontryagin": {"Q": 1, "lagrangian": {"vv": [[1]]}}, "coordinates": ["v", "p"]})",
+                "coordinates"}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+TEST(Cli, SolveInconsistentIsAResult) {
+  // E = x1 on D_0 = R^1 ⊕ 0 (ω = 0): M_1 = {dE ⊥ R} = ∅ — exit 0, consistent false, dims [1, -1].
+  const std::string file = write_temp("dcad_inconsistent.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0]]}, "energy": {"gradient": [1]}})");
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    const Outcome r = run("solve " + file + " --json --backend " + backend);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["consistent"], false);
+    EXPECT_EQ(j["dims"], nlohmann::json::array({1, -1}));
+    EXPECT_EQ(j["steps"], 1);
+    EXPECT_TRUE(j["solution_rank"].is_null());
+    EXPECT_TRUE(j["unique"].is_null());
+  }
+}
+
 TEST(Cli, MissingFile) {
   const Outcome r = run("inspect /nonexistent/case.json");
   EXPECT_EQ(r.rc, 1);
