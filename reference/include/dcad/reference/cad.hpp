@@ -47,15 +47,23 @@ AffineSubspace<T> affine_from_augmented(const Matrix<T>& aug) {
   return solve(aug.block(0, aug.rows(), 0, n), aug.col(n));
 }
 
-/// The CAD tower with its trace.  [CEF §5]
+/// The CAD tower with its trace.  [CEF §5]  `initial` ([a | b] rows) restricts M_0 to {a x = b}:
+/// with D = D_{(T M_0, Ω)} that is the Gotay–Nester algorithm for (N, Ω, E, M_0)  [CEF §2.2, (2.5)].
 template <class T>
-CadResult<T> constraint_tower(const LinearSystem<T>& s) {
+CadResult<T> constraint_tower(const LinearSystem<T>& s, const Matrix<T>& initial = Matrix<T>()) {
   require_system(s, "constraint_tower");
   const Index n = s.d.n;
   const Subspace<T> e = dirac_distribution(s.d);
   CadResult<T> out;
-  Matrix<T> aug(0, n + 1);  // all equations so far, [a | b]
+  require(initial.rows() == 0 || initial.cols() == n + 1, "constraint_tower", "initial equations [a | b] of width " + std::to_string(n + 1),
+          shape(initial));
+  Matrix<T> aug = initial.rows() ? initial : Matrix<T>(0, n + 1);  // all equations so far, [a | b]
   CadStep<T> step{affine_from_augmented(aug), aug, Subspace<T>::zero(n)};
+  if (step.m.empty) {  // the primary constraints themselves are inconsistent
+    out.tower.push_back(step);
+    out.consistent = false;
+    return out;
+  }
   for (;;) {
     step.w = intersection(step.m.direction, e);
     out.tower.push_back(step);

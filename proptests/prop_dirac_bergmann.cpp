@@ -1,0 +1,133 @@
+// Dirac–Bergmann against Gotay–Nester, and first/second class constraints with the Dirac bracket,
+// on random linear constrained Hamiltonian systems (N, Ω, E, M).  [CEF §2, Lemma 3.23]
+#include "support/gen.hpp"
+
+#include "dcad/reference/dirac_bergmann.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad::reference;
+using namespace dcad::test;
+
+namespace {
+
+/// Symplectic Ω = Aᵀ J A on Q^{2m}, quadratic E of random rank, k primary constraints (often
+/// through a common point, so the system is often consistent).
+ConstrainedSystem<Q> any_constrained_system() {
+  const Index m = pick_size(1, 4), n = 2 * m;
+  ConstrainedSystem<Q> s;
+  const QM change = unimodular(n);
+  s.omega = pull_back(canonical_form(n, m), change);
+  s.hessian = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  s.gradient = integer_vector(n, 2);
+  const Index k = *rc::gen::inRange<Index>(1, n);
+  QM a = integer_matrix(k, n, 2);
+  if (*rc::gen::arbitrary<bool>()) {  // isotropic primary constraints (on p only, before the change
+    QM iso(k, n);                     // of basis): mutually first class, as for p_i = 0 in T*Q
+    for (Index i = 0; i < k; ++i)
+      for (Index c = 0; c < m; ++c) iso(i, m + c) = Q(*rc::gen::inRange(-2, 3));
+    a = iso * change;
+  }
+  const std::vector<Q> x0 = integer_vector(n, 2);
+  const QM rows = hstack(a, *rc::gen::arbitrary<bool>() ? a * QM::column(x0) : integer_matrix(k, 1, 2));
+  // keep the rows whose gradients are independent: M is defined regularly (CEF §2.1)
+  s.primary = QM(0, n + 1);
+  for (Index i = 0; i < rows.rows(); ++i) {
+    const QM more = vstack(s.primary, rows.block(i, i + 1, 0, n + 1));
+    if (rank(gradients(more)) == more.rows()) s.primary = more;
+  }
+  return s;
+}
+
+/// Gotay–Nester for (N, Ω, E, M): the CAD of D_{(T M, Ω)} started at M_0 = M.  [CEF §2.2]
+CadResult<Q> gotay_nester(const ConstrainedSystem<Q>& s) {
+  const Subspace<Q> tm = kernel(gradients(s.primary));
+  const LinearSystem<Q> ls{dirac_from_distribution(tm, s.omega), s.hessian, s.gradient, Q(0)};
+  return constraint_tower(ls, s.primary);
+}
+
+std::vector<Q> some_point(const AffineSubspace<Q>& m) {
+  std::vector<Q> x = m.point;
+  const QM c = integer_matrix(1, m.direction.dim());
+  for (Index i = 0; i < m.direction.dim(); ++i)
+    for (Index k = 0; k < x.size(); ++k) x[k] += c(0, i) * m.direction.basis()(i, k);
+  return x;
+}
+
+}  // namespace
+
+// §2: the Dirac–Bergmann and the Gotay–Nester algorithms produce the same M_k.
+RC_GTEST_PROP(DiracBergmann, SameTowerAsGotayNester, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  const CadResult<Q> gn = gotay_nester(s);
+  RC_CLASSIFY(!db.consistent, "inconsistent");
+  RC_TAG("c = " + std::to_string(db.tower.size() - 1));
+  RC_ASSERT(db.consistent == gn.consistent);
+  RC_ASSERT(db.tower.size() == gn.tower.size());
+  for (Index k = 0; k < db.tower.size(); ++k) RC_ASSERT(db.tower[k] == gn.tower[k].m);
+}
+
+// §2.2: Λ^(c) ≅ S^(c) by λ ↦ X_{E_T} — the image of the multipliers at x ∈ M_c is exactly the
+// Gotay–Nester solution set S^(c)_x, of the same dimension; and X_{E_T} is tangent to M_c.
+RC_GTEST_PROP(DiracBergmann, MultipliersMatchSolutions, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const CadResult<Q> gn = gotay_nester(s);
+  const std::vector<Q> x = some_point(db.tower.back());
+  const AffineSubspace<Q> lambda = multipliers(s, db, x);
+  RC_ASSERT(!lambda.empty);
+  const LinearSystem<Q> ls{dirac_from_distribution(kernel(gradients(s.primary)), s.omega), s.hessian, s.gradient, Q(0)};
+  const AffineSubspace<Q> sx = velocities(ls, gn, x);
+  RC_ASSERT(lambda.direction.dim() == sx.direction.dim());
+  RC_ASSERT(lambda.direction.dim() == gn.solution_rank);
+  const std::vector<Q> l = some_point(lambda);
+  const std::vector<Q> field = total_energy_field(s, x, l);
+  RC_ASSERT(sx.contains_point(field));
+  RC_ASSERT(contains(db.tower.back().direction, field));
+}
+
+// Lemma 3.23 / Cor. 3.3 with V = T M_c: 2s = r − dim ker ω_c; ψ are first class ({ψ, φ_j} = 0),
+// det Σ ≠ 0; the Dirac tensor J* is skew, kills every χ ({F, χ_j}* = 0 for all F), and
+// {ψ_i, ψ_j}* = 0.
+RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
+  const QM j = poisson_tensor(s.omega), a = gradients(db.constraints);
+  const Index r = a.rows();
+  const Subspace<Q> tmc = db.tower.back().direction;
+  RC_TAG("2s = " + std::to_string(2 * cl.s) + " of r = " + std::to_string(r));
+  RC_ASSERT(2 * cl.s == r - form_kernel(restrict_form(s.omega, tmc)).dim());
+  RC_ASSERT(cl.first.rows() == r - 2 * cl.s);
+  RC_ASSERT((gradients(cl.first) * j * a.transpose()).is_zero());
+  RC_ASSERT(rank(cl.sigma) == 2 * cl.s);
+  RC_ASSERT(is_skew(cl.dirac_tensor));
+  QM g(cl.second.size(), a.cols());
+  for (Index p = 0; p < cl.second.size(); ++p)
+    for (Index k = 0; k < a.cols(); ++k) g(p, k) = a(cl.second[p], k);
+  RC_ASSERT((g * cl.dirac_tensor).is_zero());
+  RC_ASSERT((gradients(cl.first) * cl.dirac_tensor * gradients(cl.first).transpose()).is_zero());
+}
+
+// §2.1: the equations of motion by the Dirac bracket equal those by the canonical bracket on M_c:
+// J* (dE + λ^i dφ_i) = J (dE + λ^i dφ_i) at x ∈ M_c, λ ∈ Λ_x (E_T is first class).
+RC_GTEST_PROP(DiracBergmann, DiracBracketGivesTheSameMotion, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
+  const std::vector<Q> x = some_point(db.tower.back());
+  const AffineSubspace<Q> lambda = multipliers(s, db, x);
+  const std::vector<Q> l = some_point(lambda);
+  std::vector<Q> d = (s.hessian * QM::column(x)).col(0);
+  const QM prim = gradients(s.primary);
+  for (Index i = 0; i < d.size(); ++i) {
+    d[i] += s.gradient[i];
+    for (Index k = 0; k < l.size(); ++k) d[i] += l[k] * prim(k, i);
+  }
+  RC_ASSERT((cl.dirac_tensor * QM::column(d)).col(0) == total_energy_field(s, x, l));
+}
