@@ -230,6 +230,28 @@ Matrix<T> inverse(const Matrix<T>& m) {
   return e.r.block(0, m.rows(), m.rows(), 2 * m.rows());
 }
 
+/// det m by Gaussian elimination (exact): product of the pivots, sign from the row swaps.
+template <class T>
+T determinant(Matrix<T> m) {
+  require(is_square(m), "determinant", "a square matrix", shape(m));
+  T det(1);
+  for (Index c = 0; c < m.rows(); ++c) {
+    Index p = c;
+    while (p < m.rows() && m(p, c) == 0) ++p;
+    if (p == m.rows()) return T(0);
+    if (p != c) {
+      for (Index j = 0; j < m.cols(); ++j) std::swap(m(c, j), m(p, j));
+      det = -det;
+    }
+    det *= m(c, c);
+    for (Index i = c + 1; i < m.rows(); ++i) {
+      const T f = m(i, c) / m(c, c);
+      for (Index j = c; j < m.cols(); ++j) m(i, j) -= f * m(c, j);
+    }
+  }
+  return det;
+}
+
 template <class T>
 T dot(const std::vector<T>& a, const std::vector<T>& b) {
   require(a.size() == b.size(), "dot", "vectors of equal length",

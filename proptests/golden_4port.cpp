@@ -1,0 +1,89 @@
+// Golden: the second-class constraints of the 4-port LC circuit on T*TQ (CEF §6 after (6.42),
+// Appendix A), exactly, at several rational values of L, C1, C2, C3.  Guards the misprints of
+// ../shared/ERRATA.md: Σ row 8 (printed Σ₈,₁₁ = 1/C1, Σ₈,₁₃ = −1/C3; correct Σ₈,₁₂, Σ₈,₁₄) and
+// the sign convention behind Σ₁,₉ = −1, Σ₁,₁₁ = −L.
+#include "dcad/reference/dirac_bergmann.hpp"
+#include "dcad/reference/rational.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace dcad::reference;
+using Q = Rational;
+using QM = Matrix<Q>;
+
+namespace {
+
+// y = (q_L, q_C1, q_C2, q_C3, v_L, …, v_C3, p_L, …, p_C3, ν_L, …, ν_C3) ∈ Q^16.
+enum : Index { qL = 0, qC1, qC2, qC3, vL, vC1, vC2, vC3, pL, pC1, pC2, pC3, nL, nC1, nC2, nC3 };
+
+struct Circuit {
+  Q l, c1, c2, c3;
+};
+
+/// Ω = dq ∧ dp + dv ∧ dν (ERRATA, Appendix A).
+QM omega() {
+  QM w(16, 16);
+  for (Index i = 0; i < 4; ++i) {
+    w(qL + i, pL + i) = Q(1);
+    w(pL + i, qL + i) = Q(-1);
+    w(vL + i, nL + i) = Q(1);
+    w(nL + i, vL + i) = Q(-1);
+  }
+  return w;
+}
+
+/// ε_1 … ε_14 of CEF (leaf through x0 with q_L0 = q_C20, q_C10 − q_C20 + q_C30 = 0), rows [a | 0].
+QM epsilons(const Circuit& c) {
+  QM e(14, 17);
+  const auto set = [&](Index row, std::initializer_list<std::pair<Index, Q>> terms) {
+    for (const auto& [var, coeff] : terms) e(row, var) = coeff;
+  };
+  set(0, {{pL, 1}, {vL, -c.l}});
+  set(1, {{pC1, 1}});
+  set(2, {{pC2, 1}});
+  set(3, {{pC3, 1}});
+  set(4, {{vL, 1}, {vC2, -1}});
+  set(5, {{vC1, 1}, {vC2, -1}, {vC3, 1}});
+  set(6, {{qC1, 1 / c.c1}, {qC3, -1 / c.c3}});
+  set(7, {{vC1, 1 / c.c1}, {vC3, -1 / c.c3}});
+  set(8, {{qL, 1}, {qC2, -1}});
+  set(9, {{qC1, 1}, {qC2, -1}, {qC3, 1}});
+  set(10, {{nL, 1}});
+  set(11, {{nC1, 1}});
+  set(12, {{nC2, 1}});
+  set(13, {{nC3, 1}});
+  return e;
+}
+
+class FourPort : public testing::TestWithParam<Circuit> {};
+
+}  // namespace
+
+TEST_P(FourPort, SigmaCorrectedEntriesAndDeterminant) {
+  const Circuit c = GetParam();
+  const ConstraintClasses<Q> cl = classify_constraints(omega(), epsilons(c));
+  const QM sigma = gradients(epsilons(c)) * poisson_tensor(omega()) * gradients(epsilons(c)).transpose();
+  EXPECT_EQ(cl.s, 7u) << "all 14 constraints are second class (x0 + W̃_3 is symplectic)";
+  EXPECT_EQ(cl.first.rows(), 0u);
+  // printed entries that are right, with the ERRATA sign convention (1-based in the paper)
+  EXPECT_EQ(sigma(0, 8), Q(-1));   // Σ₁,₉ = {p_L − L v_L, q_L − q_C2}
+  EXPECT_EQ(sigma(0, 10), -c.l);   // Σ₁,₁₁
+  EXPECT_EQ(sigma(1, 6), -1 / c.c1);
+  EXPECT_EQ(sigma(3, 6), 1 / c.c3);
+  // row 8, corrected: Σ₈,₁₂ = 1/C1, Σ₈,₁₄ = −1/C3 and zero where the paper prints them
+  EXPECT_EQ(sigma(7, 11), 1 / c.c1);
+  EXPECT_EQ(sigma(7, 13), -1 / c.c3);
+  EXPECT_EQ(sigma(7, 10), Q(0));
+  EXPECT_EQ(sigma(7, 12), Q(0));
+  EXPECT_TRUE(is_skew(sigma));
+  // det Σ = L² (C1 + C3)⁴ / (C1⁴ C3⁴)
+  const Q s13 = c.c1 + c.c3;
+  EXPECT_EQ(determinant(sigma), c.l * c.l * s13 * s13 * s13 * s13 / (c.c1 * c.c1 * c.c1 * c.c1 * c.c3 * c.c3 * c.c3 * c.c3));
+  // the Dirac bracket of the leaf coordinates: {q_L, p_L}* = +1 (block A of §7, A₁,₅)
+  EXPECT_EQ(cl.dirac_tensor(qL, pL), Q(1));
+}
+
+INSTANTIATE_TEST_SUITE_P(CEF6, FourPort,
+                         testing::Values(Circuit{Q(2), Q(3), Q(5), Q(7)}, Circuit{Q(1), Q(1), Q(1), Q(1)},
+                                         Circuit{Q(1) / Q(1000), Q(22) / Q(1000000), Q(47) / Q(1000000000), Q(1) / Q(3)},
+                                         Circuit{Q(-2), Q(5), Q(-3), Q(4)}));
