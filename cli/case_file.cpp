@@ -246,8 +246,19 @@ CaseFile read_case(const std::string& file) {
     }
     n = static_cast<long>(v.size());
   }
-  if (j.contains("dirac") && j.contains("pontryagin")) root.fail("either \"dirac\" or \"pontryagin\"", "both");
-  if (j.contains("dirac")) {
+  const int forms = j.contains("dirac") + j.contains("pontryagin") + j.contains("constrained");
+  if (forms > 1) root.fail("one of \"dirac\", \"pontryagin\", \"constrained\"", "both" + std::string(forms > 2 ? " (all three)" : ""));
+  if (j.contains("constrained")) {
+    const json& k = j["constrained"];
+    const Where at = root / "constrained";
+    if (!k.is_object() || !k.contains("symplectic")) at.fail("an object {symplectic, primary}", describe(k));
+    c.has_constrained = true;
+    c.constrained.w = read_matrix(k["symplectic"], at / "symplectic", n, n);
+    require_skew_input(c.constrained.w, at / "symplectic");
+    c.n = c.constrained.w.rows();
+    c.constrained.primary =
+        k.contains("primary") ? read_matrix(k["primary"], at / "primary", -1, static_cast<long>(c.n) + 1) : QMatrix(0, c.n + 1);
+  } else if (j.contains("dirac")) {
     c.has_dirac = true;
     c.dirac = read_dirac(j["dirac"], root / "dirac", n);
     const QMatrix& m = c.dirac.form == "basis" ? c.dirac.g : c.dirac.form == "poisson" ? c.dirac.p : c.dirac.w;
@@ -260,8 +271,8 @@ CaseFile read_case(const std::string& file) {
       (root / "variables").fail(std::to_string(c.n) + " names (q, v, p for Q of dim " + std::to_string(c.pontryagin.n) + ")",
                                 std::to_string(n));
     if (j.contains("energy")) (root / "energy").fail("no energy next to `pontryagin` (E = p·v − L)", describe(j["energy"]));
-  } else {
-    root.fail("a \"dirac\" or a \"pontryagin\" member", "neither");
+  } else if (!c.has_constrained) {
+    root.fail("a \"dirac\", \"pontryagin\" or \"constrained\" member", "none");
   }
   if (c.variables.empty()) {
     if (c.has_pontryagin) {

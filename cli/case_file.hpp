@@ -48,6 +48,11 @@ struct EnergyInput {
   Rational constant = 0;
 };
 
+/// The `constrained` member: (N, Ω, E, M) with Ω = `symplectic` and M = {a_i·x = b_i}, rows [a_i | b_i].
+struct ConstrainedInput {
+  QMatrix w, primary;
+};
+
 struct CaseFile {
   std::string file, name, description;
   std::size_t n = 0;
@@ -57,6 +62,8 @@ struct CaseFile {
   EnergyInput energy;       ///< zero if absent (or for `pontryagin`)
   bool has_pontryagin = false;
   PontryaginInput pontryagin;
+  bool has_constrained = false;
+  ConstrainedInput constrained;
   std::vector<std::size_t> coordinates;  ///< optional: variables to write the reduced equations in
   nlohmann::json expect;    ///< optional golden expectations (raw)
 };

@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
     if (inspect->parsed()) {
       const dcad::io::CaseFile c = dcad::io::read_case(file);
       if (!c.has_dirac) {
-        std::cerr << file << ": /dirac: expected a `dirac` member for inspect, found a `pontryagin` case\n";
+        std::cerr << file << ": /dirac: expected a `dirac` member for inspect, found a " << (c.has_pontryagin ? "`pontryagin`" : "`constrained`")
+                  << " case\n";
         return 1;
       }
       dcad::cli::InspectReport r;
@@ -80,7 +81,8 @@ int main(int argc, char** argv) {
             : solve_backend == "fast"    ? dcad::cli::solve_fast(c)
                                          : dcad::cli::solve_certified(c);
       } catch (const std::invalid_argument& e) {
-        std::cerr << solve_file << ": " << (c.has_pontryagin ? "/pontryagin" : c.dirac.path) << ": " << e.what() << "\n";
+        std::cerr << solve_file << ": " << (c.has_pontryagin ? "/pontryagin" : c.has_constrained ? "/constrained" : c.dirac.path) << ": "
+                  << e.what() << "\n";
         return 1;
       }
       std::cout << (solve_json ? dcad::cli::to_json(r, c).dump(2) + "\n" : dcad::cli::to_text(r, c));

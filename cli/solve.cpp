@@ -62,6 +62,13 @@ nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
     for (std::size_t i : r.coords) names.push_back(c.variables[i]);
     j["reduced"] = {{"coordinates", names}, {"F", r.f_matrix}, {"f", r.f}, {"G", r.g}};
   }
+  if (r.second_class >= 0) {
+    nlohmann::json chi = nlohmann::json::array();
+    for (const Equation& e : r.second_class_constraints) chi.push_back(equation_text(e, c.variables));
+    j["constraint_classes"] = {{"first_class", r.first_class}, {"second_class", r.second_class}};
+    if (!chi.empty()) j["constraint_classes"]["second_class_constraints"] = chi;
+    if (!r.dirac_bracket.empty()) j["dirac_bracket"] = r.dirac_bracket;
+  }
   j["decisions"] = {{"float", r.decisions_float}, {"exact_recomputation", r.decisions_exact}};
   if (!r.note.empty()) j["note"] = r.note;
   return j;
@@ -80,6 +87,11 @@ std::string to_text(const SolveReport& r, const io::CaseFile& c) {
   } else {
     o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << r.dims.back() << "\n";
     o << "  solution rank dim(ker omega_D ∩ T M_c) = " << r.solution_rank << (r.solution_rank == 0 ? " (unique)" : " (not unique)") << "\n";
+  }
+  if (r.second_class >= 0) {
+    o << "  constraints of M_c (CEF §2.1, Lemma 3.23): " << r.first_class << " first class, " << r.second_class
+      << " second class\n";
+    for (const Equation& e : r.second_class_constraints) o << "      second class: " << equation_text(e, c.variables) << "\n";
   }
   if (r.has_reduced) {
     std::vector<std::string> names;

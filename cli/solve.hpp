@@ -31,6 +31,9 @@ struct SolveReport {
   std::vector<std::size_t> coords;
   std::vector<std::vector<std::string>> f_matrix, g;
   std::vector<std::string> f;
+  long first_class = -1, second_class = -1;              ///< `constrained` systems: r − 2s and 2s on M_c
+  std::vector<Equation> second_class_constraints;        ///< χ (reference)
+  std::vector<std::vector<std::string>> dirac_bracket;   ///< J* (reference)
   std::string note;  ///< e.g. why `certified` recomputed exactly
   long decisions_float = 0, decisions_exact = 0;
 };

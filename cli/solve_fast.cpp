@@ -1,6 +1,8 @@
 #include "dcad/fast/cad.hpp"
 #include "solve.hpp"
 
+#include <Eigen/LU>
+
 #include <cmath>
 #include <sstream>
 
@@ -33,6 +35,12 @@ std::string num(double x) {
 }
 
 fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
+  if (c.has_constrained) {
+    const Eigen::MatrixXd w = to_double(c.constrained.w, opt), prim = to_double(c.constrained.primary, opt);
+    fa::require_symplectic(w, "solve", opt);
+    return {fa::dirac_from_distribution(fa::kernel(prim.leftCols(c.n), opt), w), to_double(c.energy.hessian, opt),
+            to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
+  }
   if (c.has_pontryagin) {
     const io::PontryaginInput& p = c.pontryagin;
     return fa::pontryagin_system(to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt),
@@ -58,7 +66,9 @@ fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
 SolveReport solve_fast(const io::CaseFile& c) {
   fa::Options opt;
   const fa::LinearSystem s = fast_system(c, opt);
-  const fa::CadResult r = fa::constraint_tower(s, opt);
+  fa::Options in_opt = opt;
+  const Eigen::MatrixXd initial = c.has_constrained ? to_double(c.constrained.primary, in_opt) : Eigen::MatrixXd();
+  const fa::CadResult r = fa::constraint_tower(s, opt, initial);
   SolveReport out;
   out.backend = "fast";
   out.certified = r.certain;
@@ -79,6 +89,19 @@ SolveReport solve_fast(const io::CaseFile& c) {
     }
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
+  }
+  if (c.has_constrained && r.consistent) {  // 2s = rank {φ_i, φ_j} on M_c, decided
+    Eigen::MatrixXd a(0, c.n);
+    for (const auto& st : r.tower) {
+      Eigen::MatrixXd more(a.rows() + st.equations.rows(), c.n);
+      more << a, st.equations.leftCols(c.n);
+      a = more;
+    }
+    const Eigen::MatrixXd j = to_double(c.constrained.w, in_opt).transpose().inverse();
+    const fa::RankDecision d = fa::decide_rank(a * j * a.transpose(), fa::norm2(j), opt);
+    out.certified = out.certified && d.certain;
+    out.second_class = d.rank;
+    out.first_class = a.rows() - d.rank;
   }
   if (r.consistent) {
     std::vector<int> coords(c.coordinates.begin(), c.coordinates.end());

@@ -12,6 +12,25 @@ using namespace dcad;
 using namespace dcad::test;
 namespace ref = dcad::reference;
 
+// Gotay–Nester for (N, Ω, E, M) (the CAD of D_{(TM, Ω)} from M_0 = M) by both backends.
+RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
+  const ref::ConstrainedSystem<Q> s = any_constrained_system();
+  const ref::LinearSystem<Q> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(s.primary)), s.omega), s.hessian,
+                                s.gradient, Q(0)};
+  const ref::CadResult<Q> r = ref::constraint_tower(ls, s.primary);
+  fast::Options opt;
+  const Eigen::MatrixXd w = to_double(s.omega, &opt), prim = to_double(s.primary, &opt);
+  const fast::LinearSystem fs{fast::dirac_from_distribution(fast::kernel(prim.leftCols(w.rows()), opt), w),
+                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
+  const fast::CadResult f = fast::constraint_tower(fs, opt, prim);
+  bool same_dims = f.tower.size() == r.tower.size();
+  for (Index k = 0; same_dims && k < r.tower.size(); ++k) same_dims = f.tower[k].dim() == r.tower[k].dim();
+  RC_ASSERT(!tally("GN dims of M_k", f.certain, same_dims));
+  RC_ASSERT(!tally("GN consistent", f.certain, f.consistent == r.consistent));
+  if (r.consistent && f.consistent)
+    RC_ASSERT(!tally("GN solution rank", f.certain, static_cast<Index>(f.solution_rank) == r.solution_rank));
+}
+
 RC_GTEST_PROP(FastVsReference, Cad, ()) {
   const ref::LinearSystem<Q> s = any_system();
   fast::Options opt;

@@ -42,7 +42,7 @@ void record(CadResult& r, const RankDecision& d) {
 
 }  // namespace
 
-CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
+CadResult constraint_tower(const LinearSystem& s, const Options& opt, const MatrixXd& initial) {
   const int n = s.d.n;
   require_finite(s.hessian, "constraint_tower");
   require_finite(s.gradient, "constraint_tower");
@@ -62,20 +62,34 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
   step.m.point = VectorXd::Zero(n);
   step.m.direction = Subspace::whole(n);
   step.equations = MatrixXd(0, n + 1);
+  if (initial.rows() && initial.cols() != n + 1)
+    throw std::invalid_argument("constraint_tower: expected initial equations [a | b] of width " + std::to_string(n + 1) +
+                                ", found width " + std::to_string(initial.cols()));
+  bool first = initial.rows() > 0;  // the initial equations go through the same reduction as step 0
   for (;;) {
-    step.w = intersection(step.m.direction, e, opt);
-    record(out, step.w.evidence());
-    out.tower.push_back(step);
-    const Subspace u = dirac_orthogonal(s.d, step.w, opt);
-    out.certain = out.certain && u.certain();
-    // candidates c x = β with c = uᵀ H, β = −uᵀ g; reduce modulo A x = b.
-    const MatrixXd ca = u.basis().transpose() * s.hessian;
-    const VectorXd cb = -(u.basis().transpose() * s.gradient);
+    if (!first) {
+      step.w = intersection(step.m.direction, e, opt);
+      record(out, step.w.evidence());
+      out.tower.push_back(step);
+    }
+    MatrixXd ca;
+    VectorXd cb;
+    if (first) {
+      ca = initial.leftCols(n);
+      cb = initial.col(n);
+    } else {  // candidates c x = β with c = uᵀ H, β = −uᵀ g
+      const Subspace u = dirac_orthogonal(s.d, step.w, opt);
+      out.certain = out.certain && u.certain();
+      ca = u.basis().transpose() * s.hessian;
+      cb = -(u.basis().transpose() * s.gradient);
+    }
+    const double cscale = first ? std::max(norm2(ca), 1e-300) : hscale;
+    // reduce modulo A x = b
     const MatrixXd y = ca * a.transpose();
     const MatrixXd ra = ca - y * a;
     const VectorXd rb = cb - y * b;
     const Svd sv = full_svd(ra);
-    RankDecision d = decide_rank(sv.sigma, ra.rows(), ra.cols(), hscale, opt);
+    RankDecision d = decide_rank(sv.sigma, ra.rows(), ra.cols(), cscale, opt);
     if (d.rank > n - a.rows()) {  // more new rows than codimensions left: only rounding can say so
       d.rank = static_cast<int>(n - a.rows());
       d.certain = false;
@@ -83,7 +97,7 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
     record(out, d);
     // what is left of the right-hand side where the new rows vanish must be 0, else M_{k+1} = ∅
     const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
-    const double xscale = hscale * (1 + step.m.point.norm()) + s.gradient.norm();
+    const double xscale = first ? std::max(cb.norm(), cscale) : hscale * (1 + step.m.point.norm()) + s.gradient.norm();
     const RankDecision dc = decide_rank(MatrixXd(rest), xscale, opt);
     record(out, dc);
     if (dc.rank > 0) {
@@ -94,7 +108,7 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
       out.consistent = false;
       break;
     }
-    if (d.rank == 0) break;  // M_{k+1} = M_k
+    if (d.rank == 0 && !first) break;  // M_{k+1} = M_k
     const MatrixXd new_a = sv.v.leftCols(d.rank).transpose();
     const VectorXd new_b = (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
     MatrixXd a2(a.rows() + d.rank, n);
@@ -109,6 +123,7 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt) {
     step.m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
     step.equations.resize(d.rank, n + 1);
     step.equations << new_a, new_b;
+    first = false;
   }
   out.steps = static_cast<int>(out.tower.size()) - 1;
   if (out.consistent) {

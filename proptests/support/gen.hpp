@@ -2,7 +2,7 @@
 // every choice is a RapidCheck pick (`*gen`), so failures shrink toward small n and few shears.
 #pragma once
 
-#include "dcad/reference/cad.hpp"
+#include "dcad/reference/dirac_bergmann.hpp"
 #include "dcad/reference/rational.hpp"
 
 #include <rapidcheck.h>
@@ -271,6 +271,34 @@ inline reference::LinearSystem<Q> long_tower_system(Index max_m = 4) {
   h(2 * m - 1, 2 * m - 1) = Q(1);
   const reference::LinearSystem<Q> s{reference::dirac_from_presymplectic(w), h, std::vector<Q>(n, Q(0)), Q(0)};
   return change_coordinates(s, unimodular(n));
+}
+
+/// Symplectic Ω = Aᵀ J A on Q^{2m}, quadratic E of random rank, k primary constraints (often
+/// through a common point, so the system is often consistent).
+inline reference::ConstrainedSystem<Q> any_constrained_system() {
+  const Index m = pick_size(1, 4), n = 2 * m;
+  reference::ConstrainedSystem<Q> s;
+  const QM change = unimodular(n);
+  s.omega = pull_back(canonical_form(n, m), change);
+  s.hessian = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  s.gradient = integer_vector(n, 2);
+  const Index k = *rc::gen::inRange<Index>(1, n);
+  QM a = integer_matrix(k, n, 2);
+  if (*rc::gen::arbitrary<bool>()) {  // isotropic primary constraints (on p only, before the change
+    QM iso(k, n);                     // of basis): mutually first class, as for p_i = 0 in T*Q
+    for (Index i = 0; i < k; ++i)
+      for (Index c = 0; c < m; ++c) iso(i, m + c) = Q(*rc::gen::inRange(-2, 3));
+    a = iso * change;
+  }
+  const std::vector<Q> x0 = integer_vector(n, 2);
+  const QM rows = hstack(a, *rc::gen::arbitrary<bool>() ? a * QM::column(x0) : integer_matrix(k, 1, 2));
+  // keep the rows whose gradients are independent: M is defined regularly (CEF §2.1)
+  s.primary = QM(0, n + 1);
+  for (Index i = 0; i < rows.rows(); ++i) {
+    const QM more = vstack(s.primary, rows.block(i, i + 1, 0, n + 1));
+    if (reference::rank(reference::gradients(more)) == more.rows()) s.primary = more;
+  }
+  return s;
 }
 
 /// A random subspace of a given subspace U (random integer combinations of its basis).

@@ -37,7 +37,8 @@ struct CadResult {
   const CadStep& final_step() const { return tower.back(); }
 };
 
-CadResult constraint_tower(const LinearSystem& s, const Options& opt = {});
+/// `initial` rows [a | b] restrict M_0 to {a x = b} (Gotay–Nester for (N, Ω, E, M_0) with D = D_{(T M_0, Ω)}).
+CadResult constraint_tower(const LinearSystem& s, const Options& opt = {}, const MatrixXd& initial = MatrixXd());
 
 struct ReducedEquations {
   std::vector<int> coords;
