@@ -40,6 +40,23 @@ TEST(DecideRank, InexactInputNeverCertifiesADeficiency) {
   EXPECT_TRUE(decide_rank(MatrixXd::Identity(2, 2), -1, opt).certain);  // full rank is still certain
 }
 
+// Regression (shrunk counterexample of FastVsReference.Graded): exact rank 4, entries 2^-20, 2^-15
+// and 64 — within the dynamic range that assess_input accepts — with singular values 4.5e-13 that
+// look like rounding noise.  It was decided "rank 2, certain"; the equilibration cross-check makes
+// it uncertain.
+TEST(DecideRank, GradedRegression) {
+  MatrixXd w = MatrixXd::Zero(5, 5);
+  w(0, 2) = std::ldexp(1.0, -20);
+  w(1, 3) = std::ldexp(1.0, -15);
+  w(2, 3) = -64;
+  w -= MatrixXd(w.transpose());
+  Options opt;
+  assess_input(w, opt);
+  EXPECT_TRUE(opt.input_well_scaled);
+  const RankDecision d = decide_rank(w, -1, opt);
+  EXPECT_TRUE(d.rank == 4 || !d.certain) << d.describe();
+}
+
 TEST(DecideRank, Empty) {
   EXPECT_EQ(decide_rank(MatrixXd(0, 3)).rank, 0);
   EXPECT_TRUE(decide_rank(MatrixXd(0, 3)).certain);

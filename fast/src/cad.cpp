@@ -89,7 +89,7 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt, const Matr
     const MatrixXd ra = ca - y * a;
     const VectorXd rb = cb - y * b;
     const Svd sv = full_svd(ra);
-    RankDecision d = decide_rank(sv.sigma, ra.rows(), ra.cols(), cscale, opt);
+    RankDecision d = decide_rank(ra, sv.sigma, cscale, opt);
     if (d.rank > n - a.rows()) {  // more new rows than codimensions left: only rounding can say so
       d.rank = static_cast<int>(n - a.rows());
       d.certain = false;
@@ -174,7 +174,7 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   lhs.topRightCorner(n, m) = -b;
   lhs.bottomLeftCorner(n, k) = da;
   const Svd sv = full_svd(lhs);
-  const RankDecision dl = decide_rank(sv.sigma, lhs.rows(), lhs.cols(), 1.0 + norm2(s.hessian), opt);
+  const RankDecision dl = decide_rank(lhs, sv.sigma, 1.0 + norm2(s.hessian), opt);
   red.certain = red.certain && dl.certain;
   MatrixXd pinv = MatrixXd::Zero(k + m, 2 * n);
   for (int i = 0; i < dl.rank; ++i) pinv += sv.v.col(i) * sv.u.col(i).transpose() / sv.sigma(i);

@@ -25,12 +25,48 @@ double norm2(const MatrixXd& a) {
   return Eigen::JacobiSVD<MatrixXd>(a).singularValues()(0);
 }
 
-RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
-  const VectorXd s = a.size() ? Eigen::JacobiSVD<MatrixXd>(a).singularValues() : VectorXd(0);
-  return decide_rank(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
+namespace {
+
+RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double scale, const Options& opt);
+
+/// A with entries |a_ij| ≤ tiny set to 0, then rows and columns scaled by powers of two (exact) to
+/// max-norm in [1, 2); two passes.
+MatrixXd equilibrated(MatrixXd a, double tiny) {
+  a = a.unaryExpr([tiny](double x) { return std::abs(x) <= tiny ? 0.0 : x; });
+  for (int pass = 0; pass < 2; ++pass) {
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      const double m = a.row(i).cwiseAbs().maxCoeff();
+      if (m > 0) a.row(i) *= std::ldexp(1.0, -std::ilogb(m));
+    }
+    for (Eigen::Index j = 0; j < a.cols(); ++j) {
+      const double m = a.col(j).cwiseAbs().maxCoeff();
+      if (m > 0) a.col(j) *= std::ldexp(1.0, -std::ilogb(m));
+    }
+  }
+  return a;
 }
 
-RankDecision decide_rank(const VectorXd& s, int rows, int cols, double scale, const Options& opt) {
+}  // namespace
+
+RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
+  const VectorXd s = a.size() ? Eigen::JacobiSVD<MatrixXd>(a).singularValues() : VectorXd(0);
+  return decide_rank(a, s, scale, opt);
+}
+
+RankDecision decide_rank(const MatrixXd& a, const VectorXd& s, double scale, const Options& opt) {
+  RankDecision d = decide_from_sigma(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
+  const bool deficient = d.rank < static_cast<int>(s.size());
+  if (!deficient || !d.certain || d.rank == 0) return d;
+  const MatrixXd e = equilibrated(a, d.zero_threshold);
+  const VectorXd se = Eigen::JacobiSVD<MatrixXd>(e).singularValues();
+  const RankDecision de = decide_from_sigma(se, static_cast<int>(e.rows()), static_cast<int>(e.cols()), -1, opt);
+  if (de.rank != d.rank || !de.certain) d.certain = false;  // grading hides or fakes a singular value
+  return d;
+}
+
+namespace {
+
+RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double scale, const Options& opt) {
   RankDecision d;
   d.rows = rows;
   d.cols = cols;
@@ -51,6 +87,8 @@ RankDecision decide_rank(const VectorXd& s, int rows, int cols, double scale, co
   d.gap = below > 0 ? above / below : inf;
   return d;
 }
+
+}  // namespace
 
 std::string RankDecision::describe() const {
   std::ostringstream o;

@@ -17,7 +17,7 @@ void require_same_ambient(const Subspace& u, const Subspace& w, const char* fn) 
 Subspace Subspace::span(const MatrixXd& cols, double scale, const Options& opt) {
   require_finite(cols, "Subspace::span");
   const Svd s = full_svd(cols);
-  RankDecision d = decide_rank(s.sigma, cols.rows(), cols.cols(), scale, opt);
+  RankDecision d = decide_rank(cols, s.sigma, scale, opt);
   Subspace out(s.u.leftCols(d.rank), d.certain);
   out.evidence_ = std::move(d);
   return out;
@@ -26,7 +26,7 @@ Subspace Subspace::span(const MatrixXd& cols, double scale, const Options& opt) 
 Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Options& opt) {
   require_finite(equations, "Subspace::solutions");
   const Svd s = full_svd(equations);
-  RankDecision d = decide_rank(s.sigma, equations.rows(), equations.cols(), scale, opt);
+  RankDecision d = decide_rank(equations, s.sigma, scale, opt);
   Subspace out(s.v.rightCols(equations.cols() - d.rank), d.certain);
   out.evidence_ = std::move(d);
   return out;
@@ -99,7 +99,7 @@ AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, d
   AffineSubspace out;
   const Svd s = full_svd(a);
   if (scale < 0) scale = s.sigma.size() ? s.sigma(0) : 0.0;
-  const RankDecision ra = decide_rank(s.sigma, a.rows(), a.cols(), scale, opt);
+  const RankDecision ra = decide_rank(a, s.sigma, scale, opt);
   MatrixXd ab(a.rows(), a.cols() + 1);
   ab << a, b;
   const RankDecision rab = decide_rank(ab, std::max(scale, b.norm()), opt);

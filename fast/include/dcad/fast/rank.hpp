@@ -58,9 +58,12 @@ struct RankDecision {
 };
 
 /// rank(A) with evidence.  `scale` < 0 means: the largest singular value of A itself.
+/// A claimed deficiency is cross-checked on A equilibrated by exact powers of two (rows and columns
+/// scaled to unit max-norm, after entries at rounding level are set to 0): rank is invariant under
+/// such scaling, graded data is not, so if the two ranks differ the verdict is uncertain.
 RankDecision decide_rank(const MatrixXd& a, double scale = -1, const Options& opt = {});
-/// The same decision from already computed singular values (descending) of a rows×cols matrix.
-RankDecision decide_rank(const VectorXd& sigma, int rows, int cols, double scale, const Options& opt);
+/// The same decision when the singular values (descending) of A are already computed.
+RankDecision decide_rank(const MatrixXd& a, const VectorXd& sigma, double scale, const Options& opt);
 
 /// Singular value decomposition A = U Σ Vᵀ with full U and V (one instantiation, in rank.cpp).
 struct Svd {

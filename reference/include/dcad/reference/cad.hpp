@@ -27,17 +27,14 @@ struct CadResult {
 
 /// The rows of `candidates` (as [a | b]) that raise the rank of [accumulated; row]: a basis of the
 /// new constraints modulo the old.
+/// Greedy in order: row i is kept iff it is independent of the rows before it — exactly the pivot
+/// columns of RREF([accumulated; candidates]ᵀ) (the accumulated rows are independent).
 template <class T>
 Matrix<T> independent_new_rows(const Matrix<T>& accumulated, const Matrix<T>& candidates) {
-  Matrix<T> acc = accumulated, fresh(0, candidates.cols());
-  for (Index i = 0; i < candidates.rows(); ++i) {
-    const Matrix<T> row = candidates.block(i, i + 1, 0, candidates.cols());
-    const Matrix<T> more = vstack(acc, row);
-    if (rank(more) > rank(acc)) {
-      acc = more;
-      fresh = vstack(fresh, row);
-    }
-  }
+  const std::vector<Index> piv = rref(vstack(accumulated, candidates).transpose()).pivots;
+  Matrix<T> fresh(0, candidates.cols());
+  for (Index p : piv)
+    if (p >= accumulated.rows()) fresh = vstack(fresh, candidates.block(p - accumulated.rows(), p - accumulated.rows() + 1, 0, candidates.cols()));
   return fresh;
 }
 
@@ -137,12 +134,8 @@ ReducedEquations<T> reduced_equations(const LinearSystem<T>& s, const CadResult<
   const Matrix<T> lhs = gv * b.transpose(), dh = -(ga * s.hessian * b.transpose());
   std::vector<T> rhs0 = (ga * Matrix<T>::column(energy_differential(s, x0))).col(0);
   for (T& c : rhs0) c = -c;
-  Matrix<T> p(m, m);
-  std::vector<T> col;
-  for (Index j = 0; j < m; ++j) {
-    solve_particular(lhs, dh.col(j), col);  // solvable: M_c is invariant (CEF Thm 5.4)
-    for (Index i = 0; i < m; ++i) p(i, j) = col[i];
-  }
+  Matrix<T> p;
+  solve_particular(lhs, dh, p);  // every column solvable: M_c is invariant (CEF Thm 5.4)
   std::vector<T> p0;
   solve_particular(lhs, rhs0, p0);
   // z = S x0 + T y  ⇒  ż = T w = T P T⁻¹ (z − S x0) + T p0 + T K λ.

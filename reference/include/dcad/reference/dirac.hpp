@@ -135,11 +135,15 @@ PresymplecticForm<T> dirac_form(const DiracStructure<T>& d) {
   const Subspace<T> e = dirac_distribution(d);
   const Matrix<T>& b = e.basis();
   const Rref<T> piv = rref(b);  // b is already reduced; this reads off its pivot columns
+  // one α_i ∈ D^♭(b_i) for every basis vector b_i of E_D at once: Γ_α α_i = −Γ_v b_i (as in dirac_flat)
+  const Matrix<T> g = annihilator(d.d).basis();
+  const Matrix<T> gv = g.block(0, g.rows(), 0, d.n), ga = g.block(0, g.rows(), d.n, 2 * d.n);
+  Matrix<T> alphas;  // column i: α_i
+  solve_particular(ga, -(gv * b.transpose()), alphas);  // consistent: b_i ∈ E_D
+  const Matrix<T> om = alphas.transpose() * b.transpose();  // (i, j) = α_i(b_j)
   Matrix<T> m(d.n, d.n);
-  for (Index i = 0; i < b.rows(); ++i) {
-    const AffineSubspace<T> alphas = dirac_flat(d, b.row(i));  // nonempty: b_i ∈ E_D
-    for (Index j = 0; j < b.rows(); ++j) m(piv.pivots[i], piv.pivots[j]) = dot(alphas.point, b.row(j));
-  }
+  for (Index i = 0; i < b.rows(); ++i)
+    for (Index j = 0; j < b.rows(); ++j) m(piv.pivots[i], piv.pivots[j]) = om(i, j);
   return {e, m};
 }
 

@@ -220,6 +220,21 @@ bool solve_particular(const Matrix<T>& m, const std::vector<T>& b, std::vector<T
   return true;
 }
 
+/// X with m X = b, column by column the particular solution of solve_particular (free variables
+/// zero), from one Gauss–Jordan on [m b]; false if some column is inconsistent.
+template <class T>
+bool solve_particular(const Matrix<T>& m, const Matrix<T>& b, Matrix<T>& x) {
+  require(b.rows() == m.rows(), "solve_particular", "right-hand sides with " + std::to_string(m.rows()) + " rows",
+          std::to_string(b.rows()) + " rows");
+  const Rref<T> e = rref(hstack(m, b));
+  x = Matrix<T>(m.cols(), b.cols());
+  for (Index i = 0; i < e.pivots.size(); ++i) {
+    if (e.pivots[i] >= m.cols()) return false;  // 0 = nonzero in some column of b
+    for (Index j = 0; j < b.cols(); ++j) x(e.pivots[i], j) = e.r(i, m.cols() + j);
+  }
+  return true;
+}
+
 /// m is invertible: its inverse by Gauss–Jordan on [m I].
 template <class T>
 Matrix<T> inverse(const Matrix<T>& m) {
