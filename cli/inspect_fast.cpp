@@ -1,4 +1,5 @@
 #include "dcad/fast/dirac.hpp"
+#include "convert_fast.hpp"
 #include "inspect.hpp"
 
 namespace fast = dcad::fast;
@@ -6,19 +7,6 @@ namespace fast = dcad::fast;
 namespace dcad::cli {
 
 namespace {
-
-/// Rounds an exact input matrix to double and records in `opt` whether that was exact and whether
-/// the data is well scaled (fast::Options: both are hypotheses of a certain rank deficiency).
-Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt) {
-  Eigen::MatrixXd d(m.rows(), m.cols());
-  for (std::size_t i = 0; i < m.rows(); ++i)
-    for (std::size_t k = 0; k < m.cols(); ++k) {
-      d(i, k) = m(i, k).convert_to<double>();
-      if (io::Rational(d(i, k)) != m(i, k)) opt.input_exact = false;
-    }
-  fast::assess_input(d, opt);
-  return d;
-}
 
 void note(InspectReport& r, const std::string& what, bool certain, const std::string& evidence) {
   if (certain) return;
@@ -37,18 +25,7 @@ InspectReport inspect_fast(const io::CaseFile& c) {
   r.form = c.dirac.form;
   fa::Options opt;
   const io::DiracInput& in = c.dirac;
-  fa::DiracStructure d;
-  if (in.form == "presymplectic") {
-    d = fa::dirac_from_presymplectic(to_double(in.w, opt));
-  } else if (in.form == "distribution") {
-    const Eigen::MatrixXd b = to_double(in.b, opt), w = to_double(in.w, opt);
-    d = fa::dirac_from_distribution(fa::Subspace::span(b.transpose(), -1, opt), w);
-  } else if (in.form == "poisson") {
-    d = fa::dirac_from_poisson(to_double(in.p, opt));
-  } else {
-    const Eigen::MatrixXd g = to_double(in.g, opt);
-    d = {static_cast<int>(g.cols() / 2), fa::Subspace::span(g.transpose(), -1, opt)};
-  }
+  const fa::DiracStructure d = fast_dirac(in, opt);
   const fa::DiracCheck check = fa::dirac_defect(d, opt);
   r.valid = check.valid.value;
   r.why = check.why;

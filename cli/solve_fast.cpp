@@ -1,4 +1,5 @@
 #include "dcad/fast/cad.hpp"
+#include "convert_fast.hpp"
 #include "solve.hpp"
 
 #include <Eigen/LU>
@@ -11,21 +12,6 @@ namespace dcad::cli {
 namespace fa = dcad::fast;
 
 namespace {
-
-Eigen::MatrixXd to_double(const io::QMatrix& m, fa::Options& opt) {
-  Eigen::MatrixXd d(m.rows(), m.cols());
-  for (std::size_t i = 0; i < m.rows(); ++i)
-    for (std::size_t k = 0; k < m.cols(); ++k) {
-      d(i, k) = m(i, k).convert_to<double>();
-      if (io::Rational(d(i, k)) != m(i, k)) opt.input_exact = false;
-    }
-  fa::assess_input(d, opt);
-  return d;
-}
-
-Eigen::VectorXd to_double(const std::vector<io::Rational>& v, fa::Options& opt) {
-  return to_double(io::QMatrix::from_rows({v}, v.size()), opt).transpose();
-}
 
 std::string num(double x) {
   std::ostringstream o;
@@ -46,17 +32,10 @@ fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
     return fa::pontryagin_system(to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt),
                                  to_double(p.q, opt), to_double(p.v, opt), opt);
   }
-  const io::DiracInput& in = c.dirac;
-  fa::DiracStructure d;
-  if (in.form == "presymplectic") {
-    d = fa::dirac_from_presymplectic(to_double(in.w, opt));
-  } else if (in.form == "distribution") {
-    const Eigen::MatrixXd b = to_double(in.b, opt), w = to_double(in.w, opt);
-    d = fa::dirac_from_distribution(fa::Subspace::span(b.transpose(), -1, opt), w);
-  } else if (in.form == "poisson") {
-    d = fa::dirac_from_poisson(to_double(in.p, opt));
-  } else {
-    d = fa::dirac_from_basis(to_double(in.g, opt), opt);
+  fa::DiracStructure d = fast_dirac(c.dirac, opt);
+  if (c.dirac.form == "basis") {  // certainly not Dirac: bad input; uncertain: the result says so
+    fa::require_dirac(d, "solve", opt);
+    d.d.and_certain(fa::dirac_defect(d, opt).valid.certain);
   }
   return {d, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
 }

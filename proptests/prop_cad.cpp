@@ -9,14 +9,6 @@ using namespace dcad::test;
 
 namespace {
 
-/// A point of an affine subspace: its point plus an integer combination of its directions.
-std::vector<Q> some_point(const AffineSubspace<Q>& m) {
-  std::vector<Q> x = m.point;
-  const QM c = integer_matrix(1, m.direction.dim());
-  for (Index i = 0; i < m.direction.dim(); ++i)
-    for (Index k = 0; k < x.size(); ++k) x[k] += c(0, i) * m.direction.basis()(i, k);
-  return x;
-}
 
 void classify(const CadResult<Q>& r) {
   RC_CLASSIFY(!r.consistent, "inconsistent");

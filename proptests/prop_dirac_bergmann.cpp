@@ -19,13 +19,6 @@ CadResult<Q> gotay_nester(const ConstrainedSystem<Q>& s) {
   return constraint_tower(ls, s.primary);
 }
 
-std::vector<Q> some_point(const AffineSubspace<Q>& m) {
-  std::vector<Q> x = m.point;
-  const QM c = integer_matrix(1, m.direction.dim());
-  for (Index i = 0; i < m.direction.dim(); ++i)
-    for (Index k = 0; k < x.size(); ++k) x[k] += c(0, i) * m.direction.basis()(i, k);
-  return x;
-}
 
 }  // namespace
 

@@ -301,6 +301,15 @@ inline reference::ConstrainedSystem<Q> any_constrained_system() {
   return s;
 }
 
+/// A point of an affine subspace: its point plus an integer combination of its directions.
+inline std::vector<Q> some_point(const reference::AffineSubspace<Q>& m) {
+  std::vector<Q> x = m.point;
+  const QM c = integer_matrix(1, m.direction.dim());
+  for (Index i = 0; i < m.direction.dim(); ++i)
+    for (Index k = 0; k < x.size(); ++k) x[k] += c(0, i) * m.direction.basis()(i, k);
+  return x;
+}
+
 /// A random subspace of a given subspace U (random integer combinations of its basis).
 inline QSub random_subspace_of(const QSub& u) {
   if (u.dim() == 0) return u;
