@@ -1,0 +1,70 @@
+// Second class constraints adapted to the primary ones, the abridged total energy and the Dirac
+// bracket of Theorem 3.28 (CEF §3.4), and its foliated form, Theorem 7.4 (§7), for linear
+// constraints φ_i(x) = a_i·x − b_i on a symplectic Q^N.
+#pragma once
+
+#include "dcad/reference/dirac_bergmann.hpp"
+
+namespace dcad::reference {
+
+template <class T>
+struct AdaptedConstraints {
+  Index s_prime = 0;             ///< s' = rank Φ', Φ' = ({φ_i, φ_j}), i primary, j all
+  Index s = 0;                   ///< 2s = rank Φ, Φ = ({φ_i, φ_j}), i, j all
+  std::vector<Index> chi;        ///< χ'_1 … χ'_{s'} (primary), then χ''_{s'+1} … χ''_{2s} (not primary)
+  std::vector<Index> abridged;   ///< the primary φ_k of E_AT = E + λ^k φ_k: those not chosen as χ'
+  Matrix<T> dirac_tensor;        ///< J*_(χ) = J − J Gᵀ Σ⁻¹ G J
+};
+
+/// Rows are chosen greedily, in order, while they raise the rank of the chosen rows of Φ: χ' among
+/// the primary constraints (rank s'), then χ'' among the others (up to 2s).  `primary[i]` marks the
+/// primary constraints (in §7 also the leaf constraints φ_{a+1} … φ_b).  [CEF Thm 3.28, Thm 7.4]
+template <class T>
+AdaptedConstraints<T> adapted_constraints(const Matrix<T>& w, const Matrix<T>& constraints, const std::vector<bool>& primary) {
+  require(primary.size() == constraints.rows(), "adapted_constraints", "one primary flag per constraint",
+          std::to_string(primary.size()) + " flags for " + std::to_string(constraints.rows()) + " constraints");
+  const Matrix<T> j = poisson_tensor(w), a = gradients(constraints);
+  const Matrix<T> phi = a * j * a.transpose();
+  AdaptedConstraints<T> out;
+  out.s = rank(phi) / 2;
+  Matrix<T> chosen(0, phi.cols());
+  const auto take = [&](bool want_primary) {
+    for (Index i = 0; i < phi.rows(); ++i) {
+      if (primary[i] != want_primary) continue;
+      const Matrix<T> more = vstack(chosen, phi.block(i, i + 1, 0, phi.cols()));
+      if (rank(more) > chosen.rows()) {
+        chosen = more;
+        out.chi.push_back(i);
+      } else if (want_primary) {
+        out.abridged.push_back(i);
+      }
+    }
+  };
+  take(true);
+  out.s_prime = out.chi.size();
+  take(false);
+  require(out.chi.size() == 2 * out.s, "adapted_constraints", std::to_string(2 * out.s) + " second class constraints",
+          std::to_string(out.chi.size()));
+  Matrix<T> g(out.chi.size(), a.cols());
+  for (Index p = 0; p < out.chi.size(); ++p)
+    for (Index k = 0; k < a.cols(); ++k) g(p, k) = a(out.chi[p], k);
+  // independent rows of a skew Φ, as many as its rank, have a nonsingular principal submatrix
+  out.dirac_tensor = out.chi.empty() ? j : j - j * g.transpose() * inverse(g * j * g.transpose()) * g * j;
+  return out;
+}
+
+/// X_(χ),E_AT(x) = J* (dE(x) + λ^k a_k), k over `abridged`.  [CEF (3.24), (7.11)]
+template <class T>
+std::vector<T> abridged_field(const AdaptedConstraints<T>& ad, const Matrix<T>& constraints, const Matrix<T>& hessian,
+                              const std::vector<T>& gradient, const std::vector<T>& x, const std::vector<T>& lambda) {
+  require(lambda.size() == ad.abridged.size(), "abridged_field", std::to_string(ad.abridged.size()) + " multipliers",
+          std::to_string(lambda.size()));
+  std::vector<T> d = (hessian * Matrix<T>::column(x)).col(0);
+  for (Index i = 0; i < d.size(); ++i) {
+    d[i] += gradient[i];
+    for (Index k = 0; k < lambda.size(); ++k) d[i] += lambda[k] * constraints(ad.abridged[k], i);
+  }
+  return (ad.dirac_tensor * Matrix<T>::column(d)).col(0);
+}
+
+}  // namespace dcad::reference
