@@ -2,7 +2,7 @@
 // Appendix A), exactly, at several rational values of L, C1, C2, C3.  Guards the misprints of
 // ../shared/ERRATA.md: Σ row 8 (printed Σ₈,₁₁ = 1/C1, Σ₈,₁₃ = −1/C3; correct Σ₈,₁₂, Σ₈,₁₄) and
 // the sign convention behind Σ₁,₉ = −1, Σ₁,₁₁ = −L.
-#include "dcad/reference/dirac_bergmann.hpp"
+#include "dcad/reference/adapted.hpp"
 #include "dcad/reference/rational.hpp"
 
 #include <gtest/gtest.h>
@@ -81,6 +81,67 @@ TEST_P(FourPort, SigmaCorrectedEntriesAndDeterminant) {
   EXPECT_EQ(determinant(sigma), c.l * c.l * s13 * s13 * s13 * s13 / (c.c1 * c.c1 * c.c1 * c.c1 * c.c3 * c.c3 * c.c3 * c.c3));
   // the Dirac bracket of the leaf coordinates: {q_L, p_L}* = +1 (block A of §7, A₁,₅)
   EXPECT_EQ(cl.dirac_tensor(qL, pL), Q(1));
+}
+
+// §7 on T*TQ: the CAD on S' = {ν = 0} with leaves {κ·q = C} gives dims 12, 6, 5, 4; all 14
+// constraints of S_0 are second class (s' = 4 from ν, a' − s' = 0: E_AT = E); X = J* dE at points
+// of every leaf reproduces the motion: on the leaf through (6.38)–(6.41), q̇_L = p_L/L,
+// ṗ_L = −ω² L q_L with ω² = (C1+C2+C3)/(L C2 (C1+C3)), and ν̇ = 0 (ERRATA: labels of X).
+TEST_P(FourPort, Section7_DiracBracketMotion) {
+  const Circuit c = GetParam();
+  PontryaginInput<Q> in;
+  in.n = 4;
+  in.k = QM::from_rows({{-1, 0, 1, 0}, {0, -1, 1, -1}}, 4);
+  in.vv = QM(4, 4);
+  in.vv(0, 0) = c.l;
+  in.qq = QM(4, 4);
+  in.qq(1, 1) = -1 / c.c1;
+  in.qq(2, 2) = -1 / c.c2;
+  in.qq(3, 3) = -1 / c.c3;
+  in.qv = QM(4, 4);
+  in.q.assign(4, Q(0));
+  in.v.assign(4, Q(0));
+  const FoliatedEmbedding<Q> f = tangent_cotangent_embedding(in);
+  const QM both = vstack(f.primary, f.leaf);
+  const LinearSystem<Q> ls{dirac_from_distribution(kernel(gradients(both)), f.omega), f.hessian, f.gradient, Q(0)};
+  const CadResult<Q> r = constraint_tower(ls, f.primary);
+  ASSERT_TRUE(r.consistent);
+  std::vector<long> dims;
+  for (const auto& st : r.tower) dims.push_back(st.dim());
+  EXPECT_EQ(dims, (std::vector<long>{12, 6, 5, 4}));
+  QM secondary(0, 17);
+  for (Index k = 1; k < r.tower.size(); ++k) secondary = vstack(secondary, r.tower[k].equations);
+  const QM all = vstack(vstack(f.primary, secondary), f.leaf);
+  std::vector<bool> primary(all.rows(), false);
+  for (Index i = 0; i < 4; ++i) primary[i] = true;
+  for (Index i = 0; i < 2; ++i) primary[all.rows() - 1 - i] = true;
+  const AdaptedConstraints<Q> ad = adapted_constraints(f.omega, all, primary);
+  EXPECT_EQ(all.rows(), 14u);
+  EXPECT_EQ(2 * ad.s, 14u);
+  EXPECT_TRUE(ad.abridged.empty());  // a' − s' = 0 = d^(c): E_AT = E
+  // the point of (6.38)–(6.41) with q_L = 3, p_L = 5 (leaf C = 0)
+  const Q a = 3, b = 5, s13 = c.c1 + c.c3;
+  std::vector<Q> y = {a, c.c1 * a / s13, a, c.c3 * a / s13, b / c.l, c.c1 * b / (c.l * s13), b / c.l, c.c3 * b / (c.l * s13),
+                      b, 0, 0, 0, 0, 0, 0, 0};
+  ASSERT_TRUE(r.final_step().m.contains_point(y));
+  const std::vector<Q> x = abridged_field(ad, all, f.hessian, f.gradient, y, {});
+  const Q omega2 = (c.c1 + c.c2 + c.c3) / (c.l * c.c2 * s13);
+  EXPECT_EQ(x[qL], b / c.l);
+  EXPECT_EQ(x[qC1], c.c1 * b / (c.l * s13));
+  EXPECT_EQ(x[qC2], b / c.l);
+  EXPECT_EQ(x[pL], -omega2 * c.l * a);
+  for (Index i = pC1; i <= pC3; ++i) EXPECT_EQ(x[i], Q(0));
+  for (Index i = nL; i <= nC3; ++i) EXPECT_EQ(x[i], Q(0));
+  // at a point of S on another leaf (y plus every direction of M_c, which moves κ·q off 0), X is
+  // tangent to that leaf S_C
+  const AffineSubspace<Q>& sfin = r.final_step().m;
+  std::vector<Q> z = y;
+  for (Index i = 0; i < sfin.direction.dim(); ++i)
+    for (Index k = 0; k < z.size(); ++k) z[k] += sfin.direction.basis()(i, k);
+  ASSERT_TRUE(sfin.contains_point(z));
+  EXPECT_NE((gradients(f.leaf) * QM::column(z)).col(0), std::vector<Q>(2, Q(0)));
+  const std::vector<Q> xz = abridged_field(ad, all, f.hessian, f.gradient, z, {});
+  EXPECT_TRUE(contains(intersection(sfin.direction, kernel(gradients(f.leaf))), xz));
 }
 
 INSTANTIATE_TEST_SUITE_P(CEF6, FourPort,

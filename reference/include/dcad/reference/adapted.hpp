@@ -67,4 +67,43 @@ std::vector<T> abridged_field(const AdaptedConstraints<T>& ad, const Matrix<T>& 
   return (ad.dirac_tensor * Matrix<T>::column(d)).col(0);
 }
 
+/// A Pontryagin-bundle system embedded in P = T*TQ = Q^{4n}, y = (q, v, p, ν), with
+/// Ω = dq ∧ dp + dv ∧ dν (CEF Appendix A, ERRATA): primary constraints ν = 0 (S' = TQ ⊕ T*Q), leaf
+/// constraints κ_j·q = C_j for the rows κ_j of K (KCL integrated: the leaves of D̄_Δ), and E(q, v, p)
+/// extended to P independently of ν.  This is the foliated setting of §7 (7.2)–(7.6).
+template <class T>
+struct FoliatedEmbedding {
+  Matrix<T> omega;          ///< 4n × 4n
+  Matrix<T> hessian;        ///< 4n × 4n
+  std::vector<T> gradient;  ///< 4n
+  Matrix<T> primary;        ///< [0 0 0 I | 0]: ν = 0
+  Matrix<T> leaf;           ///< [K 0 0 0 | 0]: κ·q = C
+};
+
+template <class T>
+FoliatedEmbedding<T> tangent_cotangent_embedding(const PontryaginInput<T>& in) {
+  const LinearSystem<T> s = pontryagin_system(in);
+  const Index n = in.n, m = 4 * n;
+  FoliatedEmbedding<T> f;
+  f.omega = Matrix<T>(m, m);
+  f.hessian = Matrix<T>(m, m);
+  f.gradient.assign(m, T(0));
+  for (Index i = 0; i < n; ++i) {
+    f.omega(i, 2 * n + i) = T(1);  // dq ∧ dp
+    f.omega(2 * n + i, i) = T(-1);
+    f.omega(n + i, 3 * n + i) = T(1);  // dv ∧ dν
+    f.omega(3 * n + i, n + i) = T(-1);
+  }
+  for (Index i = 0; i < 3 * n; ++i) {
+    f.gradient[i] = s.gradient[i];
+    for (Index j = 0; j < 3 * n; ++j) f.hessian(i, j) = s.hessian(i, j);
+  }
+  f.primary = Matrix<T>(n, m + 1);
+  for (Index i = 0; i < n; ++i) f.primary(i, 3 * n + i) = T(1);
+  f.leaf = Matrix<T>(in.k.rows(), m + 1);
+  for (Index i = 0; i < in.k.rows(); ++i)
+    for (Index j = 0; j < n; ++j) f.leaf(i, j) = in.k(i, j);
+  return f;
+}
+
 }  // namespace dcad::reference
