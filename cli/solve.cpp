@@ -69,6 +69,17 @@ nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
     if (!chi.empty()) j["constraint_classes"]["second_class_constraints"] = chi;
     if (!r.dirac_bracket.empty()) j["dirac_bracket"] = r.dirac_bracket;
   }
+  if (r.has_adapted) {
+    nlohmann::json chi = nlohmann::json::array(), terms = nlohmann::json::array();
+    for (const Equation& e : r.adapted_chi) chi.push_back(equation_text(e, r.adapted_variables));
+    for (const Equation& e : r.abridged_terms) terms.push_back(equation_text(e, r.adapted_variables));
+    j["adapted"] = {{"setting", r.adapted_setting},
+                    {"variables", r.adapted_variables},
+                    {"s_prime", r.s_prime},
+                    {"second_class", chi},
+                    {"abridged_total_energy_constraints", terms},
+                    {"secondary_first_class", r.secondary_first_class}};
+  }
   j["decisions"] = {{"float", r.decisions_float}, {"exact_recomputation", r.decisions_exact}};
   if (!r.note.empty()) j["note"] = r.note;
   return j;
@@ -92,6 +103,15 @@ std::string to_text(const SolveReport& r, const io::CaseFile& c) {
     o << "  constraints of M_c (CEF §2.1, Lemma 3.23): " << r.first_class << " first class, " << r.second_class
       << " second class\n";
     for (const Equation& e : r.second_class_constraints) o << "      second class: " << equation_text(e, c.variables) << "\n";
+  }
+  if (r.has_adapted) {
+    o << "  adapted to the primary constraints (CEF Thm 3.28" << (r.adapted_setting == "T*TQ" ? ", §7 on T*TQ" : "")
+      << "): s' = " << r.s_prime << ", " << r.adapted_chi.size() << " second class\n";
+    for (const Equation& e : r.adapted_chi) o << "      chi: " << equation_text(e, r.adapted_variables) << "\n";
+    o << "    E_AT = E";
+    for (std::size_t k = 0; k < r.abridged_terms.size(); ++k)
+      o << " + lambda" << k + 1 << "*(" << equation_text(r.abridged_terms[k], r.adapted_variables) << ")";
+    o << "   (E_E adds " << r.secondary_first_class << " secondary first class constraints)\n";
   }
   if (r.has_reduced) {
     std::vector<std::string> names;

@@ -34,6 +34,12 @@ struct SolveReport {
   long first_class = -1, second_class = -1;              ///< `constrained` systems: r − 2s and 2s on M_c
   std::vector<Equation> second_class_constraints;        ///< χ (reference)
   std::vector<std::vector<std::string>> dirac_bracket;   ///< J* (reference)
+  /// Theorem 3.28 / 7.4 (reference): constraints adapted to the primary ones, in `adapted_variables`
+  bool has_adapted = false;
+  std::string adapted_setting;                 ///< "N" (constrained) or "T*TQ" (pontryagin, §7)
+  std::vector<std::string> adapted_variables;
+  long s_prime = 0, adapted_second = 0, secondary_first_class = 0;
+  std::vector<Equation> adapted_chi, abridged_terms;
   std::string note;  ///< e.g. why `certified` recomputed exactly
   long decisions_float = 0, decisions_exact = 0;
 };

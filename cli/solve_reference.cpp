@@ -1,5 +1,5 @@
 // The CAD by the exact reference (the one translation unit that instantiates it for solve).
-#include "dcad/reference/dirac_bergmann.hpp"
+#include "dcad/reference/adapted.hpp"
 #include "solve.hpp"
 
 namespace dcad::cli {
@@ -28,6 +28,33 @@ ref::LinearSystem<Q> reference_system(const io::CaseFile& c) {
   ref::LinearSystem<Q> s{reference_dirac(c.dirac), c.energy.hessian, c.energy.gradient, c.energy.constant};
   ref::require_dirac(s.d, "solve");
   return s;
+}
+
+}  // namespace
+
+namespace {
+
+Equation row_equation(const io::QMatrix& rows, ref::Index i) {
+  Equation e;
+  for (ref::Index j = 0; j + 1 < rows.cols(); ++j) e.coeff.push_back(exact(rows(i, j)));
+  e.rhs = rows(i, rows.cols() - 1).str();
+  return e;
+}
+
+/// Theorem 3.28 on (W, [primary; secondary; leaf]) with primary and leaf rows flagged primary.
+void adapted_report(SolveReport& out, const io::QMatrix& w, const io::QMatrix& prim, const io::QMatrix& secondary,
+                    const io::QMatrix& leaf) {
+  const io::QMatrix all = ref::vstack(ref::vstack(prim, secondary), leaf);
+  std::vector<bool> primary(all.rows(), false);
+  for (ref::Index i = 0; i < all.rows(); ++i) primary[i] = i < prim.rows() || i >= prim.rows() + secondary.rows();
+  const ref::AdaptedConstraints<Q> ad = ref::adapted_constraints(w, all, primary);
+  out.has_adapted = true;
+  out.s_prime = static_cast<long>(ad.s_prime);
+  out.adapted_second = static_cast<long>(2 * ad.s);
+  for (ref::Index i : ad.chi) out.adapted_chi.push_back(row_equation(all, i));
+  for (ref::Index k : ad.abridged) out.abridged_terms.push_back(row_equation(all, k));
+  const long first = static_cast<long>(all.rows() - 2 * ad.s), primary_first = static_cast<long>(ad.abridged.size());
+  out.secondary_first_class = first - primary_first;
 }
 
 }  // namespace
@@ -68,6 +95,27 @@ SolveReport solve_reference(const io::CaseFile& c) {
       out.dirac_bracket.push_back({});
       for (ref::Index j = 0; j < c.n; ++j) out.dirac_bracket.back().push_back(cl.dirac_tensor(i, j).str());
     }
+  }
+  if (c.has_constrained && r.consistent) {
+    io::QMatrix secondary(0, c.n + 1);
+    for (ref::Index k = 1; k < r.tower.size(); ++k) secondary = ref::vstack(secondary, r.tower[k].equations);
+    out.adapted_setting = "N";
+    out.adapted_variables = c.variables;
+    adapted_report(out, c.constrained.w, r.tower[0].equations, secondary, io::QMatrix(0, c.n + 1));
+  }
+  if (c.has_pontryagin && r.consistent) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
+    const io::PontryaginInput& p = c.pontryagin;
+    const ref::FoliatedEmbedding<Q> f =
+        ref::tangent_cotangent_embedding(ref::PontryaginInput<Q>{p.n, p.k, p.vv, p.qv, p.qq, p.q, p.v});
+    const io::QMatrix both = ref::vstack(f.primary, f.leaf);
+    const ref::LinearSystem<Q> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(both)), f.omega), f.hessian, f.gradient, Q(0)};
+    const ref::CadResult<Q> rf = ref::constraint_tower(ls, f.primary);
+    io::QMatrix secondary(0, 4 * p.n + 1);
+    for (ref::Index k = 1; k < rf.tower.size(); ++k) secondary = ref::vstack(secondary, rf.tower[k].equations);
+    out.adapted_setting = "T*TQ";
+    out.adapted_variables = c.variables;
+    for (std::size_t i = 0; i < p.n; ++i) out.adapted_variables.push_back("nu_" + c.variables[p.n + i]);
+    adapted_report(out, f.omega, f.primary, secondary, f.leaf);
   }
   if (r.consistent) {
     const ref::ReducedEquations<Q> red = ref::reduced_equations(s, r, c.coordinates);

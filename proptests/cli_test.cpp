@@ -74,6 +74,7 @@ TEST(Golden, SolveEveryCase) {
       const Outcome r = run("solve " + entry.path().string() + " --backend " + backend + " --json");
       ASSERT_EQ(r.rc, 0) << entry.path() << " " << backend << ": " << r.err;
       const nlohmann::json got = nlohmann::json::parse(r.out);
+      const bool exact = got["backend"] == "reference" || got["decisions"]["exact_recomputation"] == 1;
       for (const char* key : {"dcad", "backend", "certified", "dims", "steps", "consistent", "solution_rank", "unique"})
         EXPECT_TRUE(got.contains(key)) << key;
       if (backend != "fast") EXPECT_TRUE(got["certified"].get<bool>());
@@ -84,11 +85,19 @@ TEST(Golden, SolveEveryCase) {
             if (g.is_object()) g.erase("second_class_constraints");  // compared: the counts
             EXPECT_EQ(g, want[key]) << entry.path() << " " << backend << " " << key;
           }
+      if (want.contains("adapted") && exact) {  // Theorem 3.28 / 7.4, reported by the exact route
+        const nlohmann::json& wa = want["adapted"];
+        const nlohmann::json& ga = got["adapted"];
+        EXPECT_EQ(ga["setting"], wa["setting"]) << entry.path();
+        EXPECT_EQ(ga["s_prime"], wa["s_prime"]) << entry.path();
+        EXPECT_EQ(ga["second_class"].size(), wa["second_class_count"].get<std::size_t>()) << entry.path();
+        EXPECT_EQ(ga["abridged_total_energy_constraints"].size(), wa["abridged_count"].get<std::size_t>()) << entry.path();
+        EXPECT_EQ(ga["secondary_first_class"], wa["secondary_first_class"]) << entry.path();
+      }
       if (!want.contains("reduced")) continue;
       const nlohmann::json& wr = want["reduced"];
       const nlohmann::json& gr = got["reduced"];
       EXPECT_EQ(gr["coordinates"], wr["coordinates"]);
-      const bool exact = got["backend"] == "reference" || got["decisions"]["exact_recomputation"] == 1;
       const auto num = [](const nlohmann::json& x) {
         const std::string s = x.is_string() ? x.get<std::string>() : x.dump();
         const auto slash = s.find('/');
