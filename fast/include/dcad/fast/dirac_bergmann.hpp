@@ -1,0 +1,39 @@
+// Dirac's theory of constraints in double; the twin of dcad/reference/dirac_bergmann.hpp.  Same
+// conventions ({f, g} = df ᵀ J dg, J = (Wᵀ)^{-1}); a different route: the known constraints are kept
+// as orthonormal rows, the secondary ones come from a decided left null space, and the second class
+// constraints are the orthogonal complement of the first class ones in the constraint span.
+#pragma once
+
+#include "dcad/fast/cad.hpp"
+
+namespace dcad::fast {
+
+struct ConstrainedSystem {
+  MatrixXd omega, hessian;
+  VectorXd gradient;
+  MatrixXd primary;  ///< rows [a_i | b_i]
+};
+
+MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt = {});
+
+struct DiracBergmannResult {
+  std::vector<AffineSubspace> tower;
+  MatrixXd constraints;  ///< orthonormal gradient rows with right-hand sides, [a | b]
+  bool consistent = true;
+  bool certain = true;
+};
+DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt = {});
+
+/// Λ^(c)_x for the given primary rows (decided).
+AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt = {});
+
+struct ConstraintClasses {
+  int s = 0;
+  MatrixXd first;         ///< orthonormal rows [a | b] of ψ
+  MatrixXd second;        ///< orthonormal rows [a | b] of χ (complement of ψ in the constraint span)
+  MatrixXd dirac_tensor;  ///< J* = J − J Gᵀ Σ⁻¹ G J
+  bool certain = true;
+};
+ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt = {});
+
+}  // namespace dcad::fast

@@ -1,0 +1,130 @@
+#include "dcad/fast/dirac_bergmann.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace dcad::fast {
+
+MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt) {
+  require_symplectic(w, "poisson_tensor", opt);
+  return w.transpose().fullPivLu().inverse();
+}
+
+namespace {
+
+/// Adds the equations ca x = cb to the orthonormal system a x = b: projects them off a, decides how
+/// many are new and whether the rest is consistent.  Returns false if inconsistent.
+bool absorb(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorXd& cb, double scale, double rhs_scale,
+            const Options& opt, bool& certain, int& added) {
+  const MatrixXd y = ca * a.transpose();
+  const MatrixXd ra = ca - y * a;
+  const VectorXd rb = cb - y * b;
+  const Svd sv = full_svd(ra);
+  RankDecision d = decide_rank(ra, sv.sigma, scale, opt);
+  const int room = static_cast<int>(a.cols() - a.rows());
+  if (d.rank > room) {
+    d.rank = room;
+    d.certain = false;
+  }
+  certain = certain && d.certain;
+  const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
+  const RankDecision dc = decide_rank(MatrixXd(rest), std::max(rhs_scale, scale), opt);
+  certain = certain && dc.certain;
+  if (dc.rank > 0) return false;
+  added = d.rank;
+  if (d.rank == 0) return true;
+  MatrixXd a2(a.rows() + d.rank, a.cols());
+  a2 << a, sv.v.leftCols(d.rank).transpose();
+  VectorXd b2(b.size() + d.rank);
+  b2 << b, (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
+  a = a2;
+  b = b2;
+  return true;
+}
+
+AffineSubspace affine(const MatrixXd& a, const VectorXd& b) {
+  AffineSubspace m;
+  m.empty = false;
+  m.point = a.transpose() * b;
+  m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
+  return m;
+}
+
+}  // namespace
+
+DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt) {
+  const int n = static_cast<int>(s.omega.rows());
+  if (s.primary.cols() != n + 1)
+    throw std::invalid_argument("dirac_bergmann: expected primary constraint rows [a | b] of width " + std::to_string(n + 1) +
+                                ", found width " + std::to_string(s.primary.cols()));
+  const MatrixXd j = poisson_tensor(s.omega, opt);
+  const MatrixXd p = s.primary.leftCols(n);
+  const double jn = norm2(j);
+  DiracBergmannResult out;
+  MatrixXd a(0, n);
+  VectorXd b(0);
+  int added = 0;
+  if (!absorb(a, b, p, s.primary.col(n), std::max(norm2(p), 1e-300), s.primary.col(n).norm(), opt, out.certain, added)) {
+    out.consistent = false;
+    AffineSubspace empty;
+    out.tower.push_back(empty);
+    return out;
+  }
+  out.tower.push_back(affine(a, b));
+  const double hscale = jn * std::max(norm2(s.hessian), s.gradient.norm());
+  for (;;) {
+    const MatrixXd c = a * j * p.transpose();  // {φ_j, φ_i}: rows the orthonormal constraints, cols primary
+    const Svd sc = full_svd(c);
+    const RankDecision dc = decide_rank(c, sc.sigma, jn * std::max(1.0, norm2(p)), opt);
+    out.certain = out.certain && dc.certain;
+    const MatrixXd mu = sc.u.rightCols(c.rows() - dc.rank).transpose();  // μ C = 0
+    const MatrixXd ca = mu * a * j * s.hessian;
+    const VectorXd cb = -(mu * a * j * s.gradient);
+    const double xscale = hscale * (1 + out.tower.back().point.norm());
+    if (!absorb(a, b, ca, cb, hscale, xscale, opt, out.certain, added)) {
+      out.consistent = false;
+      out.tower.push_back(AffineSubspace());
+      break;
+    }
+    if (added == 0) break;
+    out.tower.push_back(affine(a, b));
+  }
+  out.constraints.resize(a.rows(), n + 1);
+  out.constraints << a, b;
+  return out;
+}
+
+AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt) {
+  const int n = static_cast<int>(s.omega.rows());
+  const MatrixXd j = poisson_tensor(s.omega, opt), a = r.constraints.leftCols(n), p = s.primary.leftCols(n);
+  const MatrixXd c = a * j * p.transpose();
+  return solve(c, -(a * j * (s.hessian * x + s.gradient)), opt, norm2(j) * std::max(1.0, norm2(p)));
+}
+
+ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt) {
+  const int n = static_cast<int>(w.rows());
+  const MatrixXd j = poisson_tensor(w, opt);
+  // orthonormal basis of the constraint gradients, carrying the right-hand sides along
+  const Svd sv = full_svd(constraints.leftCols(n));
+  const RankDecision dr = decide_rank(constraints.leftCols(n), sv.sigma, -1, opt);
+  ConstraintClasses out;
+  out.certain = dr.certain;
+  const MatrixXd t = (sv.u.leftCols(dr.rank) * sv.sigma.head(dr.rank).cwiseInverse().asDiagonal()).transpose();
+  const MatrixXd basis = t * constraints;  // rows [q_i | β_i], q orthonormal
+  const MatrixXd q = basis.leftCols(n);
+  const MatrixXd c = q * j * q.transpose();
+  const Svd sc = full_svd(c);
+  const RankDecision ds = decide_rank(c, sc.sigma, norm2(j), opt);
+  out.certain = out.certain && ds.certain && ds.rank % 2 == 0;
+  out.s = ds.rank / 2;
+  // first class: the null space of C (C is skew: left = right); second class: its complement
+  out.first = sc.v.rightCols(c.cols() - ds.rank).transpose() * basis;
+  out.second = sc.v.leftCols(ds.rank).transpose() * basis;
+  const MatrixXd g = out.second.leftCols(n);
+  out.dirac_tensor = g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;
+  return out;
+}
+
+}  // namespace dcad::fast
