@@ -1,4 +1,4 @@
-#include "dcad/fast/cad.hpp"
+#include "dcad/fast/adapted.hpp"
 #include "convert_fast.hpp"
 #include "solve.hpp"
 
@@ -42,6 +42,39 @@ fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
 
 }  // namespace
 
+/// Theorem 3.28 on (W, [primary; secondary; leaf]) by the fast backend; rows shown as in the tower.
+void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::MatrixXd& prim, const Eigen::MatrixXd& secondary,
+                  const Eigen::MatrixXd& leaf, const fa::Options& opt) {
+  Eigen::MatrixXd all(prim.rows() + secondary.rows() + leaf.rows(), prim.cols());
+  all << prim, secondary, leaf;
+  std::vector<bool> primary(all.rows(), false);
+  for (Eigen::Index i = 0; i < all.rows(); ++i) primary[i] = i < prim.rows() || i >= prim.rows() + secondary.rows();
+  const fa::AdaptedConstraints ad = fa::adapted_constraints(w, all, primary, opt);
+  out.certified = out.certified && ad.certain;
+  out.has_adapted = true;
+  out.s_prime = ad.s_prime;
+  out.adapted_second = 2 * ad.s;
+  const auto row = [&](int i) {
+    Equation e;
+    for (Eigen::Index j = 0; j + 1 < all.cols(); ++j) e.coeff.push_back(std::abs(all(i, j)) <= 1e-13 ? "" : num(all(i, j)));
+    e.rhs = num(all(i, all.cols() - 1));
+    return e;
+  };
+  for (int i : ad.chi) out.adapted_chi.push_back(row(i));
+  for (int k : ad.abridged) out.abridged_terms.push_back(row(k));
+  out.secondary_first_class = static_cast<long>(all.rows()) - 2 * ad.s - static_cast<long>(ad.abridged.size());
+}
+
+Eigen::MatrixXd secondary_rows(const fa::CadResult& r, int width) {
+  Eigen::MatrixXd sec(0, width);
+  for (std::size_t k = 1; k < r.tower.size(); ++k) {
+    Eigen::MatrixXd more(sec.rows() + r.tower[k].equations.rows(), width);
+    more << sec, r.tower[k].equations;
+    sec = more;
+  }
+  return sec;
+}
+
 SolveReport solve_fast(const io::CaseFile& c) {
   fa::Options opt;
   const fa::LinearSystem s = fast_system(c, opt);
@@ -81,6 +114,24 @@ SolveReport solve_fast(const io::CaseFile& c) {
     out.certified = out.certified && d.certain;
     out.second_class = d.rank;
     out.first_class = a.rows() - d.rank;
+    out.adapted_setting = "N";
+    out.adapted_variables = c.variables;
+    fast_adapted(out, to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_rows(r, c.n + 1),
+                 Eigen::MatrixXd(0, c.n + 1), opt);
+  }
+  if (c.has_pontryagin && r.consistent) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
+    const std::size_t n = c.pontryagin.n;
+    const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(s, to_double(c.pontryagin.k, in_opt));
+    Eigen::MatrixXd both(f.primary.rows() + f.leaf.rows(), f.primary.cols());
+    both << f.primary, f.leaf;
+    const fa::LinearSystem ls{fa::dirac_from_distribution(fa::kernel(both.leftCols(4 * n), opt), f.omega), f.hessian,
+                              f.gradient, 0.0};
+    const fa::CadResult rf = fa::constraint_tower(ls, opt, f.primary);
+    out.certified = out.certified && rf.certain;
+    out.adapted_setting = "T*TQ";
+    out.adapted_variables = c.variables;
+    for (std::size_t i = 0; i < n; ++i) out.adapted_variables.push_back("nu_" + c.variables[n + i]);
+    if (rf.consistent) fast_adapted(out, f.omega, f.primary, secondary_rows(rf, 4 * static_cast<int>(n) + 1), f.leaf, opt);
   }
   if (r.consistent) {
     std::vector<int> coords(c.coordinates.begin(), c.coordinates.end());

@@ -4,7 +4,8 @@
 #include "support/convert.hpp"
 #include "support/tally.hpp"
 
-#include "dcad/fast/dirac_bergmann.hpp"
+#include "dcad/fast/adapted.hpp"
+#include "dcad/reference/adapted.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -44,4 +45,33 @@ RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
   RC_ASSERT((fc.second.leftCols(n) * fc.dirac_tensor).norm() <= tol);
   const Eigen::VectorXd de = fs.hessian * to_double(x) + fs.gradient + fs.primary.leftCols(n).transpose() * fl.point;
   RC_ASSERT((fc.dirac_tensor * de - j * de).norm() <= tol);
+}
+
+// Thm 3.28 by both backends on the reference's constraint rows (so the choice of χ can agree):
+// s', 2s and the abridged count equal unless fast is uncertain; the fast X_(χ),E_AT is tangent to
+// M_c and solves (3.18) up to rounding.
+RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
+  const ref::ConstrainedSystem<Q> s = any_constrained_system();
+  const ref::DiracBergmannResult<Q> r = ref::dirac_bergmann(s);
+  if (!r.consistent) return;
+  std::vector<bool> primary(r.constraints.rows(), false);
+  for (Index i = 0; i < s.primary.rows(); ++i) primary[i] = true;
+  const ref::AdaptedConstraints<Q> ra = ref::adapted_constraints(s.omega, r.constraints, primary);
+  fast::Options opt;
+  const Eigen::MatrixXd w = to_double(s.omega, &opt), cons = to_double(r.constraints, &opt);
+  const fast::AdaptedConstraints fa = fast::adapted_constraints(w, cons, primary, opt);
+  RC_ASSERT(!tally("adapted s'", fa.certain, static_cast<Index>(fa.s_prime) == ra.s_prime));
+  RC_ASSERT(!tally("adapted 2s", fa.certain, static_cast<Index>(fa.s) == ra.s));
+  RC_ASSERT(!tally("adapted chi", fa.certain, std::vector<Index>(fa.chi.begin(), fa.chi.end()) == ra.chi));
+  if (!fa.certain) return;
+  const int n = static_cast<int>(w.rows());
+  const Eigen::VectorXd x = to_double(some_point(r.tower.back()));
+  const Eigen::VectorXd lambda = to_double(integer_vector(fa.abridged.size()));
+  const Eigen::MatrixXd h = to_double(s.hessian);
+  const Eigen::VectorXd g = to_double(QM::column(s.gradient)).col(0);
+  const Eigen::VectorXd xdot = fast::abridged_field(fa, cons, h, g, x, lambda);
+  const double tol = 1e-8 * (1 + fast::norm2(fa.dirac_tensor)) * (1 + fast::norm2(h) * x.norm() + g.norm() + lambda.norm() * fast::norm2(cons));
+  RC_ASSERT((cons.leftCols(n) * xdot).norm() <= tol);  // tangent to M_c
+  const Eigen::MatrixXd tsp = fast::kernel(to_double(ref::gradients(s.primary))).basis();  // T S'
+  RC_ASSERT((tsp.transpose() * (w.transpose() * xdot - (h * x + g))).norm() <= tol);  // (3.18)
 }

@@ -1,0 +1,30 @@
+// Constraints adapted to the primary ones, the abridged total energy and the Dirac bracket of
+// CEF Thm 3.28 / 7.4 in double; the twin of dcad/reference/adapted.hpp (same greedy choice of the
+// rows of Φ, each step a decided rank).
+#pragma once
+
+#include "dcad/fast/dirac_bergmann.hpp"
+
+namespace dcad::fast {
+
+struct AdaptedConstraints {
+  int s_prime = 0, s = 0;
+  std::vector<int> chi, abridged;
+  MatrixXd dirac_tensor;
+  bool certain = true;
+};
+
+AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constraints, const std::vector<bool>& primary,
+                                       const Options& opt = {});
+VectorXd abridged_field(const AdaptedConstraints& ad, const MatrixXd& constraints, const MatrixXd& hessian,
+                        const VectorXd& gradient, const VectorXd& x, const VectorXd& lambda);
+
+/// The Pontryagin system embedded in T*TQ (CEF App. A, §7): y = (q, v, p, ν), Ω = dq∧dp + dv∧dν,
+/// primary ν = 0, leaf constraints κ·q = C for the rows κ of K, E extended independently of ν.
+struct FoliatedEmbedding {
+  MatrixXd omega, hessian, primary, leaf;
+  VectorXd gradient;
+};
+FoliatedEmbedding tangent_cotangent_embedding(const LinearSystem& pontryagin, const MatrixXd& k);
+
+}  // namespace dcad::fast

@@ -1,0 +1,74 @@
+#include "dcad/fast/adapted.hpp"
+
+#include <Eigen/LU>
+
+#include <stdexcept>
+
+namespace dcad::fast {
+
+AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constraints, const std::vector<bool>& primary,
+                                       const Options& opt) {
+  const int n = static_cast<int>(w.rows());
+  if (static_cast<Eigen::Index>(primary.size()) != constraints.rows())
+    throw std::invalid_argument("adapted_constraints: expected one primary flag per constraint, found " +
+                                std::to_string(primary.size()) + " for " + std::to_string(constraints.rows()));
+  const MatrixXd j = poisson_tensor(w, opt), a = constraints.leftCols(n);
+  const MatrixXd phi = a * j * a.transpose();
+  const double scale = norm2(j) * std::max(1.0, norm2(a) * norm2(a));
+  AdaptedConstraints out;
+  const RankDecision full = decide_rank(phi, scale, opt);
+  out.certain = full.certain;
+  out.s = full.rank / 2;
+  MatrixXd chosen(0, phi.cols());
+  const auto take = [&](bool want_primary) {
+    for (int i = 0; i < phi.rows(); ++i) {
+      if (primary[i] != want_primary) continue;
+      MatrixXd more(chosen.rows() + 1, phi.cols());
+      more << chosen, phi.row(i);
+      const RankDecision d = decide_rank(more, scale, opt);
+      out.certain = out.certain && d.certain;
+      if (d.rank > chosen.rows()) {
+        chosen = more;
+        out.chi.push_back(i);
+      } else if (want_primary) {
+        out.abridged.push_back(i);
+      }
+    }
+  };
+  take(true);
+  out.s_prime = static_cast<int>(out.chi.size());
+  take(false);
+  if (static_cast<int>(out.chi.size()) != 2 * out.s) out.certain = false;
+  MatrixXd g(out.chi.size(), n);
+  for (std::size_t p = 0; p < out.chi.size(); ++p) g.row(p) = a.row(out.chi[p]);
+  out.dirac_tensor = g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;
+  return out;
+}
+
+VectorXd abridged_field(const AdaptedConstraints& ad, const MatrixXd& constraints, const MatrixXd& hessian,
+                        const VectorXd& gradient, const VectorXd& x, const VectorXd& lambda) {
+  VectorXd d = hessian * x + gradient;
+  for (std::size_t k = 0; k < ad.abridged.size(); ++k) d += lambda(k) * constraints.row(ad.abridged[k]).head(d.size()).transpose();
+  return ad.dirac_tensor * d;
+}
+
+FoliatedEmbedding tangent_cotangent_embedding(const LinearSystem& s, const MatrixXd& k) {
+  const int n = static_cast<int>(s.hessian.rows() / 3), m = 4 * n;
+  FoliatedEmbedding f;
+  f.omega = MatrixXd::Zero(m, m);
+  f.omega.block(0, 2 * n, n, n).setIdentity();
+  f.omega.block(2 * n, 0, n, n) = -MatrixXd::Identity(n, n);
+  f.omega.block(n, 3 * n, n, n).setIdentity();
+  f.omega.block(3 * n, n, n, n) = -MatrixXd::Identity(n, n);
+  f.hessian = MatrixXd::Zero(m, m);
+  f.hessian.topLeftCorner(3 * n, 3 * n) = s.hessian;
+  f.gradient = VectorXd::Zero(m);
+  f.gradient.head(3 * n) = s.gradient;
+  f.primary = MatrixXd::Zero(n, m + 1);
+  f.primary.block(0, 3 * n, n, n).setIdentity();
+  f.leaf = MatrixXd::Zero(k.rows(), m + 1);
+  f.leaf.leftCols(n) = k;
+  return f;
+}
+
+}  // namespace dcad::fast
