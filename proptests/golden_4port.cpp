@@ -144,6 +144,42 @@ TEST_P(FourPort, Section7_DiracBracketMotion) {
   EXPECT_TRUE(contains(intersection(sfin.direction, kernel(gradients(f.leaf))), xz));
 }
 
+// §6 after (6.44): λ_(3) = Σ⁻¹ [{E, ε_j}] with the corrected column (ERRATA: 14 entries,
+// (0, +q_C1/C1, +q_C2/C2, +q_C3/C3, 0, …)), λ⁹ = q_C1/C1 + q_C2/C2, λ¹¹ = −(q_C1/C1 + q_C2/C2)/L, and
+// X = dE^♯ + λ^j X_{ε_j} as printed (last four components ν̇ = 0, ERRATA: labels of X).
+TEST_P(FourPort, MultipliersAndVectorField) {
+  const Circuit c = GetParam();
+  const QM w = omega(), j = poisson_tensor(w), a = gradients(epsilons(c));
+  const QM sigma = a * j * a.transpose();
+  const Q qa = 3, pb = 5, s13 = c.c1 + c.c3;  // the point of (6.38)–(6.41), leaf x0 = 0
+  const std::vector<Q> y = {qa, c.c1 * qa / s13, qa, c.c3 * qa / s13, pb / c.l, c.c1 * pb / (c.l * s13), pb / c.l,
+                            c.c3 * pb / (c.l * s13), pb, 0, 0, 0, 0, 0, 0, 0};
+  // dE(y) = (Ψ q, p − Φ v, v, 0) (ERRATA: dE = (Ψq, p − Φv, v))
+  std::vector<Q> de(16, Q(0));
+  const Q psi[4] = {0, 1 / c.c1, 1 / c.c2, 1 / c.c3};
+  for (Index i = 0; i < 4; ++i) {
+    de[qL + i] = psi[i] * y[qL + i];
+    de[vL + i] = y[pL + i] - (i == 0 ? c.l : Q(0)) * y[vL + i];
+    de[pL + i] = y[vL + i];
+  }
+  const std::vector<Q> braces = (a * j.transpose() * QM::column(de)).col(0);  // {E, ε_j} = dEᵀ J a_j
+  std::vector<Q> want(14, Q(0));
+  want[1] = y[qC1] / c.c1;
+  want[2] = y[qC2] / c.c2;
+  want[3] = y[qC3] / c.c3;
+  EXPECT_EQ(braces, want);
+  const std::vector<Q> lambda = (inverse(sigma) * QM::column(braces)).col(0);
+  const Q f = y[qC1] / c.c1 + y[qC2] / c.c2;
+  EXPECT_EQ(lambda[8], f);
+  EXPECT_EQ(lambda[10], -f / c.l);
+  std::vector<Q> x = (j * QM::column(de)).col(0);  // dE^♯ + λ^j X_{ε_j}, X_g = J dg
+  const std::vector<Q> xe = (j * a.transpose() * QM::column(lambda)).col(0);
+  for (Index i = 0; i < 16; ++i) x[i] += xe[i];
+  const std::vector<Q> printed = {y[vL], y[vC1], y[vC2], y[vC3], -f / c.l, -c.c1 / s13 * f / c.l, -f / c.l, -c.c3 / s13 * f / c.l,
+                                  -f, 0, 0, 0, 0, 0, 0, 0};
+  EXPECT_EQ(x, printed);
+}
+
 INSTANTIATE_TEST_SUITE_P(CEF6, FourPort,
                          testing::Values(Circuit{Q(2), Q(3), Q(5), Q(7)}, Circuit{Q(1), Q(1), Q(1), Q(1)},
                                          Circuit{Q(1) / Q(1000), Q(22) / Q(1000000), Q(47) / Q(1000000000), Q(1) / Q(3)},
