@@ -76,6 +76,11 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
     for (Index k = 0; k < a.cols(); ++k) g(p, k) = a(cl.second[p], k);
   RC_ASSERT((g * cl.dirac_tensor).is_zero());
   RC_ASSERT((gradients(cl.first) * cl.dirac_tensor * gradients(cl.first).transpose()).is_zero());
+  // Thm 3.24: the second class subbundle V^Ω contains T M_c, has dim M_c + dim ker ω_c, and is symplectic
+  const Subspace<Q>& vo = cl.second_class_subbundle;
+  RC_ASSERT(contains(vo, tmc));
+  RC_ASSERT(vo.dim() == tmc.dim() + form_kernel(restrict_form(s.omega, tmc)).dim());
+  RC_ASSERT(form_kernel(restrict_form(s.omega, vo)).dim() == 0u);
 }
 
 // §2.1: the equations of motion by the Dirac bracket equal those by the canonical bracket on M_c:

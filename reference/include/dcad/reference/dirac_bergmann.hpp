@@ -115,6 +115,7 @@ struct ConstraintClasses {
   Matrix<T> first;            ///< rows [a | b] of ψ
   Matrix<T> sigma;            ///< Σ = [{χ_i, χ_j}]
   Matrix<T> dirac_tensor;     ///< J* = J − J Gᵀ Σ⁻¹ G J, G = gradients of χ  [Lemma 3.23 (e)]
+  Subspace<T> second_class_subbundle = Subspace<T>::zero(0);  ///< V^Ω = {X : dχ(X) = 0} = T S^V  [Thm 3.24]
 };
 
 template <class T>
@@ -152,6 +153,7 @@ ConstraintClasses<T> classify_constraints(const Matrix<T>& w, const Matrix<T>& c
   for (Index p = 0; p < out.second.size(); ++p)
     for (Index k = 0; k < a.cols(); ++k) g(p, k) = a(out.second[p], k);
   out.sigma = g * j * g.transpose();
+  out.second_class_subbundle = kernel(g);  // V = span{X_χ}; V^Ω = {X : Ω(X_χ, X) = dχ(X) = 0}
   out.dirac_tensor = out.second.empty() ? j : j - j * g.transpose() * inverse(out.sigma) * g * j;
   return out;
 }
