@@ -83,6 +83,26 @@ RC_GTEST_PROP(Cad, Theorem5_4_SolutionRank, ()) {
   RC_ASSERT(contains(r.final_step().w, v.direction));
 }
 
+// Lemma 5.5 (A): uniqueness (d^(c) = 0) ⇔ (i) ker ω_D ∩ T M_c = 0 ⇔ (ii) W_c ∩ E_D^{ω_D} = 0;
+// (B) ω_D|W_c symplectic ⇔ W_c ∩ W_c^{ω_D} = 0, and then solutions are unique.
+RC_GTEST_PROP(Cad, Lemma5_5, ()) {
+  const LinearSystem<Q> s = any_system();
+  const CadResult<Q> r = constraint_tower(s);
+  if (!r.consistent) return;
+  const PresymplecticForm<Q> om = dirac_form(s.d);
+  const Subspace<Q>& w = r.final_step().w;
+  const bool unique = r.unique();
+  const bool a_i = intersection(form_kernel(om), r.final_step().m.direction).dim() == 0;
+  const bool a_ii = intersection(w, orthogonal(om, om.space)).dim() == 0;
+  RC_ASSERT(unique == a_i);
+  RC_ASSERT(a_i == a_ii);
+  const bool symplectic = form_kernel(restrict_form(om, w)).dim() == 0;
+  RC_ASSERT(symplectic == (intersection(w, orthogonal(om, w)).dim() == 0));
+  if (symplectic) RC_ASSERT(unique);
+  RC_CLASSIFY(symplectic, "omega_D|W_c symplectic");
+  RC_CLASSIFY(unique && !symplectic, "unique, W_c not symplectic");
+}
+
 // Solutions of the reduced equations (5.12) satisfy the original implicit system (1.1): for random
 // z ∈ M_c (in its coordinates) and λ, the ẋ built from ż is tangent to M_c and (ẋ, dE(x)) ∈ D.
 RC_GTEST_PROP(Cad, ReducedEquationsSolveTheImplicitSystem, ()) {

@@ -76,11 +76,36 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
     for (Index k = 0; k < a.cols(); ++k) g(p, k) = a(cl.second[p], k);
   RC_ASSERT((g * cl.dirac_tensor).is_zero());
   RC_ASSERT((gradients(cl.first) * cl.dirac_tensor * gradients(cl.first).transpose()).is_zero());
+  // (3.9)–(3.11) with V^χ = span{X_χ} = J·(span dχ):  V^χ ∩ T S = 0,  V^χ ⊕ ker ω = (T S)^Ω,
+  // (V^χ)^Ω ∩ (ker ω)^Ω = T S
+  QM gchi(cl.second.size(), a.cols());
+  for (Index p = 0; p < cl.second.size(); ++p)
+    for (Index k = 0; k < a.cols(); ++k) gchi(p, k) = a(cl.second[p], k);
+  const Subspace<Q> vchi = Subspace<Q>::span(gchi * j.transpose());
+  const Subspace<Q> kerw = form_kernel(restrict_form(s.omega, tmc));
+  RC_ASSERT(intersection(vchi, tmc).dim() == 0u);
+  RC_ASSERT(vchi.dim() + kerw.dim() == symplectic_complement(s.omega, tmc).dim());
+  RC_ASSERT(sum(vchi, kerw) == symplectic_complement(s.omega, tmc));
+  RC_ASSERT(intersection(symplectic_complement(s.omega, vchi), symplectic_complement(s.omega, kerw)) == tmc);
   // Thm 3.24: the second class subbundle V^Ω contains T M_c, has dim M_c + dim ker ω_c, and is symplectic
   const Subspace<Q>& vo = cl.second_class_subbundle;
   RC_ASSERT(contains(vo, tmc));
   RC_ASSERT(vo.dim() == tmc.dim() + form_kernel(restrict_form(s.omega, tmc)).dim());
   RC_ASSERT(form_kernel(restrict_form(s.omega, vo)).dim() == 0u);
+}
+
+// Lemma 5.5 (A)(iii) and (B)(ii) with the ambient Ω, for D = D_{(T M, Ω)} (E_D = T M):
+// uniqueness ⇔ W_c ∩ E_D^Ω = 0; ω_D|W_c symplectic ⇔ W_c ∩ W_c^Ω = 0.
+RC_GTEST_PROP(DiracBergmann, Lemma5_5_AmbientOmega, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const Subspace<Q> tm = kernel(gradients(s.primary));
+  const LinearSystem<Q> ls{dirac_from_distribution(tm, s.omega), s.hessian, s.gradient, Q(0)};
+  const CadResult<Q> r = constraint_tower(ls, s.primary);
+  if (!r.consistent) return;
+  const Subspace<Q>& w = r.final_step().w;
+  RC_ASSERT(r.unique() == (intersection(w, symplectic_complement(s.omega, tm)).dim() == 0));
+  const bool symplectic = form_kernel(restrict_form(dirac_form(ls.d), w)).dim() == 0;
+  RC_ASSERT(symplectic == (intersection(w, symplectic_complement(s.omega, w)).dim() == 0));
 }
 
 // §2.1: the equations of motion by the Dirac bracket equal those by the canonical bracket on M_c:
