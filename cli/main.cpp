@@ -2,6 +2,7 @@
 // 0 success, 1 bad input (file + line or JSON path, expected vs found), 2 bad usage.
 #include "case_file.hpp"
 #include "inspect.hpp"
+#include "circuit_report.hpp"
 #include "solve.hpp"
 
 #include <CLI/CLI.hpp>
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
   CLI::App* solve = app.add_subcommand(
       "solve", "Run the constraint algorithm (CAD, CEF §5) on a case file: the constraint tower M_0 ⊇ M_1 ⊇ …, "
                "the final constraint submanifold, the solution rank (Thm 5.4) and the equations of motion (5.12).");
-  solve->add_option("FILE", solve_file, "case file (.json)")->required();
+  solve->add_option("FILE", solve_file, "case file (.json) or LC netlist (.cir, .sp, .net)")->required();
   solve->add_option("--backend", solve_backend,
                     "certified (default: fast, recomputed exactly if any decision is uncertain), reference, fast")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
@@ -74,7 +75,10 @@ int main(int argc, char** argv) {
       }
     }
     if (solve->parsed()) {
-      const dcad::io::CaseFile c = dcad::io::read_case(solve_file);
+      const bool netlist = dcad::io::is_netlist_file(solve_file);
+      const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(solve_file) : dcad::io::Netlist();
+      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck) : dcad::io::read_case(solve_file);
+      for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
       dcad::cli::SolveReport r;
       try {
         r = solve_backend == "reference" ? dcad::cli::solve_reference(c)
@@ -85,7 +89,13 @@ int main(int argc, char** argv) {
                   << e.what() << "\n";
         return 1;
       }
-      std::cout << (solve_json ? dcad::cli::to_json(r, c).dump(2) + "\n" : dcad::cli::to_text(r, c));
+      if (solve_json) {
+        nlohmann::json j = dcad::cli::to_json(r, c);
+        if (netlist) j["circuit"] = dcad::cli::circuit_json(deck, r);
+        std::cout << j.dump(2) << "\n";
+      } else {
+        std::cout << dcad::cli::to_text(r, c) << (netlist ? dcad::cli::circuit_text(deck, r) : "");
+      }
     }
   } catch (const dcad::io::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -140,7 +140,8 @@ SolveReport solve_fast(const io::CaseFile& c) {
     out.has_reduced = true;
     out.coords.assign(red.coords.begin(), red.coords.end());
     // display: entries at rounding level relative to the largest are shown as 0
-    const double tiny = 1e-13 * (1 + red.f_matrix.cwiseAbs().maxCoeff() + red.f.cwiseAbs().maxCoeff());
+    const double tiny = 1e-13 * (1 + (red.f_matrix.size() ? red.f_matrix.cwiseAbs().maxCoeff() : 0.0) +
+                                  (red.f.size() ? red.f.cwiseAbs().maxCoeff() : 0.0));  // M_c may be a point
     const auto shown = [&](double x) { return num(std::abs(x) <= tiny ? 0.0 : x); };
     for (std::size_t i = 0; i < red.coords.size(); ++i) {
       out.f_matrix.push_back({});

@@ -41,6 +41,12 @@ std::string write_temp(const std::string& name, const std::string& text) {
 
 }  // namespace
 
+struct BadCase {
+  const char* name;
+  const char* text;
+  const char* needle;  // must appear in stderr
+};
+
 TEST(Golden, InspectEveryCase) {
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases")) {
@@ -121,6 +127,71 @@ TEST(Golden, SolveEveryCase) {
   EXPECT_GE(checked, 1);
 }
 
+/// Every netlist in cases/ with a "* expect: {json}" comment (the deck still runs in ngspice).
+TEST(Golden, SolveEveryNetlist) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases")) {
+    if (entry.path().extension() != ".cir") continue;
+    std::istringstream in(slurp(entry.path()));
+    nlohmann::json want;
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("* expect:", 0) == 0) want = nlohmann::json::parse(line.substr(9));
+    ASSERT_FALSE(want.is_null()) << entry.path() << " has no '* expect:' line";
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + entry.path().string() + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << entry.path() << " " << backend << ": " << r.err;
+      const nlohmann::json got = nlohmann::json::parse(r.out);
+      if (!got["certified"].get<bool>()) continue;
+      for (const auto& [key, value] : want.items()) {
+        if (key == "circuit") {
+          for (const auto& [ck, cv] : value.items()) EXPECT_EQ(got["circuit"][ck], cv) << entry.path() << " circuit." << ck;
+        } else {
+          EXPECT_EQ(got[key], value) << entry.path() << " " << backend << " " << key;
+        }
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 3);
+}
+
+class BadNetlist : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadNetlist, ExitOneWithFileLineExpectedFound) {
+  const BadCase& b = GetParam();
+  const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".cir", b.text);
+  const Outcome r = run("solve " + file);
+  EXPECT_EQ(r.rc, 1) << b.name << "\n" << r.out << r.err;
+  EXPECT_NE(r.err.find(file + ":"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(b.needle), std::string::npos) << b.name << ": " << r.err;
+  EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadNetlist,
+    testing::Values(BadCase{"resistor", "title\nL1 1 0 1\nR1 1 0 10\n.end\n", "resistor"},
+                    BadCase{"diode", "title\nD1 1 0 dmod\n", "element D1"},
+                    BadCase{"novalue", "title\nL1 1 0\n", ":2:"},
+                    BadCase{"badvalue", "title\nC1 1 0 abc\n", "\"abc\""},
+                    BadCase{"nan", "title\nC1 1 0 nan\n", "\"nan\""},
+                    BadCase{"zeroc", "title\nC1 1 0 0\n", "open branch"},
+                    BadCase{"dup", "title\nL1 1 0 1\nl1 1 0 2\n", "duplicate"},
+                    BadCase{"empty", "", "empty file"},
+                    BadCase{"noelements", "title only\n* nothing\n.end\n", "none"},
+                    BadCase{"vsource", "title\nV1 1 0 5\n", "zero-volt"},
+                    BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="},
+                    BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
+  const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\nC1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\n.end\n");
+  const Outcome r = run("solve " + file + " --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("ignored .tran"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("ignored .control"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::array({6, 3}));  // p = Φv (2), KCL (1)
+}
+
 TEST(Cli, HelpVersionUsage) {
   EXPECT_EQ(run("--help").rc, 0);
   const Outcome v = run("--version");
@@ -131,12 +202,6 @@ TEST(Cli, HelpVersionUsage) {
   EXPECT_EQ(run("inspect x.json --backend magic").rc, 2);
   EXPECT_EQ(run("frobnicate").rc, 2);
 }
-
-struct BadCase {
-  const char* name;
-  const char* text;
-  const char* needle;  // must appear in stderr
-};
 
 class BadInput : public testing::TestWithParam<BadCase> {};
 

@@ -163,7 +163,7 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   const RankDecision dt = decide_rank(t, 1.0, opt);
   if (dt.rank < m) throw std::invalid_argument("reduced_equations: expected coordinates that parametrize M_c, found variables that do not");
   red.certain = red.certain && dt.certain;
-  const MatrixXd tinv = t.fullPivLu().inverse();
+  const MatrixXd tinv = m ? MatrixXd(t.fullPivLu().inverse()) : MatrixXd(0, 0);  // M_c may be a point
   const VectorXd x0 = r.final_step().m.point;
   // (B w, dE) ∈ D ⇔ B w = V c, dE = A c for some c: solve [V; A] c = [B w; dE] — in w and c jointly:
   //   V c − B w = 0,  A c = H (x0 + B y) + g.

@@ -1,0 +1,28 @@
+// LC netlists: the SPICE subset of ../shared/CONTRACT.md, read exactly (values and suffixes to
+// rationals).  Errors: InputError "FILE:LINE: expected …, found …".
+#pragma once
+
+#include "case_file.hpp"
+#include "dcad/reference/circuit.hpp"
+
+#include <optional>
+
+namespace dcad::io {
+
+struct Netlist {
+  std::string file, title;
+  reference::Circuit<Rational> circuit;
+  std::vector<std::string> node_names;                  ///< non-ground nodes, in order of appearance
+  std::vector<std::optional<Rational>> initial;         ///< IC= per branch (current for L, voltage for C)
+  std::vector<std::string> warnings;                    ///< ignored dot-cards, non-physical values
+};
+
+bool is_netlist_file(const std::string& file);
+Netlist read_netlist(const std::string& file);
+/// SPICE value: number with optional suffix f p n u m k meg g t (case-insensitive), trailing unit
+/// letters ignored ("10uF"); exact.  Throws std::invalid_argument.
+Rational parse_spice_value(const std::string& text);
+/// The case the circuit stands for: `pontryagin` with variables q_*, v_*, p_* (CONTRACT).
+CaseFile netlist_case(const Netlist& n);
+
+}  // namespace dcad::io

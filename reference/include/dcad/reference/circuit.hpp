@@ -1,0 +1,96 @@
+// LC circuits as Lagrangian systems on the Pontryagin bundle (CEF §6): branches with inductance
+// L_i ≥ 0 (0 = none), capacitance C_i (∞ = none, i.e. 1/C_i = 0) or neither (an empty branch),
+// KCL from the reduced incidence matrix, φ = diag(L_i), Ψ = diag(1/C_i), L(q, v) = ½ vᵀΦv − ½ qᵀΨq.
+#pragma once
+
+#include "dcad/reference/system.hpp"
+
+#include <numeric>
+
+namespace dcad::reference {
+
+enum class BranchKind { inductor, capacitor, empty };
+
+template <class T>
+struct Branch {
+  std::string name;
+  BranchKind kind = BranchKind::empty;
+  long from = -1, to = -1;  ///< node indices; −1 is ground; current flows from → to
+  T value = T(0);           ///< L (inductor) or C (capacitor)
+};
+
+template <class T>
+struct Circuit {
+  std::size_t nodes = 0;  ///< non-ground nodes 0 … nodes−1
+  std::vector<Branch<T>> branches;
+};
+
+/// Reduced incidence matrix: row = non-ground node, +1 where a branch leaves it, −1 where it enters.
+/// KCL: K v = 0 (currents leaving each node sum to zero).
+template <class T>
+Matrix<T> kcl_matrix(const Circuit<T>& c) {
+  Matrix<T> k(c.nodes, c.branches.size());
+  for (Index b = 0; b < c.branches.size(); ++b) {
+    if (c.branches[b].from >= 0) k(c.branches[b].from, b) += T(1);
+    if (c.branches[b].to >= 0) k(c.branches[b].to, b) -= T(1);
+  }
+  return k;
+}
+
+/// The `pontryagin` data of the circuit: Δ = ker K, A = Φ, C = −Ψ.  [CEF §6, ERRATA]
+template <class T>
+PontryaginInput<T> circuit_lagrangian(const Circuit<T>& c) {
+  const Index n = c.branches.size();
+  PontryaginInput<T> in;
+  in.n = n;
+  in.k = kcl_matrix(c);
+  in.vv = Matrix<T>(n, n);
+  in.qq = Matrix<T>(n, n);
+  in.qv = Matrix<T>(n, n);
+  in.q.assign(n, T(0));
+  in.v.assign(n, T(0));
+  for (Index b = 0; b < n; ++b) {
+    if (c.branches[b].kind == BranchKind::inductor) in.vv(b, b) = c.branches[b].value;
+    if (c.branches[b].kind == BranchKind::capacitor) in.qq(b, b) = -T(1) / c.branches[b].value;
+  }
+  return in;
+}
+
+/// Cycle rank (edges − vertices + components, ground included) of the subgraph of the branches
+/// with keep(kind) — union–find, no arithmetic.
+template <class T, class Keep>
+Index cycle_rank(const Circuit<T>& c, Keep keep) {
+  std::vector<long> parent(c.nodes + 1);
+  std::iota(parent.begin(), parent.end(), 0L);
+  const auto find = [&](long x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  Index cycles = 0;
+  for (const Branch<T>& b : c.branches) {
+    if (!keep(b.kind)) continue;
+    const long u = find(b.from + 1), v = find(b.to + 1);  // ground is vertex 0
+    if (u == v) {
+      ++cycles;
+    } else {
+      parent[u] = v;
+    }
+  }
+  return cycles;
+}
+
+/// Independent KVL equations of purely capacitive loops that constrain q (CEF Thm 6.4): loops of
+/// the non-inductive subgraph modulo the loops of empty branches (which give 0 = 0).
+template <class T>
+Index kvlpc_count(const Circuit<T>& c) {
+  return cycle_rank(c, [](BranchKind k) { return k != BranchKind::inductor; }) -
+         cycle_rank(c, [](BranchKind k) { return k == BranchKind::empty; });
+}
+
+/// Dimension of the cycle space of the empty subgraph (the non-uniqueness of CEF Thm 6.8).
+template <class T>
+Index empty_loop_count(const Circuit<T>& c) {
+  return cycle_rank(c, [](BranchKind k) { return k == BranchKind::empty; });
+}
+
+}  // namespace dcad::reference
