@@ -294,6 +294,7 @@ CaseFile read_case(const std::string& file) {
     if (e.contains("gradient")) c.energy.gradient = read_vector(e["gradient"], at / "gradient", nn);
     if (e.contains("constant")) c.energy.constant = read_number(e["constant"], at / "constant");
   }
+  if (j.contains("initial")) c.initial = read_vector(j["initial"], root / "initial", static_cast<long>(c.n));
   if (j.contains("coordinates")) {
     const json& cs = j["coordinates"];
     if (!cs.is_array()) (root / "coordinates").fail("an array of variable names", describe(cs));

@@ -65,6 +65,7 @@ struct CaseFile {
   bool has_constrained = false;
   ConstrainedInput constrained;
   std::vector<std::size_t> coordinates;  ///< optional: variables to write the reduced equations in
+  std::vector<Rational> initial;         ///< optional: x(0) for `simulate` (all N values)
   nlohmann::json expect;    ///< optional golden expectations (raw)
 };
 

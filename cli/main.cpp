@@ -3,10 +3,12 @@
 #include "case_file.hpp"
 #include "inspect.hpp"
 #include "circuit_report.hpp"
+#include "simulate.hpp"
 #include "solve.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <fstream>
 #include <iostream>
 
 #ifndef DCAD_VERSION
@@ -38,6 +40,18 @@ int main(int argc, char** argv) {
                     "certified (default: fast, recomputed exactly if any decision is uncertain), reference, fast")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   solve->add_flag("--json", solve_json, "print the result JSON of the CONTRACT");
+
+  std::string sim_file, sim_csv;
+  dcad::cli::SimulateOptions sim_opt;
+  CLI::App* sim = app.add_subcommand(
+      "simulate", "Integrate the equations of motion on M_c from the file's initial condition (IC= in netlists); "
+                  "exact flow of the linear reduced system (matrix exponential). CSV: t, then every variable.");
+  sim->add_option("FILE", sim_file, "LC netlist (.cir, .sp, .net) or `pontryagin` case (.json)")->required();
+  sim->add_option("--tstop", sim_opt.tstop, "final time")->required();
+  sim->add_option("--step", sim_opt.step, "output step")->required();
+  sim->add_option("--backend", sim_opt.backend, "certified|reference|fast (the model is built exactly in this version)")
+      ->check(CLI::IsMember({"reference", "fast", "certified"}));
+  sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
 
   try {
     app.parse(argc, argv);
@@ -96,6 +110,24 @@ int main(int argc, char** argv) {
       } else {
         std::cout << dcad::cli::to_text(r, c) << (netlist ? dcad::cli::circuit_text(deck, r) : "");
       }
+    }
+    if (sim->parsed()) {
+      const bool netlist = dcad::io::is_netlist_file(sim_file);
+      const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(sim_file) : dcad::io::Netlist();
+      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck) : dcad::io::read_case(sim_file);
+      std::vector<std::optional<dcad::io::Rational>> init(c.n);
+      if (netlist) init = dcad::cli::netlist_initial(deck);
+      else if (!c.initial.empty())
+        for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
+      std::ofstream file_out;
+      if (!sim_csv.empty()) {
+        file_out.open(sim_csv);
+        if (!file_out) {
+          std::cerr << sim_csv << ": cannot open for writing\n";
+          return 1;
+        }
+      }
+      dcad::cli::simulate(c, init, sim_opt, sim_csv.empty() ? std::cout : file_out, std::cerr);
     }
   } catch (const dcad::io::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -192,6 +192,58 @@ TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::array({6, 3}));  // p = Φv (2), KCL (1)
 }
 
+/// CSV rows as numbers (header skipped).
+std::vector<std::vector<double>> csv_rows(const std::string& text) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The 4-port (L = 2, C = 3, 5, 7; IC: V_C1 = V_C3 = 1, V_C2 = 2, I_L = 0) against its analytic
+// solution: u = V13 + V2 obeys u'' = −ω² u with ω² = (C1+C2+C3)/(L C2 (C1+C3)) (CEF (6.44)), so
+// i(t) = −u0 sin(ωt)/(Lω) and V2(t) = V2(0) − u0 (1 − cos ωt)/(L ω² C2); and the energy
+// ½ L i² + Σ q²/(2C) is conserved over 10^4 steps of the exact flow.
+TEST(Simulate, FourPortAnalyticAndEnergy) {
+  const Outcome r = run("simulate " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir --tstop 1000 --step 0.1");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "t,q_L1,q_C1,q_C2,q_C3,v_L1,v_C1,v_C2,v_C3,p_L1,p_C1,p_C2,p_C3");
+  const auto rows = csv_rows(r.out);
+  ASSERT_EQ(rows.size(), 10001u);
+  const double l = 2, c1 = 3, c2 = 5, c3 = 7, u0 = 3, w = std::sqrt((c1 + c2 + c3) / (l * c2 * (c1 + c3)));
+  const auto energy = [&](const std::vector<double>& x) {
+    return 0.5 * l * x[5] * x[5] + x[2] * x[2] / (2 * c1) + x[3] * x[3] / (2 * c2) + x[4] * x[4] / (2 * c3);
+  };
+  double worst = 0, drift = 0;
+  for (const auto& x : rows) {
+    const double t = x[0];
+    const double i = -u0 * std::sin(w * t) / (l * w), v2 = 2 - u0 * (1 - std::cos(w * t)) / (l * w * w * c2);
+    worst = std::max({worst, std::abs(x[5] - i), std::abs(x[3] / c2 - v2)});
+    drift = std::max(drift, std::abs(energy(x) - energy(rows[0])) / energy(rows[0]));
+  }
+  EXPECT_LT(worst, 1e-9);  // ~100 periods; rounding only
+  EXPECT_LT(drift, 1e-11);
+  std::cout << "4-port over 10^4 steps: max error " << worst << ", relative energy drift " << drift << "\n";
+}
+
+TEST(Simulate, InitialConditionOffMcNamesTheConstraint) {
+  std::string deck = slurp(fs::path(DCAD_SOURCE_DIR) / "cases/lc-4port.cir");
+  deck.replace(deck.find("C3 1 2 7 IC=1"), 13, "C3 1 2 7 IC=5");
+  const std::string file = write_temp("dcad_bad_ic.cir", deck);
+  const Outcome r = run("simulate " + file + " --tstop 1 --step 0.1");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("1/3*q_C1 - 1/7*q_C3 = 0"), std::string::npos) << r.err;  // the KVLPC loop C1–C3
+  EXPECT_NE(r.err.find("expected"), std::string::npos);
+  EXPECT_EQ(run("simulate " + file + " --tstop 1 --step 0").rc, 1);
+}
+
 TEST(Cli, HelpVersionUsage) {
   EXPECT_EQ(run("--help").rc, 0);
   const Outcome v = run("--version");
