@@ -42,6 +42,43 @@ void record(CadResult& r, const RankDecision& d) {
 
 }  // namespace
 
+int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorXd& cb, double scale, double rhs_scale,
+                     const Options& opt, std::vector<RankDecision>& trace, bool& certain) {
+  const MatrixXd y = ca * a.transpose();
+  const MatrixXd ra = ca - y * a;
+  const VectorXd rb = cb - y * b;
+  const Svd sv = full_svd(ra);
+  RankDecision d = decide_rank(ra, sv.sigma, scale, opt);
+  const int room = static_cast<int>(a.cols() - a.rows());
+  if (d.rank > room) {  // more new rows than codimensions left: only rounding can say so
+    d.rank = room;
+    d.certain = false;
+  }
+  // what is left of the right-hand side where the new rows vanish must be 0
+  const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
+  const RankDecision dc = decide_rank(MatrixXd(rest), std::max(rhs_scale, scale), opt);
+  certain = certain && d.certain && dc.certain;
+  trace.push_back(d);
+  trace.push_back(dc);
+  if (dc.rank > 0) return -1;
+  if (d.rank == 0) return 0;
+  MatrixXd a2(a.rows() + d.rank, a.cols());
+  a2 << a, sv.v.leftCols(d.rank).transpose();
+  VectorXd b2(b.size() + d.rank);
+  b2 << b, (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
+  a = a2;
+  b = b2;
+  return d.rank;
+}
+
+AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b) {
+  AffineSubspace m;
+  m.empty = false;
+  m.point = a.transpose() * b;
+  m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
+  return m;
+}
+
 CadResult constraint_tower(const LinearSystem& s, const Options& opt, const MatrixXd& initial) {
   const int n = s.d.n;
   require_finite(s.hessian, "constraint_tower");
@@ -84,23 +121,10 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt, const Matr
       cb = -(u.basis().transpose() * s.gradient);
     }
     const double cscale = first ? std::max(norm2(ca), 1e-300) : hscale;
-    // reduce modulo A x = b
-    const MatrixXd y = ca * a.transpose();
-    const MatrixXd ra = ca - y * a;
-    const VectorXd rb = cb - y * b;
-    const Svd sv = full_svd(ra);
-    RankDecision d = decide_rank(ra, sv.sigma, cscale, opt);
-    if (d.rank > n - a.rows()) {  // more new rows than codimensions left: only rounding can say so
-      d.rank = static_cast<int>(n - a.rows());
-      d.certain = false;
-    }
-    record(out, d);
-    // what is left of the right-hand side where the new rows vanish must be 0, else M_{k+1} = ∅
-    const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
-    const double xscale = first ? std::max(cb.norm(), cscale) : hscale * (1 + step.m.point.norm()) + s.gradient.norm();
-    const RankDecision dc = decide_rank(MatrixXd(rest), xscale, opt);
-    record(out, dc);
-    if (dc.rank > 0) {
+    const double xscale = first ? cb.norm() : hscale * (1 + step.m.point.norm()) + s.gradient.norm();
+    const Eigen::Index before = a.rows();
+    const int added = absorb_equations(a, b, ca, cb, cscale, xscale, opt, out.decisions, out.certain);
+    if (added < 0) {  // M_{k+1} = ∅
       CadStep empty;
       empty.m.empty = true;
       empty.equations = MatrixXd(0, n + 1);
@@ -108,21 +132,11 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt, const Matr
       out.consistent = false;
       break;
     }
-    if (d.rank == 0 && !first) break;  // M_{k+1} = M_k
-    const MatrixXd new_a = sv.v.leftCols(d.rank).transpose();
-    const VectorXd new_b = (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
-    MatrixXd a2(a.rows() + d.rank, n);
-    a2 << a, new_a;
-    VectorXd b2(b.size() + d.rank);
-    b2 << b, new_b;
-    a = a2;
-    b = b2;
+    if (added == 0 && !first) break;  // M_{k+1} = M_k
     step = CadStep();
-    step.m.empty = false;
-    step.m.point = a.transpose() * b;
-    step.m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
-    step.equations.resize(d.rank, n + 1);
-    step.equations << new_a, new_b;
+    step.m = affine_from_orthonormal(a, b);
+    step.equations.resize(added, n + 1);
+    step.equations << a.bottomRows(a.rows() - before), b.tail(b.size() - before);
     first = false;
   }
   out.steps = static_cast<int>(out.tower.size()) - 1;

@@ -12,47 +12,6 @@ MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt) {
   return w.transpose().fullPivLu().inverse();
 }
 
-namespace {
-
-/// Adds the equations ca x = cb to the orthonormal system a x = b: projects them off a, decides how
-/// many are new and whether the rest is consistent.  Returns false if inconsistent.
-bool absorb(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorXd& cb, double scale, double rhs_scale,
-            const Options& opt, bool& certain, int& added) {
-  const MatrixXd y = ca * a.transpose();
-  const MatrixXd ra = ca - y * a;
-  const VectorXd rb = cb - y * b;
-  const Svd sv = full_svd(ra);
-  RankDecision d = decide_rank(ra, sv.sigma, scale, opt);
-  const int room = static_cast<int>(a.cols() - a.rows());
-  if (d.rank > room) {
-    d.rank = room;
-    d.certain = false;
-  }
-  certain = certain && d.certain;
-  const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
-  const RankDecision dc = decide_rank(MatrixXd(rest), std::max(rhs_scale, scale), opt);
-  certain = certain && dc.certain;
-  if (dc.rank > 0) return false;
-  added = d.rank;
-  if (d.rank == 0) return true;
-  MatrixXd a2(a.rows() + d.rank, a.cols());
-  a2 << a, sv.v.leftCols(d.rank).transpose();
-  VectorXd b2(b.size() + d.rank);
-  b2 << b, (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
-  a = a2;
-  b = b2;
-  return true;
-}
-
-AffineSubspace affine(const MatrixXd& a, const VectorXd& b) {
-  AffineSubspace m;
-  m.empty = false;
-  m.point = a.transpose() * b;
-  m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
-  return m;
-}
-
-}  // namespace
 
 DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt) {
   const int n = static_cast<int>(s.omega.rows());
@@ -65,14 +24,15 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
   DiracBergmannResult out;
   MatrixXd a(0, n);
   VectorXd b(0);
-  int added = 0;
-  if (!absorb(a, b, p, s.primary.col(n), std::max(norm2(p), 1e-300), s.primary.col(n).norm(), opt, out.certain, added)) {
+  std::vector<RankDecision> trace;
+  if (absorb_equations(a, b, p, s.primary.col(n), std::max(norm2(p), 1e-300), s.primary.col(n).norm(), opt, trace,
+                       out.certain) < 0) {
     out.consistent = false;
     AffineSubspace empty;
     out.tower.push_back(empty);
     return out;
   }
-  out.tower.push_back(affine(a, b));
+  out.tower.push_back(affine_from_orthonormal(a, b));
   const double hscale = jn * std::max(norm2(s.hessian), s.gradient.norm());
   for (;;) {
     const MatrixXd c = a * j * p.transpose();  // {φ_j, φ_i}: rows the orthonormal constraints, cols primary
@@ -83,13 +43,14 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
     const MatrixXd ca = mu * a * j * s.hessian;
     const VectorXd cb = -(mu * a * j * s.gradient);
     const double xscale = hscale * (1 + out.tower.back().point.norm());
-    if (!absorb(a, b, ca, cb, hscale, xscale, opt, out.certain, added)) {
+    const int added = absorb_equations(a, b, ca, cb, hscale, xscale, opt, trace, out.certain);
+    if (added < 0) {
       out.consistent = false;
       out.tower.push_back(AffineSubspace());
       break;
     }
     if (added == 0) break;
-    out.tower.push_back(affine(a, b));
+    out.tower.push_back(affine_from_orthonormal(a, b));
   }
   out.constraints.resize(a.rows(), n + 1);
   out.constraints << a, b;

@@ -40,6 +40,17 @@ struct CadResult {
 /// `initial` rows [a | b] restrict M_0 to {a x = b} (Gotay–Nester for (N, Ω, E, M_0) with D = D_{(T M_0, Ω)}).
 CadResult constraint_tower(const LinearSystem& s, const Options& opt = {}, const MatrixXd& initial = MatrixXd());
 
+/// The step shared by the fast CAD and the fast Dirac–Bergmann: adds the equations ca x = cb to the
+/// orthonormal system a x = b — projects them off the rows of a, decides (scale `scale`) how many are
+/// new and (scale max(rhs_scale, scale)) whether what is left is consistent.  Appends the new rows
+/// to a, b and returns how many, or −1 if inconsistent.  Both decisions go to `trace`; `certain`
+/// is cleared by any uncertain one.
+int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorXd& cb, double scale, double rhs_scale,
+                     const Options& opt, std::vector<RankDecision>& trace, bool& certain);
+
+/// {x : a x = b} for orthonormal rows a: point aᵀ b, direction the complement of the rows.
+AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b);
+
 struct ReducedEquations {
   std::vector<int> coords;
   MatrixXd f_matrix;
