@@ -2,6 +2,7 @@
 // linear flow ż = F z + f in double by the exponential of the augmented matrix [[F, f], [0, 0]]: one
 // exact step operator P = exp(A h), applied repeatedly — no truncation error, only rounding.
 #include "simulate.hpp"
+#include "solve.hpp"
 
 #include "dcad/reference/cad.hpp"
 
@@ -18,18 +19,6 @@ using Q = ref::Rational;
 using QM = ref::Matrix<Q>;
 
 namespace {
-
-std::string equation_string(const QM& rows, ref::Index i, const std::vector<std::string>& names) {
-  std::string s;
-  for (ref::Index j = 0; j + 1 < rows.cols(); ++j) {
-    if (rows(i, j) == 0) continue;
-    const Q c = rows(i, j);
-    s += (s.empty() ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + "));
-    const Q a = c < 0 ? Q(-c) : c;
-    s += (a == 1 ? "" : a.str() + "*") + names[j];
-  }
-  return (s.empty() ? "0" : s) + " = " + rows(i, rows.cols() - 1).str();
-}
 
 /// A point of M_c meeting the prescribed values; unspecified values default to 0 where M_c allows.
 std::vector<Q> initial_point(const ref::CadResult<Q>& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c) {
@@ -56,7 +45,7 @@ std::vector<Q> initial_point(const ref::CadResult<Q>& r, const std::vector<std::
           break;
         }
       throw io::InputError(c.file + ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
-                           equation_string(constraints, i, c.variables) + " (a constraint of " + level + ")");
+                           equation_text(row_equation(constraints, i), c.variables) + " (a constraint of " + level + ")");
     }
   }
   ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(acc, defaults));

@@ -4,6 +4,26 @@
 
 namespace dcad::cli {
 
+std::string equation_text(const Equation& e, const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t j = 0; j < e.coeff.size(); ++j) {
+    if (e.coeff[j].empty()) continue;
+    std::string c = e.coeff[j];
+    const bool neg = c[0] == '-';
+    if (neg) c = c.substr(1);
+    s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
+    s += (c == "1" ? "" : c + "*") + names[j];
+  }
+  return (s.empty() ? "0" : s) + " = " + e.rhs;
+}
+
+Equation row_equation(const io::QMatrix& rows, std::size_t i) {
+  Equation e;
+  for (std::size_t j = 0; j + 1 < rows.cols(); ++j) e.coeff.push_back(rows(i, j) == 0 ? "" : rows(i, j).str());
+  e.rhs = rows(i, rows.cols() - 1).str();
+  return e;
+}
+
 SolveReport solve_certified(const io::CaseFile& c) {
   SolveReport fast = solve_fast(c);
   if (fast.certified) {
@@ -20,19 +40,6 @@ SolveReport solve_certified(const io::CaseFile& c) {
 }
 
 namespace {
-
-std::string equation_text(const Equation& e, const std::vector<std::string>& names) {
-  std::string s;
-  for (std::size_t j = 0; j < e.coeff.size(); ++j) {
-    if (e.coeff[j].empty()) continue;
-    std::string c = e.coeff[j];
-    const bool neg = c[0] == '-';
-    if (neg) c = c.substr(1);
-    s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
-    s += (c == "1" ? "" : c + "*") + names[j];
-  }
-  return (s.empty() ? "0" : s) + " = " + e.rhs;
-}
 
 std::string row_text(const std::vector<std::string>& coeff, const std::vector<std::string>& names, const std::string& constant) {
   Equation e{coeff, ""};

@@ -44,6 +44,11 @@ struct SolveReport {
   long decisions_float = 0, decisions_exact = 0;
 };
 
+/// "2*x1 - 1/3*x2 = 5" in the given variable names.
+std::string equation_text(const Equation& e, const std::vector<std::string>& names);
+/// Row i of [a | b] (exact) as an Equation.
+Equation row_equation(const io::QMatrix& rows, std::size_t i);
+
 SolveReport solve_reference(const io::CaseFile& c);
 SolveReport solve_fast(const io::CaseFile& c);
 /// fast; if any decision is uncertain, the whole result recomputed exactly from the exact input.

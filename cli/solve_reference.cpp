@@ -11,8 +11,6 @@ ref::DiracStructure<Q> reference_dirac(const io::DiracInput& d);  // inspect_ref
 
 namespace {
 
-std::string exact(const Q& q) { return q == 0 ? "" : q.str(); }
-
 ref::LinearSystem<Q> reference_system(const io::CaseFile& c) {
   if (c.has_constrained) {  // Gotay–Nester for (N, Ω, E, M): D = D_{(T M, Ω)} from M_0 = M  [CEF §2.2]
     ref::require_symplectic(c.constrained.w, "solve");
@@ -33,13 +31,6 @@ ref::LinearSystem<Q> reference_system(const io::CaseFile& c) {
 }  // namespace
 
 namespace {
-
-Equation row_equation(const io::QMatrix& rows, ref::Index i) {
-  Equation e;
-  for (ref::Index j = 0; j + 1 < rows.cols(); ++j) e.coeff.push_back(exact(rows(i, j)));
-  e.rhs = rows(i, rows.cols() - 1).str();
-  return e;
-}
 
 /// Theorem 3.28 on (W, [primary; secondary; leaf]) with primary and leaf rows flagged primary.
 void adapted_report(SolveReport& out, const io::QMatrix& w, const io::QMatrix& prim, const io::QMatrix& secondary,
@@ -70,12 +61,7 @@ SolveReport solve_reference(const io::CaseFile& c) {
   for (const auto& st : r.tower) {
     SolveReport::Step step;
     step.dim = st.dim();
-    for (ref::Index i = 0; i < st.equations.rows(); ++i) {
-      Equation e;
-      for (ref::Index j = 0; j + 1 < st.equations.cols(); ++j) e.coeff.push_back(exact(st.equations(i, j)));
-      e.rhs = st.equations(i, st.equations.cols() - 1).str();
-      step.equations.push_back(e);
-    }
+    for (ref::Index i = 0; i < st.equations.rows(); ++i) step.equations.push_back(row_equation(st.equations, i));
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
   }
@@ -85,12 +71,7 @@ SolveReport solve_reference(const io::CaseFile& c) {
     const ref::ConstraintClasses<Q> cl = ref::classify_constraints(c.constrained.w, all);
     out.second_class = static_cast<long>(2 * cl.s);
     out.first_class = static_cast<long>(all.rows() - 2 * cl.s);
-    for (ref::Index i : cl.second) {
-      Equation e;
-      for (ref::Index j = 0; j < c.n; ++j) e.coeff.push_back(exact(all(i, j)));
-      e.rhs = all(i, c.n).str();
-      out.second_class_constraints.push_back(e);
-    }
+    for (ref::Index i : cl.second) out.second_class_constraints.push_back(row_equation(all, i));
     for (ref::Index i = 0; i < c.n; ++i) {
       out.dirac_bracket.push_back({});
       for (ref::Index j = 0; j < c.n; ++j) out.dirac_bracket.back().push_back(cl.dirac_tensor(i, j).str());

@@ -48,6 +48,15 @@ struct BadCase {
   const char* needle;  // must appear in stderr
 };
 
+/// Bad input: exit 1, and stderr names the file, contains `needle`, and says expected/found.
+void expect_input_error(const Outcome& r, const std::string& file, const std::string& needle, const std::string& label) {
+  EXPECT_EQ(r.rc, 1) << label << "\n" << r.out << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << label << ": " << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << label << ": " << r.err;
+  EXPECT_NE(r.err.find("expected"), std::string::npos) << label << ": " << r.err;
+  EXPECT_NE(r.err.find("found"), std::string::npos) << label << ": " << r.err;
+}
+
 TEST(Golden, InspectEveryCase) {
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases")) {
@@ -85,13 +94,14 @@ TEST(Golden, SolveEveryCase) {
       for (const char* key : {"dcad", "backend", "certified", "dims", "steps", "consistent", "solution_rank", "unique"})
         EXPECT_TRUE(got.contains(key)) << key;
       if (backend != "fast") EXPECT_TRUE(got["certified"].get<bool>());
-      if (got["certified"].get<bool>())
-        for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "constraint_classes"})
-          if (want.contains(key)) {
-            nlohmann::json g = got[key];
-            if (g.is_object()) g.erase("second_class_constraints");  // compared: the counts
-            EXPECT_EQ(g, want[key]) << entry.path() << " " << backend << " " << key;
-          }
+      if (got["certified"].get<bool>()) {
+        for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "constraint_classes"}) {
+          if (!want.contains(key)) continue;
+          nlohmann::json g = got[key];
+          if (g.is_object()) g.erase("second_class_constraints");  // compared: the counts
+          EXPECT_EQ(g, want[key]) << entry.path() << " " << backend << " " << key;
+        }
+      }
       if (want.contains("adapted") && got["certified"].get<bool>()) {  // Theorem 3.28 / 7.4
         const nlohmann::json& wa = want["adapted"];
         const nlohmann::json& ga = got["adapted"];
@@ -161,11 +171,7 @@ class BadNetlist : public testing::TestWithParam<BadCase> {};
 TEST_P(BadNetlist, ExitOneWithFileLineExpectedFound) {
   const BadCase& b = GetParam();
   const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".cir", b.text);
-  const Outcome r = run("solve " + file);
-  EXPECT_EQ(r.rc, 1) << b.name << "\n" << r.out << r.err;
-  EXPECT_NE(r.err.find(file + ":"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find(b.needle), std::string::npos) << b.name << ": " << r.err;
-  EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+  expect_input_error(run("solve " + file), file + ":", b.needle, b.name);  // FILE:LINE
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -295,12 +301,7 @@ TEST_P(BadInput, ExitOneWithWhereExpectedFound) {
   const BadCase& b = GetParam();
   const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".json", b.text);
   for (const std::string backend : {"reference", "fast"}) {
-    const Outcome r = run("inspect " + file + " --backend " + backend);
-    EXPECT_EQ(r.rc, 1) << b.name << " " << backend << "\n" << r.out << r.err;
-    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find(b.needle), std::string::npos) << b.name << " " << backend << ": " << r.err;
-    EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("found"), std::string::npos) << r.err;
+    expect_input_error(run("inspect " + file + " --backend " + backend), file, b.needle, std::string(b.name) + " " + backend);
   }
 }
 
@@ -334,11 +335,7 @@ TEST_P(BadSolveInput, ExitOneWithWhereExpectedFound) {
   const BadCase& b = GetParam();
   const std::string file = write_temp(std::string("dcad_badsolve_") + b.name + ".json", b.text);
   for (const std::string backend : {"reference", "fast", "certified"}) {
-    const Outcome r = run("solve " + file + " --backend " + backend);
-    EXPECT_EQ(r.rc, 1) << b.name << " " << backend << "\n" << r.out << r.err;
-    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find(b.needle), std::string::npos) << b.name << " " << backend << ": " << r.err;
-    EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+    expect_input_error(run("solve " + file + " --backend " + backend), file, b.needle, std::string(b.name) + " " + backend);
   }
 }
 
