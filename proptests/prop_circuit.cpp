@@ -1,7 +1,7 @@
 // LC circuits on random connected multigraphs (CEF §6): Theorems 6.4, 6.6, 6.8 and the graph counts.
 #include "support/gen.hpp"
 
-#include "dcad/reference/circuit.hpp"
+#include "support/circuit_gen.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -10,40 +10,6 @@ using namespace dcad::reference;
 using namespace dcad::test;
 
 namespace {
-
-/// A connected multigraph on `nodes` + ground: a random spanning tree, then extra (possibly parallel)
-/// branches.  Kinds: inductor, capacitor or (if `empty`) empty; values L ∈ {1, 2, 3}, C ∈ {1/2, 1, 2, 3},
-/// with random signs if `signed_values`.
-Circuit<Q> random_circuit(bool empty, bool signed_values) {
-  Circuit<Q> c;
-  c.nodes = pick_size(1, 5);
-  const auto branch = [&](long from, long to) {
-    Branch<Q> b;
-    b.name = "B" + std::to_string(c.branches.size() + 1);
-    b.from = from;
-    b.to = to;
-    const int k = *rc::gen::inRange(0, empty ? 3 : 2);
-    b.kind = k == 0 ? BranchKind::inductor : k == 1 ? BranchKind::capacitor : BranchKind::empty;
-    if (b.kind == BranchKind::inductor) b.value = Q(*rc::gen::inRange(1, 4));
-    if (b.kind == BranchKind::capacitor) b.value = *rc::gen::element(Q(1) / Q(2), Q(1), Q(2), Q(3));
-    if (signed_values && *rc::gen::arbitrary<bool>()) b.value = -b.value;
-    if (*rc::gen::arbitrary<bool>()) std::swap(b.from, b.to);
-    c.branches.push_back(b);
-  };
-  for (long v = 0; v < static_cast<long>(c.nodes); ++v) branch(v, *rc::gen::inRange<long>(-1, v));  // tree to ground
-  const int extra = *rc::gen::inRange(0, 6);
-  for (int e = 0; e < extra; ++e) {
-    const long u = *rc::gen::inRange<long>(-1, c.nodes), w = *rc::gen::inRange<long>(-1, c.nodes);
-    if (u != w) branch(u, w);
-  }
-  if (empty && *rc::gen::inRange(0, 3) == 0) {  // a wire parallel to some branch: often an empty loop
-    const Branch<Q> base = c.branches[*rc::gen::inRange<std::size_t>(0, c.branches.size())];
-    Branch<Q> wire{"W" + std::to_string(c.branches.size() + 1), BranchKind::empty, base.from, base.to, Q(0)};
-    c.branches.push_back(wire);
-    if (*rc::gen::arbitrary<bool>()) c.branches.push_back(Branch<Q>{"W" + std::to_string(c.branches.size() + 1), BranchKind::empty, base.to, base.from, Q(0)});
-  }
-  return c;
-}
 
 CadResult<Q> cad(const Circuit<Q>& c) { return constraint_tower(pontryagin_system(circuit_lagrangian(c))); }
 

@@ -93,4 +93,63 @@ Index empty_loop_count(const Circuit<T>& c) {
   return cycle_rank(c, [](BranchKind k) { return k == BranchKind::empty; });
 }
 
+/// φ = diag(L_i) and ψ = diag(1/C_i) (ψ with the sign of the proofs in CEF §6, see ERRATA).
+template <class T>
+Matrix<T> inductance_matrix(const Circuit<T>& c) {
+  Matrix<T> phi(c.branches.size(), c.branches.size());
+  for (Index b = 0; b < c.branches.size(); ++b)
+    if (c.branches[b].kind == BranchKind::inductor) phi(b, b) = c.branches[b].value;
+  return phi;
+}
+
+template <class T>
+Matrix<T> elastance_matrix(const Circuit<T>& c) {
+  Matrix<T> psi(c.branches.size(), c.branches.size());
+  for (Index b = 0; b < c.branches.size(); ++b)
+    if (c.branches[b].kind == BranchKind::capacitor) psi(b, b) = T(1) / c.branches[b].value;
+  return psi;
+}
+
+/// ψ⁻¹(φ(U) + Δ°), the q-part of the closed form.  [CEF §6, (6.24) and after]
+template <class T>
+Subspace<T> kvl_subspace(const Circuit<T>& c, const Subspace<T>& u) {
+  const Subspace<T> delta = kernel(kcl_matrix(c));
+  return preimage(elastance_matrix(c), sum(map(inductance_matrix(c), u), annihilator(delta)));
+}
+
+/// Δ_k = Δ ∩ ψ⁻¹(φ(Δ_{k−1}) + Δ°), Δ_0 = Δ.  [CEF §6, after (6.24)]
+template <class T>
+Subspace<T> delta_k(const Circuit<T>& c, Index k) {
+  const Subspace<T> delta = kernel(kcl_matrix(c));
+  return k == 0 ? delta : intersection(delta, kvl_subspace(c, delta_k(c, k - 1)));
+}
+
+/// {(q, v, p) : q ∈ S, v ∈ V, p = φ v} ⊂ Q^{3n}.
+template <class T>
+Subspace<T> pontryagin_product(const Circuit<T>& c, const Subspace<T>& s, const Subspace<T>& v) {
+  const Index n = c.branches.size();
+  const Matrix<T> phi = inductance_matrix(c);
+  Matrix<T> rows(s.dim() + v.dim(), 3 * n);
+  for (Index i = 0; i < s.dim(); ++i)
+    for (Index j = 0; j < n; ++j) rows(i, j) = s.basis()(i, j);
+  for (Index i = 0; i < v.dim(); ++i)
+    for (Index j = 0; j < n; ++j) {
+      rows(s.dim() + i, n + j) = v.basis()(i, j);
+      for (Index l = 0; l < n; ++l) rows(s.dim() + i, 2 * n + j) += phi(j, l) * v.basis()(i, l);
+    }
+  return Subspace<T>::span(rows);
+}
+
+/// The closed form of M_j, j ≥ 1 [CEF §6]: M_1 = {p = φ v, v ∈ Δ};
+/// M_{2k−1} = {q ∈ ψ⁻¹(φ(Δ_{k−2}) + Δ°), p = φ v, v ∈ Δ_{k−1}} (k ≥ 2);
+/// M_{2k} = {q ∈ ψ⁻¹(φ(Δ_{k−1}) + Δ°), p = φ v, v ∈ Δ_{k−1}} (k ≥ 1).
+template <class T>
+Subspace<T> closed_form_m(const Circuit<T>& c, Index j) {
+  const Index n = c.branches.size();
+  if (j == 1) return pontryagin_product(c, Subspace<T>::whole(n), delta_k(c, 0));
+  const Index k = (j + 1) / 2;
+  if (j % 2 == 1) return pontryagin_product(c, kvl_subspace(c, delta_k(c, k - 2)), delta_k(c, k - 1));
+  return pontryagin_product(c, kvl_subspace(c, delta_k(c, k - 1)), delta_k(c, k - 1));
+}
+
 }  // namespace dcad::reference

@@ -1,0 +1,74 @@
+// The graph route for LC circuits (CEF §6): the constraint tower of the circuit's `pontryagin`
+// system from spanning forests and fundamental loops, without forming the 3n×3n system.
+//
+// Variables x = (q, v, p) ∈ R^{3n}, n = branches: q_b = index b, v_b = n + b, p_b = 2n + b.
+// CEF §6 (after (6.24)) gives the tower in closed form with Δ_0 = Δ = ker K,
+//   Δ_k = Δ ∩ ψ⁻¹(φ(Δ_{k−1}) + Δ°),  S_k = ψ⁻¹(φ(Δ_k) + Δ°),
+//   M_1 = {p = φ v, v ∈ Δ},  M_{2k} = {q ∈ S_{k−1}, p = φ v, v ∈ Δ_{k−1}},  M_{2k+1} = {q ∈ S_{k−1}, p = φ v, v ∈ Δ_k}
+// (our ψ = +diag(1/C_i), see ERRATA).  Two routes to it:
+//  * physical (every L > 0, every C > 0, empty branches allowed) — combinatorial, no rank decision:
+//    KCL per node (cutsets), and by Thm 6.4 S_0 is KVL on the purely capacitive loops, i.e. one
+//    equation Σ ±q_i/C_i = 0 per fundamental loop of the non-inductive subgraph that closes through a
+//    capacitor (the forest spans the empty subgraph first, so the other fundamental loops are the
+//    empty loops).  Thm 6.6: Δ_2 = Δ_1, so c = 3 if there is such a loop and c = 1 otherwise; the
+//    solution rank is the number of independent empty loops (Thm 6.8).  O(n + total loop length).
+//  * signed values (CEF Remark 6.7) — the closed form above with Δ in loop coordinates
+//    (a ↦ Bᵀ a, B the fundamental-loop matrix, m×n), each rank decided by decide_rank.
+// `proptests/prop_circuit_graph.cpp` checks both against the generic CAD (reference and fast).
+#pragma once
+
+#include "dcad/fast/rank.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace dcad::fast {
+
+enum class BranchKind { inductor, capacitor, empty };
+
+struct CircuitBranch {
+  BranchKind kind = BranchKind::empty;
+  long from = -1, to = -1;  ///< node indices, −1 = ground; current flows from → to
+  double value = 0;         ///< L or C
+};
+
+struct CircuitGraph {
+  std::size_t nodes = 0;  ///< non-ground nodes 0 … nodes−1
+  std::vector<CircuitBranch> branches;
+};
+
+struct Term {
+  std::size_t var = 0;  ///< 0 … 3n−1: q, then v, then p
+  double coeff = 0;
+};
+using SparseRow = std::vector<Term>;  ///< Σ coeff·x_var = 0
+
+struct LoopBranch {
+  std::size_t branch = 0;
+  int sign = 1;  ///< +1 if the branch current runs along the loop
+};
+using Loop = std::vector<LoopBranch>;
+
+struct CircuitTower {
+  bool physical = true;  ///< the combinatorial route was taken
+  std::vector<long> dims;                         ///< dim M_0 … M_c
+  std::vector<std::vector<SparseRow>> equations;  ///< the constraints added to reach M_k (k = 0: none)
+  int steps = 0;
+  long solution_rank = 0;
+  std::vector<Loop> pc_loops;     ///< fundamental purely capacitive loops (physical: one KVLPC equation each)
+  std::vector<Loop> empty_loops;  ///< fundamental loops of the empty subgraph (CEF Thm 6.8)
+  bool certain = true;
+  std::vector<RankDecision> decisions;  ///< signed route only
+};
+
+/// Throws std::invalid_argument for a node index out of range or a value that is not finite and
+/// nonzero (for L and C).
+CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt = {});
+
+/// The fundamental loops of the spanning forest of the branches with keep(b) that spans the branches
+/// with prefer(b) first: one loop per branch outside the forest, that branch first with sign +1.
+/// (With keep = non-inductive and prefer = empty, the loops through a capacitor are the KVLPC loops
+/// and the others lie in the empty subgraph.)
+std::vector<Loop> fundamental_loops(const CircuitGraph& g, const std::vector<bool>& keep, const std::vector<bool>& prefer);
+
+}  // namespace dcad::fast

@@ -1,0 +1,130 @@
+// Two further routes to the tower of an LC circuit, each equal to the generic CAD (CEF §5) on the
+// circuit's `pontryagin` system: the closed form of CEF §6 via Δ_k (reference, exact), and the
+// graph route of dcad::fast::circuit_tower (forests and fundamental loops; loop coordinates for
+// signed values).
+#include "support/circuit_gen.hpp"
+#include "support/convert.hpp"
+#include "support/tally.hpp"
+
+#include "dcad/fast/cad.hpp"
+#include "dcad/fast/circuit.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad;
+using namespace dcad::test;
+namespace ref = dcad::reference;
+
+namespace {
+
+ref::CadResult<Q> generic(const Circuit<Q>& c) { return ref::constraint_tower(ref::pontryagin_system(ref::circuit_lagrangian(c))); }
+
+fast::CircuitGraph graph(const Circuit<Q>& c) {
+  fast::CircuitGraph g;
+  g.nodes = c.nodes;
+  for (const Branch<Q>& b : c.branches)
+    g.branches.push_back({b.kind == BranchKind::inductor    ? fast::BranchKind::inductor
+                          : b.kind == BranchKind::capacitor ? fast::BranchKind::capacitor
+                                                            : fast::BranchKind::empty,
+                          b.from, b.to, b.value.convert_to<double>()});
+  return g;
+}
+
+/// Every equation of the graph route up to M_k vanishes on the exact M_k (relative 1e-12).
+bool rows_vanish_on(const fast::CircuitTower& t, std::size_t k, const QSub& m) {
+  const Eigen::MatrixXd basis = to_double(m.basis());
+  for (std::size_t j = 1; j <= k; ++j)
+    for (const fast::SparseRow& row : t.equations[j]) {
+      double big = 0;
+      for (const fast::Term& term : row) big = std::max(big, std::abs(term.coeff));
+      for (Eigen::Index i = 0; i < basis.rows(); ++i) {
+        double s = 0, size = 0;
+        for (const fast::Term& term : row) {
+          s += term.coeff * basis(i, static_cast<Eigen::Index>(term.var));
+          size += std::abs(term.coeff * basis(i, static_cast<Eigen::Index>(term.var)));
+        }
+        if (std::abs(s) > 1e-12 * std::max(size, big)) return false;
+      }
+    }
+  return true;
+}
+
+/// The graph route's M_k equals the exact one: same dimension and its equations vanish there.
+void check_against_generic(const Circuit<Q>& c, const std::string& family) {
+  const ref::CadResult<Q> r = generic(c);
+  const fast::CircuitTower t = fast::circuit_tower(graph(c));
+  RC_CLASSIFY(t.physical, "physical route");
+  RC_TAG("c = " + std::to_string(r.steps));
+  bool same_dims = t.dims.size() == r.tower.size();
+  for (std::size_t k = 0; same_dims && k < t.dims.size(); ++k) same_dims = t.dims[k] == r.tower[k].dim();
+  if (t.physical) RC_ASSERT(t.certain);  // combinatorial: nothing to be uncertain about
+  RC_ASSERT(!tally(family + ": dims of M_k", t.certain, same_dims));
+  RC_ASSERT(!tally(family + ": solution rank", t.certain, t.solution_rank == static_cast<long>(r.solution_rank)));
+  if (!same_dims) return;
+  for (std::size_t k = 1; k < t.dims.size(); ++k)
+    RC_ASSERT(!tally(family + ": M_k equations", t.certain, rows_vanish_on(t, k, r.tower[k].m.direction)));
+}
+
+}  // namespace
+
+// CEF §6 (after (6.24)): the closed form of M_j via Δ_k equals the CAD's M_j for j = 1 … c + 1
+// (M_{c+1} = M_c), on random circuits with signed values and empty branches — every case of §6.
+RC_GTEST_PROP(CircuitClosedForm, EqualsGenericCad, ()) {
+  const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
+  const ref::CadResult<Q> r = generic(c);
+  RC_TAG("c = " + std::to_string(r.steps));
+  for (Index j = 1; j <= r.steps + 1; ++j)
+    RC_ASSERT(ref::closed_form_m(c, j) == r.tower[std::min(j, r.steps)].m.direction);
+}
+
+// The graph route = the generic exact CAD: physical circuits (L, C > 0, empty branches) by
+// Theorems 6.4, 6.6, 6.8 and forests; signed values by loop coordinates.
+RC_GTEST_PROP(CircuitGraphRoute, PhysicalEqualsGenericCad, ()) { check_against_generic(random_circuit(true, false), "physical"); }
+
+RC_GTEST_PROP(CircuitGraphRoute, SignedEqualsGenericCad, ()) { check_against_generic(random_circuit(true, true), "signed"); }
+
+// The loops the report names are loops: each loop current satisfies KCL (K η = 0, so η ∈ Δ); purely
+// capacitive loops have a capacitor and no inductor; empty loops only empty branches; their counts
+// are the cycle-rank counts (CONTRACT `empty_loops`, Thm 6.4's KVLPC count).
+RC_GTEST_PROP(CircuitGraphRoute, LoopsAreLoops, ()) {
+  const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
+  const fast::CircuitTower t = fast::circuit_tower(graph(c));
+  const QM k = ref::kcl_matrix(c);
+  const auto check = [&](const fast::Loop& loop, bool pc) {
+    std::vector<Q> eta(c.branches.size(), Q(0));
+    bool capacitor = false;
+    for (const fast::LoopBranch& lb : loop) {
+      eta[lb.branch] += Q(lb.sign);
+      const BranchKind kind = c.branches[lb.branch].kind;
+      RC_ASSERT(kind != BranchKind::inductor);
+      if (!pc) RC_ASSERT(kind == BranchKind::empty);
+      capacitor = capacitor || kind == BranchKind::capacitor;
+    }
+    RC_ASSERT(capacitor == pc);
+    for (Index i = 0; i < k.rows(); ++i) {
+      Q s(0);
+      for (Index b = 0; b < k.cols(); ++b) s += k(i, b) * eta[b];
+      RC_ASSERT(s == Q(0));
+    }
+  };
+  for (const fast::Loop& l : t.pc_loops) check(l, true);
+  for (const fast::Loop& l : t.empty_loops) check(l, false);
+  RC_ASSERT(static_cast<Index>(t.pc_loops.size()) == ref::kvlpc_count(c));
+  RC_ASSERT(static_cast<Index>(t.empty_loops.size()) == ref::empty_loop_count(c));
+}
+
+// The graph route = the generic fast CAD on the same doubles, wherever both are certain.
+RC_GTEST_PROP(CircuitGraphRoute, EqualsGenericFastCad, ()) {
+  const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
+  const ref::PontryaginInput<Q> in = ref::circuit_lagrangian(c);
+  fast::Options opt;
+  const fast::LinearSystem s = fast::pontryagin_system(to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt),
+                                                       to_double(in.qq, &opt), to_double(in.q), to_double(in.v), opt);
+  const fast::CadResult f = fast::constraint_tower(s, opt);
+  const fast::CircuitTower t = fast::circuit_tower(graph(c));
+  const bool certain = f.certain && t.certain;
+  bool same = f.tower.size() == t.dims.size() && f.solution_rank == t.solution_rank;
+  for (std::size_t k = 0; same && k < t.dims.size(); ++k) same = f.tower[k].dim() == t.dims[k];
+  RC_ASSERT(!tally("graph vs generic fast: tower and solution rank", certain, same));
+}
