@@ -1,5 +1,7 @@
 #include "circuit_report.hpp"
 
+#include "dcad/fast/circuit.hpp"
+
 #include <sstream>
 
 namespace dcad::cli {
@@ -23,6 +25,32 @@ bool has_empty_branch(const io::Netlist& n) {
   return false;
 }
 
+/// The fundamental loops of the non-inductive subgraph (forest through the empty branches first):
+/// purely capacitive (first) and empty (second), each as signed branch names.  Graph facts only.
+std::pair<std::vector<std::vector<std::string>>, std::vector<std::vector<std::string>>> named_loops(const io::Netlist& n) {
+  fast::CircuitGraph g;
+  g.nodes = n.circuit.nodes;
+  std::vector<bool> keep, prefer;
+  for (const auto& b : n.circuit.branches) {
+    g.branches.push_back({fast::BranchKind::empty, b.from, b.to, 0.0});
+    keep.push_back(b.kind != BranchKind::inductor);
+    prefer.push_back(b.kind == BranchKind::empty);
+  }
+  std::pair<std::vector<std::vector<std::string>>, std::vector<std::vector<std::string>>> out;
+  for (const fast::Loop& l : fast::fundamental_loops(g, keep, prefer)) {
+    std::vector<std::string> names;
+    for (const fast::LoopBranch& lb : l) names.push_back((lb.sign > 0 ? "+" : "-") + n.circuit.branches[lb.branch].name);
+    (n.circuit.branches[l.front().branch].kind == BranchKind::capacitor ? out.first : out.second).push_back(names);
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& x : names) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
 }  // namespace
 
 nlohmann::json circuit_json(const io::Netlist& n, const SolveReport& r) {
@@ -31,7 +59,9 @@ nlohmann::json circuit_json(const io::Netlist& n, const SolveReport& r) {
           {"pc_loops", pc_loops(r)},
           {"empty_loops", reference::empty_loop_count(n.circuit)},
           {"kvlpc_graph", reference::kvlpc_count(n.circuit)},
-          {"physical", physical(n)}};
+          {"physical", physical(n)},
+          {"pc_loop_branches", named_loops(n).first},
+          {"empty_loop_branches", named_loops(n).second}};
 }
 
 std::string circuit_text(const io::Netlist& n, const SolveReport& r) {
@@ -42,8 +72,12 @@ std::string circuit_text(const io::Netlist& n, const SolveReport& r) {
     o << " " << b.name << (b.kind == BranchKind::inductor ? " (inductive)" : b.kind == BranchKind::capacitor ? " (capacitive)" : " (empty)");
   o << "\n    purely capacitive loops: " << pc_loops(r) << " independent KVLPC equation(s) on q (the M_2 constraints, CEF Thm 6.4)"
     << "; graph count " << reference::kvlpc_count(n.circuit) << "\n";
+  const auto [pc, empty_loops] = named_loops(n);
+  for (std::size_t i = 0; i < pc.size(); ++i)
+    o << "      KVL loop " << i + 1 << ": " << joined(pc[i]) << "  (sum of ±q/C over its capacitors = 0 on M_2, ±v/C on M_3)\n";
   const std::size_t empty = reference::empty_loop_count(n.circuit);
   o << "    empty loops: " << empty << (empty ? " (their loop currents are free: non-uniqueness, CEF Thm 6.8)" : "") << "\n";
+  for (std::size_t i = 0; i < empty_loops.size(); ++i) o << "      empty loop " << i + 1 << ": " << joined(empty_loops[i]) << "\n";
   if (physical(n) && !has_empty_branch(n))
     o << "    CEF Thm 6.6 (L, C > 0, no empty branch): c ∈ {1, 3}, c = 3 iff a purely capacitive loop exists — here c = " << r.steps << "\n";
   if (physical(n))

@@ -4,6 +4,7 @@
 #include "inspect.hpp"
 #include "circuit_report.hpp"
 #include "simulate.hpp"
+#include "solve_circuit.hpp"
 #include "solve.hpp"
 
 #include <CLI/CLI.hpp>
@@ -91,13 +92,18 @@ int main(int argc, char** argv) {
     if (solve->parsed()) {
       const bool netlist = dcad::io::is_netlist_file(solve_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(solve_file) : dcad::io::Netlist();
-      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck) : dcad::io::read_case(solve_file);
+      const bool dense = !netlist || solve_backend == "reference" || deck.circuit.branches.size() <= dcad::cli::kDenseBranches;
+      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, dense) : dcad::io::read_case(solve_file);
       for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
       dcad::cli::SolveReport r;
       try {
-        r = solve_backend == "reference" ? dcad::cli::solve_reference(c)
-            : solve_backend == "fast"    ? dcad::cli::solve_fast(c)
-                                         : dcad::cli::solve_certified(c);
+        if (netlist && solve_backend != "reference") {  // the graph route (CEF §6)
+          r = solve_backend == "fast" ? dcad::cli::solve_circuit_fast(deck, c) : dcad::cli::solve_circuit_certified(deck, c);
+        } else {
+          r = solve_backend == "reference" ? dcad::cli::solve_reference(c)
+              : solve_backend == "fast"    ? dcad::cli::solve_fast(c)
+                                           : dcad::cli::solve_certified(c);
+        }
       } catch (const std::invalid_argument& e) {
         std::cerr << solve_file << ": " << (c.has_pontryagin ? "/pontryagin" : c.has_constrained ? "/constrained" : c.dirac.path) << ": "
                   << e.what() << "\n";

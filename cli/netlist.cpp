@@ -175,11 +175,17 @@ Netlist read_netlist(const std::string& file) {
   return out;
 }
 
-CaseFile netlist_case(const Netlist& n) {
+CaseFile netlist_case(const Netlist& n, bool dense) {
   CaseFile c;
   c.file = n.file;
   c.name = n.title;
   c.description = "LC netlist " + n.file;
+  if (!dense) {
+    c.n = 3 * n.circuit.branches.size();
+    for (const char* s : {"q_", "v_", "p_"})
+      for (const auto& b : n.circuit.branches) c.variables.push_back(s + b.name);
+    return c;
+  }
   c.has_pontryagin = true;
   const reference::PontryaginInput<Rational> p = reference::circuit_lagrangian(n.circuit);
   c.pontryagin = PontryaginInput{p.n, p.k, p.vv, p.qv, p.qq, p.q, p.v};

@@ -22,7 +22,8 @@ Netlist read_netlist(const std::string& file);
 /// SPICE value: number with optional suffix f p n u m k meg g t (case-insensitive), trailing unit
 /// letters ignored ("10uF"); exact.  Throws std::invalid_argument.
 Rational parse_spice_value(const std::string& text);
-/// The case the circuit stands for: `pontryagin` with variables q_*, v_*, p_* (CONTRACT).
-CaseFile netlist_case(const Netlist& n);
+/// The case the circuit stands for: `pontryagin` with variables q_*, v_*, p_* (CONTRACT).  Without
+/// `dense`, only the names (no n×n and 3n×3n matrices: for the graph route on large circuits).
+CaseFile netlist_case(const Netlist& n, bool dense = true);
 
 }  // namespace dcad::io

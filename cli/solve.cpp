@@ -6,9 +6,8 @@ namespace dcad::cli {
 
 std::string equation_text(const Equation& e, const std::vector<std::string>& names) {
   std::string s;
-  for (std::size_t j = 0; j < e.coeff.size(); ++j) {
-    if (e.coeff[j].empty()) continue;
-    std::string c = e.coeff[j];
+  for (const auto& [j, coeff] : e.terms) {
+    std::string c = coeff;
     const bool neg = c[0] == '-';
     if (neg) c = c.substr(1);
     s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
@@ -19,7 +18,8 @@ std::string equation_text(const Equation& e, const std::vector<std::string>& nam
 
 Equation row_equation(const io::QMatrix& rows, std::size_t i) {
   Equation e;
-  for (std::size_t j = 0; j + 1 < rows.cols(); ++j) e.coeff.push_back(rows(i, j) == 0 ? "" : rows(i, j).str());
+  for (std::size_t j = 0; j + 1 < rows.cols(); ++j)
+    if (rows(i, j) != 0) e.terms.emplace_back(j, rows(i, j).str());
   e.rhs = rows(i, rows.cols() - 1).str();
   return e;
 }
@@ -42,7 +42,9 @@ SolveReport solve_certified(const io::CaseFile& c) {
 namespace {
 
 std::string row_text(const std::vector<std::string>& coeff, const std::vector<std::string>& names, const std::string& constant) {
-  Equation e{coeff, ""};
+  Equation e;
+  for (std::size_t j = 0; j < coeff.size(); ++j)
+    if (!coeff[j].empty()) e.terms.emplace_back(j, coeff[j]);
   std::string lhs = equation_text(e, names);
   lhs = lhs.substr(0, lhs.size() - 3);  // drop " = "
   if (constant == "0" || constant.empty()) return lhs;

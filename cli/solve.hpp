@@ -9,9 +9,10 @@
 
 namespace dcad::cli {
 
-/// a·x = b as coefficient strings per variable ("" = zero) and the right-hand side.
+/// a·x = b as the nonzero coefficients (variable index, coefficient string) and the right-hand side;
+/// sparse, so that circuits with 10^5 branches print in linear space.
 struct Equation {
-  std::vector<std::string> coeff;
+  std::vector<std::pair<std::size_t, std::string>> terms;
   std::string rhs;
 };
 

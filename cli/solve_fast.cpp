@@ -56,7 +56,8 @@ void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::Matri
   out.adapted_second = 2 * ad.s;
   const auto row = [&](int i) {
     Equation e;
-    for (Eigen::Index j = 0; j + 1 < all.cols(); ++j) e.coeff.push_back(std::abs(all(i, j)) <= 1e-13 ? "" : num(all(i, j)));
+    for (Eigen::Index j = 0; j + 1 < all.cols(); ++j)
+      if (std::abs(all(i, j)) > 1e-13) e.terms.emplace_back(j, num(all(i, j)));
     e.rhs = num(all(i, all.cols() - 1));
     return e;
   };
@@ -95,7 +96,7 @@ SolveReport solve_fast(const io::CaseFile& c) {
       Equation e;
       // display only: coefficients at rounding level of this (unit) row are shown as absent
       for (Eigen::Index j = 0; j + 1 < st.equations.cols(); ++j)
-        e.coeff.push_back(std::abs(st.equations(i, j)) <= 1e-13 ? "" : num(st.equations(i, j)));
+        if (std::abs(st.equations(i, j)) > 1e-13) e.terms.emplace_back(j, num(st.equations(i, j)));
       e.rhs = num(st.equations(i, st.equations.cols() - 1));
       step.equations.push_back(e);
     }

@@ -87,6 +87,7 @@ SparseRow kvl_row(const CircuitGraph& g, const Loop& loop, std::size_t offset) {
   SparseRow r;
   for (const LoopBranch& lb : loop)
     if (g.branches[lb.branch].kind == BranchKind::capacitor) r.push_back({offset + lb.branch, lb.sign / g.branches[lb.branch].value});
+  std::sort(r.begin(), r.end(), [](const Term& a, const Term& b) { return a.var < b.var; });
   return r;
 }
 
