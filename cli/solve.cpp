@@ -16,6 +16,13 @@ std::string equation_text(const Equation& e, const std::vector<std::string>& nam
   return (s.empty() ? "0" : s) + " = " + e.rhs;
 }
 
+std::string float_text(double x) {
+  std::ostringstream o;
+  o.precision(17);
+  o << x;
+  return o.str();
+}
+
 Equation row_equation(const io::QMatrix& rows, std::size_t i) {
   Equation e;
   for (std::size_t j = 0; j + 1 < rows.cols(); ++j)

@@ -47,6 +47,8 @@ struct SolveReport {
 
 /// "2*x1 - 1/3*x2 = 5" in the given variable names.
 std::string equation_text(const Equation& e, const std::vector<std::string>& names);
+/// x as %.17g (round-trips).
+std::string float_text(double x);
 /// Row i of [a | b] (exact) as an Equation.
 Equation row_equation(const io::QMatrix& rows, std::size_t i);
 

@@ -1,19 +1,8 @@
 #include "solve_circuit.hpp"
 
-#include <sstream>
+#include <cmath>
 
 namespace dcad::cli {
-
-namespace {
-
-std::string num(double x) {
-  std::ostringstream o;
-  o.precision(17);
-  o << x;
-  return o.str();
-}
-
-}  // namespace
 
 fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
   fast::CircuitGraph g;
@@ -52,7 +41,7 @@ SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c) {
     step.dim = t.dims[k];
     for (const fast::SparseRow& row : t.equations[k]) {
       Equation e;
-      for (const fast::Term& term : row) e.terms.emplace_back(term.var, num(term.coeff));
+      for (const fast::Term& term : row) e.terms.emplace_back(term.var, float_text(term.coeff));
       e.rhs = "0";
       step.equations.push_back(e);
     }

@@ -13,13 +13,6 @@ namespace fa = dcad::fast;
 
 namespace {
 
-std::string num(double x) {
-  std::ostringstream o;
-  o.precision(17);
-  o << x;
-  return o.str();
-}
-
 fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
   if (c.has_constrained) {
     const Eigen::MatrixXd w = to_double(c.constrained.w, opt), prim = to_double(c.constrained.primary, opt);
@@ -57,8 +50,8 @@ void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::Matri
   const auto row = [&](int i) {
     Equation e;
     for (Eigen::Index j = 0; j + 1 < all.cols(); ++j)
-      if (std::abs(all(i, j)) > 1e-13) e.terms.emplace_back(j, num(all(i, j)));
-    e.rhs = num(all(i, all.cols() - 1));
+      if (std::abs(all(i, j)) > 1e-13) e.terms.emplace_back(j, float_text(all(i, j)));
+    e.rhs = float_text(all(i, all.cols() - 1));
     return e;
   };
   for (int i : ad.chi) out.adapted_chi.push_back(row(i));
@@ -96,8 +89,8 @@ SolveReport solve_fast(const io::CaseFile& c) {
       Equation e;
       // display only: coefficients at rounding level of this (unit) row are shown as absent
       for (Eigen::Index j = 0; j + 1 < st.equations.cols(); ++j)
-        if (std::abs(st.equations(i, j)) > 1e-13) e.terms.emplace_back(j, num(st.equations(i, j)));
-      e.rhs = num(st.equations(i, st.equations.cols() - 1));
+        if (std::abs(st.equations(i, j)) > 1e-13) e.terms.emplace_back(j, float_text(st.equations(i, j)));
+      e.rhs = float_text(st.equations(i, st.equations.cols() - 1));
       step.equations.push_back(e);
     }
     out.dims.push_back(step.dim);
@@ -143,13 +136,13 @@ SolveReport solve_fast(const io::CaseFile& c) {
     // display: entries at rounding level relative to the largest are shown as 0
     const double tiny = 1e-13 * (1 + (red.f_matrix.size() ? red.f_matrix.cwiseAbs().maxCoeff() : 0.0) +
                                   (red.f.size() ? red.f.cwiseAbs().maxCoeff() : 0.0));  // M_c may be a point
-    const auto shown = [&](double x) { return num(std::abs(x) <= tiny ? 0.0 : x); };
+    const auto shown = [&](double x) { return float_text(std::abs(x) <= tiny ? 0.0 : x); };
     for (std::size_t i = 0; i < red.coords.size(); ++i) {
       out.f_matrix.push_back({});
       for (std::size_t j = 0; j < red.coords.size(); ++j) out.f_matrix.back().push_back(shown(red.f_matrix(i, j)));
       out.f.push_back(shown(red.f(i)));
       out.g.push_back({});
-      for (Eigen::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(num(red.g(i, j)));
+      for (Eigen::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(float_text(red.g(i, j)));
     }
   }
   if (!out.certified) out.note = "some rank decision was uncertain (see `dcad solve --backend certified`)";

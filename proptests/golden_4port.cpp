@@ -1,8 +1,10 @@
 // Golden: the second-class constraints of the 4-port LC circuit on T*TQ (CEF §6 after (6.42),
 // Appendix A), exactly, at several rational values of L, C1, C2, C3.  Guards the misprints of
 // ../shared/ERRATA.md: Σ row 8 (printed Σ₈,₁₁ = 1/C1, Σ₈,₁₃ = −1/C3; correct Σ₈,₁₂, Σ₈,₁₄) and
-// the sign convention behind Σ₁,₉ = −1, Σ₁,₁₁ = −L.
+// the sign convention behind Σ₁,₉ = −1, Σ₁,₁₁ = −L.  Also the same circuit in YM §6 (the reduced
+// equations of the implicit constrained Lagrangian system), guarding YM's misprinted vector.
 #include "dcad/reference/adapted.hpp"
+#include "dcad/reference/cad.hpp"
 #include "dcad/reference/rational.hpp"
 
 #include <gtest/gtest.h>
@@ -178,6 +180,58 @@ TEST_P(FourPort, MultipliersAndVectorField) {
   const std::vector<Q> printed = {y[vL], y[vC1], y[vC2], y[vC3], -f / c.l, -c.c1 / s13 * f / c.l, -f / c.l, -c.c3 / s13 * f / c.l,
                                   -f, 0, 0, 0, 0, 0, 0, 0};
   EXPECT_EQ(x, printed);
+}
+
+// YM §6 (L-C example): with YM's KCL ω¹ = −dq_L + dq_C2, ω² = −dq_C1 + dq_C2 − dq_C3, A = [[−1, 0], [−1, 1]]
+// (f_L, f_C1) = −A (f_C2, f_C3), p̃_C2 = p_C2 + p_L + p_C1 and p̃_C3 = p_C3 − p_C1, every solution of the
+// CAD system (CEF §6) satisfies YM's reduced equations
+//   q̇_C1 = f_C2 − f_C3, q̇_C2 = f_C2, q̇_C3 = f_C3, d/dt p̃_C2 = −q_C1/C1 − q_C2/C2, p̃_C2 = L f_C2,
+//   0 = −q_C3/C3 + q_C1/C1,
+// and the matrix form with the corrected vector (ṗ_L, ṗ_C1 + q_C1/C1) — ERRATA: YM prints ṗ_C1 + q_C2/C3,
+// which fails on M_c.
+TEST_P(FourPort, YoshimuraMarsden6ReducedEquations) {
+  const Circuit c = GetParam();
+  PontryaginInput<Q> in;
+  in.n = 4;
+  in.k = QM(2, 4);
+  in.k(0, 0) = Q(-1), in.k(0, 2) = Q(1);                     // ω¹ = −dq_L + dq_C2
+  in.k(1, 1) = Q(-1), in.k(1, 2) = Q(1), in.k(1, 3) = Q(-1);  // ω² = −dq_C1 + dq_C2 − dq_C3
+  in.vv = QM(4, 4);
+  in.vv(0, 0) = c.l;
+  in.qq = QM(4, 4);
+  in.qq(1, 1) = -1 / c.c1, in.qq(2, 2) = -1 / c.c2, in.qq(3, 3) = -1 / c.c3;
+  in.qv = QM(4, 4);
+  in.q.assign(4, Q(0));
+  in.v.assign(4, Q(0));
+  const LinearSystem<Q> s = pontryagin_system(in);
+  const CadResult<Q> r = constraint_tower(s);
+  ASSERT_TRUE(r.unique());
+  ASSERT_EQ(r.final_step().m.direction.dim(), 4);
+  enum : Index { q = 0, v = 4, p = 8 };  // q_L … q_C3, v_L … v_C3 (= f), p_L … p_C3
+  const Index L = 0, C1 = 1, C2 = 2, C3 = 3;
+  bool printed_fails = false;
+  const QM& basis = r.final_step().m.direction.basis();
+  for (Index b = 0; b < basis.rows(); ++b) {
+    std::vector<Q> x(12);
+    for (Index i = 0; i < 12; ++i) x[i] = basis(b, i);
+    const AffineSubspace<Q> vel = velocities(s, r, x);
+    ASSERT_FALSE(vel.empty);
+    const std::vector<Q>& dx = vel.point;
+    EXPECT_EQ(dx[q + C1], x[v + C2] - x[v + C3]);
+    EXPECT_EQ(dx[q + C2], x[v + C2]);
+    EXPECT_EQ(dx[q + C3], x[v + C3]);
+    EXPECT_EQ(x[p + C2] + x[p + L] + x[p + C1], c.l * x[v + C2]);                     // p̃_C2 = L f_C2
+    EXPECT_EQ(x[p + C3] - x[p + C1], Q(0));                                           // p̃_C3 = 0
+    EXPECT_EQ(dx[p + C2] + dx[p + L] + dx[p + C1], -x[q + C1] / c.c1 - x[q + C2] / c.c2);  // d/dt p̃_C2
+    EXPECT_EQ(-x[q + C3] / c.c3 + x[q + C1] / c.c1, Q(0));
+    // matrix form: (ṗ_C2 + q_C2/C2, ṗ_C3 + q_C3/C3) = [[−1, −1], [0, 1]] (ṗ_L, ṗ_C1 + q_C1/C1)
+    const Q u1 = dx[p + L], u2 = dx[p + C1] + x[q + C1] / c.c1;
+    EXPECT_EQ(dx[p + C2] + x[q + C2] / c.c2, -u1 - u2);
+    EXPECT_EQ(dx[p + C3] + x[q + C3] / c.c3, u2);
+    const Q printed_u2 = dx[p + C1] + x[q + C2] / c.c3;
+    printed_fails = printed_fails || dx[p + C3] + x[q + C3] / c.c3 != printed_u2;
+  }
+  EXPECT_TRUE(printed_fails);
 }
 
 INSTANTIATE_TEST_SUITE_P(CEF6, FourPort,
