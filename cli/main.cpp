@@ -3,13 +3,16 @@
 #include "case_file.hpp"
 #include "inspect.hpp"
 #include "circuit_report.hpp"
+#include "plot.hpp"
 #include "simulate.hpp"
 #include "solve_circuit.hpp"
 #include "solve.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <iostream>
 
 #ifndef DCAD_VERSION
@@ -53,6 +56,9 @@ int main(int argc, char** argv) {
   sim->add_option("--backend", sim_opt.backend, "certified|reference|fast (the model is built exactly in this version)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
+  std::string sim_png, sim_vars;
+  sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");
+  sim->add_option("--plot-vars", sim_vars, "comma-separated variables to plot (default: every q_*)");
 
   try {
     app.parse(argc, argv);
@@ -125,15 +131,37 @@ int main(int argc, char** argv) {
       if (netlist) init = dcad::cli::netlist_initial(deck);
       else if (!c.initial.empty())
         for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
-      std::ofstream file_out;
-      if (!sim_csv.empty()) {
-        file_out.open(sim_csv);
-        if (!file_out) {
-          std::cerr << sim_csv << ": cannot open for writing\n";
+      std::vector<std::string> header{"t"};
+      header.insert(header.end(), c.variables.begin(), c.variables.end());
+      std::vector<std::size_t> plot_cols;
+      if (!sim_png.empty()) {
+        try {
+          plot_cols = dcad::cli::plot_columns(header, sim_vars);
+        } catch (const std::invalid_argument& e) {
+          std::cerr << e.what() << "\n";
+          return 2;
+        }
+      }
+      std::ostringstream csv;
+      dcad::cli::simulate(c, init, sim_opt, csv, std::cerr);
+      const std::string csv_path = !sim_csv.empty() ? sim_csv : sim_png + ".csv";
+      if (!sim_csv.empty() || !sim_png.empty()) {
+        std::ofstream file_out(csv_path);
+        if (!(file_out << csv.str())) {
+          std::cerr << csv_path << ": cannot write\n";
           return 1;
         }
       }
-      dcad::cli::simulate(c, init, sim_opt, sim_csv.empty() ? std::cout : file_out, std::cerr);
+      if (sim_csv.empty()) std::cout << csv.str();
+      if (!sim_png.empty()) {
+        const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png,
+                                                    c.name.empty() ? c.file : c.name);
+        if (sim_csv.empty()) std::remove(csv_path.c_str());
+        if (!why.empty()) {
+          std::cerr << sim_png << ": " << why << "\n";
+          return 1;
+        }
+      }
     }
   } catch (const dcad::io::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -391,6 +391,18 @@ TEST(Simulate, RandomCircuitsAgreeWithNgspice) {
   EXPECT_GE(tight, 1);
 }
 
+TEST(Simulate, PlotWritesAPng) {
+  const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir";
+  EXPECT_EQ(run("simulate " + deck + " --tstop 1 --step 0.1 --plot /tmp/dcad_x.png --plot-vars q_C1,nope").rc, 2);
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed (bash .ci/setup installs it)";
+  const std::string png = (fs::temp_directory_path() / "dcad_plot.png").string();
+  std::filesystem::remove(png);
+  const Outcome r = run("simulate " + deck + " --tstop 20 --step 0.01 --plot " + png + " --plot-vars q_C1,q_C2,v_L1");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(csv_rows(r.out).size(), 2001u);  // the CSV still goes to stdout
+  EXPECT_EQ(slurp(png).substr(1, 3), "PNG");
+}
+
 TEST(Simulate, InitialConditionOffMcNamesTheConstraint) {
   std::string deck = slurp(fs::path(DCAD_SOURCE_DIR) / "cases/lc-4port.cir");
   deck.replace(deck.find("C3 1 2 7 IC=1"), 13, "C3 1 2 7 IC=5");

@@ -1,0 +1,18 @@
+// `dcad simulate --plot OUT.png`: a PNG of chosen columns of the simulation CSV, drawn by gnuplot
+// (Debian package gnuplot-nox, installed by .ci/setup).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace dcad::cli {
+
+/// The names of `wanted` (comma-separated; empty = every q_* column, or every column if none) as
+/// 1-based CSV columns of `header` (column 1 is t).  Throws std::invalid_argument naming an unknown one.
+std::vector<std::size_t> plot_columns(const std::vector<std::string>& header, const std::string& wanted);
+
+/// Runs gnuplot on the CSV file; returns "" or what went wrong.
+std::string plot_png(const std::string& csv_file, const std::vector<std::string>& header, const std::vector<std::size_t>& columns,
+                     const std::string& png, const std::string& title);
+
+}  // namespace dcad::cli
