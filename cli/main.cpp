@@ -2,6 +2,7 @@
 // 0 success, 1 bad input (file + line or JSON path, expected vs found), 2 bad usage.
 #include "case_file.hpp"
 #include "inspect.hpp"
+#include "check.hpp"
 #include "circuit_report.hpp"
 #include "plot.hpp"
 #include "simulate.hpp"
@@ -59,6 +60,13 @@ int main(int argc, char** argv) {
   std::string sim_png, sim_vars;
   sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");
   sim->add_option("--plot-vars", sim_vars, "comma-separated variables to plot (default: every q_*)");
+
+  std::string check_result_file, check_file;
+  CLI::App* check = app.add_subcommand(
+      "check", "Compare another implementation's result (JSON, the keys of `dcad solve --json`) for FILE against the "
+               "reference: exit 0 if it agrees, 3 with the list of disagreements, 1 if RESULT is not a result for FILE.");
+  check->add_option("RESULT", check_result_file, "the other implementation's result (.json)")->required();
+  check->add_option("FILE", check_file, "the case file or netlist it was computed for")->required();
 
   try {
     app.parse(argc, argv);
@@ -122,6 +130,31 @@ int main(int argc, char** argv) {
       } else {
         std::cout << dcad::cli::to_text(r, c) << (netlist ? dcad::cli::circuit_text(deck, r) : "");
       }
+    }
+    if (check->parsed()) {
+      const bool netlist = dcad::io::is_netlist_file(check_file);
+      const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(check_file) : dcad::io::Netlist();
+      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, deck.circuit.branches.size() <= dcad::cli::kDenseBranches)
+                                           : dcad::io::read_case(check_file);
+      dcad::cli::CheckOutcome o;
+      try {
+        o = dcad::cli::check_result(check_result_file, c, netlist ? &deck : nullptr);
+      } catch (const dcad::io::InputError&) {
+        throw;
+      } catch (const std::invalid_argument& e) {
+        std::cerr << check_file << ": " << e.what() << "\n";
+        return 1;
+      }
+      std::string keys;
+      for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
+      if (o.disagreements.empty()) {
+        std::cout << "dcad check: " << check_result_file << " agrees with the reference on " << check_file << " (compared: " << keys << ")\n";
+        return 0;
+      }
+      std::cout << "dcad check: " << check_result_file << " disagrees with the reference on " << check_file << ":\n";
+      for (const std::string& d : o.disagreements) std::cout << "  " << d << "\n";
+      std::cout << o.disagreements.size() << " disagreement(s) among the compared keys: " << keys << "\n";
+      return 3;
     }
     if (sim->parsed()) {
       const bool netlist = dcad::io::is_netlist_file(sim_file);

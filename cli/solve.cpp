@@ -73,6 +73,16 @@ nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
     tower.push_back({{"k", k}, {"dim", r.tower[k].dim}, {"new_constraints", eqs}});
   }
   j["tower"] = tower;
+  if (r.has_final) {  // rows [a…, b] of M_c = {a·x = b}, exact strings: what `dcad check` compares as a subspace
+    nlohmann::json rows = nlohmann::json::array();
+    for (const Equation& e : r.final_constraints) {
+      std::vector<std::string> row(c.variables.size(), "0");
+      for (const auto& [var, coeff] : e.terms) row[var] = coeff;
+      row.push_back(e.rhs);
+      rows.push_back(row);
+    }
+    j["final_constraints"] = rows;
+  }
   if (r.has_reduced) {
     std::vector<std::string> names;
     for (std::size_t i : r.coords) names.push_back(c.variables[i]);

@@ -41,6 +41,11 @@ struct SolveReport {
   std::vector<std::string> adapted_variables;
   long s_prime = 0, adapted_second = 0, secondary_first_class = 0;
   std::vector<Equation> adapted_chi, abridged_terms;
+  /// M_c exactly (reference only): point + span of the rows of the basis, for `dcad check`
+  bool has_final = false;
+  io::QMatrix final_basis;
+  std::vector<io::Rational> final_point;
+  std::vector<Equation> final_constraints;  ///< equations of M_c (reference; JSON `final_constraints`)
   std::string note;  ///< e.g. why `certified` recomputed exactly
   long decisions_float = 0, decisions_exact = 0;
 };

@@ -65,6 +65,20 @@ SolveReport solve_reference(const io::CaseFile& c) {
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
   }
+  if (r.consistent) {
+    out.has_final = true;
+    out.final_basis = r.final_step().m.direction.basis();
+    out.final_point = r.final_step().m.point;
+    const io::QMatrix a = ref::annihilator(r.final_step().m.direction).basis();  // M_c = {a x = a·point}
+    io::QMatrix rows(a.rows(), c.n + 1);
+    for (ref::Index i = 0; i < a.rows(); ++i) {
+      for (ref::Index j = 0; j < c.n; ++j) {
+        rows(i, j) = a(i, j);
+        rows(i, c.n) += a(i, j) * out.final_point[j];
+      }
+      out.final_constraints.push_back(row_equation(rows, i));
+    }
+  }
   if (c.has_constrained && r.consistent) {  // first and second class on M_c, Dirac bracket  [Lemma 3.23]
     io::QMatrix all(0, c.n + 1);
     for (const auto& st : r.tower) all = ref::vstack(all, st.equations);

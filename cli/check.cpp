@@ -1,0 +1,236 @@
+#include "check.hpp"
+
+#include "circuit_report.hpp"
+#include "solve_circuit.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace dcad::cli {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void bad(const std::string& file, const std::string& path, const std::string& expected, const std::string& found) {
+  throw io::InputError(file + ": " + path + ": expected " + expected + ", found " + found);
+}
+
+std::string shown(const json& j) {
+  std::string s = j.dump();
+  return s.size() > 200 ? s.substr(0, 200) + "…" : s;
+}
+
+/// A number of the result: exact if a string ("3/7"), else the double.
+struct Number {
+  bool exact = false;
+  io::Rational q;
+  double d = 0;
+};
+
+Number number(const std::string& file, const std::string& path, const json& j) {
+  Number n;
+  if (j.is_number()) {
+    n.d = j.get<double>();
+    return n;
+  }
+  if (j.is_string()) {
+    try {
+      n.q = reference::parse_rational(j.get<std::string>());
+      n.exact = true;
+      n.d = n.q.convert_to<double>();
+      return n;
+    } catch (const std::exception&) {
+    }
+  }
+  bad(file, path, "a number or an exact string such as \"-3/7\"", shown(j));
+}
+
+/// found ≈ want: exactly if found is exact, else |found − want| ≤ tol·scale.
+bool close(const Number& found, const io::Rational& want, double tol, double scale) {
+  if (found.exact) return found.q == want;
+  return std::abs(found.d - want.convert_to<double>()) <= tol * scale;
+}
+
+struct Checker {
+  std::string file;
+  CheckOutcome out;
+  void compare(const std::string& key, const json& want, const json& found) {
+    out.compared.push_back(key);
+    if (want != found) out.disagreements.push_back(key + ": expected " + shown(want) + ", found " + shown(found));
+  }
+};
+
+/// Tolerance for floating-point entries: 1e-9 relative to the largest exact entry, times the number
+/// of entries (accumulated rounding of a backward-stable computation on well-conditioned data).
+double matrix_tolerance(std::size_t entries) { return 1e-9 * static_cast<double>(std::max<std::size_t>(entries, 1)); }
+
+void compare_matrix(Checker& k, const std::string& key, const std::vector<std::vector<std::string>>& want, const json& found) {
+  k.out.compared.push_back(key);
+  if (!found.is_array() || found.size() != want.size()) {
+    k.out.disagreements.push_back(key + ": expected " + std::to_string(want.size()) + " rows, found " + shown(found));
+    return;
+  }
+  double scale = 1;
+  for (const auto& row : want)
+    for (const std::string& x : row) scale = std::max(scale, std::abs(reference::parse_rational(x).convert_to<double>()));
+  const double tol = matrix_tolerance(want.size() * (want.empty() ? 0 : want[0].size()));
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    if (!found[i].is_array() || found[i].size() != want[i].size()) {
+      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(want[i].size()) + " entries, found " +
+                                    shown(found[i]));
+      continue;
+    }
+    for (std::size_t j = 0; j < want[i].size(); ++j) {
+      const std::string path = "/" + key + "/" + std::to_string(i) + "/" + std::to_string(j);
+      const Number f = number(k.file, path, found[i][j]);
+      if (!close(f, reference::parse_rational(want[i][j]), tol, scale))
+        k.out.disagreements.push_back(key + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: expected " + want[i][j] + ", found " +
+                                      shown(found[i][j]) + " (tolerance " + std::to_string(tol * scale) + ")");
+    }
+  }
+}
+
+std::vector<std::vector<std::string>> column(const std::vector<std::string>& v) {
+  std::vector<std::vector<std::string>> m;
+  for (const std::string& x : v) m.push_back({x});
+  return m;
+}
+
+/// `final_constraints`: rows [a…, b] of equations whose solution set the result claims is M_c.
+/// Compared as affine subspaces: same dimension, and every equation holds on M_c (exact point and
+/// directions) to within 1e-9·κ(A)·‖row‖ (κ = condition of the result's rows: rounding in a
+/// well-posed computation moves the subspace by about ε·κ).
+void compare_final_constraints(Checker& k, const json& found, const io::QMatrix& basis, const std::vector<io::Rational>& point,
+                               long dim) {
+  k.out.compared.push_back("final_constraints");
+  const std::size_t n = basis.cols();
+  if (!found.is_array()) bad(k.file, "/final_constraints", "an array of rows [a_1, …, a_N, b]", shown(found));
+  std::vector<std::vector<Number>> rows;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (!found[i].is_array() || found[i].size() != n + 1)
+      bad(k.file, "/final_constraints/" + std::to_string(i), "a row of " + std::to_string(n + 1) + " numbers [a…, b]", shown(found[i]));
+    rows.emplace_back();
+    for (std::size_t j = 0; j <= n; ++j) rows.back().push_back(number(k.file, "/final_constraints/" + std::to_string(i) + "/" + std::to_string(j), found[i][j]));
+  }
+  // rank of the result's rows (their dimension claim) by exact elimination on the numbers as given
+  io::QMatrix a(rows.size(), n);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < n; ++j) a(i, j) = rows[i][j].exact ? rows[i][j].q : io::Rational(rows[i][j].d);
+  const long claimed = static_cast<long>(n) - static_cast<long>(reference::rref(a).pivots.size());
+  if (claimed != dim) {
+    k.out.disagreements.push_back("final_constraints: expected equations of a " + std::to_string(dim) + "-dimensional M_c, found " +
+                                  std::to_string(claimed) + "-dimensional");
+    return;
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    double norm = 0, at_point = 0, size = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      norm = std::max(norm, std::abs(rows[i][j].d));
+      at_point += rows[i][j].d * point[j].convert_to<double>();
+      size += std::abs(rows[i][j].d * point[j].convert_to<double>());
+    }
+    const double tol = 1e-9 * static_cast<double>(n) * std::max(1.0, norm);
+    bool ok = std::abs(at_point - rows[i][n].d) <= tol * std::max(1.0, size + std::abs(rows[i][n].d));
+    for (std::size_t b = 0; ok && b < basis.rows(); ++b) {
+      double s = 0, sz = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        s += rows[i][j].d * basis(b, j).convert_to<double>();
+        sz += std::abs(rows[i][j].d * basis(b, j).convert_to<double>());
+      }
+      ok = std::abs(s) <= tol * std::max(1.0, sz);
+    }
+    if (!ok) k.out.disagreements.push_back("final_constraints[" + std::to_string(i) + "]: does not hold on the reference M_c");
+  }
+}
+
+}  // namespace
+
+CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_in, const io::Netlist* deck) {
+  std::ifstream in(result_file);
+  if (!in) throw io::InputError(result_file + ": cannot read");
+  json r;
+  try {
+    r = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw io::InputError(result_file + ": expected a JSON result, found invalid JSON (" + e.what() + ")");
+  }
+  if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
+  if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"})
+    if (!r.contains(key)) bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\"", "nothing");
+  if (!r["dims"].is_array()) bad(result_file, "/dims", "an array of integers", shown(r["dims"]));
+  for (std::size_t i = 0; i < r["dims"].size(); ++i)
+    if (!r["dims"][i].is_number_integer()) bad(result_file, "/dims/" + std::to_string(i), "an integer", shown(r["dims"][i]));
+  if (!r["steps"].is_number_integer()) bad(result_file, "/steps", "an integer", shown(r["steps"]));
+  if (!r["consistent"].is_boolean()) bad(result_file, "/consistent", "true or false", shown(r["consistent"]));
+  if (!r["solution_rank"].is_number_integer() && !r["solution_rank"].is_null())
+    bad(result_file, "/solution_rank", "an integer (null if inconsistent)", shown(r["solution_rank"]));
+  if (r.contains("name") && r["name"] != c_in.name)
+    bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")", shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(c_in.variables))
+    bad(result_file, "/variables", "the variables of " + c_in.file, shown(r["variables"]) + ": a result for another case");
+
+  io::CaseFile c = c_in;
+  if (r.contains("reduced")) {  // the reference's reduced equations in the result's coordinates
+    const json& coords = r["reduced"].value("coordinates", json());
+    if (!coords.is_array()) bad(result_file, "/reduced/coordinates", "an array of variable names", shown(coords));
+    c.coordinates.clear();
+    for (std::size_t i = 0; i < coords.size(); ++i) {
+      const auto it = std::find(c.variables.begin(), c.variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
+      if (it == c.variables.end()) bad(result_file, "/reduced/coordinates/" + std::to_string(i), "a variable of " + c.file, shown(coords[i]));
+      c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
+    }
+  }
+  const bool dense = c.has_pontryagin || c.has_constrained || c.has_dirac;
+  const SolveReport truth = dense ? solve_reference(c) : solve_circuit_certified(*deck, c);
+  json want = to_json(truth, c);
+  if (deck) want["circuit"] = circuit_json(*deck, truth);
+
+  Checker k{result_file, {}};
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (r.contains("circuit") && deck)
+    for (const char* key : {"pc_loops", "empty_loops", "branches", "nodes"})
+      if (r["circuit"].contains(key)) k.compare(std::string("circuit.") + key, want["circuit"][key], r["circuit"][key]);
+  if (r.contains("constraint_classes") && want.contains("constraint_classes"))
+    for (const char* key : {"first_class", "second_class"})
+      if (r["constraint_classes"].contains(key))
+        k.compare(std::string("constraint_classes.") + key, want["constraint_classes"][key], r["constraint_classes"][key]);
+  if (r.contains("reduced")) {
+    if (!truth.has_reduced) {
+      k.out.compared.push_back("reduced");
+      k.out.disagreements.push_back("reduced: expected none (no equations of motion: " + std::string(truth.consistent ? "too large" : "inconsistent") +
+                                    "), found some");
+    } else {
+      compare_matrix(k, "reduced.F", truth.f_matrix, r["reduced"].value("F", json()));
+      compare_matrix(k, "reduced.f", column(truth.f), [&] {
+        json col = json::array();
+        for (const json& x : r["reduced"].value("f", json::array())) col.push_back(json::array({x}));
+        return col;
+      }());
+    }
+  }
+  if (r.contains("dirac_bracket")) {
+    if (truth.dirac_bracket.empty()) {
+      k.out.compared.push_back("dirac_bracket");
+      k.out.disagreements.push_back("dirac_bracket: expected none (only `constrained` cases have one), found one");
+    } else {
+      compare_matrix(k, "dirac_bracket", truth.dirac_bracket, r["dirac_bracket"]);
+    }
+  }
+  if (r.contains("final_constraints")) {
+    if (!truth.has_final || !truth.consistent) {
+      k.out.compared.push_back("final_constraints");
+      if (truth.consistent) k.out.disagreements.push_back("final_constraints: the reference has no exact M_c here (use a case of at most " +
+                                                          std::to_string(kDenseBranches) + " branches)");
+      else if (!r["final_constraints"].is_null()) k.out.disagreements.push_back("final_constraints: expected null (M_c is empty), found some");
+    } else {
+      compare_final_constraints(k, r["final_constraints"], truth.final_basis, truth.final_point, truth.dims.back());
+    }
+  }
+  return k.out;
+}
+
+}  // namespace dcad::cli

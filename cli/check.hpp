@@ -1,0 +1,22 @@
+// `dcad check RESULT.json FILE` (CONTRACT): another implementation's result for FILE against the
+// reference.  Discrete keys exactly; richer optional keys (`final_constraints`, `reduced`,
+// `dirac_bracket`) as subspaces or within a condition-aware tolerance (documented in the README).
+#pragma once
+
+#include "netlist.hpp"
+#include "solve.hpp"
+
+#include <ostream>
+
+namespace dcad::cli {
+
+struct CheckOutcome {
+  std::vector<std::string> compared;       ///< the keys that were compared
+  std::vector<std::string> disagreements;  ///< "key: expected …, found …"
+};
+
+/// Throws io::InputError (exit 1) for a RESULT that is not a result for this case: missing required
+/// keys (dims, steps, consistent, solution_rank), wrong types, another case's name or variables.
+CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c, const io::Netlist* deck);
+
+}  // namespace dcad::cli
