@@ -520,3 +520,142 @@ TEST(Cli, TextReportNamesTheStructure) {
   EXPECT_EQ(r.rc, 0);
   EXPECT_NE(r.out.find("dim E_D          = 10"), std::string::npos) << r.out;
 }
+
+// ---- dcad check (issue 5) ------------------------------------------------------------------------
+
+/// The keywords cases/schema/result.schema.json uses (type, required, properties, items, enum,
+/// minimum, minItems), checked literally; returns the first violation as "path: what".
+std::string schema_violation(const nlohmann::json& schema, const nlohmann::json& v, const std::string& path = "") {
+  if (schema.contains("type")) {
+    const auto is = [&](const std::string& t) {
+      return (t == "object" && v.is_object()) || (t == "array" && v.is_array()) || (t == "string" && v.is_string()) ||
+             (t == "integer" && v.is_number_integer()) || (t == "number" && v.is_number()) || (t == "boolean" && v.is_boolean()) ||
+             (t == "null" && v.is_null());
+    };
+    bool ok = false;
+    for (const auto& t : schema["type"].is_array() ? schema["type"] : nlohmann::json::array({schema["type"]})) ok = ok || is(t.get<std::string>());
+    if (!ok) return path + ": type " + schema["type"].dump() + ", found " + v.dump().substr(0, 80);
+  }
+  if (schema.contains("enum") && std::find(schema["enum"].begin(), schema["enum"].end(), v) == schema["enum"].end())
+    return path + ": one of " + schema["enum"].dump();
+  if (schema.contains("minimum") && v.is_number() && v.get<double>() < schema["minimum"].get<double>()) return path + ": below minimum";
+  if (v.is_object()) {
+    for (const auto& key : schema.value("required", nlohmann::json::array()))
+      if (!v.contains(key.get<std::string>())) return path + ": required " + key.get<std::string>();
+    const nlohmann::json properties = schema.value("properties", nlohmann::json::object());
+    for (const auto& [key, sub] : properties.items())
+      if (v.contains(key))
+        if (std::string why = schema_violation(sub, v[key], path + "/" + key); !why.empty()) return why;
+  }
+  if (v.is_array()) {
+    if (schema.contains("minItems") && v.size() < schema["minItems"].get<std::size_t>()) return path + ": too few items";
+    if (schema.contains("items"))
+      for (std::size_t i = 0; i < v.size(); ++i)
+        if (std::string why = schema_violation(schema["items"], v[i], path + "/" + std::to_string(i)); !why.empty()) return why;
+  }
+  return "";
+}
+
+std::vector<fs::path> every_case() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases"))
+    if (e.path().extension() == ".json" || e.path().extension() == ".cir") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Every case, every backend: the result validates against the schema, and `dcad check` accepts the
+// certified ones (comparing final_constraints as subspaces whenever the reference gives M_c).
+TEST(Check, EveryCaseValidatesAndRoundTrips) {
+  const nlohmann::json schema = nlohmann::json::parse(slurp(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json"));
+  int checked = 0;
+  for (const fs::path& file : every_case()) {
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + file.string() + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << file << " " << backend << ": " << r.err;
+      const nlohmann::json got = nlohmann::json::parse(r.out);
+      EXPECT_EQ(schema_violation(schema, got), "") << file << " " << backend;
+      if (!got["certified"].get<bool>()) continue;
+      const std::string result = write_temp("dcad_check_result.json", r.out);
+      const Outcome c = run("check " + result + " " + file.string());
+      EXPECT_EQ(c.rc, 0) << file << " " << backend << ": " << c.out << c.err;
+      if (backend == "reference") EXPECT_NE(c.out.find("final_constraints"), std::string::npos) << file;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 30);
+}
+
+// Wrong results are caught (exit 3) with the disagreement named.
+TEST(Check, DisagreementsExitThree) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend reference --json").out);
+  const auto expect_three = [&](nlohmann::json bad, const std::string& needle) {
+    const Outcome c = run("check " + write_temp("dcad_check_bad.json", bad.dump()) + " " + file);
+    EXPECT_EQ(c.rc, 3) << needle << ": " << c.out << c.err;
+    EXPECT_NE(c.out.find(needle), std::string::npos) << c.out;
+  };
+  nlohmann::json bad = good;
+  bad["dims"] = {12, 6, 4};
+  expect_three(bad, "dims: expected [12,6,5,4], found [12,6,4]");
+  bad = good;
+  bad["solution_rank"] = 1;
+  expect_three(bad, "solution_rank");
+  bad = good;
+  bad["reduced"]["F"][3][1] = -1.0 / 3 + 1e-3;  // a float 1e-3 off the exact −1/3
+  expect_three(bad, "reduced.F[3][1]");
+  bad = good;
+  bad["reduced"]["F"][3][1] = -1.0 / 3;  // the correctly rounded float passes
+  EXPECT_EQ(run("check " + write_temp("dcad_check_ok.json", bad.dump()) + " " + file).rc, 0);
+  bad = good;
+  bad["final_constraints"][0][3] = "-3/8";  // q_C1 − 3/8 q_C3 = 0 is not the KVLPC equation
+  expect_three(bad, "final_constraints[0]");
+  bad = good;
+  bad["final_constraints"].erase(0);  // one equation short: a 5-dimensional claim
+  expect_three(bad, "5-dimensional");
+}
+
+// Not a result for this case: exit 1 with where, expected and found; never exit 0 uncompared.
+TEST(Check, BadResultsExitOne) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend reference --json").out);
+  const auto expect_one = [&](const std::string& text, const std::string& needle) {
+    const std::string result = write_temp("dcad_check_input.json", text);
+    expect_input_error(run("check " + result + " " + file), result, needle, needle);
+  };
+  expect_one("{\"dims\": [12, 6", "invalid JSON");
+  expect_one("[1, 2]", "a JSON object");
+  nlohmann::json bad = good;
+  bad.erase("dims");
+  expect_one(bad.dump(), "/dims");
+  bad = good;
+  bad["steps"] = "three";
+  expect_one(bad.dump(), "/steps");
+  const std::string other = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/harmonic-oscillator.json --json").out;
+  expect_one(other, "another case");
+  bad = good;
+  bad["final_constraints"][0][1] = "x";
+  expect_one(bad.dump(), "/final_constraints/0/1");
+  EXPECT_EQ(run("check").rc, 2);
+}
+
+// The worked example of the README: an independent, naive Python CAD (proptests/peers/naive_cad.py)
+// is right on the 4-port and wrong on a circuit with a 1 pH inductor, and `dcad check` says so.
+TEST(Check, NaivePythonPeer) {
+  if (std::system("command -v python3 > /dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not installed";
+  const std::string peer = std::string(DCAD_SOURCE_DIR) + "/proptests/peers/naive_cad.py";
+  const auto peer_result = [&](const std::string& deck) {
+    const std::string out = (fs::temp_directory_path() / "dcad_peer.json").string();
+    EXPECT_EQ(std::system(("python3 " + peer + " " + deck + " > " + out).c_str()), 0);
+    return out;
+  };
+  for (const char* ok : {"lc-4port.cir", "remark-6-7.cir", "lc-empty-loop.cir"}) {
+    const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/" + ok;
+    const Outcome c = run("check " + peer_result(deck) + " " + deck);
+    EXPECT_EQ(c.rc, 0) << ok << ": " << c.out << c.err;
+  }
+  const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/lc-picohenry.cir";
+  const Outcome c = run("check " + peer_result(deck) + " " + deck);
+  EXPECT_EQ(c.rc, 3) << c.out << c.err;
+  EXPECT_NE(c.out.find("dims: expected [9,5,4,3]"), std::string::npos) << c.out;
+}
