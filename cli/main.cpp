@@ -2,6 +2,7 @@
 // 0 success, 1 bad input (file + line or JSON path, expected vs found), 2 bad usage.
 #include "case_file.hpp"
 #include "inspect.hpp"
+#include "cases.hpp"
 #include "check.hpp"
 #include "circuit_report.hpp"
 #include "plot.hpp"
@@ -68,6 +69,15 @@ int main(int argc, char** argv) {
   check->add_option("RESULT", check_result_file, "the other implementation's result (.json)")->required();
   check->add_option("FILE", check_file, "the case file or netlist it was computed for")->required();
 
+  std::string cases_action;
+  std::vector<std::string> cases_args;
+  CLI::App* cases = app.add_subcommand(
+      "cases", "The golden corpus: `list`, `show NAME`, `export DIR` (cases + their reference results + the result schema), "
+               "`freeze FILE [NAME]` (a property-test counterexample or any case → a golden case in cases/ with the "
+               "reference's expectations; DCAD_CASES overrides the directory).");
+  cases->add_option("ACTION", cases_action, "list, show, export or freeze")->required()->check(CLI::IsMember({"list", "show", "export", "freeze"}));
+  cases->add_option("ARGS", cases_args, "NAME, DIR or FILE [NAME]");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -131,6 +141,7 @@ int main(int argc, char** argv) {
         std::cout << dcad::cli::to_text(r, c) << (netlist ? dcad::cli::circuit_text(deck, r) : "");
       }
     }
+    if (cases->parsed()) return dcad::cli::cases_command(cases_action, cases_args, std::cout, std::cerr);
     if (check->parsed()) {
       const bool netlist = dcad::io::is_netlist_file(check_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(check_file) : dcad::io::Netlist();

@@ -659,3 +659,37 @@ TEST(Check, NaivePythonPeer) {
   EXPECT_EQ(c.rc, 3) << c.out << c.err;
   EXPECT_NE(c.out.find("dims: expected [9,5,4,3]"), std::string::npos) << c.out;
 }
+
+// Regression workflow: a property's failure log (its "dcad case: {…}" line, RC_LOG) → `dcad cases
+// freeze LOG NAME` → a golden case whose expectations the reference computed; `cases list/show/export`.
+TEST(Cases, FreezeListShowExport) {
+  const fs::path dir = fs::temp_directory_path() / "dcad_corpus_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "schema");
+  fs::copy_file(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json", dir / "schema/result.schema.json");
+  const std::string log = write_temp(
+      "dcad_property.log",
+      "Falsifiable after 12 tests and 3 shrinks\n"
+      "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"pontryagin\": {\"Q\": 1, \"constraints\": [], \"lagrangian\": "
+      "{\"vv\": [[\"1\"]], \"qq\": [[\"-1\"]]}}}\n"
+      "/work/main/proptests/prop_cad_fast.cpp:48: RC_ASSERT(...)\n");
+  setenv("DCAD_CASES", dir.c_str(), 1);
+  const Outcome f = run("cases freeze " + log + " regression-oscillator");
+  EXPECT_EQ(f.rc, 0) << f.err;
+  EXPECT_EQ(run("cases freeze " + log + " regression-oscillator").rc, 1);  // never overwrites
+  const Outcome l = run("cases list");
+  const Outcome s = run("cases show regression-oscillator");
+  const Outcome e = run("cases export " + (dir / "out").string());
+  EXPECT_EQ(run("cases show nosuchcase").rc, 1);
+  unsetenv("DCAD_CASES");
+  EXPECT_NE(l.out.find("regression-oscillator.json"), std::string::npos) << l.out;
+  const nlohmann::json frozen = nlohmann::json::parse(s.out);
+  EXPECT_EQ(frozen["expect"]["dims"], nlohmann::json::array({3, 2}));  // regular: M_1 = {p = v}, c = 1
+  EXPECT_EQ(frozen["expect"]["solution_rank"], 0);
+  EXPECT_EQ(e.rc, 0) << e.err;
+  EXPECT_TRUE(fs::exists(dir / "out/regression-oscillator.expected.json"));
+  EXPECT_TRUE(fs::exists(dir / "out/result.schema.json"));
+  // the frozen case is a golden case like any other: solve reproduces its expectations
+  const nlohmann::json got = nlohmann::json::parse(run("solve " + (dir / "regression-oscillator.json").string() + " --json").out);
+  EXPECT_EQ(got["dims"], frozen["expect"]["dims"]);
+}

@@ -1,5 +1,6 @@
 // fast CAD = reference CAD on every discrete output (dims of every M_k, c, consistency, solution
 // rank) unless fast says uncertain; the reduced equations agree within a condition-aware bound.
+#include "support/case_json.hpp"
 #include "support/convert.hpp"
 #include "support/tally.hpp"
 
@@ -33,6 +34,7 @@ RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
 
 RC_GTEST_PROP(FastVsReference, Cad, ()) {
   const ref::LinearSystem<Q> s = any_system();
+  RC_LOG() << case_json(s);
   fast::Options opt;
   const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
                               to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};

@@ -2,6 +2,7 @@
 // circuit's `pontryagin` system: the closed form of CEF §6 via Δ_k (reference, exact), and the
 // graph route of dcad::fast::circuit_tower (forests and fundamental loops; loop coordinates for
 // signed values).
+#include "support/case_json.hpp"
 #include "support/circuit_gen.hpp"
 #include "support/convert.hpp"
 #include "support/tally.hpp"
@@ -52,6 +53,7 @@ bool rows_vanish_on(const fast::CircuitTower& t, std::size_t k, const QSub& m) {
 
 /// The graph route's M_k equals the exact one: same dimension and its equations vanish there.
 void check_against_generic(const Circuit<Q>& c, const std::string& family) {
+  RC_LOG() << case_json(ref::circuit_lagrangian(c));
   const ref::CadResult<Q> r = generic(c);
   const fast::CircuitTower t = fast::circuit_tower(graph(c));
   RC_CLASSIFY(t.physical, "physical route");

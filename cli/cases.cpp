@@ -1,0 +1,157 @@
+#include "cases.hpp"
+
+#include "circuit_report.hpp"
+#include "netlist.hpp"
+#include "solve.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#ifndef DCAD_CASES_DIR
+#define DCAD_CASES_DIR "cases"
+#endif
+
+namespace dcad::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ordered = nlohmann::ordered_json;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw io::InputError(p.string() + ": cannot read");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<fs::path> corpus() {
+  std::vector<fs::path> files;
+  if (!fs::is_directory(cases_dir())) throw io::InputError(cases_dir() + ": expected the case directory (set DCAD_CASES), found none");
+  for (const auto& e : fs::directory_iterator(cases_dir()))
+    if (e.path().extension() == ".json" || io::is_netlist_file(e.path().string())) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// The reference result JSON for a case file or netlist (what `dcad solve --backend reference --json` prints).
+json reference_result(const fs::path& file) {
+  const bool netlist = io::is_netlist_file(file.string());
+  const io::Netlist deck = netlist ? io::read_netlist(file.string()) : io::Netlist();
+  const io::CaseFile c = netlist ? io::netlist_case(deck) : io::read_case(file.string());
+  const SolveReport r = solve_reference(c);
+  json j = to_json(r, c);
+  if (netlist) j["circuit"] = circuit_json(deck, r);
+  return j;
+}
+
+std::string summary(const fs::path& file) {
+  if (io::is_netlist_file(file.string())) {
+    std::istringstream in(slurp(file));
+    std::string title;
+    std::getline(in, title);
+    return "netlist: " + title;
+  }
+  const json j = json::parse(slurp(file), nullptr, false);
+  if (j.is_discarded()) return "(not JSON)";
+  const std::string d = j.value("description", "");
+  return (j.contains("pontryagin") ? "pontryagin: " : j.contains("constrained") ? "constrained: " : "dirac: ") + d.substr(0, d.find(". "));
+}
+
+fs::path find_case(const std::string& name) {
+  for (const fs::path& p : corpus())
+    if (p.stem() == name || p.filename() == name) return p;
+  throw io::InputError("dcad cases show: expected a case name from `dcad cases list`, found \"" + name + "\"");
+}
+
+/// The keys a golden case pins (the CONTRACT's discrete keys, plus the circuit counts).
+ordered expectations(const json& result) {
+  ordered e;
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique"}) e[key] = result[key];
+  if (result.contains("circuit"))
+    e["circuit"] = {{"pc_loops", result["circuit"]["pc_loops"]}, {"empty_loops", result["circuit"]["empty_loops"]}};
+  if (result.contains("reduced")) e["reduced"] = {{"coordinates", result["reduced"]["coordinates"]}, {"F", result["reduced"]["F"]}, {"f", result["reduced"]["f"]}};
+  return e;
+}
+
+int freeze(const std::vector<std::string>& args, std::ostream& out) {
+  if (args.empty()) throw io::InputError("dcad cases freeze: expected FILE [NAME], found nothing");
+  const fs::path from = args[0];
+  std::string text = slurp(from);
+  const bool netlist = io::is_netlist_file(from.string());
+  if (!netlist) {  // a property log: the line "dcad case: {…}"
+    const std::size_t at = text.find("dcad case: ");
+    if (at != std::string::npos) text = text.substr(at + 11, text.find('\n', at) - at - 11);
+  }
+  const std::string name = args.size() > 1 ? args[1] : "regression-" + from.stem().string();
+  const fs::path to = fs::path(cases_dir()) / (name + (netlist ? from.extension().string() : ".json"));
+  if (fs::exists(to)) throw io::InputError(to.string() + ": expected a new case name, found an existing case");
+  const fs::path tmp = fs::temp_directory_path() / ("dcad_freeze" + std::string(netlist ? from.extension().string() : ".json"));
+  {
+    std::ofstream t(tmp);
+    t << text;
+  }
+  const json result = reference_result(tmp);  // bad input throws here, naming the file
+  std::ofstream o(to);
+  if (netlist) {
+    std::istringstream in(text);
+    std::string title;
+    std::getline(in, title);
+    o << title << "\n* dcad cases freeze " << from.string() << ": expectations by the reference backend\n* expect: "
+      << expectations(result).dump() << "\n";
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("* expect:", 0) != 0) o << line << "\n";
+  } else {
+    ordered c = ordered::parse(text);
+    c["name"] = name;
+    if (!c.contains("description")) c["description"] = "regression case frozen from " + from.string() + " by `dcad cases freeze`";
+    c["expect"] = expectations(result);
+    o << c.dump(2) << "\n";
+  }
+  fs::remove(tmp);
+  out << "wrote " << to.string() << " (expectations by the reference backend: dims " << result["dims"].dump() << ")\n";
+  return 0;
+}
+
+}  // namespace
+
+std::string cases_dir() {
+  const char* env = std::getenv("DCAD_CASES");
+  return env && *env ? env : DCAD_CASES_DIR;
+}
+
+int cases_command(const std::string& action, const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (action == "list") {
+    for (const fs::path& p : corpus()) out << p.filename().string() << "\t" << summary(p) << "\n";
+    return 0;
+  }
+  if (action == "show") {
+    if (args.empty()) throw io::InputError("dcad cases show: expected a case name, found nothing");
+    out << slurp(find_case(args[0]));
+    return 0;
+  }
+  if (action == "export") {
+    if (args.empty()) throw io::InputError("dcad cases export: expected a directory, found nothing");
+    const fs::path dir = args[0];
+    fs::create_directories(dir);
+    int n = 0;
+    for (const fs::path& p : corpus()) {
+      fs::copy_file(p, dir / p.filename(), fs::copy_options::overwrite_existing);
+      std::ofstream(dir / (p.stem().string() + ".expected.json")) << reference_result(p).dump(2) << "\n";
+      ++n;
+    }
+    fs::copy_file(fs::path(cases_dir()) / "schema" / "result.schema.json", dir / "result.schema.json", fs::copy_options::overwrite_existing);
+    out << "exported " << n << " cases with their reference results (NAME.expected.json) and result.schema.json to " << dir.string() << "\n";
+    return 0;
+  }
+  if (action == "freeze") return freeze(args, out);
+  err << "dcad cases: expected list, show, export or freeze, found \"" << action << "\"\n";
+  return 2;
+}
+
+}  // namespace dcad::cli
