@@ -47,7 +47,7 @@ struct SolveReport {
   std::vector<io::Rational> final_point;
   std::vector<Equation> final_constraints;  ///< equations of M_c (reference; JSON `final_constraints`)
   std::string note;  ///< e.g. why `certified` recomputed exactly
-  long decisions_float = 0, decisions_exact = 0;
+  long decisions_float = 0, decisions_verified = 0, decisions_exact = 0;
 };
 
 /// "2*x1 - 1/3*x2 = 5" in the given variable names.
@@ -59,7 +59,11 @@ Equation row_equation(const io::QMatrix& rows, std::size_t i);
 
 SolveReport solve_reference(const io::CaseFile& c);
 SolveReport solve_fast(const io::CaseFile& c);
-/// fast; if any decision is uncertain, the whole result recomputed exactly from the exact input.
+/// The reference pipeline in ball arithmetic (solve_ball.cpp); throws reference::Uncertain at the
+/// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.
+SolveReport solve_ball(const io::CaseFile& c, double& max_radius);
+/// solve_ball; if a decision is uncertain there, the whole result recomputed exactly (reference).
+/// Either way every discrete output equals the reference's (ball.hpp gives the proof).
 SolveReport solve_certified(const io::CaseFile& c);
 
 nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c);

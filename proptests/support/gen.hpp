@@ -4,6 +4,7 @@
 
 #include "dcad/reference/dirac_bergmann.hpp"
 #include "dcad/reference/rational.hpp"
+#include "families.hpp"
 
 #include <rapidcheck.h>
 
@@ -260,17 +261,9 @@ inline reference::LinearSystem<Q> change_coordinates(const reference::LinearSyst
 /// tangency condition adds the next: q_2, …, q_m, p_m, …, p_1, z — dims N, N−1, …, 0.  Moved by a
 /// random unimodular change of coordinates.
 inline reference::LinearSystem<Q> long_tower_system(Index max_m = 4) {
-  const Index m = pick_size(1, max_m), n = 2 * m + 1, z = 2 * m;
-  QM w(n, n), h(n, n);
-  for (Index i = 0; i < m; ++i) {
-    w(i, m + i) = Q(1);
-    w(m + i, i) = Q(-1);
-  }
-  h(z, 0) = h(0, z) = Q(1);
-  for (Index i = 0; i + 1 < m; ++i) h(m + i, i + 1) = h(i + 1, m + i) = Q(1);
-  h(2 * m - 1, 2 * m - 1) = Q(1);
-  const reference::LinearSystem<Q> s{reference::dirac_from_presymplectic(w), h, std::vector<Q>(n, Q(0)), Q(0)};
-  return change_coordinates(s, unimodular(n));
+  const Index m = pick_size(1, max_m), n = 2 * m + 1;
+  const families::Instance t = families::tower_instance(m, unimodular(n), "tower", static_cast<double>(n));
+  return {reference::dirac_from_presymplectic(t.omega), t.hessian, t.gradient, Q(0)};
 }
 
 /// Symplectic Ω = Aᵀ J A on Q^{2m}, quadratic E of random rank, k primary constraints (often

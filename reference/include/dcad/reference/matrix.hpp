@@ -1,6 +1,8 @@
 // Dense matrices over an exact field and exact row reduction.
 // Everything here is a literal textbook algorithm: no pivoting strategy, no tolerance;
-// a zero test is `x == 0`.  The scalar must be exact (std::numeric_limits<T>::is_exact).
+// a zero test is `x == 0`.  The scalar must be exact (std::numeric_limits<T>::is_exact), or declare
+// what its zero test is (`T::zero_test`): Ball (ball.hpp) answers it with a proof or throws, and
+// the benchmark's tolerance scalars answer it approximately (a comparison method, never the product).
 #pragma once
 
 #include <cstddef>
@@ -8,6 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace dcad::reference {
@@ -18,12 +22,28 @@ struct is_exact_field {
                                 !std::numeric_limits<T>::is_integer;
 };
 
+template <class T, class = void>
+struct declares_zero_test : std::false_type {};
+template <class T>
+struct declares_zero_test<T, std::void_t<decltype(T::zero_test)>> : std::true_type {};
+
+template <class T>
+struct admissible_scalar {
+  static constexpr bool value = is_exact_field<T>::value || declares_zero_test<T>::value;
+};
+
+/// x == 0 where skipping a zero is only an optimization (no decision is needed; Ball overloads it).
+template <class T>
+bool known_zero(const T& x) {
+  return x == 0;
+}
+
 using Index = std::size_t;
 
 /// Row-major dense matrix over an exact field.  Vectors are r×1 or 1×c matrices or std::vector<T>.
 template <class T>
 class Matrix {
-  static_assert(is_exact_field<T>::value, "dcad::reference works over an exact field only (e.g. mpq_rational)");
+  static_assert(admissible_scalar<T>::value, "dcad::reference works over an exact field only (e.g. mpq_rational)");
 
  public:
   Matrix() = default;
@@ -97,7 +117,7 @@ Matrix<T> operator*(const Matrix<T>& a, const Matrix<T>& b) {
   Matrix<T> c(a.rows(), b.cols());
   for (Index i = 0; i < a.rows(); ++i)
     for (Index k = 0; k < a.cols(); ++k) {
-      if (a(i, k) == 0) continue;
+      if (known_zero(a(i, k))) continue;
       for (Index j = 0; j < b.cols(); ++j) c(i, j) += a(i, k) * b(k, j);
     }
   return c;
@@ -157,6 +177,32 @@ bool is_symmetric(const Matrix<T>& m) {
   return is_square(m) && m == m.transpose();
 }
 
+template <class T, class = void>
+struct has_pivot_weight : std::false_type {};
+template <class T>
+struct has_pivot_weight<T, std::void_t<decltype(pivot_weight(std::declval<const T&>()))>> : std::true_type {};
+
+/// The row p ≥ row holding the pivot of column `col`, or m.rows() if the column is zero there.
+/// Exact scalars: the first nonzero entry.  Any nonzero entry gives the same RREF (the RREF of a
+/// matrix is unique), so a scalar with a `pivot_weight` (Ball) first takes its largest entry that
+/// is certainly nonzero, and tests entries for zero only when there is none.
+template <class T>
+Index pivot_row(const Matrix<T>& m, Index row, Index col) {
+  if constexpr (has_pivot_weight<T>::value) {
+    Index best = m.rows();
+    double w = 0;
+    for (Index p = row; p < m.rows(); ++p)
+      if (pivot_weight(m(p, col)) > w) {
+        w = pivot_weight(m(p, col));
+        best = p;
+      }
+    if (best < m.rows()) return best;
+  }
+  Index p = row;
+  while (p < m.rows() && m(p, col) == 0) ++p;
+  return p;
+}
+
 /// Reduced row echelon form with its pivot columns (Gauss–Jordan, exact).
 template <class T>
 struct Rref {
@@ -169,14 +215,13 @@ Rref<T> rref(Matrix<T> m) {
   std::vector<Index> pivots;
   Index row = 0;
   for (Index col = 0; col < m.cols() && row < m.rows(); ++col) {
-    Index p = row;
-    while (p < m.rows() && m(p, col) == 0) ++p;
+    const Index p = pivot_row(m, row, col);
     if (p == m.rows()) continue;
     for (Index j = 0; j < m.cols(); ++j) std::swap(m(row, j), m(p, j));
     const T inv = T(1) / m(row, col);
     for (Index j = 0; j < m.cols(); ++j) m(row, j) *= inv;
     for (Index i = 0; i < m.rows(); ++i) {
-      if (i == row || m(i, col) == 0) continue;
+      if (i == row || known_zero(m(i, col))) continue;
       const T f = m(i, col);
       for (Index j = 0; j < m.cols(); ++j) m(i, j) -= f * m(row, j);
     }
@@ -251,8 +296,7 @@ T determinant(Matrix<T> m) {
   require(is_square(m), "determinant", "a square matrix", shape(m));
   T det(1);
   for (Index c = 0; c < m.rows(); ++c) {
-    Index p = c;
-    while (p < m.rows() && m(p, c) == 0) ++p;
+    const Index p = pivot_row(m, c, c);
     if (p == m.rows()) return T(0);
     if (p != c) {
       for (Index j = 0; j < m.cols(); ++j) std::swap(m(c, j), m(p, j));

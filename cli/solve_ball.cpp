@@ -1,0 +1,33 @@
+// The reference pipeline in certified ball arithmetic (the one translation unit that instantiates
+// solve_exact on reference::Ball).  Numbers printed are ball midpoints (%.17g); a coefficient whose
+// ball contains 0 is not printed as a term.
+#include "dcad/reference/ball.hpp"
+#include "solve_exact.hpp"
+
+#include <algorithm>
+
+namespace dcad::cli {
+
+namespace {
+thread_local double widest = 0;  // the largest radius printed
+}
+
+template <>
+struct Scalar<reference::Ball> {
+  static reference::Ball lift(const io::Rational& q) { return reference::Ball::enclosing(q); }
+  static std::string text(const reference::Ball& b) {
+    widest = std::max(widest, b.rad());
+    return float_text(b.mid());
+  }
+  static bool printable(const reference::Ball& b) { return std::abs(b.mid()) > b.rad(); }
+  static void keep_final(SolveReport&, const reference::Matrix<reference::Ball>&, const std::vector<reference::Ball>&) {}
+};
+
+SolveReport solve_ball(const io::CaseFile& c, double& max_radius) {
+  widest = 0;
+  SolveReport out = solve_exact<reference::Ball>(c);
+  max_radius = widest;
+  return out;
+}
+
+}  // namespace dcad::cli
