@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <charconv>
 #include <cmath>
 #include <iomanip>
 
@@ -104,13 +105,23 @@ void simulate(const io::CaseFile& c, const std::vector<std::optional<io::Rationa
   za << z0, 1.0;
   out << "t";
   for (const std::string& v : c.variables) out << "," << v;
-  out << "\n" << std::setprecision(17);
+  out << "\n";
+  // Shortest round-trip text (std::to_chars): the same doubles as %.17g, several times faster to
+  // write — at 10^4 rows formatting was most of the run time.
+  std::string line;
+  char buf[32];
+  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
   const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
   for (long k = 0; k <= steps; ++k) {
     const Eigen::VectorXd x = x0 + liftd * (za.head(m) - z0);
-    out << k * opt.step;
-    for (Eigen::Index i = 0; i < x.size(); ++i) out << "," << x(i);
-    out << "\n";
+    line.clear();
+    put(k * opt.step);
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      line += ',';
+      put(x(i));
+    }
+    line += '\n';
+    out << line;
     za = p * za;
   }
 }

@@ -1,0 +1,188 @@
+#!/usr/bin/env python3
+"""The four charts of issue 6 and the summary of ratios, from the CSVs of one run (bench/run.sh):
+    python3 bench/charts.py RESULTS_DIR CHARTS_DIR
+RESULTS_DIR holds sweep.csv (dcad_sweep), peers.csv (peers/cad_peers.py), trajectory.csv
+(trajectory.py) and kernels.csv (bench_kernels, Google Benchmark CSV).  Writes CHARTS_DIR/*.png
+with gnuplot (pngcairo if present, else png) and RESULTS_DIR/summary.md.  Standard library only.
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+from collections import defaultdict
+
+METHODS = ["reference", "certified", "bf100", "bf50", "naive", "fast", "sympy", "numpy", "scipy"]
+LABEL = {"reference": "reference (mpq)", "certified": "certified (ball + exact)", "bf100": "bin\\\\_float\\\\_100 + tol",
+         "bf50": "bin\\\\_float\\\\_50 + tol", "naive": "naive double + tol", "fast": "fast (SVD)", "sympy": "sympy (exact)",
+         "numpy": "numpy (SVD)", "scipy": "scipy (pivoted QR)"}
+PRESYMPLECTIC = {"graded", "perturbed", "tower"}
+
+
+def read_rows(path, header=None):
+    with open(path) as f:
+        return list(csv.DictReader(f, fieldnames=header))
+
+
+def fit_exponent(points):
+    pts = [(math.log(n), math.log(t)) for n, t in points if n > 0 and t > 0]
+    if len(pts) < 2:
+        return float("nan")
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    sxx = sum((x - mx) ** 2 for x, _ in pts)
+    return sum((x - mx) * (y - my) for x, y in pts) / sxx if sxx else float("nan")
+
+
+def main():
+    res, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    header = "family,param,n,method,instances,wrong,wrong_claimed_certain,uncertain,recomputed,max_angle,mean_seconds".split(",")
+    rows = read_rows(os.path.join(res, "sweep.csv"))
+    peers = os.path.join(res, "peers.csv")
+    if os.path.exists(peers):
+        rows += read_rows(peers, header)
+    for r in rows:
+        for k in ("param", "n", "instances", "wrong", "wrong_claimed_certain", "uncertain", "recomputed", "max_angle", "mean_seconds"):
+            r[k] = float(r[k])
+    data = os.path.join(out, "data")
+    os.makedirs(data, exist_ok=True)
+
+    # (1) Pareto: mean time per instance against the fraction of wrong answers, presymplectic families.
+    agg = defaultdict(lambda: [0.0, 0.0, 0.0, 0.0])  # instances, wrong, seconds·instances, wrong_certain
+    for r in rows:
+        if r["family"] in PRESYMPLECTIC:
+            a = agg[r["method"]]
+            a[0] += r["instances"]
+            a[1] += r["wrong"]
+            a[2] += r["mean_seconds"] * r["instances"]
+            a[3] += r["wrong_claimed_certain"]
+    plot1 = []
+    for i, m in enumerate(METHODS):
+        if m in agg and agg[m][0]:
+            n, w, s, _ = agg[m]
+            fn = os.path.join(data, f"pareto_{m}.dat")
+            with open(fn, "w") as f:
+                f.write(f"{s / n:.6g} {w / n:.6g}\n")
+            plot1.append(f"'{fn}' using 1:2 with points pt {i + 4} ps 2.5 lw 2 title \"{LABEL[m]}\"")
+
+    # (2) wrong-answer rate against condition number (graded family), one file per method.
+    graded = defaultdict(list)
+    for r in rows:
+        if r["family"] == "graded":
+            graded[r["method"]].append((r["param"], r["wrong"] / r["instances"]))
+    plot2 = []
+    for i, m in enumerate(METHODS):
+        if m in graded:
+            fn = os.path.join(data, f"graded_{m}.dat")
+            with open(fn, "w") as f:
+                for k, w in sorted(graded[m]):
+                    f.write(f"{k:g} {w:g}\n")
+            plot2.append(f"'{fn}' using 1:2 with linespoints lw 2 pt {i + 1} title \"{LABEL[m]}\"")
+
+    # (3) time against size (size family), log-log, fitted exponents.
+    sizes = defaultdict(list)
+    for r in rows:
+        if r["family"] == "size":
+            sizes[r["method"]].append((r["n"], r["mean_seconds"]))
+    plot3, exponents = [], {}
+    for i, m in enumerate(METHODS):
+        if m in sizes:
+            fn = os.path.join(data, f"size_{m}.dat")
+            with open(fn, "w") as f:
+                for n, t in sorted(sizes[m]):
+                    f.write(f"{n:g} {t:g}\n")
+            exponents[m] = fit_exponent(sizes[m])
+            plot3.append(f"'{fn}' using 1:2 with linespoints lw 2 pt {i + 1} title \"{LABEL[m]}  N^{{{exponents[m]:.1f}}}\"")
+
+    # (4) trajectory error against run time.
+    traj = read_rows(os.path.join(res, "trajectory.csv"))
+    for tool in ("dcad", "ngspice"):
+        with open(os.path.join(data, f"traj_{tool}.dat"), "w") as f:
+            for r in traj:
+                if r["tool"] == tool and r["max_rel_error"] != "nan":
+                    f.write(f'{r["seconds"]} {r["max_rel_error"]} "{r["setting"]}"\n')
+
+    term = "pngcairo size 720,460 font ',10'"
+    if subprocess.run(["gnuplot", "-e", "set terminal pngcairo"], capture_output=True).returncode != 0:
+        term = "png size 720,460"
+    gp = f"""set terminal {term}
+set key outside right
+set grid
+set output '{out}/pareto.png'
+set title 'Speed against accuracy: presymplectic families (graded, perturbed, tower)'
+set logscale x
+set xlabel 'mean time per instance [s]'
+set ylabel 'fraction of wrong discrete answers'
+set yrange [-0.05:1.05]
+plot {", ".join(plot1)}
+set output '{out}/wrong_vs_condition.png'
+set title 'Wrong answers against condition (graded tower, planted answer)'
+set logscale x
+set xlabel 'condition number of the data'
+set ylabel 'fraction wrong'
+set yrange [-0.05:1.05]
+plot {", ".join(plot2)}
+set output '{out}/time_vs_size.png'
+set title 'Time against size (graded tower, condition 10^2)'
+set logscale xy
+set xlabel 'N'
+set ylabel 'mean time per instance [s]'
+set autoscale y
+plot {", ".join(plot3)}
+set output '{out}/trajectory.png'
+set title '4-port (CEF Fig. 6.1): trajectory error against run time'
+set logscale xy
+set xlabel 'run time [s] (whole process)'
+set ylabel 'max relative error of i_L vs analytic'
+plot '{data}/traj_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad simulate (exact flow)', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle, \\
+     '{data}/traj_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice', '' using 1:2:3 with labels offset 0,1 font ',7' notitle
+"""
+    with open(os.path.join(data, "charts.gp"), "w") as f:
+        f.write(gp)
+    subprocess.run(["gnuplot", os.path.join(data, "charts.gp")], check=True)
+
+    # Summary of the ratios the issue asks for, all from this run.
+    lines = ["# dcad benchmark summary (one run; regenerate with `bash bench/run.sh`)\n"]
+    k = {}
+    kp = os.path.join(res, "kernels.csv")
+    if os.path.exists(kp):
+        with open(kp) as f:
+            text = f.read()
+        body = text[text.index("name,"):] if "name," in text else ""
+        for r in csv.DictReader(body.splitlines()):
+            k[r["name"].split("/iterations")[0]] = float(r["real_time"]) * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9, "s": 1.0}[r["time_unit"]]
+    for n in (100, 200, 500):
+        if f"FastCad/{n}" in k and f"ColPivQR/{n}" in k:
+            lines.append(f"- fast CAD at N = {n}: {k[f'FastCad/{n}']:.3g} s, one pivoted QR of an N×N matrix {k[f'ColPivQR/{n}']:.3g} s: "
+                         f"ratio {k[f'FastCad/{n}'] / k[f'ColPivQR/{n}']:.0f}× (goal ≤ 4×)\n")
+    ref_t = {(r["family"], r["param"]): r["mean_seconds"] for r in rows if r["method"] == "reference"}
+    ratios = [(fam, p, t / ref_t[(fam, p)]) for (fam, p, t) in
+              ((r["family"], r["param"], r["mean_seconds"]) for r in rows if r["method"] == "sympy") if (fam, p) in ref_t]
+    if ratios:
+        lo, hi = min(x for *_, x in ratios), max(x for *_, x in ratios)
+        lines.append(f"- reference against sympy, same instances, same steps: sympy takes {lo:.0f}× … {hi:.0f}× as long "
+                     f"(median {sorted(x for *_, x in ratios)[len(ratios) // 2]:.0f}×; goal ≥ 50×)\n")
+    dc = [r for r in traj if r["tool"] == "dcad" and r["setting"] == "step=0.001"]
+    ng = [r for r in traj if r["tool"] == "ngspice" and r["max_rel_error"] != "nan"]
+    if dc and ng:
+        d = dc[0]
+        best = min(ng, key=lambda r: float(r["max_rel_error"]))
+        lines.append(f"- dcad simulate (10,001 points) {float(d['seconds']):.3g} s at error {d['max_rel_error']}; ngspice's most "
+                     f"accurate run ({best['setting']}) {float(best['seconds']):.3g} s at error {best['max_rel_error']}: dcad "
+                     f"{float(best['seconds']) / float(d['seconds']):.0f}× faster and more accurate (goal ≥ 10×)\n")
+    cert = agg.get("certified")
+    if cert:
+        lines.append(f"- certified in this sweep: {int(cert[1])} wrong of {int(cert[0])} presymplectic instances\n")
+    lines.append("\n| method | instances | wrong | wrong while claiming certain | mean time [s] | size exponent |\n|---|---|---|---|---|---|\n")
+    for m in METHODS:
+        if m in agg:
+            n, w, s, wc = agg[m]
+            lines.append(f"| {m} | {int(n)} | {int(w)} | {int(wc)} | {s / n:.3g} | {exponents.get(m, float('nan')):.2f} |\n")
+    with open(os.path.join(res, "summary.md"), "w") as f:
+        f.writelines(lines)
+    sys.stdout.writelines(lines)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,40 @@
+// The methods compared by the sweep (issue 6), one translation unit each (heavy templates):
+//   reference  the exact CAD (mpq_rational)                         method_reference.cpp
+//   bf100/bf50 the same algorithm in cpp_bin_float_100/_50, |x| ≤ 1e-85/1e-40 × scale is zero
+//   naive      the same algorithm in double, |x| ≤ 1e-9 × scale is zero   method_approx_*.cpp
+//   fast       dcad::fast (orthogonal decompositions, SVD rank decisions)  method_fast.cpp
+//   certified  the algorithm in ball arithmetic, exact on an uncertain test method_certified.cpp
+#pragma once
+
+#include "families.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace dcad::bench {
+
+struct Outcome {
+  std::vector<long> dims;
+  long solution_rank = -1;
+  bool consistent = true;
+  bool uncertain = false;   ///< the method said so (fast's verdict)
+  bool recomputed = false;  ///< certified: some zero test needed the exact recomputation
+  bool failed = false;      ///< threw (message in `error`): counted as a wrong answer
+  std::string error;
+  std::vector<Eigen::MatrixXd> tower;  ///< columns span T M_k, k = 0 … c (double)
+};
+
+using Method = Outcome (*)(const families::Instance&);
+Outcome run_reference(const families::Instance&);
+Outcome run_bf100(const families::Instance&);
+Outcome run_bf50(const families::Instance&);
+Outcome run_naive(const families::Instance&);
+Outcome run_fast(const families::Instance&);
+Outcome run_certified(const families::Instance&);
+
+/// Largest principal angle between two subspaces (columns); π/2 if the dimensions differ.
+double largest_angle(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
+}  // namespace dcad::bench

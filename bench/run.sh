@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The speed-against-accuracy benchmark of issue 6, one command:
+#   bash bench/run.sh [--quick]
+# Installs what it needs (Debian packages), builds the benchmark targets in build/, runs
+#   dcad_sweep (every family × method, progress bar)  -> bench/results/sweep.csv, instances.jsonl
+#   peers/cad_peers.py (sympy, numpy, scipy on the same instances)  -> bench/results/peers.csv
+#   trajectory.py (dcad simulate vs ngspice vs the analytic 4-port)  -> bench/results/trajectory.csv
+#   bench_kernels (Google Benchmark)                                 -> bench/results/kernels.csv
+#   charts.py (gnuplot)                                              -> bench/charts/*.png, results/summary.md
+# --quick (under 2 minutes once built): fewer instances, sympy up to N = 21, kernels up to N = 200.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+quick=""
+[ "${1:-}" = "--quick" ] && quick="--quick"
+bash .ci/setup --bench
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDCAD_BUILD_BENCH=ON > /dev/null
+cmake --build build -j2 --target dcad dcad_sweep bench_kernels
+mkdir -p bench/results bench/charts
+start=$(date +%s)
+echo "== sweep (methods × families)"
+build/dcad_sweep $quick --out bench/results
+echo "== peers (sympy, numpy, scipy)"
+if [ -n "$quick" ]; then sympy_max=(--sympy-max-n 21); else sympy_max=(); fi
+/usr/bin/python3 bench/peers/cad_peers.py bench/results/instances.jsonl "${sympy_max[@]}" > bench/results/peers.csv
+echo "== trajectories (dcad simulate, ngspice)"
+/usr/bin/python3 bench/trajectory.py build/dcad cases bench/results/trajectory.csv
+echo "== kernels (Google Benchmark)"
+if [ -n "$quick" ]; then filter='ColPivQR|FastCad/(100|200)/|Rref.*/(20|50)$'; else filter='.'; fi
+build/bench_kernels --benchmark_filter="$filter" --benchmark_format=csv > bench/results/kernels.csv
+echo "== charts"
+/usr/bin/python3 bench/charts.py bench/results bench/charts
+echo "bench/run.sh $quick: $(( $(date +%s) - start )) s after the build"
