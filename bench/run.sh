@@ -8,6 +8,7 @@
 #   bench_kernels (Google Benchmark)                                 -> bench/results/kernels.csv
 #   charts.py (gnuplot)                                              -> bench/charts/*.png, results/summary.md
 # --quick (under 2 minutes once built): fewer instances, sympy up to N = 21, kernels up to N = 200.
+# Full: about 10 minutes; sympy up to N = 33.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 quick=""
@@ -19,9 +20,10 @@ mkdir -p bench/results bench/charts
 start=$(date +%s)
 echo "== sweep (methods × families)"
 build/dcad_sweep $quick --out bench/results
+mv bench/results/instances.jsonl build/bench_instances.jsonl  # 3 MB of exact matrices: not committed
 echo "== peers (sympy, numpy, scipy)"
-if [ -n "$quick" ]; then sympy_max=(--sympy-max-n 21); else sympy_max=(); fi
-/usr/bin/python3 bench/peers/cad_peers.py bench/results/instances.jsonl "${sympy_max[@]}" > bench/results/peers.csv
+if [ -n "$quick" ]; then sympy_max=21; else sympy_max=33; fi  # sympy takes minutes per instance at N = 41
+/usr/bin/python3 bench/peers/cad_peers.py build/bench_instances.jsonl --sympy-max-n $sympy_max > bench/results/peers.csv
 echo "== trajectories (dcad simulate, ngspice)"
 /usr/bin/python3 bench/trajectory.py build/dcad cases bench/results/trajectory.csv
 echo "== kernels (Google Benchmark)"

@@ -100,7 +100,7 @@ std::vector<Plan> plans(bool quick, int reps) {
       {"tower", {1, 2, 3, 4, 5}, r, [](double m, std::mt19937_64& g) { return fam::tower(static_cast<fam::Index>(m), g); }},
       {"lc", {0, 3, 6, 9, 12, 15}, r, [](double s, std::mt19937_64& g) { return fam::lc(s, g); }},
       {"cancel", {2, 4, 8, 12, 16}, r, [](double d, std::mt19937_64& g) { return fam::cancel(static_cast<int>(d), g); }},
-      {"size", sizes, std::max(1, r / 3),
+      {"size", sizes, std::max(2, r / 8),
        [](double m, std::mt19937_64& g) { return fam::graded(1e2, g, static_cast<fam::Index>(m), "size"); }},
   };
 }
