@@ -1,34 +1,34 @@
 set terminal pngcairo size 720,460 font ',10'
 set key outside right
 set grid
-set output 'charts/pareto.png'
+set output 'bench/charts/pareto.png'
 set title 'Speed against accuracy: presymplectic families (graded, perturbed, tower)'
 set logscale x
 set xlabel 'mean time per instance [s]'
 set ylabel 'fraction of wrong discrete answers'
 set yrange [-0.05:1.05]
-plot 'results/plot/pareto_reference.dat' using 1:2 with points pt 4 ps 2.5 lw 2 title "reference (mpq)", 'results/plot/pareto_certified.dat' using 1:2 with points pt 5 ps 2.5 lw 2 title "certified (ball + exact)", 'results/plot/pareto_bf100.dat' using 1:2 with points pt 6 ps 2.5 lw 2 title "bin\\_float\\_100 + tol", 'results/plot/pareto_bf50.dat' using 1:2 with points pt 7 ps 2.5 lw 2 title "bin\\_float\\_50 + tol", 'results/plot/pareto_naive.dat' using 1:2 with points pt 8 ps 2.5 lw 2 title "naive double + tol", 'results/plot/pareto_fast.dat' using 1:2 with points pt 9 ps 2.5 lw 2 title "fast (SVD)", 'results/plot/pareto_sympy.dat' using 1:2 with points pt 10 ps 2.5 lw 2 title "sympy (exact)", 'results/plot/pareto_numpy.dat' using 1:2 with points pt 11 ps 2.5 lw 2 title "numpy (SVD)", 'results/plot/pareto_scipy.dat' using 1:2 with points pt 12 ps 2.5 lw 2 title "scipy (pivoted QR)"
-set output 'charts/wrong_vs_condition.png'
+plot 'bench/results/plot/pareto_reference.dat' using 1:2 with points pt 4 ps 2.5 lw 2 title "reference (mpq)", 'bench/results/plot/pareto_certified.dat' using 1:2 with points pt 5 ps 2.5 lw 2 title "certified (ball + exact)", 'bench/results/plot/pareto_bf100.dat' using 1:2 with points pt 6 ps 2.5 lw 2 title "bin\\_float\\_100 + tol", 'bench/results/plot/pareto_bf50.dat' using 1:2 with points pt 7 ps 2.5 lw 2 title "bin\\_float\\_50 + tol", 'bench/results/plot/pareto_naive.dat' using 1:2 with points pt 8 ps 2.5 lw 2 title "naive double + tol", 'bench/results/plot/pareto_fast.dat' using 1:2 with points pt 9 ps 2.5 lw 2 title "fast (SVD)", 'bench/results/plot/pareto_sympy.dat' using 1:2 with points pt 10 ps 2.5 lw 2 title "sympy (exact)", 'bench/results/plot/pareto_numpy.dat' using 1:2 with points pt 11 ps 2.5 lw 2 title "numpy (SVD)", 'bench/results/plot/pareto_scipy.dat' using 1:2 with points pt 12 ps 2.5 lw 2 title "scipy (pivoted QR)"
+set output 'bench/charts/wrong_vs_condition.png'
 set title 'Wrong answers against condition (graded tower, planted answer)'
 set logscale x
 set xlabel 'condition number of the data'
 set ylabel 'fraction wrong'
 set yrange [-0.05:1.05]
-plot 'results/plot/graded_reference.dat' using 1:2 with linespoints lw 2 pt 1 title "reference (mpq)", 'results/plot/graded_certified.dat' using 1:2 with linespoints lw 2 pt 2 title "certified (ball + exact)", 'results/plot/graded_bf100.dat' using 1:2 with linespoints lw 2 pt 3 title "bin\\_float\\_100 + tol", 'results/plot/graded_bf50.dat' using 1:2 with linespoints lw 2 pt 4 title "bin\\_float\\_50 + tol", 'results/plot/graded_naive.dat' using 1:2 with linespoints lw 2 pt 5 title "naive double + tol", 'results/plot/graded_fast.dat' using 1:2 with linespoints lw 2 pt 6 title "fast (SVD)", 'results/plot/graded_sympy.dat' using 1:2 with linespoints lw 2 pt 7 title "sympy (exact)", 'results/plot/graded_numpy.dat' using 1:2 with linespoints lw 2 pt 8 title "numpy (SVD)", 'results/plot/graded_scipy.dat' using 1:2 with linespoints lw 2 pt 9 title "scipy (pivoted QR)"
-set output 'charts/time_vs_size.png'
+plot 'bench/results/plot/graded_reference.dat' using 1:2 with linespoints lw 2 pt 1 title "reference (mpq)", 'bench/results/plot/graded_certified.dat' using 1:2 with linespoints lw 2 pt 2 title "certified (ball + exact)", 'bench/results/plot/graded_bf100.dat' using 1:2 with linespoints lw 2 pt 3 title "bin\\_float\\_100 + tol", 'bench/results/plot/graded_bf50.dat' using 1:2 with linespoints lw 2 pt 4 title "bin\\_float\\_50 + tol", 'bench/results/plot/graded_naive.dat' using 1:2 with linespoints lw 2 pt 5 title "naive double + tol", 'bench/results/plot/graded_fast.dat' using 1:2 with linespoints lw 2 pt 6 title "fast (SVD)", 'bench/results/plot/graded_sympy.dat' using 1:2 with linespoints lw 2 pt 7 title "sympy (exact)", 'bench/results/plot/graded_numpy.dat' using 1:2 with linespoints lw 2 pt 8 title "numpy (SVD)", 'bench/results/plot/graded_scipy.dat' using 1:2 with linespoints lw 2 pt 9 title "scipy (pivoted QR)"
+set output 'bench/charts/time_vs_size.png'
 set title 'Time against size (graded tower, condition 10^2)'
 set logscale xy
 set xlabel 'N'
 set ylabel 'mean time per instance [s]'
 set format y '10^{%L}'
 set autoscale y
-plot 'results/plot/size_reference.dat' using 1:2 with linespoints lw 2 pt 1 title "reference (mpq)  N^{2.8}", 'results/plot/size_certified.dat' using 1:2 with linespoints lw 2 pt 2 title "certified (ball + exact)  N^{3.5}", 'results/plot/size_bf100.dat' using 1:2 with linespoints lw 2 pt 3 title "bin\\_float\\_100 + tol  N^{2.9}", 'results/plot/size_bf50.dat' using 1:2 with linespoints lw 2 pt 4 title "bin\\_float\\_50 + tol  N^{2.8}", 'results/plot/size_naive.dat' using 1:2 with linespoints lw 2 pt 5 title "naive double + tol  N^{2.0}", 'results/plot/size_fast.dat' using 1:2 with linespoints lw 2 pt 6 title "fast (SVD)  N^{2.7}", 'results/plot/size_sympy.dat' using 1:2 with linespoints lw 2 pt 7 title "sympy (exact)  N^{3.5}", 'results/plot/size_numpy.dat' using 1:2 with linespoints lw 2 pt 8 title "numpy (SVD)  N^{2.1}", 'results/plot/size_scipy.dat' using 1:2 with linespoints lw 2 pt 9 title "scipy (pivoted QR)  N^{1.7}"
-set output 'charts/trajectory.png'
+plot 'bench/results/plot/size_reference.dat' using 1:2 with linespoints lw 2 pt 1 title "reference (mpq)  N^{2.8}", 'bench/results/plot/size_certified.dat' using 1:2 with linespoints lw 2 pt 2 title "certified (ball + exact)  N^{3.5}", 'bench/results/plot/size_bf100.dat' using 1:2 with linespoints lw 2 pt 3 title "bin\\_float\\_100 + tol  N^{2.9}", 'bench/results/plot/size_bf50.dat' using 1:2 with linespoints lw 2 pt 4 title "bin\\_float\\_50 + tol  N^{2.8}", 'bench/results/plot/size_naive.dat' using 1:2 with linespoints lw 2 pt 5 title "naive double + tol  N^{2.0}", 'bench/results/plot/size_fast.dat' using 1:2 with linespoints lw 2 pt 6 title "fast (SVD)  N^{2.7}", 'bench/results/plot/size_sympy.dat' using 1:2 with linespoints lw 2 pt 7 title "sympy (exact)  N^{3.5}", 'bench/results/plot/size_numpy.dat' using 1:2 with linespoints lw 2 pt 8 title "numpy (SVD)  N^{2.1}", 'bench/results/plot/size_scipy.dat' using 1:2 with linespoints lw 2 pt 9 title "scipy (pivoted QR)  N^{1.7}"
+set output 'bench/charts/trajectory.png'
 set title '4-port (CEF Fig. 6.1): trajectory error against run time'
 set logscale xy
 set xlabel 'run time [s] (whole process)'
 set ylabel 'max relative error of i_L vs analytic'
 set format y '10^{%L}'
 set format x '%g'
-plot 'results/plot/traj_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad simulate (exact flow)', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle, \
-     'results/plot/traj_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice', '' using 1:2:3 with labels offset 0,1 font ',7' notitle
+plot 'bench/results/plot/traj_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad simulate (exact flow)', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle, \
+     'bench/results/plot/traj_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice', '' using 1:2:3 with labels offset 0,1 font ',7' notitle
