@@ -73,6 +73,7 @@ class Ball {
   double mid() const { return mid_; }
   double rad() const { return rad_; }
   bool exact() const { return rad_ == 0; }
+  bool is_point_zero() const { return mid_ == 0 && rad_ == 0; }
 
   Ball operator-() const {
     Ball b = from_parts(-mid_, rad_);
@@ -81,6 +82,8 @@ class Ball {
   }
   /// |x + y − s| ≤ α + β + |e|, with e the exact rounding error of s = fl(a + b).
   friend Ball operator+(const Ball& a, const Ball& b) {
+    if (a.is_point_zero()) return b;  // 0 + y = y exactly: structural zeros add no radius
+    if (b.is_point_zero()) return a;
     Ball c;
     c.mid_ = a.mid_ + b.mid_;
     const double bb = c.mid_ - a.mid_;
@@ -92,6 +95,7 @@ class Ball {
   friend Ball operator-(const Ball& a, const Ball& b) { return a + (-b); }
   /// x = a + ξ, y = b + η (|ξ| ≤ α, |η| ≤ β): |x y − a b| ≤ |a|β + |b|α + αβ; plus |ab − p| = |e|.
   friend Ball operator*(const Ball& a, const Ball& b) {
+    if (a.is_point_zero() || b.is_point_zero()) return Ball(0);  // 0 · y = 0 exactly, whatever y's radius
     Ball c;
     c.mid_ = a.mid_ * b.mid_;
     const double e = std::fma(a.mid_, b.mid_, -c.mid_);
@@ -104,6 +108,7 @@ class Ball {
   ///   |x/y − a/b| ≤ (α + |a/b| β) / (|b| − β),  |a/b| ≤ |q| + d,  d = |a/b − q| = |r| / |b|.
   friend Ball operator/(const Ball& a, const Ball& b) {
     if (!(std::abs(b.mid_) > b.rad_)) throw Uncertain("division by a ball that contains 0");
+    if (a.is_point_zero()) return Ball(0);
     Ball c;
     c.mid_ = a.mid_ / b.mid_;
     const double r = std::fma(-c.mid_, b.mid_, a.mid_);
