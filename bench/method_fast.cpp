@@ -1,3 +1,4 @@
+#include "convert_fast.hpp"
 #include "dcad/fast/cad.hpp"
 #include "methods.hpp"
 
@@ -5,26 +6,7 @@
 
 namespace dcad::bench {
 
-namespace {
-
-Eigen::MatrixXd to_double(const families::QM& m, fast::Options& opt) {
-  Eigen::MatrixXd d(m.rows(), m.cols());
-  for (reference::Index i = 0; i < m.rows(); ++i)
-    for (reference::Index j = 0; j < m.cols(); ++j) {
-      d(i, j) = m(i, j).convert_to<double>();
-      if (families::Q(d(i, j)) != m(i, j)) opt.input_exact = false;
-    }
-  fast::assess_input(d, opt);
-  return d;
-}
-
-Eigen::VectorXd to_double(const std::vector<families::Q>& v, fast::Options& opt) {
-  families::QM m(v.size(), 1);
-  for (reference::Index i = 0; i < v.size(); ++i) m(i, 0) = v[i];
-  return to_double(m, opt).col(0);
-}
-
-}  // namespace
+using cli::to_double;  // exact → double with the CLI's bookkeeping of input exactness and scaling
 
 Outcome run_fast(const families::Instance& in) {
   fast::Options opt;

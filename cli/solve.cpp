@@ -90,7 +90,7 @@ nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
     tower.push_back({{"k", k}, {"dim", r.tower[k].dim}, {"new_constraints", eqs}});
   }
   j["tower"] = tower;
-  if (r.has_final) {  // rows [a…, b] of M_c = {a·x = b}, exact strings: what `dcad check` compares as a subspace
+  if (r.has_final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
     nlohmann::json rows = nlohmann::json::array();
     for (const Equation& e : r.final_constraints) {
       std::vector<std::string> row(c.variables.size(), "0");

@@ -45,7 +45,8 @@ struct SolveReport {
   bool has_final = false;
   io::QMatrix final_basis;
   std::vector<io::Rational> final_point;
-  std::vector<Equation> final_constraints;  ///< equations of M_c (reference; JSON `final_constraints`)
+  bool has_final_constraints = false;
+  std::vector<Equation> final_constraints;  ///< equations of M_c (reference and ball pipeline; JSON `final_constraints`)
   std::string note;  ///< e.g. why `certified` recomputed exactly
   long decisions_float = 0, decisions_verified = 0, decisions_exact = 0;
 };

@@ -71,8 +71,8 @@ SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c)
       throw std::logic_error("graph route and certified CAD disagree on " + c.file + "; please report it");
     return r;
   }
-  bool physical = true;  // every L > 0 and C > 0: the graph route decides nothing (CEF Thms 6.4, 6.6, 6.8)
-  for (const auto& b : n.circuit.branches) physical = physical && (b.kind == reference::BranchKind::empty || b.value > 0);
+  fast::Options opt;
+  const bool physical = fast::is_physical(circuit_graph(n, opt));  // the graph route decides nothing (CEF Thms 6.4, 6.6, 6.8)
   SolveReport fast = solve_circuit_fast(n, c);
   if (physical) {
     fast.backend = "certified";

@@ -115,6 +115,7 @@ SolveReport solve_exact(const io::CaseFile& c) {
       }
       out.final_constraints.push_back(row_equation(rows, i));
     }
+    out.has_final_constraints = true;
     Scalar<T>::keep_final(out, r.final_step().m.direction.basis(), point);
   }
   if (c.has_constrained && r.consistent) {  // first and second class on M_c, Dirac bracket  [Lemma 3.23]

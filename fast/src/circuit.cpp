@@ -76,12 +76,6 @@ std::vector<SparseRow> flux_rows(const CircuitGraph& g, std::size_t n) {
   return out;
 }
 
-bool is_physical(const CircuitGraph& g) {
-  for (const CircuitBranch& b : g.branches)
-    if (b.kind != BranchKind::empty && b.value < 0) return false;
-  return true;
-}
-
 /// Σ_{capacitors of the loop} ±x_{offset+b}/C_b = 0.
 SparseRow kvl_row(const CircuitGraph& g, const Loop& loop, std::size_t offset) {
   SparseRow r;
@@ -177,6 +171,12 @@ void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
 }
 
 }  // namespace
+
+bool is_physical(const CircuitGraph& g) {
+  for (const CircuitBranch& b : g.branches)
+    if (b.kind != BranchKind::empty && b.value < 0) return false;
+  return true;
+}
 
 std::vector<Loop> fundamental_loops(const CircuitGraph& g, const std::vector<bool>& keep, const std::vector<bool>& prefer) {
   const std::size_t nv = g.nodes + 1, n = g.branches.size();

@@ -65,6 +65,9 @@ struct CircuitTower {
 /// nonzero (for L and C).
 CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt = {});
 
+/// No negative L or C: then circuit_tower takes the combinatorial route and decides nothing.
+bool is_physical(const CircuitGraph& g);
+
 /// The fundamental loops of the spanning forest of the branches with keep(b) that spans the branches
 /// with prefer(b) first: one loop per branch outside the forest, that branch first with sign +1.
 /// (With keep = non-inductive and prefer = empty, the loops through a capacitor are the KVLPC loops

@@ -128,7 +128,7 @@ class Ball {
   /// otherwise Uncertain (with the evidence).  Each answer counts as one decision.
   friend bool operator==(const Ball& a, const Ball& b) {
     const Ball d = a - b;
-    if (d.mid_ == 0 && d.rad_ == 0) return ++decisions(), true;
+    if (d.is_point_zero()) return ++decisions(), true;
     if (std::abs(d.mid_) > d.rad_) return ++decisions(), false;
     if ((a.exact_ || a.rad_ == 0) && (b.exact_ || b.rad_ == 0)) return ++verifications(), a.value() == b.value();
     char evidence[96];
@@ -137,7 +137,7 @@ class Ball {
   }
   friend bool operator!=(const Ball& a, const Ball& b) { return !(a == b); }
   /// No decision: true only if the ball is {0} (used where skipping a zero is an optimization).
-  friend bool known_zero(const Ball& a) { return a.mid_ == 0 && a.rad_ == 0; }
+  friend bool known_zero(const Ball& a) { return a.is_point_zero(); }
   /// Pivot preference (no decision): larger is better; 0 means "not certainly nonzero".
   friend double pivot_weight(const Ball& a) { return std::abs(a.mid_) > a.rad_ ? std::abs(a.mid_) : 0.0; }
 
