@@ -260,7 +260,7 @@ TEST(Simulate, FourPortAnalyticAndEnergy) {
 // reltol 1e-10 with the deck's IC= (uic), resampled on dcad's grid (linearize).  ngspice is good to
 // about 5e-7 relative here (issue 4); dcad is exact up to rounding.
 TEST(Simulate, AgreesWithNgspice) {
-  if (std::system("command -v ngspice > /dev/null 2>&1") != 0) GTEST_SKIP() << "ngspice not installed (bash .ci/setup installs it)";
+  if (std::system("command -v ngspice > /dev/null 2>&1") != 0) FAIL() << "ngspice not installed: run bash .ci/setup (the README's test command does)";
   std::string deck = slurp(fs::path(DCAD_SOURCE_DIR) / "cases/lc-4port.cir");
   deck = deck.substr(0, deck.find(".tran"));
   const std::string data = (fs::temp_directory_path() / "dcad_ngspice.txt").string();
@@ -295,7 +295,7 @@ TEST(Simulate, AgreesWithNgspice) {
 // from random node potentials (KVL holds on every loop) and random inductor currents.  Compared:
 // every node voltage (= q/C of its shunt capacitor) and every inductor current.
 TEST(Simulate, RandomCircuitsAgreeWithNgspice) {
-  if (std::system("command -v ngspice > /dev/null 2>&1") != 0) GTEST_SKIP() << "ngspice not installed (bash .ci/setup installs it)";
+  if (std::system("command -v ngspice > /dev/null 2>&1") != 0) FAIL() << "ngspice not installed: run bash .ci/setup (the README's test command does)";
   const char* scale = std::getenv("DCAD_PROP_SCALE");
   const int circuits = 4 * (scale ? std::max(1, std::atoi(scale)) : 1);
   std::mt19937 rng(20261122);
@@ -400,7 +400,7 @@ TEST(Simulate, RandomCircuitsAgreeWithNgspice) {
 TEST(Simulate, PlotWritesAPng) {
   const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir";
   EXPECT_EQ(run("simulate " + deck + " --tstop 1 --step 0.1 --plot /tmp/dcad_x.png --plot-vars q_C1,nope").rc, 2);
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed (bash .ci/setup installs it)";
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) FAIL() << "gnuplot not installed: run bash .ci/setup (the README's test command does)";
   const std::string png = (fs::temp_directory_path() / "dcad_plot.png").string();
   std::filesystem::remove(png);
   const Outcome r = run("simulate " + deck + " --tstop 20 --step 0.01 --plot " + png + " --plot-vars q_C1,q_C2,v_L1");
@@ -649,7 +649,7 @@ TEST(Check, BadResultsExitOne) {
 // The worked example of the README: an independent, naive Python CAD (proptests/peers/naive_cad.py)
 // is right on the 4-port and wrong on a circuit with a 1 pH inductor, and `dcad check` says so.
 TEST(Check, NaivePythonPeer) {
-  if (std::system("command -v python3 > /dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not installed";
+  if (std::system("command -v python3 > /dev/null 2>&1") != 0) FAIL() << "python3 not installed: run bash .ci/setup (the README's test command does)";
   const std::string peer = std::string(DCAD_SOURCE_DIR) + "/proptests/peers/naive_cad.py";
   const auto peer_result = [&](const std::string& deck) {
     const std::string out = (fs::temp_directory_path() / "dcad_peer.json").string();
