@@ -8,7 +8,7 @@
 #   bench_kernels (Google Benchmark)                                 -> bench/results/kernels.csv
 #   charts.py (gnuplot)                                              -> bench/charts/*.png, results/summary.md
 # --quick (under 2 minutes once built): fewer instances, sympy up to N = 21, kernels up to N = 200.
-# Full: about 10 minutes; sympy up to N = 33.
+# Full: about 3 minutes after the build; sympy up to N = 33.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 quick=""
