@@ -186,17 +186,38 @@ int main(int argc, char** argv) {
           return 2;
         }
       }
-      std::ostringstream csv;
-      dcad::cli::simulate(c, init, sim_opt, csv, std::cerr);
-      const std::string csv_path = !sim_csv.empty() ? sim_csv : sim_png + ".csv";
-      if (!sim_csv.empty() || !sim_png.empty()) {
-        std::ofstream file_out(csv_path);
-        if (!(file_out << csv.str())) {
+      for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
+      // rows go out as they are computed: to --csv, or to a temporary file for --plot (then copied
+      // to stdout), or straight to stdout
+      const std::string csv_path = !sim_csv.empty() ? sim_csv : !sim_png.empty() ? sim_png + ".csv" : "";
+      std::ofstream file_out;
+      if (!csv_path.empty()) {
+        file_out.open(csv_path);
+        if (!file_out) {
+          std::cerr << csv_path << ": cannot open for writing\n";
+          return 1;
+        }
+      }
+      std::ostream& csv_out = csv_path.empty() ? std::cout : file_out;
+      const dcad::cli::SimulateSummary sum = dcad::cli::simulate(c, init, sim_opt, csv_out, std::cerr);
+      if (!csv_path.empty()) {
+        file_out.close();
+        if (!file_out) {
           std::cerr << csv_path << ": cannot write\n";
           return 1;
         }
       }
-      if (sim_csv.empty()) std::cout << csv.str();
+      if (!std::cout) {
+        std::cerr << "simulate: cannot write to standard output\n";
+        return 1;
+      }
+      std::cerr << "simulate: " << sum.rows << " rows; estimated error " << dcad::cli::float_text(sum.error_estimate)
+                << " relative to each variable's largest magnitude (worst " << sum.worst_variable
+                << "; difference from the same exact flow in long double)\n";
+      if (sim_csv.empty() && !sim_png.empty()) {
+        std::ifstream copy(csv_path);
+        std::cout << copy.rdbuf();
+      }
       if (!sim_png.empty()) {
         const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png,
                                                     c.name.empty() ? c.file : c.name);

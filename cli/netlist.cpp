@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -172,6 +173,53 @@ Netlist read_netlist(const std::string& file) {
   }
   if (out.circuit.branches.empty()) throw InputError(file + ":" + std::to_string(number) + ": expected at least one L, C or V element, found none");
   out.circuit.nodes = out.node_names.size();
+  return out;
+}
+
+namespace {
+
+Rational pow10(int e) {
+  Rational r(1);
+  for (int k = 0; k < std::abs(e); ++k) r *= 10;
+  return e >= 0 ? r : Rational(1) / r;
+}
+
+/// log10 |x| for an exact x ≠ 0 that may lie outside double's range: numerator and denominator
+/// shifted into range apart.
+double log10_abs(const Rational& x) {
+  const auto part = [](auto z) {
+    z = boost::multiprecision::abs(z);
+    const long k = std::max(0L, static_cast<long>(boost::multiprecision::msb(z)) - 60);
+    z >>= k;
+    return std::log10(z.template convert_to<double>()) + static_cast<double>(k) * std::log10(2.0);
+  };
+  return part(boost::multiprecision::numerator(x)) - part(boost::multiprecision::denominator(x));
+}
+
+/// Nearest integer to the mean of log10 |value| over the branches of that kind (0 if none).
+int mean_exponent(const Netlist& n, reference::BranchKind kind) {
+  double sum = 0;
+  long count = 0;
+  for (const auto& b : n.circuit.branches)
+    if (b.kind == kind && b.value != 0) {
+      sum += log10_abs(b.value);
+      ++count;
+    }
+  return count ? static_cast<int>(std::lround(sum / count)) : 0;
+}
+
+}  // namespace
+
+Netlist dimensionless(const Netlist& n, Units& u) {
+  u.a = mean_exponent(n, reference::BranchKind::inductor);
+  u.b = mean_exponent(n, reference::BranchKind::capacitor);
+  if ((u.a + u.b) % 2 != 0) ++u.b;
+  Netlist out = n;
+  const Rational l0 = pow10(u.a), c0 = pow10(u.b);
+  for (auto& b : out.circuit.branches) {
+    if (b.kind == reference::BranchKind::inductor) b.value /= l0;
+    if (b.kind == reference::BranchKind::capacitor) b.value /= c0;
+  }
   return out;
 }
 

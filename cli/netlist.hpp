@@ -26,4 +26,16 @@ Rational parse_spice_value(const std::string& text);
 /// `dense`, only the names (no n×n and 3n×3n matrices: for the graph route on large circuits).
 CaseFile netlist_case(const Netlist& n, bool dense = true);
 
+/// The dimensionless twin of a circuit: every L divided by L0 = 10^a, every C by C0 = 10^b, with
+/// 10^a and 10^b the powers of ten nearest the geometric means and a + b even, so that the time
+/// unit T = √(L0 C0) = 10^m, m = (a + b)/2, is exact.  A solution of the twin gives one of the
+/// circuit by t = T t̃, q = q̃, v = ṽ/T, p = (L0/T) p̃ (and ν = L0 ν̃ on T*TQ): the Lagrangian
+/// becomes (C0 times) that of the twin (CEF §6: L = ½ vᵀΦv − ½ qᵀΨq), so the towers are equal and
+/// the equations of motion correspond (x = S x̃, d/dt = T⁻¹ d/dt̃).  Exact (rational values).
+struct Units {
+  int a = 0, b = 0;  ///< L0 = 10^a, C0 = 10^b
+  int m() const { return (a + b) / 2; }
+};
+Netlist dimensionless(const Netlist& n, Units& u);
+
 }  // namespace dcad::io

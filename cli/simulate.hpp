@@ -3,6 +3,8 @@
 
 #include "netlist.hpp"
 
+#include <Eigen/Core>
+
 #include <ostream>
 
 namespace dcad::cli {
@@ -12,10 +14,23 @@ struct SimulateOptions {
   std::string backend = "certified";
 };
 
-/// Writes the CSV of the CONTRACT (header t, then every variable; full precision) to `out`.
+struct SimulateSummary {
+  long rows = 0;
+  /// max over variables of (largest |x_double − x_long_double| over the run) / (largest |x|): the
+  /// a-posteriori estimate of the CSV's error relative to each variable's magnitude
+  double error_estimate = 0;
+  std::string worst_variable;
+};
+
+/// Writes the CSV of the CONTRACT (header t, then every variable; full precision) to `out`, one
+/// row at a time as it is computed (memory independent of the number of rows).
 /// Throws io::InputError for an initial condition off M_c (naming the violated constraint).
-void simulate(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-              std::ostream& out, std::ostream& log);
+SimulateSummary simulate(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                         std::ostream& out, std::ostream& log);
+
+/// Diagonal D of powers of two such that D⁻¹ A D has off-diagonal row and column sums equal within
+/// a factor 4 (Parlett–Reinsch balancing); similarity by D is exact in floating point.
+std::vector<double> balancing(const Eigen::MatrixXd& a);
 
 /// The initial condition a netlist prescribes, as per-variable exact values (nullopt = free):
 /// IC= of an inductor fixes v (its current), of a capacitor fixes q = C · voltage.

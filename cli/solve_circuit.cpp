@@ -25,11 +25,59 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
   return g;
 }
 
-SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c) {
+namespace {
+
+/// x_j = s_j x̃_j: coefficient a_j of a row in x̃ becomes a_j / s_j in x (display rows, %.17g text).
+void unscale(Equation& e, const std::vector<double>& s) {
+  for (auto& [var, coeff] : e.terms) coeff = float_text(std::stod(coeff) / s[var]);
+}
+
+/// S of io::Units for x = (q, v, p[, ν]): 1, 1/T, L0/T[, L0].
+std::vector<double> unit_scales(const io::Units& u, std::size_t branches, bool with_nu) {
+  const double t = std::pow(10.0, u.m()), l0 = std::pow(10.0, u.a);
+  std::vector<double> s(3 * branches, 1.0);
+  for (std::size_t i = 0; i < branches; ++i) {
+    s[branches + i] = 1 / t;
+    s[2 * branches + i] = l0 / t;
+  }
+  if (with_nu) s.resize(4 * branches, l0);
+  return s;
+}
+
+/// The report of the dimensionless twin in the circuit's units: rows x̃ → x, and the equations of
+/// motion dz/dt = (S F̃ S⁻¹ / T) z + S f̃ / T + S G̃ λ / T.
+void to_circuit_units(SolveReport& r, const io::Units& u, std::size_t branches) {
+  const std::vector<double> s = unit_scales(u, branches, false), s_nu = unit_scales(u, branches, true);
+  const double t = std::pow(10.0, u.m());
+  for (auto& step : r.tower)
+    for (Equation& e : step.equations) unscale(e, s);
+  for (Equation& e : r.adapted_chi) unscale(e, s_nu);
+  for (Equation& e : r.abridged_terms) unscale(e, s_nu);
+  const auto scaled = [](const std::string& text, double factor) { return float_text(std::stod(text) * factor); };
+  for (std::size_t i = 0; i < r.coords.size(); ++i) {
+    const double si = s[r.coords[i]];
+    for (std::size_t j = 0; j < r.coords.size(); ++j) r.f_matrix[i][j] = scaled(r.f_matrix[i][j], si / (s[r.coords[j]] * t));
+    r.f[i] = scaled(r.f[i], si / t);
+    for (std::string& g : r.g[i]) g = scaled(g, si / t);
+  }
+}
+
+}  // namespace
+
+SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
+  // the twin without units: double sees values near 1 whatever the circuit's units (fF … kH)
+  io::Units units;
+  const io::Netlist n = io::dimensionless(deck, units);
   fast::Options opt;
   const fast::CircuitTower t = fast::circuit_tower(circuit_graph(n, opt), opt);
   const bool dense = c.has_pontryagin;
-  SolveReport out = dense ? solve_fast(c) : SolveReport();
+  SolveReport out;
+  if (dense) {
+    io::CaseFile twin = io::netlist_case(n, true);
+    twin.variables = c.variables;
+    twin.coordinates = c.coordinates;
+    out = solve_fast(twin);
+  }
   const std::vector<long> generic_dims = out.dims;
   out.backend = "fast";
   out.dims = t.dims;
@@ -48,10 +96,13 @@ SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c) {
     }
     out.tower.push_back(step);
   }
+  to_circuit_units(out, units, n.circuit.branches.size());
   out.decisions_float += static_cast<long>(t.decisions.size());
   out.certified = (out.certified || !dense) && t.certain;
   std::string how = t.physical ? "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision)"
                                : "graph route (CEF §6 closed form in loop coordinates, signed values)";
+  how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" + std::to_string(units.b) +
+         ", time unit 1e" + std::to_string(units.m()) + " s)";
   if (dense && generic_dims != t.dims) {  // two routes to one tower disagree: trust neither
     out.certified = false;
     how += "; the generic fast CAD found a different tower, recompute with --backend reference";

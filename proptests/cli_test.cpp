@@ -1,5 +1,7 @@
 // The dcad binary as a user runs it: golden cases (every cases/*.json with expect.inspect, both
 // backends) and bad input (exit 1 naming file, JSON path or line, expected and found; exit 2 for usage).
+#include "cli_run.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -12,37 +14,6 @@
 #include <random>
 #include <sstream>
 #include <string>
-
-namespace fs = std::filesystem;
-
-namespace {
-
-struct Outcome {
-  int rc = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Outcome run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string out = (dir / "dcad_cli_out").string(), err = (dir / "dcad_cli_err").string();
-  const int status = std::system((std::string(DCAD_BINARY) + " " + args + " >" + out + " 2>" + err).c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / name;
-  std::ofstream(p) << text;
-  return p.string();
-}
-
-}  // namespace
 
 struct BadCase {
   const char* name;
@@ -205,29 +176,6 @@ TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   EXPECT_NE(r.err.find("ignored .tran"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("ignored .control"), std::string::npos) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::array({6, 3}));  // p = Φv (2), KCL (1)
-}
-
-/// CSV rows as numbers (header skipped).
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
-std::vector<std::vector<double>> csv_rows(const std::string& text) {
-  std::vector<std::vector<double>> rows;
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
 }
 
 // The 4-port (L = 2, C = 3, 5, 7; IC: V_C1 = V_C3 = 1, V_C2 = 2, I_L = 0) against its analytic
