@@ -22,10 +22,17 @@ class ExactBuilder {
   bool string(std::string& s) { return put(s); }
   bool binary(json::binary_t&) { return false; }
   bool start_object(std::size_t) { return open(json::object()); }
+  static constexpr std::size_t kMaxDepth = 64;  ///< a case needs 4 (matrix in a form in the file)
+  bool too_deep_ = false;
   bool key(std::string& k) {
     key_ = k;
+    if (stack_.back()->contains(k)) {  // RFC 8259 leaves duplicates to the reader: the last would win silently
+      duplicate_ = k;
+      return false;
+    }
     return true;
   }
+  std::string duplicate_;
   bool end_object() { return close(); }
   bool start_array(std::size_t) { return open(json::array()); }
   bool end_array() { return close(); }
@@ -56,13 +63,32 @@ class ExactBuilder {
     return true;
   }
   bool open(json v) {
+    if (stack_.size() >= kMaxDepth) {
+      too_deep_ = true;
+      return false;
+    }
+    const std::string name =
+        stack_.empty() ? "" : stack_.back()->is_array() ? std::to_string(stack_.back()->size()) : key_;
     stack_.push_back(place(std::move(v)));
+    names_.push_back(name);
     return true;
   }
   bool close() {
     stack_.pop_back();
+    names_.pop_back();
     return true;
   }
+
+ public:
+  /// JSON path of the innermost open container, e.g. /energy/hessian.
+  std::string where() const {
+    std::string p;
+    for (std::size_t i = 1; i < names_.size(); ++i) p += "/" + names_[i];
+    return p.empty() ? "/" : p;
+  }
+
+ private:
+  std::vector<std::string> names_;
   json& root_;
   std::vector<json*> stack_;
   std::string key_;
@@ -90,10 +116,41 @@ std::string describe(const json& j) {
   return std::string(j.type_name()) + " " + s;
 }
 
+namespace {
+
+/// Byte offset (1-based, as nlohmann counts) of the bracket that opens nesting level `depth`.
+std::size_t opening_of_depth(const std::string& text, std::size_t depth) {
+  std::size_t level = 0;
+  bool in_string = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (ch == '\\') escaped = true;
+      else if (ch == '"') in_string = false;
+    } else if (ch == '"') {
+      in_string = true;
+    } else if (ch == '[' || ch == '{') {
+      if (++level == depth) return i + 1;
+    } else if (ch == ']' || ch == '}') {
+      --level;
+    }
+  }
+  return text.size();
+}
+
+}  // namespace
+
 json parse_json_exact(const std::string& text, const std::string& file) {
   json root;
   ExactBuilder b(root);
   if (!json::sax_parse(text, &b)) {
+    if (!b.duplicate_.empty())
+      throw InputError(file + ": " + b.where() + ": expected each key once in an object, found \"" + b.duplicate_ + "\" twice");
+    if (b.too_deep_) {
+      b.error_pos_ = opening_of_depth(text, ExactBuilder::kMaxDepth + 1);
+      b.error_ = "nesting deeper than " + std::to_string(ExactBuilder::kMaxDepth) + " levels; no case needs more than 4";
+    }
     std::size_t line = 1, col = 1;
     for (std::size_t i = 0; i + 1 < b.error_pos_ && i < text.size(); ++i) {
       if (text[i] == '\n') {
@@ -104,10 +161,50 @@ json parse_json_exact(const std::string& text, const std::string& file) {
       }
     }
     throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) +
-                     ": expected valid JSON, found a syntax error (" + b.error_ + ")");
+                     (b.too_deep_ ? ": expected JSON nested at most " + std::to_string(ExactBuilder::kMaxDepth) + " deep, found " + b.error_
+                                  : ": expected valid JSON, found a syntax error (" + b.error_ + ")"));
   }
   return root;
 }
+
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {  // Levenshtein
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+void require_known_keys(const json& j, const Where& at, const std::vector<std::string>& allowed) {
+  for (const auto& [key, value] : j.items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    std::string best, list;
+    std::size_t best_d = std::string::npos;
+    for (const std::string& a : allowed) {
+      list += (list.empty() ? "" : ", ") + a;
+      const std::size_t d = edit_distance(key, a);
+      if (d < best_d) {
+        best_d = d;
+        best = a;
+      }
+    }
+    const bool close = best_d <= std::max<std::size_t>(2, best.size() / 3);
+    (at / key).fail("one of the keys " + list, "unknown key \"" + key + "\"" + (close ? " (did you mean \"" + best + "\"?)" : ""));
+  }
+}
+
+json read_json_file(const std::string& file) { return parse_json_exact(slurp(file), file); }
 
 Rational read_number(const json& j, const Where& at) {
   if (j.is_number_integer()) return j.is_number_unsigned() ? Rational(j.get<std::uint64_t>()) : Rational(j.get<std::int64_t>());
@@ -157,6 +254,7 @@ void require_symmetric_input(const QMatrix& w, const Where& at) {
 
 PontryaginInput read_pontryagin(const json& j, const Where& at) {
   if (!j.is_object()) at.fail("an object {Q, constraints, lagrangian}", describe(j));
+  require_known_keys(j, at, {"Q", "constraints", "lagrangian"});
   PontryaginInput p;
   if (!j.contains("Q") || !j["Q"].is_number_integer() || j["Q"].get<long>() < 1)
     (at / "Q").fail("a positive integer n = dim Q", j.contains("Q") ? describe(j["Q"]) : "nothing");
@@ -173,8 +271,7 @@ PontryaginInput read_pontryagin(const json& j, const Where& at) {
   require_symmetric_input(p.qq, l / "qq");
   p.q = lag.contains("q") ? read_vector(lag["q"], l / "q", n) : std::vector<Rational>(p.n, 0);
   p.v = lag.contains("v") ? read_vector(lag["v"], l / "v", n) : std::vector<Rational>(p.n, 0);
-  for (const auto& [key, value] : lag.items())
-    if (key != "vv" && key != "qv" && key != "qq" && key != "q" && key != "v") (l / key).fail("one of vv, qv, qq, q, v", "key " + key);
+  require_known_keys(lag, l, {"vv", "qv", "qq", "q", "v"});
   return p;
 }
 
@@ -190,6 +287,11 @@ void require_skew_input(const QMatrix& w, const Where& at) {
 
 DiracInput read_dirac(const json& j, const Where& at, long n) {
   if (!j.is_object() || j.empty()) at.fail("an object with one of presymplectic, distribution+form, poisson, basis", describe(j));
+  require_known_keys(j, at, {"presymplectic", "distribution", "form", "poisson", "basis"});
+  const int forms = j.contains("presymplectic") + j.contains("distribution") + j.contains("poisson") + j.contains("basis");
+  if (forms > 1) at.fail("exactly one form (presymplectic, distribution + form, poisson or basis)", std::to_string(forms) + " forms");
+  if (j.contains("form") && !j.contains("distribution"))
+    (at / "form").fail("`form` only next to `distribution`", "`form` without `distribution`");
   DiracInput d;
   if (j.contains("presymplectic")) {
     d.form = "presymplectic";
@@ -227,6 +329,12 @@ CaseFile read_case(const std::string& file) {
   const Where root{file, ""};
   if (!j.is_object()) root.fail("a JSON object (a dcad case file)", describe(j));
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
+  if (j.contains("lagrangian") || j.contains("parameters"))
+    (root / (j.contains("lagrangian") ? "lagrangian" : "parameters"))
+        .fail("a linear case (dirac, pontryagin or constrained); the expression form of the CONTRACT is not supported yet",
+              "the expression form");
+  require_known_keys(j, root, {"dcad", "name", "description", "variables", "dirac", "energy", "pontryagin", "constrained", "initial",
+                               "coordinates", "expect", "known_failures"});
   if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1))
     (root / "dcad").fail("format version 1", describe(j["dcad"]));
   CaseFile c;
@@ -241,7 +349,10 @@ CaseFile read_case(const std::string& file) {
     const json& v = j["variables"];
     if (!v.is_array()) (root / "variables").fail("an array of names", describe(v));
     for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!v[i].is_string()) (root / "variables" / i).fail("a name (string)", describe(v[i]));
+      if (!v[i].is_string() || v[i].get<std::string>().empty()) (root / "variables" / i).fail("a name (non-empty string)", describe(v[i]));
+      const auto seen = std::find(c.variables.begin(), c.variables.end(), v[i].get<std::string>());
+      if (seen != c.variables.end())
+        (root / "variables" / i).fail("a new name", "\"" + *seen + "\", already variable " + std::to_string(seen - c.variables.begin()));
       c.variables.push_back(v[i].get<std::string>());
     }
     n = static_cast<long>(v.size());
@@ -252,6 +363,7 @@ CaseFile read_case(const std::string& file) {
     const json& k = j["constrained"];
     const Where at = root / "constrained";
     if (!k.is_object() || !k.contains("symplectic")) at.fail("an object {symplectic, primary}", describe(k));
+    require_known_keys(k, at, {"symplectic", "primary"});
     c.has_constrained = true;
     c.constrained.w = read_matrix(k["symplectic"], at / "symplectic", n, n);
     require_skew_input(c.constrained.w, at / "symplectic");
@@ -289,6 +401,7 @@ CaseFile read_case(const std::string& file) {
     const json& e = j["energy"];
     const Where at = root / "energy";
     if (!e.is_object()) at.fail("an object {hessian, gradient, constant}", describe(e));
+    require_known_keys(e, at, {"hessian", "gradient", "constant"});
     if (e.contains("hessian")) c.energy.hessian = read_matrix(e["hessian"], at / "hessian", nn, nn);
     require_symmetric_input(c.energy.hessian, at / "hessian");
     if (e.contains("gradient")) c.energy.gradient = read_vector(e["gradient"], at / "gradient", nn);

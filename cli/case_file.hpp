@@ -22,7 +22,10 @@ struct InputError : std::invalid_argument {
 
 /// Parses JSON text keeping every non-integer number as its exact source text (a string), so
 /// that 0.1 is read as 1/10, not as the double nearest to it.
+/// Nesting deeper than 64 levels is refused (a case needs 4).
 nlohmann::json parse_json_exact(const std::string& text, const std::string& file);
+/// parse_json_exact of a file's contents (InputError if it cannot be read).
+nlohmann::json read_json_file(const std::string& file);
 
 /// The `dirac` member: one of the CONTRACT's forms.
 struct DiracInput {
@@ -78,6 +81,10 @@ struct Where {
   Where operator/(std::size_t i) const { return {file, path + "/" + std::to_string(i)}; }
   [[noreturn]] void fail(const std::string& expected, const std::string& found) const;
 };
+
+/// Bad input unless every key of the object `j` is one of `allowed` (a misspelt key would otherwise
+/// be ignored and another system solved); the message suggests the nearest allowed key.
+void require_known_keys(const nlohmann::json& j, const Where& at, const std::vector<std::string>& allowed);
 
 Rational read_number(const nlohmann::json& j, const Where& at);
 QMatrix read_matrix(const nlohmann::json& j, const Where& at, long rows = -1, long cols = -1);

@@ -158,14 +158,7 @@ void compare_final_constraints(Checker& k, const json& found, const io::QMatrix&
 }  // namespace
 
 CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_in, const io::Netlist* deck) {
-  std::ifstream in(result_file);
-  if (!in) throw io::InputError(result_file + ": cannot read");
-  json r;
-  try {
-    r = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw io::InputError(result_file + ": expected a JSON result, found invalid JSON (" + e.what() + ")");
-  }
+  const json r = io::read_json_file(result_file);  // floats kept as their text; depth limited
   if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
   if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
   for (const char* key : {"dims", "steps", "consistent", "solution_rank"})

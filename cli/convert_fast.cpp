@@ -1,14 +1,23 @@
 #include "convert_fast.hpp"
 
+#include <cmath>
+
 namespace dcad::cli {
+
+double to_double(const io::Rational& x, fast::Options& opt) {
+  const double d = x.convert_to<double>();
+  if (!std::isfinite(d) || (d == 0 && x != 0))
+    throw std::invalid_argument("expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +
+                                std::string(x > 0 ? "" : "-") + (d == 0 ? "a nonzero value below it" : "a value above it") +
+                                "; the exact backends (--backend reference or certified) take any rational");
+  if (io::Rational(d) != x) opt.input_exact = false;  // gmpq_set_d: finite d only (SIGFPE otherwise)
+  return d;
+}
 
 Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt) {
   Eigen::MatrixXd d(m.rows(), m.cols());
   for (std::size_t i = 0; i < m.rows(); ++i)
-    for (std::size_t k = 0; k < m.cols(); ++k) {
-      d(i, k) = m(i, k).convert_to<double>();
-      if (io::Rational(d(i, k)) != m(i, k)) opt.input_exact = false;
-    }
+    for (std::size_t k = 0; k < m.cols(); ++k) d(i, k) = to_double(m(i, k), opt);
   fast::assess_input(d, opt);
   return d;
 }

@@ -7,6 +7,10 @@
 
 namespace dcad::cli {
 
+/// x rounded to double; clears opt.input_exact if that changed it.  Throws std::invalid_argument for
+/// a value beyond double's range (|x| > 1.8e308, or a nonzero |x| < 4.9e-324 that would read as 0):
+/// the fast backend cannot represent it, the exact ones can.
+double to_double(const io::Rational& x, fast::Options& opt);
 Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt);
 Eigen::VectorXd to_double(const std::vector<io::Rational>& v, fast::Options& opt);
 fast::DiracStructure fast_dirac(const io::DiracInput& in, fast::Options& opt);

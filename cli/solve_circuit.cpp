@@ -1,4 +1,5 @@
 #include "solve_circuit.hpp"
+#include "convert_fast.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -10,9 +11,8 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
   g.nodes = n.circuit.nodes;
   double lo = 1, hi = 1;
   for (const auto& b : n.circuit.branches) {
-    const double v = b.value.convert_to<double>();
+    const double v = b.kind == reference::BranchKind::empty ? 0.0 : to_double(b.value, opt);
     if (b.kind != reference::BranchKind::empty) {
-      if (io::Rational(v) != b.value) opt.input_exact = false;
       lo = std::min(lo, std::abs(v));
       hi = std::max(hi, std::abs(v));
     }
@@ -114,16 +114,18 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
 }
 
 SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c) {
+  io::Units units;
+  const io::Netlist twin = io::dimensionless(n, units);  // same graph, values near 1 for the cross-check
   if (c.has_pontryagin) {  // small deck: the reference pipeline in ball arithmetic (or exact), plus the graph route's loops
     fast::Options opt;
-    const fast::CircuitTower t = fast::circuit_tower(circuit_graph(n, opt), opt);
+    const fast::CircuitTower t = fast::circuit_tower(circuit_graph(twin, opt), opt);
     SolveReport r = solve_certified(c);
     if (t.physical && t.dims != r.dims)  // a combinatorial theorem disagrees with a certified computation: a bug
       throw std::logic_error("graph route and certified CAD disagree on " + c.file + "; please report it");
     return r;
   }
   fast::Options opt;
-  const bool physical = fast::is_physical(circuit_graph(n, opt));  // the graph route decides nothing (CEF Thms 6.4, 6.6, 6.8)
+  const bool physical = fast::is_physical(circuit_graph(twin, opt));  // the graph route decides nothing (CEF Thms 6.4, 6.6, 6.8)
   SolveReport fast = solve_circuit_fast(n, c);
   if (physical) {
     fast.backend = "certified";

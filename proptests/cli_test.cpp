@@ -445,8 +445,40 @@ INSTANTIATE_TEST_SUITE_P(
                 "/coordinates/0"},
         BadCase{"badcoords",
                 R"({"dcad": 1, "variables": ["q", "v", "p"], "pontryagin": {"Q": 1, "lagrangian": {"vv": [[1]]}}, "coordinates": ["v", "p"]})",
-                "coordinates"}),
+                "coordinates"},
+        // strict input: a misspelt or repeated key would otherwise solve another system silently
+        BadCase{"hesian", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hesian": [[1, 0], [0, 1]]}})",
+                "did you mean \"hessian\""},
+        BadCase{"enregy", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "enregy": {"hessian": [[1, 0], [0, 1]]}})",
+                "did you mean \"energy\""},
+        BadCase{"constraint", R"({"dcad": 1, "constraint": {"symplectic": [[0, 1], [-1, 0]]}})", "did you mean \"constrained\""},
+        BadCase{"dupkey", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 0], "gradient": [0, 1]}})",
+                "/energy: expected each key once"},
+        BadCase{"dupvar", R"({"dcad": 1, "variables": ["x", "x"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})", "/variables/1"},
+        BadCase{"twoforms", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]], "poisson": [[0, 1], [-1, 0]]}})",
+                "exactly one form"},
+        BadCase{"deep", "{\"dcad\": 1, \"x\": [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]}",
+                "nested at most 64"},
+        BadCase{"expressionform", R"({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "v_x^2"}})", "not supported yet"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+// Values beyond double: the exact backends take them, the fast one says it cannot, nothing raises
+// a signal (gmpq_set_d on an infinity raised SIGFPE), and JSON nested 10^5 deep is refused.
+TEST(Cli, ValuesBeyondDoubleAndDeepNesting) {
+  const std::string json = write_temp("dcad_1e309.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "1e309"], ["-1e309", 0]]}})");
+  const std::string deck = write_temp("dcad_1e309.cir", "huge\nL1 a 0 1e309 IC=1\nC1 a 0 1\n.end\n");
+  for (const std::string backend : {"reference", "certified"}) {
+    EXPECT_EQ(run("solve " + json + " --json --backend " + backend).rc, 0) << backend;
+    EXPECT_EQ(run("solve " + deck + " --json --backend " + backend).rc, 0) << backend;
+  }
+  expect_input_error(run("solve " + json + " --backend fast"), json, "double's range", "fast 1e309");
+  const Outcome fast_deck = run("solve " + deck + " --json --backend fast");  // the dimensionless twin is in range
+  EXPECT_EQ(fast_deck.rc, 0) << fast_deck.err;
+  expect_input_error(run("simulate " + deck + " --tstop 1 --step 0.1"), deck, "double's range", "simulate 1e309");
+  const std::string deep = write_temp("dcad_deep.json", std::string(100000, '[') + std::string(100000, ']'));
+  for (const std::string& cmd : std::vector<std::string>{"solve ", "inspect ", "check " + deep + " "})
+    expect_input_error(run(cmd + deep), deep, "nested at most 64", cmd);
+}
 
 TEST(Cli, SolveInconsistentIsAResult) {
   // E = x1 on D_0 = R^1 ⊕ 0 (ω = 0): M_1 = {dE ⊥ R} = ∅ — exit 0, consistent false, dims [1, -1].
@@ -578,7 +610,7 @@ TEST(Check, BadResultsExitOne) {
     const std::string result = write_temp("dcad_check_input.json", text);
     expect_input_error(run("check " + result + " " + file), result, needle, needle);
   };
-  expect_one("{\"dims\": [12, 6", "invalid JSON");
+  expect_one("{\"dims\": [12, 6", "expected valid JSON");
   expect_one("[1, 2]", "a JSON object");
   nlohmann::json bad = good;
   bad.erase("dims");
