@@ -16,21 +16,12 @@ std::string lower(std::string s) {
   return s;
 }
 
-struct Line {
-  std::size_t number;
-  std::string text;
-};
-
-[[noreturn]] void fail(const std::string& file, std::size_t line, const std::string& expected, const std::string& found) {
-  throw InputError(file + ":" + std::to_string(line) + ": expected " + expected + ", found " + found);
-}
-
 }  // namespace
 
 bool is_netlist_file(const std::string& file) {
   const std::string f = lower(file);
-  for (const char* ext : {".cir", ".sp", ".net"})
-    if (f.size() > std::string(ext).size() && f.compare(f.size() - std::string(ext).size(), std::string::npos, ext) == 0) return true;
+  for (const std::string ext : {".cir", ".sp", ".net", ".spice", ".ckt"})
+    if (f.size() > ext.size() && f.compare(f.size() - ext.size(), std::string::npos, ext) == 0) return true;
   return false;
 }
 
@@ -62,72 +53,402 @@ Rational parse_spice_value(const std::string& text) {
   return v;  // plain number, possibly with unit letters ("2H")
 }
 
-Netlist read_netlist(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot open the file for reading");
-  Netlist out;
-  out.file = file;
+namespace {
+
+/// A logical line of the deck (continuations joined, comments removed) and where it came from.
+struct Line {
+  std::string file;
+  std::size_t number;
+  std::string text;
+  std::string where() const { return file + ":" + std::to_string(number); }
+};
+
+[[noreturn]] void fail(const Line& l, const std::string& expected, const std::string& found) {
+  throw InputError(l.where() + ": expected " + expected + ", found " + found);
+}
+
+std::vector<std::string> tokens(const std::string& text) {
+  std::istringstream ss(text);
+  std::vector<std::string> tok;
+  for (std::string t; ss >> t;) tok.push_back(t);
+  return tok;
+}
+
+/// Text without an inline comment: `;` anywhere, `$` at the start or after white space (ngspice).
+std::string strip_inline_comment(const std::string& text) {
+  std::size_t cut = text.find(';');
+  for (std::size_t i = 0; i < text.size() && i < cut; ++i)
+    if (text[i] == '$' && (i == 0 || std::isspace(static_cast<unsigned char>(text[i - 1])))) cut = i;
+  return cut == std::string::npos ? text : text.substr(0, cut);
+}
+
+std::string unquote(const std::string& s) {
+  return s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front() ? s.substr(1, s.size() - 2) : s;
+}
+
+std::string beside(const std::string& deck, const std::string& name) {  // relative to the including deck
+  if (!name.empty() && name[0] == '/') return name;
+  const std::size_t slash = deck.rfind('/');
+  return slash == std::string::npos ? name : deck.substr(0, slash + 1) + name;
+}
+
+/// The deck's logical lines: title dropped (top file only), comments and .control blocks removed,
+/// `+` continuations joined, .include and .lib FILE SECTION read in place.  Stops at .end.
+class Reader {
+ public:
+  std::string title;
   std::vector<Line> lines;
-  std::string raw;
-  std::size_t number = 0;
-  bool first = true, in_control = false;
-  while (std::getline(in, raw)) {
-    ++number;
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-    if (first) {  // the title line
-      out.title = raw;
-      first = false;
-      continue;
+  std::vector<std::string> warnings;
+
+  void read(const std::string& file, bool top, const std::string& section, int depth, const Line* from) {
+    if (depth > 16) fail(*from, "includes nested at most 16 deep", "deeper (an include cycle?)");
+    std::ifstream in(file);
+    if (!in) {
+      if (from) fail(*from, "a readable file to include", "\"" + file + "\" cannot be opened");
+      throw InputError(file + ": cannot open the file for reading");
     }
-    const std::size_t start = raw.find_first_not_of(" \t");
-    if (start == std::string::npos) continue;
-    std::string text = raw.substr(start);
-    const std::string low = lower(text);
-    if (in_control) {  // .control … .endc: ngspice's script, ignored as a whole
-      if (low.compare(0, 5, ".endc") == 0) in_control = false;
-      continue;
+    std::string raw;
+    std::size_t number = 0;
+    bool first = top, in_control = false, in_section = section.empty();
+    for (; std::getline(in, raw);) {
+      ++number;
+      if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+      if (first) {  // the title line
+        title = raw;
+        first = false;
+        continue;
+      }
+      const std::size_t start = raw.find_first_not_of(" \t");
+      if (start == std::string::npos || raw[start] == '*') continue;
+      std::string text = strip_inline_comment(raw.substr(start));
+      if (text.find_first_not_of(" \t") == std::string::npos) continue;
+      const Line here{file, number, text};
+      const std::vector<std::string> tok = tokens(text);
+      const std::string head = lower(tok[0]);
+      if (!in_section) {  // .lib FILE SECTION: only `.lib SECTION` … `.endl`
+        if (head == ".lib" && tok.size() == 2 && lower(tok[1]) == lower(section)) in_section = true;
+        continue;
+      }
+      if (!section.empty() && head == ".endl") return;
+      if (in_control) {  // .control … .endc: ngspice's script, ignored as a whole
+        if (head == ".endc") in_control = false;
+        continue;
+      }
+      if (head == ".control") {
+        in_control = true;
+        warnings.push_back(here.where() + ": ignored .control block");
+        continue;
+      }
+      if (text[0] == '+') {
+        if (lines.empty() || lines.back().file != file) fail(here, "an element line before a continuation '+'", "'+' first");
+        lines.back().text += " " + text.substr(1);
+        continue;
+      }
+      if (head == ".end") {
+        ended = true;
+        return;
+      }
+      if (head == ".include" || head == ".inc") {
+        if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
+        read(beside(file, unquote(tok[1])), false, "", depth + 1, &here);
+        if (ended) return;
+        continue;
+      }
+      if (head == ".lib" && tok.size() == 3) {
+        read(beside(file, unquote(tok[1])), false, tok[2], depth + 1, &here);
+        continue;
+      }
+      if (head == ".lib") fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
+      lines.push_back(here);
     }
-    if (low.compare(0, 8, ".control") == 0) {
-      in_control = true;
-      out.warnings.push_back(file + ":" + std::to_string(number) + ": ignored .control block");
-      continue;
-    }
-    if (text[0] == '*') continue;
-    if (text[0] == '+') {
-      if (lines.empty()) fail(file, number, "an element line before a continuation '+'", "'+' first");
-      lines.back().text += " " + text.substr(1);
-      continue;
-    }
-    lines.push_back({number, text});
+    if (!section.empty() && !in_section && from) fail(*from, "a section .lib " + section + " in " + file, "none");
   }
-  if (first) throw InputError(file + ":1: expected a title line and LC elements, found an empty file");
-  std::map<std::string, std::size_t> names, nodes;
-  for (const Line& l : lines) {
-    std::istringstream ss(l.text);
-    std::vector<std::string> tok;
-    for (std::string t; ss >> t;) tok.push_back(t);
-    const std::string head = lower(tok[0]);
-    if (head[0] == '.') {
-      if (head == ".end") break;
-      out.warnings.push_back(file + ":" + std::to_string(l.number) + ": ignored " + tok[0]);
-      continue;
+  bool ended = false;
+};
+
+/// Exact arithmetic on .param expressions: numbers (SPICE suffixes), parameters, + - * / ( ),
+/// unary signs, ^ or ** with an integer exponent.
+class Expression {
+ public:
+  Expression(const std::string& text, const std::map<std::string, Rational>& params) : s_(lower(text)), params_(params) {}
+  Rational value() {
+    const Rational v = sum();
+    skip();
+    if (i_ != s_.size()) throw std::invalid_argument("unexpected \"" + s_.substr(i_) + "\"");
+    return v;
+  }
+
+ private:
+  void skip() {
+    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
+  }
+  bool eat(const std::string& op) {
+    skip();
+    if (s_.compare(i_, op.size(), op) != 0) return false;
+    i_ += op.size();
+    return true;
+  }
+  Rational sum() {
+    Rational v = product();
+    for (;;) {
+      if (eat("+")) v += product();
+      else if (eat("-")) v -= product();
+      else return v;
     }
+  }
+  Rational product() {
+    Rational v = power();
+    for (;;) {
+      if (s_.compare(i_, 2, "**") != 0 && eat("*")) {
+        v *= power();
+      } else if (eat("/")) {
+        const Rational d = power();
+        if (d == 0) throw std::invalid_argument("division by zero");
+        v /= d;
+      } else {
+        return v;
+      }
+    }
+  }
+  Rational power() {
+    const Rational base = unary();
+    if (!eat("^") && !eat("**")) return base;
+    const Rational e = unary();
+    if (boost::multiprecision::denominator(e) != 1 || boost::multiprecision::abs(e) > 64)
+      throw std::invalid_argument("expected an integer exponent of at most 64, found " + e.str());
+    Rational r(1);
+    for (long k = 0; k < boost::multiprecision::abs(e); ++k) r *= base;
+    if (e < 0) {
+      if (r == 0) throw std::invalid_argument("division by zero");
+      r = Rational(1) / r;
+    }
+    return r;
+  }
+  Rational unary() {
+    if (eat("-")) return -unary();
+    if (eat("+")) return unary();
+    if (eat("(")) {
+      const Rational v = sum();
+      if (!eat(")")) throw std::invalid_argument("expected ')'");
+      return v;
+    }
+    skip();
+    const std::size_t start = i_;
+    if (i_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_')) {
+      while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_')) ++i_;
+      const std::string name = s_.substr(start, i_ - start);
+      const auto it = params_.find(name);
+      if (it == params_.end()) throw std::invalid_argument("unknown parameter \"" + name + "\"");
+      return it->second;
+    }
+    while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.' ||
+                              ((s_[i_] == '+' || s_[i_] == '-') && i_ > start && s_[i_ - 1] == 'e' &&
+                               std::isdigit(static_cast<unsigned char>(s_[start])))))
+      ++i_;
+    if (i_ == start) throw std::invalid_argument("expected a number, a parameter or '('");
+    return parse_spice_value(s_.substr(start, i_ - start));
+  }
+  std::string s_;
+  std::size_t i_ = 0;
+  const std::map<std::string, Rational>& params_;
+};
+
+/// name=value pairs of a .param line or a subcircuit's params: list ("a=1 b={2*a}", spaces around
+/// '=' allowed), evaluated in order into `into`.
+void read_params(const std::vector<std::string>& tok, std::size_t from, const Line& l, std::map<std::string, Rational>& into) {
+  std::string joined;
+  for (std::size_t k = from; k < tok.size(); ++k) joined += tok[k] + " ";
+  std::size_t i = 0;
+  while (true) {
+    while (i < joined.size() && std::isspace(static_cast<unsigned char>(joined[i]))) ++i;
+    if (i >= joined.size()) return;
+    const std::size_t eq = joined.find('=', i);
+    if (eq == std::string::npos) fail(l, "NAME=VALUE", "\"" + joined.substr(i) + "\"");
+    std::string name = lower(joined.substr(i, eq - i));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    std::size_t j = joined.find_first_not_of(" \t", eq + 1);
+    if (name.empty() || j == std::string::npos) fail(l, "NAME=VALUE", "\"" + joined.substr(i) + "\"");
+    std::size_t end;
+    if (joined[j] == '{') {
+      end = joined.find('}', j);
+      if (end == std::string::npos) fail(l, "a closing '}'", "\"" + joined.substr(j) + "\"");
+      ++end;
+    } else {
+      end = joined.find_first_of(" \t", j);
+    }
+    std::string expr = joined.substr(j, end - j);
+    if (expr.front() == '{') expr = expr.substr(1, expr.size() - 2);
+    try {
+      into[name] = Expression(expr, into).value();
+    } catch (const std::invalid_argument& e) {
+      fail(l, "a parameter value (exact: numbers, parameters, + - * / ^, parentheses)", "\"" + expr + "\" (" + e.what() + ")");
+    }
+    i = end;
+  }
+}
+
+struct Subcircuit {
+  std::string name;
+  std::vector<std::string> ports;
+  std::map<std::string, Rational> defaults;
+  std::vector<Line> body;
+  Line where;
+};
+
+/// Flattens the deck: .param, .subckt … .ends, X instances (hierarchical names as ngspice makes them:
+/// element L1 of instance X1 is l.x1.l1, internal node n of X1 is x1.n), .ic v(node)=value.
+class Flattener {
+ public:
+  Netlist& out;
+  std::map<std::string, std::size_t> names, nodes;
+  std::map<std::string, Subcircuit> subckts;
+  std::map<std::string, Rational> node_ic;
+
+  explicit Flattener(Netlist& n) : out(n) {}
+
+  void run(const std::vector<Line>& lines) {
+    std::map<std::string, Rational> params;
+    std::vector<Line> top;
+    for (std::size_t i = 0; i < lines.size(); ++i) {  // definitions first: ngspice allows use before definition
+      const std::vector<std::string> tok = tokens(lines[i].text);
+      const std::string head = lower(tok[0]);
+      if (head == ".subckt") {
+        i = define(lines, i);
+      } else if (head == ".ends") {
+        fail(lines[i], ".ends after a .subckt", ".ends without .subckt");
+      } else if (head == ".param") {
+        read_params(tok, 1, lines[i], params);
+      } else {
+        top.push_back(lines[i]);
+      }
+    }
+    expand(top, "", {}, params, 0);
+  }
+
+ private:
+  std::size_t define(const std::vector<Line>& lines, std::size_t i) {
+    const Line& l = lines[i];
+    const std::vector<std::string> tok = tokens(l.text);
+    if (tok.size() < 2) fail(l, ".subckt NAME PORT…", "\"" + l.text + "\"");
+    Subcircuit s{lower(tok[1]), {}, {}, {}, l};
+    std::size_t k = 2;
+    for (; k < tok.size() && lower(tok[k]) != "params:" && tok[k].find('=') == std::string::npos; ++k) s.ports.push_back(lower(tok[k]));
+    if (k < tok.size()) read_params(tok, lower(tok[k]) == "params:" ? k + 1 : k, l, s.defaults);
+    if (subckts.count(s.name)) fail(l, "a new subcircuit name", "a second .subckt " + tok[1]);
+    for (++i; i < lines.size(); ++i) {
+      const std::string head = lower(tokens(lines[i].text)[0]);
+      if (head == ".ends") {
+        subckts[s.name] = s;
+        return i;
+      }
+      if (head == ".subckt") fail(lines[i], ".ends of " + tok[1] + " (nested .subckt definitions are not supported)", ".subckt");
+      s.body.push_back(lines[i]);
+    }
+    fail(l, ".ends for .subckt " + tok[1], "the end of the deck");
+  }
+
+  /// node name in an instance: ground is global, ports map to the caller's nodes, others get the prefix
+  std::string node_in(const std::string& n, const std::string& prefix, const std::map<std::string, std::string>& ports) const {
+    const std::string s = lower(n);
+    if (s == "0" || s == "gnd") return "0";
+    const auto p = ports.find(s);
+    if (p != ports.end()) return p->second;
+    return prefix + s;
+  }
+
+  void expand(const std::vector<Line>& body, const std::string& prefix, const std::map<std::string, std::string>& ports,
+              const std::map<std::string, Rational>& params, int depth) {
+    for (const Line& l : body) {
+      std::vector<std::string> tok = tokens(l.text);
+      const std::string head = lower(tok[0]);
+      if (head[0] == '.') {
+        dot_card(l, tok, prefix, ports, params);
+        continue;
+      }
+      if (head[0] == 'x') {
+        instance(l, tok, prefix, ports, params, depth);
+        continue;
+      }
+      element(l, tok, prefix, ports, params);
+    }
+  }
+
+  void dot_card(const Line& l, const std::vector<std::string>& tok, const std::string& prefix,
+                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
+    const std::string head = lower(tok[0]);
+    static const std::vector<std::string> analysis = {".tran", ".ac", ".dc", ".op", ".options", ".option", ".opt", ".print",
+                                                      ".plot", ".probe", ".save", ".meas", ".measure", ".four", ".width",
+                                                      ".title", ".temp", ".nodeset", ".noise", ".disto", ".pz", ".sens", ".tf"};
+    if (head == ".ic") {
+      for (std::size_t k = 1; k < tok.size(); ++k) {
+        const std::string t = lower(tok[k]);
+        const std::size_t eq = t.find('=');
+        if (t.compare(0, 2, "v(") != 0 || eq == std::string::npos || t[eq - 1] != ')')
+          fail(l, ".ic V(NODE)=VALUE …", "\"" + tok[k] + "\"");
+        std::string value = t.substr(eq + 1);
+        if (!value.empty() && value.front() == '{') value = value.substr(1, value.size() - 2);
+        try {
+          node_ic[node_in(t.substr(2, eq - 3), prefix, ports)] = Expression(value, params).value();
+        } catch (const std::invalid_argument& e) {
+          fail(l, "V(NODE)=VALUE", "\"" + tok[k] + "\" (" + e.what() + ")");
+        }
+      }
+      return;
+    }
+    if (std::find(analysis.begin(), analysis.end(), head) != analysis.end()) {
+      out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged)");
+      return;
+    }
+    fail(l, "an L, C, zero-volt V or X element, or a supported dot-card (.param, .subckt, .include, .lib, .ic, analysis cards)",
+         "unsupported " + tok[0] + " (it would change the circuit)");
+  }
+
+  void instance(const Line& l, const std::vector<std::string>& tok, const std::string& prefix,
+                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params, int depth) {
+    if (depth >= 32) fail(l, "subcircuits nested at most 32 deep", "deeper (a recursive .subckt?)");
+    std::size_t k = tok.size();
+    while (k > 1 && tok[k - 1].find('=') != std::string::npos) --k;  // trailing name=value overrides
+    if (k > 1 && lower(tok[k - 1]) == "params:") --k;
+    if (k < 2) fail(l, "XNAME NODE… SUBCKT", "\"" + l.text + "\"");
+    const std::string sub = lower(tok[k - 1]);
+    const auto it = subckts.find(sub);
+    if (it == subckts.end()) fail(l, "a subcircuit defined by .subckt", "unknown subcircuit \"" + tok[k - 1] + "\" in " + tok[0]);
+    const Subcircuit& s = it->second;
+    if (k - 2 != s.ports.size())
+      fail(l, std::to_string(s.ports.size()) + " nodes for " + tok[k - 1] + " (" + s.where.where() + ")",
+           std::to_string(k - 2) + " in " + tok[0]);
+    std::map<std::string, std::string> inner;
+    for (std::size_t p = 0; p < s.ports.size(); ++p) inner[s.ports[p]] = node_in(tok[1 + p], prefix, ports);
+    std::map<std::string, Rational> local = params;  // global .params, then the defaults, then the overrides
+    for (const auto& [name, value] : s.defaults) local[name] = value;
+    std::size_t first_override = k;
+    if (first_override < tok.size() && lower(tok[first_override]) == "params:") ++first_override;
+    read_params(tok, first_override, l, local);
+    expand(s.body, prefix + lower(tok[0]) + ".", inner, local, depth + 1);
+  }
+
+  void element(const Line& l, std::vector<std::string> tok, const std::string& prefix,
+               const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
+    const std::string head = lower(tok[0]);
     const char kind = head[0];
     if (kind == 'r')
-      fail(file, l.number, "an L, C or zero-volt V element (an LC circuit has no resistors; CEF §6)", "resistor " + tok[0]);
-    if (kind != 'l' && kind != 'c' && kind != 'v')
-      fail(file, l.number, "an L, C or zero-volt V element", "element " + tok[0]);
-    if (tok.size() < 4) fail(file, l.number, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
-    if (names.count(head)) fail(file, l.number, "a new element name", "duplicate " + tok[0] + " (first on line " + std::to_string(names[head]) + ")");
-    names[head] = l.number;
+      fail(l, "an L, C or zero-volt V element (an LC circuit has no resistors; CEF §6)", "resistor " + tok[0]);
+    if (kind != 'l' && kind != 'c' && kind != 'v') fail(l, "an L, C, zero-volt V or X element", "element " + tok[0]);
+    if (tok.size() < 4) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
+    const std::string name = prefix.empty() ? tok[0] : std::string(1, tok[0][0]) + "." + prefix + head;
+    const std::string key = lower(name);
+    if (names.count(key)) fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
+    names[key] = out_lines.size();
+    out_lines.push_back(l.where());
     reference::Branch<Rational> b;
-    b.name = tok[0];
+    b.name = name;
     const auto node = [&](const std::string& t) -> long {
-      const std::string s = lower(t);
-      if (s == "0" || s == "gnd") return -1;
+      const std::string s = node_in(t, prefix, ports);
+      if (s == "0") return -1;
       if (!nodes.count(s)) {
         nodes[s] = out.node_names.size();
-        out.node_names.push_back(t);
+        out.node_names.push_back(s);
       }
       return static_cast<long>(nodes[s]);
     };
@@ -135,44 +456,81 @@ Netlist read_netlist(const std::string& file) {
     b.to = node(tok[2]);
     std::size_t vi = 3;
     if (kind == 'v' && lower(tok[3]) == "dc" && tok.size() > 4) vi = 4;  // "V1 a b DC 0"
-    Rational value;
-    try {
-      value = parse_spice_value(tok[vi]);
-    } catch (const std::invalid_argument& e) {
-      fail(file, l.number, "a value (number with optional SPICE suffix)", "\"" + tok[vi] + "\" (" + e.what() + ")");
-    }
+    const auto number = [&](const std::string& text, const std::string& what) {
+      try {
+        if (!text.empty() && text.front() == '{') {
+          if (text.back() != '}') throw std::invalid_argument("no closing '}'");
+          return Expression(text.substr(1, text.size() - 2), params).value();
+        }
+        return parse_spice_value(text);
+      } catch (const std::invalid_argument& e) {
+        fail(l, what, "\"" + text + "\" (" + e.what() + ")");
+      }
+    };
+    const Rational value = number(tok[vi], "a value (number with optional SPICE suffix, or {expression})");
     std::optional<Rational> ic;
     for (std::size_t k = vi + 1; k < tok.size(); ++k) {
       const std::string t = lower(tok[k]);
-      if (t.compare(0, 3, "ic=") == 0) {
-        try {
-          ic = parse_spice_value(tok[k].substr(3));
-        } catch (const std::invalid_argument& e) {
-          fail(file, l.number, "IC=value", "\"" + tok[k] + "\"");
-        }
-      } else {
-        fail(file, l.number, "nothing or IC=value after the value", "\"" + tok[k] + "\"");
-      }
+      if (t.compare(0, 3, "ic=") == 0) ic = number(tok[k].substr(3), "IC=value");
+      else fail(l, "nothing or IC=value after the value", "\"" + tok[k] + "\"");
     }
     if (kind == 'v') {
-      if (value != 0) fail(file, l.number, "a zero-volt source (a wire, an empty branch)", "V = " + value.str());
+      if (value != 0) fail(l, "a zero-volt source (a wire, an empty branch)", "V = " + value.str());
       b.kind = reference::BranchKind::empty;
     } else if (kind == 'l') {
       b.kind = reference::BranchKind::inductor;
       b.value = value;
-      if (value < 0) out.warnings.push_back(file + ":" + std::to_string(l.number) + ": negative inductance " + tok[0] + " is not physical (CEF Remark 6.7)");
+      if (value < 0) out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
     } else {
-      if (value == 0) fail(file, l.number, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + tok[0]);
+      if (value == 0) fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + name);
       b.kind = reference::BranchKind::capacitor;
       b.value = value;
-      if (value < 0) out.warnings.push_back(file + ":" + std::to_string(l.number) + ": negative capacitance " + tok[0] + " is not physical (CEF Remark 6.7)");
+      if (value < 0) out.warnings.push_back(l.where() + ": negative capacitance " + name + " is not physical (CEF Remark 6.7)");
     }
     if (kind == 'l' && value == 0) b.kind = reference::BranchKind::empty;  // L = 0: a wire
     out.circuit.branches.push_back(b);
     out.initial.push_back(ic);
   }
-  if (out.circuit.branches.empty()) throw InputError(file + ":" + std::to_string(number) + ": expected at least one L, C or V element, found none");
+
+ public:
+  std::vector<std::string> out_lines;  ///< file:line of each branch
+};
+
+}  // namespace
+
+Netlist read_netlist(const std::string& file) {
+  Netlist out;
+  out.file = file;
+  Reader reader;
+  reader.read(file, true, "", 0, nullptr);
+  if (reader.title.empty() && reader.lines.empty()) {
+    std::ifstream probe(file);
+    if (probe.peek() == std::ifstream::traits_type::eof())
+      throw InputError(file + ":1: expected a title line and LC elements, found an empty file");
+  }
+  out.title = reader.title;
+  out.warnings = reader.warnings;
+  Flattener f(out);
+  f.run(reader.lines);
+  if (out.circuit.branches.empty())
+    throw InputError(file + ":" + (reader.lines.empty() ? std::string("1") : reader.lines.back().where().substr(file.size() + 1)) +
+                     ": expected at least one L, C or V element, found none");
   out.circuit.nodes = out.node_names.size();
+  // .ic v(node)=…: a capacitor without IC= starts at the difference of its nodes' voltages
+  for (std::size_t i = 0; i < out.circuit.branches.size(); ++i) {
+    const auto& b = out.circuit.branches[i];
+    if (b.kind != reference::BranchKind::capacitor || out.initial[i]) continue;
+    const auto volt = [&](long n) -> std::optional<Rational> {
+      if (n < 0) return Rational(0);
+      const auto it = f.node_ic.find(out.node_names[n]);
+      return it == f.node_ic.end() ? std::nullopt : std::optional<Rational>(it->second);
+    };
+    const auto a = volt(b.from), c = volt(b.to);
+    if (a && c && !f.node_ic.empty()) out.initial[i] = *a - *c;
+  }
+  for (const auto& [node, v] : f.node_ic)
+    if (node != "0" && std::find(out.node_names.begin(), out.node_names.end(), node) == out.node_names.end())
+      throw InputError(file + ": .ic: expected a node of the circuit, found v(" + node + ")");
   return out;
 }
 

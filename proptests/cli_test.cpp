@@ -166,8 +166,46 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"noelements", "title only\n* nothing\n.end\n", "none"},
                     BadCase{"vsource", "title\nV1 1 0 5\n", "zero-volt"},
                     BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="},
-                    BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""}),
+                    BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""},
+                    // SPICE as ngspice reads it: what would change the circuit and is not supported is an error
+                    BadCase{"model", "title\n.model d1 D\nL1 1 0 1\n", "unsupported .model"},
+                    BadCase{"global", "title\n.global vdd\nL1 1 0 1\n", "unsupported .global"},
+                    BadCase{"nosubckt", "title\nX1 1 0 nope\n", "unknown subcircuit \"nope\""},
+                    BadCase{"subcktports", "title\n.subckt t a b\nL1 a b 1\n.ends\nX1 1 t\n", "2 nodes for t"},
+                    BadCase{"noends", "title\n.subckt t a b\nL1 a b 1\n", ".ends for .subckt t"},
+                    BadCase{"recursive", "title\n.subckt t a\nX1 a t\n.ends\nX1 1 t\n", "nested at most 32"},
+                    BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" cannot be opened"},
+                    BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
+                    BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
+                    BadCase{"icnode", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(7)=1\n", "v(7)"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+// A deck written the way ngspice users write it — a library section with a parametrised .subckt,
+// .param with expressions, X instances (one with overrides), .ic on nodes, ; and $ comments,
+// .include — is the same circuit as its hand-flattened twin: same tower, same trajectory.
+TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
+  const fs::path dir = fs::temp_directory_path() / "dcad_hier";
+  fs::create_directories(dir / "lib");
+  std::ofstream(dir / "lib" / "parts.lib") << "* library\n.lib tanks\n.subckt tank a b params: l=1u c=1n\nL1 a b {l}\nC1 a b {c} ; shunt\n"
+                                              ".ends\n.endl\n.lib other\n.subckt junk x\nR1 x 0 1\n.ends\n.endl\n";
+  std::ofstream(dir / "extra.inc") << "C9 n2 0 1n $ the load\n";
+  std::ofstream(dir / "deck.spice") << "two tanks\n.param lval=2u cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
+                                       "X1 n1 0 tank params: l={lval} c={cval}\nX2 n1 n2 tank\n.include extra.inc\n"
+                                       ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u\n.end\n";
+  std::ofstream(dir / "flat.cir") << "two tanks, flat\nL.x1.l1 n1 0 2u\nC.x1.c1 n1 0 1n IC=1\nL.x2.l1 n1 n2 1u\n"
+                                     "C.x2.c1 n1 n2 1n IC=0.5\nC9 n2 0 1n IC=0.5\n.end\n";
+  const std::string deck = (dir / "deck.spice").string(), flat = (dir / "flat.cir").string();
+  const Outcome h = run("solve " + deck + " --json"), f = run("solve " + flat + " --json");
+  ASSERT_EQ(h.rc, 0) << h.err;
+  ASSERT_EQ(f.rc, 0) << f.err;
+  const nlohmann::json jh = nlohmann::json::parse(h.out), jf = nlohmann::json::parse(f.out);
+  for (const char* key : {"dims", "steps", "solution_rank", "variables", "tower", "reduced"}) EXPECT_EQ(jh[key], jf[key]) << key;
+  EXPECT_EQ(jh["circuit"]["branches"], 5);  // the unused .subckt adds nothing
+  const Outcome sh = run("simulate " + deck + " --tstop 1e-6 --step 1e-8"), sf = run("simulate " + flat + " --tstop 1e-6 --step 1e-8");
+  ASSERT_EQ(sh.rc, 0) << sh.err;
+  EXPECT_EQ(sh.out, sf.out);
+  EXPECT_NE(sh.err.find("ignored .tran"), std::string::npos) << "simulate shows the netlist warnings: " << sh.err;
+}
 
 TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\nC1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\n.end\n");
