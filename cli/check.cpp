@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace dcad::cli {
@@ -100,6 +101,118 @@ void compare_matrix(Checker& k, const std::string& key, const std::vector<std::v
                                       shown(found[i][j]) + " (tolerance " + std::to_string(tol * scale) + ")");
     }
   }
+}
+
+io::Rational exact_value(const Number& x) { return x.exact ? x.q : io::Rational(x.d); }
+
+/// The result's matrix at `path` (rows × cols of numbers) with the exact value of every entry as
+/// given; nullopt (and a disagreement) if its shape is not rows × cols.
+std::optional<io::QMatrix> found_matrix(Checker& k, const std::string& key, const json& found, std::size_t rows, std::size_t cols,
+                                        std::vector<std::vector<Number>>& numbers) {
+  if (!found.is_array() || found.size() != rows) {
+    k.out.disagreements.push_back(key + ": expected " + std::to_string(rows) + " rows, found " + shown(found));
+    return std::nullopt;
+  }
+  io::QMatrix m(rows, cols);
+  numbers.assign(rows, {});
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (!found[i].is_array() || found[i].size() != cols) {
+      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(cols) + " entries, found " + shown(found[i]));
+      return std::nullopt;
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+      std::string path = "/" + key + "/" + std::to_string(i) + "/" + std::to_string(j);
+      std::replace(path.begin(), path.end(), '.', '/');
+      numbers[i].push_back(number(k.file, path, found[i][j]));
+      m(i, j) = exact_value(numbers[i].back());
+    }
+  }
+  return m;
+}
+
+io::QMatrix exact_matrix(const std::vector<std::vector<std::string>>& m, std::size_t cols) {
+  io::QMatrix out(m.size(), cols);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = 0; j < cols; ++j) out(i, j) = reference::parse_rational(m[i][j]);
+  return out;
+}
+
+double max_abs(const io::QMatrix& m) {
+  double s = 0;
+  for (std::size_t i = 0; i < m.rows(); ++i)
+    for (std::size_t j = 0; j < m.cols(); ++j) s = std::max(s, std::abs(m(i, j).convert_to<double>()));
+  return s;
+}
+
+/// The equations of motion ż = F z + f + G λ are determined only as the affine family
+/// {(F + G K, f + G k)} with span(G) (CEF (5.12): λ is free), so a correct result may differ from
+/// the reference by any G K.  Compared: N F, N f against the reference's (N = rows spanning the
+/// left null space of the reference's G, exact), N G_found = 0 and rank G_found = rank G, i.e.
+/// span(G_found) = span(G).  Exact where the result's numbers are exact strings, else within
+/// 1e-9 × entries × scale.  Without free multipliers N = I: F and f entry by entry.
+void compare_reduced(Checker& k, const SolveReport& truth, const json& red) {
+  const std::size_t m = truth.coords.size(), g = truth.g.empty() ? 0 : truth.g[0].size();
+  const io::QMatrix f_ref = exact_matrix(truth.f_matrix, m), g_ref = exact_matrix(truth.g, g);
+  io::QMatrix fv_ref(m, 1);
+  for (std::size_t i = 0; i < m; ++i) fv_ref(i, 0) = reference::parse_rational(truth.f[i]);
+  // N: rows y with yᵀ G = 0 (the whole of (Q^m)* without multipliers)
+  const io::QMatrix n = reference::annihilator(reference::Subspace<io::Rational>::span(g_ref.transpose())).basis();
+  const std::string modulo = g ? " modulo span(G)" : "";
+  std::vector<std::vector<Number>> nf, nv, ng;
+  const json fv_json = [&] {
+    json col = json::array();
+    for (const json& x : red.value("f", json::array())) col.push_back(json::array({x}));
+    return col;
+  }();
+  const auto f_found = found_matrix(k, "reduced.F", red.value("F", json()), m, m, nf);
+  const auto v_found = found_matrix(k, "reduced.f", fv_json, m, 1, nv);
+  // G: m rows of g numbers; [] stands for no free multipliers
+  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty() ? json(std::vector<json>(m, json::array()))
+                                                                                    : red.value("G", json());
+  const std::size_t g_cols = g_json.is_array() && !g_json.empty() && g_json[0].is_array() ? g_json[0].size() : 0;
+  const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>();
+  const auto exact_all = [](const std::vector<std::vector<Number>>& x) {
+    for (const auto& row : x)
+      for (const Number& v : row)
+        if (!v.exact) return false;
+    return true;
+  };
+  const auto same_modulo = [&](const std::string& key, const io::QMatrix& want, const io::QMatrix& found, bool exact) {
+    k.out.compared.push_back(key + modulo);
+    const io::QMatrix d = n * found - n * want;
+    const double scale = std::max(1.0, max_abs(n)) * std::max({1.0, max_abs(want), max_abs(found)});
+    const double tol = exact ? 0 : matrix_tolerance(want.rows() * want.cols()) * scale;
+    for (std::size_t i = 0; i < d.rows(); ++i)
+      for (std::size_t j = 0; j < d.cols(); ++j)
+        if (std::abs(d(i, j).convert_to<double>()) > tol || (exact && d(i, j) != 0)) {
+          k.out.disagreements.push_back(key + ": differs from the reference" + modulo + " (component " + std::to_string(i) + "," +
+                                        std::to_string(j) + " of the difference, projected off span(G): " +
+                                        float_text(d(i, j).convert_to<double>()) + ", tolerance " + float_text(tol) + ")");
+          return;
+        }
+  };
+  if (f_found) same_modulo("reduced.F", f_ref, *f_found, exact_all(nf));
+  if (v_found) same_modulo("reduced.f", fv_ref, *v_found, exact_all(nv));
+  if (!red.contains("G")) {
+    if (g) k.out.not_compared.push_back("reduced.G (absent: the result does not say which directions are free)");
+    return;
+  }
+  k.out.compared.push_back("reduced.G (span)");
+  if (!g_found) return;
+  const long rank = static_cast<long>(reference::rref(*g_found).pivots.size());
+  if (g_cols != g || rank != static_cast<long>(g)) {
+    k.out.disagreements.push_back("reduced.G: expected " + std::to_string(g) + " independent free directions (solution rank), found " +
+                                  std::to_string(rank) + " among " + std::to_string(g_cols) + " columns");
+    return;
+  }
+  const io::QMatrix ngf = n * *g_found;
+  const double tol = exact_all(ng) ? 0 : matrix_tolerance(m * g) * std::max(1.0, max_abs(n)) * std::max(1.0, max_abs(*g_found));
+  for (std::size_t i = 0; i < ngf.rows(); ++i)
+    for (std::size_t j = 0; j < ngf.cols(); ++j)
+      if (std::abs(ngf(i, j).convert_to<double>()) > tol || (tol == 0 && ngf(i, j) != 0)) {
+        k.out.disagreements.push_back("reduced.G: column " + std::to_string(j) + " is not in the reference's span(G)");
+        return;
+      }
 }
 
 std::vector<std::vector<std::string>> column(const std::vector<std::string>& v) {
@@ -207,12 +320,7 @@ CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_
       k.out.disagreements.push_back("reduced: expected none (no equations of motion: " + std::string(truth.consistent ? "too large" : "inconsistent") +
                                     "), found some");
     } else {
-      compare_matrix(k, "reduced.F", truth.f_matrix, r["reduced"].value("F", json()));
-      compare_matrix(k, "reduced.f", column(truth.f), [&] {
-        json col = json::array();
-        for (const json& x : r["reduced"].value("f", json::array())) col.push_back(json::array({x}));
-        return col;
-      }());
+      compare_reduced(k, truth, r["reduced"]);
     }
   }
   if (r.contains("dirac_bracket")) {

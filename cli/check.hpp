@@ -13,6 +13,7 @@ namespace dcad::cli {
 struct CheckOutcome {
   std::vector<std::string> compared;       ///< the keys that were compared
   std::vector<std::string> disagreements;  ///< "key: expected …, found …"
+  std::vector<std::string> not_compared;   ///< what the reference has and the result does not say, and why
 };
 
 /// Throws io::InputError (exit 1) for a RESULT that is not a result for this case: missing required

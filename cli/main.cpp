@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
       }
       std::string keys;
       for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
+      for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";
       if (o.disagreements.empty()) {
         std::cout << "dcad check: " << check_result_file << " agrees with the reference on " << check_file << " (compared: " << keys << ")\n";
         return 0;

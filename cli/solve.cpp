@@ -19,10 +19,15 @@ std::string equation_text(const Equation& e, const std::vector<std::string>& nam
 }
 
 std::string float_text(double x) {
+  if (x == 0) return "0.0";  // never "-0"
   std::ostringstream o;
   o.precision(17);
   o << x;
-  return o.str();
+  std::string s = o.str();
+  // a rounded value must not read as an exact integer string ("-1" for -1.000000000000000000001):
+  // `dcad check` compares integer and fraction strings exactly
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
 }
 
 Equation row_equation(const io::QMatrix& rows, std::size_t i) {
@@ -71,7 +76,7 @@ std::string row_text(const std::vector<std::string>& coeff, const std::vector<st
     if (!coeff[j].empty()) e.terms.emplace_back(j, coeff[j]);
   std::string lhs = equation_text(e, names);
   lhs = lhs.substr(0, lhs.size() - 3);  // drop " = "
-  if (constant == "0" || constant.empty()) return lhs;
+  if (constant == "0" || constant == "0.0" || constant.empty()) return lhs;
   if (lhs == "0") return constant;
   return lhs + (constant[0] == '-' ? " - " + constant.substr(1) : " + " + constant);
 }
@@ -93,7 +98,9 @@ nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
   if (r.has_final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
     nlohmann::json rows = nlohmann::json::array();
     for (const Equation& e : r.final_constraints) {
-      std::vector<std::string> row(c.variables.size(), "0");
+      // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)
+      const bool exact = r.backend == "reference" || r.decisions_exact > 0;
+      std::vector<std::string> row(c.variables.size(), exact ? "0" : "0.0");
       for (const auto& [var, coeff] : e.terms) row[var] = coeff;
       row.push_back(e.rhs);
       rows.push_back(row);
@@ -168,11 +175,11 @@ std::string to_text(const SolveReport& r, const io::CaseFile& c) {
       std::vector<std::string> coeff = r.f_matrix[i];
       std::vector<std::string> all = names;
       for (std::size_t k = 0; k < lambdas.size(); ++k) {
-        coeff.push_back(r.g[i][k] == "0" ? "" : r.g[i][k]);
+        coeff.push_back(r.g[i][k] == "0" || r.g[i][k] == "0.0" ? "" : r.g[i][k]);
         all.push_back(lambdas[k]);
       }
       for (std::string& x : coeff)
-        if (x == "0") x = "";
+        if (x == "0" || x == "0.0") x = "";
       o << "    d/dt " << names[i] << " = " << row_text(coeff, all, r.f[i]) << "\n";
     }
   }

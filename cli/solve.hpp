@@ -53,7 +53,7 @@ struct SolveReport {
 
 /// "2*x1 - 1/3*x2 = 5" in the given variable names.
 std::string equation_text(const Equation& e, const std::vector<std::string>& names);
-/// x as %.17g (round-trips).
+/// x as %.17g (round-trips), always as a float: "1.0", never "1" (an exact integer string) or "-0".
 std::string float_text(double x);
 /// Row i of [a | b] (exact) as an Equation.
 Equation row_equation(const io::QMatrix& rows, std::size_t i);

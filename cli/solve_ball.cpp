@@ -1,10 +1,12 @@
 // The reference pipeline in certified ball arithmetic (the one translation unit that instantiates
-// solve_exact on reference::Ball).  Numbers printed are ball midpoints (%.17g); a coefficient whose
+// solve_exact on reference::Ball).  Numbers printed are exact where the ball is a point, else ball
+// midpoints as floats (%.17g, never an integer string); a coefficient whose
 // ball contains 0 is not printed as a term.
 #include "dcad/reference/ball.hpp"
 #include "solve_exact.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dcad::cli {
 
@@ -17,7 +19,8 @@ struct Scalar<reference::Ball> {
   static reference::Ball lift(const io::Rational& q) { return reference::Ball::enclosing(q); }
   static std::string text(const reference::Ball& b) {
     widest = std::max(widest, b.rad());
-    return float_text(b.mid());
+    // a point ball is the exact value (ball.hpp): print it exactly; otherwise its midpoint, as a float
+    return b.rad() == 0 && std::isfinite(b.mid()) ? io::Rational(b.mid()).str() : float_text(b.mid());
   }
   static bool printable(const reference::Ball& b) { return std::abs(b.mid()) > b.rad(); }
   static void keep_final(SolveReport&, const reference::Matrix<reference::Ball>&, const std::vector<reference::Ball>&) {}

@@ -158,7 +158,8 @@ TEST(ScaleInvariance, LadderTrajectoryAtRandomUnits) {
 
 // Random circuits (a shunt C at every node, random extra L and C branches: capacitor loops and
 // parallel branches) at unit-scale integer values and again with every L × 10^α, every C × 10^β:
-// every backend must report the same tower, solution rank and certification verdict.
+// every backend must report the same tower, solution rank and certification verdict, and every
+// certified result must pass `dcad check`.
 TEST(ScaleInvariance, TowerAndVerdictOfEveryBackend) {
   std::mt19937 rng(13);
   const auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
@@ -187,6 +188,9 @@ TEST(ScaleInvariance, TowerAndVerdictOfEveryBackend) {
       for (const char* key : {"dims", "steps", "consistent", "solution_rank", "certified"})
         EXPECT_EQ(ju[key], jr[key]) << backend << " " << key << " at L × 1e" << a << ", C × 1e" << b << "\n" << deck(a, b);
       EXPECT_TRUE(jr["certified"].get<bool>() || backend == "fast") << backend;
+      // and dcad's own output at realistic values passes dcad check (floats never printed as integers)
+      const Outcome c = run("check " + write_temp("dcad_scale_result.json", rr.out) + " " + real);
+      if (jr["certified"].get<bool>()) EXPECT_EQ(c.rc, 0) << backend << "\n" << c.out << c.err << "\n" << deck(a, b);
     }
   }
 }

@@ -611,6 +611,38 @@ TEST(Check, EveryCaseValidatesAndRoundTrips) {
   EXPECT_GE(checked, 30);
 }
 
+// Gauge freedom (CEF (5.12): λ free): F + G K and f + G k are as right as F and f, a G that spans
+// another space is wrong, and a result without G is compared modulo span(G) with a note saying so.
+TEST(Check, EquationsOfMotionModuloGauge) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/gauge-free-particle.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend reference --json").out);
+  ASSERT_EQ(good["reduced"]["G"].size(), 4u);
+  // G = (0, 0, 1, 1)ᵀ and rows 2, 3 of F and f are 0 (v1' = v2' = λ): F + G K puts K in those rows
+  ASSERT_EQ(good["reduced"]["G"], nlohmann::json::parse(R"([["0"], ["0"], ["1"], ["1"]])"));
+  nlohmann::json shifted = good;
+  const nlohmann::json k = nlohmann::json::parse(R"(["1", "-2", 3.5, "1/2"])");
+  shifted["reduced"]["F"][2] = k;
+  shifted["reduced"]["F"][3] = k;
+  shifted["reduced"]["f"][2] = "7";
+  shifted["reduced"]["f"][3] = "7";
+  const Outcome ok = run("check " + write_temp("dcad_gauge_ok.json", shifted.dump()) + " " + file);
+  EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
+  EXPECT_NE(ok.out.find("reduced.F modulo span(G)"), std::string::npos) << ok.out;
+  nlohmann::json wrong_g = good;
+  wrong_g["reduced"]["G"][3][0] = "0";
+  const Outcome bad = run("check " + write_temp("dcad_gauge_bad.json", wrong_g.dump()) + " " + file);
+  EXPECT_EQ(bad.rc, 3) << bad.out;
+  EXPECT_NE(bad.out.find("reduced.G"), std::string::npos) << bad.out;
+  nlohmann::json wrong_f = good;
+  wrong_f["reduced"]["F"][0][0] = "1";  // q1' = q1 + v1 is not in the family
+  EXPECT_EQ(run("check " + write_temp("dcad_gauge_badf.json", wrong_f.dump()) + " " + file).rc, 3);
+  nlohmann::json no_g = good;
+  no_g["reduced"].erase("G");
+  const Outcome partial = run("check " + write_temp("dcad_gauge_nog.json", no_g.dump()) + " " + file);
+  EXPECT_EQ(partial.rc, 0) << partial.out;
+  EXPECT_NE(partial.out.find("not compared: reduced.G"), std::string::npos) << partial.out;
+}
+
 // Wrong results are caught (exit 3) with the disagreement named.
 TEST(Check, DisagreementsExitThree) {
   const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json";
@@ -628,7 +660,7 @@ TEST(Check, DisagreementsExitThree) {
   expect_three(bad, "solution_rank");
   bad = good;
   bad["reduced"]["F"][3][1] = -1.0 / 3 + 1e-3;  // a float 1e-3 off the exact −1/3
-  expect_three(bad, "reduced.F[3][1]");
+  expect_three(bad, "reduced.F: differs from the reference (component 3,1");
   bad = good;
   bad["reduced"]["F"][3][1] = -1.0 / 3;  // the correctly rounded float passes
   EXPECT_EQ(run("check " + write_temp("dcad_check_ok.json", bad.dump()) + " " + file).rc, 0);
