@@ -116,13 +116,15 @@ int main(int argc, char** argv) {
     if (solve->parsed()) {
       const bool netlist = dcad::io::is_netlist_file(solve_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(solve_file) : dcad::io::Netlist();
-      const bool dense = !netlist || solve_backend == "reference" || deck.circuit.branches.size() <= dcad::cli::kDenseBranches;
+      const bool dense = !netlist || deck.circuit.branches.size() <= dcad::cli::kDenseBranches;
       const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, dense) : dcad::io::read_case(solve_file);
       for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
       dcad::cli::SolveReport r;
       try {
-        if (netlist && solve_backend != "reference") {  // the graph route (CEF §6)
-          r = solve_backend == "fast" ? dcad::cli::solve_circuit_fast(deck, c) : dcad::cli::solve_circuit_certified(deck, c);
+        if (netlist) {  // the circuit routes (CEF §6): structured exact / ball, graph route + fast
+          r = solve_backend == "fast"        ? dcad::cli::solve_circuit_fast(deck, c)
+              : solve_backend == "reference" ? dcad::cli::solve_circuit_reference(deck, c)
+                                             : dcad::cli::solve_circuit_certified(deck, c);
         } else {
           r = solve_backend == "reference" ? dcad::cli::solve_reference(c)
               : solve_backend == "fast"    ? dcad::cli::solve_fast(c)
@@ -171,7 +173,7 @@ int main(int argc, char** argv) {
     if (sim->parsed()) {
       const bool netlist = dcad::io::is_netlist_file(sim_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(sim_file) : dcad::io::Netlist();
-      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck) : dcad::io::read_case(sim_file);
+      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, false) : dcad::io::read_case(sim_file);
       std::vector<std::optional<dcad::io::Rational>> init(c.n);
       if (netlist) init = dcad::cli::netlist_initial(deck);
       else if (!c.initial.empty())
@@ -200,7 +202,7 @@ int main(int argc, char** argv) {
         }
       }
       std::ostream& csv_out = csv_path.empty() ? std::cout : file_out;
-      const dcad::cli::SimulateSummary sum = dcad::cli::simulate(c, init, sim_opt, csv_out, std::cerr);
+      const dcad::cli::SimulateSummary sum = dcad::cli::simulate(c, netlist ? &deck : nullptr, init, sim_opt, csv_out, std::cerr);
       if (!csv_path.empty()) {
         file_out.close();
         if (!file_out) {
@@ -232,6 +234,12 @@ int main(int argc, char** argv) {
   } catch (const dcad::io::InputError& e) {
     std::cerr << e.what() << "\n";
     return 1;
+  } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
+    std::cerr << (sim->parsed() ? sim_file : solve->parsed() ? solve_file : check->parsed() ? check_file : file) << ": " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {  // an internal invariant: never an answer, never a crash
+    std::cerr << "dcad: internal error: " << e.what() << "; please report it with the input\n";
+    return 4;
   }
   return 0;
 }

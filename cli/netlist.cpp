@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -102,6 +103,9 @@ class Reader {
 
   void read(const std::string& file, bool top, const std::string& section, int depth, const Line* from) {
     if (depth > 16) fail(*from, "includes nested at most 16 deep", "deeper (an include cycle?)");
+    std::error_code ec;
+    if (from && !std::filesystem::is_regular_file(file, ec))  // not a device or a pipe: never a hang
+      fail(*from, "a regular file to include", "\"" + file + "\" (" + (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file") + ")");
     std::ifstream in(file);
     if (!in) {
       if (from) fail(*from, "a readable file to include", "\"" + file + "\" cannot be opened");
@@ -217,7 +221,12 @@ class Expression {
     if (boost::multiprecision::denominator(e) != 1 || boost::multiprecision::abs(e) > 64)
       throw std::invalid_argument("expected an integer exponent of at most 64, found " + e.str());
     Rational r(1);
-    for (long k = 0; k < boost::multiprecision::abs(e); ++k) r *= base;
+    for (long k = 0; k < boost::multiprecision::abs(e); ++k) {
+      r *= base;
+      if (boost::multiprecision::msb(boost::multiprecision::abs(boost::multiprecision::numerator(r)) + 1) > 20000 ||
+          boost::multiprecision::msb(boost::multiprecision::denominator(r)) > 20000)
+        throw std::invalid_argument("a power beyond 20000 bits");
+    }
     if (e < 0) {
       if (r == 0) throw std::invalid_argument("division by zero");
       r = Rational(1) / r;
@@ -554,8 +563,8 @@ double log10_abs(const Rational& x) {
   return part(boost::multiprecision::numerator(x)) - part(boost::multiprecision::denominator(x));
 }
 
-/// Nearest integer to the mean of log10 |value| over the branches of that kind (0 if none).
-int mean_exponent(const Netlist& n, reference::BranchKind kind) {
+/// Mean of log10 |value| over the branches of that kind (0 if none).
+double mean_exponent(const Netlist& n, reference::BranchKind kind) {
   double sum = 0;
   long count = 0;
   for (const auto& b : n.circuit.branches)
@@ -563,15 +572,16 @@ int mean_exponent(const Netlist& n, reference::BranchKind kind) {
       sum += log10_abs(b.value);
       ++count;
     }
-  return count ? static_cast<int>(std::lround(sum / count)) : 0;
+  return count ? sum / static_cast<double>(count) : 0.0;
 }
 
 }  // namespace
 
 Netlist dimensionless(const Netlist& n, Units& u) {
-  u.a = mean_exponent(n, reference::BranchKind::inductor);
-  u.b = mean_exponent(n, reference::BranchKind::capacitor);
-  if ((u.a + u.b) % 2 != 0) ++u.b;
+  const double la = mean_exponent(n, reference::BranchKind::inductor), lb = mean_exponent(n, reference::BranchKind::capacitor);
+  u.a = static_cast<int>(std::lround(la));
+  u.b = static_cast<int>(std::lround(lb));
+  if ((u.a + u.b) % 2 != 0) u.b += lb > u.b ? 1 : -1;  // the nearer of the two even-sum choices
   Netlist out = n;
   const Rational l0 = pow10(u.a), c0 = pow10(u.b);
   for (auto& b : out.circuit.branches) {

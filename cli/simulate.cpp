@@ -16,9 +16,13 @@
 #include "solve.hpp"
 
 #include "dcad/reference/cad.hpp"
+#include "dcad/reference/circuit_motion.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <unsupported/Eigen/MatrixFunctions>
+
+#include <algorithm>
 
 #include <unistd.h>
 
@@ -37,38 +41,6 @@ using QM = ref::Matrix<Q>;
 namespace {
 
 /// A point of M_c meeting the prescribed values; unspecified values default to 0 where M_c allows.
-std::vector<Q> initial_point(const ref::CadResult<Q>& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c) {
-  const ref::Index n = c.n;
-  QM given(0, n + 1), defaults(0, n + 1);
-  for (ref::Index i = 0; i < n; ++i) {
-    QM row(1, n + 1);
-    row(0, i) = Q(1);
-    row(0, n) = initial[i] ? *initial[i] : Q(0);
-    if (initial[i]) given = ref::vstack(given, row);
-    else defaults = ref::vstack(defaults, row);
-  }
-  QM constraints(0, n + 1);
-  for (const auto& st : r.tower) constraints = ref::vstack(constraints, st.equations);
-  // the first constraint of the tower that the prescribed values cannot meet is the violated one
-  QM acc = given;
-  for (ref::Index i = 0; i < constraints.rows(); ++i) {
-    acc = ref::vstack(acc, constraints.block(i, i + 1, 0, n + 1));
-    if (ref::affine_from_augmented(acc).empty) {
-      std::string level;
-      for (ref::Index k = 0, seen = 0; k < r.tower.size(); seen += r.tower[k].equations.rows(), ++k)
-        if (i < seen + r.tower[k].equations.rows()) {
-          level = "M_" + std::to_string(k);
-          break;
-        }
-      throw io::InputError(c.file + ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
-                           equation_text(row_equation(constraints, i), c.variables) + " (a constraint of " + level + ")");
-    }
-  }
-  ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(acc, defaults));
-  const ref::AffineSubspace<Q> chosen = with_defaults.empty ? ref::affine_from_augmented(acc) : with_defaults;
-  return chosen.point;
-}
-
 template <class S>
 using Mat = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
 template <class S>
@@ -93,6 +65,96 @@ Mat<S> to(const QM& m) {
   for (ref::Index i = 0; i < m.rows(); ++i)
     for (ref::Index j = 0; j < m.cols(); ++j) d(i, j) = nearest<S>(m(i, j));
   return d;
+}
+
+
+/// What the integration needs from the exact CAD: the equations each M_k adds (levels[k], rows
+/// [a | b]; levels[0] those of M_0, none), a basis of T M_c (rows) and the reduced equations.
+struct ExactModel {
+  std::vector<QM> levels;
+  QM basis;
+  ref::ReducedEquations<Q> red;
+};
+
+/// The variables the flow is integrated in: m of them whose columns of the basis of T M_c are best
+/// conditioned (column-pivoted QR in double; exactness is not at stake, the choice only has to be
+/// valid, and that the exact reduced_equations checks).  The "first independent" variables of the
+/// report can be exponentially ill-conditioned (on an LC ladder the lift x = L z grows like the
+/// Fibonacci numbers along it: 1e-9 error at 30 branches, 1e8 at 117).
+std::vector<ref::Index> integration_coordinates(const QM& basis) {
+  // an orthonormal basis of the same span first, so that the choice does not inherit the scaling of
+  // the canonical (RREF) basis
+  const Eigen::HouseholderQR<Eigen::MatrixXd> orth(to<double>(basis).transpose());
+  const Eigen::MatrixXd u = orth.householderQ() * Eigen::MatrixXd::Identity(basis.cols(), basis.rows());
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u.transpose());
+  std::vector<ref::Index> coords;
+  for (ref::Index i = 0; i < basis.rows(); ++i) coords.push_back(static_cast<ref::Index>(qr.colsPermutation().indices()(i)));
+  std::sort(coords.begin(), coords.end());
+  return coords;
+}
+
+/// The generic CAD on the case's `pontryagin` system.
+ExactModel generic_model(const io::CaseFile& c) {
+  const ref::LinearSystem<Q> s = ref::pontryagin_system(ref::PontryaginInput<Q>{
+      c.pontryagin.n, c.pontryagin.k, c.pontryagin.vv, c.pontryagin.qv, c.pontryagin.qq, c.pontryagin.q, c.pontryagin.v});
+  const ref::CadResult<Q> r = ref::constraint_tower(s);
+  if (!r.consistent) throw io::InputError(c.file + ": simulate: expected a consistent system, found M_" + std::to_string(r.steps) + " empty");
+  ExactModel m;
+  for (const auto& st : r.tower) m.levels.push_back(st.equations);
+  m.basis = r.final_step().m.direction.basis();
+  m.red = ref::reduced_equations(s, r, integration_coordinates(m.basis));
+  return m;
+}
+
+/// A circuit by the structured route (reference/circuit_motion.hpp): no 3n-dimensional CAD.
+ExactModel circuit_model(const io::Netlist& deck, const io::CaseFile& c) {
+  const std::vector<ref::ProductStep<Q>> tower = ref::circuit_tower(deck.circuit);
+  ExactModel m;
+  m.levels.push_back(QM(0, 3 * deck.circuit.branches.size() + 1));
+  for (const QM& rows : ref::circuit_tower_equations(deck.circuit, tower)) m.levels.push_back(rows);
+  m.basis = ref::product_basis(deck.circuit, tower.back());
+  m.red = ref::circuit_reduced_equations(deck.circuit, tower.back(), integration_coordinates(m.basis));
+  return m;
+}
+
+std::vector<Q> initial_point(const ExactModel& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c) {
+  const ref::Index n = c.n;
+  QM given(0, n + 1), defaults(0, n + 1);
+  for (ref::Index i = 0; i < n; ++i) {
+    QM row(1, n + 1);
+    row(0, i) = Q(1);
+    row(0, n) = initial[i] ? *initial[i] : Q(0);
+    if (initial[i]) given = ref::vstack(given, row);
+    else defaults = ref::vstack(defaults, row);
+  }
+  QM constraints(0, n + 1);
+  for (const QM& rows : r.levels) constraints = ref::vstack(constraints, rows);
+  // the first constraint of the tower that the prescribed values cannot meet is the violated one:
+  // consistency of given + rows 0…i is monotone in i, so one solve when all is well, a bisection
+  // (log of the number of rows) when not
+  const auto meets = [&](ref::Index rows) {
+    return !ref::affine_from_augmented(ref::vstack(given, constraints.block(0, rows, 0, n + 1))).empty;
+  };
+  if (!meets(constraints.rows())) {
+    ref::Index lo = 0, hi = constraints.rows();  // meets(lo), !meets(hi)
+    while (hi - lo > 1) {
+      const ref::Index mid = (lo + hi) / 2;
+      (meets(mid) ? lo : hi) = mid;
+    }
+    const ref::Index i = hi - 1;
+    std::string level;
+    for (ref::Index k = 0, seen = 0; k < r.levels.size(); seen += r.levels[k].rows(), ++k)
+      if (i < seen + r.levels[k].rows()) {
+        level = "M_" + std::to_string(k);
+        break;
+      }
+    throw io::InputError(c.file + ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
+                         equation_text(row_equation(constraints, i), c.variables) + " (a constraint of " + level + ")");
+  }
+  const QM acc = ref::vstack(given, constraints);
+  ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(acc, defaults));
+  const ref::AffineSubspace<Q> chosen = with_defaults.empty ? ref::affine_from_augmented(acc) : with_defaults;
+  return chosen.point;
 }
 
 }  // namespace
@@ -187,23 +249,24 @@ std::vector<std::optional<io::Rational>> netlist_initial(const io::Netlist& n) {
   return x;
 }
 
-SimulateSummary simulate(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                         std::ostream& out, std::ostream& log) {
+SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
+                         const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
   if (!(opt.step > 0) || !(opt.tstop >= 0) || !std::isfinite(opt.tstop) || opt.tstop / opt.step > 1e9)
     throw io::InputError("simulate: expected 0 < --step and 0 <= --tstop with at most 1e9 steps, found step " +
                          float_text(opt.step) + ", tstop " + float_text(opt.tstop));
-  if (!c.has_pontryagin)
+  if (!c.has_pontryagin && !deck)
     throw io::InputError(c.file + ": simulate: expected an LC netlist or a `pontryagin` case, found another form (not supported yet)");
-  const ref::LinearSystem<Q> s = ref::pontryagin_system(ref::PontryaginInput<Q>{
-      c.pontryagin.n, c.pontryagin.k, c.pontryagin.vv, c.pontryagin.qv, c.pontryagin.qq, c.pontryagin.q, c.pontryagin.v});
-  const ref::CadResult<Q> r = ref::constraint_tower(s);
-  if (!r.consistent) throw io::InputError(c.file + ": simulate: expected a consistent system, found M_" + std::to_string(r.steps) + " empty");
-  const std::vector<Q> x0q = initial_point(r, initial, c);
-  const ref::ReducedEquations<Q> red = ref::reduced_equations(s, r, c.coordinates);
+  if (deck && deck->circuit.branches.size() > kSimulateBranches)
+    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(kSimulateBranches) + " branches, found " +
+                         std::to_string(deck->circuit.branches.size()) +
+                         " (the flow is integrated with a dense matrix exponential; sparse integration is not supported yet)");
+  const ExactModel model = deck ? circuit_model(*deck, c) : generic_model(c);
+  const std::vector<Q> x0q = initial_point(model, initial, c);
+  const ref::ReducedEquations<Q>& red = model.red;
   if (red.g.cols() > 0) log << "note: solutions are not unique (" << red.g.cols() << " free multipliers); simulating lambda = 0\n";
   // coordinates z = S x; x = x0 + Bᵀ T⁻¹ (z − S x0) with T = S Bᵀ (= I for default coordinates)
   const ref::Index m = red.coords.size(), n = c.n;
-  const QM& b = r.final_step().m.direction.basis();
+  const QM& b = model.basis;
   QM sel(m, n);
   for (ref::Index i = 0; i < m; ++i) sel(i, red.coords[i]) = Q(1);
   const QM lift = b.transpose() * ref::inverse(sel * b.transpose());  // n × m

@@ -25,8 +25,13 @@ struct SimulateSummary {
 /// Writes the CSV of the CONTRACT (header t, then every variable; full precision) to `out`, one
 /// row at a time as it is computed (memory independent of the number of rows).
 /// Throws io::InputError for an initial condition off M_c (naming the violated constraint).
-SimulateSummary simulate(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                         std::ostream& out, std::ostream& log);
+/// `deck`: the netlist `c` stands for (then the structured circuit route builds the model; `c` need
+/// only carry the variable names), or nullptr for a `pontryagin` case.
+SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
+                         const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+
+/// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
+constexpr std::size_t kSimulateBranches = 400;
 
 /// Diagonal D of powers of two such that D⁻¹ A D has off-diagonal row and column sums equal within
 /// a factor 4 (Parlett–Reinsch balancing); similarity by D is exact in floating point.

@@ -2,6 +2,7 @@
 
 #include "dcad/reference/ball.hpp"
 
+#include <functional>
 #include <sstream>
 
 namespace dcad::cli {
@@ -13,7 +14,7 @@ std::string equation_text(const Equation& e, const std::vector<std::string>& nam
     const bool neg = c[0] == '-';
     if (neg) c = c.substr(1);
     s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
-    s += (c == "1" ? "" : c + "*") + names[j];
+    s += (c == "1" || c == "1.0" ? "" : c + "*") + names[j];
   }
   return (s.empty() ? "0" : s) + " = " + e.rhs;
 }
@@ -38,34 +39,38 @@ Equation row_equation(const io::QMatrix& rows, std::size_t i) {
   return e;
 }
 
-SolveReport solve_certified(const io::CaseFile& c) {
+SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::function<SolveReport()>& exact) {
   reference::Ball::decisions() = 0;
   reference::Ball::verifications() = 0;
   try {
     double radius = 0;
-    SolveReport r = solve_ball(c, radius);
+    SolveReport r = ball(radius);
     r.backend = "certified";
     r.certified = true;
     r.decisions_float = reference::Ball::decisions();
     r.decisions_verified = reference::Ball::verifications();
     std::ostringstream o;
     o.precision(2);
-    o << "the reference algorithm in ball arithmetic: " << r.decisions_float << " zero tests certified in floating point, "
-      << r.decisions_verified << " by exact comparison of input numbers; numbers are ball midpoints, exact values within "
-      << radius;
+    o << (r.note.empty() ? "" : r.note + "; ") << "the reference algorithm in ball arithmetic: " << r.decisions_float
+      << " zero tests certified in floating point, " << r.decisions_verified
+      << " by exact comparison of input numbers; numbers are ball midpoints, exact values within " << radius;
     r.note = o.str();
     return r;
   } catch (const reference::Uncertain& e) {
     const long done = reference::Ball::decisions();
-    SolveReport exact = solve_reference(c);
-    exact.backend = "certified";
-    exact.decisions_float = done;
-    exact.decisions_verified = reference::Ball::verifications();
-    exact.decisions_exact = 1;
-    exact.note = "zero test " + std::to_string(done + 1) + " undecidable in floating point (" + e.what() +
-                 "): recomputed exactly from the exact input";
-    return exact;
+    SolveReport out = exact();
+    out.backend = "certified";
+    out.decisions_float = done;
+    out.decisions_verified = reference::Ball::verifications();
+    out.decisions_exact = 1;
+    out.note = (out.note.empty() ? "" : out.note + "; ") + "zero test " + std::to_string(done + 1) + " undecidable in floating point (" +
+               e.what() + "): recomputed exactly from the exact input";
+    return out;
   }
+}
+
+SolveReport solve_certified(const io::CaseFile& c) {
+  return certify([&](double& radius) { return solve_ball(c, radius); }, [&] { return solve_reference(c); });
 }
 
 namespace {

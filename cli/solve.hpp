@@ -4,6 +4,7 @@
 
 #include "case_file.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,9 @@ SolveReport solve_fast(const io::CaseFile& c);
 /// The reference pipeline in ball arithmetic (solve_ball.cpp); throws reference::Uncertain at the
 /// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.
 SolveReport solve_ball(const io::CaseFile& c, double& max_radius);
+/// `ball` (a reference pipeline in ball arithmetic); if it throws reference::Uncertain, `exact` (the
+/// same pipeline exactly).  Either way every discrete output equals the reference's (ball.hpp).
+SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::function<SolveReport()>& exact);
 /// solve_ball; if a decision is uncertain there, the whole result recomputed exactly (reference).
 /// Either way every discrete output equals the reference's (ball.hpp gives the proof).
 SolveReport solve_certified(const io::CaseFile& c);

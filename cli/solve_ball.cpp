@@ -3,7 +3,7 @@
 // midpoints as floats (%.17g, never an integer string); a coefficient whose
 // ball contains 0 is not printed as a term.
 #include "dcad/reference/ball.hpp"
-#include "solve_exact.hpp"
+#include "solve_circuit_exact.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,6 +29,13 @@ struct Scalar<reference::Ball> {
 SolveReport solve_ball(const io::CaseFile& c, double& max_radius) {
   widest = 0;
   SolveReport out = solve_exact<reference::Ball>(c);
+  max_radius = widest;
+  return out;
+}
+
+SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius) {
+  widest = 0;
+  SolveReport out = solve_circuit_exact<reference::Ball>(n, c);
   max_radius = widest;
   return out;
 }

@@ -1,5 +1,6 @@
 #include "solve_circuit.hpp"
 #include "convert_fast.hpp"
+#include "dcad/fast/circuit_motion.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -27,9 +28,18 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
 
 namespace {
 
-/// x_j = s_j x̃_j: coefficient a_j of a row in x̃ becomes a_j / s_j in x (display rows, %.17g text).
+/// x_j = s_j x̃_j: coefficient a_j of a row in x̃ becomes a_j / s_j in x; the row is then divided by
+/// its largest coefficient (display rows, %.17g text).
 void unscale(Equation& e, const std::vector<double>& s) {
-  for (auto& [var, coeff] : e.terms) coeff = float_text(std::stod(coeff) / s[var]);
+  std::vector<double> a;
+  double big = 0;
+  for (const auto& [var, coeff] : e.terms) {
+    a.push_back(std::stod(coeff) / s[var]);
+    big = std::max(big, std::abs(a.back()));
+  }
+  if (big == 0) big = 1;
+  for (std::size_t i = 0; i < a.size(); ++i) e.terms[i].second = float_text(a[i] / big);
+  if (const double rhs = std::stod(e.rhs); rhs != 0) e.rhs = float_text(rhs / big);
 }
 
 /// S of io::Units for x = (q, v, p[, ν]): 1, 1/T, L0/T[, L0].
@@ -70,15 +80,23 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
   const io::Netlist n = io::dimensionless(deck, units);
   fast::Options opt;
   const fast::CircuitTower t = fast::circuit_tower(circuit_graph(n, opt), opt);
-  const bool dense = c.has_pontryagin;
+  const bool dense = n.circuit.branches.size() <= kDenseBranches;
   SolveReport out;
-  if (dense) {
+  out.certified = true;
+  if (c.has_pontryagin && n.circuit.branches.size() <= kAdaptedBranches) {  // §7 on T*TQ by the generic fast pipeline
     io::CaseFile twin = io::netlist_case(n, true);
     twin.variables = c.variables;
-    twin.coordinates = c.coordinates;
-    out = solve_fast(twin);
+    const SolveReport generic = solve_fast(twin);
+    out.has_adapted = generic.has_adapted;
+    out.adapted_setting = generic.adapted_setting;
+    out.adapted_variables = generic.adapted_variables;
+    out.s_prime = generic.s_prime;
+    out.adapted_second = generic.adapted_second;
+    out.secondary_first_class = generic.secondary_first_class;
+    out.adapted_chi = generic.adapted_chi;
+    out.abridged_terms = generic.abridged_terms;
+    out.certified = generic.certified;
   }
-  const std::vector<long> generic_dims = out.dims;
   out.backend = "fast";
   out.dims = t.dims;
   out.steps = t.steps;
@@ -96,17 +114,30 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
     }
     out.tower.push_back(step);
   }
+  if (dense) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
+    const fast::CircuitMotion mo =
+        fast::circuit_motion(circuit_graph(n, opt), t, std::vector<int>(c.coordinates.begin(), c.coordinates.end()), opt);
+    out.certified = out.certified && mo.certain;
+    out.decisions_float += static_cast<long>(mo.decisions.size());
+    out.has_reduced = true;
+    out.coords.assign(mo.coords.begin(), mo.coords.end());
+    const double tiny = 1e-13 * (1 + (mo.f_matrix.size() ? mo.f_matrix.cwiseAbs().maxCoeff() : 0.0));  // display: rounding-level as 0
+    for (Eigen::Index i = 0; i < mo.f_matrix.rows(); ++i) {
+      out.f_matrix.push_back({});
+      for (Eigen::Index j = 0; j < mo.f_matrix.cols(); ++j)
+        out.f_matrix.back().push_back(float_text(std::abs(mo.f_matrix(i, j)) <= tiny ? 0.0 : mo.f_matrix(i, j)));
+      out.f.push_back("0");  // no sources: f = 0 exactly
+      out.g.push_back({});
+      for (Eigen::Index j = 0; j < mo.g.cols(); ++j) out.g.back().push_back(float_text(mo.g(i, j)));
+    }
+  }
   to_circuit_units(out, units, n.circuit.branches.size());
   out.decisions_float += static_cast<long>(t.decisions.size());
-  out.certified = (out.certified || !dense) && t.certain;
+  out.certified = out.certified && t.certain;
   std::string how = t.physical ? "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision)"
                                : "graph route (CEF §6 closed form in loop coordinates, signed values)";
   how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" + std::to_string(units.b) +
          ", time unit 1e" + std::to_string(units.m()) + " s)";
-  if (dense && generic_dims != t.dims) {  // two routes to one tower disagree: trust neither
-    out.certified = false;
-    how += "; the generic fast CAD found a different tower, recompute with --backend reference";
-  }
   if (!dense)
     how += "; equations of motion omitted above " + std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
   out.note = how + (out.certified ? "" : "; some rank decision was uncertain");
@@ -116,27 +147,18 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
 SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c) {
   io::Units units;
   const io::Netlist twin = io::dimensionless(n, units);  // same graph, values near 1 for the cross-check
-  if (c.has_pontryagin) {  // small deck: the reference pipeline in ball arithmetic (or exact), plus the graph route's loops
-    fast::Options opt;
-    const fast::CircuitTower t = fast::circuit_tower(circuit_graph(twin, opt), opt);
-    SolveReport r = solve_certified(c);
-    if (t.physical && t.dims != r.dims)  // a combinatorial theorem disagrees with a certified computation: a bug
-      throw std::logic_error("graph route and certified CAD disagree on " + c.file + "; please report it");
+  fast::Options opt;
+  const fast::CircuitGraph graph = circuit_graph(twin, opt);
+  if (n.circuit.branches.size() > kDenseBranches && fast::is_physical(graph)) {
+    SolveReport r = solve_circuit_fast(n, c);  // the graph route decides nothing for L, C > 0 (CEF Thms 6.4, 6.6, 6.8)
+    r.backend = "certified";
     return r;
   }
-  fast::Options opt;
-  const bool physical = fast::is_physical(circuit_graph(twin, opt));  // the graph route decides nothing (CEF Thms 6.4, 6.6, 6.8)
-  SolveReport fast = solve_circuit_fast(n, c);
-  if (physical) {
-    fast.backend = "certified";
-    return fast;
-  }
-  SolveReport exact = solve_reference(io::netlist_case(n, true));
-  exact.backend = "certified";
-  exact.decisions_float = fast.decisions_float;
-  exact.decisions_exact = 1;
-  exact.note = "signed values on a large deck: no certified floating-point route, recomputed exactly from the exact input";
-  return exact;
+  SolveReport r = certify([&](double& radius) { return solve_circuit_ball(n, c, radius); }, [&] { return solve_circuit_reference(n, c); });
+  const fast::CircuitTower t = fast::circuit_tower(graph, opt);
+  if (t.physical && t.dims != r.dims)  // a combinatorial theorem disagrees with a certified computation: a bug
+    throw std::logic_error("graph route and certified CAD disagree on " + c.file + "; please report it");
+  return r;
 }
 
 }  // namespace dcad::cli

@@ -11,6 +11,9 @@
 namespace dcad::cli {
 
 constexpr std::size_t kDenseBranches = 120;
+/// The §7 constraints adapted to the primary ones (CEF Thm 7.4, on T*TQ: 4n variables, the generic
+/// pipeline) are reported up to this many branches.
+constexpr std::size_t kAdaptedBranches = 24;
 
 /// The netlist for the graph route, values rounded to double (opt records whether exactly).
 fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt);
@@ -18,7 +21,12 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt);
 /// `c`: the netlist's case (io::netlist_case) with the dense system if n ≤ kDenseBranches, else
 /// variables only.
 SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c);
-/// The graph route; if any decision is uncertain, the whole result recomputed exactly.
+/// The structured route (solve_circuit_exact.hpp) exactly.
+SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c);
+/// The same in ball arithmetic; throws reference::Uncertain at the first undecidable zero test.
+SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius);
+/// solve_circuit_ball, recomputed exactly if a decision is uncertain there; cross-checked against
+/// the graph route's combinatorial tower (physical values).
 SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c);
 
 }  // namespace dcad::cli

@@ -87,6 +87,39 @@ void exact_adapted(SolveReport& out, const reference::Matrix<T>& w, const refere
   out.secondary_first_class = first - primary_first;
 }
 
+/// §7 (CEF App. A, Thm 7.4): the Pontryagin system embedded in T*TQ, S' = {ν = 0}, leaves κ·q = C;
+/// its constraints adapted to the primary ones.
+template <class T>
+void exact_foliated(SolveReport& out, const io::CaseFile& c) {
+  namespace ref = dcad::reference;
+  const io::PontryaginInput& p = c.pontryagin;
+  const ref::FoliatedEmbedding<T> f = ref::tangent_cotangent_embedding(
+      ref::PontryaginInput<T>{p.n, lift<T>(p.k), lift<T>(p.vv), lift<T>(p.qv), lift<T>(p.qq), lift<T>(p.q), lift<T>(p.v)});
+  const ref::Matrix<T> both = ref::vstack(f.primary, f.leaf);
+  const ref::LinearSystem<T> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(both)), f.omega), f.hessian, f.gradient, T(0)};
+  const ref::CadResult<T> rf = ref::constraint_tower(ls, f.primary);
+  ref::Matrix<T> secondary(0, 4 * p.n + 1);
+  for (ref::Index k = 1; k < rf.tower.size(); ++k) secondary = ref::vstack(secondary, rf.tower[k].equations);
+  out.adapted_setting = "T*TQ";
+  out.adapted_variables = c.variables;
+  for (std::size_t i = 0; i < p.n; ++i) out.adapted_variables.push_back("nu_" + c.variables[p.n + i]);
+  exact_adapted(out, f.omega, f.primary, secondary, f.leaf);
+}
+
+/// The equations of motion (5.12) into the report.
+template <class T>
+void keep_reduced(SolveReport& out, const reference::ReducedEquations<T>& red) {
+  out.has_reduced = true;
+  out.coords = red.coords;
+  for (reference::Index i = 0; i < red.coords.size(); ++i) {
+    out.f_matrix.push_back({});
+    for (reference::Index j = 0; j < red.coords.size(); ++j) out.f_matrix.back().push_back(Scalar<T>::text(red.f_matrix(i, j)));
+    out.f.push_back(Scalar<T>::text(red.f[i]));
+    out.g.push_back({});
+    for (reference::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(Scalar<T>::text(red.g(i, j)));
+  }
+}
+
 template <class T>
 SolveReport solve_exact(const io::CaseFile& c) {
   namespace ref = dcad::reference;
@@ -136,32 +169,8 @@ SolveReport solve_exact(const io::CaseFile& c) {
     out.adapted_variables = c.variables;
     exact_adapted(out, w, r.tower[0].equations, secondary, ref::Matrix<T>(0, c.n + 1));
   }
-  if (c.has_pontryagin && r.consistent) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
-    const io::PontryaginInput& p = c.pontryagin;
-    const ref::FoliatedEmbedding<T> f = ref::tangent_cotangent_embedding(
-        ref::PontryaginInput<T>{p.n, lift<T>(p.k), lift<T>(p.vv), lift<T>(p.qv), lift<T>(p.qq), lift<T>(p.q), lift<T>(p.v)});
-    const ref::Matrix<T> both = ref::vstack(f.primary, f.leaf);
-    const ref::LinearSystem<T> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(both)), f.omega), f.hessian, f.gradient, T(0)};
-    const ref::CadResult<T> rf = ref::constraint_tower(ls, f.primary);
-    ref::Matrix<T> secondary(0, 4 * p.n + 1);
-    for (ref::Index k = 1; k < rf.tower.size(); ++k) secondary = ref::vstack(secondary, rf.tower[k].equations);
-    out.adapted_setting = "T*TQ";
-    out.adapted_variables = c.variables;
-    for (std::size_t i = 0; i < p.n; ++i) out.adapted_variables.push_back("nu_" + c.variables[p.n + i]);
-    exact_adapted(out, f.omega, f.primary, secondary, f.leaf);
-  }
-  if (r.consistent) {
-    const ref::ReducedEquations<T> red = ref::reduced_equations(s, r, c.coordinates);
-    out.has_reduced = true;
-    out.coords = red.coords;
-    for (ref::Index i = 0; i < red.coords.size(); ++i) {
-      out.f_matrix.push_back({});
-      for (ref::Index j = 0; j < red.coords.size(); ++j) out.f_matrix.back().push_back(Scalar<T>::text(red.f_matrix(i, j)));
-      out.f.push_back(Scalar<T>::text(red.f[i]));
-      out.g.push_back({});
-      for (ref::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(Scalar<T>::text(red.g(i, j)));
-    }
-  }
+  if (c.has_pontryagin && r.consistent) exact_foliated<T>(out, c);
+  if (r.consistent) keep_reduced(out, ref::reduced_equations(s, r, c.coordinates));
   return out;
 }
 

@@ -1,5 +1,5 @@
 // The CAD by the exact reference (the one translation unit that instantiates solve_exact on mpq_rational).
-#include "solve_exact.hpp"
+#include "solve_circuit_exact.hpp"
 
 namespace dcad::cli {
 
@@ -18,6 +18,17 @@ struct Scalar<io::Rational> {
 SolveReport solve_reference(const io::CaseFile& c) {
   SolveReport out = solve_exact<io::Rational>(c);
   out.backend = "reference";
+  return out;
+}
+
+SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c) {
+  SolveReport out = solve_circuit_exact<io::Rational>(n, c);
+  out.backend = "reference";
+  out.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
+             std::string(c.has_pontryagin && n.circuit.branches.size() <= kAdaptedBranches
+                             ? ""
+                             : "; the §7 adapted constraints (T*TQ, 4n variables) are given up to " + std::to_string(kAdaptedBranches) +
+                                   " branches");
   return out;
 }
 

@@ -42,7 +42,9 @@ inline Rational parse_rational(const std::string& text) {
     bool eneg = false;
     if (i < text.size() && (text[i] == '+' || text[i] == '-')) eneg = text[i++] == '-';
     std::string ex;
-    if (!digits(ex) || ex.size() > 6) throw bad("exponent");
+    // |exponent| ≤ 999: far beyond double (1e308) and any physical value, while 10^999999 would
+    // make every later exact operation on a million-digit number (a hang, not an answer)
+    if (!digits(ex) || ex.size() > 3) throw bad("an exponent of at most 3 digits");
     const mpz_int scale = pow(mpz_int(10), static_cast<unsigned>(std::stoul(ex)));
     value = eneg ? value / Rational(scale) : value * Rational(scale);
   } else if (i < text.size() && text[i] == '/') {
