@@ -21,16 +21,6 @@ namespace {
 
 ref::CadResult<Q> generic(const Circuit<Q>& c) { return ref::constraint_tower(ref::pontryagin_system(ref::circuit_lagrangian(c))); }
 
-fast::CircuitGraph graph(const Circuit<Q>& c) {
-  fast::CircuitGraph g;
-  g.nodes = c.nodes;
-  for (const Branch<Q>& b : c.branches)
-    g.branches.push_back({b.kind == BranchKind::inductor    ? fast::BranchKind::inductor
-                          : b.kind == BranchKind::capacitor ? fast::BranchKind::capacitor
-                                                            : fast::BranchKind::empty,
-                          b.from, b.to, b.value.convert_to<double>()});
-  return g;
-}
 
 /// Every equation of the graph route up to M_k vanishes on the exact M_k (relative 1e-12).
 bool rows_vanish_on(const fast::CircuitTower& t, std::size_t k, const QSub& m) {
@@ -55,7 +45,7 @@ bool rows_vanish_on(const fast::CircuitTower& t, std::size_t k, const QSub& m) {
 void check_against_generic(const Circuit<Q>& c, const std::string& family) {
   RC_LOG() << case_json(ref::circuit_lagrangian(c));
   const ref::CadResult<Q> r = generic(c);
-  const fast::CircuitTower t = fast::circuit_tower(graph(c));
+  const fast::CircuitTower t = fast::circuit_tower(fast_graph(c));
   RC_CLASSIFY(t.physical, "physical route");
   RC_TAG("c = " + std::to_string(r.steps));
   bool same_dims = t.dims.size() == r.tower.size();
@@ -91,7 +81,7 @@ RC_GTEST_PROP(CircuitGraphRoute, SignedEqualsGenericCad, ()) { check_against_gen
 // are the cycle-rank counts (CONTRACT `empty_loops`, Thm 6.4's KVLPC count).
 RC_GTEST_PROP(CircuitGraphRoute, LoopsAreLoops, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
-  const fast::CircuitTower t = fast::circuit_tower(graph(c));
+  const fast::CircuitTower t = fast::circuit_tower(fast_graph(c));
   const QM k = ref::kcl_matrix(c);
   const auto check = [&](const fast::Loop& loop, bool pc) {
     std::vector<Q> eta(c.branches.size(), Q(0));
@@ -124,7 +114,7 @@ RC_GTEST_PROP(CircuitGraphRoute, EqualsGenericFastCad, ()) {
   const fast::LinearSystem s = fast::pontryagin_system(to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt),
                                                        to_double(in.qq, &opt), to_double(in.q), to_double(in.v), opt);
   const fast::CadResult f = fast::constraint_tower(s, opt);
-  const fast::CircuitTower t = fast::circuit_tower(graph(c));
+  const fast::CircuitTower t = fast::circuit_tower(fast_graph(c));
   const bool certain = f.certain && t.certain;
   bool same = f.tower.size() == t.dims.size() && f.solution_rank == t.solution_rank;
   for (std::size_t k = 0; same && k < t.dims.size(); ++k) same = f.tower[k].dim() == t.dims[k];

@@ -78,13 +78,7 @@ RC_GTEST_PROP(CircuitMotion, EquationsOfMotionEqualGenericCad, ()) {
 RC_GTEST_PROP(CircuitMotion, FastEqualsReference, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
   RC_LOG() << case_json(ref::circuit_lagrangian(c));
-  fast::CircuitGraph g;
-  g.nodes = c.nodes;
-  for (const Branch<Q>& b : c.branches)
-    g.branches.push_back({b.kind == BranchKind::inductor    ? fast::BranchKind::inductor
-                          : b.kind == BranchKind::capacitor ? fast::BranchKind::capacitor
-                                                            : fast::BranchKind::empty,
-                          b.from, b.to, b.value.convert_to<double>()});
+  const fast::CircuitGraph g = fast_graph(c);
   const fast::CircuitTower t = fast::circuit_tower(g);
   const ref::ProductStep<Q> mc = ref::circuit_tower(c).back();
   RC_PRE(t.dims.back() == static_cast<long>(mc.dim()));  // the tower itself: prop_circuit_graph

@@ -3,6 +3,7 @@
 
 #include "support/gen.hpp"
 
+#include "dcad/fast/circuit.hpp"
 #include "dcad/reference/circuit.hpp"
 
 namespace dcad::test {
@@ -43,6 +44,18 @@ inline reference::Circuit<Q> random_circuit(bool empty, bool signed_values) {
     if (*rc::gen::arbitrary<bool>()) c.branches.push_back(Branch<Q>{"W" + std::to_string(c.branches.size() + 1), BranchKind::empty, base.to, base.from, Q(0)});
   }
   return c;
+}
+
+/// The same circuit for dcad::fast (values rounded to double).
+inline fast::CircuitGraph fast_graph(const Circuit<Q>& c) {
+  fast::CircuitGraph g;
+  g.nodes = c.nodes;
+  for (const Branch<Q>& b : c.branches)
+    g.branches.push_back({b.kind == BranchKind::inductor    ? fast::BranchKind::inductor
+                          : b.kind == BranchKind::capacitor ? fast::BranchKind::capacitor
+                                                            : fast::BranchKind::empty,
+                          b.from, b.to, b.value.convert_to<double>()});
+  return g;
 }
 
 }  // namespace dcad::test
