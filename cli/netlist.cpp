@@ -125,9 +125,10 @@ class Reader {
       const std::size_t start = raw.find_first_not_of(" \t");
       if (start == std::string::npos || raw[start] == '*') continue;
       std::string text = strip_inline_comment(raw.substr(start));
-      if (text.find_first_not_of(" \t") == std::string::npos) continue;
-      const Line here{file, number, text};
       const std::vector<std::string> tok = tokens(text);
+      if (tok.empty()) continue;  // white space of any kind (\f, \v too), or only a comment
+      text = text.substr(text.find(tok[0]));
+      const Line here{file, number, text};
       const std::string head = lower(tok[0]);
       if (!in_section) {  // .lib FILE SECTION: only `.lib SECTION` … `.endl`
         if (head == ".lib" && tok.size() == 2 && lower(tok[1]) == lower(section)) in_section = true;

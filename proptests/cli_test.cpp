@@ -207,6 +207,18 @@ TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   EXPECT_NE(sh.err.find("ignored .tran"), std::string::npos) << "simulate shows the netlist warnings: " << sh.err;
 }
 
+// Found by fuzz_netlist (proptests/fuzz/regressions/netlist/formfeed-line): a line of white space
+// other than blanks and tabs (\f, \v) had no token and the reader read tok[0] of an empty vector.
+TEST(Cli, NetlistLinesOfOtherWhiteSpace) {
+  const std::string file = write_temp("dcad_formfeed.cir", "title\nL1 1 0 1\n\f\n\v \f\nC1 1 0 1\n");
+  const Outcome r = run("solve " + file + " --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["circuit"]["branches"], 2);
+  const std::string found = fs::path(DCAD_SOURCE_DIR) / "proptests/fuzz/regressions/netlist/formfeed-line";
+  const std::string copy = write_temp("dcad_formfeed_found.cir", slurp(found));
+  expect_input_error(run("solve " + copy), copy, ":2:", "the fuzzer's input");
+}
+
 TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\nC1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\n.end\n");
   const Outcome r = run("solve " + file + " --json");

@@ -18,6 +18,9 @@ work=build-asan/fuzz
 rm -rf "$work" && mkdir -p "$work"/{case,netlist,result}
 cp cases/*.json "$work/case/"
 cp cases/*.cir "$work/netlist/"
+for t in case netlist result; do  # inputs that once crashed a reader (kept as seeds, and as tests)
+  [ -d "proptests/fuzz/regressions/$t" ] && cp proptests/fuzz/regressions/$t/* "$work/$t/"
+done
 for f in cases/harmonic-oscillator.json cases/gauge-free-particle.json cases/rounded-minus-one.json; do
   for b in reference fast certified; do build-asan/dcad solve "$f" --json --backend "$b" > "$work/result/$(basename "$f" .json)-$b.json" || true; done
 done
