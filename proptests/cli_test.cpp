@@ -219,6 +219,20 @@ TEST(Cli, NetlistLinesOfOtherWhiteSpace) {
   expect_input_error(run("solve " + copy), copy, ":2:", "the fuzzer's input");
 }
 
+// Found by fuzz_netlist: "0.010" read as 1/125 (octal digits), exit 0 — a silently wrong circuit.
+TEST(Cli, LeadingZerosAreDecimal) {
+  const std::string file = write_temp("dcad_leading_zeros.cir", "title\nL1 1 0 0.010\nC1 1 0 010m\n");
+  const Outcome r = run("solve " + file + " --backend reference");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("-1/100*v_L1 + p_L1 = 0"), std::string::npos) << r.out;
+  const std::string json = write_temp("dcad_leading_zeros.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "0.010"], ["-0.010", 0]]}, "energy": {"hessian": [["08", 0], [0, 1]]}})");
+  const Outcome j = run("solve " + json + " --backend reference");
+  ASSERT_EQ(j.rc, 0) << j.err;
+  // dE = Wᵀẋ with W = [[0, a], [−a, 0]], a = 1/100, H = diag(8, 1): ẋ1 = 100 x2, ẋ2 = −800 x1
+  EXPECT_NE(j.out.find("d/dt x1 = 100*x2"), std::string::npos) << j.out;
+  EXPECT_NE(j.out.find("d/dt x2 = -800*x1"), std::string::npos) << j.out;
+}
+
 TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\nC1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\n.end\n");
   const Outcome r = run("solve " + file + " --json");

@@ -45,6 +45,14 @@ TEST(Rational, ParsesExactly) {
   EXPECT_EQ(parse_rational("0.125"), Q(1) / Q(8));
   EXPECT_EQ(parse_rational("0.1"), Q(1) / Q(10));  // not the double 0.1000000000000000055…
   EXPECT_EQ(parse_rational("1e-3"), Q(1) / Q(1000));
+  // leading zeros are decimal, not octal (Boost's mpz_int("010") is 8: "0.010" was read as 1/125;
+  // found by fuzz_netlist, proptests/fuzz/regressions/netlist/leading-zero-digits)
+  EXPECT_EQ(parse_rational("0.010"), Q(1) / Q(100));
+  EXPECT_EQ(parse_rational("010"), Q(10));
+  EXPECT_EQ(parse_rational("08"), Q(8));
+  EXPECT_EQ(parse_rational("3/010"), Q(3) / Q(10));
+  EXPECT_EQ(parse_rational("000861293337707602830"), Q(boost::multiprecision::mpz_int("861293337707602830")));
+  EXPECT_EQ(parse_rational("-0.00"), Q(0));
   EXPECT_EQ(parse_rational("-1.5E+2"), Q(-150));
   EXPECT_EQ(parse_rational("-1.00000000000000001"), Q(-100000000000000001) / Q(100000000000000000));
   for (const char* bad : {"", "1/0", "abc", "1/2/3", "1.5/2", "--1", "1e", "0x10", "nan", "inf", "1 "})

@@ -35,8 +35,12 @@ inline Rational parse_rational(const std::string& text) {
     has_frac = digits(frac);
   }
   if (!has_whole && !has_frac) throw bad("");
-  Rational value(mpz_int(whole.empty() ? "0" : whole) * pow(mpz_int(10), frac.size()) + mpz_int(frac.empty() ? "0" : frac),
-                 pow(mpz_int(10), frac.size()));
+  // digits in base 10: Boost's mpz_int("010") reads a leading 0 as octal (8), so "0.010" was 1/125
+  const auto decimal = [](const std::string& d) {
+    const std::size_t first = d.find_first_not_of('0');
+    return mpz_int(first == std::string::npos ? std::string("0") : d.substr(first));
+  };
+  Rational value(decimal(whole) * pow(mpz_int(10), frac.size()) + decimal(frac), pow(mpz_int(10), frac.size()));
   if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
     ++i;
     bool eneg = false;
@@ -51,8 +55,8 @@ inline Rational parse_rational(const std::string& text) {
     ++i;
     std::string den;
     if (!has_whole || has_frac || !digits(den)) throw bad("a fraction is integer/integer");
-    if (mpz_int(den) == 0) throw bad("zero denominator");
-    value /= Rational(mpz_int(den));
+    if (decimal(den) == 0) throw bad("zero denominator");
+    value /= Rational(decimal(den));
   }
   if (i != text.size()) throw bad("");
   return neg ? Rational(-value) : value;
