@@ -579,10 +579,11 @@ double mean_exponent(const Netlist& n, reference::BranchKind kind) {
 }  // namespace
 
 Netlist dimensionless(const Netlist& n, Units& u) {
-  const double la = mean_exponent(n, reference::BranchKind::inductor), lb = mean_exponent(n, reference::BranchKind::capacitor);
-  u.a = static_cast<int>(std::lround(la));
-  u.b = static_cast<int>(std::lround(lb));
-  if ((u.a + u.b) % 2 != 0) u.b += lb > u.b ? 1 : -1;  // the nearer of the two even-sum choices
+  u.a = static_cast<int>(std::lround(mean_exponent(n, reference::BranchKind::inductor)));
+  u.b = static_cast<int>(std::lround(mean_exponent(n, reference::BranchKind::capacitor)));
+  // a + b odd: C0 one decade up, so that a power-of-ten C becomes 1/10 and its elastance 1/C̃ = 10
+  // stays exact in double (C0 one decade down would make it 1/10: an inexact input for fast)
+  if ((u.a + u.b) % 2 != 0) ++u.b;
   Netlist out = n;
   const Rational l0 = pow10(u.a), c0 = pow10(u.b);
   for (auto& b : out.circuit.branches) {

@@ -27,7 +27,8 @@ Rational parse_spice_value(const std::string& text);
 CaseFile netlist_case(const Netlist& n, bool dense = true);
 
 /// The dimensionless twin of a circuit: every L divided by L0 = 10^a, every C by C0 = 10^b, with
-/// 10^a and 10^b the powers of ten nearest the geometric means and a + b even, so that the time
+/// 10^a and 10^b the powers of ten nearest the geometric means (b one up if a + b is odd) and a + b
+/// even, so that the time
 /// unit T = √(L0 C0) = 10^m, m = (a + b)/2, is exact.  A solution of the twin gives one of the
 /// circuit by t = T t̃, q = q̃, v = ṽ/T, p = (L0/T) p̃ (and ν = L0 ν̃ on T*TQ): the Lagrangian
 /// becomes (C0 times) that of the twin (CEF §6: L = ½ vᵀΦv − ½ qᵀΨq), so the towers are equal and

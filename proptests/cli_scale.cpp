@@ -85,6 +85,12 @@ TEST(ScaleInvariance, TankTrajectoryFromHenriesToNanohenries) {
       return std::max(std::abs(row[column(csv, "v_L1")] - i) / i0, std::abs(row[column(csv, "q_C1")] - q) / (i0 / w));
     };
     check_trajectory(deck, 20 * period, period / 500, exact, "tank L = " + value(l.first, l.second) + ", C = " + value(c.first, c.second));
+    // the fast backend is certified at these values as at 1 H/1 F (it said uncertain for 1 mH/1 µF)
+    const Outcome f = run("solve " + write_temp("dcad_tank_fast.cir", deck) + " --json --backend fast");
+    ASSERT_EQ(f.rc, 0) << f.err;
+    const nlohmann::json j = nlohmann::json::parse(f.out);
+    EXPECT_TRUE(j["certified"].get<bool>()) << deck << j.dump();
+    EXPECT_TRUE(j.contains("reduced")) << deck;
   }
 }
 
