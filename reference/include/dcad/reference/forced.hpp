@@ -1,0 +1,192 @@
+// Linear Dirac systems with external forces and sources, literally:
+//   (ẋ − Z σ(t), dE(x) − F x − B σ(t)) ∈ D,      E(x) = ½ xᵀ H x + gᵀ x,
+// with F x a linear force one-form (YM §4, (4.3): a resistor is −R v on its branch), B σ(t) the
+// time-dependent forces (a voltage source is +V(t) on its branch), and Z σ(t) the affine shift of
+// D by affine constraints (YM §4 with ω^a(q)·v = b^a(t); a current source is v = I(t)).
+//
+// The CAD then runs on time-dependent affine submanifolds M_k(t) (V §3).  Each constraint is kept
+// as a jet row  a·x + b + Σ_d c_d·σ^{(d)}(t) = 0, columns [x (N) | 1 | σ⁽⁰⁾ (m) | σ⁽¹⁾ (m) | …].
+// x ∈ M_{k+1}(t) iff some ẋ solves (ẋ − Zσ, α(t, x)) ∈ D and is tangent to the moving M_k(t):
+// a_j·ẋ + Σ_d c_{j,d}·σ^{(d+1)} = 0 for every row j.  With D = row space of [G_v | G_α]
+// (ẋ − Zσ = G_vᵀ λ, α = G_αᵀ λ) that is a linear system for λ, solvable iff y·rhs = 0 for every y in
+// the left kernel (Fredholm) — each such y is a candidate equation.  A candidate that is 0 on x
+// but not on the sources is a *source condition*: M_{k+1}(t) is empty unless the sources satisfy
+// it for all t (a loop of voltage sources, a cutset of current sources).
+#pragma once
+
+#include "dcad/reference/cad.hpp"
+
+namespace dcad::reference {
+
+template <class T>
+struct ForcedSystem {
+  LinearSystem<T> s;    ///< D and E (H symmetric, g)
+  Matrix<T> force;      ///< F, N×N (empty = 0)
+  Index sources = 0;    ///< m
+  Matrix<T> source_force;  ///< B, N×m
+  Matrix<T> shift;         ///< Z, N×m
+  /// Rows of source conditions known before the CAD (e.g. KCL on current sources), columns [1 | σ⁽⁰⁾].
+  Matrix<T> given_conditions;
+};
+
+template <class T>
+struct ForcedResult {
+  std::vector<long> dims;    ///< dim M_k(t), k = 0…c (−1: empty)
+  Index steps = 0;
+  bool consistent = true;    ///< false: M_k = ∅ whatever the sources are (0 = 1)
+  Index orders = 1;          ///< jet columns hold σ⁽⁰⁾ … σ^{(orders−1)}
+  Matrix<T> equations;       ///< M_c(t) as jet rows, x-parts in RREF (independent)
+  Matrix<T> conditions;      ///< source conditions, columns [1 | σ⁽⁰⁾ | …] (x-part dropped)
+  Index solution_rank = 0;   ///< dim{ẋ : (ẋ, 0) ∈ D, ẋ ∈ T M_c}  [CEF Thm 5.4(b)]
+};
+
+/// M with `more` zero columns appended (jets of one more order).
+template <class T>
+Matrix<T> widen(const Matrix<T>& m, Index more) {
+  return hstack(m, Matrix<T>(m.rows(), more));
+}
+
+/// −d/dt of the source part: c_d·σ^{(d)} becomes c_d·σ^{(d+1)} (one order up; the constant drops).
+template <class T>
+Matrix<T> time_derivative_of_sources(const Matrix<T>& rows, Index n, Index m) {
+  Matrix<T> out(rows.rows(), rows.cols() + m);
+  for (Index i = 0; i < rows.rows(); ++i)
+    for (Index j = n + 1; j < rows.cols(); ++j) out(i, j + m) = rows(i, j);
+  return out;
+}
+
+template <class T>
+void require_forced(const ForcedSystem<T>& f, const std::string& fn) {
+  require_system(f.s, fn);
+  const Index n = f.s.d.n, m = f.sources;
+  require(f.force.rows() == 0 || (f.force.rows() == n && f.force.cols() == n), fn, "an N×N force matrix", shape(f.force));
+  require(f.source_force.rows() == n && f.source_force.cols() == m, fn, "B of shape N×m", shape(f.source_force));
+  require(f.shift.rows() == n && f.shift.cols() == m, fn, "Z of shape N×m", shape(f.shift));
+  require(f.given_conditions.rows() == 0 || f.given_conditions.cols() == 1 + m, fn, "conditions [1 | σ]",
+          shape(f.given_conditions));
+}
+
+/// A = H − F: α(t, x) = A x + g − B σ(t).
+template <class T>
+Matrix<T> one_form_matrix(const ForcedSystem<T>& f) {
+  return f.force.rows() ? f.s.hessian - f.force : f.s.hessian;
+}
+
+/// The linear system for λ at the current tower: [G_αᵀ; A_x G_vᵀ] λ = rhs, rhs as jet rows.
+template <class T>
+struct LambdaSystem {
+  Matrix<T> lhs, rhs;
+};
+
+template <class T>
+LambdaSystem<T> lambda_system(const ForcedSystem<T>& f, const Matrix<T>& eq, Index orders) {
+  const Index n = f.s.d.n, m = f.sources, w = n + 1 + m * orders;
+  const Matrix<T>& g = f.s.d.d.basis();
+  const Matrix<T> gv = g.block(0, g.rows(), 0, n), ga = g.block(0, g.rows(), n, 2 * n);
+  const Matrix<T> ax = eq.block(0, eq.rows(), 0, n);
+  LambdaSystem<T> out{vstack(ga.transpose(), ax * gv.transpose()), Matrix<T>(n + eq.rows(), w + m)};
+  const Matrix<T> a = one_form_matrix(f);
+  for (Index i = 0; i < n; ++i) {  // A x + g − B σ
+    for (Index j = 0; j < n; ++j) out.rhs(i, j) = a(i, j);
+    out.rhs(i, n) = f.s.gradient[i];
+    for (Index j = 0; j < m; ++j) out.rhs(i, n + 1 + j) = -f.source_force(i, j);
+  }
+  // a_j·(G_vᵀλ + Zσ) + Σ c_{j,d} σ^{(d+1)} = 0
+  const Matrix<T> az = ax * f.shift, dc = time_derivative_of_sources(eq, n, m);
+  for (Index r = 0; r < eq.rows(); ++r) {
+    for (Index j = 0; j < m; ++j) out.rhs(n + r, n + 1 + j) = -az(r, j);
+    for (Index j = n + 1; j < w + m; ++j) out.rhs(n + r, j) -= dc(r, j);
+  }
+  return out;
+}
+
+/// Splits RREF rows into those with an x-pivot (equations) and the rest (conditions on sources);
+/// false if some row reads 1 = 0.
+template <class T>
+bool split_rows(const Matrix<T>& pool, Index n, Matrix<T>& eq, Matrix<T>& cond) {
+  const Rref<T> e = rref(pool);
+  eq = Matrix<T>(0, pool.cols());
+  cond = Matrix<T>(0, pool.cols() - n);
+  bool ok = true;
+  for (Index i = 0; i < e.pivots.size(); ++i) {
+    const Matrix<T> row = e.r.block(i, i + 1, 0, pool.cols());
+    if (e.pivots[i] < n) {
+      eq = vstack(eq, row);
+    } else {
+      const Matrix<T> c = row.block(0, 1, n, pool.cols());
+      cond = vstack(cond, c);
+      if (e.pivots[i] == n && rank(c.block(0, 1, 1, c.cols())) == 0) ok = false;  // 1 = 0
+    }
+  }
+  return ok;
+}
+
+/// The CAD tower of a forced system with sources.  [CEF §5 with YM §4 forces; V §3 moving M_k]
+template <class T>
+ForcedResult<T> forced_tower(const ForcedSystem<T>& f, const Matrix<T>& initial = Matrix<T>()) {
+  require_forced(f, "forced_tower");
+  const Index n = f.s.d.n, m = f.sources;
+  ForcedResult<T> out;
+  Matrix<T> eq = initial.rows() ? initial : Matrix<T>(0, n + 1 + m);
+  require(eq.cols() == n + 1 + m, "forced_tower", "initial jet rows of width N+1+m", shape(eq));
+  Matrix<T> cond = f.given_conditions.rows() ? f.given_conditions : Matrix<T>(0, 1 + m);
+  out.consistent = split_rows(vstack(eq, hstack(Matrix<T>(cond.rows(), n), cond)), n, eq, cond);
+  out.dims.push_back(out.consistent ? long(n - eq.rows()) : -1L);
+  while (out.consistent) {
+    const LambdaSystem<T> ls = lambda_system(f, eq, out.orders);
+    const Matrix<T> cand = nullspace(ls.lhs.transpose()) * ls.rhs;  // y·rhs for y in the left kernel
+    ++out.orders;
+    const Index before = eq.rows();
+    const Matrix<T> pool = vstack(vstack(widen(eq, m), hstack(Matrix<T>(cond.rows(), n), widen(cond, m))), cand);
+    out.consistent = split_rows(pool, n, eq, cond);
+    if (!out.consistent) {
+      out.dims.push_back(-1);
+      break;
+    }
+    if (eq.rows() == before) break;  // M_{k+1} = M_k
+    out.dims.push_back(long(n - eq.rows()));
+  }
+  out.steps = out.dims.size() - 1;
+  out.equations = eq;
+  out.conditions = cond;
+  if (out.consistent) {
+    const LambdaSystem<T> ls = lambda_system(f, eq, out.orders);
+    const Matrix<T>& g = f.s.d.d.basis();
+    out.solution_rank = rank(nullspace(ls.lhs) * g.block(0, g.rows(), 0, n));  // {G_vᵀλ : lhs λ = 0}
+  }
+  return out;
+}
+
+/// Evaluates jet rows at (x, u) with u = (1, σ⁽⁰⁾, σ⁽¹⁾, …) (missing orders are 0).
+template <class T>
+std::vector<T> evaluate_rows(const Matrix<T>& rows, const std::vector<T>& x, const std::vector<T>& u) {
+  std::vector<T> out(rows.rows(), T(0));
+  const Index n = x.size();
+  for (Index i = 0; i < rows.rows(); ++i) {
+    for (Index j = 0; j < n; ++j) out[i] += rows(i, j) * x[j];
+    for (Index j = n; j < rows.cols() && j - n < u.size(); ++j) out[i] += rows(i, j) * u[j - n];
+  }
+  return out;
+}
+
+/// {ẋ : (ẋ − Zσ, α(t, x)) ∈ D, ẋ tangent to M_c(t)} at x ∈ M_c(t), u = (1, σ⁽⁰⁾, …, σ^{(orders)}).
+template <class T>
+AffineSubspace<T> forced_velocities(const ForcedSystem<T>& f, const ForcedResult<T>& r, const std::vector<T>& x,
+                                    const std::vector<T>& u) {
+  const Index n = f.s.d.n;
+  const LambdaSystem<T> ls = lambda_system(f, r.equations, r.orders);
+  std::vector<T> rhs = evaluate_rows(ls.rhs, x, u);
+  const AffineSubspace<T> lam = solve(ls.lhs, rhs);
+  AffineSubspace<T> out;
+  out.empty = lam.empty;
+  if (lam.empty) return out;
+  const Matrix<T>& g = f.s.d.d.basis();
+  const Matrix<T> gvt = g.block(0, g.rows(), 0, n).transpose();
+  out.direction = map(gvt, lam.direction);
+  out.point = (gvt * Matrix<T>::column(lam.point)).col(0);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < f.sources; ++j) out.point[i] += f.shift(i, j) * u[1 + j];
+  return out;
+}
+
+}  // namespace dcad::reference
