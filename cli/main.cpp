@@ -8,6 +8,7 @@
 #include "plot.hpp"
 #include "simulate.hpp"
 #include "solve_circuit.hpp"
+#include "solve_forced.hpp"
 #include "solve.hpp"
 
 #include <CLI/CLI.hpp>
@@ -119,6 +120,11 @@ int main(int argc, char** argv) {
       const bool dense = !netlist || deck.circuit.branches.size() <= dcad::cli::kDenseBranches;
       const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, dense) : dcad::io::read_case(solve_file);
       for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
+      if (netlist && deck.forced) {  // R, sources, K: the forced route (YM §4)
+        const dcad::cli::ForcedReport fr = dcad::cli::solve_forced(deck, solve_backend);
+        std::cout << (solve_json ? dcad::cli::to_json(fr, c).dump(2) + "\n" : dcad::cli::to_text(fr, c));
+        return 0;
+      }
       dcad::cli::SolveReport r;
       try {
         if (netlist) {  // the circuit routes (CEF §6): structured exact / ball, graph route + fast

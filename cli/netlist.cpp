@@ -313,6 +313,12 @@ class Flattener {
   std::map<std::string, std::size_t> names, nodes;
   std::map<std::string, Subcircuit> subckts;
   std::map<std::string, Rational> node_ic;
+  struct Coupling {
+    Line line;
+    std::string name, a, b;
+    Rational k;
+  };
+  std::vector<Coupling> couplings;  ///< K elements, resolved once every inductor is known
 
   explicit Flattener(Netlist& n) : out(n) {}
 
@@ -441,14 +447,34 @@ class Flattener {
                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
     const std::string head = lower(tok[0]);
     const char kind = head[0];
-    if (kind == 'r')
-      fail(l, "an L, C or zero-volt V element (an LC circuit has no resistors; CEF §6)", "resistor " + tok[0]);
-    if (kind != 'l' && kind != 'c' && kind != 'v') fail(l, "an L, C, zero-volt V or X element", "element " + tok[0]);
+    if (std::string("lcvrik").find(kind) == std::string::npos)
+      fail(l, "an L, C, R, V, I, K or X element", "element " + tok[0] + " (not supported)");
     if (tok.size() < 4) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
     // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
-    const std::string name = prefix.empty() ? tok[0] : std::string(1, tok[0][0]) + "." + prefix + head;
+    const auto hier = [&](const std::string& t) { return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t); };
+    const std::string name = hier(tok[0]);
     const std::string key = lower(name);
     if (names.count(key)) fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
+    const auto number = [&](const std::string& text, const std::string& what) {
+      try {
+        if (!text.empty() && text.front() == '{') {
+          if (text.back() != '}') throw std::invalid_argument("no closing '}'");
+          return Expression(text.substr(1, text.size() - 2), params).value();
+        }
+        return parse_spice_value(text);
+      } catch (const std::invalid_argument& e) {
+        fail(l, what, "\"" + text + "\" (" + e.what() + ")");
+      }
+    };
+    if (kind == 'k') {
+      if (tok.size() != 4) fail(l, "KNAME LX LY COUPLING", "\"" + l.text + "\"");
+      const Rational k = number(tok[3], "a coupling coefficient");
+      if (k < -1 || k > 1) fail(l, "a coupling coefficient with |k| <= 1", tok[3]);
+      couplings.push_back({l, name, lower(hier(tok[1])), lower(hier(tok[2])), k});
+      names[key] = out_lines.size();
+      out_lines.push_back(l.where());
+      return;
+    }
     names[key] = out_lines.size();
     out_lines.push_back(l.where());
     reference::Branch<Rational> b;
@@ -464,42 +490,69 @@ class Flattener {
     };
     b.from = node(tok[1]);
     b.to = node(tok[2]);
-    std::size_t vi = 3;
-    if (kind == 'v' && lower(tok[3]) == "dc" && tok.size() > 4) vi = 4;  // "V1 a b DC 0"
-    const auto number = [&](const std::string& text, const std::string& what) {
+    reference::RlcBranch<Rational> rb{name, reference::RlcKind::wire, b.from, b.to, Rational(0), 0};
+    if (kind == 'v' || kind == 'i') {
+      std::string spec;
+      for (std::size_t k = 3; k < tok.size(); ++k) spec += (k > 3 ? " " : "") + tok[k];
+      Waveform w;
       try {
-        if (!text.empty() && text.front() == '{') {
-          if (text.back() != '}') throw std::invalid_argument("no closing '}'");
-          return Expression(text.substr(1, text.size() - 2), params).value();
-        }
-        return parse_spice_value(text);
+        w = parse_waveform(spec, [&](const std::string& t) { return number(t, "a source value"); });
       } catch (const std::invalid_argument& e) {
-        fail(l, what, "\"" + text + "\" (" + e.what() + ")");
+        fail(l, "a source: [DC] VALUE, SIN(...), PULSE(...) or PWL(...)", e.what());
       }
-    };
-    const Rational value = number(tok[vi], "a value (number with optional SPICE suffix, or {expression})");
-    std::optional<Rational> ic;
-    for (std::size_t k = vi + 1; k < tok.size(); ++k) {
-      const std::string t = lower(tok[k]);
-      if (t.compare(0, 3, "ic=") == 0) ic = number(tok[k].substr(3), "IC=value");
-      else fail(l, "nothing or IC=value after the value", "\"" + tok[k] + "\"");
+      w.element = name;
+      b.kind = reference::BranchKind::empty;
+      if (kind == 'v' && w.kind == Waveform::Kind::dc && w.p[0] == 0) {
+        rb.kind = reference::RlcKind::wire;  // a zero-volt source is a wire (an ammeter)
+      } else {
+        rb.kind = kind == 'v' ? reference::RlcKind::voltage : reference::RlcKind::current;
+        rb.source = out.waveforms.size();
+        out.waveforms.push_back(w);
+        out.forced = true;
+      }
+      out.circuit.branches.push_back(b);
+      out.rlc.branches.push_back(rb);
+      out.initial.push_back(std::nullopt);
+      out.where.push_back(l.where());
+      return;
     }
-    if (kind == 'v') {
-      if (value != 0) fail(l, "a zero-volt source (a wire, an empty branch)", "V = " + value.str());
+    const Rational value = number(tok[3], "a value (number with optional SPICE suffix, or {expression})");
+    std::optional<Rational> ic;
+    for (std::size_t k = 4; k < tok.size(); ++k) {
+      const std::string t = lower(tok[k]);
+      if (t.compare(0, 3, "ic=") == 0 && kind != 'r') ic = number(tok[k].substr(3), "IC=value");
+      else fail(l, kind == 'r' ? "nothing after the resistance" : "nothing or IC=value after the value", "\"" + tok[k] + "\"");
+    }
+    rb.value = value;
+    if (kind == 'r') {
+      if (value < 0) out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
+      if (value == 0) {
+        rb.kind = reference::RlcKind::wire;  // R = 0: a wire
+      } else {
+        rb.kind = reference::RlcKind::resistor;
+        out.forced = true;
+      }
       b.kind = reference::BranchKind::empty;
     } else if (kind == 'l') {
       b.kind = reference::BranchKind::inductor;
       b.value = value;
+      rb.kind = reference::RlcKind::inductor;
       if (value < 0) out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
     } else {
       if (value == 0) fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + name);
       b.kind = reference::BranchKind::capacitor;
       b.value = value;
+      rb.kind = reference::RlcKind::capacitor;
       if (value < 0) out.warnings.push_back(l.where() + ": negative capacitance " + name + " is not physical (CEF Remark 6.7)");
     }
-    if (kind == 'l' && value == 0) b.kind = reference::BranchKind::empty;  // L = 0: a wire
+    if (kind == 'l' && value == 0) {
+      b.kind = reference::BranchKind::empty;  // L = 0: a wire
+      rb.kind = reference::RlcKind::wire;
+    }
     out.circuit.branches.push_back(b);
+    out.rlc.branches.push_back(rb);
     out.initial.push_back(ic);
+    out.where.push_back(l.where());
   }
 
  public:
@@ -507,6 +560,43 @@ class Flattener {
 };
 
 }  // namespace
+
+/// K elements: M = k √(L_a L_b), exact when k² L_a L_b is the square of a rational, otherwise
+/// rounded to 40 significant digits (with a warning).
+static void resolve_couplings(Netlist& out, const Flattener& f) {
+  for (const auto& c : f.couplings) {
+    const auto find = [&](const std::string& n) -> std::size_t {
+      for (std::size_t i = 0; i < out.rlc.branches.size(); ++i)
+        if (lower(out.rlc.branches[i].name) == n) {
+          if (out.rlc.branches[i].kind != reference::RlcKind::inductor)
+            throw InputError(c.line.where() + ": expected an inductor for " + c.name + ", found " + out.rlc.branches[i].name);
+          return i;
+        }
+      throw InputError(c.line.where() + ": expected an inductor of the circuit for " + c.name + ", found \"" + n + "\"");
+    };
+    const std::size_t a = find(c.a), b = find(c.b);
+    if (a == b) throw InputError(c.line.where() + ": expected two different inductors for " + c.name + ", found one twice");
+    const Rational sq = c.k * c.k * out.rlc.branches[a].value * out.rlc.branches[b].value;
+    using boost::multiprecision::mpz_int;
+    const mpz_int num = boost::multiprecision::numerator(sq), den = boost::multiprecision::denominator(sq);
+    const mpz_int rn = boost::multiprecision::sqrt(num), rd = boost::multiprecision::sqrt(den);
+    Rational m;
+    if (rn * rn == num && rd * rd == den) {
+      m = Rational(rn, rd);
+    } else {
+      const mpz_int scale = boost::multiprecision::pow(mpz_int(10), 80);
+      m = Rational(boost::multiprecision::sqrt(mpz_int(num * scale * scale / den)), scale);  // 80 digits after the point, truncated
+      out.warnings.push_back(c.line.where() + ": " + c.name + ": M = k*sqrt(Lx*Ly) is irrational; used it to 80 decimal places");
+    }
+    if (c.k < 0) m = -m;
+    bool dup = false;
+    for (auto& mu : out.rlc.mutuals)
+      if ((mu.a == a && mu.b == b) || (mu.a == b && mu.b == a)) dup = true;
+    if (dup) throw InputError(c.line.where() + ": expected one coupling per pair of inductors, found a second one (" + c.name + ")");
+    out.rlc.mutuals.push_back({a, b, m});
+    out.forced = true;
+  }
+}
 
 Netlist read_netlist(const std::string& file) {
   Netlist out;
@@ -526,6 +616,9 @@ Netlist read_netlist(const std::string& file) {
     throw InputError(file + ":" + (reader.lines.empty() ? std::string("1") : reader.lines.back().where().substr(file.size() + 1)) +
                      ": expected at least one L, C or V element, found none");
   out.circuit.nodes = out.node_names.size();
+  out.rlc.nodes = out.circuit.nodes;
+  out.rlc.sources = out.waveforms.size();
+  resolve_couplings(out, f);
   // .ic v(node)=…: a capacitor without IC= starts at the difference of its nodes' voltages
   for (std::size_t i = 0; i < out.circuit.branches.size(); ++i) {
     const auto& b = out.circuit.branches[i];

@@ -4,6 +4,8 @@
 
 #include "case_file.hpp"
 #include "dcad/reference/circuit.hpp"
+#include "dcad/reference/rlc.hpp"
+#include "waveform.hpp"
 
 #include <optional>
 
@@ -15,6 +17,12 @@ struct Netlist {
   std::vector<std::string> node_names;                  ///< non-ground nodes, in order of appearance
   std::vector<std::optional<Rational>> initial;         ///< IC= per branch (current for L, voltage for C)
   std::vector<std::string> warnings;                    ///< ignored dot-cards, non-physical values
+  /// Every element, R, V, I and K included (YM §4); `circuit` holds the same branches with R and
+  /// the sources as empty branches, and is the circuit only when !forced.
+  reference::RlcCircuit<Rational> rlc;
+  std::vector<Waveform> waveforms;  ///< per source (σ index), in netlist order
+  std::vector<std::string> where;   ///< file:line of each branch
+  bool forced = false;              ///< some R, I, K or nonzero V: the YM §4 route
 };
 
 bool is_netlist_file(const std::string& file);

@@ -38,7 +38,25 @@ struct ForcedResult {
   Matrix<T> equations;       ///< M_c(t) as jet rows, x-parts in RREF (independent)
   Matrix<T> conditions;      ///< source conditions, columns [1 | σ⁽⁰⁾ | …] (x-part dropped)
   Index solution_rank = 0;   ///< dim{ẋ : (ẋ, 0) ∈ D, ẋ ∈ T M_c}  [CEF Thm 5.4(b)]
+  /// per step k, the equations that raised the rank (jet rows of that step's width): for reports
+  std::vector<Matrix<T>> added;
+  /// per step k, the source conditions known at M_k (columns [1 | σ⁽⁰⁾ | …] of that step's width)
+  std::vector<Matrix<T>> conditions_at;
 };
+
+/// The rows of `cand` whose x-parts raise the rank of the x-parts of `eq`, greedily in order.
+template <class T>
+Matrix<T> rank_raising_rows(const Matrix<T>& eq, const Matrix<T>& cand, Index n) {
+  Matrix<T> x = eq.block(0, eq.rows(), 0, n), out(0, cand.cols());
+  for (Index i = 0; i < cand.rows(); ++i) {
+    const Matrix<T> more = vstack(x, cand.block(i, i + 1, 0, n));
+    if (rank(more) > x.rows()) {  // the rows kept in x are independent
+      x = more;
+      out = vstack(out, cand.block(i, i + 1, 0, cand.cols()));
+    }
+  }
+  return out;
+}
 
 /// M with `more` zero columns appended (jets of one more order).
 template <class T>
@@ -132,19 +150,29 @@ ForcedResult<T> forced_tower(const ForcedSystem<T>& f, const Matrix<T>& initial 
   Matrix<T> cond = f.given_conditions.rows() ? f.given_conditions : Matrix<T>(0, 1 + m);
   out.consistent = split_rows(vstack(eq, hstack(Matrix<T>(cond.rows(), n), cond)), n, eq, cond);
   out.dims.push_back(out.consistent ? long(n - eq.rows()) : -1L);
+  out.added.push_back(eq);
+  out.conditions_at.push_back(cond);
   while (out.consistent) {
     const LambdaSystem<T> ls = lambda_system(f, eq, out.orders);
     const Matrix<T> cand = nullspace(ls.lhs.transpose()) * ls.rhs;  // y·rhs for y in the left kernel
     ++out.orders;
     const Index before = eq.rows();
+    const Matrix<T> fresh = rank_raising_rows(widen(eq, m), cand, n);
     const Matrix<T> pool = vstack(vstack(widen(eq, m), hstack(Matrix<T>(cond.rows(), n), widen(cond, m))), cand);
     out.consistent = split_rows(pool, n, eq, cond);
     if (!out.consistent) {
       out.dims.push_back(-1);
+      out.added.push_back(fresh);
+      out.conditions_at.push_back(cond);
       break;
     }
-    if (eq.rows() == before) break;  // M_{k+1} = M_k
+    if (eq.rows() == before) {  // M_{k+1} = M_k (a condition found here belongs to M_k)
+      out.conditions_at.back() = cond;
+      break;
+    }
     out.dims.push_back(long(n - eq.rows()));
+    out.added.push_back(fresh);
+    out.conditions_at.push_back(cond);
   }
   out.steps = out.dims.size() - 1;
   out.equations = eq;

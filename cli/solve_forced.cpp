@@ -1,0 +1,318 @@
+#include "solve_forced.hpp"
+
+#include "dcad/fast/circuit.hpp"
+#include "dcad/reference/rlc.hpp"
+
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+namespace dcad::cli {
+
+namespace ref = dcad::reference;
+using Q = ref::Rational;
+using QM = ref::Matrix<Q>;
+using ref::RlcKind;
+
+std::vector<std::string> jet_names(const io::Netlist& n, long orders) {
+  std::vector<std::string> out{"1"};
+  for (long d = 0; d < orders; ++d)
+    for (const io::Waveform& w : n.waveforms) {
+      const std::string f = w.element;
+      out.push_back(d == 0 ? f + "(t)" : d <= 3 ? f + std::string(d, '\'') + "(t)" : "d" + std::to_string(d) + f + "/dt" + std::to_string(d) + "(t)");
+    }
+  return out;
+}
+
+namespace {
+
+std::string row_text(const QM& row, const std::vector<std::string>& names, std::size_t first) {
+  std::string s;
+  for (std::size_t j = 0; j < row.cols(); ++j) {
+    if (row(0, j) == 0) continue;
+    Q c = row(0, j);
+    const bool neg = c < 0;
+    if (neg) c = -c;
+    s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
+    const std::string& nm = names[first + j];
+    s += nm == "1" ? c.str() : (c == 1 ? "" : c.str() + "*") + nm;
+  }
+  return (s.empty() ? "0" : s) + " = 0";
+}
+
+}  // namespace
+
+ConditionVerdict decide_condition(const QM& row, const io::Netlist& n) {
+  const std::size_t m = n.waveforms.size();
+  const long orders = m ? static_cast<long>((row.cols() - 1) / m) : 0;
+  ConditionVerdict v;
+  v.text = row_text(row, jet_names(n, orders), 0);
+  // identical waveforms (same kind and parameters) are one function: sum their coefficients
+  std::map<std::pair<std::string, long>, Q> sums;
+  Q constant = row(0, 0);
+  bool all_constant = true;
+  for (std::size_t j = 0; j < m; ++j)
+    for (long d = 0; d < orders; ++d) {
+      const Q& c = row(0, 1 + d * m + j);
+      if (c == 0) continue;
+      const io::Waveform& w = n.waveforms[j];
+      if (w.kind == io::Waveform::Kind::dc) {
+        if (d == 0) constant += c * w.p[0];
+        continue;
+      }
+      all_constant = false;
+      std::string key = std::to_string(static_cast<int>(w.kind));
+      for (const Q& p : w.p) key += " " + p.str();
+      sums[{key, d}] += c;
+    }
+  bool zero = constant == 0;
+  for (const auto& [k, c] : sums) zero = zero && c == 0;
+  if (zero) {
+    v.evidence = all_constant ? "exact (DC values)" : "exact (equal waveforms cancel)";
+    return v;
+  }
+  if (all_constant) {
+    v.holds = ConditionVerdict::Holds::no;
+    v.evidence = "exact: the DC values give " + constant.str() + " = 0";
+    return v;
+  }
+  // different waveforms: sample the combination (breakpoints, their midpoints, a spread of times)
+  double horizon = 1;
+  std::vector<double> ts{0};
+  for (const io::Waveform& w : n.waveforms) {
+    for (double b : w.breakpoints(1e300 > 0 ? 1e30 : 0)) ts.push_back(b);
+    if (w.kind == io::Waveform::Kind::sin && w.p[2] != 0) horizon = std::max(horizon, 4 / w.p[2].convert_to<double>());
+  }
+  if (ts.size() > 1) horizon = std::max(horizon, 2 * ts.back());
+  const std::size_t k = ts.size();
+  for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
+  for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));
+  double worst = 0, at = 0, scale = std::abs(row(0, 0).convert_to<double>());
+  for (double t : ts) {
+    double s = row(0, 0).convert_to<double>();
+    for (std::size_t j = 0; j < m; ++j)
+      for (long d = 0; d < orders; ++d) {
+        const double c = row(0, 1 + d * m + j).convert_to<double>();
+        if (c == 0) continue;
+        const double term = c * n.waveforms[j].value(t, static_cast<int>(d));
+        s += term;
+        scale = std::max(scale, std::abs(term));
+      }
+    if (std::abs(s) > worst) {
+      worst = std::abs(s);
+      at = t;
+    }
+  }
+  std::ostringstream o;
+  o.precision(6);
+  if (worst > 1e-9 * std::max(scale, 1e-300)) {
+    v.holds = ConditionVerdict::Holds::no;
+    o << "fails at t = " << at << " s: the left side is " << worst << " (sources evaluated in double)";
+  } else {
+    v.holds = ConditionVerdict::Holds::uncertain;
+    o << "different waveforms agree to " << worst << " at " << ts.size() << " sample times: cannot decide exactly";
+  }
+  v.evidence = o.str();
+  return v;
+}
+
+namespace {
+
+ref::RlcCircuit<Q> circuit_of(const io::Netlist& n) { return n.rlc; }
+
+/// Loops of the subgraph `keep` that pass through a branch of kind `through`, by a spanning forest
+/// that takes the `prefer` branches first (so each reported loop has one `through` chord).
+std::vector<std::vector<std::string>> loops(const io::Netlist& n, const std::function<bool(RlcKind)>& keep,
+                                            const std::function<bool(RlcKind)>& prefer, const std::function<bool(const fast::Loop&)>& report) {
+  fast::CircuitGraph g;
+  g.nodes = n.rlc.nodes;
+  std::vector<bool> k, p;
+  for (const auto& b : n.rlc.branches) {
+    g.branches.push_back({fast::BranchKind::empty, b.from, b.to, 0.0});
+    k.push_back(keep(b.kind));
+    p.push_back(prefer(b.kind));
+  }
+  std::vector<std::vector<std::string>> out;
+  for (const fast::Loop& l : fast::fundamental_loops(g, k, p)) {
+    if (!report(l)) continue;
+    std::vector<std::string> names;
+    for (const fast::LoopBranch& lb : l) names.push_back((lb.sign > 0 ? "+" : "-") + n.rlc.branches[lb.branch].name);
+    out.push_back(names);
+  }
+  return out;
+}
+
+/// Cutsets made only of branches with `in(kind)`: contract every other branch; the cut around each
+/// resulting super-node (one per connected piece left out) — independent cutsets, signed (+ = leaving).
+std::vector<std::vector<std::string>> cutsets(const io::Netlist& n, const std::function<bool(RlcKind)>& in,
+                                              const std::function<bool(RlcKind)>& must) {
+  const std::size_t v = n.rlc.nodes + 1;
+  std::vector<std::size_t> parent(v);
+  std::iota(parent.begin(), parent.end(), 0);
+  const std::function<std::size_t(std::size_t)> find = [&](std::size_t x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  for (const auto& b : n.rlc.branches)
+    if (!in(b.kind)) parent[find(b.from + 1)] = find(b.to + 1);
+  // super-nodes joined by the kept branches: drop one super-node per connected piece
+  std::vector<std::size_t> piece(v);
+  std::iota(piece.begin(), piece.end(), 0);
+  const std::function<std::size_t(std::size_t)> findp = [&](std::size_t x) { return piece[x] == x ? x : piece[x] = findp(piece[x]); };
+  for (const auto& b : n.rlc.branches)
+    if (in(b.kind)) piece[findp(find(b.from + 1))] = findp(find(b.to + 1));
+  std::vector<std::vector<std::string>> out;
+  for (std::size_t s = 0; s < v; ++s) {
+    if (find(s) != s || findp(s) == s) continue;  // not a super-node, or the dropped representative
+    std::vector<std::string> names;
+    bool ok = false;
+    for (const auto& b : n.rlc.branches) {
+      if (!in(b.kind)) continue;
+      const bool from = find(b.from + 1) == s, to = find(b.to + 1) == s;
+      if (from == to) continue;
+      names.push_back((from ? "+" : "-") + b.name);
+      ok = ok || must(b.kind);
+    }
+    if (ok && !names.empty()) out.push_back(names);
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& x : names) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
+Equation jet_equation(const QM& rows, std::size_t i, std::size_t nvars) {
+  Equation e;
+  for (std::size_t j = 0; j < rows.cols(); ++j) {
+    if (j == nvars || rows(i, j) == 0) continue;
+    e.terms.emplace_back(j < nvars ? j : j - 1, rows(i, j).str());
+  }
+  e.rhs = Q(-rows(i, nvars)).str();
+  return e;
+}
+
+}  // namespace
+
+ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
+  if (n.rlc.branches.size() > kForcedBranches)
+    throw io::InputError(n.file + ": expected at most " + std::to_string(kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(n.rlc.branches.size()) +
+                         " (the forced route is dense and exact; larger ones are not supported yet)");
+  const ref::ForcedSystem<Q> f = ref::rlc_system(circuit_of(n));
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
+  ForcedReport out;
+  SolveReport& s = out.report;
+  s.backend = backend == "reference" ? "reference" : backend;
+  s.certified = true;
+  s.decisions_exact = 1;
+  s.note = "forced route (YM §4 forces and affine constraints, moving M_k(t) as in V §3), exact";
+  const std::size_t nv = 3 * n.rlc.branches.size();
+  // the first M_k whose source conditions fail is empty
+  long empty_at = r.consistent ? -1 : static_cast<long>(r.dims.size()) - 1;
+  std::vector<bool> seen;
+  for (std::size_t k = 0; k < r.conditions_at.size() && (empty_at < 0 || static_cast<long>(k) < empty_at); ++k) {
+    const QM& ck = r.conditions_at[k];
+    for (std::size_t i = 0; i < ck.rows(); ++i) {
+      const ConditionVerdict v = decide_condition(ck.block(i, i + 1, 0, ck.cols()), n);
+      bool dup = false;
+      for (const ConditionVerdict& o : out.conditions) dup = dup || o.text == v.text;
+      if (!dup) out.conditions.push_back(v);
+      if (v.holds == ConditionVerdict::Holds::no && empty_at < 0) empty_at = static_cast<long>(k);
+      if (v.holds == ConditionVerdict::Holds::uncertain) s.certified = false;
+    }
+  }
+  for (std::size_t k = 0; k < r.dims.size(); ++k) {
+    SolveReport::Step st;
+    st.dim = r.dims[k];
+    if (empty_at >= 0 && static_cast<long>(k) >= empty_at) st.dim = -1;
+    for (std::size_t i = 0; i < r.added[k].rows(); ++i) st.equations.push_back(jet_equation(r.added[k], i, nv));
+    s.tower.push_back(st);
+    s.dims.push_back(st.dim);
+    if (st.dim < 0) break;
+  }
+  s.steps = static_cast<long>(s.dims.size()) - 1;
+  for (const char* p : {"q_", "v_", "p_"})
+    for (const auto& b : n.rlc.branches) out.names.push_back(p + b.name);
+  const std::vector<std::string> jets = jet_names(n, static_cast<long>(r.orders) + 1);
+  out.names.insert(out.names.end(), jets.begin() + 1, jets.end());
+  for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
+  s.consistent = s.dims.back() >= 0;
+  s.solution_rank = s.consistent ? static_cast<long>(r.solution_rank) : 0;
+  if (!s.certified) s.note += "; a source condition could not be decided exactly (see sources.conditions)";
+  // loops and cutsets by name
+  const auto is = [](std::initializer_list<RlcKind> ks) {
+    return [ks](RlcKind k) { return std::find(ks.begin(), ks.end(), k) != ks.end(); };
+  };
+  const auto has = [&](RlcKind kind) {
+    return [&n, kind](const fast::Loop& l) {
+      for (const fast::LoopBranch& b : l)
+        if (n.rlc.branches[b.branch].kind == kind) return true;
+      return false;
+    };
+  };
+  const auto cv = loops(n, is({RlcKind::capacitor, RlcKind::voltage, RlcKind::wire}), is({RlcKind::voltage, RlcKind::wire}),
+                        has(RlcKind::capacitor));
+  const auto vloops = loops(n, is({RlcKind::voltage, RlcKind::wire}), is({RlcKind::wire}), has(RlcKind::voltage));
+  const auto li = cutsets(n, is({RlcKind::inductor, RlcKind::current}), is({RlcKind::inductor}));
+  const auto icut = cutsets(n, is({RlcKind::current}), is({RlcKind::current}));
+  long counts[6] = {0, 0, 0, 0, 0, 0};
+  for (const auto& b : n.rlc.branches) ++counts[static_cast<int>(b.kind)];
+  out.circuit = {{"branches", n.rlc.branches.size()},
+                 {"nodes", n.rlc.nodes + 1},
+                 {"pc_loops", s.consistent && s.dims.size() > 2 ? s.dims[1] - s.dims[2] : 0},
+                 {"empty_loops", 0},
+                 {"inductors", counts[0]},
+                 {"capacitors", counts[1]},
+                 {"resistors", counts[2]},
+                 {"voltage_sources", counts[3]},
+                 {"current_sources", counts[4]},
+                 {"wires", counts[5]},
+                 {"couplings", n.rlc.mutuals.size()},
+                 {"cv_loops", cv},
+                 {"source_loops", vloops},
+                 {"li_cutsets", li},
+                 {"source_cutsets", icut}};
+  std::ostringstream o;
+  o << "  circuit \"" << n.title << "\": " << n.rlc.branches.size() << " branches, " << n.rlc.nodes + 1 << " nodes (ground included); "
+    << counts[0] << " L, " << counts[1] << " C, " << counts[2] << " R, " << counts[3] << " V, " << counts[4] << " I, " << n.rlc.mutuals.size()
+    << " K\n";
+  for (const auto& l : cv)
+    o << "    CV loop " << joined(l) << ": KVL fixes its capacitor charges by the sources (Σ ±q/C = Σ ±V on M_2, the currents on M_3)\n";
+  for (const auto& l : vloops) o << "    loop of voltage sources " << joined(l) << ": KVL is a condition on the sources alone (Σ ±V(t) = 0)\n";
+  for (const auto& c : li)
+    o << "    LI cutset " << joined(c) << ": KCL fixes its inductor currents by the current sources (Σ ±v_L = Σ ±I on M_1)\n";
+  for (const auto& c : icut) o << "    cutset of current sources " << joined(c) << ": KCL is a condition on the sources alone (Σ ±I(t) = 0)\n";
+  for (const ConditionVerdict& v : out.conditions)
+    o << "    source condition " << v.text << ": "
+      << (v.holds == ConditionVerdict::Holds::yes ? "holds" : v.holds == ConditionVerdict::Holds::no ? "FAILS — the circuit is inconsistent" : "UNDECIDED")
+      << " (" << v.evidence << ")\n";
+  for (const std::string& w : n.warnings) o << "    warning: " << w << "\n";
+  out.circuit_text = o.str();
+  return out;
+}
+
+nlohmann::json to_json(const ForcedReport& r, const io::CaseFile& c) {
+  io::CaseFile ext = c;
+  ext.variables = r.names;
+  nlohmann::json j = to_json(r.report, ext);
+  j["variables"] = c.variables;
+  j["circuit"] = r.circuit;
+  nlohmann::json conds = nlohmann::json::array();
+  for (const ConditionVerdict& v : r.conditions)
+    conds.push_back({{"condition", v.text},
+                     {"holds", v.holds == ConditionVerdict::Holds::yes ? nlohmann::json(true)
+                               : v.holds == ConditionVerdict::Holds::no ? nlohmann::json(false)
+                                                                        : nlohmann::json(nullptr)},
+                     {"evidence", v.evidence}});
+  j["sources"] = {{"names", r.source_names}, {"conditions", conds}};
+  return j;
+}
+
+std::string to_text(const ForcedReport& r, const io::CaseFile& c) {
+  io::CaseFile ext = c;
+  ext.variables = r.names;
+  return to_text(r.report, ext) + r.circuit_text;
+}
+
+}  // namespace dcad::cli
