@@ -9,6 +9,7 @@
 #include "simulate.hpp"
 #include "solve_circuit.hpp"
 #include "solve_forced.hpp"
+#include "simulate_forced.hpp"
 #include "solve.hpp"
 
 #include <CLI/CLI.hpp>
@@ -59,7 +60,8 @@ int main(int argc, char** argv) {
   sim->add_option("--backend", sim_opt.backend, "certified|reference|fast (the model is built exactly in this version)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
-  std::string sim_png, sim_vars;
+  std::string sim_png, sim_vars, sim_energy;
+  sim->add_option("--energy", sim_energy, "circuits with R or sources: write the energy balance (E, dissipated and supplied power and work) as CSV here");
   sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");
   sim->add_option("--plot-vars", sim_vars, "comma-separated variables to plot (default: every q_*)");
 
@@ -208,7 +210,21 @@ int main(int argc, char** argv) {
         }
       }
       std::ostream& csv_out = csv_path.empty() ? std::cout : file_out;
-      const dcad::cli::SimulateSummary sum = dcad::cli::simulate(c, netlist ? &deck : nullptr, init, sim_opt, csv_out, std::cerr);
+      std::ofstream energy_out;
+      if (!sim_energy.empty()) {
+        if (!(netlist && deck.forced)) {
+          std::cerr << sim_file << ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)\n";
+          return 2;
+        }
+        energy_out.open(sim_energy);
+        if (!energy_out) {
+          std::cerr << sim_energy << ": cannot open for writing\n";
+          return 1;
+        }
+      }
+      const dcad::cli::SimulateSummary sum =
+          netlist && deck.forced ? dcad::cli::simulate_forced(deck, c, init, sim_opt, csv_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out)
+                                 : dcad::cli::simulate(c, netlist ? &deck : nullptr, init, sim_opt, csv_out, std::cerr);
       if (!csv_path.empty()) {
         file_out.close();
         if (!file_out) {

@@ -1,0 +1,389 @@
+// `dcad simulate` on forced decks (R, sources, K): the exact forced CAD (reference/forced.hpp)
+// gives M_c(t) = {x = X0 u(t) + Bᵀ y} with u = (1, σ, σ', …) and ẏ = A_y y + A_u u_ext(t).  The
+// sources are, between breakpoints, outputs of a linear exosystem (waveform.hpp), so the whole is
+// an autonomous linear system [y; 1; w] whose flow is one balanced matrix exponential per step
+// length (issue-7 accuracy: no truncation error, only rounding).  At a corner of a PWL/PULSE
+// source σ' jumps, and σ'' carries a Dirac delta: y jumps by A_u,(2) Δσ' (deltas of higher
+// derivatives are refused).  The constrained part X0 u(t) follows the sources exactly.
+//
+// Energy balance (YM §4): along solutions dE/dt = ⟨F, q̇⟩ + (reaction work of the affine
+// constraints): −Σ R v² + Σ (−V) v_V, plus what the current sources supply.
+#include "simulate.hpp"
+#include "simulate_forced.hpp"
+#include "solve.hpp"
+#include "solve_forced.hpp"
+
+#include "dcad/reference/rlc.hpp"
+
+#include <Eigen/Core>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <charconv>
+#include <cmath>
+#include <map>
+
+namespace dcad::cli {
+
+namespace ref = dcad::reference;
+using Q = ref::Rational;
+using QM = ref::Matrix<Q>;
+
+namespace {
+
+template <class S>
+using Mat = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+template <class S>
+using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+
+Mat<double> to_d(const QM& m) {
+  Mat<double> d(m.rows(), m.cols());
+  for (ref::Index i = 0; i < m.rows(); ++i)
+    for (ref::Index j = 0; j < m.cols(); ++j) d(i, j) = m(i, j).convert_to<double>();
+  return d;
+}
+
+/// The exact model: x = X0 u + Bᵀ y on M_c(t), ẏ = A_y y + A_u u_ext, ẋ = V_y y + V_u u_ext.
+struct ForcedModel {
+  std::size_t n = 0, m = 0, dm = 0;
+  long orders = 1;  ///< u has σ⁽⁰⁾ … σ^{(orders−1)}; u_ext one more
+  QM eq, basis, x0, ay, au, vy, vu;
+  ref::ForcedSystem<Q> f;
+};
+
+/// Columns of X (over u) moved to the columns of u̇ = shift(u) within u_ext.
+QM shifted(const QM& x, std::size_t m, long orders) {
+  QM out(x.rows(), 1 + m * (orders + 1));
+  for (ref::Index i = 0; i < x.rows(); ++i)
+    for (ref::Index j = 1; j < x.cols(); ++j) out(i, j + m) = x(i, j);
+  return out;
+}
+
+ForcedModel forced_model(const io::Netlist& deck) {
+  ForcedModel fm;
+  fm.f = ref::rlc_system(deck.rlc);
+  const ref::ForcedResult<Q> r = ref::forced_tower(fm.f);
+  for (ref::Index i = 0; i < r.conditions.rows(); ++i) {
+    const ConditionVerdict v = decide_condition(r.conditions.block(i, i + 1, 0, r.conditions.cols()), deck);
+    if (v.holds == ConditionVerdict::Holds::no || !r.consistent)
+      throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " + v.text + " violated (" +
+                           v.evidence + ")");
+  }
+  if (!r.consistent) throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found M_" + std::to_string(r.steps) + " empty");
+  fm.n = fm.f.s.d.n;
+  fm.m = fm.f.sources;
+  fm.orders = static_cast<long>(r.orders);
+  fm.eq = r.equations;
+  const std::size_t n = fm.n, m = fm.m, wu = 1 + m * fm.orders, wx = wu + m;
+  const QM ex = fm.eq.block(0, fm.eq.rows(), 0, n), eu = fm.eq.block(0, fm.eq.rows(), n, n + wu);
+  fm.basis = ref::Subspace<Q>::span(ref::nullspace(ex)).basis();
+  fm.dm = fm.basis.rows();
+  ref::solve_particular(ex, -eu, fm.x0);  // full row rank: solvable column by column
+  // λ-system rhs over (x | u_ext); substitute x = X0 u + Bᵀ y
+  const ref::LambdaSystem<Q> ls = ref::lambda_system(fm.f, fm.eq, fm.orders);
+  const QM rx = ls.rhs.block(0, ls.rhs.rows(), 0, n), ru = ls.rhs.block(0, ls.rhs.rows(), n, n + wx);
+  QM x0e(n, wx);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < wu; ++j) x0e(i, j) = fm.x0(i, j);
+  const QM rhs = ref::hstack(rx * fm.basis.transpose(), rx * x0e + ru);
+  // exact least squares: solvable columns are solved exactly, and sums of columns that are
+  // solvable only together (sources tied by a condition) are solved exactly too
+  QM lam;
+  ref::solve_particular(ls.lhs.transpose() * ls.lhs, ls.lhs.transpose() * rhs, lam);
+  const QM& g = fm.f.s.d.d.basis();
+  QM v = g.block(0, g.rows(), 0, n).transpose() * lam;  // ẋ − Zσ = G_vᵀ λ
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < m; ++j) v(i, fm.dm + 1 + j) += fm.f.shift(i, j);
+  fm.vy = v.block(0, n, 0, fm.dm);
+  fm.vu = v.block(0, n, fm.dm, fm.dm + wx);
+  const QM p = ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis;  // y = P (x − X0 u)
+  fm.ay = p * fm.vy;
+  fm.au = p * (fm.vu - shifted(fm.x0, m, fm.orders));
+  return fm;
+}
+
+/// u_ext(t) (right limits): (1, σ, σ', …, σ^{(orders)}).
+Vec<double> jets(const io::Netlist& deck, double t, long orders) {
+  const std::size_t m = deck.waveforms.size();
+  Vec<double> u(1 + m * (orders + 1));
+  u(0) = 1;
+  for (long d = 0; d <= orders; ++d)
+    for (std::size_t j = 0; j < m; ++j) u(1 + d * m + j) = deck.waveforms[j].value(t, static_cast<int>(d));
+  return u;
+}
+
+/// Generator of [y; 1; w] and the map w-state → u_ext.
+Mat<double> exo_output(const io::Netlist& deck, long orders) {
+  const std::size_t m = deck.waveforms.size();
+  Mat<double> out = Mat<double>::Zero(1 + m * (orders + 1), 1 + 3 * m);
+  out(0, 0) = 1;
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = deck.waveforms[j];
+    const std::size_t c = 1 + 3 * j;
+    if (w.is_sine()) {
+      Eigen::Matrix2d mm, pw = Eigen::Matrix2d::Identity();
+      mm << w.decay(), -w.omega(), w.omega(), w.decay();
+      for (long d = 0; d <= orders; ++d) {
+        if (d == 0) out(1 + j, c) = 1;
+        out(1 + d * m + j, c + 1) = pw(1, 0);
+        out(1 + d * m + j, c + 2) = pw(1, 1);
+        pw = mm * pw;
+      }
+    } else {
+      out(1 + j, c) = 1;
+      if (orders >= 1) out(1 + m + j, c + 1) = 1;
+    }
+  }
+  return out;
+}
+
+Mat<double> exo_generator(const io::Netlist& deck) {
+  const std::size_t m = deck.waveforms.size();
+  Mat<double> s = Mat<double>::Zero(1 + 3 * m, 1 + 3 * m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = deck.waveforms[j];
+    const std::size_t c = 1 + 3 * j;
+    if (w.is_sine()) {
+      s(c + 1, c + 1) = s(c + 2, c + 2) = w.decay();
+      s(c + 1, c + 2) = -w.omega();
+      s(c + 2, c + 1) = w.omega();
+    } else {
+      s(c, c + 1) = 1;
+    }
+  }
+  return s;
+}
+
+template <class S>
+struct ForcedFlow {
+  Mat<S> g;                 ///< balanced generator D⁻¹ G D
+  std::vector<double> d;    ///< balancing
+  std::map<double, Mat<S>> cache;
+  Vec<S> s;                 ///< balanced state [y; 1; w]
+  std::size_t dm = 0;
+  const Mat<S>& step(double h) {
+    auto it = cache.find(h);
+    if (it == cache.end()) it = cache.emplace(h, (g * static_cast<S>(h)).exp()).first;
+    return it->second;
+  }
+  void set_exo(const io::Netlist& deck, double t) {
+    const std::size_t m = deck.waveforms.size();
+    s(dm) = S(1) / static_cast<S>(d[dm]);
+    for (std::size_t j = 0; j < m; ++j) {
+      long double w[3];
+      deck.waveforms[j].exo_state(t, w);
+      for (int k = 0; k < 3; ++k) s(dm + 1 + 3 * j + k) = static_cast<S>(w[k]) / static_cast<S>(d[dm + 1 + 3 * j + k]);
+    }
+  }
+  Vec<S> y() const {
+    Vec<S> out(dm);
+    for (std::size_t i = 0; i < dm; ++i) out(i) = s(i) * static_cast<S>(d[i]);
+    return out;
+  }
+  void add_to_y(const Vec<double>& dy) {
+    for (std::size_t i = 0; i < dm; ++i) s(i) += static_cast<S>(dy(i)) / static_cast<S>(d[i]);
+  }
+};
+
+template <class S>
+ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, std::size_t dm) {
+  ForcedFlow<S> f;
+  f.d = d;
+  f.dm = dm;
+  f.g = gen.cast<S>();
+  for (Eigen::Index i = 0; i < gen.rows(); ++i)
+    for (Eigen::Index j = 0; j < gen.cols(); ++j) f.g(i, j) *= static_cast<S>(d[j] / d[i]);
+  f.s = Vec<S>::Zero(gen.rows());
+  return f;
+}
+
+}  // namespace
+
+SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  if (deck.rlc.branches.size() > kForcedBranches)
+    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
+  const ForcedModel fm = forced_model(deck);
+  const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
+  // initial point: the file's values, M_c(0), then 0 where M_c(0) allows
+  const Vec<double> u0 = jets(deck, 0.0, fm.orders);
+  QM given(0, n + 1), cons(0, n + 1), defaults(0, n + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    QM row(1, n + 1);
+    row(0, i) = Q(1);
+    row(0, n) = initial[i] ? *initial[i] : Q(0);
+    (initial[i] ? given : defaults) = ref::vstack(initial[i] ? given : defaults, row);
+  }
+  for (ref::Index i = 0; i < fm.eq.rows(); ++i) {
+    QM row(1, n + 1);
+    double rhs = 0;
+    for (std::size_t j = 0; j < wu; ++j) rhs -= fm.eq(i, n + j).convert_to<double>() * u0(j);
+    for (std::size_t j = 0; j < n; ++j) row(0, j) = fm.eq(i, j);
+    row(0, n) = Q(rhs);
+    cons = ref::vstack(cons, row);
+  }
+  const std::vector<std::string> names = [&] {
+    std::vector<std::string> v = c.variables;
+    const std::vector<std::string> j = jet_names(deck, fm.orders);
+    v.insert(v.end(), j.begin() + 1, j.end());
+    return v;
+  }();
+  ref::AffineSubspace<Q> start = ref::affine_from_augmented(ref::vstack(given, cons));
+  if (start.empty) {
+    for (ref::Index i = 0; i < fm.eq.rows(); ++i)
+      if (ref::affine_from_augmented(ref::vstack(given, cons.block(0, i + 1, 0, n + 1))).empty) {
+        Equation e;
+        for (std::size_t j = 0; j < fm.eq.cols(); ++j)
+          if (j != n && fm.eq(i, j) != 0) e.terms.emplace_back(j < n ? j : j - 1, fm.eq(i, j).str());
+        e.rhs = Q(-fm.eq(i, n)).str();
+        throw io::InputError(c.file + ": initial condition: expected a point of M_c(0), found one that violates " + equation_text(e, names) +
+                             " at t = 0");
+      }
+  }
+  const ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(ref::vstack(given, cons), defaults));
+  const std::vector<Q>& x0q = with_defaults.empty ? start.point : with_defaults.point;
+  Vec<double> x0(n);
+  for (std::size_t i = 0; i < n; ++i) x0(i) = x0q[i].convert_to<double>();
+  const Mat<double> X0 = to_d(fm.x0), B = to_d(fm.basis), P = to_d(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis);
+  const Mat<double> Ay = to_d(fm.ay), Au = to_d(fm.au), Vy = to_d(fm.vy), Vu = to_d(fm.vu);
+  for (const Mat<double>* mtx : {&X0, &B, &Ay, &Au, &Vy, &Vu})
+    if (!mtx->allFinite()) throw io::InputError(c.file + ": simulate: expected equations of motion within double's range, found larger coefficients");
+  const Vec<double> y0 = P * (x0 - X0 * u0.head(wu));
+  // impulses: a corner of a piecewise-linear source (σ' jumps) feeds A_u's σ'' column; deeper is refused
+  for (std::size_t j = 0; j < m; ++j) {
+    if (deck.waveforms[j].constant() || deck.waveforms[j].breakpoints(opt.tstop).empty()) continue;
+    for (long d = deck.waveforms[j].is_sine() ? 2 : 3; d <= fm.orders; ++d)
+      if (Au.col(1 + d * m + j).cwiseAbs().maxCoeff() > 0)
+        throw io::InputError(c.file + ": simulate: " + deck.waveforms[j].element + " has breakpoints and the motion needs its derivative of order " +
+                             std::to_string(d) + " (a derivative of a Dirac delta): smooth it (finite TR/TF) or use SIN");
+  }
+  const Mat<double> W = exo_output(deck, fm.orders), S = exo_generator(deck);
+  Mat<double> gen = Mat<double>::Zero(dm + 1 + 3 * m, dm + 1 + 3 * m);
+  gen.topLeftCorner(dm, dm) = Ay;
+  gen.topRightCorner(dm, 1 + 3 * m) = Au * W;
+  gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
+  const std::vector<double> bal = balancing(gen * opt.step);
+  ForcedFlow<double> flow = make_flow<double>(gen, bal, dm);
+  ForcedFlow<long double> shadow = make_flow<long double>(gen, bal, dm);
+  for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0(i)) / bal[i];
+  std::vector<double> breaks;
+  for (const io::Waveform& w : deck.waveforms)
+    for (double b : w.breakpoints(opt.tstop)) breaks.push_back(b);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  // energy: E(x) = ½ xᵀHx + gᵀx, P_R = Σ R v², P_V = −Σ V v_V (SPICE: current enters n+)
+  const Mat<double> H = to_d(fm.f.s.hessian);
+  const std::size_t nb = deck.rlc.branches.size();
+  bool has_i = false;
+  for (const auto& b : deck.rlc.branches) has_i = has_i || b.kind == ref::RlcKind::current;
+  double wr = 0, wv = 0, wi = 0, last_pr = 0, last_pv = 0, last_pi = 0, worst_balance = 0, power_scale = 0;
+  out << "t";
+  for (const std::string& v : c.variables) out << "," << v;
+  out << "\n";
+  if (energy) *energy << "t,E,P_dissipated,P_voltage_sources,P_current_sources,W_dissipated,W_voltage_sources,W_current_sources\n";
+  std::string line;
+  char buf[32];
+  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
+  std::vector<long double> err(n, 0), mag(n, 0);
+  std::size_t next_break = 0;
+  double e0 = 0;
+  for (long k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) * opt.step;
+    const Vec<double> u = jets(deck, t, fm.orders);
+    const Vec<double> y = flow.y();
+    const Vec<double> x = X0 * u.head(wu) + B.transpose() * y;
+    const Vec<long double> xl = X0.cast<long double>() * u.head(wu).cast<long double>() + B.transpose().cast<long double>() * shadow.y();
+    for (std::size_t i = 0; i < n; ++i) {
+      err[i] = std::max(err[i], std::abs(xl(i) - static_cast<long double>(x(i))));
+      mag[i] = std::max(mag[i], std::abs(xl(i)));
+    }
+    line.clear();
+    put(t);
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      line += ',';
+      put(x(i));
+    }
+    line += '\n';
+    out << line;
+    // energy balance at this row
+    const Vec<double> xdot = Vy * y + Vu * u;
+    const double en = 0.5 * x.dot(H * x);
+    const double de = (H * x).dot(xdot);
+    double pr = 0, pv = 0;
+    for (std::size_t b = 0; b < nb; ++b) {
+      const auto& br = deck.rlc.branches[b];
+      if (br.kind == ref::RlcKind::resistor) pr += br.value.convert_to<double>() * x(nb + b) * x(nb + b);
+      if (br.kind == ref::RlcKind::voltage) pv -= u(1 + br.source) * x(nb + b);
+    }
+    const double pi = de + pr - pv;  // what the current sources' reactions supply
+    power_scale = std::max({power_scale, std::abs(de), std::abs(pr), std::abs(pv)});
+    if (!has_i) worst_balance = std::max(worst_balance, std::abs(pi));
+    if (k == 0) e0 = en;
+    if (k > 0) {
+      wr += opt.step * (pr + last_pr) / 2;
+      wv += opt.step * (pv + last_pv) / 2;
+      wi += opt.step * (pi + last_pi) / 2;
+    }
+    last_pr = pr, last_pv = pv, last_pi = pi;
+    if (energy) {
+      line.clear();
+      for (double v : {t, en, pr, pv, pi, wr, wv, wi}) {
+        if (!line.empty()) line += ',';
+        put(v);
+      }
+      *energy << line << "\n";
+    }
+    if (k == steps) {
+      log << "simulate: energy: E(0) = " << float_text(e0) << ", E(" << float_text(t) << ") = " << float_text(en) << "; dissipated "
+          << float_text(wr) << ", supplied by voltage sources " << float_text(wv) << (has_i ? ", by current sources " + float_text(wi) : "")
+          << " (trapezoid on the output rows)";
+      if (!has_i)
+        log << "; balance dE/dt = <F, qdot> holds to " << float_text(power_scale > 0 ? worst_balance / power_scale : 0.0)
+            << " relative at the rows";
+      log << "\n";
+      break;
+    }
+    // advance one output step, stopping at the breakpoints inside it
+    double at = t;
+    const double to = static_cast<double>(k + 1) * opt.step;
+    while (true) {
+      const double stop = next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
+      const double h = stop - at;
+      flow.set_exo(deck, at);
+      shadow.set_exo(deck, at);
+      if (h > 0) {
+        flow.s = flow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * flow.s;
+        shadow.s = shadow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * shadow.s;
+      }
+      at = stop;
+      // a breakpoint at `at`: σ' jumps, σ'' has a delta of that weight
+      while (next_break < breaks.size() && breaks[next_break] <= at + 1e-12 * opt.step) {
+        const double tb = breaks[next_break++];
+        const double before = tb - std::max(1e-9 * opt.step, std::abs(tb) * 1e-12);
+        Vec<double> dy = Vec<double>::Zero(dm);
+        for (std::size_t j = 0; j < m; ++j)
+          for (long d = 1; d <= fm.orders; ++d) {
+            const double jump = deck.waveforms[j].value(tb, static_cast<int>(d - 1)) - deck.waveforms[j].value(before, static_cast<int>(d - 1));
+            if (jump != 0) dy += Au.col(1 + d * m + j) * jump;
+          }
+        flow.add_to_y(dy);
+        shadow.add_to_y(dy);
+      }
+      if (stop >= to) break;
+    }
+  }
+  SimulateSummary sum;
+  sum.rows = steps + 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mag[i] == 0) continue;
+    const double e = static_cast<double>(err[i] / mag[i]);
+    if (e >= sum.error_estimate) {
+      sum.error_estimate = e;
+      sum.worst_variable = c.variables[i];
+    }
+  }
+  return sum;
+}
+
+}  // namespace dcad::cli

@@ -1,0 +1,145 @@
+// Forced systems with sources (YM §4) and the YM concepts, on random RLC circuits with every kind
+// of element (L, C, R, V, I, wires, couplings) and small signed values:
+//  - without forces and sources the forced CAD is the CAD (two routes to one tower);
+//  - fast = reference (dims, steps, consistency, solution rank, number of source conditions);
+//  - the CAD's velocities solve the Lagrange–d'Alembert–Pontryagin equations (YM Prop. 4.1, (4.3))
+//    and are partial vector fields of the implicit Lagrangian system (YM (4.7), Thm 4.5);
+//  - the restriction of a Dirac structure to a subspace is a Dirac structure (YM Prop. 5.2), and
+//    restricting to the whole space changes nothing.
+#include "support/convert.hpp"
+#include "support/gen.hpp"
+#include "support/tally.hpp"
+
+#include "dcad/fast/forced.hpp"
+#include "dcad/reference/implicit_lagrangian.hpp"
+#include "dcad/reference/rlc.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad;
+using namespace dcad::test;
+namespace ref = dcad::reference;
+using ref::RlcKind;
+
+namespace {
+
+struct Kinds {
+  bool sources = true, resistors = true, couplings = true;
+};
+
+ref::RlcCircuit<Q> random_rlc(Kinds k) {
+  ref::RlcCircuit<Q> c;
+  c.nodes = pick_size(1, 4);
+  const Index b = pick_size(2, 7);
+  std::vector<RlcKind> kinds{RlcKind::inductor, RlcKind::capacitor, RlcKind::wire};
+  if (k.resistors) kinds.push_back(RlcKind::resistor);
+  if (k.sources) kinds.insert(kinds.end(), {RlcKind::voltage, RlcKind::current});
+  const std::vector<Q> values{Q(1), Q(2), Q(3), Q(1, 2), Q(1, 1000), Q(5, 7)};
+  for (Index i = 0; i < b; ++i) {
+    ref::RlcBranch<Q> br;
+    br.name = "b" + std::to_string(i);
+    br.kind = *rc::gen::elementOf(kinds);
+    br.from = *rc::gen::inRange<long>(-1, static_cast<long>(c.nodes));
+    br.to = *rc::gen::inRange<long>(-1, static_cast<long>(c.nodes));
+    br.value = *rc::gen::elementOf(values);
+    if (br.kind == RlcKind::voltage || br.kind == RlcKind::current) br.source = c.sources++;
+    c.branches.push_back(br);
+  }
+  if (k.couplings) {
+    std::vector<Index> l;
+    for (Index i = 0; i < b; ++i)
+      if (c.branches[i].kind == RlcKind::inductor) l.push_back(i);
+    if (l.size() >= 2 && *rc::gen::arbitrary<bool>()) c.mutuals.push_back({l[0], l[1], Q(1, 3)});
+  }
+  return c;
+}
+
+fast::ForcedSystem to_fast(const ref::ForcedSystem<Q>& f) {
+  fast::ForcedSystem g;
+  g.s.d.n = static_cast<int>(f.s.d.n);
+  g.s.d.d = fast::Subspace::span(to_double(f.s.d.d.basis()).transpose());
+  g.s.hessian = to_double(f.s.hessian);
+  g.s.gradient = to_double(f.s.gradient);
+  g.force = to_double(f.force);
+  g.sources = static_cast<int>(f.sources);
+  g.source_force = to_double(f.source_force);
+  g.shift = to_double(f.shift);
+  g.given_conditions = to_double(f.given_conditions);
+  return g;
+}
+
+}  // namespace
+
+RC_GTEST_PROP(ForcedTower, WithoutForcesIsTheCad, ()) {
+  const ref::ForcedSystem<Q> f = ref::rlc_system(random_rlc({false, false, *rc::gen::arbitrary<bool>()}));
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
+  const ref::CadResult<Q> c = ref::constraint_tower(f.s);
+  RC_TAG("c = " + std::to_string(c.steps));
+  RC_ASSERT(r.consistent == c.consistent);
+  RC_ASSERT(r.steps == c.steps);
+  for (Index k = 0; k <= c.steps; ++k) RC_ASSERT(r.dims[k] == c.tower[k].dim());
+  RC_ASSERT(r.conditions.rows() == 0);
+  if (!c.consistent) return;
+  RC_ASSERT(r.solution_rank == c.solution_rank);
+  const Index n = f.s.d.n;
+  RC_ASSERT(QSub::solutions(r.equations.block(0, r.equations.rows(), 0, n)) == c.final_step().m.direction);
+}
+
+RC_GTEST_PROP(ForcedTower, FastEqualsReference, ()) {
+  const ref::ForcedSystem<Q> f = ref::rlc_system(random_rlc({}));
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
+  const fast::ForcedResult g = fast::forced_tower(to_fast(f));
+  RC_TAG(std::string(g.certain ? "certain" : "uncertain") + ", c = " + std::to_string(r.steps) +
+         (r.conditions.rows() ? ", source conditions" : "") + (r.consistent ? "" : ", inconsistent"));
+  if (!g.certain) return;  // an uncertain fast result says so; nothing to compare
+  RC_ASSERT(g.consistent == r.consistent);
+  RC_ASSERT(std::vector<long>(g.dims) == r.dims);
+  RC_ASSERT(g.steps == static_cast<int>(r.steps));
+  RC_ASSERT(g.conditions.rows() == static_cast<long>(r.conditions.rows()));
+  if (r.consistent) RC_ASSERT(g.solution_rank == static_cast<int>(r.solution_rank));
+}
+
+RC_GTEST_PROP(ImplicitLagrangian, CadVelocitiesSolveLagrangeDAlembertPontryagin, ()) {
+  const ref::RlcCircuit<Q> c = random_rlc({false, true, true});
+  const ref::ForcedSystem<Q> f = ref::rlc_system(c);
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
+  RC_PRE(r.consistent);
+  const Index n = f.s.d.n, nb = c.branches.size();
+  // a random point of M_c (no sources: the jet columns hold only the constant)
+  const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
+  std::vector<Q> rhs(r.equations.rows());
+  for (Index i = 0; i < rhs.size(); ++i) rhs[i] = -r.equations(i, n);
+  const std::vector<Q> x = some_point(ref::solve(ex, rhs));
+  const ref::AffineSubspace<Q> vel = ref::forced_velocities(f, r, x, {Q(1)});
+  RC_ASSERT(!vel.empty);  // M_c carries solutions [CEF Thm 5.4]
+  const std::vector<Q> xdot = some_point(vel);
+  // L and F of the circuit: F(q, v) = −R v
+  ref::Matrix<Q> ki, ri;
+  ref::affine_kcl(c, ki, ri);
+  ref::PontryaginInput<Q> in{static_cast<Index>(nb), ki, ref::rlc_inductance(c), QM(nb, nb), QM(nb, nb), std::vector<Q>(nb), std::vector<Q>(nb)};
+  QM fv(nb, nb);
+  for (Index b = 0; b < nb; ++b) {
+    if (c.branches[b].kind == RlcKind::capacitor) in.qq(b, b) = -Q(1) / c.branches[b].value;
+    if (c.branches[b].kind == RlcKind::resistor) fv(b, b) = -c.branches[b].value;
+  }
+  RC_ASSERT(ref::satisfies_ldap(in, QM(nb, nb), fv, x, xdot));  // YM (4.3)
+  // (q̇, ṗ) is a partial vector field of the implicit Lagrangian system (L, F, Δ, X)  [YM (4.7)]
+  const std::vector<Q> q(x.begin(), x.begin() + nb), v(x.begin() + nb, x.begin() + 2 * nb);
+  std::vector<Q> qp(xdot.begin(), xdot.begin() + nb);
+  qp.insert(qp.end(), xdot.begin() + 2 * nb, xdot.end());
+  const ref::AffineSubspace<Q> fields = ref::implicit_lagrangian_fields(in, QM(nb, nb), fv, q, v);
+  RC_ASSERT(!fields.empty);
+  std::vector<Q> diff(qp.size());
+  for (Index i = 0; i < qp.size(); ++i) diff[i] = qp[i] - fields.point[i];
+  RC_ASSERT(ref::contains(fields.direction, diff));
+}
+
+RC_GTEST_PROP(Restriction, OfADiracStructureIsDirac, ()) {
+  const ref::DiracStructure<Q> d = any_dirac(8);
+  const QSub n = random_subspace_of(QSub::whole(d.n));
+  const ref::DiracStructure<Q> dn = ref::restrict_dirac(d, n);
+  RC_TAG("dim N = " + std::to_string(n.dim()) + " of " + std::to_string(d.n));
+  RC_ASSERT(ref::dirac_defect(dn).empty());  // YM Prop. 5.2
+  RC_ASSERT(ref::restrict_dirac(d, QSub::whole(d.n)).d == d.d);
+}
