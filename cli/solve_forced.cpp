@@ -1,6 +1,7 @@
 #include "solve_forced.hpp"
 
 #include "dcad/fast/circuit.hpp"
+#include "dcad/fast/forced.hpp"
 #include "dcad/reference/rlc.hpp"
 
 #include <cmath>
@@ -194,14 +195,67 @@ Equation jet_equation(const QM& rows, std::size_t i, std::size_t nvars) {
 
 }  // namespace
 
+namespace {
+
+Eigen::MatrixXd to_d(const QM& m) {
+  Eigen::MatrixXd d(m.rows(), m.cols());
+  for (ref::Index i = 0; i < m.rows(); ++i)
+    for (ref::Index j = 0; j < m.cols(); ++j) d(i, j) = m(i, j).convert_to<double>();
+  return d;
+}
+
+/// The fast twin on the exact system rounded to double (YM §4 in double, fast/forced.hpp).
+void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
+  fast::ForcedSystem g;
+  g.s.d.n = static_cast<int>(f.s.d.n);
+  g.s.d.d = fast::Subspace::span(to_d(f.s.d.d.basis()).transpose());
+  g.s.hessian = to_d(f.s.hessian);
+  g.s.gradient = Eigen::VectorXd::Zero(f.s.d.n);
+  g.force = to_d(f.force);
+  g.sources = static_cast<int>(f.sources);
+  g.source_force = to_d(f.source_force);
+  g.shift = to_d(f.shift);
+  g.given_conditions = to_d(f.given_conditions);
+  const fast::ForcedResult r = fast::forced_tower(g);
+  s.dims.assign(r.dims.begin(), r.dims.end());
+  for (long d : s.dims) {
+    SolveReport::Step st;
+    st.dim = d;
+    s.tower.push_back(st);
+  }
+  s.steps = r.steps;
+  s.consistent = r.consistent;
+  s.solution_rank = r.solution_rank;
+  s.certified = r.certain && r.conditions.rows() == 0;
+  s.decisions_float = static_cast<long>(r.decisions.size());
+  s.note = "forced route, fast twin (double, SVD rank decisions)";
+  if (!r.certain) s.note += "; some rank decision was uncertain: use --backend certified";
+  if (r.conditions.rows())
+    s.note += "; " + std::to_string(r.conditions.rows()) +
+              " source condition(s) that the fast backend does not decide against the waveforms: use --backend certified";
+}
+
+}  // namespace
+
 ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
   if (n.rlc.branches.size() > kForcedBranches)
     throw io::InputError(n.file + ": expected at most " + std::to_string(kForcedBranches) +
                          " branches for a circuit with resistors, sources or couplings, found " + std::to_string(n.rlc.branches.size()) +
                          " (the forced route is dense and exact; larger ones are not supported yet)");
   const ref::ForcedSystem<Q> f = ref::rlc_system(circuit_of(n));
-  const ref::ForcedResult<Q> r = ref::forced_tower(f);
   ForcedReport out;
+  if (backend == "fast") {
+    out.report.backend = "fast";
+    fast_tower(f, out.report);
+    for (const char* p : {"q_", "v_", "p_"})
+      for (const auto& b : n.rlc.branches) out.names.push_back(p + b.name);
+    for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
+    out.circuit = {{"branches", n.rlc.branches.size()}, {"nodes", n.rlc.nodes + 1},
+                   {"pc_loops", out.report.consistent && out.report.dims.size() > 2 ? out.report.dims[1] - out.report.dims[2] : 0},
+                   {"empty_loops", 0}};
+    return out;
+  }
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
   SolveReport& s = out.report;
   s.backend = backend == "reference" ? "reference" : backend;
   s.certified = true;
