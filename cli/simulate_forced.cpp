@@ -19,6 +19,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <charconv>
+#include <complex>
 #include <cmath>
 #include <map>
 
@@ -165,12 +166,30 @@ struct ForcedFlow {
     if (it == cache.end()) it = cache.emplace(h, (g * static_cast<S>(h)).exp()).first;
     return it->second;
   }
-  void set_exo(const io::Netlist& deck, double t) {
+  /// The sources' exosystem state at t for the substep (t, stop): each waveform is read at the
+  /// substep's midpoint and carried back to t along its piece, so that a time that rounds onto the
+  /// wrong side of a breakpoint (k·PER computed as 0.99999…) cannot pick the neighbouring piece.
+  void set_exo(const io::Netlist& deck, double t, double stop) {
     const std::size_t m = deck.waveforms.size();
+    const double mid = stop > t ? (t + stop) / 2 : t;
     s(dm) = S(1) / static_cast<S>(d[dm]);
     for (std::size_t j = 0; j < m; ++j) {
       long double w[3];
-      deck.waveforms[j].exo_state(t, w);
+      const io::Waveform& wf = deck.waveforms[j];
+      if (wf.is_sine()) {
+        wf.exo_state(t >= wf.p[3].convert_to<double>() || mid < wf.p[3].convert_to<double>() ? t : mid, w);
+        if (mid >= wf.p[3].convert_to<double>() && t < wf.p[3].convert_to<double>()) {  // started within: back along the sine
+          const std::complex<long double> z = std::complex<long double>(w[1], w[2]) *
+                                              std::exp(std::complex<long double>(wf.decay(), wf.omega()) * static_cast<long double>(t - mid));
+          w[1] = z.real();
+          w[2] = z.imag();
+        }
+      } else {
+        const double slope = wf.value(mid, 1);
+        w[0] = wf.value(mid, 0) - slope * (mid - t);
+        w[1] = slope;
+        w[2] = 0;
+      }
       for (int k = 0; k < 3; ++k) s(dm + 1 + 3 * j + k) = static_cast<S>(w[k]) / static_cast<S>(d[dm + 1 + 3 * j + k]);
     }
   }
@@ -350,8 +369,8 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
     while (true) {
       const double stop = next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
       const double h = stop - at;
-      flow.set_exo(deck, at);
-      shadow.set_exo(deck, at);
+      flow.set_exo(deck, at, stop);
+      shadow.set_exo(deck, at, stop);
       if (h > 0) {
         flow.s = flow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * flow.s;
         shadow.s = shadow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * shadow.s;
@@ -360,11 +379,13 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
       // a breakpoint at `at`: σ' jumps, σ'' has a delta of that weight
       while (next_break < breaks.size() && breaks[next_break] <= at + 1e-12 * opt.step) {
         const double tb = breaks[next_break++];
-        const double before = tb - std::max(1e-9 * opt.step, std::abs(tb) * 1e-12);
+        const double delta = std::max(1e-9 * opt.step, std::abs(tb) * 1e-12), before = tb - delta, after = tb + delta;
         Vec<double> dy = Vec<double>::Zero(dm);
         for (std::size_t j = 0; j < m; ++j)
           for (long d = 1; d <= fm.orders; ++d) {
-            const double jump = deck.waveforms[j].value(tb, static_cast<int>(d - 1)) - deck.waveforms[j].value(before, static_cast<int>(d - 1));
+            const io::Waveform& wf = deck.waveforms[j];
+            // σ^{(d−1)} across the corner; σ itself is continuous for PULSE/PWL, its slope is read off the pieces
+            const double jump = wf.is_sine() || d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
             if (jump != 0) dy += Au.col(1 + d * m + j) * jump;
           }
         flow.add_to_y(dy);
