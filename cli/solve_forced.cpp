@@ -204,6 +204,42 @@ Eigen::MatrixXd to_d(const QM& m) {
   return d;
 }
 
+Q pow10(long e) {
+  Q r(1);
+  for (long k = 0; k < std::labs(e); ++k) r *= 10;
+  return e >= 0 ? r : Q(1) / r;
+}
+
+long mean_exponent(const ref::RlcCircuit<Q>& c, RlcKind kind) {
+  double sum = 0;
+  long count = 0;
+  for (const auto& b : c.branches)
+    if (b.kind == kind && b.value != 0) {
+      sum += std::log10(std::abs(b.value.convert_to<double>()));
+      ++count;
+    }
+  return count ? std::lround(sum / static_cast<double>(count)) : 0;
+}
+
+/// The dimensionless twin (as io::dimensionless for LC circuits): L/L0, C/C0, R/R0 and M/L0 with
+/// L0 = 10^a, C0 = 10^b (a + b even), R0 = √(L0/C0) = 10^((a−b)/2).  With t = T t̃, v = ṽ/T,
+/// p = (L0/T) p̃, V = Ṽ/C0, I = Ĩ/T the Lagrangian and the forces are C0⁻¹ times the twin's: the same
+/// tower (dims, steps, solution rank, number of source conditions), only far better scaled in double.
+ref::RlcCircuit<Q> forced_twin(const ref::RlcCircuit<Q>& c) {
+  const long a = mean_exponent(c, RlcKind::inductor);
+  long b = mean_exponent(c, RlcKind::capacitor);
+  if ((a + b) % 2 != 0) ++b;
+  ref::RlcCircuit<Q> out = c;
+  const Q l0 = pow10(a), c0 = pow10(b), r0 = pow10((a - b) / 2);
+  for (auto& br : out.branches) {
+    if (br.kind == RlcKind::inductor) br.value /= l0;
+    if (br.kind == RlcKind::capacitor) br.value /= c0;
+    if (br.kind == RlcKind::resistor) br.value /= r0;
+  }
+  for (auto& mu : out.mutuals) mu.m /= l0;
+  return out;
+}
+
 /// The fast twin on the exact system rounded to double (YM §4 in double, fast/forced.hpp).
 void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
   fast::ForcedSystem g;
@@ -229,7 +265,13 @@ void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
   s.certified = r.certain && r.conditions.rows() == 0;
   s.decisions_float = static_cast<long>(r.decisions.size());
   s.note = "forced route, fast twin (double, SVD rank decisions)";
-  if (!r.certain) s.note += "; some rank decision was uncertain: use --backend certified";
+  if (!r.certain)
+    for (std::size_t i = 0; i < r.decisions.size(); ++i)
+      if (!r.decisions[i].certain) {
+        s.note += "; rank decision " + std::to_string(i + 1) + " of " + std::to_string(r.decisions.size()) +
+                  " was uncertain (" + r.decisions[i].describe() + "): use --backend certified";
+        break;
+      }
   if (r.conditions.rows())
     s.note += "; " + std::to_string(r.conditions.rows()) +
               " source condition(s) that the fast backend does not decide against the waveforms: use --backend certified";
@@ -242,11 +284,10 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
     throw io::InputError(n.file + ": expected at most " + std::to_string(kForcedBranches) +
                          " branches for a circuit with resistors, sources or couplings, found " + std::to_string(n.rlc.branches.size()) +
                          " (the forced route is dense and exact; larger ones are not supported yet)");
-  const ref::ForcedSystem<Q> f = ref::rlc_system(circuit_of(n));
   ForcedReport out;
   if (backend == "fast") {
     out.report.backend = "fast";
-    fast_tower(f, out.report);
+    fast_tower(ref::rlc_system(forced_twin(n.rlc)), out.report);  // the dimensionless twin: same tower
     for (const char* p : {"q_", "v_", "p_"})
       for (const auto& b : n.rlc.branches) out.names.push_back(p + b.name);
     for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
@@ -255,6 +296,7 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
                    {"empty_loops", 0}};
     return out;
   }
+  const ref::ForcedSystem<Q> f = ref::rlc_system(circuit_of(n));
   const ref::ForcedResult<Q> r = ref::forced_tower(f);
   SolveReport& s = out.report;
   s.backend = backend == "reference" ? "reference" : backend;

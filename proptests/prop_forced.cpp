@@ -17,6 +17,8 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <functional>
+
 using namespace dcad;
 using namespace dcad::test;
 namespace ref = dcad::reference;
@@ -53,6 +55,17 @@ ref::RlcCircuit<Q> random_rlc(Kinds k) {
     if (l.size() >= 2 && *rc::gen::arbitrary<bool>()) c.mutuals.push_back({l[0], l[1], Q(1, 3)});
   }
   return c;
+}
+
+/// The circuit as a netlist, for counterexamples.
+std::string deck(const ref::RlcCircuit<Q>& c) {
+  std::string out;
+  const char* letter = "LCRVIW";
+  for (const auto& b : c.branches)
+    out += std::string(1, letter[static_cast<int>(b.kind)]) + b.name + " " + std::to_string(b.from + 1) + " " + std::to_string(b.to + 1) + " " +
+           (b.kind == RlcKind::voltage || b.kind == RlcKind::current ? "s" + std::to_string(b.source) : b.value.str()) + "\n";
+  for (const auto& mu : c.mutuals) out += "K " + c.branches[mu.a].name + " " + c.branches[mu.b].name + " M=" + mu.m.str() + "\n";
+  return out;
 }
 
 fast::ForcedSystem to_fast(const ref::ForcedSystem<Q>& f) {
@@ -142,4 +155,102 @@ RC_GTEST_PROP(Restriction, OfADiracStructureIsDirac, ()) {
   RC_TAG("dim N = " + std::to_string(n.dim()) + " of " + std::to_string(d.n));
   RC_ASSERT(ref::dirac_defect(dn).empty());  // YM Prop. 5.2
   RC_ASSERT(ref::restrict_dirac(d, QSub::whole(d.n)).d == d.d);
+}
+
+namespace {
+
+/// Cycle rank (edges − vertices + components, ground included) of the branches with keep(kind).
+Index cycle_rank_of(const ref::RlcCircuit<Q>& c, const std::function<bool(RlcKind)>& keep) {
+  std::vector<long> parent(c.nodes + 1);
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<long>(i);
+  const std::function<long(long)> find = [&](long x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  Index cycles = 0;
+  for (const auto& b : c.branches) {
+    if (!keep(b.kind)) continue;
+    const long u = find(b.from + 1), v = find(b.to + 1);
+    if (u == v) ++cycles;
+    else parent[u] = v;
+  }
+  return cycles;
+}
+
+}  // namespace
+
+// Sources move the constraint submanifolds, they never turn them (V §3: M_k(t) = a fixed subspace
+// translated by the sources): a voltage source has the tower of a zero-volt one (a wire, CONTRACT).
+// So a voltage source across a capacitor loop constrains the charges exactly as the wire would.
+RC_GTEST_PROP(ForcedTower, VoltageSourcesMoveButNeverTurnTheTower, ()) {
+  const ref::RlcCircuit<Q> c = random_rlc({});
+  ref::RlcCircuit<Q> off = c;  // every voltage source switched off: a wire
+  for (auto& b : off.branches)
+    if (b.kind == RlcKind::voltage) b.kind = RlcKind::wire;
+  const ref::ForcedResult<Q> r = ref::forced_tower(ref::rlc_system(c)), w = ref::forced_tower(ref::rlc_system(off));
+  RC_PRE(r.consistent && w.consistent);  // (0 = 1 cannot come from sources; kept for clarity)
+  RC_ASSERT(r.dims == w.dims);
+  RC_ASSERT(r.solution_rank == w.solution_rank);
+}
+
+// CEF Thm 6.4 with YM §4 forces: for L, C, R > 0 the equations M_2 adds to M_1 are one KVL per
+// independent loop of the non-inductive branches through which no current source passes (C, R, V,
+// wires), modulo the loops of voltage sources and wires (those say nothing about x: 0 = 0 or a
+// condition on the sources).  A resistor in a capacitor loop keeps the loop's equation (it now
+// ties q/C to R v); a current source in a loop removes it (its voltage is a free reaction, Δ°).
+RC_GTEST_PROP(ForcedTower, SecondStepCountsTheNonInductiveLoops, ()) {
+  const ref::RlcCircuit<Q> c = random_rlc({});  // values are positive
+  const ref::ForcedResult<Q> r = ref::forced_tower(ref::rlc_system(c));
+  RC_PRE(r.consistent);
+  const Index loops = cycle_rank_of(c, [](RlcKind k) { return k != RlcKind::inductor && k != RlcKind::current; }) -
+                      cycle_rank_of(c, [](RlcKind k) { return k == RlcKind::voltage || k == RlcKind::wire; });
+  const long codim = r.dims.size() > 2 ? r.dims[1] - r.dims[2] : 0;
+  RC_TAG("loops = " + std::to_string(loops));
+  RC_ASSERT(codim == static_cast<long>(loops));
+}
+
+// With DC sources (σ constant, its derivatives 0) the CAD's velocities at a point of M_c obey the
+// circuit laws directly — YM (4.3) with the affine constraint of the current sources and the
+// source forces: KCL on q̇ = v, v_b = I_j on a current source, p = Φ v, and the branch voltages
+// ṗ + q/C + R v (+ V on a voltage source: F = −V, so φ(n+) − φ(n−) = V as in SPICE) are potential
+// differences φ(from) − φ(to) up to the
+// free voltages of the current sources: in Δ° = row [K; E_I].
+RC_GTEST_PROP(ImplicitLagrangian, DcSourcesObeyTheCircuitLaws, ()) {
+  const ref::RlcCircuit<Q> c = random_rlc({});
+  RC_LOG() << deck(c);
+  const ref::ForcedSystem<Q> f = ref::rlc_system(c);
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
+  RC_PRE(r.consistent);
+  const Index n = f.s.d.n, nb = c.branches.size(), m = c.sources;
+  std::vector<Q> u{Q(1)};
+  for (Index j = 0; j < m; ++j) u.push_back(Q(*rc::gen::inRange(-3, 4)));
+  for (Index k = 1; k <= r.orders; ++k)
+    for (Index j = 0; j < m; ++j) u.push_back(Q(0));
+  for (Index i = 0; i < r.conditions.rows(); ++i) {  // sources that meet the conditions only
+    Q s(0);
+    for (Index j = 0; j < r.conditions.cols(); ++j) s += r.conditions(i, j) * u[j];
+    RC_PRE(s == 0);
+  }
+  const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
+  std::vector<Q> rhs = ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
+  for (Q& x : rhs) x = -x;
+  const std::vector<Q> x = some_point(ref::solve(ex, rhs));
+  const ref::AffineSubspace<Q> vel = ref::forced_velocities(f, r, x, u);
+  RC_ASSERT(!vel.empty);
+  const std::vector<Q> xd = some_point(vel);
+  ref::Matrix<Q> ki, ri;
+  ref::affine_kcl(c, ki, ri);
+  const QM phi = ref::rlc_inductance(c), k = ref::rlc_kcl(c);
+  std::vector<Q> q(x.begin(), x.begin() + nb), v(x.begin() + nb, x.begin() + 2 * nb), p(x.begin() + 2 * nb, x.end());
+  std::vector<Q> qd(xd.begin(), xd.begin() + nb), pd(xd.begin() + 2 * nb, xd.end());
+  RC_ASSERT(qd == v);
+  RC_ASSERT((k * QM::column(v)).is_zero());                       // KCL
+  RC_ASSERT(p == (phi * QM::column(v)).col(0));                   // p = Φ v
+  std::vector<Q> drop(nb);
+  for (Index b = 0; b < nb; ++b) {
+    const auto& br = c.branches[b];
+    drop[b] = pd[b];
+    if (br.kind == RlcKind::capacitor) drop[b] += q[b] / br.value;
+    if (br.kind == RlcKind::resistor) drop[b] += br.value * v[b];
+    if (br.kind == RlcKind::voltage) drop[b] += u[1 + br.source];  // F = −V: φ(n+) − φ(n−) = V
+    if (br.kind == RlcKind::current) RC_ASSERT(v[b] == u[1 + br.source]);
+  }
+  RC_ASSERT(ref::contains(QSub::span(ki), drop));                 // KVL, current sources free
 }

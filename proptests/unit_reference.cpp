@@ -1,6 +1,8 @@
 // Unit tests of the exact reference: row reduction, exact numbers, bad input, and that the
 // templates also compile over cpp_rational.
 #include "dcad/reference/dirac.hpp"
+#include "dcad/reference/implicit_lagrangian.hpp"
+#include "dcad/reference/rlc.hpp"
 #include "dcad/reference/rational.hpp"
 
 #include <boost/multiprecision/cpp_int.hpp>
@@ -109,4 +111,67 @@ TEST(Conventions, CanonicalSigns) {
   EXPECT_EQ(sharp(w, std::vector<Q>{1, 0}), (std::vector<Q>{0, -1}));  // H = q: ṗ = -1
   const auto xq = sharp(w, std::vector<Q>{1, 0}), xp = sharp(w, std::vector<Q>{0, 1});
   EXPECT_EQ(form_value(w, xq, xp), Q(1));  // {q, p} = Ω(X_q, X_p) = 1
+}
+
+// YM §6, the L–C circuit (the 4-port of CEF §6, L = 2, C1 = 3, C2 = 5, C3 = 7) in the implicit
+// Lagrangian form: KCL ω¹ = −dq_L + dq_C2, ω² = −dq_C1 + dq_C2 − dq_C3; every partial vector field
+// (q̇, ṗ) of (L, Δ, X) [YM (4.7) with F = 0] satisfies YM's Lagrange–d'Alembert equations
+//   (ṗ_C2 + q_C2/C2, ṗ_C3 + q_C3/C3)ᵀ = [[−1, −1], [0, 1]] (ṗ_L, ṗ_C1 + q_C1/C1)ᵀ
+// — with q_C1/C1 in the last entry: YM prints q_C2/C3 there (ERRATA, misprints in YM), and the
+// printed form fails; and q̇ = v, p = (L v_L, 0, 0, 0).
+TEST(YoshimuraMarsden, LcCircuitImplicitLagrangianEquations) {
+  const Q l(2), c1(3), c2(5), c3(7);
+  PontryaginInput<Q> in;
+  in.n = 4;
+  in.k = QM::from_rows({{Q(-1), Q(0), Q(1), Q(0)}, {Q(0), Q(-1), Q(1), Q(-1)}}, 4);
+  in.vv = QM(4, 4);
+  in.vv(0, 0) = l;
+  in.qq = QM(4, 4);
+  in.qq(1, 1) = -Q(1) / c1;
+  in.qq(2, 2) = -Q(1) / c2;
+  in.qq(3, 3) = -Q(1) / c3;
+  in.qv = QM(4, 4);
+  in.q.assign(4, Q(0));
+  in.v.assign(4, Q(0));
+  const std::vector<Q> q{Q(1), Q(2), Q(-3), Q(5, 2)};
+  const std::vector<Q> v{Q(1), Q(-1), Q(1), Q(2)};  // in Δ: f_L = f_C2, f_C1 = f_C2 − f_C3
+  const QM zero(4, 4);
+  const AffineSubspace<Q> x = implicit_lagrangian_fields(in, zero, zero, q, v);
+  ASSERT_FALSE(x.empty);
+  EXPECT_EQ(x.direction.dim(), 2);  // the multipliers of ω¹, ω²
+  const std::vector<Q> p = legendre(in, q, v);
+  EXPECT_EQ(p, (std::vector<Q>{l * v[0], Q(0), Q(0), Q(0)}));
+  // every field: the point and the point plus each direction
+  std::vector<std::vector<Q>> fields{x.point};
+  for (Index i = 0; i < x.direction.dim(); ++i) {
+    std::vector<Q> f = x.point;
+    for (Index j = 0; j < 8; ++j) f[j] += x.direction.basis()(i, j);
+    fields.push_back(f);
+  }
+  for (const std::vector<Q>& f : fields) {
+    for (Index i = 0; i < 4; ++i) EXPECT_EQ(f[i], v[i]);  // q̇ = v
+    const Q pl = f[4], pc1 = f[5], pc2 = f[6], pc3 = f[7];
+    const Q a = pl, b = pc1 + q[1] / c1;
+    EXPECT_EQ(pc2 + q[2] / c2, -a - b);
+    EXPECT_EQ(pc3 + q[3] / c3, b);
+    EXPECT_NE(pc3 + q[3] / c3, pc1 + q[2] / c3) << "YM's printed entry q_C2/C3 would hold";
+    std::vector<Q> xs(q), xd(f.begin(), f.begin() + 4);
+    xs.insert(xs.end(), v.begin(), v.end());
+    xs.insert(xs.end(), p.begin(), p.end());
+    xd.insert(xd.end(), 4, Q(0));  // v̇ is not constrained by (4.3)
+    xd.insert(xd.end(), f.begin() + 4, f.end());
+    EXPECT_TRUE(satisfies_ldap(in, zero, zero, xs, xd));  // YM (4.3)
+  }
+}
+
+// The circuit of YM §6 as an RLC deck without R or sources: the forced CAD gives CEF's tower
+// 12, 6, 5, 4 (CEF (6.36), "stops at M_3").
+TEST(YoshimuraMarsden, LcCircuitForcedTowerIsCefs) {
+  RlcCircuit<Q> c;
+  c.nodes = 2;
+  c.branches = {{"L", RlcKind::inductor, 0, 1, Q(2)}, {"C1", RlcKind::capacitor, 1, -1, Q(3)},
+                {"C2", RlcKind::capacitor, -1, 0, Q(5)}, {"C3", RlcKind::capacitor, 1, -1, Q(7)}};
+  const ForcedResult<Q> r = forced_tower(rlc_system(c));
+  EXPECT_EQ(r.dims, (std::vector<long>{12, 6, 5, 4}));
+  EXPECT_EQ(r.solution_rank, 0);
 }
