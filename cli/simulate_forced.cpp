@@ -163,7 +163,10 @@ struct ForcedFlow {
   std::size_t dm = 0;
   const Mat<S>& step(double h) {
     auto it = cache.find(h);
-    if (it == cache.end()) it = cache.emplace(h, (g * static_cast<S>(h)).exp()).first;
+    if (it == cache.end()) {
+      if (cache.size() > 64) cache.clear();  // substeps cut by breakpoints rarely repeat: keep memory bounded
+      it = cache.emplace(h, (g * static_cast<S>(h)).exp()).first;
+    }
     return it->second;
   }
   /// The sources' exosystem state at t for the substep (t, stop): each waveform is read at the
@@ -270,7 +273,7 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
   const Vec<double> y0 = P * (x0 - X0 * u0.head(wu));
   // impulses: a corner of a piecewise-linear source (σ' jumps) feeds A_u's σ'' column; deeper is refused
   for (std::size_t j = 0; j < m; ++j) {
-    if (deck.waveforms[j].constant() || deck.waveforms[j].breakpoints(opt.tstop).empty()) continue;
+    if (deck.waveforms[j].constant() || deck.waveforms[j].breakpoints(std::min(opt.tstop, deck.waveforms[j].horizon())).empty()) continue;
     for (long d = deck.waveforms[j].is_sine() ? 2 : 3; d <= fm.orders; ++d)
       if (Au.col(1 + d * m + j).cwiseAbs().maxCoeff() > 0)
         throw io::InputError(c.file + ": simulate: " + deck.waveforms[j].element + " has breakpoints and the motion needs its derivative of order " +
@@ -286,8 +289,11 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
   ForcedFlow<long double> shadow = make_flow<long double>(gen, bal, dm);
   for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0(i)) / bal[i];
   std::vector<double> breaks;
-  for (const io::Waveform& w : deck.waveforms)
-    for (double b : w.breakpoints(opt.tstop)) breaks.push_back(b);
+  for (const io::Waveform& w : deck.waveforms) try {
+      for (double b : w.breakpoints(opt.tstop)) breaks.push_back(b);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
+    }
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   // energy: E(x) = ½ xᵀHx + gᵀx, P_R = Σ R v², P_V = −Σ V v_V (SPICE: current enters n+)

@@ -79,13 +79,13 @@ ConditionVerdict decide_condition(const QM& row, const io::Netlist& n) {
     return v;
   }
   // different waveforms: sample the combination (breakpoints, their midpoints, a spread of times)
-  double horizon = 1;
+  double horizon = 0;
+  for (const io::Waveform& w : n.waveforms) horizon = std::max(horizon, w.horizon());
+  if (horizon == 0) horizon = 1;
   std::vector<double> ts{0};
-  for (const io::Waveform& w : n.waveforms) {
-    for (double b : w.breakpoints(1e300 > 0 ? 1e30 : 0)) ts.push_back(b);
-    if (w.kind == io::Waveform::Kind::sin && w.p[2] != 0) horizon = std::max(horizon, 4 / w.p[2].convert_to<double>());
-  }
-  if (ts.size() > 1) horizon = std::max(horizon, 2 * ts.back());
+  for (const io::Waveform& w : n.waveforms)
+    for (double b : w.breakpoints(horizon)) ts.push_back(b);
+  std::sort(ts.begin(), ts.end());
   const std::size_t k = ts.size();
   for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
   for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));

@@ -102,6 +102,15 @@ bool Waveform::constant() const {
   return false;
 }
 
+double Waveform::horizon() const {
+  switch (kind) {
+    case Kind::dc: return 0;
+    case Kind::sin: return d(p[3]) + (p[2] != 0 ? 4 / d(p[2]) : 1.0);
+    case Kind::pulse: return d(p[2]) + 2 * d(p[6]);
+    default: return 2 * d(p[p.size() - 2]);
+  }
+}
+
 double Waveform::decay() const { return kind == Kind::sin ? -d(p[4]) : 0.0; }
 double Waveform::omega() const { return kind == Kind::sin ? 2 * kPi * d(p[2]) : 0.0; }
 
@@ -181,7 +190,10 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
     const double td = d(p[2]), tr = d(p[3]), tf = d(p[4]), pw = d(p[5]), per = d(p[6]);
     for (long k = 0;; ++k) {
       const double base = td + (per > 0 ? per * static_cast<double>(k) : 0.0);
-      if (base > tstop || k > 10000000) break;
+      if (base > tstop) break;
+      if (k >= kMaxPeriods)
+        throw std::invalid_argument(element + ": " + text + " has more than " + std::to_string(kMaxPeriods) + " periods before " +
+                                    std::to_string(tstop) + " s (each is four breakpoints of the exact integration)");
       for (double c : {base, base + tr, base + tr + pw, base + tr + pw + tf})
         if (c > 0 && c <= tstop) out.push_back(c);
       if (per <= 0) break;

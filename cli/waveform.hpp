@@ -26,11 +26,15 @@ struct Waveform {
   /// σ^{(order)}(t), right limit at breakpoints (t ≥ 0).  order ≥ 2 of PULSE/PWL is 0 (away from corners).
   double value(double t, int order = 0) const;
   /// The times in (0, tstop] where σ or a derivative is discontinuous (corners, SIN's TD), sorted.
+  /// Throws std::invalid_argument beyond kMaxPeriods periods of a PULSE.
   std::vector<double> breakpoints(double tstop) const;
   /// The exosystem state (3 numbers) at t (right limit): ramp (σ, σ', 0); SIN (VO, Re z, Im z) with
   /// z = VA e^{(−θ+iω)(t−TD) + iφ} (0 before TD).
   void exo_state(double t, long double* w) const;
   bool is_sine() const { return kind == Kind::sin; }
+  /// A time by which the waveform has shown every feature (delay, two periods, last PWL point).
+  double horizon() const;
+  static constexpr long kMaxPeriods = 1000000;
   /// SIN: −θ and ω (rad/s) of the exosystem block.
   double decay() const;
   double omega() const;
