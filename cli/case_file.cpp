@@ -254,7 +254,7 @@ void require_symmetric_input(const QMatrix& w, const Where& at) {
 
 PontryaginInput read_pontryagin(const json& j, const Where& at) {
   if (!j.is_object()) at.fail("an object {Q, constraints, lagrangian}", describe(j));
-  require_known_keys(j, at, {"Q", "constraints", "lagrangian"});
+  require_known_keys(j, at, {"Q", "constraints", "lagrangian", "forces"});
   PontryaginInput p;
   if (!j.contains("Q") || !j["Q"].is_number_integer() || j["Q"].get<long>() < 1)
     (at / "Q").fail("a positive integer n = dim Q", j.contains("Q") ? describe(j["Q"]) : "nothing");
@@ -272,6 +272,16 @@ PontryaginInput read_pontryagin(const json& j, const Where& at) {
   p.q = lag.contains("q") ? read_vector(lag["q"], l / "q", n) : std::vector<Rational>(p.n, 0);
   p.v = lag.contains("v") ? read_vector(lag["v"], l / "v", n) : std::vector<Rational>(p.n, 0);
   require_known_keys(lag, l, {"vv", "qv", "qq", "q", "v"});
+  p.fq = QMatrix(p.n, p.n);
+  p.fv = QMatrix(p.n, p.n);
+  if (j.contains("forces")) {  // F(q, v) = F_q q + F_v v on δq (YM §4, (4.3)); a damper is F_v = −diag(c)
+    const Where f = at / "forces";
+    if (!j["forces"].is_object()) f.fail("an object {q, v} of n×n matrices (F(q, v) = F_q q + F_v v)", describe(j["forces"]));
+    require_known_keys(j["forces"], f, {"q", "v"});
+    if (j["forces"].contains("q")) p.fq = read_matrix(j["forces"]["q"], f / "q", n, n);
+    if (j["forces"].contains("v")) p.fv = read_matrix(j["forces"]["v"], f / "v", n, n);
+    p.has_forces = true;
+  }
   return p;
 }
 

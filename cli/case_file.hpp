@@ -42,6 +42,9 @@ struct PontryaginInput {
   std::size_t n = 0;
   QMatrix k, vv, qv, qq;
   std::vector<Rational> q, v;
+  /// `forces`: F(q, v) = F_q q + F_v v, a horizontal one-form (YM §4); zero if absent
+  bool has_forces = false;
+  QMatrix fq, fv;
 };
 
 /// E(x) = ½ xᵀ H x + gᵀ x + c.

@@ -302,8 +302,8 @@ CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_
   }
   // netlists: the reference's structured circuit route (exact), or above kDenseBranches with
   // L, C > 0 the graph route (combinatorial, decides nothing)
-  if (deck && deck->forced) {  // R, sources, K: the forced route's exact tower (no M_c or equations to compare yet)
-    const json want = to_json(solve_forced(*deck, "reference"), c);
+  if ((deck && deck->forced) || (!deck && c.has_pontryagin && c.pontryagin.has_forces)) {  // the forced route's exact tower
+    const json want = to_json(deck ? solve_forced(*deck, "reference") : solve_forced_case(c, "reference"), c);
     Checker k{result_file, {}};
     for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
     if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);

@@ -122,8 +122,8 @@ int main(int argc, char** argv) {
       const bool dense = !netlist || deck.circuit.branches.size() <= dcad::cli::kDenseBranches;
       const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, dense) : dcad::io::read_case(solve_file);
       for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
-      if (netlist && deck.forced) {  // R, sources, K: the forced route (YM §4)
-        const dcad::cli::ForcedReport fr = dcad::cli::solve_forced(deck, solve_backend);
+      if ((netlist && deck.forced) || (!netlist && c.has_pontryagin && c.pontryagin.has_forces)) {  // the forced route (YM §4)
+        const dcad::cli::ForcedReport fr = netlist ? dcad::cli::solve_forced(deck, solve_backend) : dcad::cli::solve_forced_case(c, solve_backend);
         std::cout << (solve_json ? dcad::cli::to_json(fr, c).dump(2) + "\n" : dcad::cli::to_text(fr, c));
         return 0;
       }
@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
       std::ostream& csv_out = csv_path.empty() ? std::cout : file_out;
       std::ofstream energy_out;
       if (!sim_energy.empty()) {
-        if (!(netlist && deck.forced)) {
+        if (!(netlist && deck.forced) && !(c.has_pontryagin && c.pontryagin.has_forces)) {
           std::cerr << sim_file << ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)\n";
           return 2;
         }
@@ -224,7 +224,9 @@ int main(int argc, char** argv) {
       }
       const dcad::cli::SimulateSummary sum =
           netlist && deck.forced ? dcad::cli::simulate_forced(deck, c, init, sim_opt, csv_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out)
-                                 : dcad::cli::simulate(c, netlist ? &deck : nullptr, init, sim_opt, csv_out, std::cerr);
+          : !netlist && c.has_pontryagin && c.pontryagin.has_forces
+              ? dcad::cli::simulate_forced_case(c, init, sim_opt, csv_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out)
+              : dcad::cli::simulate(c, netlist ? &deck : nullptr, init, sim_opt, csv_out, std::cerr);
       if (!csv_path.empty()) {
         file_out.close();
         if (!file_out) {

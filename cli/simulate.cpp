@@ -254,6 +254,8 @@ SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const s
   if (!(opt.step > 0) || !(opt.tstop >= 0) || !std::isfinite(opt.tstop) || opt.tstop / opt.step > 1e9)
     throw io::InputError("simulate: expected 0 < --step and 0 <= --tstop with at most 1e9 steps, found step " +
                          float_text(opt.step) + ", tstop " + float_text(opt.tstop));
+  if (c.has_pontryagin && c.pontryagin.has_forces)
+    throw std::invalid_argument("a case with `forces` is simulated by simulate_forced_case, not this function");
   if (!c.has_pontryagin && !deck)
     throw io::InputError(c.file + ": simulate: expected an LC netlist or a `pontryagin` case, found another form (not supported yet)");
   if (deck && deck->circuit.branches.size() > kSimulateBranches)

@@ -31,6 +31,13 @@ using QM = ref::Matrix<Q>;
 
 namespace {
 
+/// What the integration needs: the forced system, its sources' waveforms, the file for messages.
+struct ForcedScene {
+  std::string file;
+  ref::ForcedSystem<Q> f;
+  std::vector<io::Waveform> waveforms;
+};
+
 template <class S>
 using Mat = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
 template <class S>
@@ -59,12 +66,12 @@ QM shifted(const QM& x, std::size_t m, long orders) {
   return out;
 }
 
-ForcedModel forced_model(const io::Netlist& deck) {
+ForcedModel forced_model(const ForcedScene& deck) {
   ForcedModel fm;
-  fm.f = ref::rlc_system(deck.rlc);
+  fm.f = deck.f;
   const ref::ForcedResult<Q> r = ref::forced_tower(fm.f);
   for (ref::Index i = 0; i < r.conditions.rows(); ++i) {
-    const ConditionVerdict v = decide_condition(r.conditions.block(i, i + 1, 0, r.conditions.cols()), deck);
+    const ConditionVerdict v = decide_condition(r.conditions.block(i, i + 1, 0, r.conditions.cols()), deck.waveforms);
     if (v.holds == ConditionVerdict::Holds::no || !r.consistent)
       throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " + v.text + " violated (" +
                            v.evidence + ")");
@@ -103,7 +110,7 @@ ForcedModel forced_model(const io::Netlist& deck) {
 }
 
 /// u_ext(t) (right limits): (1, σ, σ', …, σ^{(orders)}).
-Vec<double> jets(const io::Netlist& deck, double t, long orders) {
+Vec<double> jets(const ForcedScene& deck, double t, long orders) {
   const std::size_t m = deck.waveforms.size();
   Vec<double> u(1 + m * (orders + 1));
   u(0) = 1;
@@ -113,7 +120,7 @@ Vec<double> jets(const io::Netlist& deck, double t, long orders) {
 }
 
 /// Generator of [y; 1; w] and the map w-state → u_ext.
-Mat<double> exo_output(const io::Netlist& deck, long orders) {
+Mat<double> exo_output(const ForcedScene& deck, long orders) {
   const std::size_t m = deck.waveforms.size();
   Mat<double> out = Mat<double>::Zero(1 + m * (orders + 1), 1 + 3 * m);
   out(0, 0) = 1;
@@ -137,7 +144,7 @@ Mat<double> exo_output(const io::Netlist& deck, long orders) {
   return out;
 }
 
-Mat<double> exo_generator(const io::Netlist& deck) {
+Mat<double> exo_generator(const ForcedScene& deck) {
   const std::size_t m = deck.waveforms.size();
   Mat<double> s = Mat<double>::Zero(1 + 3 * m, 1 + 3 * m);
   for (std::size_t j = 0; j < m; ++j) {
@@ -172,7 +179,7 @@ struct ForcedFlow {
   /// The sources' exosystem state at t for the substep (t, stop): each waveform is read at the
   /// substep's midpoint and carried back to t along its piece, so that a time that rounds onto the
   /// wrong side of a breakpoint (k·PER computed as 0.99999…) cannot pick the neighbouring piece.
-  void set_exo(const io::Netlist& deck, double t, double stop) {
+  void set_exo(const ForcedScene& deck, double t, double stop) {
     const std::size_t m = deck.waveforms.size();
     const double mid = stop > t ? (t + stop) / 2 : t;
     s(dm) = S(1) / static_cast<S>(d[dm]);
@@ -220,11 +227,8 @@ ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, st
 
 }  // namespace
 
-SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
-                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
-  if (deck.rlc.branches.size() > kForcedBranches)
-    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(kForcedBranches) +
-                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
+SimulateSummary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                               const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
   const ForcedModel fm = forced_model(deck);
   const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
   // initial point: the file's values, M_c(0), then 0 where M_c(0) allows
@@ -246,7 +250,7 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
   }
   const std::vector<std::string> names = [&] {
     std::vector<std::string> v = c.variables;
-    const std::vector<std::string> j = jet_names(deck, fm.orders);
+    const std::vector<std::string> j = jet_names(deck.waveforms, fm.orders);
     v.insert(v.end(), j.begin() + 1, j.end());
     return v;
   }();
@@ -296,16 +300,20 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
     }
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  // energy: E(x) = ½ xᵀHx + gᵀx, P_R = Σ R v², P_V = −Σ V v_V (SPICE: current enters n+)
-  const Mat<double> H = to_d(fm.f.s.hessian);
-  const std::size_t nb = deck.rlc.branches.size();
+  // energy: E(x) = ½ xᵀHx (+ gᵀx), and the power of the forces ⟨F x, q̇⟩, of the sources ⟨Bσ, q̇⟩ (the
+  // q-rows: the force one-form is horizontal, YM §4) and, from the balance, of the reactions of the
+  // affine constraints (current sources): dE/dt = ⟨F x + Bσ, q̇⟩ + P_constraints.
+  const Mat<double> H = to_d(fm.f.s.hessian), F = to_d(fm.f.force.rows() ? fm.f.force : QM(n, n)), Bs = to_d(fm.f.source_force);
+  const Vec<double> grad = to_d(QM::column(fm.f.s.gradient));
+  const std::size_t nq = n / 3;
   bool has_i = false;
-  for (const auto& b : deck.rlc.branches) has_i = has_i || b.kind == ref::RlcKind::current;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < m; ++j) has_i = has_i || fm.f.shift(i, j) != 0;
   double wr = 0, wv = 0, wi = 0, last_pr = 0, last_pv = 0, last_pi = 0, worst_balance = 0, power_scale = 0;
   out << "t";
   for (const std::string& v : c.variables) out << "," << v;
   out << "\n";
-  if (energy) *energy << "t,E,P_dissipated,P_voltage_sources,P_current_sources,W_dissipated,W_voltage_sources,W_current_sources\n";
+  if (energy) *energy << "t,E,P_forces,P_sources,P_constraints,W_forces,W_sources,W_constraints\n";
   std::string line;
   char buf[32];
   const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
@@ -333,15 +341,11 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
     out << line;
     // energy balance at this row
     const Vec<double> xdot = Vy * y + Vu * u;
-    const double en = 0.5 * x.dot(H * x);
-    const double de = (H * x).dot(xdot);
-    double pr = 0, pv = 0;
-    for (std::size_t b = 0; b < nb; ++b) {
-      const auto& br = deck.rlc.branches[b];
-      if (br.kind == ref::RlcKind::resistor) pr += br.value.convert_to<double>() * x(nb + b) * x(nb + b);
-      if (br.kind == ref::RlcKind::voltage) pv -= u(1 + br.source) * x(nb + b);
-    }
-    const double pi = de + pr - pv;  // what the current sources' reactions supply
+    const double en = 0.5 * x.dot(H * x) + grad.dot(x);
+    const double de = (H * x + grad).dot(xdot);
+    const Vec<double> fx = F * x, bs = Bs * u.segment(1, m);
+    const double pr = fx.head(nq).dot(xdot.head(nq)), pv = bs.head(nq).dot(xdot.head(nq));
+    const double pi = de - pr - pv;  // what the reactions of the affine constraints supply
     power_scale = std::max({power_scale, std::abs(de), std::abs(pr), std::abs(pv)});
     if (!has_i) worst_balance = std::max(worst_balance, std::abs(pi));
     if (k == 0) e0 = en;
@@ -360,9 +364,9 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
       *energy << line << "\n";
     }
     if (k == steps) {
-      log << "simulate: energy: E(0) = " << float_text(e0) << ", E(" << float_text(t) << ") = " << float_text(en) << "; dissipated "
-          << float_text(wr) << ", supplied by voltage sources " << float_text(wv) << (has_i ? ", by current sources " + float_text(wi) : "")
-          << " (trapezoid on the output rows)";
+      log << "simulate: energy: E(0) = " << float_text(e0) << ", E(" << float_text(t) << ") = " << float_text(en) << "; work of the forces "
+          << float_text(wr) << " (dissipated " << float_text(-wr) << "), of the sources " << float_text(wv)
+          << (has_i ? ", of the affine constraints (current sources) " + float_text(wi) : "") << " (trapezoid on the output rows)";
       if (!has_i)
         log << "; balance dE/dt = <F, qdot> holds to " << float_text(power_scale > 0 ? worst_balance / power_scale : 0.0)
             << " relative at the rows";
@@ -411,6 +415,19 @@ SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, 
     }
   }
   return sum;
+}
+
+SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  if (deck.rlc.branches.size() > kForcedBranches)
+    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
+  return simulate_scene(ForcedScene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms}, c, initial, opt, out, log, energy);
+}
+
+SimulateSummary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                                     std::ostream& out, std::ostream& log, std::ostream* energy) {
+  return simulate_scene(ForcedScene{c.file, case_forced_system(c), {}}, c, initial, opt, out, log, energy);
 }
 
 }  // namespace dcad::cli

@@ -122,6 +122,8 @@ void keep_reduced(SolveReport& out, const reference::ReducedEquations<T>& red) {
 
 template <class T>
 SolveReport solve_exact(const io::CaseFile& c) {
+  if (c.has_pontryagin && c.pontryagin.has_forces)  // the unforced pipeline must never drop them silently
+    throw std::invalid_argument("a case with `forces` goes by the forced route (solve_forced_case), not this one");
   namespace ref = dcad::reference;
   const ref::LinearSystem<T> s = exact_system<T>(c);
   const ref::Matrix<T> primary = c.has_constrained ? lift<T>(c.constrained.primary) : ref::Matrix<T>();

@@ -70,6 +70,8 @@ Eigen::MatrixXd secondary_rows(const fa::CadResult& r, int width) {
 }
 
 SolveReport solve_fast(const io::CaseFile& c) {
+  if (c.has_pontryagin && c.pontryagin.has_forces)  // the unforced pipeline must never drop them silently
+    throw std::invalid_argument("a case with `forces` goes by the forced route (solve_forced_case), not this one");
   fa::Options opt;
   const fa::LinearSystem s = fast_system(c, opt);
   fa::Options in_opt = opt;

@@ -16,10 +16,10 @@ using Q = ref::Rational;
 using QM = ref::Matrix<Q>;
 using ref::RlcKind;
 
-std::vector<std::string> jet_names(const io::Netlist& n, long orders) {
+std::vector<std::string> jet_names(const std::vector<io::Waveform>& waveforms, long orders) {
   std::vector<std::string> out{"1"};
   for (long d = 0; d < orders; ++d)
-    for (const io::Waveform& w : n.waveforms) {
+    for (const io::Waveform& w : waveforms) {
       const std::string f = w.element;
       out.push_back(d == 0 ? f + "(t)" : d <= 3 ? f + std::string(d, '\'') + "(t)" : "d" + std::to_string(d) + f + "/dt" + std::to_string(d) + "(t)");
     }
@@ -44,11 +44,11 @@ std::string row_text(const QM& row, const std::vector<std::string>& names, std::
 
 }  // namespace
 
-ConditionVerdict decide_condition(const QM& row, const io::Netlist& n) {
-  const std::size_t m = n.waveforms.size();
+ConditionVerdict decide_condition(const QM& row, const std::vector<io::Waveform>& waveforms) {
+  const std::size_t m = waveforms.size();
   const long orders = m ? static_cast<long>((row.cols() - 1) / m) : 0;
   ConditionVerdict v;
-  v.text = row_text(row, jet_names(n, orders), 0);
+  v.text = row_text(row, jet_names(waveforms, orders), 0);
   // identical waveforms (same kind and parameters) are one function: sum their coefficients
   std::map<std::pair<std::string, long>, Q> sums;
   Q constant = row(0, 0);
@@ -57,7 +57,7 @@ ConditionVerdict decide_condition(const QM& row, const io::Netlist& n) {
     for (long d = 0; d < orders; ++d) {
       const Q& c = row(0, 1 + d * m + j);
       if (c == 0) continue;
-      const io::Waveform& w = n.waveforms[j];
+      const io::Waveform& w = waveforms[j];
       if (w.kind == io::Waveform::Kind::dc) {
         if (d == 0) constant += c * w.p[0];
         continue;
@@ -80,10 +80,10 @@ ConditionVerdict decide_condition(const QM& row, const io::Netlist& n) {
   }
   // different waveforms: sample the combination (breakpoints, their midpoints, a spread of times)
   double horizon = 0;
-  for (const io::Waveform& w : n.waveforms) horizon = std::max(horizon, w.horizon());
+  for (const io::Waveform& w : waveforms) horizon = std::max(horizon, w.horizon());
   if (horizon == 0) horizon = 1;
   std::vector<double> ts{0};
-  for (const io::Waveform& w : n.waveforms)
+  for (const io::Waveform& w : waveforms)
     for (double b : w.breakpoints(horizon)) ts.push_back(b);
   std::sort(ts.begin(), ts.end());
   const std::size_t k = ts.size();
@@ -96,7 +96,7 @@ ConditionVerdict decide_condition(const QM& row, const io::Netlist& n) {
       for (long d = 0; d < orders; ++d) {
         const double c = row(0, 1 + d * m + j).convert_to<double>();
         if (c == 0) continue;
-        const double term = c * n.waveforms[j].value(t, static_cast<int>(d));
+        const double term = c * waveforms[j].value(t, static_cast<int>(d));
         s += term;
         scale = std::max(scale, std::abs(term));
       }
@@ -277,40 +277,22 @@ void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
               " source condition(s) that the fast backend does not decide against the waveforms: use --backend certified";
 }
 
-}  // namespace
-
-ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
-  if (n.rlc.branches.size() > kForcedBranches)
-    throw io::InputError(n.file + ": expected at most " + std::to_string(kForcedBranches) +
-                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(n.rlc.branches.size()) +
-                         " (the forced route is dense and exact; larger ones are not supported yet)");
-  ForcedReport out;
-  if (backend == "fast") {
-    out.report.backend = "fast";
-    fast_tower(ref::rlc_system(forced_twin(n.rlc)), out.report);  // the dimensionless twin: same tower
-    for (const char* p : {"q_", "v_", "p_"})
-      for (const auto& b : n.rlc.branches) out.names.push_back(p + b.name);
-    for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
-    out.circuit = {{"branches", n.rlc.branches.size()}, {"nodes", n.rlc.nodes + 1},
-                   {"pc_loops", out.report.consistent && out.report.dims.size() > 2 ? out.report.dims[1] - out.report.dims[2] : 0},
-                   {"empty_loops", 0}};
-    return out;
-  }
-  const ref::ForcedSystem<Q> f = ref::rlc_system(circuit_of(n));
+/// The exact forced CAD as a report: the tower with its jet equations, the source conditions
+/// decided against the waveforms (the first M_k whose condition fails is empty).
+void exact_report(const ref::ForcedSystem<Q>& f, const std::vector<io::Waveform>& waveforms, const std::vector<std::string>& variables,
+                  const std::string& backend, ForcedReport& out) {
   const ref::ForcedResult<Q> r = ref::forced_tower(f);
   SolveReport& s = out.report;
   s.backend = backend == "reference" ? "reference" : backend;
   s.certified = true;
   s.decisions_exact = 1;
   s.note = "forced route (YM §4 forces and affine constraints, moving M_k(t) as in V §3), exact";
-  const std::size_t nv = 3 * n.rlc.branches.size();
-  // the first M_k whose source conditions fail is empty
+  const std::size_t nv = f.s.d.n;
   long empty_at = r.consistent ? -1 : static_cast<long>(r.dims.size()) - 1;
-  std::vector<bool> seen;
   for (std::size_t k = 0; k < r.conditions_at.size() && (empty_at < 0 || static_cast<long>(k) < empty_at); ++k) {
     const QM& ck = r.conditions_at[k];
     for (std::size_t i = 0; i < ck.rows(); ++i) {
-      const ConditionVerdict v = decide_condition(ck.block(i, i + 1, 0, ck.cols()), n);
+      const ConditionVerdict v = decide_condition(ck.block(i, i + 1, 0, ck.cols()), waveforms);
       bool dup = false;
       for (const ConditionVerdict& o : out.conditions) dup = dup || o.text == v.text;
       if (!dup) out.conditions.push_back(v);
@@ -328,14 +310,68 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
     if (st.dim < 0) break;
   }
   s.steps = static_cast<long>(s.dims.size()) - 1;
-  for (const char* p : {"q_", "v_", "p_"})
-    for (const auto& b : n.rlc.branches) out.names.push_back(p + b.name);
-  const std::vector<std::string> jets = jet_names(n, static_cast<long>(r.orders) + 1);
+  out.names = variables;
+  const std::vector<std::string> jets = jet_names(waveforms, static_cast<long>(r.orders) + 1);
   out.names.insert(out.names.end(), jets.begin() + 1, jets.end());
-  for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
+  for (const io::Waveform& w : waveforms) out.source_names.push_back(w.element);
   s.consistent = s.dims.back() >= 0;
   s.solution_rank = s.consistent ? static_cast<long>(r.solution_rank) : 0;
   if (!s.certified) s.note += "; a source condition could not be decided exactly (see sources.conditions)";
+}
+
+std::vector<std::string> netlist_variables(const io::Netlist& n) {
+  std::vector<std::string> v;
+  for (const char* p : {"q_", "v_", "p_"})
+    for (const auto& b : n.rlc.branches) v.push_back(p + b.name);
+  return v;
+}
+
+}  // namespace
+
+ref::ForcedSystem<Q> case_forced_system(const io::CaseFile& c) {
+  const io::PontryaginInput& in = c.pontryagin;
+  const std::size_t n = in.n;
+  ref::ForcedSystem<Q> f{ref::pontryagin_system(ref::PontryaginInput<Q>{in.n, in.k, in.vv, in.qv, in.qq, in.q, in.v}),
+                         QM(3 * n, 3 * n), 0, QM(3 * n, 0), QM(3 * n, 0), QM(0, 1)};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      f.force(i, j) = in.fq(i, j);      // F(q, v)·δq: a horizontal one-form  [YM §4]
+      f.force(i, n + j) = in.fv(i, j);
+    }
+  return f;
+}
+
+ForcedReport solve_forced_case(const io::CaseFile& c, const std::string& backend) {
+  ForcedReport out;
+  const ref::ForcedSystem<Q> f = case_forced_system(c);
+  if (backend == "fast") {
+    out.report.backend = "fast";
+    fast_tower(f, out.report);
+    out.names = c.variables;
+    return out;
+  }
+  exact_report(f, {}, c.variables, backend, out);
+  return out;
+}
+
+ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
+  if (n.rlc.branches.size() > kForcedBranches)
+    throw io::InputError(n.file + ": expected at most " + std::to_string(kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(n.rlc.branches.size()) +
+                         " (the forced route is dense and exact; larger ones are not supported yet)");
+  ForcedReport out;
+  if (backend == "fast") {
+    out.report.backend = "fast";
+    fast_tower(ref::rlc_system(forced_twin(n.rlc)), out.report);  // the dimensionless twin: same tower
+    out.names = netlist_variables(n);
+    for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
+    out.circuit = {{"branches", n.rlc.branches.size()}, {"nodes", n.rlc.nodes + 1},
+                   {"pc_loops", out.report.consistent && out.report.dims.size() > 2 ? out.report.dims[1] - out.report.dims[2] : 0},
+                   {"empty_loops", 0}};
+    return out;
+  }
+  exact_report(ref::rlc_system(circuit_of(n)), n.waveforms, netlist_variables(n), backend, out);
+  SolveReport& s = out.report;
   // loops and cutsets by name
   const auto is = [](std::initializer_list<RlcKind> ks) {
     return [ks](RlcKind k) { return std::find(ks.begin(), ks.end(), k) != ks.end(); };
@@ -393,7 +429,7 @@ nlohmann::json to_json(const ForcedReport& r, const io::CaseFile& c) {
   ext.variables = r.names;
   nlohmann::json j = to_json(r.report, ext);
   j["variables"] = c.variables;
-  j["circuit"] = r.circuit;
+  if (!r.circuit.is_null()) j["circuit"] = r.circuit;
   nlohmann::json conds = nlohmann::json::array();
   for (const ConditionVerdict& v : r.conditions)
     conds.push_back({{"condition", v.text},
@@ -401,7 +437,7 @@ nlohmann::json to_json(const ForcedReport& r, const io::CaseFile& c) {
                                : v.holds == ConditionVerdict::Holds::no ? nlohmann::json(false)
                                                                         : nlohmann::json(nullptr)},
                      {"evidence", v.evidence}});
-  j["sources"] = {{"names", r.source_names}, {"conditions", conds}};
+  if (!r.source_names.empty() || !conds.empty()) j["sources"] = {{"names", r.source_names}, {"conditions", conds}};
   return j;
 }
 

@@ -30,11 +30,15 @@ struct ForcedReport {
 constexpr std::size_t kForcedBranches = 60;
 
 ForcedReport solve_forced(const io::Netlist& n, const std::string& backend);
+/// A `pontryagin` case with `forces` (F(q, v) = F_q q + F_v v, YM §4): the same route, no sources.
+ForcedReport solve_forced_case(const io::CaseFile& c, const std::string& backend);
+/// The forced system of a `pontryagin` case with `forces`: E = p·v − L, D̄_Δ, and F on the q-rows.
+reference::ForcedSystem<io::Rational> case_forced_system(const io::CaseFile& c);
 nlohmann::json to_json(const ForcedReport& r, const io::CaseFile& c);
 std::string to_text(const ForcedReport& r, const io::CaseFile& c);
 
 /// Names of the jet columns [1 | σ⁽⁰⁾ | σ⁽¹⁾ | …] of a forced deck: "1", "V1(t)", "V1'(t)", "V1''(t)", "d3V1/dt3(t)".
-std::vector<std::string> jet_names(const io::Netlist& n, long orders);
-ConditionVerdict decide_condition(const io::QMatrix& row, const io::Netlist& n);
+std::vector<std::string> jet_names(const std::vector<io::Waveform>& w, long orders);
+ConditionVerdict decide_condition(const io::QMatrix& row, const std::vector<io::Waveform>& w);
 
 }  // namespace dcad::cli

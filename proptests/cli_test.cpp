@@ -639,7 +639,8 @@ TEST(Check, EveryCaseValidatesAndRoundTrips) {
       const Outcome c = run("check " + result + " " + file.string());
       const bool known_failure = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).value("known_failures", nlohmann::json::object()).contains(backend);
       EXPECT_EQ(c.rc, known_failure ? 3 : 0) << file << " " << backend << ": " << c.out << c.err;  // check catches it
-      const bool forced = file.extension() == ".cir" && slurp(file).find("\nR") != std::string::npos;  // the forced route compares the tower only
+      const bool forced = (file.extension() == ".cir" && slurp(file).find("\nR") != std::string::npos) ||
+                          slurp(file).find("\"forces\"") != std::string::npos;  // the forced route compares the tower only
       if (backend == "reference" && !forced) EXPECT_NE(c.out.find("final_constraints"), std::string::npos) << file;
       ++checked;
     }
@@ -908,4 +909,34 @@ TEST(Forced, AgreesWithNgspice) {
     EXPECT_LT(e / mag, 1e-3) << deck;
     fs::remove_all(dir);
   }
+}
+
+// A `pontryagin` case with `forces` (YM §4): two masses tied by v1 = v2 and damped on the first
+// (cases/damped-constrained-pair.json). The trajectory is the damped oscillator of its description
+// and the energy the damper dissipates is what E loses.
+TEST(Forced, DampedConstrainedPairMatchesClosedForm) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/damped-constrained-pair.json";
+  const std::string energy = write_temp("dcad_energy.csv", "");
+  std::string err;
+  const auto rows = simulate_rows(file, "--tstop 10 --step 0.01 --energy " + energy, &err);
+  const double w = std::sqrt(10.0 / 3 - 0.25);
+  double e = 0;
+  for (const auto& r : rows) {
+    const double t = r.at("t"), q = std::exp(-t / 2) * (std::cos(w * t) + std::sin(w * t) / (2 * w));
+    e = std::max({e, std::abs(r.at("q1") - q), std::abs(r.at("q2") - q)});
+  }
+  EXPECT_LT(e, 1e-12);
+  EXPECT_LT(case_value(err, "holds to "), 1e-12) << err;
+  std::istringstream in(slurp(energy));
+  std::string line, last;
+  while (std::getline(in, line)) last = line;
+  std::vector<double> col;
+  std::istringstream l(last);
+  for (std::string c; std::getline(l, c, ',');) col.push_back(std::stod(c));
+  ASSERT_EQ(col.size(), 8u);
+  EXPECT_NEAR(5.0 - col[1], -col[5], 1e-5);  // E(0) − E(T) = −W_forces (trapezoid on a 0.01 grid)
+  // every route agrees; the unforced pipeline would have said dims [6, 3] too, but with no damping
+  const Outcome fast = run("solve " + file + " --backend fast --json");
+  ASSERT_EQ(fast.rc, 0) << fast.err;
+  EXPECT_EQ(nlohmann::json::parse(fast.out)["dims"], nlohmann::json::parse("[6, 3]"));
 }
