@@ -105,6 +105,16 @@ def main():
                     crowded = "tmax=100m" in r["setting"] and not r["setting"].startswith(("reltol=1e-3 ", "reltol=1e-10 "))
                     f.write(f'{r["seconds"]} {r["max_rel_error"]} "{"" if crowded else r["setting"]}"\n')
 
+    # (5) RLC decks (issue 12): error against closed forms and time, dcad and ngspice side by side.
+    rlc_path = os.path.join(res, "rlc_peers.csv")
+    rlc = read_rows(rlc_path) if os.path.exists(rlc_path) else []
+    for deck in ("rlc-series", "rl-step"):
+        for tool in ("dcad", "ngspice"):
+            with open(os.path.join(data, f"rlc_{deck}_{tool}.dat"), "w") as f:
+                for r in rlc:
+                    if r["family"] == "closed-form" and r["deck"] == deck and r["tool"] == tool and r["error"] != "nan":
+                        f.write(f'{r["seconds"]} {max(float(r["error"]), 1e-17)} "{r["setting"]}"\n')
+
     term = "pngcairo size 720,460 font ',10'"
     if subprocess.run(["gnuplot", "-e", "set terminal pngcairo"], capture_output=True).returncode != 0:
         term = "png size 720,460"
@@ -142,6 +152,17 @@ set format y '10^{{%L}}'
 set format x '%g'
 plot '{data}/traj_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad simulate (exact flow)', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle, \\
      '{data}/traj_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice', '' using 1:2:3 with labels offset 0,1 font ',7' notitle
+set output '{out}/rlc_trajectory.png'
+set title 'RLC decks (series RLC, RL step): error against the closed form and run time'
+set logscale xy
+set xlabel 'run time [s] (whole process, best of 3)'
+set ylabel 'max relative error of i_L'
+set format y '10^{{%L}}'
+set format x '%g'
+plot '{data}/rlc_rlc-series_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad, series RLC', \
+     '{data}/rlc_rlc-series_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice, series RLC', '' using 1:2:3 with labels offset 0,1 font ',7' notitle, \
+     '{data}/rlc_rl-step_dcad.dat' using 1:2 with linespoints pt 9 lw 2 title 'dcad, RL step', \
+     '{data}/rlc_rl-step_ngspice.dat' using 1:2 with linespoints pt 11 lw 2 title 'ngspice, RL step', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle
 """
     with open(os.path.join(data, "charts.gp"), "w") as f:
         f.write(gp)
@@ -168,6 +189,14 @@ plot '{data}/traj_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad sim
         lo, hi = min(x for *_, x in ratios), max(x for *_, x in ratios)
         lines.append(f"- reference against sympy, same instances, same steps: sympy takes {lo:.0f}× … {hi:.0f}× as long "
                      f"(median {sorted(x for *_, x in ratios)[len(ratios) // 2]:.0f}×; goal ≥ 50×)\n")
+    for r in rlc:
+        if r["family"] == "closed-form":
+            lines.append(f"- RLC {r['deck']}, {r['tool']} {r['setting']}: error {float(r['error']):.2g} against the closed form, {float(r['seconds']):.3g} s\n")
+    failed = [r for r in rlc if r["tool"] == "ngspice" and r["failure"]]
+    if rlc:
+        lines.append(f"- ngspice on {sum(1 for r in rlc if r['tool'] == 'ngspice' and r['family'] != 'closed-form')} random/hard RLC runs: "
+                     + ("; ".join(f"{r['deck']} ({r['setting']}): {r['failure']}, then {float(r['error']):.2g} from dcad" for r in failed) or "no failures")
+                     + "\n")
     dc = [r for r in traj if r["tool"] == "dcad" and r["setting"] == "step=0.001"]
     ng = [r for r in traj if r["tool"] == "ngspice" and r["max_rel_error"] != "nan"]
     if dc and ng:

@@ -37,27 +37,29 @@ def dcad_run(dcad, deck, tstop, step, var, tmp):
         return [(float(r[0]), float(r[k])) for r in (line.split(",") for line in f)]
 
 
-def ngspice_run(lines, tstop, step, reltol, probe, tmp):
+def ngspice_run(lines, tstop, step, reltol, probe, tmp, uic=True):
     data, deck, log = (os.path.join(tmp, x) for x in ("ng.txt", "ng.cir", "ng.log"))
     if os.path.exists(data):
         os.remove(data)
     with open(deck, "w") as f:
         f.write("".join(l for l in lines if not l.lower().startswith((".tran", ".end"))))
-        f.write(f".options reltol={reltol} abstol=1e-15\n.tran {step} {tstop} 0 {step} uic\n.control\nset wr_singlescale\nrun\n"
+        f.write(f".options reltol={reltol} abstol=1e-15\n.tran {step} {tstop} 0 {step}{' uic' if uic else ''}\n.control\nset wr_singlescale\nrun\n"
                 f"linearize {probe}\nwrdata {data} {probe}\n.endc\n.end\n")
     with open(log, "w") as lf:
         subprocess.run(["ngspice", "-b", deck], stdout=lf, stderr=subprocess.STDOUT)
     text = open(log).read().lower()
+    trouble = "; ".join(w for w, key in (("timestep too small", "timestep too small"), ("singular matrix", "singular matrix"),
+                                         ("gmin stepping failed", "gmin stepping failed"), ("source stepping failed", "source stepping failed"))
+                        if key in text)
     if not os.path.exists(data):
-        why = "timestep too small" if "timestep too small" in text else "singular matrix" if "singular" in text else "no output"
-        return None, why
+        return None, trouble or "no output"
     rows = []
     with open(data) as f:
         for line in f:
             p = line.split()
             if len(p) >= 2:
                 rows.append((float(p[0]), float(p[1])))
-    return rows, ""
+    return rows, trouble
 
 
 def err(rows, exact):
@@ -76,6 +78,19 @@ def closed_forms(cases):
     wd = math.sqrt(w0 * w0 - a * a)
     yield "rlc-series", os.path.join(cases, "rlc-series.cir"), 1e-3, lambda t: V / (L * wd) * math.exp(-a * t) * math.sin(wd * t)
     yield "rl-step", os.path.join(cases, "rl-step.cir"), 5e-4, lambda t: 5.0 / 100 * (1 - math.exp(-100 * t / 10e-3))
+
+
+# Decks where ngspice's own flow (DC operating point first, no `uic`) meets a loop of a voltage
+# source and an inductor (singular at DC) or a node cut off by current sources and capacitors
+# (no DC path): dcad needs no operating point, the CAD states the constraint and integrates.
+HARD = [
+    ("v-l-loop", "voltage source across an inductor (a V-L loop: singular at DC)\n"
+                 "V1 a 0 SIN(0 1 1k)\nL1 a 0 1m\nR1 a b 10\nC1 b 0 1u\n.end\n", "L1", True),
+    ("i-c-cutset", "current sources into a capacitor-only node (no DC path)\n"
+                   "I1 0 a PULSE(0 1m 0 1u 1u 100u 200u)\nC1 a 0 1u\nC2 a b 1u\nL1 b 0 1m\n.end\n", "L1", True),
+    ("cv-loop-pulse", "pulse source across two capacitors in parallel (a CV loop with corners)\n"
+                      "V1 a 0 PULSE(0 1 0 1u 1u 100u 200u)\nC1 a 0 1u\nC2 a 0 2u\nR1 a b 10\nL1 b 0 1m\n.end\n", "L1", True),
+]
 
 
 def random_deck(rng, k):
@@ -125,6 +140,16 @@ def main():
             rows.append(("random", f"{kind}-{k}", "dcad", "step=1e-06", 0.0, secs, ""))
             nsecs, (r, why) = best_of(1, lambda: ngspice_run(lines, 1e-3, 1e-6, 1e-6, f"i({ind.lower()})", tmp))
             rows.append(("random", f"{kind}-{k}", "ngspice", "reltol=1e-06", against(r, d) if r else float("nan"), nsecs, why))
+        for name, text, ind, _ in HARD:
+            deck = os.path.join(tmp, f"{name}.cir")
+            open(deck, "w").write(text)
+            lines = text.splitlines(keepends=True)
+            secs, d = best_of(1, lambda: dcad_run(dcad, deck, 1e-3, 1e-6, "v_" + ind, tmp))
+            rows.append(("hard", name, "dcad", "step=1e-06", 0.0, secs, ""))
+            for uic in (False, True):
+                nsecs, (r, why) = best_of(1, lambda: ngspice_run(lines, 1e-3, 1e-6, 1e-6, f"i({ind.lower()})", tmp, uic))
+                rows.append(("hard", name, "ngspice", "reltol=1e-06" + (" uic" if uic else " (operating point)"),
+                             against(r, d) if r else float("nan"), nsecs, why))
     with open(out, "w") as f:
         f.write("family,deck,tool,setting,error,seconds,failure\n")
         for r in rows:

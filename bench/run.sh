@@ -26,6 +26,8 @@ if [ -n "$quick" ]; then sympy_max=21; else sympy_max=33; fi  # sympy takes minu
 /usr/bin/python3 bench/peers/cad_peers.py build/bench_instances.jsonl --sympy-max-n $sympy_max > bench/results/peers.csv
 echo "== trajectories (dcad simulate, ngspice)"
 /usr/bin/python3 bench/trajectory.py build/dcad cases bench/results/trajectory.csv
+echo "== RLC decks against closed forms and ngspice (issue 12)"
+/usr/bin/python3 bench/rlc_peers.py build/dcad cases bench/results/rlc_peers.csv
 echo "== kernels (Google Benchmark)"
 if [ -n "$quick" ]; then filter='ColPivQR|FastCad/(100|200)/|Rref.*/(20|50)$'; else filter='.'; fi
 build/bench_kernels --benchmark_filter="$filter" --benchmark_format=csv > bench/results/kernels.csv

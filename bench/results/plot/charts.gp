@@ -32,3 +32,11 @@ set format y '10^{%L}'
 set format x '%g'
 plot 'bench/results/plot/traj_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad simulate (exact flow)', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle, \
      'bench/results/plot/traj_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice', '' using 1:2:3 with labels offset 0,1 font ',7' notitle
+set output 'bench/charts/rlc_trajectory.png'
+set title 'RLC decks (series RLC, RL step): error against the closed form and run time'
+set logscale xy
+set xlabel 'run time [s] (whole process, best of 3)'
+set ylabel 'max relative error of i_L'
+set format y '10^{%L}'
+set format x '%g'
+plot 'bench/results/plot/rlc_rlc-series_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad, series RLC',      'bench/results/plot/rlc_rlc-series_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice, series RLC', '' using 1:2:3 with labels offset 0,1 font ',7' notitle,      'bench/results/plot/rlc_rl-step_dcad.dat' using 1:2 with linespoints pt 9 lw 2 title 'dcad, RL step',      'bench/results/plot/rlc_rl-step_ngspice.dat' using 1:2 with linespoints pt 11 lw 2 title 'ngspice, RL step', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle
