@@ -940,3 +940,33 @@ TEST(Forced, DampedConstrainedPairMatchesClosedForm) {
   ASSERT_EQ(fast.rc, 0) << fast.err;
   EXPECT_EQ(nlohmann::json::parse(fast.out)["dims"], nlohmann::json::parse("[6, 3]"));
 }
+
+// The issue-7 promise for forced decks: the same series RLC (Q = 1/R √(L/C) = 5 at every scale) at
+// nH/fF, µH/nF and H/F meets its closed form to the same relative accuracy.
+TEST(Forced, SeriesRlcAtEveryScale) {
+  struct Scale {
+    const char* l;
+    const char* c;
+    double lv, cv;
+  };
+  for (const Scale& s : {Scale{"10n", "100f", 10e-9, 100e-15}, Scale{"10u", "100n", 10e-6, 100e-9}, Scale{"10", "100m", 10.0, 0.1}}) {
+    const double r = std::sqrt(s.lv / s.cv) / 5, v = 3;
+    std::ostringstream deck;
+    deck.precision(17);
+    deck << "series RLC at " << s.l << "H " << s.c << "F\nV1 in 0 DC 3\nR1 in a " << r << "\nL1 a b " << s.l << "\nC1 b 0 " << s.c << "\n.end\n";
+    const std::string file = write_temp("dcad_scale_rlc.cir", deck.str());
+    const double period = 2 * M_PI * std::sqrt(s.lv * s.cv);
+    std::ostringstream args;
+    args.precision(17);
+    args << "--tstop " << 3 * period << " --step " << period / 200;
+    const auto rows = simulate_rows(file, args.str());
+    const double a = r / (2 * s.lv), w0 = 1 / std::sqrt(s.lv * s.cv), wd = std::sqrt(w0 * w0 - a * a);
+    double e = 0, mag = 0;
+    for (const auto& row : rows) {
+      const double t = row.at("t"), i = v / (s.lv * wd) * std::exp(-a * t) * std::sin(wd * t);
+      e = std::max(e, std::abs(row.at("v_L1") - i));
+      mag = std::max(mag, std::abs(i));
+    }
+    EXPECT_LT(e / mag, 1e-11) << s.l << "H, " << s.c << "F";
+  }
+}
