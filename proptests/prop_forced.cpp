@@ -254,3 +254,42 @@ RC_GTEST_PROP(ImplicitLagrangian, DcSourcesObeyTheCircuitLaws, ()) {
   }
   RC_ASSERT(ref::contains(QSub::span(ki), drop));                 // KVL, current sources free
 }
+
+// YM Thm 5.6, (a) ⇔ (c), for linear data with L regular on Δ: the partial vector fields of the
+// implicit Lagrangian system (L, Δ, X) [YM (4.7)], split along T(T*Q)|_P = T P ⊕ V (5.11), have as
+// T P-parts exactly the constrained partial vector fields of (L_c, Δ, X_P) with the constrained Dirac
+// structure D_P, the restriction of D_Δ to P = FL(Δ) [YM (5.12)].
+RC_GTEST_PROP(ImplicitLagrangian, ConstrainedSystemByRestrictionIsTheSame, ()) {
+  const Index n = pick_size(1, 4);
+  ref::PontryaginInput<Q> in;
+  in.n = n;
+  in.k = integer_matrix(*rc::gen::inRange<Index>(0, n + 1), n);
+  const QM m = integer_matrix(n, n);
+  in.vv = m.transpose() * m + QM::identity(n);  // positive definite: regular on every Δ
+  in.qv = integer_matrix(n, n);
+  in.qq = symmetric_matrix(n, n);
+  in.q = integer_vector(n);
+  in.v = integer_vector(n);
+  const QSub delta = in.k.rows() ? ref::kernel(in.k) : QSub::whole(n);
+  const std::vector<Q> q = integer_vector(n);
+  std::vector<Q> v(n, Q(0));
+  const QM c = integer_matrix(1, delta.dim());
+  for (Index i = 0; i < delta.dim(); ++i)
+    for (Index j = 0; j < n; ++j) v[j] += c(0, i) * delta.basis()(i, j);
+  const ref::AffineSubspace<Q> x = ref::implicit_lagrangian_fields(in, QM(n, n), QM(n, n), q, v);
+  const ref::AffineSubspace<Q> xp = ref::implicit_constrained_fields(in, q, v);
+  RC_ASSERT(!x.empty);
+  RC_ASSERT(!xp.empty);
+  RC_ASSERT(ref::dirac_defect(ref::constrained_dirac(in)).empty());  // D_P is Dirac (Prop. 5.2)
+  // the T P-part of every ILS field is a constrained field, and the directions agree
+  const std::vector<Q> p0 = ref::constrained_part(in, x.point);
+  std::vector<Q> d(p0.size());
+  for (Index i = 0; i < p0.size(); ++i) d[i] = p0[i] - xp.point[i];
+  RC_ASSERT(ref::contains(xp.direction, d));
+  QM dirs(0, p0.size());
+  for (Index i = 0; i < x.direction.dim(); ++i) {
+    const std::vector<Q> di = ref::constrained_part(in, x.direction.basis().row(i));
+    dirs = ref::vstack(dirs, QM::from_rows({di}, p0.size()));
+  }
+  RC_ASSERT(QSub::span(dirs) == xp.direction);
+}

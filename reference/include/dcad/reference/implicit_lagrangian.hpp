@@ -121,4 +121,61 @@ DiracStructure<T> restrict_dirac(const DiracStructure<T>& d, const Subspace<T>& 
   return DiracStructure<T>{k, Subspace<T>::span(rows)};
 }
 
+/// T P for the constraint momentum space P = FL(Δ) = {(q, A v + Bᵀ q + b) : v ∈ Δ} ⊂ T*Q:
+/// span{(δq, Bᵀ δq + A δv) : δq ∈ Qⁿ, δv ∈ Δ}.  [YM §5]
+template <class T>
+Subspace<T> constraint_momentum_tangent(const PontryaginInput<T>& in) {
+  const Index n = in.n;
+  const Subspace<T> delta = in.k.rows() ? kernel(in.k) : Subspace<T>::whole(n);
+  Matrix<T> rows(n + delta.dim(), 2 * n);
+  for (Index i = 0; i < n; ++i) {  // δq = e_i: δp = Bᵀ e_i, i.e. row i of B
+    rows(i, i) = T(1);
+    for (Index j = 0; j < n; ++j) rows(i, n + j) = in.qv(i, j);
+  }
+  const Matrix<T> av = delta.basis() * in.vv;  // rows (A δv)ᵀ, A symmetric
+  for (Index i = 0; i < delta.dim(); ++i)
+    for (Index j = 0; j < n; ++j) rows(n + i, n + j) = av(i, j);
+  return Subspace<T>::span(rows);
+}
+
+/// D_P: the restriction of the induced Dirac structure D_Δ to P, in the coordinates of T P's
+/// canonical basis.  [YM §5, "constrained Dirac structure"; Prop. 5.2]
+template <class T>
+DiracStructure<T> constrained_dirac(const PontryaginInput<T>& in) {
+  return restrict_dirac(induced_dirac(in.k, in.n), constraint_momentum_tangent(in));
+}
+
+/// The constrained partial vector fields X_P at (q, v), v ∈ Δ, in T P's basis coordinates:
+/// {X_P : (X_P, 𝔇L_c) ∈ D_P} with 𝔇L_c = 𝔇L|_{T P}  [YM Def. 5.4, (5.12)].
+template <class T>
+AffineSubspace<T> implicit_constrained_fields(const PontryaginInput<T>& in, const std::vector<T>& q, const std::vector<T>& v) {
+  const Subspace<T> tp = constraint_momentum_tangent(in);
+  const DiracStructure<T> dp = constrained_dirac(in);
+  const std::vector<T> dl = dirac_differential(in, Matrix<T>(in.n, in.n), Matrix<T>(in.n, in.n), q, v);
+  const std::vector<T> dlc = (tp.basis() * Matrix<T>::column(dl)).col(0);  // 𝔇L restricted to T P
+  const Index k = tp.dim();
+  const Matrix<T> g = annihilator(dp.d).basis();
+  std::vector<T> rhs = (g.block(0, g.rows(), k, 2 * k) * Matrix<T>::column(dlc)).col(0);
+  for (T& c : rhs) c = -c;
+  return solve(g.block(0, g.rows(), 0, k), rhs);
+}
+
+/// X = X_P + X_V with X_P ∈ T P and X_V ∈ V = {(0, η) : η ∈ Δ°} (Marle: T_P(T*Q) = T P ⊕ V when L
+/// is regular on Δ): the coordinates of X_P in T P's basis.  [YM (5.11)]
+template <class T>
+std::vector<T> constrained_part(const PontryaginInput<T>& in, const std::vector<T>& x) {
+  const Index n = in.n;
+  const Subspace<T> tp = constraint_momentum_tangent(in);
+  const Subspace<T> ann = annihilator(in.k.rows() ? kernel(in.k) : Subspace<T>::whole(n));
+  Matrix<T> cols(2 * n, tp.dim() + ann.dim());
+  for (Index i = 0; i < tp.dim(); ++i)
+    for (Index j = 0; j < 2 * n; ++j) cols(j, i) = tp.basis()(i, j);
+  for (Index i = 0; i < ann.dim(); ++i)
+    for (Index j = 0; j < n; ++j) cols(n + j, tp.dim() + i) = ann.basis()(i, j);
+  std::vector<T> c;
+  require(solve_particular(cols, x, c), "constrained_part", "a vector of T P ⊕ V", "one outside");
+  c.resize(tp.dim());
+  return c;
+}
+
 }  // namespace dcad::reference
