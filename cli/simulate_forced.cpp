@@ -58,14 +58,6 @@ struct ForcedModel {
   ref::ForcedSystem<Q> f;
 };
 
-/// Columns of X (over u) moved to the columns of u̇ = shift(u) within u_ext.
-QM shifted(const QM& x, std::size_t m, long orders) {
-  QM out(x.rows(), 1 + m * (orders + 1));
-  for (ref::Index i = 0; i < x.rows(); ++i)
-    for (ref::Index j = 1; j < x.cols(); ++j) out(i, j + m) = x(i, j);
-  return out;
-}
-
 ForcedModel forced_model(const ForcedScene& deck) {
   ForcedModel fm;
   fm.f = deck.f;
@@ -81,31 +73,14 @@ ForcedModel forced_model(const ForcedScene& deck) {
   fm.m = fm.f.sources;
   fm.orders = static_cast<long>(r.orders);
   fm.eq = r.equations;
-  const std::size_t n = fm.n, m = fm.m, wu = 1 + m * fm.orders, wx = wu + m;
-  const QM ex = fm.eq.block(0, fm.eq.rows(), 0, n), eu = fm.eq.block(0, fm.eq.rows(), n, n + wu);
-  fm.basis = ref::Subspace<Q>::span(ref::nullspace(ex)).basis();
-  fm.dm = fm.basis.rows();
-  ref::solve_particular(ex, -eu, fm.x0);  // full row rank: solvable column by column
-  // λ-system rhs over (x | u_ext); substitute x = X0 u + Bᵀ y
-  const ref::LambdaSystem<Q> ls = ref::lambda_system(fm.f, fm.eq, fm.orders);
-  const QM rx = ls.rhs.block(0, ls.rhs.rows(), 0, n), ru = ls.rhs.block(0, ls.rhs.rows(), n, n + wx);
-  QM x0e(n, wx);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < wu; ++j) x0e(i, j) = fm.x0(i, j);
-  const QM rhs = ref::hstack(rx * fm.basis.transpose(), rx * x0e + ru);
-  // exact least squares: solvable columns are solved exactly, and sums of columns that are
-  // solvable only together (sources tied by a condition) are solved exactly too
-  QM lam;
-  ref::solve_particular(ls.lhs.transpose() * ls.lhs, ls.lhs.transpose() * rhs, lam);
-  const QM& g = fm.f.s.d.d.basis();
-  QM v = g.block(0, g.rows(), 0, n).transpose() * lam;  // ẋ − Zσ = G_vᵀ λ
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < m; ++j) v(i, fm.dm + 1 + j) += fm.f.shift(i, j);
-  fm.vy = v.block(0, n, 0, fm.dm);
-  fm.vu = v.block(0, n, fm.dm, fm.dm + wx);
-  const QM p = ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis;  // y = P (x − X0 u)
-  fm.ay = p * fm.vy;
-  fm.au = p * (fm.vu - shifted(fm.x0, m, fm.orders));
+  const ref::ForcedMotion<Q> mo = ref::forced_motion(fm.f, r);
+  fm.basis = mo.basis;
+  fm.dm = mo.basis.rows();
+  fm.x0 = mo.x0;
+  fm.vy = mo.vy;
+  fm.vu = mo.vu;
+  fm.ay = mo.ay;
+  fm.au = mo.au;
   return fm;
 }
 

@@ -179,6 +179,10 @@ std::string to_text(const SolveReport& r, const io::CaseFile& c) {
     for (std::size_t i = 0; i < names.size(); ++i) {
       std::vector<std::string> coeff = r.f_matrix[i];
       std::vector<std::string> all = names;
+      for (std::size_t k = 0; k < r.extra_names.size(); ++k) {
+        coeff.push_back(r.extra_terms[i][k]);
+        all.push_back(r.extra_names[k]);
+      }
       for (std::size_t k = 0; k < lambdas.size(); ++k) {
         coeff.push_back(r.g[i][k] == "0" || r.g[i][k] == "0.0" ? "" : r.g[i][k]);
         all.push_back(lambdas[k]);

@@ -33,6 +33,9 @@ struct SolveReport {
   std::vector<std::size_t> coords;
   std::vector<std::vector<std::string>> f_matrix, g;
   std::vector<std::string> f;
+  /// more terms of ż (the forced route: the sources' jets V1(t), V1'(t), …): names and per row coefficients
+  std::vector<std::string> extra_names;
+  std::vector<std::vector<std::string>> extra_terms;
   long first_class = -1, second_class = -1;              ///< `constrained` systems: r − 2s and 2s on M_c
   std::vector<Equation> second_class_constraints;        ///< χ (reference)
   std::vector<std::vector<std::string>> dirac_bracket;   ///< J* (reference)

@@ -317,6 +317,30 @@ void exact_report(const ref::ForcedSystem<Q>& f, const std::vector<io::Waveform>
   s.consistent = s.dims.back() >= 0;
   s.solution_rank = s.consistent ? static_cast<long>(r.solution_rank) : 0;
   if (!s.certified) s.note += "; a source condition could not be decided exactly (see sources.conditions)";
+  if (!s.consistent) return;
+  // equations of motion: ż = F z + f + S u_src(t) + G λ  [CEF (5.12) with the sources' jets]
+  const ref::ForcedReducedEquations<Q> red = ref::forced_reduced_equations(ref::forced_motion(f, r), f.sources);
+  s.has_reduced = true;
+  s.coords.assign(red.coords.begin(), red.coords.end());
+  const auto text = [](const QM& m) {
+    std::vector<std::vector<std::string>> t(m.rows(), std::vector<std::string>(m.cols()));
+    for (std::size_t i = 0; i < m.rows(); ++i)
+      for (std::size_t j = 0; j < m.cols(); ++j) t[i][j] = m(i, j).str();
+    return t;
+  };
+  s.f_matrix = text(red.f_matrix);
+  s.g = text(red.g);
+  for (const Q& x : red.f) s.f.push_back(x.str());
+  // only the jet orders that occur (the tower widens the jets by one order per step)
+  std::size_t used = 0;
+  for (std::size_t j = 0; j < red.s.cols(); ++j)
+    for (std::size_t i = 0; i < red.s.rows(); ++i)
+      if (red.s(i, j) != 0) used = j + 1;
+  if (f.sources) used = (used + f.sources - 1) / f.sources * f.sources;
+  out.source_terms = text(red.s.block(0, red.s.rows(), 0, used));
+  out.source_columns.assign(jets.begin() + 1, jets.begin() + 1 + static_cast<long>(used));
+  s.extra_names = out.source_columns;
+  s.extra_terms = out.source_terms;
 }
 
 std::vector<std::string> netlist_variables(const io::Netlist& n) {
@@ -438,6 +462,7 @@ nlohmann::json to_json(const ForcedReport& r, const io::CaseFile& c) {
                                                                         : nlohmann::json(nullptr)},
                      {"evidence", v.evidence}});
   if (!r.source_names.empty() || !conds.empty()) j["sources"] = {{"names", r.source_names}, {"conditions", conds}};
+  if (j.contains("reduced") && !r.source_columns.empty()) j["reduced"]["sources"] = {{"columns", r.source_columns}, {"S", r.source_terms}};
   return j;
 }
 

@@ -24,6 +24,9 @@ struct ForcedReport {
   std::string circuit_text;
   std::vector<std::string> names;         ///< variables, then the jet columns (for equation text)
   std::vector<std::string> source_names;  ///< σ, in order
+  /// ż = F z + f + S u_src + G λ: S over the jet columns (V1(t), V1'(t), …); empty without sources
+  std::vector<std::vector<std::string>> source_terms;
+  std::vector<std::string> source_columns;
 };
 
 /// Largest number of branches the forced route takes (exact arithmetic on 3n variables with jets).

@@ -292,3 +292,47 @@ RC_GTEST_PROP(ImplicitLagrangian, ConstrainedSystemByRestrictionIsTheCad, ()) {
   RC_ASSERT(ref::contains(xp.direction, d));  // (X_P, 𝔇L_c) ∈ D_P
   RC_ASSERT(xp.direction.dim() == 0);         // L regular on Δ: X_P is unique (5.16)
 }
+
+// The equations of motion ż = F z + f + S u_src + G λ of the forced route (forced_motion,
+// forced_reduced_equations) against the velocities solved pointwise (forced_velocities) at a random
+// point of M_c(t) with random source jets that meet the conditions: the same ż, modulo G.  Without
+// forces and sources they are the CAD's reduced equations (CEF (5.12)).
+RC_GTEST_PROP(ForcedTower, EquationsOfMotionAreThePointwiseVelocities, ()) {
+  const ref::RlcCircuit<Q> c = random_rlc({});
+  RC_LOG() << deck(c);
+  const ref::ForcedSystem<Q> f = ref::rlc_system(c);
+  const ref::ForcedResult<Q> r = ref::forced_tower(f);
+  RC_PRE(r.consistent);
+  const Index n = f.s.d.n, m = c.sources;
+  std::vector<Q> u{Q(1)};
+  for (Index k = 0; k <= r.orders; ++k)
+    for (Index j = 0; j < m; ++j) u.push_back(Q(*rc::gen::inRange(-3, 4)));
+  for (Index i = 0; i < r.conditions.rows(); ++i) {  // random jets meet the conditions rarely: keep those that do
+    Q s(0);
+    for (Index j = 0; j < r.conditions.cols(); ++j) s += r.conditions(i, j) * u[j];
+    RC_PRE(s == 0);
+  }
+  const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
+  std::vector<Q> rhs = ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
+  for (Q& x : rhs) x = -x;
+  const std::vector<Q> x = some_point(ref::solve(ex, rhs));
+  const ref::AffineSubspace<Q> vel = ref::forced_velocities(f, r, x, u);
+  const ref::ForcedReducedEquations<Q> red = ref::forced_reduced_equations(ref::forced_motion(f, r), m);
+  RC_TAG(red.g.cols() ? "gauge freedom" : "unique");
+  // ż from the reduced equations, against the pivot coordinates of the pointwise velocities
+  std::vector<Q> zdot = red.f;
+  for (Index i = 0; i < red.coords.size(); ++i) {
+    for (Index k = 0; k < red.coords.size(); ++k) zdot[i] += red.f_matrix(i, k) * x[red.coords[k]];
+    for (Index j = 0; j < red.s.cols(); ++j) zdot[i] += red.s(i, j) * u[1 + j];
+  }
+  std::vector<Q> d(red.coords.size());
+  for (Index i = 0; i < red.coords.size(); ++i) d[i] = zdot[i] - vel.point[red.coords[i]];
+  QM dirs = red.g.transpose();
+  for (Index i = 0; i < vel.direction.dim(); ++i) {
+    QM row(1, red.coords.size());
+    for (Index k = 0; k < red.coords.size(); ++k) row(0, k) = vel.direction.basis()(i, red.coords[k]);
+    dirs = ref::vstack(dirs, row);
+  }
+  RC_ASSERT(ref::contains(QSub::span(dirs), d));
+  RC_ASSERT(static_cast<Index>(red.g.cols()) == r.solution_rank);
+}

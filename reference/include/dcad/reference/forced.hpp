@@ -217,4 +217,82 @@ AffineSubspace<T> forced_velocities(const ForcedSystem<T>& f, const ForcedResult
   return out;
 }
 
+/// The motion on M_c(t) as linear maps: x = X0 u + Bᵀ y (B the canonical basis of T M_c, u = (1, σ, …,
+/// σ^{(orders−1)})) and ẋ = V_y y + V_u u_ext (u_ext one order more), ẏ = A_y y + A_u u_ext.
+/// V comes from the λ-system solved by exact normal equations: where it is solvable (every x ∈ M_c
+/// with sources that meet the conditions, CEF Thm 5.4) that is an exact solution, and it is linear,
+/// so columns solvable only together (sources tied by a condition) still add up to one.
+template <class T>
+struct ForcedMotion {
+  Index orders = 1;
+  Matrix<T> basis, x0, vy, vu, ay, au;
+  Matrix<T> gauge;  ///< columns: the free directions of ẋ (dim = solution rank)
+};
+
+template <class T>
+ForcedMotion<T> forced_motion(const ForcedSystem<T>& f, const ForcedResult<T>& r) {
+  require(r.consistent, "forced_motion", "a consistent system", "M_c empty");
+  const Index n = f.s.d.n, m = f.sources, wu = 1 + m * r.orders, wx = wu + m;
+  ForcedMotion<T> fm;
+  fm.orders = r.orders;
+  const Matrix<T> ex = r.equations.block(0, r.equations.rows(), 0, n), eu = r.equations.block(0, r.equations.rows(), n, n + wu);
+  fm.basis = Subspace<T>::solutions(ex).basis();
+  solve_particular(ex, -eu, fm.x0);  // independent rows: solvable column by column
+  const LambdaSystem<T> ls = lambda_system(f, r.equations, r.orders);
+  const Matrix<T> rx = ls.rhs.block(0, ls.rhs.rows(), 0, n), ru = ls.rhs.block(0, ls.rhs.rows(), n, n + wx);
+  Matrix<T> x0e(n, wx);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < wu; ++j) x0e(i, j) = fm.x0(i, j);
+  const Matrix<T> rhs = hstack(rx * fm.basis.transpose(), rx * x0e + ru);
+  Matrix<T> lam;
+  solve_particular(ls.lhs.transpose() * ls.lhs, ls.lhs.transpose() * rhs, lam);
+  const Matrix<T>& g = f.s.d.d.basis();
+  const Matrix<T> gvt = g.block(0, g.rows(), 0, n).transpose();
+  Matrix<T> v = gvt * lam;  // ẋ = G_vᵀ λ + Z σ
+  const Index dm = fm.basis.rows();
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < m; ++j) v(i, dm + 1 + j) += f.shift(i, j);
+  fm.vy = v.block(0, n, 0, dm);
+  fm.vu = v.block(0, n, dm, dm + wx);
+  // ẏ = P (ẋ − X0 u̇), P = (B Bᵀ)⁻¹ B, u̇ = u's jets one order up
+  const Matrix<T> p = inverse(fm.basis * fm.basis.transpose()) * fm.basis;
+  Matrix<T> x0dot(n, wx);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 1; j < wu; ++j) x0dot(i, j + m) = fm.x0(i, j);
+  fm.ay = p * fm.vy;
+  fm.au = p * (fm.vu - x0dot);
+  fm.gauge = gvt * nullspace(ls.lhs).transpose();
+  return fm;
+}
+
+/// ż = F z + f + S u_src(t) + G λ in the coordinates z = the pivot variables of T M_c's canonical
+/// basis [CEF (5.12) with sources]; u_src = (σ, σ', …, σ^{(orders)}).
+template <class T>
+struct ForcedReducedEquations {
+  std::vector<Index> coords;
+  Matrix<T> f_matrix, s, g;
+  std::vector<T> f;
+};
+
+template <class T>
+ForcedReducedEquations<T> forced_reduced_equations(const ForcedMotion<T>& fm, Index m) {
+  ForcedReducedEquations<T> out;
+  out.coords = rref(fm.basis).pivots;
+  const Index dm = out.coords.size(), wx = fm.au.cols();
+  // z = x[piv] = (X0 u)[piv] + y; ż = A_y (z − (X0 u)[piv]) + A_u u_ext + (X0 u̇)[piv]
+  Matrix<T> cu = fm.au;
+  for (Index i = 0; i < dm; ++i)
+    for (Index j = 0; j < fm.x0.cols(); ++j) {
+      for (Index k = 0; k < dm; ++k) cu(i, j) -= fm.ay(i, k) * fm.x0(out.coords[k], j);
+      if (j >= 1) cu(i, j + m) += fm.x0(out.coords[i], j);
+    }
+  out.f_matrix = fm.ay;
+  out.f = cu.col(0);
+  out.s = cu.block(0, dm, 1, wx);
+  out.g = Matrix<T>(dm, fm.gauge.cols());
+  for (Index i = 0; i < dm; ++i)
+    for (Index j = 0; j < fm.gauge.cols(); ++j) out.g(i, j) = fm.gauge(out.coords[i], j);
+  return out;
+}
+
 }  // namespace dcad::reference
