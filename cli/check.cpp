@@ -194,6 +194,17 @@ void compare_reduced(Checker& k, const SolveReport& truth, const json& red) {
   };
   if (f_found) same_modulo("reduced.F", f_ref, *f_found, exact_all(nf));
   if (v_found) same_modulo("reduced.f", fv_ref, *v_found, exact_all(nv));
+  if (!truth.extra_names.empty()) {  // the forced route: the sources' terms S over the jet columns
+    const json& src = red.value("sources", json());
+    if (!src.is_object() || src.value("columns", json()) != json(truth.extra_names)) {
+      k.out.disagreements.push_back("reduced.sources: expected columns " + json(truth.extra_names).dump() + " and S, found " +
+                                    (src.is_object() ? src.value("columns", json()).dump() : std::string("none")));
+    } else {
+      std::vector<std::vector<Number>> ns;
+      const auto s_found = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, truth.extra_names.size(), ns);
+      if (s_found) same_modulo("reduced.sources.S", exact_matrix(truth.extra_terms, truth.extra_names.size()), *s_found, exact_all(ns));
+    }
+  }
   if (!red.contains("G")) {
     if (g) k.out.not_compared.push_back("reduced.G (absent: the result does not say which directions are free)");
     return;
@@ -303,12 +314,21 @@ CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_
   // netlists: the reference's structured circuit route (exact), or above kDenseBranches with
   // L, C > 0 the graph route (combinatorial, decides nothing)
   if ((deck && deck->forced) || (!deck && c.has_pontryagin && c.pontryagin.has_forces)) {  // the forced route's exact tower
-    const json want = to_json(deck ? solve_forced(*deck, "reference") : solve_forced_case(c, "reference"), c);
+    const json want = to_json(deck ? solve_forced(*deck, "reference") : solve_forced_case(c, "reference"), c);  // (computed twice: cheap)
+    const ForcedReport fr = deck ? solve_forced(*deck, "reference") : solve_forced_case(c, "reference");
     Checker k{result_file, {}};
     for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
     if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
-    for (const char* key : {"final_constraints", "reduced"})
-      if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for circuits with resistors, sources or couplings)");
+    if (r.contains("final_constraints"))
+      k.out.not_compared.push_back("final_constraints (not yet for systems with forces or sources)");
+    if (r.contains("reduced") && fr.report.has_reduced) {
+      const json coords = r["reduced"].value("coordinates", json());
+      if (coords != want["reduced"]["coordinates"])
+        k.out.not_compared.push_back("reduced (in coordinates other than the reference's " + want["reduced"]["coordinates"].dump() +
+                                     ": not yet for systems with forces or sources)");
+      else
+        compare_reduced(k, fr.report, r["reduced"]);
+    }
     return k.out;
   }
   const SolveReport truth = !deck                                            ? solve_reference(c)

@@ -970,3 +970,24 @@ TEST(Forced, SeriesRlcAtEveryScale) {
     EXPECT_LT(e / mag, 1e-11) << s.l << "H, " << s.c << "F";
   }
 }
+
+// dcad check on a forced deck compares the equations of motion with their source terms: another
+// simulator's result with the source's sign flipped (the classic SPICE convention slip) is caught.
+TEST(Forced, CheckCatchesAFlippedSourceTerm) {
+  const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/rlc-series.cir";
+  const Outcome r = run("solve " + deck + " --backend reference --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  const Outcome same = run("check " + write_temp("dcad_forced_ok.json", j.dump()) + " " + deck);
+  EXPECT_EQ(same.rc, 0) << same.out;
+  EXPECT_NE(same.out.find("reduced.sources.S"), std::string::npos) << same.out;
+  auto& s = j["reduced"]["sources"]["S"];
+  for (auto& row : s)
+    for (auto& x : row) {
+      const std::string t = x.get<std::string>();
+      x = t == "0" ? t : t[0] == '-' ? t.substr(1) : "-" + t;
+    }
+  const Outcome flipped = run("check " + write_temp("dcad_forced_bad.json", j.dump()) + " " + deck);
+  EXPECT_EQ(flipped.rc, 3) << flipped.out;
+  EXPECT_NE(flipped.out.find("reduced.sources.S: differs"), std::string::npos) << flipped.out;
+}
