@@ -1,5 +1,6 @@
 #include "dcad/fast/forced.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace dcad::fast {
@@ -33,10 +34,22 @@ Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, doubl
   const MatrixXd coef = cand.leftCols(n) * ex.transpose();
   const MatrixXd res = cand - coef * eq;
   const Svd sv = full_svd(res.leftCols(n));
-  RankDecision d = decide_rank(res.leftCols(n), sv.sigma, scale, opt);
+  // How many rows are new: on the projected residual (whose cancelled digits, graded up by the
+  // equilibration cross-check of decide_rank, can make a clear gap look uncertain) and on
+  // [old; candidates] minus the old rows (no cancellation, but computed rows near the old span).
+  // Both routes are decided; a verdict that either one certifies and both agree on is certain.
+  RankDecision d = decide_rank(vcat(ex, cand.leftCols(n)), std::max(scale, 1.0), opt);
+  d.rank -= static_cast<int>(eq.rows());
+  const RankDecision dr = decide_rank(res.leftCols(n), sv.sigma, scale, opt);
+  if (dr.rank == d.rank && (d.certain || dr.certain)) {
+    d = dr;
+    d.certain = true;
+  } else if (dr.rank != d.rank) {
+    d.certain = false;
+  }
   const int room = n - static_cast<int>(eq.rows());
-  if (d.rank > room) {
-    d.rank = room;
+  if (d.rank < 0 || d.rank > room) {
+    d.rank = std::clamp(d.rank, 0, room);
     d.certain = false;
   }
   r.decisions.push_back(d);
