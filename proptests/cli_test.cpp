@@ -991,3 +991,21 @@ TEST(Forced, CheckCatchesAFlippedSourceTerm) {
   EXPECT_EQ(flipped.rc, 3) << flipped.out;
   EXPECT_NE(flipped.out.find("reduced.sources.S: differs"), std::string::npos) << flipped.out;
 }
+
+// The exact flow does not depend on the output step, across PULSE corners and period boundaries.
+// Regression: k·PER computed in double fell just short of the boundary, the substep took the
+// waveform's previous piece, and one ramp per period was lost (5e-6 A on a 1 mA pulse, found by
+// comparing steps 1 µs and 100 ns on a current source feeding an LI cutset).
+TEST(Forced, StepIndependentAcrossPulseCorners) {
+  const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/li-cutset-isource.cir";
+  const auto coarse = simulate_rows(deck, "--tstop 2.5e-3 --step 1e-6"), fine = simulate_rows(deck, "--tstop 2.5e-3 --step 1e-7");
+  ASSERT_EQ(coarse.size(), 2501u);
+  ASSERT_EQ(fine.size(), 25001u);
+  double e = 0, mag = 0;
+  for (std::size_t k = 0; k < coarse.size(); ++k)
+    for (const char* v : {"v_L1", "v_L2", "q_C1"}) {
+      e = std::max(e, std::abs(coarse[k].at(v) - fine[10 * k].at(v)));
+      mag = std::max(mag, std::abs(coarse[k].at(v)));
+    }
+  EXPECT_LT(e / mag, 1e-10);
+}
