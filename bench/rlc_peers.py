@@ -15,16 +15,8 @@ import random
 import subprocess
 import sys
 import tempfile
-import time
 
-
-def best_of(n, fn):
-    best, out = float("inf"), None
-    for _ in range(n):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
+from trajectory import best_of  # bench/ is on the path when run as a script
 
 
 def dcad_run(dcad, deck, tstop, step, var, tmp):

@@ -331,12 +331,19 @@ SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const s
     flow.advance();
     progress.at(k);
   }
-  for (ref::Index i = 0; i < n; ++i) {
+  return summarize(sum.rows, err, mag, c.variables);
+}
+
+SimulateSummary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
+                          const std::vector<std::string>& names) {
+  SimulateSummary sum;
+  sum.rows = rows;
+  for (std::size_t i = 0; i < err.size(); ++i) {
     if (mag[i] == 0) continue;
     const double e = static_cast<double>(err[i] / mag[i]);
     if (e >= sum.error_estimate) {
       sum.error_estimate = e;
-      sum.worst_variable = c.variables[i];
+      sum.worst_variable = names[i];
     }
   }
   return sum;

@@ -30,6 +30,11 @@ struct SimulateSummary {
 SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
                          const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 
+/// The summary of a run: rows, and the worst of err[i]/mag[i] (the long-double shadow's difference
+/// relative to each variable's largest magnitude) with the variable's name.
+SimulateSummary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
+                          const std::vector<std::string>& names);
+
 /// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
 constexpr std::size_t kSimulateBranches = 400;
 

@@ -379,17 +379,7 @@ SimulateSummary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, c
       if (stop >= to) break;
     }
   }
-  SimulateSummary sum;
-  sum.rows = steps + 1;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (mag[i] == 0) continue;
-    const double e = static_cast<double>(err[i] / mag[i]);
-    if (e >= sum.error_estimate) {
-      sum.error_estimate = e;
-      sum.worst_variable = c.variables[i];
-    }
-  }
-  return sum;
+  return summarize(steps + 1, err, mag, c.variables);
 }
 
 SimulateSummary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,

@@ -68,6 +68,19 @@ std::string deck(const ref::RlcCircuit<Q>& c) {
   return out;
 }
 
+/// A point x of M_c(t) for source jets u (RC_PRE: u meets the source conditions) and u itself.
+std::vector<Q> point_of_mc(const ref::ForcedResult<Q>& r, Index n, const std::vector<Q>& u) {
+  for (Index i = 0; i < r.conditions.rows(); ++i) {  // random jets meet the conditions rarely: keep those that do
+    Q s(0);
+    for (Index j = 0; j < r.conditions.cols(); ++j) s += r.conditions(i, j) * u[j];
+    RC_PRE(s == 0);
+  }
+  const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
+  std::vector<Q> rhs = ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
+  for (Q& x : rhs) x = -x;
+  return some_point(ref::solve(ex, rhs));
+}
+
 fast::ForcedSystem to_fast(const ref::ForcedSystem<Q>& f) {
   fast::ForcedSystem g;
   g.s.d.n = static_cast<int>(f.s.d.n);
@@ -223,15 +236,7 @@ RC_GTEST_PROP(ImplicitLagrangian, DcSourcesObeyTheCircuitLaws, ()) {
   for (Index j = 0; j < m; ++j) u.push_back(Q(*rc::gen::inRange(-3, 4)));
   for (Index k = 1; k <= r.orders; ++k)
     for (Index j = 0; j < m; ++j) u.push_back(Q(0));
-  for (Index i = 0; i < r.conditions.rows(); ++i) {  // sources that meet the conditions only
-    Q s(0);
-    for (Index j = 0; j < r.conditions.cols(); ++j) s += r.conditions(i, j) * u[j];
-    RC_PRE(s == 0);
-  }
-  const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
-  std::vector<Q> rhs = ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
-  for (Q& x : rhs) x = -x;
-  const std::vector<Q> x = some_point(ref::solve(ex, rhs));
+  const std::vector<Q> x = point_of_mc(r, n, u);
   const ref::AffineSubspace<Q> vel = ref::forced_velocities(f, r, x, u);
   RC_ASSERT(!vel.empty);
   const std::vector<Q> xd = some_point(vel);
@@ -307,15 +312,7 @@ RC_GTEST_PROP(ForcedTower, EquationsOfMotionAreThePointwiseVelocities, ()) {
   std::vector<Q> u{Q(1)};
   for (Index k = 0; k <= r.orders; ++k)
     for (Index j = 0; j < m; ++j) u.push_back(Q(*rc::gen::inRange(-3, 4)));
-  for (Index i = 0; i < r.conditions.rows(); ++i) {  // random jets meet the conditions rarely: keep those that do
-    Q s(0);
-    for (Index j = 0; j < r.conditions.cols(); ++j) s += r.conditions(i, j) * u[j];
-    RC_PRE(s == 0);
-  }
-  const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
-  std::vector<Q> rhs = ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
-  for (Q& x : rhs) x = -x;
-  const std::vector<Q> x = some_point(ref::solve(ex, rhs));
+  const std::vector<Q> x = point_of_mc(r, n, u);
   const ref::AffineSubspace<Q> vel = ref::forced_velocities(f, r, x, u);
   const ref::ForcedReducedEquations<Q> red = ref::forced_reduced_equations(ref::forced_motion(f, r), m);
   RC_TAG(red.g.cols() ? "gauge freedom" : "unique");

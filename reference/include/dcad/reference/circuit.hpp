@@ -25,16 +25,21 @@ struct Circuit {
   std::vector<Branch<T>> branches;
 };
 
-/// Reduced incidence matrix: row = non-ground node, +1 where a branch leaves it, −1 where it enters.
-/// KCL: K v = 0 (currents leaving each node sum to zero).
-template <class T>
-Matrix<T> kcl_matrix(const Circuit<T>& c) {
-  Matrix<T> k(c.nodes, c.branches.size());
-  for (Index b = 0; b < c.branches.size(); ++b) {
-    if (c.branches[b].from >= 0) k(c.branches[b].from, b) += T(1);
-    if (c.branches[b].to >= 0) k(c.branches[b].to, b) -= T(1);
+/// Reduced incidence matrix of any branches with `from`/`to` node indices (−1 = ground): row = non-ground
+/// node, +1 where a branch leaves it, −1 where it enters.  KCL: K v = 0.
+template <class T, class Branches>
+Matrix<T> incidence_matrix(std::size_t nodes, const Branches& branches) {
+  Matrix<T> k(nodes, branches.size());
+  for (Index b = 0; b < branches.size(); ++b) {
+    if (branches[b].from >= 0) k(branches[b].from, b) += T(1);
+    if (branches[b].to >= 0) k(branches[b].to, b) -= T(1);
   }
   return k;
+}
+
+template <class T>
+Matrix<T> kcl_matrix(const Circuit<T>& c) {
+  return incidence_matrix<T>(c.nodes, c.branches);
 }
 
 /// The `pontryagin` data of the circuit: Δ = ker K, A = Φ, C = −Ψ.  [CEF §6, ERRATA]

@@ -11,6 +11,7 @@
 // source condition (current sources forming a cutset must sum to zero).
 #pragma once
 
+#include "dcad/reference/circuit.hpp"
 #include "dcad/reference/forced.hpp"
 
 namespace dcad::reference {
@@ -42,12 +43,7 @@ struct RlcCircuit {
 
 template <class T>
 Matrix<T> rlc_kcl(const RlcCircuit<T>& c) {
-  Matrix<T> k(c.nodes, c.branches.size());
-  for (Index b = 0; b < c.branches.size(); ++b) {
-    if (c.branches[b].from >= 0) k(c.branches[b].from, b) += T(1);
-    if (c.branches[b].to >= 0) k(c.branches[b].to, b) -= T(1);
-  }
-  return k;
+  return incidence_matrix<T>(c.nodes, c.branches);
 }
 
 /// Φ: inductances on the diagonal, mutual inductances off it.
