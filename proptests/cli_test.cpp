@@ -879,11 +879,12 @@ TEST(Forced, InconsistentSourcesAreNamed) {
 }
 
 // ngspice on the same deck: its trapezoidal answer agrees with dcad's exact flow to its own
-// tolerance (reltol 1e-6, tmax 100 ns), on the series RLC and on the CV loop driven by a sine.
+// tolerance (reltol 1e-6, tmax 100 ns), on the series RLC, the CV loop driven by a sine and the LI
+// cutset fed by a pulsed current source.
 TEST(Forced, AgreesWithNgspice) {
   if (std::system("command -v ngspice > /dev/null 2>&1") != 0) GTEST_SKIP() << "ngspice not installed";
   for (const auto& [deck, probe, var] : std::vector<std::tuple<std::string, std::string, std::string>>{
-           {"rlc-series.cir", "i(l1)", "v_L1"}, {"cv-loop-sin.cir", "i(l1)", "v_L1"}}) {
+           {"rlc-series.cir", "i(l1)", "v_L1"}, {"cv-loop-sin.cir", "i(l1)", "v_L1"}, {"li-cutset-isource.cir", "i(l1)", "v_L1"}}) {
     const fs::path dir = fs::temp_directory_path() / ("dcad_ng_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ifstream src(std::string(DCAD_SOURCE_DIR) + "/cases/" + deck);
