@@ -53,6 +53,7 @@ Mat<double> to_d(const QM& m) {
 /// The exact model: x = X0 u + Bᵀ y on M_c(t), ẏ = A_y y + A_u u_ext, ẋ = V_y y + V_u u_ext.
 struct ForcedModel {
   std::size_t n = 0, m = 0, dm = 0;
+  std::size_t free = 0;  ///< solution rank: free multipliers (the flow takes the particular solution)
   long orders = 1;  ///< u has σ⁽⁰⁾ … σ^{(orders−1)}; u_ext one more
   QM eq, basis, x0, ay, au, vy, vu;
   ref::ForcedSystem<Q> f;
@@ -81,6 +82,7 @@ ForcedModel forced_model(const ForcedScene& deck) {
   fm.vu = mo.vu;
   fm.ay = mo.ay;
   fm.au = mo.au;
+  fm.free = ref::rank(mo.gauge.transpose());
   return fm;
 }
 
@@ -205,6 +207,8 @@ ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, st
 SimulateSummary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
   const ForcedModel fm = forced_model(deck);
+  if (fm.free > 0)
+    log << "note: solutions are not unique (" << fm.free << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";
   const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
   // initial point: the file's values, M_c(0), then 0 where M_c(0) allows
   const Vec<double> u0 = jets(deck, 0.0, fm.orders);
