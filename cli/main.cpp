@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 #include <iostream>
 
 #ifndef DCAD_VERSION
@@ -55,8 +56,9 @@ int main(int argc, char** argv) {
       "simulate", "Integrate the equations of motion on M_c from the file's initial condition (IC= in netlists); "
                   "exact flow of the linear reduced system (matrix exponential). CSV: t, then every variable.");
   sim->add_option("FILE", sim_file, "LC netlist (.cir, .sp, .net) or `pontryagin` case (.json)")->required();
-  sim->add_option("--tstop", sim_opt.tstop, "final time")->required();
-  sim->add_option("--step", sim_opt.step, "output step")->required();
+  std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
+  sim->add_option("--tstop", sim_tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
+  sim->add_option("--step", sim_step, "output step (seconds; SPICE suffixes)")->required();
   sim->add_option("--backend", sim_opt.backend, "certified|reference|fast (the model is built exactly in this version)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
@@ -179,6 +181,14 @@ int main(int argc, char** argv) {
       return 3;
     }
     if (sim->parsed()) {
+      for (auto [flag, text, out] : {std::tuple{"--tstop", &sim_tstop, &sim_opt.tstop}, std::tuple{"--step", &sim_step, &sim_opt.step}}) {
+        try {
+          *out = static_cast<double>(dcad::io::parse_spice_value(*text));
+        } catch (const std::invalid_argument&) {
+          std::cerr << "dcad simulate: " << flag << ": expected a time in seconds such as 1e-3 or 20n, found \"" << *text << "\"\n";
+          return 2;
+        }
+      }
       const bool netlist = dcad::io::is_netlist_file(sim_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(sim_file) : dcad::io::Netlist();
       const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, false) : dcad::io::read_case(sim_file);

@@ -249,11 +249,15 @@ std::vector<std::optional<io::Rational>> netlist_initial(const io::Netlist& n) {
   return x;
 }
 
-SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
-                         const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+void require_times(const SimulateOptions& opt) {
   if (!(opt.step > 0) || !(opt.tstop >= 0) || !std::isfinite(opt.tstop) || opt.tstop / opt.step > 1e9)
     throw io::InputError("simulate: expected 0 < --step and 0 <= --tstop with at most 1e9 steps, found step " +
                          float_text(opt.step) + ", tstop " + float_text(opt.tstop));
+}
+
+SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
+                         const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+  require_times(opt);
   if (c.has_pontryagin && c.pontryagin.has_forces)
     throw std::invalid_argument("a case with `forces` is simulated by simulate_forced_case, not this function");
   if (!c.has_pontryagin && !deck)

@@ -22,6 +22,9 @@ struct SimulateSummary {
   std::string worst_variable;
 };
 
+/// io::InputError unless 0 < step, 0 ≤ tstop < ∞ and tstop/step ≤ 1e9 (every simulate route).
+void require_times(const SimulateOptions& opt);
+
 /// Writes the CSV of the CONTRACT (header t, then every variable; full precision) to `out`, one
 /// row at a time as it is computed (memory independent of the number of rows).
 /// Throws io::InputError for an initial condition off M_c (naming the violated constraint).

@@ -206,6 +206,7 @@ ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, st
 
 SimulateSummary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  require_times(opt);
   const ForcedModel fm = forced_model(deck);
   if (fm.free > 0)
     log << "note: solutions are not unique (" << fm.free << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";

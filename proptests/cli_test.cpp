@@ -844,6 +844,24 @@ TEST(Forced, SeriesRlcMatchesClosedForm) {
   EXPECT_LT(case_value(err, "holds to "), 1e-12) << err;
 }
 
+// Times as SPICE users write them (1m, 1u) give the same rows as 1e-3, 1e-6; a negative --tstop is
+// bad input on every simulate route (the forced route printed "-9999999999 rows" with exit 0).
+TEST(Simulate, TimesTakeSpiceSuffixesAndAreChecked) {
+  const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/rlc-series.cir";
+  const Outcome plain = run("simulate " + deck + " --tstop 1e-4 --step 1e-6"), spice = run("simulate " + deck + " --tstop 0.1m --step 1u");
+  ASSERT_EQ(plain.rc, 0) << plain.err;
+  EXPECT_EQ(spice.rc, 0) << spice.err;
+  EXPECT_EQ(spice.out, plain.out);
+  for (const std::string& file : {deck, std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir"}) {
+    const Outcome neg = run("simulate " + file + " --tstop -1 --step 1e-6");
+    EXPECT_EQ(neg.rc, 1) << file;
+    EXPECT_NE(neg.err.find("0 <= --tstop"), std::string::npos) << neg.err;
+  }
+  const Outcome bad = run("simulate " + deck + " --tstop 1e-3 --step fast");
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("--step: expected a time in seconds"), std::string::npos) << bad.err;
+}
+
 // RL step response: i(t) = V/R (1 − e^{−Rt/L}) (cases/rl-step.cir).
 TEST(Forced, RlStepMatchesClosedForm) {
   const auto rows = simulate_rows(std::string(DCAD_SOURCE_DIR) + "/cases/rl-step.cir", "--tstop 5e-4 --step 1e-6");
