@@ -186,21 +186,26 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {  // Leve
 
 }  // namespace
 
+std::string nearest_name(const std::string& key, const std::vector<std::string>& allowed) {
+  std::string best;
+  std::size_t best_d = std::string::npos;
+  for (const std::string& a : allowed) {
+    const std::size_t d = edit_distance(key, a);
+    if (d < best_d) {
+      best_d = d;
+      best = a;
+    }
+  }
+  return best_d <= std::max<std::size_t>(2, best.size() / 3) ? best : "";
+}
+
 void require_known_keys(const json& j, const Where& at, const std::vector<std::string>& allowed) {
   for (const auto& [key, value] : j.items()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::string best, list;
-    std::size_t best_d = std::string::npos;
-    for (const std::string& a : allowed) {
-      list += (list.empty() ? "" : ", ") + a;
-      const std::size_t d = edit_distance(key, a);
-      if (d < best_d) {
-        best_d = d;
-        best = a;
-      }
-    }
-    const bool close = best_d <= std::max<std::size_t>(2, best.size() / 3);
-    (at / key).fail("one of the keys " + list, "unknown key \"" + key + "\"" + (close ? " (did you mean \"" + best + "\"?)" : ""));
+    std::string list;
+    for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    const std::string best = nearest_name(key, allowed);
+    (at / key).fail("one of the keys " + list, "unknown key \"" + key + "\"" + (!best.empty() ? " (did you mean \"" + best + "\"?)" : ""));
   }
 }
 
@@ -341,7 +346,7 @@ CaseFile read_case(const std::string& file) {
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
   if (j.contains("lagrangian") || j.contains("parameters"))
     (root / (j.contains("lagrangian") ? "lagrangian" : "parameters"))
-        .fail("a linear case (dirac, pontryagin or constrained); the expression form of the CONTRACT is not supported yet",
+        .fail("a linear case (dirac, pontryagin or constrained) here; the expression form is taken by solve, check and simulate",
               "the expression form");
   require_known_keys(j, root, {"dcad", "name", "description", "variables", "dirac", "energy", "pontryagin", "constrained", "initial",
                                "coordinates", "expect", "known_failures"});

@@ -85,6 +85,10 @@ struct Where {
   [[noreturn]] void fail(const std::string& expected, const std::string& found) const;
 };
 
+/// The allowed name closest to `key` (edit distance, case-insensitive) if it is close enough to be a
+/// likely misspelling, else "".
+std::string nearest_name(const std::string& key, const std::vector<std::string>& allowed);
+
 /// Bad input unless every key of the object `j` is one of `allowed` (a misspelt key would otherwise
 /// be ignored and another system solved); the message suggests the nearest allowed key.
 void require_known_keys(const nlohmann::json& j, const Where& at, const std::vector<std::string>& allowed);

@@ -2,6 +2,7 @@
 
 #include "circuit_report.hpp"
 #include "netlist.hpp"
+#include "solve_file.hpp"
 #include "solve.hpp"
 
 #include <algorithm>
@@ -40,15 +41,7 @@ std::vector<fs::path> corpus() {
 }
 
 /// The reference result JSON for a case file or netlist (what `dcad solve --backend reference --json` prints).
-json reference_result(const fs::path& file) {
-  const bool netlist = io::is_netlist_file(file.string());
-  const io::Netlist deck = netlist ? io::read_netlist(file.string()) : io::Netlist();
-  const io::CaseFile c = netlist ? io::netlist_case(deck) : io::read_case(file.string());
-  const SolveReport r = solve_reference(c);
-  json j = to_json(r, c);
-  if (netlist) j["circuit"] = circuit_json(deck, r);
-  return j;
-}
+json reference_result(const fs::path& file) { return solve_file(file.string(), "reference").json; }
 
 std::string summary(const fs::path& file) {
   if (io::is_netlist_file(file.string())) {
@@ -60,7 +53,11 @@ std::string summary(const fs::path& file) {
   const json j = json::parse(slurp(file), nullptr, false);
   if (j.is_discarded()) return "(not JSON)";
   const std::string d = j.value("description", "");
-  return (j.contains("pontryagin") ? "pontryagin: " : j.contains("constrained") ? "constrained: " : "dirac: ") + d.substr(0, d.find(". "));
+  return (j.contains("pontryagin")    ? "pontryagin: "
+          : j.contains("constrained") ? "constrained: "
+          : j.contains("lagrangian")  ? "lagrangian: "
+                                      : "dirac: ") +
+         d.substr(0, d.find(". "));
 }
 
 fs::path find_case(const std::string& name) {

@@ -3,6 +3,7 @@
 #include "circuit_report.hpp"
 #include "solve_circuit.hpp"
 #include "solve_forced.hpp"
+#include "solve_lagrangian.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -282,7 +283,7 @@ void compare_final_constraints(Checker& k, const json& found, const io::QMatrix&
 
 }  // namespace
 
-CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_in, const io::Netlist* deck) {
+nlohmann::json read_result(const std::string& result_file) {
   const json r = io::read_json_file(result_file);  // floats kept as their text; depth limited
   if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
   if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
@@ -295,6 +296,11 @@ CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_
   if (!r["consistent"].is_boolean()) bad(result_file, "/consistent", "true or false", shown(r["consistent"]));
   if (!r["solution_rank"].is_number_integer() && !r["solution_rank"].is_null())
     bad(result_file, "/solution_rank", "an integer (null if inconsistent)", shown(r["solution_rank"]));
+  return r;
+}
+
+CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_in, const io::Netlist* deck) {
+  const json r = read_result(result_file);
   if (r.contains("name") && r["name"] != c_in.name)
     bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")", shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(c_in.variables))
@@ -373,6 +379,118 @@ CheckOutcome check_result(const std::string& result_file, const io::CaseFile& c_
     } else {
       compare_final_constraints(k, r["final_constraints"], truth.final_basis, truth.final_point, truth.dims.back());
     }
+  }
+  return k.out;
+}
+
+namespace {
+
+/// found − want ∈ span(gauge): exactly if every number is exact, else the residual of the least-
+/// squares projection (Gram–Schmidt in double) within 1e-9 × N × the largest magnitude.
+bool equal_modulo(const std::vector<Number>& found, const std::vector<std::string>& want, const std::vector<std::vector<std::string>>& gauge,
+                  bool exact) {
+  const std::size_t n = want.size();
+  if (exact) {
+    io::QMatrix g(gauge.size() + 1, n);
+    for (std::size_t i = 0; i < gauge.size(); ++i)
+      for (std::size_t j = 0; j < n; ++j) g(i, j) = reference::parse_rational(gauge[i][j]);
+    for (std::size_t j = 0; j < n; ++j) g(gauge.size(), j) = found[j].q - reference::parse_rational(want[j]);
+    return reference::rank(g) == reference::rank(g.block(0, gauge.size(), 0, n));
+  }
+  std::vector<double> d(n);
+  double scale = 1;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double w = std::stod(want[j]);
+    d[j] = found[j].d - w;
+    scale = std::max({scale, std::abs(w), std::abs(found[j].d)});
+  }
+  std::vector<std::vector<double>> basis;
+  for (const auto& gv : gauge) {
+    std::vector<double> b(n);
+    for (std::size_t j = 0; j < n; ++j) b[j] = std::stod(gv[j]);
+    for (int pass = 0; pass < 2; ++pass)
+      for (const auto& e : basis) {
+        double p = 0;
+        for (std::size_t j = 0; j < n; ++j) p += b[j] * e[j];
+        for (std::size_t j = 0; j < n; ++j) b[j] -= p * e[j];
+      }
+    double nb = 0;
+    for (double x : b) nb += x * x;
+    if (nb <= 1e-24) continue;
+    for (double& x : b) x /= std::sqrt(nb);
+    basis.push_back(b);
+  }
+  for (const auto& e : basis) {
+    double p = 0;
+    for (std::size_t j = 0; j < n; ++j) p += d[j] * e[j];
+    for (std::size_t j = 0; j < n; ++j) d[j] -= p * e[j];
+  }
+  double r = 0;
+  for (double x : d) r = std::max(r, std::abs(x));
+  return r <= 1e-9 * static_cast<double>(n) * scale;
+}
+
+}  // namespace
+
+CheckOutcome check_lagrangian_result(const std::string& result_file, const io::LagrangianCase& c) {
+  const json r = read_result(result_file);
+  const std::vector<std::string> st = c.system.state_names();
+  if (r.contains("name") && r["name"] != c.name)
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(st))
+    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
+  const json want = to_json(solve_lagrangian(c, "certified"), c);
+  Checker k{result_file, {}};
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (!r.contains("point") || !r.contains("velocity")) {
+    if (r.contains("velocity") || r.contains("point")) k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
+    return k.out;
+  }
+  // the velocity at the result's own point: the reference there (exact if the point is), modulo the gauge
+  const json& pt = r["point"];
+  const json& vel = r["velocity"];
+  if (!pt.is_object()) bad(result_file, "/point", "an object {variable: value}", shown(pt));
+  if (!vel.is_object()) bad(result_file, "/velocity", "an object {variable: d/dt of it}", shown(vel));
+  io::LagrangianCase at = c;
+  at.has_initial = true;
+  at.initial.assign(at.initial.size(), std::nullopt);
+  at.initial_p.assign(at.initial_p.size(), std::nullopt);
+  bool exact = true;
+  const std::size_t n = c.system.n;
+  std::vector<std::string> names = c.system.variable_names();  // q, v, t
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i == c.system.t() && !c.system.has_time) continue;
+    if (!pt.contains(names[i])) bad(result_file, "/point/" + names[i], "a value for every coordinate and velocity (and the time)", "nothing");
+    const Number x = number(result_file, "/point/" + names[i], pt[names[i]]);
+    exact = exact && x.exact;
+    at.initial[i] = exact_value(x);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (pt.contains("p_" + c.system.names[i])) at.initial_p[i] = exact_value(number(result_file, "/point/p_" + c.system.names[i], pt["p_" + c.system.names[i]]));
+  std::vector<Number> found;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    if (!vel.contains(st[i])) bad(result_file, "/velocity/" + st[i], "d/dt of every variable", "nothing");
+    found.push_back(number(result_file, "/velocity/" + st[i], vel[st[i]]));
+    exact = exact && found.back().exact;
+  }
+  k.out.compared.push_back("velocity");
+  LagrangianReport truth;
+  try {
+    truth = solve_lagrangian(at, exact ? "reference" : "fast");
+  } catch (const io::InputError& e) {
+    k.out.disagreements.push_back(std::string("point: expected a point of M_c, found one where ") + e.what());
+    return k.out;
+  }
+  if (!truth.regular || !truth.consistent) {
+    k.out.disagreements.push_back("point: expected a regular point of M_c, found one where " + truth.why);
+    return k.out;
+  }
+  if (!equal_modulo(found, truth.velocity, truth.gauge, exact)) {
+    std::string w;
+    for (std::size_t i = 0; i < st.size(); ++i) w += (i ? ", " : "") + st[i] + "' = " + truth.velocity[i];
+    k.out.disagreements.push_back("velocity: expected (" + w + ")" + (truth.gauge.empty() ? "" : " modulo " + std::to_string(truth.gauge.size()) + " gauge directions") +
+                                  " at the result's point, found " + shown(vel));
   }
   return k.out;
 }

@@ -11,6 +11,7 @@
 #include "solve_forced.hpp"
 #include "simulate_forced.hpp"
 #include "solve.hpp"
+#include "solve_file.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -119,49 +120,22 @@ int main(int argc, char** argv) {
       }
     }
     if (solve->parsed()) {
-      const bool netlist = dcad::io::is_netlist_file(solve_file);
-      const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(solve_file) : dcad::io::Netlist();
-      const bool dense = !netlist || deck.circuit.branches.size() <= dcad::cli::kDenseBranches;
-      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, dense) : dcad::io::read_case(solve_file);
-      for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
-      if ((netlist && deck.forced) || (!netlist && c.has_pontryagin && c.pontryagin.has_forces)) {  // the forced route (YM §4)
-        const dcad::cli::ForcedReport fr = netlist ? dcad::cli::solve_forced(deck, solve_backend) : dcad::cli::solve_forced_case(c, solve_backend);
-        std::cout << (solve_json ? dcad::cli::to_json(fr, c).dump(2) + "\n" : dcad::cli::to_text(fr, c));
-        return 0;
-      }
-      dcad::cli::SolveReport r;
-      try {
-        if (netlist) {  // the circuit routes (CEF §6): structured exact / ball, graph route + fast
-          r = solve_backend == "fast"        ? dcad::cli::solve_circuit_fast(deck, c)
-              : solve_backend == "reference" ? dcad::cli::solve_circuit_reference(deck, c)
-                                             : dcad::cli::solve_circuit_certified(deck, c);
-        } else {
-          r = solve_backend == "reference" ? dcad::cli::solve_reference(c)
-              : solve_backend == "fast"    ? dcad::cli::solve_fast(c)
-                                           : dcad::cli::solve_certified(c);
-        }
-      } catch (const std::invalid_argument& e) {
-        std::cerr << solve_file << ": " << (c.has_pontryagin ? "/pontryagin" : c.has_constrained ? "/constrained" : c.dirac.path) << ": "
-                  << e.what() << "\n";
-        return 1;
-      }
-      if (solve_json) {
-        nlohmann::json j = dcad::cli::to_json(r, c);
-        if (netlist) j["circuit"] = dcad::cli::circuit_json(deck, r);
-        std::cout << j.dump(2) << "\n";
-      } else {
-        std::cout << dcad::cli::to_text(r, c) << (netlist ? dcad::cli::circuit_text(deck, r) : "");
-      }
+      const dcad::cli::SolvedFile sf = dcad::cli::solve_file(solve_file, solve_backend);
+      for (const std::string& w : sf.warnings) std::cerr << "warning: " << w << "\n";
+      std::cout << (solve_json ? sf.json.dump(2) + "\n" : sf.text);
     }
     if (cases->parsed()) return dcad::cli::cases_command(cases_action, cases_args, std::cout, std::cerr);
     if (check->parsed()) {
+      const bool expression = dcad::io::is_expression_file(check_file);
       const bool netlist = dcad::io::is_netlist_file(check_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(check_file) : dcad::io::Netlist();
-      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, deck.circuit.branches.size() <= dcad::cli::kDenseBranches)
-                                           : dcad::io::read_case(check_file);
+      const dcad::io::CaseFile c = expression ? dcad::io::CaseFile()
+                                   : netlist  ? dcad::io::netlist_case(deck, deck.circuit.branches.size() <= dcad::cli::kDenseBranches)
+                                              : dcad::io::read_case(check_file);
       dcad::cli::CheckOutcome o;
       try {
-        o = dcad::cli::check_result(check_result_file, c, netlist ? &deck : nullptr);
+        o = expression ? dcad::cli::check_lagrangian_result(check_result_file, dcad::io::read_lagrangian_case(check_file))
+                       : dcad::cli::check_result(check_result_file, c, netlist ? &deck : nullptr);
       } catch (const dcad::io::InputError&) {
         throw;
       } catch (const std::invalid_argument& e) {

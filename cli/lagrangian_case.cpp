@@ -1,0 +1,143 @@
+#include "lagrangian_case.hpp"
+
+#include "expression_parse.hpp"
+
+#include <algorithm>
+#include <set>
+
+namespace dcad::io {
+
+using nlohmann::json;
+namespace ex = reference::expr;
+
+bool is_expression_case(const json& j) { return j.is_object() && (j.contains("lagrangian") || j.contains("parameters")); }
+
+bool is_expression_file(const std::string& file) {
+  if (file.size() < 5 || file.compare(file.size() - 5, 5, ".json") != 0) return false;
+  try {
+    return is_expression_case(read_json_file(file));
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+namespace {
+
+std::string read_string(const json& j, const Where& at, const std::string& what) {
+  if (!j.is_string()) at.fail(what, describe(j));
+  return j.get<std::string>();
+}
+
+/// A new name for a coordinate, parameter or the time: an identifier not taken by anything else.
+void claim(const std::string& name, const Where& at, std::set<std::string>& taken, const std::string& what) {
+  if (!is_identifier(name)) at.fail(what + " that is a name (a letter or _, then letters, digits, _)", "\"" + name + "\"");
+  const auto& f = expression_functions();
+  if (std::find(f.begin(), f.end(), name) != f.end()) at.fail(what + " that is not a function name", "\"" + name + "\"");
+  if (!taken.insert(name).second) at.fail(what + " not used for anything else", "\"" + name + "\" given twice (or a velocity/momentum name)");
+}
+
+}  // namespace
+
+LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
+  const Where root{file, ""};
+  require_known_keys(j, root, {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures"});
+  if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
+  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1)) (root / "dcad").fail("format version 1", describe(j["dcad"]));
+  if (!j.contains("lagrangian")) root.fail("the key \"lagrangian\" (the expression form)", "\"parameters\" without it");
+  LagrangianCase c;
+  c.file = file;
+  if (j.contains("name")) c.name = read_string(j["name"], root / "name", "a string");
+  if (j.contains("description")) c.description = read_string(j["description"], root / "description", "a string");
+  if (j.contains("expect")) c.expect = j["expect"];
+  const json& lag = j["lagrangian"];
+  const Where l = root / "lagrangian";
+  if (!lag.is_object()) l.fail("an object {coordinates, L, constraints, forces, time}", describe(lag));
+  require_known_keys(lag, l, {"coordinates", "L", "constraints", "forces", "time"});
+  if (!lag.contains("coordinates")) l.fail("the key \"coordinates\"", "no such key");
+  if (!lag.contains("L")) l.fail("the key \"L\" (the Lagrangian)", "no such key");
+  reference::LagrangianSystem& s = c.system;
+  std::set<std::string> taken;
+  const json& coords = lag["coordinates"];
+  if (!coords.is_array() || coords.empty()) (l / "coordinates").fail("a non-empty array of names", describe(coords));
+  if (coords.size() > 64) (l / "coordinates").fail("at most 64 coordinates", std::to_string(coords.size()));
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    const std::string name = read_string(coords[i], l / "coordinates" / i, "a coordinate name");
+    claim(name, l / "coordinates" / i, taken, "a coordinate name");
+    s.names.push_back(name);
+  }
+  s.n = s.names.size();
+  for (std::size_t i = 0; i < s.n; ++i) {
+    claim("v_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose velocity name v_" + s.names[i] + " is free");
+    claim("p_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose momentum name p_" + s.names[i] + " is free");
+  }
+  if (lag.contains("time")) {
+    s.has_time = true;
+    s.time_name = read_string(lag["time"], l / "time", "the name of the time variable");
+    claim(s.time_name, l / "time", taken, "a time name");
+  }
+  if (j.contains("parameters")) {
+    const json& p = j["parameters"];
+    if (!p.is_object()) (root / "parameters").fail("an object {name: exact value}", describe(p));
+    for (const auto& [k, v] : p.items()) {
+      claim(k, root / "parameters" / k, taken, "a parameter name");
+      c.parameters[k] = read_number(v, root / "parameters" / k);
+    }
+  }
+  std::map<std::string, std::size_t> vars;  // the arguments of L, constraints and forces: t, q, v
+  for (std::size_t i = 0; i < s.n; ++i) {
+    vars[s.names[i]] = s.q(i);
+    vars["v_" + s.names[i]] = s.v(i);
+  }
+  if (s.has_time) vars[s.time_name] = s.t();
+  const auto parse = [&](const json& e, const Where& at, const std::string& what) {
+    return parse_expression(read_string(e, at, what), vars, c.parameters, at);
+  };
+  s.lagrangian = parse(lag["L"], l / "L", "the Lagrangian as a string expression");
+  if (lag.contains("constraints")) {
+    const json& k = lag["constraints"];
+    if (!k.is_array()) (l / "constraints").fail("an array of expressions affine in the velocities", describe(k));
+    for (std::size_t a = 0; a < k.size(); ++a) s.constraints.push_back(parse(k[a], l / "constraints" / a, "a constraint as a string expression"));
+    const std::size_t bad = reference::first_non_affine_constraint(s);
+    if (bad < s.m())
+      (l / "constraints" / bad).fail("a constraint affine in the velocities, a(t, q)·v + b(t, q) (CONTRACT)",
+                                     "\"" + k[bad].get<std::string>() + "\", not affine in v");
+    if (s.m() > s.n) (l / "constraints").fail("at most as many constraints as coordinates (" + std::to_string(s.n) + ")", std::to_string(s.m()));
+  }
+  if (lag.contains("forces")) {
+    const json& f = lag["forces"];
+    if (!f.is_array() || f.size() != s.n)
+      (l / "forces").fail("an array of " + std::to_string(s.n) + " expressions (one per coordinate)", describe(f));
+    for (std::size_t i = 0; i < s.n; ++i) s.forces.push_back(parse(f[i], l / "forces" / i, "a force component as a string expression"));
+  }
+  c.initial.assign(2 * s.n + 1, std::nullopt);
+  c.initial_p.assign(s.n, std::nullopt);
+  if (j.contains("initial")) {
+    const json& in = j["initial"];
+    const Where w = root / "initial";
+    if (!in.is_object()) w.fail("an object {name: exact value} (coordinates, v_*, p_*, the time)", describe(in));
+    c.has_initial = true;
+    std::vector<std::string> known;
+    for (const auto& [k, v] : vars) known.push_back(k);
+    for (const std::string& n : s.names) known.push_back("p_" + n);
+    for (const auto& [k, v] : in.items()) {
+      const Rational value = read_number(v, w / k);
+      if (const auto it = vars.find(k); it != vars.end()) {
+        c.initial[it->second] = value;
+        continue;
+      }
+      const auto p = std::find(s.names.begin(), s.names.end(), k.size() > 2 && k.compare(0, 2, "p_") == 0 ? k.substr(2) : std::string());
+      if (p != s.names.end()) {
+        c.initial_p[static_cast<std::size_t>(p - s.names.begin())] = value;
+        continue;
+      }
+      const std::string best = nearest_name(k, known);
+      (w / k).fail("a coordinate, velocity (v_*), momentum (p_*) or time name",
+                   "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+    }
+  }
+  return c;
+}
+
+LagrangianCase read_lagrangian_case(const std::string& file) { return read_lagrangian_case(read_json_file(file), file); }
+
+}  // namespace dcad::io

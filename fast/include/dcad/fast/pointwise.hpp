@@ -1,0 +1,44 @@
+// The pointwise CAD of a Lagrangian system given by formulas, in floating point: the reference's
+// own algorithm (reference/pointwise.hpp, written once over the scalar) on jets of Tracked doubles
+// (tracked.hpp), every zero test decided relative to the magnitude the number was computed from.
+#pragma once
+
+#include "dcad/fast/tracked.hpp"
+#include "dcad/reference/pointwise.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dcad::fast {
+
+/// A zero test in double, relative to the number's own rounding-error bound e (tracked.hpp):
+/// |v| > 64e is certainly nonzero (far above anything rounding produced); |v| ≤ 8e is taken as zero
+/// (an exact zero computed with rounding lands within e; 8 covers the rounding of the bound
+/// itself), and that is certain only under the separation hypothesis of rank.hpp — exact nonzeros
+/// are not within 8e of 0 — for which the window 8e must be small against the step's data:
+/// e ≤ 2^-26 × the largest constant term of the step's linear system (half the digits kept), and
+/// the data not graded: when its nonzero constant terms span more than 1/√ε in magnitude (a
+/// pulled-back mass matrix at |q| ~ 10^4 has condition ~ 10^16) no zero is certain, as in
+/// rank.hpp's assess_input.
+/// In between (8e, 64e]: uncertain.  An uncertain decision is recorded; the result is then not
+/// certified.
+struct ToleranceDecisions {
+  double zero_factor = 8, nonzero_factor = 64, graded = 1 / 1.4901161193847656e-08;
+  bool well_scaled = true;  ///< of the current step's data
+  double scale = 0;         ///< its largest constant term
+  bool certain = true;
+  std::size_t decisions = 0;
+  std::string evidence;  ///< the first uncertain decision
+
+  void step_data(const std::vector<Tracked>& data);
+  bool zero(const Tracked& x);
+  bool zero(const reference::Jet<Tracked>& j);
+  /// The largest value among those that are certainly nonzero; values.size() if there is none.
+  std::size_t pivot(const std::vector<Tracked>& values);
+};
+
+/// reference::pointwise_cad in double (inputs rounded to nearest), its values as doubles.
+reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
+                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide);
+
+}  // namespace dcad::fast

@@ -1,0 +1,145 @@
+// The expression form (CONTRACT "Lagrangian case files with expressions") as a user runs it: the
+// papers' nonlinear scenes with every expectation of their case files (velocity, tangent equations,
+// completed point values) on every backend, bad input naming file, JSON path and column, and
+// `dcad check` catching a wrong velocity or a point off M_c.
+#include "cli_run.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace {
+
+using nlohmann::json;
+
+double number_of(const json& x) {
+  const std::string s = x.get<std::string>();
+  const auto slash = s.find('/');
+  return slash == std::string::npos ? std::stod(s) : std::stod(s.substr(0, slash)) / std::stod(s.substr(slash + 1));
+}
+
+/// got[key][name] = want[name] for every name: exactly if `exact`, else to 1e-9 relative.
+void expect_values(const json& got, const json& want, bool exact, const std::string& label) {
+  for (const auto& [name, w] : want.items()) {
+    ASSERT_TRUE(got.contains(name)) << label << " " << name;
+    if (exact) EXPECT_EQ(got[name], w) << label << " " << name;
+    else EXPECT_NEAR(number_of(got[name]), number_of(w), 1e-9 * (1 + std::abs(number_of(w)))) << label << " " << name;
+  }
+}
+
+std::string case_path(const std::string& name) { return std::string(DCAD_SOURCE_DIR) + "/cases/" + name + ".json"; }
+
+}  // namespace
+
+// YM §6 rolling disk, V §3.5, the Cartesian pendulum (index 3), the 4-port with a nonlinear capacitor.
+TEST(Expression, PapersScenesOnEveryBackend) {
+  for (const std::string name : {"rolling-disk", "vignolo-3-5", "cartesian-pendulum", "lc-4port-nonlinear"}) {
+    const json want = json::parse(slurp(case_path(name)))["expect"];
+    for (const std::string backend : {"reference", "certified", "fast"}) {
+      const Outcome r = run("solve " + case_path(name) + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << name << " " << backend << r.err;
+      const json got = json::parse(r.out);
+      const std::string label = name + " " + backend;
+      EXPECT_TRUE(got["certified"].get<bool>()) << label;
+      EXPECT_TRUE(got["regular"].get<bool>()) << label;
+      for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique"}) EXPECT_EQ(got[key], want[key]) << label << " " << key;
+      const bool exact = got["route"] == "pointwise exact";
+      EXPECT_EQ(exact, backend != "fast") << label;
+      if (want.contains("velocity")) expect_values(got["velocity"], want["velocity"], exact, label + " velocity");
+      if (want.contains("point")) expect_values(got["point"], want["point"], exact, label + " point");
+      if (want.contains("tangents") && exact)
+        for (std::size_t k = 1; k < want["tangents"].size(); ++k) EXPECT_EQ(got["tower"][k + 1]["new_constraints"], want["tangents"][k]) << label << " M_" << k + 1;
+    }
+  }
+}
+
+// The text report: M_1 as formulas (symbolic ∂L/∂v), later constraints as tangent equations.
+TEST(Expression, TextReportShowsFormulasAndTangents) {
+  const Outcome r = run("solve " + case_path("vignolo-3-5"));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const char* s : {"p_x = v_x + w", "v_z - w = 0", "t + v_x = 0   (tangent at the point; solved for v_x)", "v_w = 1", "c = 3, dim 5",
+                        "solution rank dim(ker omega_D ∩ T M_c) = 0 (unique)", "d/dt v_x = -1"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+}
+
+// At phi = 1/2 the formulas have irrational values: the exact route says so (exit 1, with what to do),
+// certified answers in double and says it is not certified, fast answers.
+TEST(Expression, IrrationalPointsAreNotExact) {
+  json c = json::parse(slurp(case_path("rolling-disk")));
+  c["initial"]["phi"] = "1/2";
+  c.erase("expect");
+  const std::string file = write_temp("dcad_disk_half.json", c.dump());
+  const Outcome ref = run("solve " + file + " --backend reference");
+  EXPECT_EQ(ref.rc, 1);
+  EXPECT_NE(ref.err.find("sin(1/2) is irrational"), std::string::npos) << ref.err;
+  const Outcome cert = run("solve " + file + " --json");
+  ASSERT_EQ(cert.rc, 0) << cert.err;
+  const json got = json::parse(cert.out);
+  EXPECT_FALSE(got["certified"].get<bool>());
+  EXPECT_EQ(got["dims"], json::parse("[12, 6]"));
+  EXPECT_NE(got["note"].get<std::string>().find("exact route cannot run here"), std::string::npos);
+  const Outcome fast = run("solve " + file + " --backend fast --json");
+  ASSERT_EQ(fast.rc, 0) << fast.err;
+  EXPECT_NEAR(number_of(json::parse(fast.out)["point"]["v_x"]), std::cos(0.5) / 3, 1e-15);
+}
+
+// Bad input: exit 1 naming the file, the JSON path (and the column inside a formula), expected, found.
+TEST(Expression, BadInputNamesPathAndColumn) {
+  const std::string base = R"({"dcad": 1, "parameters": {"m": "2"}, "lagrangian": {"coordinates": ["x", "y"], "L": "1/2*m*v_x^2 + v_y", )";
+  const std::vector<std::pair<std::string, std::string>> bad{
+      {base + R"J("constraints": ["v_x*v_y"]}})J", "/lagrangian/constraints/0: expected a constraint affine in the velocities"},
+      {base + R"J("constraints": ["v_x - z"]}})J", "/lagrangian/constraints/0: column 7: expected a variable"},
+      {base + R"J("constraints": ["v_x - (x"]}})J", "column 9: expected ')'"},
+      {base + R"J("forces": ["0"]}})J", "/lagrangian/forces: expected an array of 2 expressions"},
+      {base + R"J("time": "x"}})J", "/lagrangian/time: expected a time name not used for anything else"},
+      {base + R"J("constraints": []}, "initial": {"v_z": "1"}})J", "/initial/v_z: expected a coordinate, velocity"},
+      {base + R"J("constraints": []}, "intial": {}})J", "did you mean \"initial\""},
+      {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "v_x^100"}})J", "column 5: expected an exponent of at most 64"},
+      {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "v_x/(1-1)"}})J", "/lagrangian/L: column 5: expected a nonzero divisor"},
+      {R"J({"dcad": 1, "lagrangian": {"coordinates": ["sin"], "L": "v_sin"}})J", "/lagrangian/coordinates/0: expected a coordinate name that is not a function"},
+      {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/x"}, "initial": {"x": "0"}})J", "/initial: expected a point where the formulas are defined"},
+      {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "y"], "L": "1/2*v_x^2", "constraints": ["v_x - 1"]}, "initial": {"v_x": "2"}})J",
+       "/initial/v_x: expected a value on M_c"},
+  };
+  int k = 0;
+  for (const auto& [text, needle] : bad) {
+    const std::string file = write_temp("dcad_bad_expr_" + std::to_string(k++) + ".json", text);
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + file + " --backend " + backend);
+      EXPECT_EQ(r.rc, 1) << text << " " << backend << "\n" << r.out << r.err;
+      EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(needle), std::string::npos) << needle << "\n" << r.err;
+      EXPECT_NE(r.err.find("found"), std::string::npos) << r.err;
+    }
+  }
+}
+
+// dcad check compares the velocity at the result's own point, modulo the gauge: a wrong component
+// is exit 3, a point off M_c is exit 3, and a result for another case is exit 1.
+TEST(Expression, CheckCatchesAWrongVelocityAndAPointOffMc) {
+  const std::string file = case_path("cartesian-pendulum");
+  const Outcome ok = run("solve " + file + " --backend reference --json");
+  ASSERT_EQ(ok.rc, 0) << ok.err;
+  json r = json::parse(ok.out);
+  const Outcome agree = run("check " + write_temp("dcad_pend_ok.json", r.dump()) + " " + file);
+  EXPECT_EQ(agree.rc, 0) << agree.out << agree.err;
+  EXPECT_NE(agree.out.find("velocity"), std::string::npos);
+  json wrong = r;
+  wrong["velocity"]["v_y"] = "-981/100";  // free fall: the rod's tension forgotten
+  const Outcome c1 = run("check " + write_temp("dcad_pend_wrong.json", wrong.dump()) + " " + file);
+  EXPECT_EQ(c1.rc, 3) << c1.out << c1.err;
+  EXPECT_NE(c1.out.find("velocity: expected"), std::string::npos) << c1.out;
+  json off = r;
+  off["point"]["x"] = "4/5";  // no longer on x² + y² = 1
+  const Outcome c2 = run("check " + write_temp("dcad_pend_off.json", off.dump()) + " " + file);
+  EXPECT_EQ(c2.rc, 3) << c2.out << c2.err;
+  EXPECT_NE(c2.out.find("point: expected a point of M_c"), std::string::npos) << c2.out;
+  json other = r;
+  other["name"] = "rolling-disk";
+  EXPECT_EQ(run("check " + write_temp("dcad_pend_other.json", other.dump()) + " " + file).rc, 1);
+  // a float result (as other tools write) is compared within a tolerance
+  const Outcome fast = run("solve " + file + " --backend fast --json");
+  EXPECT_EQ(run("check " + write_temp("dcad_pend_fast.json", fast.out) + " " + file).rc, 0);
+}

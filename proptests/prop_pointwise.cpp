@@ -1,0 +1,286 @@
+// The pointwise CAD of systems given by formulas (reference/pointwise.hpp; issue 13), held against
+// answers it did not compute:
+//  - linear Pontryagin systems written as formulas: the linear reference's tower (CEF (5.5)–(5.6),
+//    Lemma 5.1 (vii): another algorithm) and its velocities (Thm 5.4);
+//  - the same systems pulled back by polynomial point transformations Φ (expr_gen.hpp): the CAD is
+//    intrinsic (CEF §5) and a point transformation lifts to TQ ⊕ T*Q preserving D̄_Δ and E, so the
+//    tower is the linear one and the motion is the linear motion in the new coordinates;
+//  - the double twin (fast/pointwise.hpp) = the exact one where it says certain;
+//  - genuinely nonholonomic families with known answers: the rolling disk with random parameters
+//    (YM §6) and a Heisenberg-type constraint; the time-dependent family of V §3.5.
+#include "dcad/fast/pointwise.hpp"
+#include "dcad/reference/cad.hpp"
+#include "expr_gen.hpp"
+#include "tally.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad;
+using namespace dcad::test;
+namespace ex = reference::expr;
+
+namespace {
+
+using PR = reference::PointwiseResult<Q>;
+
+PR exact_at(const reference::LagrangianSystem& s, const std::vector<Q>& qvt) {
+  reference::ExactDecisions<Q> d;
+  return reference::pointwise_cad<Q>(s, qvt, std::vector<bool>(qvt.size(), true), d, [](const Q& x) { return x; });
+}
+
+/// (q, v) and t of a state (q, v, p): the values the pointwise CAD starts from.
+std::vector<Q> qvt_of(const std::vector<Q>& x, Index n, const Q& t = 0) {
+  std::vector<Q> out(x.begin(), x.begin() + static_cast<long>(2 * n));
+  out.push_back(t);
+  return out;
+}
+
+/// u ∈ a + span(dirs), restricted to the coordinates [0, k).
+bool in_affine(const std::vector<Q>& u, const reference::AffineSubspace<Q>& a, Index k) {
+  const QM& b = a.direction.basis();
+  QM m(b.rows() + 1, k);
+  for (Index i = 0; i < b.rows(); ++i)
+    for (Index j = 0; j < k; ++j) m(i, j) = b(i, j);
+  for (Index j = 0; j < k; ++j) m(b.rows(), j) = u[j] - a.point[j];
+  return reference::rank(m) == reference::rank(m.block(0, b.rows(), 0, k));
+}
+
+/// (q̇, v̇) of the linear coordinates from (Q̇, V̇) at (Q, V): first-order jets along the curve.
+std::vector<Q> push_forward(const PointMap& phi, const std::vector<Q>& qv, const std::vector<Q>& qv_dot) {
+  const Index n = phi.n();
+  auto sp = std::make_shared<const reference::JetSpace>(1, 1);
+  std::vector<reference::Jet<Q>> args;
+  for (Index i = 0; i < 2 * n; ++i) {
+    reference::Jet<Q> j = reference::Jet<Q>::variable(sp, 0, qv[i]);
+    j.set_coefficient(1, qv_dot[i]);
+    args.push_back(j);
+  }
+  std::vector<ex::Expr> q, v;
+  phi.formulas(q, v);
+  std::vector<Q> out;
+  for (const auto& e : q) out.push_back(ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).gradient(0));
+  for (const auto& e : v) out.push_back(ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).gradient(0));
+  return out;
+}
+
+std::string to_text(const QM& m) {
+  std::string s = "[";
+  for (Index i = 0; i < m.rows(); ++i) {
+    s += i ? "; " : "";
+    for (Index j = 0; j < m.cols(); ++j) s += (j ? " " : "") + m(i, j).str();
+  }
+  return s + "]";
+}
+
+std::string to_text(const std::vector<long>& v) {
+  std::string s;
+  for (long x : v) s += " " + std::to_string(x);
+  return s;
+}
+
+/// (Q, V, t = 0) of the point x = (q, v, p) in the coordinates of Φ: Q = Φ⁻¹(q), V = DΦ(Q)⁻¹ v.
+std::vector<Q> pulled_back_point(const PointMap& phi, const std::vector<Q>& x) {
+  const Index n = phi.n();
+  std::vector<Q> out = phi.inverse(std::vector<Q>(x.begin(), x.begin() + static_cast<long>(n)));
+  const std::vector<Q> v(x.begin() + static_cast<long>(n), x.begin() + static_cast<long>(2 * n));
+  const std::vector<Q> big_v = (reference::inverse(phi.jacobian(out)) * QM::column(v)).col(0);
+  out.insert(out.end(), big_v.begin(), big_v.end());
+  out.push_back(0);
+  return out;
+}
+
+struct Planted {
+  reference::PontryaginInput<Q> in;
+  reference::CadResult<Q> linear;
+  reference::LinearSystem<Q> system;
+  std::vector<Q> x0;  ///< a point of M_c (q, v, p)
+};
+
+Planted planted(Index max_n) {
+  Planted p;
+  p.in = random_pontryagin(pick_size(1, max_n));
+  p.system = reference::pontryagin_system(p.in);
+  p.linear = reference::constraint_tower(p.system);
+  if (!p.linear.consistent) {  // an empty M_k is seen locally only where it is a nonzero constant: drop a, b (then 0 ∈ M_c)
+    p.in.q.assign(p.in.n, Q(0));
+    p.in.v.assign(p.in.n, Q(0));
+    p.system = reference::pontryagin_system(p.in);
+    p.linear = reference::constraint_tower(p.system);
+  }
+  RC_TAG("c = " + std::to_string(p.linear.steps));
+  RC_LOG() << "linear system: A " << to_text(p.in.vv) << " B " << to_text(p.in.qv) << " C " << to_text(p.in.qq) << " K " << to_text(p.in.k)
+           << " a " << to_text(QM::from_rows({p.in.q}, p.in.n)) << " b " << to_text(QM::from_rows({p.in.v}, p.in.n)) << "\n";
+  p.x0 = some_point(p.linear.final_step().m);
+  return p;
+}
+
+std::vector<long> linear_dims(const reference::CadResult<Q>& r) {
+  std::vector<long> d;
+  for (const auto& s : r.tower) d.push_back(s.dim());
+  return d;
+}
+
+}  // namespace
+
+// Two routes to the tower of a linear Lagrangian system: the linear CAD on subspaces (CEF (5.5)–
+// (5.6)) and the pointwise CAD on its formulas; and the velocity at a point of M_c lies in the
+// affine space of Thm 5.4 (velocities()), with the same solution rank.
+RC_GTEST_PROP(Pointwise, LinearFormulasGiveTheLinearTower, ()) {
+  const Planted p = planted(3);
+  const PR r = exact_at(pulled_back(p.in, identity_map(p.in.n)), qvt_of(p.x0, p.in.n));
+  RC_LOG() << "pointwise dims" << to_text(r.dims) << " linear" << to_text(linear_dims(p.linear)) << " why " << r.why << "\n";
+  RC_ASSERT(r.regular);
+  RC_ASSERT(r.consistent);
+  RC_ASSERT(r.dims == linear_dims(p.linear));
+  RC_ASSERT(r.steps == p.linear.steps);
+  RC_ASSERT(r.solution_rank == p.linear.solution_rank);
+  RC_ASSERT(r.moves == 0u);
+  const reference::AffineSubspace<Q> vel = reference::velocities(p.system, p.linear, p.x0);
+  RC_ASSERT(in_affine(r.velocity, vel, 3 * p.in.n));
+  for (const auto& g : r.gauge) {
+    std::vector<Q> u = vel.point;
+    for (Index j = 0; j < u.size(); ++j) u[j] += g[j];
+    RC_ASSERT(in_affine(u, vel, 3 * p.in.n));
+  }
+}
+
+// The CAD is intrinsic: pulled back by a polynomial point transformation, the tower is the linear
+// one, and the motion pushed forward by Φ is the linear motion (modulo the gauge).
+RC_GTEST_PROP(Pointwise, PointTransformationsKeepTheTowerAndTheMotion, ()) {
+  const Planted p = planted(3);
+  const Index n = p.in.n;
+  const PointMap phi = random_map(n);
+  const std::vector<Q> start = pulled_back_point(phi, p.x0);
+  const PR r = exact_at(pulled_back(p.in, phi), start);
+  RC_ASSERT(r.regular);
+  RC_ASSERT(r.dims == linear_dims(p.linear));
+  RC_ASSERT(r.steps == p.linear.steps);
+  RC_ASSERT(r.solution_rank == p.linear.solution_rank);
+  const reference::AffineSubspace<Q> vel = reference::velocities(p.system, p.linear, p.x0);
+  const std::vector<Q> qv(start.begin(), start.begin() + static_cast<long>(2 * n));
+  RC_ASSERT(in_affine(push_forward(phi, qv, std::vector<Q>(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n))), vel, 2 * n));
+  // P = DΦᵀ p: the momenta are the linear ones pulled back
+  const QM jac = phi.jacobian(std::vector<Q>(start.begin(), start.begin() + static_cast<long>(n)));
+  const std::vector<Q> big_p = (jac.transpose() * QM::column(std::vector<Q>(p.x0.begin() + static_cast<long>(2 * n), p.x0.end()))).col(0);
+  for (Index i = 0; i < n; ++i) RC_ASSERT(r.point[2 * n + i] == big_p[i]);
+}
+
+// fast = reference: the double twin on the same pulled-back system at the same point.
+RC_GTEST_PROP(Pointwise, FastEqualsReferenceOnPulledBackSystems, ()) {
+  const Planted p = planted(3);
+  const Index n = p.in.n;
+  const PointMap phi = random_map(n);
+  const std::vector<Q> start = pulled_back_point(phi, p.x0);
+  const reference::LagrangianSystem s = pulled_back(p.in, phi);
+  QM cm(n, n);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < n; ++j) cm(i, j) = phi.c[i][j];
+  RC_LOG() << "L1 " << to_text(phi.l1) << " L2 " << to_text(phi.l2) << " c " << to_text(cm) << " L " << ex::to_text(s.lagrangian, s.variable_names()) << "\n";
+  const PR r = exact_at(s, start);
+  std::vector<double> xd;
+  for (const Q& x : start) xd.push_back(x.convert_to<double>());
+  fast::ToleranceDecisions d;
+  const auto f = fast::pointwise_cad(s, xd, std::vector<bool>(xd.size(), false), d);
+  const bool certain = d.certain && f.regular;
+  RC_LOG() << "exact dims" << to_text(r.dims) << " rank " << r.solution_rank << "; double dims" << to_text(f.dims) << " rank " << f.solution_rank
+           << " moves " << f.moves << " certain " << d.certain << "\n";
+  for (Index i = 0; i < r.velocity.size() && i < f.velocity.size(); ++i) RC_LOG() << "  x " << (i < start.size() ? start[i].str() : "") << " exact " << r.velocity[i].convert_to<double>() << " double " << f.velocity[i] << "\n";
+  RC_ASSERT(!tally("pointwise dims", certain, f.dims == r.dims));
+  RC_ASSERT(!tally("pointwise solution rank", certain, f.solution_rank == r.solution_rank));
+  if (certain && f.dims == r.dims && f.moves == 0) {  // same point: same velocity (modulo the gauge)
+    double scale = 1, worst = 0;
+    for (Index i = 0; i < 3 * n; ++i) scale = std::max(scale, std::abs(r.velocity[i].convert_to<double>()));
+    if (r.gauge.empty())
+      for (Index i = 0; i < 3 * n; ++i) worst = std::max(worst, std::abs(f.velocity[i] - r.velocity[i].convert_to<double>()));
+    RC_ASSERT(worst <= 1e-6 * scale);
+  }
+}
+
+// The rolling disk (YM §6) with random positive parameters, at phi = 0 where every value is
+// rational: dims [12, 6], unique, and the motion of YM's equations: x' = R v_theta, y' = 0,
+// v_theta' = v_phi' = 0, v_y' = R v_phi v_theta (the rolling constraint differentiated).
+RC_GTEST_PROP(Pointwise, RollingDiskWithRandomParameters, ()) {
+  const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
+  const Q m = pos(), inertia = pos(), jj = pos(), rr = pos();
+  reference::LagrangianSystem s;
+  s.n = 4;
+  s.names = {"x", "y", "theta", "phi"};
+  const auto v = [](Index i) { return ex::variable(4 + i); };
+  const auto half = [](const Q& c) { return ex::number(c / 2); };
+  s.lagrangian = ex::add(ex::add(ex::mul(half(m), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(half(inertia), ex::pow(v(2), 2))),
+                         ex::mul(half(jj), ex::pow(v(3), 2)));
+  s.constraints = {ex::sub(v(0), ex::mul(ex::mul(ex::number(rr), ex::cos(ex::variable(3))), v(2))),
+                   ex::sub(v(1), ex::mul(ex::mul(ex::number(rr), ex::sin(ex::variable(3))), v(2)))};
+  const Q x = *rc::gen::inRange(-5, 6), y = *rc::gen::inRange(-5, 6), th = *rc::gen::inRange(-5, 6), vth = *rc::gen::inRange(-5, 6),
+          vph = *rc::gen::inRange(-5, 6);
+  reference::ExactDecisions<Q> d;
+  std::vector<bool> fixed(9, false);
+  for (Index i : {0, 1, 2, 3, 6, 7}) fixed[i] = true;
+  const PR r = reference::pointwise_cad<Q>(s, {x, y, th, Q(0), Q(0), Q(0), vth, vph, Q(0)}, fixed, d, [](const Q& c) { return c; });
+  RC_ASSERT(r.dims == (std::vector<long>{12, 6}));
+  RC_ASSERT(r.solution_rank == 0u);
+  RC_ASSERT(r.point[4] == rr * vth);  // v_x = R cos 0 v_theta
+  RC_ASSERT(r.velocity[0] == rr * vth);
+  RC_ASSERT(r.velocity[1] == 0);
+  RC_ASSERT(r.velocity[6] == 0);
+  RC_ASSERT(r.velocity[7] == 0);
+  RC_ASSERT(r.velocity[5] == rr * vph * vth);
+  RC_ASSERT(r.velocity[2 * 4 + 2] == 0);  // p_theta' = (m R² + I) v_theta' − m R (…) = 0 at phi = 0 with v_x' = 0
+}
+
+// A Heisenberg-type (nonholonomic, polynomial) constraint z' = x y' − y x' with a quadratic potential:
+// M_1 = {p = v, constraint} (dim 9 − 3 − 1 = 5) and L regular on Δ: dims [9, 5], unique, exactly at
+// random rational points; the reaction keeps the constraint: d/dt (v_z − x v_y + y v_x) = 0.
+RC_GTEST_PROP(Pointwise, HeisenbergConstraint, ()) {
+  reference::LagrangianSystem s;
+  s.n = 3;
+  s.names = {"x", "y", "z"};
+  std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)}, v{ex::variable(3), ex::variable(4), ex::variable(5)};
+  const QM k = symmetric_matrix(3, pick_size(0, 3));
+  ex::Expr l = ex::number(0);
+  for (Index i = 0; i < 3; ++i) l = ex::add(l, ex::mul(ex::number(Q(1, 2)), ex::pow(v[i], 2)));
+  const std::vector<ex::Expr> kq = times(k, q);
+  for (Index i = 0; i < 3; ++i) l = ex::sub(l, ex::mul(ex::number(Q(1, 2)), ex::mul(q[i], kq[i])));
+  s.lagrangian = l;
+  s.constraints = {ex::add(ex::sub(v[2], ex::mul(q[0], v[1])), ex::mul(q[1], v[0]))};
+  std::vector<Q> x0;
+  for (int i = 0; i < 6; ++i) x0.push_back(Q(*rc::gen::inRange(-6, 7), *rc::gen::inRange(1, 5)));
+  x0[5] = x0[0] * x0[4] - x0[1] * x0[3];  // on the constraint
+  x0.push_back(0);
+  const PR r = exact_at(s, x0);
+  RC_ASSERT(r.dims == (std::vector<long>{9, 5}));
+  RC_ASSERT(r.solution_rank == 0u);
+  const std::vector<Q>& u = r.velocity;  // d/dt(v_z − x v_y + y v_x) = v̇_z − ẋ v_y − x v̇_y + ẏ v_x + y v̇_x
+  RC_ASSERT(u[5] - u[0] * x0[4] - x0[0] * u[4] + u[1] * x0[3] + x0[1] * u[3] == 0);
+}
+
+// The time-dependent family of V §3.5: L = ½(v_x² + v_y²) + w (v_x + a t) + b z, constraint v_z = w:
+// M_2 = {v_x + a t = 0}, M_3 = {v_w = a}, dims [12, 7, 6, 5], unique, for every a, b (V (3.27)).
+RC_GTEST_PROP(Pointwise, VignoloFamily, ()) {
+  const Q a(*rc::gen::inRange(-5, 6), *rc::gen::inRange(1, 4)), b = *rc::gen::inRange(-5, 6), t0(*rc::gen::inRange(-5, 6), 2);
+  reference::LagrangianSystem s;
+  s.n = 4;
+  s.has_time = true;
+  s.names = {"x", "y", "z", "w"};
+  const auto q = [](Index i) { return ex::variable(i); };
+  const auto v = [](Index i) { return ex::variable(4 + i); };
+  const ex::Expr t = ex::variable(8);
+  s.lagrangian = ex::add(ex::add(ex::mul(ex::number(Q(1, 2)), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))),
+                                 ex::mul(q(3), ex::add(v(0), ex::mul(ex::number(a), t)))),
+                         ex::mul(ex::number(b), q(2)));
+  s.constraints = {ex::sub(v(2), q(3))};
+  std::vector<Q> start(9, 0);
+  for (Index i = 0; i < 8; ++i) start[i] = *rc::gen::inRange(-3, 4);
+  start[8] = t0;
+  std::vector<bool> fixed(9, false);
+  fixed[8] = true;
+  reference::ExactDecisions<Q> d;
+  const PR r = reference::pointwise_cad<Q>(s, start, fixed, d, [](const Q& c) { return c; });
+  RC_ASSERT(r.dims == (std::vector<long>{12, 7, 6, 5}));
+  RC_ASSERT(r.solution_rank == 0u);
+  RC_ASSERT(r.point[4] == -a * t0);  // v_x = −a t
+  RC_ASSERT(r.point[7] == a);        // v_w = a
+  RC_ASSERT(r.velocity[4] == -a);    // x'' = −a
+  RC_ASSERT(r.velocity[6] == a);     // z'' = w' = a
+}
