@@ -152,6 +152,9 @@ LagrangianReport solve_lagrangian(const io::LagrangianCase& c, const std::string
     throw io::InputError(c.file + ": /initial: expected values that extend to a point of M_c, found " + e.what());
   } catch (const std::domain_error& e) {
     throw io::InputError(c.file + ": /initial: expected a point where the formulas are defined and differentiable, found " + e.what());
+  } catch (const std::length_error& e) {
+    throw io::InputError(c.file + ": /lagrangian/coordinates: expected a system whose tower fits in jets of at most 200000 monomials, found " +
+                         std::to_string(c.system.n) + " coordinates: " + e.what());
   }
   r.backend = backend;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -33,8 +33,10 @@ struct NotExactHere : std::domain_error {
 class JetSpace {
  public:
   JetSpace(std::size_t d, std::size_t k) : d_(d), k_(k) {
-    if (d > 64 || binomial(d + k, k) > 2'000'000)
-      throw std::length_error("JetSpace: " + std::to_string(d) + " variables to order " + std::to_string(k) + " is too large");
+    // the monomials, and the product table (one entry per pair of degree sum ≤ k: C(2d + k, k))
+    if (binomial(d + k, k) > 200'000 || binomial(2 * d + k, k) > 20'000'000)
+      throw std::length_error("jets in " + std::to_string(d) + " variables to order " + std::to_string(k) + " (" +
+                              std::to_string(static_cast<long>(binomial(d + k, k))) + " monomials) exceed what dcad computes");
     std::vector<std::uint8_t> alpha(d, 0);
     index_[alpha] = 0;
     exps_.push_back(alpha);
