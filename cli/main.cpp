@@ -12,6 +12,7 @@
 #include "simulate_forced.hpp"
 #include "solve.hpp"
 #include "solve_file.hpp"
+#include "lagrangian_case.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
   CLI::App* sim = app.add_subcommand(
       "simulate", "Integrate the equations of motion on M_c from the file's initial condition (IC= in netlists); "
                   "exact flow of the linear reduced system (matrix exponential). CSV: t, then every variable.");
-  sim->add_option("FILE", sim_file, "LC netlist (.cir, .sp, .net) or `pontryagin` case (.json)")->required();
+  sim->add_option("FILE", sim_file, "LC/RLC netlist (.cir, .sp, .net), `pontryagin` case or expression-form case (.json)")->required();
   std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
   sim->add_option("--tstop", sim_tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
   sim->add_option("--step", sim_step, "output step (seconds; SPICE suffixes)")->required();
@@ -162,6 +163,19 @@ int main(int argc, char** argv) {
           std::cerr << "dcad simulate: " << flag << ": expected a time in seconds such as 1e-3 or 20n, found \"" << *text << "\"\n";
           return 2;
         }
+      }
+      if (dcad::io::is_expression_file(sim_file)) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
+        const dcad::io::LagrangianCase lc = dcad::io::read_lagrangian_case(sim_file);
+        std::ofstream file_out;
+        if (!sim_csv.empty()) {
+          file_out.open(sim_csv);
+          if (!file_out) {
+            std::cerr << sim_csv << ": cannot open for writing\n";
+            return 1;
+          }
+        }
+        dcad::cli::simulate_lagrangian(lc, sim_opt, sim_csv.empty() ? std::cout : file_out, std::cerr);
+        return 0;
       }
       const bool netlist = dcad::io::is_netlist_file(sim_file);
       const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(sim_file) : dcad::io::Netlist();

@@ -1,6 +1,7 @@
 // `dcad simulate`: integrate the equations of motion on M_c from the file's initial condition.
 #pragma once
 
+#include "lagrangian_case.hpp"
 #include "netlist.hpp"
 
 #include <Eigen/Core>
@@ -37,6 +38,10 @@ SimulateSummary simulate(const io::CaseFile& c, const io::Netlist* deck, const s
 /// relative to each variable's largest magnitude) with the variable's name.
 SimulateSummary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
                           const std::vector<std::string>& names);
+
+/// The expression form: RK4 on the pointwise CAD's vector field, projected onto M_c at every
+/// evaluation, with Richardson step doubling per output step (simulate_lagrangian.cpp).
+SimulateSummary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 
 /// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
 constexpr std::size_t kSimulateBranches = 400;

@@ -17,8 +17,8 @@ namespace {
 std::string text_of(const Rational& q) { return q.str(); }
 std::string text_of(double x) { return float_text(x); }
 
-/// The starting values of (q, v, t): the given ones (fixed), the others 0; without `initial`, a
-/// fixed pseudo-random point of small rationals (a generic point, the same on every run), t = 0.
+}  // namespace
+
 std::vector<Rational> start_point(const io::LagrangianCase& c, std::vector<bool>& fixed) {
   const std::size_t w = 2 * c.system.n + 1;
   std::vector<Rational> x(w, 0);
@@ -33,6 +33,8 @@ std::vector<Rational> start_point(const io::LagrangianCase& c, std::vector<bool>
   }
   return x;
 }
+
+namespace {
 
 /// The tangent equation Σ g_j s_j = rhs as text in the variable names.
 template <class T>

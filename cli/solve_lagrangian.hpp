@@ -37,6 +37,11 @@ struct LagrangianReport {
   std::string note;
 };
 
+/// The starting values of (q, v, t) (LagrangianSystem's indices): the given ones (`fixed`), the others
+/// 0; without `initial`, a fixed pseudo-random point of small rationals (a generic point, the same on
+/// every run), t = 0.
+std::vector<io::Rational> start_point(const io::LagrangianCase& c, std::vector<bool>& fixed);
+
 /// Throws io::InputError for given values that are not on M_c (or that the exact route cannot
 /// complete to a rational point of M_c) and for a `reference` run at a point whose values are
 /// irrational.

@@ -143,3 +143,38 @@ TEST(Expression, CheckCatchesAWrongVelocityAndAPointOffMc) {
   const Outcome fast = run("solve " + file + " --backend fast --json");
   EXPECT_EQ(run("check " + write_temp("dcad_pend_fast.json", fast.out) + " " + file).rc, 0);
 }
+
+// simulate on the rolling disk (YM §6) against its closed form: theta = theta0 + w_theta t,
+// phi = phi0 + w_phi t, x = x0 + R w_theta/w_phi (sin phi − sin phi0), y = y0 − R w_theta/w_phi (cos phi − cos phi0),
+// over 10 s (15 rad of phi: the chart changes as cos phi passes 0).  The bound is the printed
+// per-step estimate (< 1e-9) times the 100 steps.
+TEST(Expression, SimulateRollingDiskMatchesItsClosedForm) {
+  const Outcome r = run("simulate " + case_path("rolling-disk") + " --tstop 10 --step 0.1");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto rows = csv_rows(r.out);
+  ASSERT_EQ(rows.size(), 101u);
+  const double R = 1.0 / 3, wt = 1, wp = 1.5;
+  double err = 0;
+  for (const auto& row : rows) {  // t, x, y, theta, phi, v_x, …
+    const double t = row[0];
+    err = std::max({err, std::abs(row[1] - R * wt / wp * std::sin(wp * t)), std::abs(row[2] + R * wt / wp * (std::cos(wp * t) - 1)),
+                    std::abs(row[3] - wt * t), std::abs(row[4] - wp * t), std::abs(row[5] - R * std::cos(wp * t) * wt)});
+  }
+  EXPECT_LT(err, 1e-7) << r.err;
+  EXPECT_NE(r.err.find("largest projection onto M_c"), std::string::npos);
+}
+
+// The index-3 pendulum stays on x² + y² = 1 and keeps its energy (p·v − L) while it swings.
+TEST(Expression, SimulatePendulumStaysOnMcAndKeepsItsEnergy) {
+  const Outcome r = run("simulate " + case_path("cartesian-pendulum") + " --tstop 0.1 --step 0.05");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto rows = csv_rows(r.out);
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& row : rows) {  // t, x, y, mu, v_x, v_y, v_mu, p…
+    EXPECT_LT(std::abs(row[1] * row[1] + row[2] * row[2] - 1), 1e-12);
+    EXPECT_LT(std::abs(row[1] * row[4] + row[2] * row[5]), 1e-12);
+    EXPECT_NEAR(0.5 * (row[4] * row[4] + row[5] * row[5]) + 9.81 * row[2], 9.81 * -0.8, 1e-9);
+    EXPECT_NEAR(row[3], (row[4] * row[4] + row[5] * row[5] - 9.81 * row[2]), 1e-9);  // mu = m (v² − g y) / l²
+  }
+  EXPECT_LT(rows.back()[1], 0.6);  // it has started to swing
+}

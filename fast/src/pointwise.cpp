@@ -41,10 +41,13 @@ bool ToleranceDecisions::zero(const reference::Jet<Tracked>& j) {
 }
 
 std::size_t ToleranceDecisions::pivot(const std::vector<Tracked>& values) {
-  std::size_t best = values.size();
+  double largest = 0;
+  for (const Tracked& x : values)
+    if (std::abs(x.v) > nonzero_factor * x.e) largest = std::max(largest, std::abs(x.v));
+  // threshold pivoting (as in sparse LU): the first certainly nonzero value, in the caller's order of
+  // preference, that is at least 1/8 of the largest — stable, and the preferred chart where it can be
   for (std::size_t i = 0; i < values.size(); ++i)
-    if (std::abs(values[i].v) > nonzero_factor * values[i].e && (best == values.size() || std::abs(values[i].v) > std::abs(values[best].v))) best = i;
-  if (best < values.size()) return best;
+    if (largest > 0 && std::abs(values[i].v) > nonzero_factor * values[i].e && std::abs(values[i].v) >= largest / 8) return i;
   for (const Tracked& x : values)  // none is certainly nonzero: a value in the band makes this uncertain
     if (!zero(x)) return static_cast<std::size_t>(&x - values.data());
   return values.size();
@@ -69,6 +72,7 @@ reference::PointwiseResult<double> to_double(const reference::PointwiseResult<Tr
   o.time = r.time.v;
   o.velocity = d(r.velocity);
   for (const auto& g : r.gauge) o.gauge.push_back(d(g));
+  for (const auto& g : r.tangent) o.tangent.push_back(d(g));
   for (const auto& l : r.levels) {
     reference::PointwiseLevel<double> lv;
     lv.dim = l.dim;
@@ -86,17 +90,19 @@ reference::PointwiseResult<double> to_double(const reference::PointwiseResult<Tr
   o.order = r.order;
   o.checked_order = r.checked_order;
   o.moves = r.moves;
+  o.plan = r.plan;
   return o;
 }
 
 }  // namespace
 
 reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
-                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide) {
+                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide,
+                                                 const std::vector<std::vector<std::size_t>>* plan) {
   std::vector<Tracked> x;
   for (double v : start) x.push_back(Tracked::input(v));
   return to_double(reference::pointwise_cad<Tracked>(sys, x, fixed, decide,
-                                                     [](const reference::Rational& q) { return Tracked::input(q.convert_to<double>()); }, 3, 60));
+                                                     [](const reference::Rational& q) { return Tracked::input(q.convert_to<double>()); }, 3, 60, plan));
 }
 
 }  // namespace dcad::fast

@@ -32,13 +32,18 @@ struct ToleranceDecisions {
 
   void step_data(const std::vector<Tracked>& data);
   bool zero(const Tracked& x);
+  /// |v| > 2^-45 × the step's scale although taken as zero: a Newton step can still improve it
+  /// (the error bound e is pessimistic; projections onto M_c should reach rounding level).
+  bool polish(const Tracked& x) const { return std::abs(x.v) > 0x1p-45 * scale; }
   bool zero(const reference::Jet<Tracked>& j);
-  /// The largest value among those that are certainly nonzero; values.size() if there is none.
+  /// The first value (in the caller's order of preference) that is certainly nonzero and at least 1/8
+  /// of the largest such value (threshold pivoting); values.size() if there is none.
   std::size_t pivot(const std::vector<Tracked>& values);
 };
 
 /// reference::pointwise_cad in double (inputs rounded to nearest), its values as doubles.
 reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
-                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide);
+                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide,
+                                                 const std::vector<std::vector<std::size_t>>* plan = nullptr);
 
 }  // namespace dcad::fast

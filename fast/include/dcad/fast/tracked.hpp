@@ -73,6 +73,7 @@ struct JetFunctions<fast::Tracked> {
   static T exp(const T& x) { return f(std::exp(x.v), std::exp(x.v + x.e), x); }
   static T sqrt(const T& x) { return f(std::sqrt(x.v), 0.5 / std::sqrt(std::max(x.v - x.e, 0.0)), x); }
   static bool is_zero(const T& x) { return x.v == 0 && x.e == 0; }
+  static double magnitude(const T& x) { return std::abs(x.v); }
   static std::string text(const T& x) { return std::to_string(x.v); }
 };
 

@@ -132,6 +132,7 @@ struct JetFunctions {
   static T exp(const T& x) { return std::exp(x); }
   static T sqrt(const T& x) { return std::sqrt(x); }
   static bool is_zero(const T& x) { return x == 0; }
+  static double magnitude(const T& x) { return std::abs(static_cast<double>(x)); }
   static std::string text(const T& x) { return std::to_string(x); }
 };
 
@@ -162,6 +163,7 @@ struct JetFunctions<Rational> {
     throw NotExactHere("sqrt(" + x.str() + ") is irrational");
   }
   static bool is_zero(const Rational& x) { return x == 0; }
+  static double magnitude(const Rational& x) { return x == 0 ? 0.0 : std::max(abs(x).convert_to<double>(), 1e-300); }
   static std::string text(const Rational& x) { return x.str(); }
 };
 

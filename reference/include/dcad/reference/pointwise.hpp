@@ -28,6 +28,7 @@
 #include "dcad/reference/jet.hpp"
 #include "dcad/reference/lagrangian_system.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -45,6 +46,8 @@ struct ExactDecisions {
   void step_data(const std::vector<T>&) {}
   bool zero(const T& x) { return x == 0; }
   bool zero(const Jet<T>& j) { return j.is_zero(); }
+  /// A value taken as zero that one more Newton step could still make smaller (rounding routes).
+  bool polish(const T&) { return false; }
   /// The index of the pivot among `values`, or values.size() if all are zero.
   std::size_t pivot(const std::vector<T>& values) {
     for (std::size_t i = 0; i < values.size(); ++i)
@@ -88,10 +91,15 @@ struct PointwiseResult {
   T time = T(0);
   std::vector<T> velocity;               ///< ẋ at the point, one solution (3n)
   std::vector<std::vector<T>> gauge;     ///< a basis of the other solutions' differences (solution_rank rows)
+  std::vector<std::vector<T>> tangent;   ///< a basis of T_x M_c (at fixed time) in x = (q, v, p): ∂x/∂s_j, s M_c's chart
   std::vector<PointwiseLevel<T>> levels; ///< levels[k] describes M_{k+1}
   long order = 0;          ///< jets were computed to this order
   long checked_order = 0;  ///< the last step's constraints vanish on M_c to this order
   std::size_t moves = 0;   ///< Newton steps that moved the given point onto M_c
+  /// The coordinates solved for at each step: plan[0] the dependent velocities of M_1, plan[k] those
+  /// of M_{k+1}.  Given back to pointwise_cad at a nearby point, the same choices are made there
+  /// (where their pivots are nonzero): the projection onto M_c is then one fixed map.
+  std::vector<std::vector<std::size_t>> plan;
 };
 
 /// Thrown when the point cannot be completed to a point of M_c (the exact route at a point with
@@ -102,35 +110,51 @@ struct PointwiseNoPoint : std::invalid_argument {
 
 namespace pointwise_detail {
 
-/// Gaussian elimination on constant rows (each of length `cols`), columns in the order `col_order`:
-/// returns the pivots (row, column); the rows are reduced in place (with `rhs`).
+/// Gaussian elimination on constant rows, pivots taken group by group: within a group the decision
+/// object picks among all (row, column) candidates in column order — the exact route the first
+/// nonzero, the double route the first that is at least 1/8 of the largest (threshold pivoting, so
+/// that a chart is never built on a small pivot, like v_theta = v_x/(R cos phi) near phi = pi/2,
+/// and is otherwise the preferred one) — and only when a group has no pivot left does the next come.  Returns the pivots (row, column); rows and rhs are reduced.
+template <class T, class Decide>
+std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector<std::vector<T>>& rows, std::vector<T>& rhs,
+                                                                       const std::vector<std::vector<std::size_t>>& groups, Decide& decide) {
+  std::vector<std::pair<std::size_t, std::size_t>> piv;
+  std::vector<char> used(rows.size(), 0);
+  std::vector<std::size_t> used_cols;
+  for (const auto& group : groups)
+    for (;;) {
+      std::vector<std::pair<std::size_t, std::size_t>> cand;
+      std::vector<T> vals;
+      for (std::size_t c : group) {
+        if (std::find(used_cols.begin(), used_cols.end(), c) != used_cols.end()) continue;
+        for (std::size_t i = 0; i < rows.size(); ++i)
+          if (!used[i]) {
+            cand.emplace_back(i, c);
+            vals.push_back(rows[i][c]);
+          }
+      }
+      const std::size_t k = decide.pivot(vals);
+      if (k == vals.size()) break;
+      const auto [p, c] = cand[k];
+      used[p] = 1;
+      used_cols.push_back(c);
+      piv.emplace_back(p, c);
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (i == p || rows[i][c] == 0) continue;
+        const T f = rows[i][c] / rows[p][c];
+        for (std::size_t j = 0; j < rows[i].size(); ++j) rows[i][j] -= f * rows[p][j];
+        rhs[i] -= f * rhs[p];
+        rows[i][c] = T(0);
+      }
+    }
+  return piv;
+}
+
+/// The same with one group: columns in `col_order`.
 template <class T, class Decide>
 std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector<std::vector<T>>& rows, std::vector<T>& rhs,
                                                                        const std::vector<std::size_t>& col_order, Decide& decide) {
-  std::vector<std::pair<std::size_t, std::size_t>> piv;
-  std::vector<char> used(rows.size(), 0);
-  for (std::size_t c : col_order) {
-    std::vector<std::size_t> cand;
-    std::vector<T> vals;
-    for (std::size_t i = 0; i < rows.size(); ++i)
-      if (!used[i]) {
-        cand.push_back(i);
-        vals.push_back(rows[i][c]);
-      }
-    const std::size_t k = decide.pivot(vals);
-    if (k == vals.size()) continue;
-    const std::size_t p = cand[k];
-    used[p] = 1;
-    piv.emplace_back(p, c);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (i == p || rows[i][c] == 0) continue;
-      const T f = rows[i][c] / rows[p][c];
-      for (std::size_t j = 0; j < rows[i].size(); ++j) rows[i][j] -= f * rows[p][j];
-      rhs[i] -= f * rhs[p];
-      rows[i][c] = T(0);
-    }
-  }
-  return piv;
+  return eliminate_constants(rows, rhs, std::vector<std::vector<std::size_t>>{col_order}, decide);
 }
 
 /// Elimination of jet rows R (with right-hand sides h) by pivots nonzero at the point.  The rows
@@ -187,11 +211,12 @@ JetElimination<T> eliminate_jets(std::vector<std::vector<Jet<T>>> r, std::vector
 
 /// The pointwise CAD of `sys` near `start` (values of q, v and t, indices as in LagrangianSystem;
 /// `fixed[i]`: the user gave variable i, never move it).  `constant` turns exact input numbers into
-/// T.  Jets are computed to order `order` and more if the tower needs it.
+/// T.  Jets are computed to order `order` and more if the tower needs it.  `plan`: another result's
+/// plan, to make the same choice of solved coordinates where it works (simulate's projections).
 template <class T, class Decide>
 PointwiseResult<T> pointwise_cad(const LagrangianSystem& sys, std::vector<T> start, const std::vector<bool>& fixed,
                                  Decide& decide, const std::function<T(const Rational&)>& constant, long order = 3,
-                                 std::size_t max_moves = 12);
+                                 std::size_t max_moves = 12, const std::vector<std::vector<std::size_t>>* plan = nullptr);
 
 // ------------------------------------------------------------------------------------------------
 
@@ -202,8 +227,8 @@ class Run {
  public:
   using J = Jet<T>;
   Run(const LagrangianSystem& sys, const LagrangianDerivatives& der, const std::vector<bool>& fixed, Decide& decide,
-      const std::function<T(const Rational&)>& constant)
-      : s_(sys), d_(der), fixed_(fixed), decide_(decide), constant_(constant), names_(sys.variable_names()) {}
+      const std::function<T(const Rational&)>& constant, const std::vector<std::vector<std::size_t>>* plan, std::size_t& polished)
+      : polished_(polished), s_(sys), d_(der), fixed_(fixed), decide_(decide), constant_(constant), names_(sys.variable_names()), plan_(plan) {}
 
   enum class Outcome { Done, Moved, MoreOrder };
 
@@ -220,9 +245,17 @@ class Run {
     std::vector<T> b0(s_.m());
     for (std::size_t a = 0; a < s_.m(); ++a)
       for (std::size_t i = 0; i < n; ++i) a0[a][s_.v(i)] = value(d_.a[a][i], point);
-    const std::vector<std::size_t> vel_pref = preference(true, false);
+    const auto vel_pref = preference(true, false);
     std::vector<std::vector<T>> a0r = a0;
-    const auto vp = eliminate_constants(a0r, b0, vel_pref, decide_);
+    auto vp = eliminate_constants(a0r, b0, vel_pref, decide_);
+    if (planned(0)) {
+      std::vector<std::vector<T>> a0p = a0;
+      std::vector<T> b0p = b0;
+      const auto alt = eliminate_constants(a0p, b0p, (*plan_)[0], decide_);
+      if (alt.size() == vp.size()) vp = alt;
+    }
+    out.plan.emplace_back();
+    for (const auto& pc : vp) out.plan.back().push_back(pc.second);
     if (vp.size() < s_.m()) {
       out.regular = false;
       out.why = "the constraints' velocity coefficients have rank " + std::to_string(vp.size()) + " < " + std::to_string(s_.m()) +
@@ -286,8 +319,15 @@ class Run {
         return Outcome::Done;
       }
       // values at the point: all zero, or move the point onto M_{k+1}
-      bool on = true;
-      for (const J& c : e.candidates) on = on && decide_.zero(c.value());
+      bool on = true, polish = false;
+      for (const J& c : e.candidates) {
+        on = on && decide_.zero(c.value());
+        polish = polish || decide_.polish(c.value());
+      }
+      if (on && polish && e.candidates.size() && polished_ < 4) {  // within the error bound, but Newton can do better
+        ++polished_;
+        on = false;
+      }
       long ord = std::numeric_limits<long>::max();
       for (const J& c : e.candidates) ord = std::min(ord, c.order());
       if (e.candidates.empty()) ord = K;
@@ -300,13 +340,22 @@ class Run {
       }
       if (ord < 1) return Outcome::MoreOrder;
       // the new independent constraints: gradients in the non-time chart coordinates
-      const std::vector<std::size_t> cols = chart_preference(chart);
+      const auto cols = chart_preference(chart);
       std::vector<std::vector<T>> g(e.candidates.size(), std::vector<T>(chart.size(), T(0)));
       for (std::size_t i = 0; i < e.candidates.size(); ++i)
         for (std::size_t j = 0; j < chart.size(); ++j) g[i][j] = e.candidates[i].gradient(j);
       std::vector<std::vector<T>> gr = g;
       std::vector<T> zero_rhs(g.size(), T(0));
-      const auto gp = eliminate_constants(gr, zero_rhs, cols, decide_);
+      auto gp = eliminate_constants(gr, zero_rhs, cols, decide_);
+      if (planned(k) && !gp.empty()) {  // the plan's coordinates, if they carry the same rank
+        std::vector<std::vector<T>> gq = g;
+        std::vector<T> zq(g.size(), T(0));
+        const auto alt = eliminate_constants(gq, zq, positions_in(chart, (*plan_)[k]), decide_);
+        if (alt.size() == gp.size()) {
+          gp = alt;
+          gr = gq;
+        }
+      }
       if (gp.empty()) {  // M_{k+1} = M_k: every candidate must vanish on M_k
         out.levels.push_back(lvl);
         for (std::size_t i = 0; i < e.candidates.size(); ++i) {
@@ -336,6 +385,8 @@ class Run {
       PointwiseLevel<T> next;
       // reduced rows (Gauss–Jordan): each has 1 pivot among the solved coordinates, so it names the one it is solved for
       for (std::size_t r = 0; r < gp.size(); ++r) next.added.push_back(tangent(gr[sel_rows[r]], chart, dep_idx[r], point));
+      out.plan.emplace_back();
+      for (std::size_t j : dep_idx) out.plan.back().push_back(chart[j]);
       std::vector<std::size_t> new_chart;
       std::vector<char> is_dep(chart.size(), 0);
       for (std::size_t j : dep_idx) is_dep[j] = 1;
@@ -388,25 +439,31 @@ class Run {
     return expr::evaluate<J>(e, x, [&](const Rational& q) { return J(sp, constant_(q)); });
   }
 
-  /// Variable indices in the order to prefer them as *dependent* coordinates: velocities before
-  /// positions, free values before given ones, later before earlier.
-  std::vector<std::size_t> preference(bool velocities, bool positions) const {
-    std::vector<std::size_t> out;
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t i = s_.n; i-- > 0;) {
-        if (velocities && (fixed_[s_.v(i)] == (pass == 1))) out.push_back(s_.v(i));
+  /// Variable indices in groups, in the order to prefer them as *dependent* coordinates: free
+  /// velocities, given velocities, free positions, given positions (later before earlier inside).
+  std::vector<std::vector<std::size_t>> preference(bool velocities, bool positions) const {
+    std::vector<std::vector<std::size_t>> out;
+    for (int kind = 0; kind < 2; ++kind) {
+      if ((kind == 0 && !velocities) || (kind == 1 && !positions)) continue;
+      for (int pass = 0; pass < 2; ++pass) {
+        out.emplace_back();
+        for (std::size_t i = s_.n; i-- > 0;) {
+          const std::size_t var = kind == 0 ? s_.v(i) : s_.q(i);
+          if (fixed_[var] == (pass == 1)) out.back().push_back(var);
+        }
       }
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t i = s_.n; i-- > 0;)
-        if (positions && (fixed_[s_.q(i)] == (pass == 1))) out.push_back(s_.q(i));
+    }
     return out;
   }
-  /// Chart positions (not the time) in the preferred order of dependent coordinates.
-  std::vector<std::size_t> chart_preference(const std::vector<std::size_t>& chart) const {
-    std::vector<std::size_t> out;
-    for (std::size_t var : preference(true, true))
-      for (std::size_t j = 0; j < chart.size(); ++j)
-        if (chart[j] == var) out.push_back(j);
+  /// The same groups as chart positions (never the time); `movable`: only coordinates not given.
+  std::vector<std::vector<std::size_t>> chart_preference(const std::vector<std::size_t>& chart, bool movable = false) const {
+    std::vector<std::vector<std::size_t>> out;
+    for (const auto& group : preference(true, true)) {
+      out.emplace_back();
+      for (std::size_t var : group)
+        for (std::size_t j = 0; j < chart.size(); ++j)
+          if (chart[j] == var && !(movable && fixed_[var])) out.back().push_back(j);
+    }
     return out;
   }
   bool time_only(const std::vector<T>& grad, const std::vector<std::size_t>& chart) {
@@ -425,7 +482,7 @@ class Run {
       std::size_t p = c;
       std::vector<T> vals;
       for (std::size_t i = c; i < n; ++i) vals.push_back(r[i][c].value());
-      p = c + decide_.pivot(vals);
+      p = c + largest(vals);
       if (p >= n) throw std::logic_error("pointwise_cad: singular square system after a rank check");
       std::swap(r[p], r[c]);
       std::swap(h[p], h[c]);
@@ -575,7 +632,7 @@ class Run {
     for (std::size_t c = 0; c < n; ++c) {
       std::vector<T> vals;
       for (std::size_t i = c; i < n; ++i) vals.push_back(a[i][c]);
-      const std::size_t p = c + decide_.pivot(vals);
+      const std::size_t p = c + largest(vals);
       if (p >= n) throw std::logic_error("pointwise_cad: singular Jacobian after a rank check");
       std::swap(a[p], a[c]);
       std::swap(inv[p], inv[c]);
@@ -606,13 +663,29 @@ class Run {
       rhs[i] = -cand[i].value();
       for (std::size_t j = 0; j < chart.size(); ++j) g[i][j] = cand[i].gradient(j);
     }
-    std::vector<std::size_t> cols;
-    for (std::size_t j : chart_preference(chart))
-      if (!fixed_[chart[j]]) cols.push_back(j);
+    // a Newton step changes, for each constraint, the movable coordinate it depends on most (complete
+    // pivoting by magnitude, in both routes): preferring velocities, as charts do, would fix the
+    // pendulum's multiplier constraint mu = m (v² − g y)/|q|² by changing v instead of mu
+    std::vector<std::size_t> movable;
+    if (planned(k)) {  // the plan's solved coordinates: the projection is the graph map of its chart
+      for (std::size_t j : positions_in(chart, (*plan_)[k]))
+        if (!fixed_[chart[j]]) movable.push_back(j);
+    } else {
+      for (const auto& group : chart_preference(chart, true)) movable.insert(movable.end(), group.begin(), group.end());
+    }
     std::vector<std::vector<T>> gr = g;
-    const auto piv = eliminate_constants(gr, rhs, cols, decide_);
+    Largest largest{decide_};
+    const auto piv = eliminate_constants(gr, rhs, movable, largest);
     std::vector<char> prow(cand.size(), 0);
     for (const auto& pc : piv) prow[pc.first] = 1;
+    std::size_t rank_all = 0;  // the rank of the candidates' differentials over every coordinate but the time
+    {
+      std::vector<std::vector<T>> ga = g;
+      std::vector<T> za(g.size(), T(0));
+      std::vector<std::size_t> all;
+      for (const auto& group : chart_preference(chart)) all.insert(all.end(), group.begin(), group.end());
+      rank_all = eliminate_constants(ga, za, all, decide_).size();
+    }
     for (std::size_t i = 0; i < cand.size(); ++i) {
       if (prow[i] || decide_.zero(rhs[i])) continue;
       bool constant = true;  // the candidate is a nonzero constant near the point: M_{k+1} = ∅
@@ -634,14 +707,46 @@ class Run {
                   ": M_" + std::to_string(k + 1) + "(t) is empty there";
         return false;
       }
-      std::string given;
-      for (std::size_t j = 0; j < chart.size(); ++j)
-        if (fixed_[chart[j]] && !decide_.zero(g[i][j])) given += (given.empty() ? "" : ", ") + names_[chart[j]];
-      throw PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) +
-                             " (residual " + JetFunctions<T>::text(cand[i].value()) + ") that no other coordinate can satisfy");
+      if (piv.size() < rank_all) {  // the constraints need more freedom than the movable coordinates give
+        std::string given;
+        for (std::size_t j = 0; j < chart.size(); ++j)
+          if (fixed_[chart[j]] && !decide_.zero(g[i][j])) given += (given.empty() ? "" : ", ") + names_[chart[j]];
+        throw PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) + " (residual " +
+                               JetFunctions<T>::text(cand[i].value()) + ") that no other coordinate can satisfy");
+      }
+      // otherwise a redundant candidate: it vanishes on M_{k+1}, where the independent ones bring the point
     }
     std::vector<T> delta(chart.size(), T(0));
+    // each constraint moves its pivot coordinate: exactly, a constraint affine in it lands in one step
     for (const auto& pc : piv) delta[pc.second] = rhs[pc.first] / gr[pc.first][pc.second];
+    if constexpr (JetFunctions<T>::tracks_error) {
+      // rounding routes: the minimum-norm step instead (δ minus its part in ker A, A the independent
+      // constraints' gradients over the movable coordinates), a smooth projection — the pivot
+      // coordinates flip between nearby points, and so would the projected vector field
+      std::vector<std::vector<T>> nulls;  // ker A from the reduced rows: one vector per free column
+      for (std::size_t f : movable) {
+        if (std::any_of(piv.begin(), piv.end(), [&](const auto& pc) { return pc.second == f; })) continue;
+        std::vector<T> v(chart.size(), T(0));
+        v[f] = T(1);
+        for (const auto& pc : piv) v[pc.second] = -gr[pc.first][f] / gr[pc.first][pc.second];
+        nulls.push_back(v);
+      }
+      if (!nulls.empty()) {
+        std::vector<std::vector<T>> ntn(nulls.size(), std::vector<T>(nulls.size(), T(0)));
+        std::vector<T> ntd(nulls.size(), T(0));
+        for (std::size_t i = 0; i < nulls.size(); ++i)
+          for (std::size_t j = 0; j < chart.size(); ++j) {
+            ntd[i] += nulls[i][j] * delta[j];
+            for (std::size_t k = 0; k < nulls.size(); ++k) ntn[i][k] += nulls[i][j] * nulls[k][j];
+          }
+        const std::vector<std::vector<T>> inv = inverse(ntn);
+        for (std::size_t i = 0; i < nulls.size(); ++i) {
+          T w(0);
+          for (std::size_t k = 0; k < nulls.size(); ++k) w += inv[i][k] * ntd[k];
+          for (std::size_t j = 0; j < chart.size(); ++j) delta[j] -= nulls[i][j] * w;
+        }
+      }
+    }
     std::vector<T> next = point;
     for (std::size_t v = 0; v < x.size(); ++v) next[v] = x[v].at(delta);
     for (std::size_t v = 0; v < x.size(); ++v)
@@ -653,7 +758,7 @@ class Run {
   /// The solution rank and the velocities at the point, from the final system's constant terms:
   /// z = (ṡ, λ) solves R z = h; ẋ = Σ_j ∂x/∂s_j ṡ_j + ∂x/∂t for every coordinate of x = (q, v, p).
   void solutions(const System& sys, const std::vector<J>& x, const std::vector<std::size_t>& chart, PointwiseResult<T>& out) {
-    const std::size_t n = s_.n, rows = sys.r.size(), w = rows ? sys.r[0].size() : s_.m();
+    const std::size_t n = s_.n, rows = sys.r.size(), w = rows ? sys.r[0].size() : s_.m(), ms = w - s_.m();
     std::vector<std::vector<T>> r(rows, std::vector<T>(w));
     std::vector<T> h(rows);
     for (std::size_t i = 0; i < rows; ++i) {
@@ -685,6 +790,12 @@ class Run {
       return v;
     };
     out.velocity = full(z, true);
+    out.tangent.clear();
+    for (std::size_t j = 0; j < ms; ++j) {
+      std::vector<T> e(ms + s_.m(), T(0));
+      e[j] = T(1);
+      out.tangent.push_back(full(e, false));
+    }
     std::vector<std::vector<T>> dirs;
     for (std::size_t f = 0; f < w; ++f) {  // the kernel of R, one vector per free column
       if (is_piv[f]) continue;
@@ -711,12 +822,44 @@ class Run {
     out.time = point[s_.t()];
   }
 
+  /// The largest value (no decision: for square systems whose rank was decided already), or
+  /// values.size() if all are exactly 0.
+  static std::size_t largest(const std::vector<T>& v) {
+    std::size_t best = v.size();
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (JetFunctions<T>::magnitude(v[i]) > 0 && (best == v.size() || JetFunctions<T>::magnitude(v[i]) > JetFunctions<T>::magnitude(v[best]))) best = i;
+    return best;
+  }
+
+  /// Pivots by largest magnitude (any nonzero pivot is exact; this one is the best conditioned).
+  struct Largest {
+    Decide& d;
+    std::size_t pivot(const std::vector<T>& v) {
+      std::size_t best = v.size();
+      for (std::size_t i = 0; i < v.size(); ++i)
+        if (JetFunctions<T>::magnitude(v[i]) > 0 && (best == v.size() || JetFunctions<T>::magnitude(v[i]) > JetFunctions<T>::magnitude(v[best]))) best = i;
+      return best == v.size() || d.zero(v[best]) ? v.size() : best;
+    }
+  };
+
+  bool planned(std::size_t k) const { return plan_ && k < plan_->size() && !(*plan_)[k].empty(); }
+  /// The chart positions of the variables `vars` (those in the chart).
+  static std::vector<std::size_t> positions_in(const std::vector<std::size_t>& chart, const std::vector<std::size_t>& vars) {
+    std::vector<std::size_t> out;
+    for (std::size_t v : vars)
+      for (std::size_t j = 0; j < chart.size(); ++j)
+        if (chart[j] == v) out.push_back(j);
+    return out;
+  }
+
+  std::size_t& polished_;  ///< Newton steps taken only to polish, over the whole call (bounded)
   const LagrangianSystem& s_;
   const LagrangianDerivatives& d_;
   const std::vector<bool>& fixed_;
   Decide& decide_;
   std::function<T(const Rational&)> constant_;
   std::vector<std::string> names_;
+  const std::vector<std::vector<std::size_t>>* plan_ = nullptr;
 };
 
 }  // namespace pointwise_detail
@@ -724,12 +867,12 @@ class Run {
 template <class T, class Decide>
 PointwiseResult<T> pointwise_cad(const LagrangianSystem& sys, std::vector<T> start, const std::vector<bool>& fixed,
                                  Decide& decide, const std::function<T(const Rational&)>& constant, long order,
-                                 std::size_t max_moves) {
+                                 std::size_t max_moves, const std::vector<std::vector<std::size_t>>* plan) {
   const LagrangianDerivatives der = derivatives(sys);
   PointwiseResult<T> out;
-  std::size_t moves = 0;
+  std::size_t moves = 0, polished = 0;
   for (long K = order;;) {
-    pointwise_detail::Run<T, Decide> run(sys, der, fixed, decide, constant);
+    pointwise_detail::Run<T, Decide> run(sys, der, fixed, decide, constant, plan, polished);
     const auto o = run.pass(start, K, out);
     if (o == pointwise_detail::Run<T, Decide>::Outcome::Done) {
       out.moves = moves;
