@@ -114,8 +114,8 @@ inline reference::LagrangianSystem pulled_back(const reference::PontryaginInput<
 }
 
 /// A random linear Pontryagin system on Q^n (CEF §6): degenerate A of random rank, B, C, a, b, and
-/// m < n independent constraints.
-inline reference::PontryaginInput<Q> random_pontryagin(Index n) {
+/// m < n independent constraints (at least min_m).
+inline reference::PontryaginInput<Q> random_pontryagin(Index n, Index min_m = 0) {
   reference::PontryaginInput<Q> in;
   in.n = n;
   in.vv = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
@@ -124,7 +124,7 @@ inline reference::PontryaginInput<Q> random_pontryagin(Index n) {
   const bool affine = *rc::gen::inRange(0, 4) == 0;  // with a, b = 0 the system is consistent (x = 0 ∈ M_c)
   in.q = affine ? integer_vector(n, 1) : std::vector<Q>(n, Q(0));
   in.v = affine ? integer_vector(n, 1) : std::vector<Q>(n, Q(0));
-  const Index m = *rc::gen::inRange<Index>(0, n);
+  const Index m = *rc::gen::inRange<Index>(std::min(min_m, n - 1), n);
   in.k = (integer_matrix(m, n, 1) + QM::identity(n).block(0, m, 0, n)) * unimodular(n);  // rank m: [B + (I 0)] U, B
   if (reference::rank(in.k) < m) in.k = QM::identity(n).block(0, m, 0, n) * unimodular(n);  // small, else the identity rows
   return in;

@@ -1,0 +1,190 @@
+// YM §5–§6 on formulas (reference/ehresmann.hpp): the Ehresmann connection, its curvature, the
+// constrained Lagrangian, and YM Thm 5.6: the implicit Lagrange–d'Alembert equations (5.6) hold along
+// the motion the CAD computes (CEF §5, reference/pointwise.hpp) — two routes to the same dynamics.
+// Goldens: YM §6's rolling disk (exactly, at rational points of the circle) and L-C circuit.
+#include "dcad/reference/ehresmann.hpp"
+#include "dcad/reference/pointwise.hpp"
+#include "expr_gen.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+using namespace dcad;
+using namespace dcad::test;
+namespace ex = reference::expr;
+
+namespace {
+
+/// YM §6's vertical rolling disk: q = (x, y, theta, phi).
+reference::LagrangianSystem rolling_disk(const Q& m, const Q& inertia, const Q& jj, const Q& rr) {
+  reference::LagrangianSystem s;
+  s.n = 4;
+  s.names = {"x", "y", "theta", "phi"};
+  const auto v = [](Index i) { return ex::variable(4 + i); };
+  s.lagrangian = ex::add(ex::add(ex::mul(ex::number(m / 2), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(ex::number(inertia / 2), ex::pow(v(2), 2))),
+                         ex::mul(ex::number(jj / 2), ex::pow(v(3), 2)));
+  s.constraints = {ex::sub(v(0), ex::mul(ex::mul(ex::number(rr), ex::cos(ex::variable(3))), v(2))),
+                   ex::sub(v(1), ex::mul(ex::mul(ex::number(rr), ex::sin(ex::variable(3))), v(2)))};
+  return s;
+}
+
+/// A formula of the disk at q, v with (cos phi, sin phi) = (c, s): exact (sin, cos as variables 9, 10).
+Q at_angle(const ex::Expr& e, const std::vector<Q>& qv, const Q& c, const Q& s) {
+  const ex::Expr f = reference::angles_as_variables(e, {3}, {9}, {10});
+  std::vector<Q> vars(qv);
+  vars.resize(9, Q(0));
+  vars.push_back(s);
+  vars.push_back(c);
+  return reference::value_at(f, vars);
+}
+
+}  // namespace
+
+// YM §6, the rolling disk: s = (x, y), r = (theta, phi); A¹_1 = −R cos phi, A²_1 = −R sin phi, the
+// other components 0; K¹_12 = −K¹_21 = R sin phi, K²_12 = −K²_21 = −R cos phi; L_c = ½(mR² + I)v_theta²
+// + ½ J v_phi²; the entry (5, 6) of B_P^♯ is −p_b K^b_12 by (5.9) (printed +p_b K^b_12: ERRATA), which is
+// −m R (v_x sin phi − v_y cos phi) off the constraint space and 0 on it.  Exactly, at rational points
+// of the circle and at rational velocities.
+TEST(Ehresmann, RollingDiskOfYM6) {
+  const Q m(2), inertia(1, 2), jj(1, 4), rr(1, 3);
+  const reference::LagrangianSystem disk = rolling_disk(m, inertia, jj, rr);
+  const reference::EhresmannConnection conn = reference::ehresmann_connection(disk, {Q(0), Q(0), Q(0), Q(0)});
+  ASSERT_EQ(conn.s, (std::vector<std::size_t>{0, 1}));
+  ASSERT_EQ(conn.r, (std::vector<std::size_t>{2, 3}));
+  const auto k = reference::curvature(conn);
+  const ex::Expr lc = reference::constrained_lagrangian(disk, conn);
+  int checked = 0;
+  for (int t = -3; t <= 3; ++t) {  // (cos, sin) = ((1 − t²)/(1 + t²), 2t/(1 + t²))
+    const Q c = Q(1 - t * t, 1 + t * t), s = Q(2 * t, 1 + t * t);
+    const std::vector<Q> qv{Q(1, 2), Q(-2), Q(3), Q(0), Q(5, 7), Q(-1, 3), Q(2), Q(-3, 2)};  // phi's value unused
+    EXPECT_EQ(at_angle(conn.a[0][0], qv, c, s), -rr * c);
+    EXPECT_EQ(at_angle(conn.a[1][0], qv, c, s), -rr * s);
+    EXPECT_EQ(at_angle(conn.a[0][1], qv, c, s), 0);
+    EXPECT_EQ(at_angle(conn.a[1][1], qv, c, s), 0);
+    EXPECT_EQ(at_angle(k[0][0][1], qv, c, s), rr * s);
+    EXPECT_EQ(at_angle(k[1][0][1], qv, c, s), -rr * c);
+    for (Index b = 0; b < 2; ++b) {
+      EXPECT_EQ(at_angle(k[b][1][0], qv, c, s), -at_angle(k[b][0][1], qv, c, s));
+      EXPECT_EQ(at_angle(k[b][0][0], qv, c, s), 0);
+    }
+    EXPECT_EQ(at_angle(lc, qv, c, s), (m * rr * rr + inertia) / 2 * qv[6] * qv[6] + jj / 2 * qv[7] * qv[7]);
+    // B_P^♯ (5.9): −p_b K^b_12 with p = m (v_x, v_y), at velocities off the constraint space
+    const Q pk = m * qv[4] * at_angle(k[0][0][1], qv, c, s) + m * qv[5] * at_angle(k[1][0][1], qv, c, s);
+    EXPECT_EQ(-pk, -m * rr * (qv[4] * s - qv[5] * c));
+    if (s != 0 || c != 0) EXPECT_NE(-pk, pk) << "the printed sign would pass too";
+    // on Δ (v_x = R cos phi v_theta, v_y = R sin phi v_theta) it vanishes: harmless in YM's example
+    EXPECT_EQ(m * rr * c * qv[6] * at_angle(k[0][0][1], qv, c, s) + m * rr * s * qv[6] * at_angle(k[1][0][1], qv, c, s), 0);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 7);
+}
+
+// YM §6, the L-C circuit: q = (q_L, q_C1, q_C2, q_C3), ω¹ = −dq_L + dq_C2, ω² = −dq_C1 + dq_C2 − dq_C3;
+// YM's split s = (q_L, q_C1), r = (q_C2, q_C3) with A = [[−1, 0], [−1, 1]]; holonomic: K = 0; L_c =
+// ½ L f_C2² − Σ q_Ci²/(2 C_i).
+TEST(Ehresmann, LcCircuitOfYM6) {
+  reference::LagrangianSystem lc;
+  lc.n = 4;
+  lc.names = {"q_L", "q_C1", "q_C2", "q_C3"};
+  const auto q = [](Index i) { return ex::variable(i); };
+  const auto v = [](Index i) { return ex::variable(4 + i); };
+  const Q l(2), c1(3), c2(5), c3(7);
+  lc.lagrangian = ex::sub(ex::sub(ex::sub(ex::mul(ex::number(l / 2), ex::pow(v(0), 2)), ex::mul(ex::number(1 / (2 * c1)), ex::pow(q(1), 2))),
+                                  ex::mul(ex::number(1 / (2 * c2)), ex::pow(q(2), 2))),
+                          ex::mul(ex::number(1 / (2 * c3)), ex::pow(q(3), 2)));
+  lc.constraints = {ex::add(ex::neg(v(0)), v(2)), ex::sub(ex::add(ex::neg(v(1)), v(2)), v(3))};
+  const reference::EhresmannConnection conn = reference::ehresmann_connection(lc, {Q(0), Q(0), Q(0), Q(0)});
+  EXPECT_EQ(conn.s, (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(conn.r, (std::vector<std::size_t>{2, 3}));
+  const std::vector<Q> at(9, Q(1));
+  const std::vector<std::vector<Q>> want{{-1, 0}, {-1, 1}};
+  for (Index a = 0; a < 2; ++a)
+    for (Index al = 0; al < 2; ++al) EXPECT_EQ(reference::value_at(conn.a[a][al], at), want[a][al]);
+  for (const auto& kb : reference::curvature(conn))
+    for (const auto& row : kb)
+      for (const auto& e : row) EXPECT_TRUE(ex::is_number(e, 0)) << ex::to_text(e, lc.variable_names());
+  const std::vector<Q> pt{Q(1), Q(2), Q(3), Q(4), Q(9), Q(9), Q(5), Q(-2), Q(0)};
+  EXPECT_EQ(reference::value_at(reference::constrained_lagrangian(lc, conn), pt), l / 2 * 25 - 4 / (2 * c1) - 9 / (2 * c2) - 16 / (2 * c3));
+}
+
+// YM Thm 5.6: along the motion of the CAD (exact pointwise route) at a point of M_c, the implicit
+// Lagrange–d'Alembert equations (5.6) of (L_c, Δ, X_P) hold exactly: linear Lagrangians with linear
+// constraints pulled back by polynomial point transformations (so A and K depend on the point).
+RC_GTEST_PROP(Ehresmann, ImplicitLagrangeDAlembertHoldAlongTheCadMotion, ()) {
+  reference::PontryaginInput<Q> in = random_pontryagin(pick_size(2, 3), 1);
+  in.q.assign(in.n, Q(0));
+  in.v.assign(in.n, Q(0));  // homogeneous: consistent, 0 ∈ M_c
+  const auto system = reference::pontryagin_system(in);
+  const auto linear = reference::constraint_tower(system);
+  const std::vector<Q> x0 = some_point(linear.final_step().m);
+  const PointMap phi = random_map(in.n);
+  const reference::LagrangianSystem s = pulled_back(in, phi);
+  std::vector<Q> start = phi.inverse(std::vector<Q>(x0.begin(), x0.begin() + static_cast<long>(in.n)));
+  const std::vector<Q> big_v = (reference::inverse(phi.jacobian(start)) *
+                                QM::column(std::vector<Q>(x0.begin() + static_cast<long>(in.n), x0.begin() + static_cast<long>(2 * in.n))))
+                                   .col(0);
+  start.insert(start.end(), big_v.begin(), big_v.end());
+  start.push_back(0);
+  reference::ExactDecisions<Q> d;
+  const auto r = reference::pointwise_cad<Q>(s, start, std::vector<bool>(start.size(), true), d, [](const Q& c) { return c; });
+  RC_ASSERT(r.consistent && r.regular);
+  const reference::EhresmannConnection conn =
+      reference::ehresmann_connection(s, std::vector<Q>(start.begin(), start.begin() + static_cast<long>(in.n)));
+  const std::vector<Q> qv(start.begin(), start.begin() + static_cast<long>(2 * in.n));
+  const std::vector<Q> qv_dot(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * in.n));
+  for (const Q& e : reference::implicit_lagrange_dalembert_residual(s, conn, qv, qv_dot)) RC_ASSERT(e == 0);
+  // and for the other solutions (the gauge directions): (5.6) is linear in the motion's derivatives
+  for (const auto& g : r.gauge) {
+    std::vector<Q> other(qv_dot);
+    for (Index i = 0; i < other.size(); ++i) other[i] += g[i];
+    for (const Q& e : reference::implicit_lagrange_dalembert_residual(s, conn, qv, other)) RC_ASSERT(e == 0);
+  }
+}
+
+// The same for YM §6's disk with random parameters at phi = 0 (rational there): YM's conclusion
+// p~_theta' = p~_phi' = 0 holds, and a wrong motion (v_theta' ≠ 0) is caught.
+RC_GTEST_PROP(Ehresmann, RollingDiskMomentaAreConserved, ()) {
+  const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
+  const reference::LagrangianSystem disk = rolling_disk(pos(), pos(), pos(), pos());
+  std::vector<Q> start{Q(*rc::gen::inRange(-5, 6)), Q(*rc::gen::inRange(-5, 6)), Q(*rc::gen::inRange(-5, 6)), Q(0), Q(0), Q(0),
+                       Q(*rc::gen::inRange(-5, 6)), Q(*rc::gen::inRange(-5, 6)), Q(0)};
+  std::vector<bool> fixed(9, true);
+  fixed[4] = fixed[5] = false;
+  reference::ExactDecisions<Q> d;
+  const auto r = reference::pointwise_cad<Q>(disk, start, fixed, d, [](const Q& c) { return c; });
+  const auto conn = reference::ehresmann_connection(disk, {start[0], start[1], start[2], Q(0)});
+  const std::vector<Q> qv(r.point.begin(), r.point.begin() + 8);
+  std::vector<Q> qv_dot(r.velocity.begin(), r.velocity.begin() + 8);
+  for (const Q& e : reference::implicit_lagrange_dalembert_residual(disk, conn, qv, qv_dot)) RC_ASSERT(e == 0);
+  qv_dot[6] += 1;  // v_theta' = 1: the momentum p~_theta would change
+  bool caught = false;
+  for (const Q& e : reference::implicit_lagrange_dalembert_residual(disk, conn, qv, qv_dot)) caught = caught || e != 0;
+  RC_ASSERT(caught);
+}
+
+// A nonholonomic constraint whose curvature term matters: z' = x y' − y x' (Heisenberg; fibre s = z,
+// K = 2 dx∧dy up to sign), L = ½|v|² − V(q) with a random quadratic V, at random rational points.
+RC_GTEST_PROP(Ehresmann, HeisenbergCurvatureTermHoldsAlongTheCadMotion, ()) {
+  reference::LagrangianSystem s;
+  s.n = 3;
+  s.names = {"z", "x", "y"};  // z first: the fibre coordinate YM's rule picks
+  const std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)}, v{ex::variable(3), ex::variable(4), ex::variable(5)};
+  const QM k = symmetric_matrix(3, pick_size(0, 3));
+  ex::Expr l = ex::number(0);
+  for (Index i = 0; i < 3; ++i) l = ex::add(l, ex::mul(ex::number(Q(1, 2)), ex::pow(v[i], 2)));
+  const std::vector<ex::Expr> kq = times(k, q);
+  for (Index i = 0; i < 3; ++i) l = ex::sub(l, ex::mul(ex::number(Q(1, 2)), ex::mul(q[i], kq[i])));
+  s.lagrangian = l;
+  s.constraints = {ex::add(ex::sub(v[0], ex::mul(q[1], v[2])), ex::mul(q[2], v[1]))};
+  std::vector<Q> x0;
+  for (int i = 0; i < 6; ++i) x0.push_back(Q(*rc::gen::inRange(-6, 7), *rc::gen::inRange(1, 5)));
+  x0[3] = x0[1] * x0[5] - x0[2] * x0[4];
+  RC_PRE(x0[4] != 0 || x0[5] != 0);  // a motion in the base: the curvature term p_b K^b u is then not 0
+  x0.push_back(0);
+  reference::ExactDecisions<Q> d;
+  const auto r = reference::pointwise_cad<Q>(s, x0, std::vector<bool>(7, true), d, [](const Q& c) { return c; });
+  const auto conn = reference::ehresmann_connection(s, {x0[0], x0[1], x0[2]});
+  RC_ASSERT(conn.s == std::vector<std::size_t>{0});
+  const std::vector<Q> qv(x0.begin(), x0.begin() + 6), qv_dot(r.velocity.begin(), r.velocity.begin() + 6);
+  for (const Q& e : reference::implicit_lagrange_dalembert_residual(s, conn, qv, qv_dot)) RC_ASSERT(e == 0);
+}

@@ -1,0 +1,163 @@
+// YM §5 on formulas: the Ehresmann connection of linear constraints a(q)·v = 0, its curvature, the
+// constrained Lagrangian L_c, and the implicit Lagrange–d'Alembert equations (5.6) of the implicit
+// constrained Lagrangian system (L_c, Δ, X_P) — YM Thm 5.6 (a).  Everything is a formula
+// (expression.hpp); nothing is decided here but the choice of the fibre coordinates at a point.
+#pragma once
+
+#include "dcad/reference/jet.hpp"
+#include "dcad/reference/lagrangian_system.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace dcad::reference {
+
+/// q = (r, s): base coordinates r (n − m) and fibre coordinates s (m), with the constraints written
+/// ω^a = ds^a + A^a_α(q) dr^α, i.e. v_s = −A v_r on Δ  [YM §5, "Ehresmann connections"].
+struct EhresmannConnection {
+  std::vector<std::size_t> r, s;              ///< coordinate indices
+  std::vector<std::vector<expr::Expr>> a;     ///< A[a][α]
+};
+
+/// The value of a formula of q at a point (exact: no sin/cos/exp except at values where rational).
+inline Rational value_at(const expr::Expr& e, const std::vector<Rational>& vars) {
+  auto none = std::make_shared<const JetSpace>(0, 0);
+  std::vector<Jet<Rational>> x;
+  for (const Rational& v : vars) x.emplace_back(none, v);
+  return expr::evaluate<Jet<Rational>>(e, x, [&](const Rational& c) { return Jet<Rational>(none, c); }).value();
+}
+
+/// The connection with fibre coordinates s = the first coordinates, in order, on which the constraints'
+/// velocity coefficients a(q0) are independent (YM's choice in both of its §6 examples: (x, y) for
+/// the disk, (q_L, q_C1) for the L-C circuit), A = a_s⁻¹ a_r by Gauss–Jordan on formulas with pivots
+/// nonzero at q0.  std::invalid_argument unless the constraints are linear and homogeneous in v and
+/// independent of t, with a(q0) of full rank.
+inline EhresmannConnection ehresmann_connection(const LagrangianSystem& sys, const std::vector<Rational>& q0) {
+  const LagrangianDerivatives d = derivatives(sys);
+  const std::size_t n = sys.n, m = sys.m();
+  for (std::size_t c = 0; c < m; ++c) {
+    if (!expr::is_number(d.b[c], 0) || expr::depends_on(sys.constraints[c], sys.t()))
+      throw std::invalid_argument("ehresmann_connection: expected constraints linear and homogeneous in v, free of t (YM §5), found constraint " +
+                                  std::to_string(c + 1));
+  }
+  std::vector<Rational> at(2 * n + 1, Rational(0));
+  for (std::size_t i = 0; i < n; ++i) at[i] = q0[i];
+  std::vector<std::vector<expr::Expr>> a = d.a;  // m × n, reduced in place (formulas)
+  EhresmannConnection conn;
+  std::vector<char> fibre(n, 0);
+  std::size_t row = 0;
+  for (std::size_t col = 0; col < n && row < m; ++col) {
+    std::size_t p = row;
+    while (p < m && value_at(a[p][col], at) == 0) ++p;
+    if (p == m) continue;
+    std::swap(a[p], a[row]);
+    const expr::Expr pivot = a[row][col];
+    for (std::size_t j = 0; j < n; ++j) a[row][j] = expr::div(a[row][j], pivot);
+    for (std::size_t i = 0; i < m; ++i) {
+      if (i == row || expr::is_number(a[i][col], 0)) continue;
+      const expr::Expr f = a[i][col];
+      for (std::size_t j = 0; j < n; ++j) a[i][j] = expr::sub(a[i][j], expr::mul(f, a[row][j]));
+    }
+    conn.s.push_back(col);
+    fibre[col] = 1;
+    ++row;
+  }
+  if (row < m) throw std::invalid_argument("ehresmann_connection: expected independent constraints at the point, found rank " + std::to_string(row));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!fibre[i]) conn.r.push_back(i);
+  conn.a.assign(m, {});
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t alpha : conn.r) conn.a[b].push_back(a[b][alpha]);  // row b: v_s^b + Σ A^b_α v_r^α = 0
+  return conn;
+}
+
+/// K^b_{αβ} = ∂A^b_α/∂r^β − ∂A^b_β/∂r^α + A^a_α ∂A^b_β/∂s^a − A^a_β ∂A^b_α/∂s^a  [YM, after (5.6)].
+inline std::vector<std::vector<std::vector<expr::Expr>>> curvature(const EhresmannConnection& c) {
+  const std::size_t m = c.s.size(), k = c.r.size();
+  std::vector<std::vector<std::vector<expr::Expr>>> out(m, std::vector<std::vector<expr::Expr>>(k, std::vector<expr::Expr>(k)));
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t al = 0; al < k; ++al)
+      for (std::size_t be = 0; be < k; ++be) {
+        expr::Expr e = expr::sub(expr::diff(c.a[b][al], c.r[be]), expr::diff(c.a[b][be], c.r[al]));
+        for (std::size_t a = 0; a < m; ++a)
+          e = expr::add(e, expr::sub(expr::mul(c.a[a][al], expr::diff(c.a[b][be], c.s[a])), expr::mul(c.a[a][be], expr::diff(c.a[b][al], c.s[a]))));
+        out[b][al][be] = e;
+      }
+  return out;
+}
+
+/// L_c(r, s, u) = L(r, s, u, −A(r, s) u): the Lagrangian restricted to Δ, with u = v_r  [YM §5].
+inline expr::Expr constrained_lagrangian(const LagrangianSystem& sys, const EhresmannConnection& c) {
+  expr::Expr l = sys.lagrangian;
+  for (std::size_t b = 0; b < c.s.size(); ++b) {
+    expr::Expr w = expr::number(0);
+    for (std::size_t al = 0; al < c.r.size(); ++al) w = expr::sub(w, expr::mul(c.a[b][al], expr::variable(sys.v(c.r[al]))));
+    l = expr::substitute(l, sys.v(c.s[b]), w);
+  }
+  return l;
+}
+
+/// The residuals of YM (5.6) at x = (q, v, p) with v ∈ Δ, for a motion with d/dt (q, v) = (q̇, v̇):
+///   ṡ + A ṙ,   ṙ − u,   d/dt p̃_α − (∂L_c/∂r^α − A^b_α ∂L_c/∂s^b − p_b K^b_{αβ} u^β),
+/// with p̃_α = ∂L_c/∂u^α along the motion and p_b = ∂L/∂w^b (w = v_s) at (q, v).  All zero on a
+/// solution of the implicit constrained Lagrangian system (YM Thm 5.6 (a) ⇔ (c)).
+inline std::vector<Rational> implicit_lagrange_dalembert_residual(const LagrangianSystem& sys, const EhresmannConnection& c,
+                                                                   const std::vector<Rational>& qv, const std::vector<Rational>& qv_dot) {
+  const std::size_t n = sys.n, m = c.s.size(), k = c.r.size();
+  auto sp = std::make_shared<const JetSpace>(1, 1);  // first-order jets along the motion: value + ε d/dt
+  std::vector<Jet<Rational>> x;
+  for (std::size_t i = 0; i < 2 * n; ++i) {
+    Jet<Rational> j = Jet<Rational>::variable(sp, 0, qv[i]);
+    j.set_coefficient(1, qv_dot[i]);
+    x.push_back(j);
+  }
+  x.emplace_back(sp, Rational(0));
+  const auto ev = [&](const expr::Expr& e) { return expr::evaluate<Jet<Rational>>(e, x, [&](const Rational& q) { return Jet<Rational>(sp, q); }); };
+  const expr::Expr lc = constrained_lagrangian(sys, c);
+  const auto kk = curvature(c);
+  std::vector<Rational> res;
+  for (std::size_t b = 0; b < m; ++b) {  // ṡ^b = −A^b_α ṙ^α
+    Rational r = qv_dot[c.s[b]];
+    for (std::size_t al = 0; al < k; ++al) r += ev(c.a[b][al]).value() * qv_dot[c.r[al]];
+    res.push_back(r);
+  }
+  for (std::size_t al = 0; al < k; ++al) res.push_back(qv_dot[c.r[al]] - qv[sys.v(c.r[al])]);  // ṙ = u
+  std::vector<Rational> pb;
+  for (std::size_t b = 0; b < m; ++b) pb.push_back(ev(expr::diff(sys.lagrangian, sys.v(c.s[b]))).value());
+  for (std::size_t al = 0; al < k; ++al) {
+    Rational rhs = ev(expr::diff(lc, c.r[al])).value();
+    for (std::size_t b = 0; b < m; ++b) rhs -= ev(c.a[b][al]).value() * ev(expr::diff(lc, c.s[b])).value();
+    for (std::size_t b = 0; b < m; ++b)
+      for (std::size_t be = 0; be < k; ++be) rhs -= pb[b] * ev(kk[b][al][be]).value() * qv[sys.v(c.r[be])];
+    res.push_back(ev(expr::diff(lc, sys.v(c.r[al]))).gradient(0) - rhs);  // d/dt p̃_α − rhs
+  }
+  return res;
+}
+
+/// e with sin(x_i) and cos(x_i) of the variables i in `angles` replaced by the variables sin_var[i]
+/// and cos_var[i]: formulas in which each angle occurs only under sin and cos can then be evaluated
+/// exactly at rational points of the circle (cos, sin) = ((1 − t²)/(1 + t²), 2t/(1 + t²)).
+inline expr::Expr angles_as_variables(const expr::Expr& e, const std::vector<std::size_t>& angles, const std::vector<std::size_t>& sin_var,
+                                      const std::vector<std::size_t>& cos_var) {
+  using expr::ExprOp;
+  for (std::size_t k = 0; k < angles.size(); ++k)
+    if ((e->op == ExprOp::Sin || e->op == ExprOp::Cos) && e->a->op == ExprOp::Variable && e->a->var == angles[k])
+      return expr::variable(e->op == ExprOp::Sin ? sin_var[k] : cos_var[k]);
+  switch (e->op) {
+    case ExprOp::Number:
+    case ExprOp::Variable: return e;
+    case ExprOp::Add: return expr::add(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Sub: return expr::sub(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Mul: return expr::mul(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Div: return expr::div(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Neg: return expr::neg(angles_as_variables(e->a, angles, sin_var, cos_var));
+    case ExprOp::Pow: return expr::pow(angles_as_variables(e->a, angles, sin_var, cos_var), e->exponent);
+    case ExprOp::Sin: return expr::sin(angles_as_variables(e->a, angles, sin_var, cos_var));
+    case ExprOp::Cos: return expr::cos(angles_as_variables(e->a, angles, sin_var, cos_var));
+    case ExprOp::Exp: return expr::exp(angles_as_variables(e->a, angles, sin_var, cos_var));
+    case ExprOp::Sqrt: return expr::sqrt(angles_as_variables(e->a, angles, sin_var, cos_var));
+  }
+  throw std::logic_error("angles_as_variables: unknown operation");
+}
+
+}  // namespace dcad::reference
