@@ -178,3 +178,27 @@ TEST(Expression, SimulatePendulumStaysOnMcAndKeepsItsEnergy) {
   }
   EXPECT_LT(rows.back()[1], 0.6);  // it has started to swing
 }
+
+// sympy.physics.mechanics on the 3D rolling disc (sympy issue 27631), judged by dcad check
+// (proptests/peers/sympy_rolling_disc.py): the documented "rolling disk using the Lagrange method"
+// (Euler–Lagrange on the kinetic energy with rolling substituted: YM §5's L_c without its curvature
+// term) disagrees, also with its potential's sign fixed; LagrangesMethod with the nonholonomic
+// constraints agrees with dcad.
+TEST(Expression, SympyRollingDiscVerdict) {
+  const std::string dir = (fs::temp_directory_path() / ("dcad_sympy_" + std::to_string(getpid()))).string();
+  const Outcome r = [&] {
+    Outcome o;
+    const std::string out = dir + ".out";
+    const int status = std::system(("/usr/bin/python3 " + std::string(DCAD_SOURCE_DIR) + "/proptests/peers/sympy_rolling_disc.py " DCAD_BINARY " " +
+                                    case_path("rolling-disc-3d") + " " + dir + " >" + out + " 2>&1")
+                                       .c_str());
+    o.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    o.out = slurp(out);
+    return o;
+  }();
+  ASSERT_EQ(r.rc, 0) << "needs Debian's python3-sympy (bash .ci/setup installs it)\n" << r.out;
+  EXPECT_NE(r.out.find("documented 3 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("sign-fixed 3 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("constrained 0 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("q1''=1.95426797109"), std::string::npos) << r.out;  // −2 q2' q3' / cos q2 (issue 27631's correction)
+}
