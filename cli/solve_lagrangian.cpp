@@ -95,10 +95,11 @@ void check_given(const ref::PointwiseResult<T>& r, const io::LagrangianCase& c, 
     throw io::InputError(c.file + ": /initial/" + st[idx] + ": expected a value on M_c (the constraints give " + st[idx] + " = " +
                          text_of(found) + " with the other given values), found " + given.str());
   };
+  if (!r.consistent || r.point.size() != 3 * n) return;  // no point of M_c to hold them against
   for (std::size_t i = 0; i < 2 * n; ++i)
-    if (c.initial[i] && r.consistent && !same(r.point[i], *c.initial[i])) bad(i, *c.initial[i], r.point[i]);
+    if (c.initial[i] && !same(r.point[i], *c.initial[i])) bad(i, *c.initial[i], r.point[i]);
   for (std::size_t i = 0; i < n; ++i)
-    if (c.initial_p[i] && r.consistent && !same(r.point[2 * n + i], *c.initial_p[i])) bad(2 * n + i, *c.initial_p[i], r.point[2 * n + i]);
+    if (c.initial_p[i] && !same(r.point[2 * n + i], *c.initial_p[i])) bad(2 * n + i, *c.initial_p[i], r.point[2 * n + i]);
 }
 
 LagrangianReport solve_exact(const io::LagrangianCase& c) {
@@ -109,6 +110,7 @@ LagrangianReport solve_exact(const io::LagrangianCase& c) {
   check_given<Rational>(r, c, [](const Rational& a, const Rational& b) { return a == b; });
   LagrangianReport out = report_of(r, c);
   out.route = "pointwise exact";
+  out.certified = r.regular;  // a singular point decides no tower
   return out;
 }
 

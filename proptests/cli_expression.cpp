@@ -202,3 +202,31 @@ TEST(Expression, SympyRollingDiscVerdict) {
   EXPECT_NE(r.out.find("constrained 0 "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("q1''=1.95426797109"), std::string::npos) << r.out;  // −2 q2' q3' / cos q2 (issue 27631's correction)
 }
+
+// A point where a rank drops is reported, never used (CONTRACT): a mass x² that vanishes at x = 0
+// (the Legendre rank drops there, not nearby), and a constraint x v_y − y v_x whose coefficients all
+// vanish at the origin.  Exit 0, "regular": false with the reason, no solution rank, not certified;
+// at x = 1/2 the same system is regular: [3, 2].
+TEST(Expression, SingularPointsAreReportedNotUsed) {
+  const std::string mass = write_temp("dcad_singular_mass.json",
+                                      R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/2*x^2*v_x^2 - x^4"}, "initial": {"x": "0", "v_x": "1"}})J");
+  const std::string cons = write_temp("dcad_singular_cons.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "y"], "L": "1/2*(v_x^2 + v_y^2)",
+      "constraints": ["x*v_y - y*v_x"]}, "initial": {"x": "0", "y": "0"}})J");
+  for (const auto& [file, why] : {std::pair<std::string, std::string>{mass, "rank of the system for (d/dt s, lambda) drops"},
+                                  std::pair<std::string, std::string>{cons, "velocity coefficients have rank 0 < 1"}})
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + file + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << file << " " << backend << r.err;
+      const json got = json::parse(r.out);
+      EXPECT_FALSE(got["regular"].get<bool>()) << file;
+      EXPECT_FALSE(got["certified"].get<bool>()) << file << " " << backend;
+      EXPECT_TRUE(got["solution_rank"].is_null());
+      EXPECT_NE(got["why"].get<std::string>().find(why), std::string::npos) << got["why"];
+      EXPECT_NE(run("solve " + file + " --backend " + backend).out.find("SINGULAR POINT"), std::string::npos);
+    }
+  json m = json::parse(slurp(mass));
+  m["initial"]["x"] = "1/2";
+  const json got = json::parse(run("solve " + write_temp("dcad_regular_mass.json", m.dump()) + " --json").out);
+  EXPECT_TRUE(got["regular"].get<bool>());
+  EXPECT_EQ(got["dims"], json::parse("[3, 2]"));
+}

@@ -260,6 +260,10 @@ class Run {
       out.regular = false;
       out.why = "the constraints' velocity coefficients have rank " + std::to_string(vp.size()) + " < " + std::to_string(s_.m()) +
                 " at the point (dependent constraints, or a point where Delta changes dimension)";
+      out.point.assign(3 * n, T(0));  // the point as given: (q, v, p = ∂L/∂v)
+      for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
+      for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = value(d_.dl_dv[i], point);
+      out.time = point[s_.t()];
       return Outcome::Done;
     }
     std::vector<char> dependent(2 * n + 1, 0);
@@ -315,6 +319,7 @@ class Run {
         out.levels.push_back(lvl);
         out.regular = false;
         out.why = "on M_" + std::to_string(k) + ": " + e.singular;
+        out.steps = out.dims.size() - 1;
         finish(out, point, x);
         return Outcome::Done;
       }
@@ -403,6 +408,7 @@ class Run {
           out.regular = false;
           out.why = "on M_" + std::to_string(k + 1) + ": a constraint of step " + std::to_string(k) +
                     " vanishes with its differential at the point but not identically on M_" + std::to_string(k + 1);
+          out.steps = out.dims.size() - 1;
           finish(out, point, x);
           return Outcome::Done;
         }
