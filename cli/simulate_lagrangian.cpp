@@ -116,7 +116,7 @@ SimulateSummary simulate_lagrangian(const io::LagrangianCase& c, const SimulateO
   if (!first.consistent || !first.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + first.why);
   if (first.solution_rank > 0)
     log << "note: solutions are not unique (solution rank " << first.solution_rank << "); simulating the one with the free directions set to 0\n";
-  Field f{c, n};
+  Field f{c, n, 0, {}};
   std::vector<double> y(2 * n);
   for (std::size_t i = 0; i < 2 * n; ++i) y[i] = std::stod(first.point[i]);
   double t = std::stod(first.time);

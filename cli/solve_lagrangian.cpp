@@ -194,9 +194,9 @@ nlohmann::json to_json(const LagrangianReport& r, const io::LagrangianCase& c) {
     if (k == 0) {
       cs = r.first_constraints;
     } else {
-      for (const auto& c : l.constraints) {
-        cs.push_back(c[1]);
-        solved.push_back(c[0]);
+      for (const auto& con : l.constraints) {
+        cs.push_back(con[1]);
+        solved.push_back(con[0]);
       }
     }
     for (const auto& p : l.pivots) ps.push_back({{"row", p[0]}, {"column", p[1]}, {"value", p[2]}});

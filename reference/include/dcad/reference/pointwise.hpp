@@ -191,7 +191,8 @@ JetElimination<T> eliminate_jets(std::vector<std::vector<Jet<T>>> r, std::vector
     for (std::size_t i = 0; i < rows; ++i) {
       if (used[i] || r[i][c].is_zero()) continue;
       const Jet<T> f = r[i][c] * inv;
-      for (std::size_t j = c; j < cols; ++j) r[i][j] -= f * r[p][j];
+      // every column: one skipped for want of a pivot is 0 at the point but not as a series
+      for (std::size_t j = 0; j < cols; ++j) r[i][j] -= f * r[p][j];
       h[i] -= f * h[p];
     }
   }
@@ -743,12 +744,12 @@ class Run {
         for (std::size_t i = 0; i < nulls.size(); ++i)
           for (std::size_t j = 0; j < chart.size(); ++j) {
             ntd[i] += nulls[i][j] * delta[j];
-            for (std::size_t k = 0; k < nulls.size(); ++k) ntn[i][k] += nulls[i][j] * nulls[k][j];
+            for (std::size_t l = 0; l < nulls.size(); ++l) ntn[i][l] += nulls[i][j] * nulls[l][j];
           }
         const std::vector<std::vector<T>> inv = inverse(ntn);
         for (std::size_t i = 0; i < nulls.size(); ++i) {
           T w(0);
-          for (std::size_t k = 0; k < nulls.size(); ++k) w += inv[i][k] * ntd[k];
+          for (std::size_t l = 0; l < nulls.size(); ++l) w += inv[i][l] * ntd[l];
           for (std::size_t j = 0; j < chart.size(); ++j) delta[j] -= nulls[i][j] * w;
         }
       }
