@@ -171,22 +171,10 @@ RC_GTEST_PROP(Ehresmann, RollingDiskMomentaAreConserved, ()) {
 // A nonholonomic constraint whose curvature term matters: z' = x y' − y x' (Heisenberg; fibre s = z,
 // K = 2 dx∧dy up to sign), L = ½|v|² − V(q) with a random quadratic V, at random rational points.
 RC_GTEST_PROP(Ehresmann, HeisenbergCurvatureTermHoldsAlongTheCadMotion, ()) {
-  reference::LagrangianSystem s;
-  s.n = 3;
-  s.names = {"z", "x", "y"};  // z first: the fibre coordinate YM's rule picks
-  const std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)}, v{ex::variable(3), ex::variable(4), ex::variable(5)};
-  const QM k = symmetric_matrix(3, pick_size(0, 3));
-  ex::Expr l = ex::number(0);
-  for (Index i = 0; i < 3; ++i) l = ex::add(l, ex::mul(ex::number(Q(1, 2)), ex::pow(v[i], 2)));
-  const std::vector<ex::Expr> kq = times(k, q);
-  for (Index i = 0; i < 3; ++i) l = ex::sub(l, ex::mul(ex::number(Q(1, 2)), ex::mul(q[i], kq[i])));
-  s.lagrangian = l;
-  s.constraints = {ex::add(ex::sub(v[0], ex::mul(q[1], v[2])), ex::mul(q[2], v[1]))};
-  std::vector<Q> x0;
-  for (int i = 0; i < 6; ++i) x0.push_back(Q(*rc::gen::inRange(-6, 7), *rc::gen::inRange(1, 5)));
-  x0[3] = x0[1] * x0[5] - x0[2] * x0[4];
+  const Heisenberg h = heisenberg_system(1, 2, 0);  // z first: the fibre coordinate YM's rule picks
+  const reference::LagrangianSystem& s = h.s;
+  const std::vector<Q> x0 = heisenberg_point(h);
   RC_PRE(x0[4] != 0 || x0[5] != 0);  // a motion in the base: the curvature term p_b K^b u is then not 0
-  x0.push_back(0);
   reference::ExactDecisions<Q> d;
   const auto r = reference::pointwise_cad<Q>(s, x0, std::vector<bool>(7, true), d, [](const Q& c) { return c; });
   const auto conn = reference::ehresmann_connection(s, {x0[0], x0[1], x0[2]});

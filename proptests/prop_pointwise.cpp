@@ -233,21 +233,9 @@ RC_GTEST_PROP(Pointwise, RollingDiskWithRandomParameters, ()) {
 // M_1 = {p = v, constraint} (dim 9 − 3 − 1 = 5) and L regular on Δ: dims [9, 5], unique, exactly at
 // random rational points; the reaction keeps the constraint: d/dt (v_z − x v_y + y v_x) = 0.
 RC_GTEST_PROP(Pointwise, HeisenbergConstraint, ()) {
-  reference::LagrangianSystem s;
-  s.n = 3;
-  s.names = {"x", "y", "z"};
-  std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)}, v{ex::variable(3), ex::variable(4), ex::variable(5)};
-  const QM k = symmetric_matrix(3, pick_size(0, 3));
-  ex::Expr l = ex::number(0);
-  for (Index i = 0; i < 3; ++i) l = ex::add(l, ex::mul(ex::number(Q(1, 2)), ex::pow(v[i], 2)));
-  const std::vector<ex::Expr> kq = times(k, q);
-  for (Index i = 0; i < 3; ++i) l = ex::sub(l, ex::mul(ex::number(Q(1, 2)), ex::mul(q[i], kq[i])));
-  s.lagrangian = l;
-  s.constraints = {ex::add(ex::sub(v[2], ex::mul(q[0], v[1])), ex::mul(q[1], v[0]))};
-  std::vector<Q> x0;
-  for (int i = 0; i < 6; ++i) x0.push_back(Q(*rc::gen::inRange(-6, 7), *rc::gen::inRange(1, 5)));
-  x0[5] = x0[0] * x0[4] - x0[1] * x0[3];  // on the constraint
-  x0.push_back(0);
+  const Heisenberg h = heisenberg_system(0, 1, 2);
+  const reference::LagrangianSystem& s = h.s;
+  const std::vector<Q> x0 = heisenberg_point(h);
   const PR r = exact_at(s, x0);
   RC_ASSERT(r.dims == (std::vector<long>{9, 5}));
   RC_ASSERT(r.solution_rank == 0u);

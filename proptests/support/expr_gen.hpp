@@ -130,4 +130,36 @@ inline reference::PontryaginInput<Q> random_pontryagin(Index n, Index min_m = 0)
   return in;
 }
 
+/// A Heisenberg-type constraint z' = x y' − y x' (nonholonomic, polynomial) with L = ½|v|² − ½ qᵀ K q
+/// (K random symmetric): coordinates x, y, z at the indices ix, iy, iz.
+struct Heisenberg {
+  reference::LagrangianSystem s;
+  Index ix, iy, iz;
+};
+inline Heisenberg heisenberg_system(Index ix, Index iy, Index iz) {
+  Heisenberg h{{}, ix, iy, iz};
+  h.s.n = 3;
+  h.s.names.assign(3, "");
+  h.s.names[ix] = "x";
+  h.s.names[iy] = "y";
+  h.s.names[iz] = "z";
+  const std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)}, v{ex::variable(3), ex::variable(4), ex::variable(5)};
+  const QM k = symmetric_matrix(3, pick_size(0, 3));
+  ex::Expr l = ex::number(0);
+  for (Index i = 0; i < 3; ++i) l = ex::add(l, ex::mul(ex::number(Q(1, 2)), ex::pow(v[i], 2)));
+  const std::vector<ex::Expr> kq = times(k, q);
+  for (Index i = 0; i < 3; ++i) l = ex::sub(l, ex::mul(ex::number(Q(1, 2)), ex::mul(q[i], kq[i])));
+  h.s.lagrangian = l;
+  h.s.constraints = {ex::add(ex::sub(v[iz], ex::mul(q[ix], v[iy])), ex::mul(q[iy], v[ix]))};
+  return h;
+}
+/// A random rational point (q, v, t = 0) on the constraint.
+inline std::vector<Q> heisenberg_point(const Heisenberg& h) {
+  std::vector<Q> x;
+  for (int i = 0; i < 6; ++i) x.push_back(Q(*rc::gen::inRange(-6, 7), *rc::gen::inRange(1, 5)));
+  x[3 + h.iz] = x[h.ix] * x[3 + h.iy] - x[h.iy] * x[3 + h.ix];
+  x.push_back(0);
+  return x;
+}
+
 }  // namespace dcad::test
