@@ -39,7 +39,7 @@ void ColPivQR(benchmark::State& st) {
   const Eigen::MatrixXd a = small_integers(static_cast<int>(st.range(0)), static_cast<int>(st.range(0)), 3, rng);
   for (auto _ : st) benchmark::DoNotOptimize(Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(a).rank());
 }
-BENCHMARK(ColPivQR)->Arg(100)->Arg(200)->Arg(500)->Unit(benchmark::kMillisecond);
+BENCHMARK(ColPivQR)->Arg(100)->Arg(200)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
 
 void JacobiSingularValues(benchmark::State& st) {
   std::mt19937 rng(1);
@@ -52,7 +52,7 @@ void FastCad(benchmark::State& st) {
   const fa::LinearSystem s = presymplectic_system(static_cast<int>(st.range(0)));
   for (auto _ : st) benchmark::DoNotOptimize(fa::constraint_tower(s).steps);
 }
-BENCHMARK(FastCad)->Arg(100)->Arg(200)->Arg(500)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(FastCad)->Arg(100)->Arg(200)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 template <class T, class Lift>
 ref::Matrix<T> lifted(const Eigen::MatrixXd& a, Lift lift) {

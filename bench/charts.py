@@ -20,6 +20,9 @@ LABEL = {"reference": "reference (mpq)", "certified": "certified (ball + exact)"
 PRESYMPLECTIC = {"graded", "perturbed", "tower"}
 
 
+KERNEL_SIZES = (100, 200, 500, 1000, 2000)
+
+
 def read_rows(path, header=None):
     with open(path) as f:
         return list(csv.DictReader(f, fieldnames=header))
@@ -115,6 +118,25 @@ def main():
                     if r["family"] == "closed-form" and r["deck"] == deck and r["tool"] == tool and r["error"] != "nan":
                         f.write(f'{r["seconds"]} {max(float(r["error"]), 1e-17)} "{r["setting"]}"\n')
 
+    # (6) fast CAD against one pivoted QR, time against N (bench_kernels), fitted exponents.
+    k = {}
+    kp = os.path.join(res, "kernels.csv")
+    if os.path.exists(kp):
+        with open(kp) as f:
+            text = f.read()
+        body = text[text.index("name,"):] if "name," in text else ""
+        for r in csv.DictReader(body.splitlines()):
+            k[r["name"].split("/iterations")[0]] = float(r["real_time"]) * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9, "s": 1.0}[r["time_unit"]]
+    plot6, kexp = [], {}
+    for i, m in enumerate(("FastCad", "ColPivQR", "JacobiSingularValues")):
+        pts = [(n, k[f"{m}/{n}"]) for n in KERNEL_SIZES if f"{m}/{n}" in k]
+        if len(pts) >= 2:
+            fn = os.path.join(data, f"kernel_{m}.dat")
+            with open(fn, "w") as f:
+                f.writelines(f"{n} {t:g}\n" for n, t in pts)
+            kexp[m] = fit_exponent(pts)
+            plot6.append(f"'{fn}' using 1:2 with linespoints lw 2 pt {i + 5} title \"{m}  N^{{{kexp[m]:.2f}}}\"")
+
     term = "pngcairo size 720,460 font ',10'"
     if subprocess.run(["gnuplot", "-e", "set terminal pngcairo"], capture_output=True).returncode != 0:
         term = "png size 720,460"
@@ -164,24 +186,28 @@ plot '{data}/rlc_rlc-series_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title
      '{data}/rlc_rl-step_dcad.dat' using 1:2 with linespoints pt 9 lw 2 title 'dcad, RL step', \
      '{data}/rlc_rl-step_ngspice.dat' using 1:2 with linespoints pt 11 lw 2 title 'ngspice, RL step', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle
 """
+    if plot6:
+        gp += f"""set output '{out}/fast_cad_vs_qr.png'
+set title 'Fast CAD (presymplectic, c >= 1) against one pivoted QR and one SVD of an NxN matrix'
+set logscale xy
+set xlabel 'N'
+set ylabel 'time [s]'
+set format y '10^{{%L}}'
+set format x '%g'
+plot {", ".join(plot6)}
+"""
     with open(os.path.join(data, "charts.gp"), "w") as f:
         f.write(gp)
     subprocess.run(["gnuplot", os.path.join(data, "charts.gp")], check=True)
 
     # Summary of the ratios the issue asks for, all from this run.
     lines = ["# dcad benchmark summary (one run; regenerate with `bash bench/run.sh`)\n"]
-    k = {}
-    kp = os.path.join(res, "kernels.csv")
-    if os.path.exists(kp):
-        with open(kp) as f:
-            text = f.read()
-        body = text[text.index("name,"):] if "name," in text else ""
-        for r in csv.DictReader(body.splitlines()):
-            k[r["name"].split("/iterations")[0]] = float(r["real_time"]) * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9, "s": 1.0}[r["time_unit"]]
-    for n in (100, 200, 500):
+    for n in KERNEL_SIZES:
         if f"FastCad/{n}" in k and f"ColPivQR/{n}" in k:
             lines.append(f"- fast CAD at N = {n}: {k[f'FastCad/{n}']:.3g} s, one pivoted QR of an N×N matrix {k[f'ColPivQR/{n}']:.3g} s: "
                          f"ratio {k[f'FastCad/{n}'] / k[f'ColPivQR/{n}']:.0f}× (goal ≤ 4×)\n")
+    if kexp:
+        lines.append("- fitted exponents over N: " + ", ".join(f"{m} N^{e:.2f}" for m, e in sorted(kexp.items())) + "\n")
     ref_t = {(r["family"], r["param"]): r["mean_seconds"] for r in rows if r["method"] == "reference"}
     ratios = [(fam, p, t / ref_t[(fam, p)]) for (fam, p, t) in
               ((r["family"], r["param"], r["mean_seconds"]) for r in rows if r["method"] == "sympy") if (fam, p) in ref_t]

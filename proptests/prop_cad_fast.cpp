@@ -2,6 +2,7 @@
 // rank) unless fast says uncertain; the reduced equations agree within a condition-aware bound.
 #include "support/case_json.hpp"
 #include "support/convert.hpp"
+#include "support/fast_options.hpp"
 #include "support/tally.hpp"
 
 #include "dcad/fast/cad.hpp"
@@ -19,7 +20,7 @@ RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
   const ref::LinearSystem<Q> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(s.primary)), s.omega), s.hessian,
                                 s.gradient, Q(0)};
   const ref::CadResult<Q> r = ref::constraint_tower(ls, s.primary);
-  fast::Options opt;
+  fast::Options opt = any_route_options();
   const Eigen::MatrixXd w = to_double(s.omega, &opt), prim = to_double(s.primary, &opt);
   const fast::LinearSystem fs{fast::dirac_from_distribution(fast::kernel(prim.leftCols(w.rows()), opt), w),
                               to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
@@ -35,7 +36,7 @@ RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
 RC_GTEST_PROP(FastVsReference, Cad, ()) {
   const ref::LinearSystem<Q> s = any_system();
   RC_LOG() << case_json(s);
-  fast::Options opt;
+  fast::Options opt = any_route_options();
   const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
                               to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
   const ref::CadResult<Q> r = ref::constraint_tower(s);

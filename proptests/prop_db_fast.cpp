@@ -2,6 +2,7 @@
 // uncertain (tower dims, consistency, dim Λ^(c), 2s, number of first class constraints); the fast
 // Dirac tensor satisfies Lemma 3.23 (e) and gives the canonical motion on M_c, up to rounding.
 #include "support/convert.hpp"
+#include "support/fast_options.hpp"
 #include "support/tally.hpp"
 
 #include "dcad/fast/adapted.hpp"
@@ -16,7 +17,7 @@ namespace ref = dcad::reference;
 
 RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
   const ref::ConstrainedSystem<Q> s = any_constrained_system();
-  fast::Options opt;
+  fast::Options opt = any_route_options();
   const fast::ConstrainedSystem fs{to_double(s.omega, &opt), to_double(s.hessian, &opt),
                                    to_double(QM::column(s.gradient), &opt).col(0), to_double(s.primary, &opt)};
   const ref::DiracBergmannResult<Q> r = ref::dirac_bergmann(s);
@@ -57,7 +58,7 @@ RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
   std::vector<bool> primary(r.constraints.rows(), false);
   for (Index i = 0; i < s.primary.rows(); ++i) primary[i] = true;
   const ref::AdaptedConstraints<Q> ra = ref::adapted_constraints(s.omega, r.constraints, primary);
-  fast::Options opt;
+  fast::Options opt = any_route_options();
   const Eigen::MatrixXd w = to_double(s.omega, &opt), cons = to_double(r.constraints, &opt);
   const fast::AdaptedConstraints fa = fast::adapted_constraints(w, cons, primary, opt);
   RC_ASSERT(!tally("adapted s'", fa.certain, static_cast<Index>(fa.s_prime) == ra.s_prime));

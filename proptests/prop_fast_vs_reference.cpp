@@ -1,6 +1,7 @@
 // fast = reference on every discrete output unless fast says uncertain; subspaces agree up to a
 // condition-aware principal-angle bound; on adversarial data fast must say uncertain, not be wrong.
 #include "support/convert.hpp"
+#include "support/fast_options.hpp"
 #include "support/tally.hpp"
 
 #include <gtest/gtest.h>
@@ -110,7 +111,7 @@ RC_GTEST_PROP(FastVsReference, NearDegenerate, ()) {
   QM w = p.w;
   for (Index i = 0; i < p.n; ++i)
     for (Index j = 0; j < p.n; ++j) w(i, j) += delta * e(i, j);
-  fast::Options opt;
+  fast::Options opt = any_route_options();
   const Eigen::MatrixXd wd = to_double(w, &opt);
   const Index exact = ref::rank(w);
   const fast::RankDecision d = fast::decide_rank(wd, -1, opt);
@@ -135,7 +136,7 @@ RC_GTEST_PROP(FastVsReference, Graded, ()) {
       const Q s = e >= 0 ? Q(boost::multiprecision::mpz_int(1) << e) : Q(1) / Q(boost::multiprecision::mpz_int(1) << -e);
       w(i, j) *= s;
     }
-  fast::Options opt;
+  fast::Options opt = any_route_options();
   const Eigen::MatrixXd wd = to_double(w, &opt);
   RC_ASSERT(opt.input_exact);  // powers of two: exact in double
   RC_CLASSIFY(!opt.input_well_scaled, "flagged as graded");

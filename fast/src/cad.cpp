@@ -47,25 +47,28 @@ int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorX
   const MatrixXd y = ca * a.transpose();
   const MatrixXd ra = ca - y * a;
   const VectorXd rb = cb - y * b;
-  const Svd sv = full_svd(ra);
-  RankDecision d = decide_rank(ra, sv.sigma, scale, opt);
+  const RankRevealing f(ra.transpose(), scale, opt);  // the new rows: an orthonormal basis of im raᵀ
+  RankDecision d = f.decision();
   const int room = static_cast<int>(a.cols() - a.rows());
   if (d.rank > room) {  // more new rows than codimensions left: only rounding can say so
     d.rank = room;
     d.certain = false;
   }
-  // what is left of the right-hand side where the new rows vanish must be 0
-  const VectorXd rest = sv.u.rightCols(ra.rows() - d.rank).transpose() * rb;
+  trace.push_back(d);
+  const MatrixXd rows = f.range().leftCols(d.rank).transpose();
+  // x0: the minimum-norm solution of ra x = rb on the decided rank; what is left of the
+  // right-hand side, rb − ra x0, must be 0 (its norm bounds rb's distance from im ra from above)
+  const VectorXd x0 = f.min_norm_transposed(rb);
+  const VectorXd rest = rb - ra * x0;
   const RankDecision dc = decide_rank(MatrixXd(rest), std::max(rhs_scale, scale), opt);
   certain = certain && d.certain && dc.certain;
-  trace.push_back(d);
   trace.push_back(dc);
   if (dc.rank > 0) return -1;
   if (d.rank == 0) return 0;
   MatrixXd a2(a.rows() + d.rank, a.cols());
-  a2 << a, sv.v.leftCols(d.rank).transpose();
+  a2 << a, rows;
   VectorXd b2(b.size() + d.rank);
-  b2 << b, (sv.u.leftCols(d.rank).transpose() * rb).cwiseQuotient(sv.sigma.head(d.rank));
+  b2 << b, rows * x0;
   a = a2;
   b = b2;
   return d.rank;
@@ -187,18 +190,15 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   lhs.topLeftCorner(n, k) = dv;
   lhs.topRightCorner(n, m) = -b;
   lhs.bottomLeftCorner(n, k) = da;
-  const Svd sv = full_svd(lhs);
-  const RankDecision dl = decide_rank(lhs, sv.sigma, 1.0 + norm2(s.hessian), opt);
-  red.certain = red.certain && dl.certain;
-  MatrixXd pinv = MatrixXd::Zero(k + m, 2 * n);
-  for (int i = 0; i < dl.rank; ++i) pinv += sv.v.col(i) * sv.u.col(i).transpose() / sv.sigma(i);
+  const RankRevealing fl(lhs.transpose(), 1.0 + norm2(s.hessian), opt);  // ker lhs = (im lhsᵀ)^⊥
+  red.certain = red.certain && fl.decision().certain;
   MatrixXd rhs_y = MatrixXd::Zero(2 * n, m);
   rhs_y.bottomRows(n) = s.hessian * b;
   VectorXd rhs0 = VectorXd::Zero(2 * n);
   rhs0.tail(n) = s.hessian * x0 + s.gradient;
-  const MatrixXd p = (pinv * rhs_y).bottomRows(m);
-  const VectorXd p0 = (pinv * rhs0).tail(m);
-  const MatrixXd kernel_w = sv.v.rightCols(k + m - dl.rank).bottomRows(m);  // w-parts of the null space
+  const MatrixXd p = fl.min_norm_transposed(rhs_y).bottomRows(m);
+  const VectorXd p0 = fl.min_norm_transposed(rhs0).bottomRows(m);
+  const MatrixXd kernel_w = fl.corange().bottomRows(m);  // w-parts of the null space
   red.coords = coords;
   red.f_matrix = t * p * tinv;
   red.f = t * p0 - red.f_matrix * (sel * x0);

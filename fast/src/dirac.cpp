@@ -102,11 +102,9 @@ PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
   const Subspace e = dirac_distribution(d, opt);
   const MatrixXd q = e.basis();
   // α_i with (q_i, α_i) ∈ D: c_i = V⁺ q_i (q_i ∈ im V), α_i = A c_i;  G_ij = α_i(q_j).
-  const Svd s = full_svd(d.v_part());
-  const int r = e.dim();
-  MatrixXd vplus = MatrixXd::Zero(d.n, d.n);
-  for (int i = 0; i < r; ++i) vplus += s.v.col(i) * s.u.col(i).transpose() / s.sigma(i);
-  const MatrixXd alphas = d.alpha_part() * (vplus * q);  // columns α_i
+  // c_i: the minimum-norm solution of V c = q_i, on the rank decided for E (V = (Vᵀ)ᵀ)
+  const RankRevealing f(d.v_part().transpose(), 1.0, opt);
+  const MatrixXd alphas = d.alpha_part() * f.min_norm_transposed(q);  // columns α_i
   MatrixXd g = alphas.transpose() * q;
   g = (g - g.transpose()) / 2;  // skew up to rounding; keep it exactly skew
   // ω_D's entries are α(q) with ‖α‖ ≤ ‖A V⁺‖: that is the scale of its rank decisions.

@@ -22,7 +22,26 @@ Svd full_svd(const MatrixXd& a) {
 
 double norm2(const MatrixXd& a) {
   if (a.size() == 0) return 0;
-  return Eigen::JacobiSVD<MatrixXd>(a).singularValues()(0);
+  if (std::min(a.rows(), a.cols()) <= 48) return Eigen::JacobiSVD<MatrixXd>(a).singularValues()(0);
+  // power iteration on AᵀA from a fixed start with no special structure (a start of all ones is
+  // orthogonal to the top singular vector of, e.g., a Laplacian)
+  VectorXd x(a.cols());
+  for (Eigen::Index i = 0; i < x.size(); ++i) x(i) = 1.0 + 0.5 * std::sin(1.0 + 0.7 * static_cast<double>(i));
+  x.normalize();
+  double est = 0;
+  for (int it = 0; it < 300; ++it) {
+    const VectorXd y = a * x;
+    const double ny = y.norm();  // ‖A x‖ with ‖x‖ = 1: a lower bound of ‖A‖₂
+    if (ny == 0) break;
+    const VectorXd z = a.transpose() * y;
+    const double nz = z.norm();
+    if (nz == 0) break;
+    x = z / nz;
+    const bool settled = ny - est <= 1e-7 * ny;
+    est = std::max(est, ny);
+    if (settled) break;
+  }
+  return std::max(est, a.norm() / std::sqrt(static_cast<double>(std::min(a.rows(), a.cols()))));
 }
 
 namespace {
@@ -49,19 +68,122 @@ MatrixXd equilibrated(MatrixXd a, double tiny) {
 }  // namespace
 
 RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
-  const VectorXd s = a.size() ? Eigen::JacobiSVD<MatrixXd>(a).singularValues() : VectorXd(0);
-  return decide_rank(a, s, scale, opt);
+  return RankRevealing(a, scale, opt).decision();
 }
+
+namespace {
+
+double zero_threshold(int rows, int cols, double scale, const Options& opt) {
+  return opt.zero_factor * std::max(rows, cols) * std::numeric_limits<double>::epsilon() * scale;
+}
+
+/// The QR route of a decision (no cross-check): true, with d filled, when its bounds decide.
+bool decide_by_qr(const Eigen::ColPivHouseholderQR<MatrixXd>& qr, const MatrixXd& a, double scale, const Options& opt,
+                  RankDecision& d) {
+  const MatrixXd& f = qr.matrixQR();  // R is its upper triangle
+  const Eigen::Index m = f.rows(), n = f.cols(), p = std::min(m, n);
+  d = RankDecision();
+  d.by_qr = true;
+  d.rows = static_cast<int>(m);
+  d.cols = static_cast<int>(n);
+  d.scale = scale >= 0 ? scale : norm2(a);
+  d.zero_threshold = zero_threshold(d.rows, d.cols, d.scale, opt);
+  d.nonzero_threshold = std::max(opt.nonzero_factor * d.scale, d.zero_threshold);
+  Eigen::Index k = 0;
+  while (k < p && std::abs(f(k, k)) > d.zero_threshold) ++k;
+  d.dropped_upper = MatrixXd(f.block(k, k, p - k, n - k).triangularView<Eigen::Upper>()).norm();
+  d.kept_lower = std::numeric_limits<double>::infinity();
+  if (k > 0)
+    d.kept_lower = 1.0 / f.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(MatrixXd::Identity(k, k)).norm();
+  if (!(d.dropped_upper <= d.zero_threshold) || !(d.kept_lower > d.nonzero_threshold)) return false;
+  d.rank = static_cast<int>(k);
+  d.largest = p ? std::abs(f(0, 0)) : 0.0;
+  for (Eigen::Index i = 0; i < p; ++i) d.singular_values.push_back(std::abs(f(i, i)));
+  d.gap = d.dropped_upper > 0 ? d.kept_lower / d.dropped_upper : std::numeric_limits<double>::infinity();
+  if (k < p && !(opt.input_exact && opt.input_well_scaled)) d.certain = false;
+  return true;
+}
+
+/// A decision without the cross-check: the QR route when it decides, else the SVD.
+RankDecision decide_plain(const MatrixXd& a, double scale, const Options& opt) {
+  if (std::min(a.rows(), a.cols()) > opt.qr_from) {
+    RankDecision d;
+    if (decide_by_qr(Eigen::ColPivHouseholderQR<MatrixXd>(a), a, scale, opt, d)) return d;
+  }
+  const VectorXd s = a.size() ? Eigen::JacobiSVD<MatrixXd>(a).singularValues() : VectorXd(0);
+  return decide_from_sigma(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
+}
+
+/// The cross-check of a certain deficiency: the same rank, certain, on A equilibrated (see
+/// decide_rank).  On a large matrix whose equilibrated QR does not decide, the check fails at once
+/// (no SVD): where pivoted QR's bounds are not conclusive, the equilibrated ranks seen differ
+/// (equilibration lifts rounding residue), and an SVD would only confirm the failure at 50× the cost.
+bool survives_equilibration(const MatrixXd& a, const RankDecision& d, const Options& opt) {
+  const MatrixXd e = equilibrated(a, d.zero_threshold);
+  RankDecision de;
+  if (std::min(e.rows(), e.cols()) > opt.qr_from) {
+    if (!decide_by_qr(Eigen::ColPivHouseholderQR<MatrixXd>(e), e, -1, opt, de)) return false;
+  } else {
+    de = decide_plain(e, -1, opt);
+  }
+  return de.rank == d.rank && de.certain;
+}
+
+}  // namespace
 
 RankDecision decide_rank(const MatrixXd& a, const VectorXd& s, double scale, const Options& opt) {
   RankDecision d = decide_from_sigma(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
   const bool deficient = d.rank < static_cast<int>(s.size());
   if (!deficient || !d.certain || d.rank == 0) return d;
-  const MatrixXd e = equilibrated(a, d.zero_threshold);
-  const VectorXd se = Eigen::JacobiSVD<MatrixXd>(e).singularValues();
-  const RankDecision de = decide_from_sigma(se, static_cast<int>(e.rows()), static_cast<int>(e.cols()), -1, opt);
-  if (de.rank != d.rank || !de.certain) d.certain = false;  // grading hides or fakes a singular value
+  if (!survives_equilibration(a, d, opt)) d.certain = false;  // grading hides or fakes a singular value
   return d;
+}
+
+RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt) {
+  const Eigen::Index m = a.rows(), p = std::min(m, a.cols());
+  if (p > opt.qr_from) {
+    Eigen::ColPivHouseholderQR<MatrixXd> qr(a);
+    if (decide_by_qr(qr, a, scale, opt, d_)) {
+      if (d_.rank < p && d_.certain && d_.rank > 0 && !survives_equilibration(a, d_, opt)) d_.certain = false;
+      m_ = m;
+      qr_ = qr.matrixQR();
+      tau_ = qr.hCoeffs();
+      p_ = qr.colsPermutation();
+      return;
+    }
+  }
+  const Svd s = full_svd(a);
+  d_ = decide_rank(a, s.sigma, scale, opt);
+  m_ = m;
+  u_ = s.u;
+  v_ = s.v.leftCols(d_.rank);
+  sigma_ = s.sigma.head(d_.rank);
+}
+
+MatrixXd RankRevealing::q_columns(Eigen::Index from, Eigen::Index count) const {
+  if (!d_.by_qr) return u_.middleCols(from, count);
+  MatrixXd e = MatrixXd::Zero(m_, count);
+  e.middleRows(from, count).setIdentity();
+  const Eigen::Index reflectors = tau_.size();
+  e.applyOnTheLeft(Eigen::householderSequence(qr_.leftCols(reflectors), tau_));
+  return e;
+}
+
+MatrixXd RankRevealing::range() const { return q_columns(0, d_.rank); }
+
+MatrixXd RankRevealing::corange() const { return q_columns(d_.rank, m_ - d_.rank); }
+
+MatrixXd RankRevealing::min_norm_transposed(const MatrixXd& b) const {
+  const int r = d_.rank;
+  if (d_.by_qr) {  // Aᵀ = P Rᵀ Qᵀ:  R₁₁ᵀ Y = (Pᵀ B)[0:r],  X = Q_r Y
+    const MatrixXd pb = p_.transpose() * b;
+    MatrixXd x = MatrixXd::Zero(m_, b.cols());
+    x.topRows(r) = qr_.topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose().solve(pb.topRows(r));
+    x.applyOnTheLeft(Eigen::householderSequence(qr_.leftCols(tau_.size()), tau_));
+    return x;
+  }
+  // Aᵀ = V Σ Uᵀ:  X = U_r Σ_r⁻¹ V_rᵀ B
+  return u_.leftCols(r) * (sigma_.cwiseInverse().asDiagonal() * (v_.transpose() * b));
 }
 
 namespace {
@@ -72,8 +194,7 @@ RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double sca
   d.cols = cols;
   d.singular_values.assign(s.data(), s.data() + s.size());
   d.scale = scale >= 0 ? scale : (s.size() ? s(0) : 0.0);
-  const double eps = std::numeric_limits<double>::epsilon();
-  d.zero_threshold = opt.zero_factor * std::max(rows, cols) * eps * d.scale;
+  d.zero_threshold = zero_threshold(rows, cols, d.scale, opt);
   d.nonzero_threshold = std::max(opt.nonzero_factor * d.scale, d.zero_threshold);
   for (double x : d.singular_values) {
     if (x > d.zero_threshold) ++d.rank;
@@ -85,6 +206,9 @@ RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double sca
   const double above = d.rank > 0 ? d.singular_values[d.rank - 1] : inf;
   const double below = deficient ? d.singular_values[d.rank] : 0.0;
   d.gap = below > 0 ? above / below : inf;
+  d.largest = s.size() ? s(0) : 0.0;
+  d.kept_lower = above;
+  d.dropped_upper = below;
   return d;
 }
 
@@ -94,10 +218,12 @@ std::string RankDecision::describe() const {
   std::ostringstream o;
   o.precision(3);
   o << "rank " << rank << " of " << rows << "x" << cols << (certain ? " (certain)" : " (UNCERTAIN)")
-    << ": sigma around the cut [";
+    << (by_qr ? ": pivoted QR, |r_ii| around the cut [" : ": sigma around the cut [");
   const int lo = std::max(0, rank - 2), hi = std::min<int>(singular_values.size(), rank + 2);
   for (int i = lo; i < hi; ++i) o << (i > lo ? ", " : "") << (i == rank ? "| " : "") << singular_values[i];
-  o << "], zero below " << zero_threshold << ", nonzero above " << nonzero_threshold << ", gap " << gap;
+  o << "]";
+  if (by_qr) o << ", sigma_rank >= " << kept_lower << ", sigma_rank+1 <= " << dropped_upper;
+  o << ", zero below " << zero_threshold << ", nonzero above " << nonzero_threshold << ", gap " << gap;
   return o.str();
 }
 
@@ -116,8 +242,10 @@ MatrixXd orthogonal_complement(const MatrixXd& q) {
   const Eigen::Index n = q.rows(), k = q.cols();
   if (k == 0) return MatrixXd::Identity(n, n);
   Eigen::HouseholderQR<MatrixXd> qr(q);
-  const MatrixXd full = qr.householderQ() * MatrixXd::Identity(n, n);
-  return full.rightCols(n - k);
+  MatrixXd rest = MatrixXd::Zero(n, n - k);  // Q · [0; I]: only the columns asked for
+  rest.bottomRows(n - k).setIdentity();
+  rest.applyOnTheLeft(qr.householderQ());
+  return rest;
 }
 
 void require_finite(const MatrixXd& a, const std::string& fn) {

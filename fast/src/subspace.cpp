@@ -16,19 +16,17 @@ void require_same_ambient(const Subspace& u, const Subspace& w, const char* fn) 
 
 Subspace Subspace::span(const MatrixXd& cols, double scale, const Options& opt) {
   require_finite(cols, "Subspace::span");
-  const Svd s = full_svd(cols);
-  RankDecision d = decide_rank(cols, s.sigma, scale, opt);
-  Subspace out(s.u.leftCols(d.rank), d.certain);
-  out.evidence_ = std::move(d);
+  const RankRevealing f(cols, scale, opt);
+  Subspace out(f.range(), f.decision().certain);
+  out.evidence_ = f.decision();
   return out;
 }
 
 Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Options& opt) {
   require_finite(equations, "Subspace::solutions");
-  const Svd s = full_svd(equations);
-  RankDecision d = decide_rank(equations, s.sigma, scale, opt);
-  Subspace out(s.v.rightCols(equations.cols() - d.rank), d.certain);
-  out.evidence_ = std::move(d);
+  const RankRevealing f(equations.transpose(), scale, opt);  // ker A = (im Aᵀ)^⊥
+  Subspace out(f.corange(), f.decision().certain);
+  out.evidence_ = f.decision();
   return out;
 }
 
@@ -97,19 +95,16 @@ AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, d
   require_finite(a, "solve");
   require_finite(b, "solve");
   AffineSubspace out;
-  const Svd s = full_svd(a);
-  if (scale < 0) scale = s.sigma.size() ? s.sigma(0) : 0.0;
-  const RankDecision ra = decide_rank(a, s.sigma, scale, opt);
+  if (scale < 0) scale = norm2(a);
+  const RankRevealing f(a.transpose(), scale, opt);  // rows of A: ker A = (im Aᵀ)^⊥
+  const RankDecision& ra = f.decision();
   MatrixXd ab(a.rows(), a.cols() + 1);
   ab << a, b;
   const RankDecision rab = decide_rank(ab, std::max(scale, b.norm()), opt);
   out.certain = ra.certain && rab.certain;
-  out.direction = Subspace::from_orthonormal(s.v.rightCols(a.cols() - ra.rank), ra.certain);
+  out.direction = Subspace::from_orthonormal(f.corange(), ra.certain);
   out.empty = rab.rank > ra.rank;
-  if (!out.empty) {  // minimum-norm solution through the truncated SVD
-    out.point = VectorXd::Zero(a.cols());
-    for (int i = 0; i < ra.rank; ++i) out.point += s.v.col(i) * (s.u.col(i).dot(b) / s.sigma(i));
-  }
+  if (!out.empty) out.point = f.min_norm_transposed(b);  // minimum-norm solution on the decided rank
   return out;
 }
 

@@ -39,20 +39,36 @@ struct Options {
   double nonzero_factor = 1.4901161193847656e-08;  // √ε
   bool input_exact = true;
   bool input_well_scaled = true;
+  /// Decisions on matrices with more than this many rows and columns go by pivoted QR first (see
+  /// RankDecision); the properties set it to 0 to put every decision through that route.
+  int qr_from = 48;
 };
 
 /// Clears opt.input_well_scaled if the nonzero entries of `a`, together with 1, span more than
 /// 1/nonzero_factor in magnitude.
 void assess_input(const MatrixXd& a, Options& opt);
 
+/// A decision is made in one of two ways (the evidence says which):
+///  * by an SVD: `singular_values` are all of them, descending;
+///  * by a column-pivoted QR, A P = Q R (large matrices, issue 14): `singular_values` are |r_ii|
+///    (descending, a rank-revealing estimate, not singular values), and the verdict rests on two
+///    bounds that hold for the R of A + E with ‖E‖ ≲ p(m,n) ε ‖A‖ (the same backward error as an
+///    SVD's): σ_rank ≥ σ_min(R₁₁) ≥ 1/‖R₁₁⁻¹‖_F (R₁₁ = R[0:r, 0:r], a column subset of A P) and
+///    σ_{rank+1} ≤ ‖R₂₂‖₂ ≤ ‖R₂₂‖_F (Weyl: R minus a rank-r matrix; Golub–Van Loan §5.4.2).
+///    The QR route answers only when σ_{rank+1} ≤ τ0 and σ_rank > τ1 follow from those bounds, i.e.
+///    when the SVD would give the same rank, certain; otherwise the SVD decides.
 struct RankDecision {
   int rank = 0;
   int rows = 0, cols = 0;
-  std::vector<double> singular_values;  ///< all of them, descending
+  std::vector<double> singular_values;  ///< SVD: all, descending; QR: |r_ii|, descending
   double scale = 0;                     ///< what the thresholds are relative to
   double zero_threshold = 0;            ///< τ0
   double nonzero_threshold = 0;         ///< τ1
-  double gap = 0;                       ///< σ_rank / σ_{rank+1} (∞ if either side is empty)
+  double gap = 0;                       ///< (a lower bound of) σ_rank / σ_{rank+1} (∞ if either side is empty)
+  double largest = 0;                   ///< σ₁ (QR: |r_00|, within a factor √n of σ₁)
+  double kept_lower = 0;                ///< σ_rank (QR: a lower bound of it); ∞ if rank = 0
+  double dropped_upper = 0;             ///< σ_{rank+1} (QR: an upper bound of it); 0 if none
+  bool by_qr = false;
   bool certain = true;
   std::string describe() const;  ///< evidence in one line
 };
@@ -72,11 +88,41 @@ struct Svd {
 };
 Svd full_svd(const MatrixXd& a);
 
+/// The factorization behind one rank decision, kept for what the callers need next: an orthogonal
+/// Q (m×m) whose first `rank` columns span im A, and the minimum-norm solutions of Aᵀ X = B on
+/// the decided rank.  Column-pivoted QR when its bounds decide (see RankDecision), else the SVD.
+class RankRevealing {
+ public:
+  RankRevealing(const MatrixXd& a, double scale, const Options& opt);
+  const RankDecision& decision() const { return d_; }
+  int rank() const { return d_.rank; }
+  MatrixXd range() const;    ///< im A: Q's first `rank` columns
+  MatrixXd corange() const;  ///< (im A)^⊥ = ker Aᵀ: Q's other columns
+  /// X = Q_r Y with (Aᵀ restricted to the decided rank) X = B: the minimum-norm solution when
+  /// Aᵀ X = B is consistent; the caller checks consistency (the residual B − Aᵀ X).
+  MatrixXd min_norm_transposed(const MatrixXd& b) const;
+
+ private:
+  /// Q · [0; I; 0] with the identity in rows [from, from + count): Q's columns, formed only when asked.
+  MatrixXd q_columns(Eigen::Index from, Eigen::Index count) const;
+  RankDecision d_;
+  Eigen::Index m_ = 0;
+  MatrixXd qr_;                                                   // QR: Eigen's compact Householder form
+  VectorXd tau_;                                                  // QR: Householder coefficients
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic> p_;   // QR: A P = Q R
+  MatrixXd u_;                                                    // SVD: U (m×m)
+  MatrixXd v_;                                                    // SVD: V[:, 0:r]
+  VectorXd sigma_;                                                // SVD: σ_1..σ_r
+};
+
 /// An orthonormal basis (columns) of the orthogonal complement of the column span of an
 /// orthonormal Q: no decision is needed, Q has full column rank.
 MatrixXd orthogonal_complement(const MatrixXd& q);
 
-/// 2-norm (largest singular value).
+/// 2-norm (largest singular value): by an SVD up to 48 rows or columns, above by power iteration
+/// until a step gains less than 1e-7 relative (at most 300 steps).  Above 48 it is a lower bound of
+/// ‖A‖₂, never below ‖A‖_F/√min(m,n), and slow only when σ₂ ≈ σ₁, where it is then close to σ₁
+/// anyway (seen within 2e-6); a threshold relative to it moves by as little.
 double norm2(const MatrixXd& a);
 
 /// Throws std::invalid_argument naming `fn` if `a` has a NaN or an infinity.

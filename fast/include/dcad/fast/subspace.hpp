@@ -32,7 +32,7 @@ class Subspace {
   /// σ₁/σ_r of the spanning set this basis came from (1 for a basis built orthonormal): rounding
   /// moves the subspace by about ε times this (Wedin), the scale of any test on its vectors.
   double conditioning() const {
-    return evidence_.rank > 0 ? evidence_.singular_values[0] / evidence_.singular_values[evidence_.rank - 1] : 1.0;
+    return evidence_.rank > 0 ? evidence_.largest / evidence_.kept_lower : 1.0;
   }
   Subspace& and_certain(bool c) {
     certain_ = certain_ && c;
