@@ -41,16 +41,26 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"reference", "fast"}));
   inspect->add_flag("--json", as_json, "print the result as JSON");
 
-  std::string solve_file, solve_backend = "certified";
-  bool solve_json = false;
+  std::vector<std::string> solve_files;
+  std::string solve_backend = "certified", solve_with = "all";
+  bool solve_json = false, solve_lines = false;
   CLI::App* solve = app.add_subcommand(
       "solve", "Run the constraint algorithm (CAD, CEF §5) on a case file: the constraint tower M_0 ⊇ M_1 ⊇ …, "
                "the final constraint submanifold, the solution rank (Thm 5.4) and the equations of motion (5.12).");
-  solve->add_option("FILE", solve_file, "case file (.json) or LC netlist (.cir, .sp, .net)")->required();
+  solve->add_option("FILE", solve_files,
+                    "case files (.json) or LC netlists (.cir, .sp, .net); several are solved in one process, in order")
+      ->required();
   solve->add_option("--backend", solve_backend,
                     "certified (default: fast, recomputed exactly if any decision is uncertain), reference, fast")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
-  solve->add_flag("--json", solve_json, "print the result JSON of the CONTRACT");
+  solve->add_flag("--json", solve_json, "print the result JSON of the CONTRACT (several files: JSON lines, as --jsonl)");
+  solve->add_flag("--jsonl", solve_lines,
+                  "one compact result JSON per file and line, with \"file\"; a failing file gives {\"file\", \"error\", \"exit\"} "
+                  "and the rest still run (exit code: the worst file's)");
+  solve->add_option("--with", solve_with,
+                    "what to compute beyond the CONTRACT's required keys and the tower, for linear case files and netlists: "
+                    "all (default), none, or a comma-separated list of final (final_constraints), reduced (equations of "
+                    "motion), classes (first/second class, Dirac bracket), adapted (Thm 3.28 / 7.4)");
 
   std::string sim_file, sim_csv;
   dcad::cli::SimulateOptions sim_opt;
@@ -121,9 +131,14 @@ int main(int argc, char** argv) {
       }
     }
     if (solve->parsed()) {
-      const dcad::cli::SolvedFile sf = dcad::cli::solve_file(solve_file, solve_backend);
-      for (const std::string& w : sf.warnings) std::cerr << "warning: " << w << "\n";
-      std::cout << (solve_json ? sf.json.dump(2) + "\n" : sf.text);
+      dcad::cli::Parts parts;
+      try {
+        parts = dcad::cli::parse_parts(solve_with);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "solve: " << e.what() << "\n";
+        return 2;  // bad usage
+      }
+      return dcad::cli::solve_files(solve_files, solve_backend, parts, solve_json, solve_lines, std::cout, std::cerr);
     }
     if (cases->parsed()) return dcad::cli::cases_command(cases_action, cases_args, std::cout, std::cerr);
     if (check->parsed()) {
@@ -257,7 +272,7 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 1;
   } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
-    std::cerr << (sim->parsed() ? sim_file : solve->parsed() ? solve_file : check->parsed() ? check_file : file) << ": " << e.what() << "\n";
+    std::cerr << (sim->parsed() ? sim_file : check->parsed() ? check_file : file) << ": " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {  // an internal invariant: never an answer, never a crash
     std::cerr << "dcad: internal error: " << e.what() << "; please report it with the input\n";

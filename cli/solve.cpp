@@ -69,8 +69,28 @@ SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::
   }
 }
 
-SolveReport solve_certified(const io::CaseFile& c) {
-  return certify([&](double& radius) { return solve_ball(c, radius); }, [&] { return solve_reference(c); });
+SolveReport solve_certified(const io::CaseFile& c, const Parts& parts) {
+  return certify([&](double& radius) { return solve_ball(c, radius, parts); }, [&] { return solve_reference(c, parts); });
+}
+
+Parts parse_parts(const std::string& list) {
+  if (list == "all") return {};
+  Parts p{false, false, false, false};
+  if (list == "none") return p;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = list.find(',', start);
+    const std::string w = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (w == "final") p.final_constraints = true;
+    else if (w == "reduced") p.reduced = true;
+    else if (w == "classes") p.classes = true;
+    else if (w == "adapted") p.adapted = true;
+    else
+      throw std::invalid_argument("--with: expected all, none or a comma-separated list of final, reduced, classes, adapted; found '" +
+                                  w + "'");
+    if (comma == std::string::npos) return p;
+    start = comma + 1;
+  }
 }
 
 namespace {

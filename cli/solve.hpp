@@ -55,6 +55,18 @@ struct SolveReport {
   long decisions_float = 0, decisions_verified = 0, decisions_exact = 0;
 };
 
+/// What `dcad solve` computes beyond the CONTRACT's required keys and the tower (`--with`): a CI
+/// that wants dims and solution rank need not pay for the §7 embedding (4n variables) or the bracket.
+struct Parts {
+  bool final_constraints = true;  ///< "final": the equations of M_c (JSON `final_constraints`)
+  bool reduced = true;            ///< "reduced": the equations of motion (CEF (5.12); JSON `reduced`)
+  bool classes = true;            ///< "classes": first/second class and the Dirac bracket (`constrained` cases)
+  bool adapted = true;            ///< "adapted": constraints adapted to the primary ones (Thm 3.28 / 7.4)
+};
+/// "all", "none" or a comma-separated list of final, reduced, classes, adapted; throws
+/// std::invalid_argument naming the word it does not know.
+Parts parse_parts(const std::string& list);
+
 /// "2*x1 - 1/3*x2 = 5" in the given variable names.
 std::string equation_text(const Equation& e, const std::vector<std::string>& names);
 /// x as %.17g (round-trips), always as a float: "1.0", never "1" (an exact integer string) or "-0".
@@ -62,17 +74,17 @@ std::string float_text(double x);
 /// Row i of [a | b] (exact) as an Equation.
 Equation row_equation(const io::QMatrix& rows, std::size_t i);
 
-SolveReport solve_reference(const io::CaseFile& c);
-SolveReport solve_fast(const io::CaseFile& c);
+SolveReport solve_reference(const io::CaseFile& c, const Parts& parts = {});
+SolveReport solve_fast(const io::CaseFile& c, const Parts& parts = {});
 /// The reference pipeline in ball arithmetic (solve_ball.cpp); throws reference::Uncertain at the
 /// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.
-SolveReport solve_ball(const io::CaseFile& c, double& max_radius);
+SolveReport solve_ball(const io::CaseFile& c, double& max_radius, const Parts& parts = {});
 /// `ball` (a reference pipeline in ball arithmetic); if it throws reference::Uncertain, `exact` (the
 /// same pipeline exactly).  Either way every discrete output equals the reference's (ball.hpp).
 SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::function<SolveReport()>& exact);
 /// solve_ball; if a decision is uncertain there, the whole result recomputed exactly (reference).
 /// Either way every discrete output equals the reference's (ball.hpp gives the proof).
-SolveReport solve_certified(const io::CaseFile& c);
+SolveReport solve_certified(const io::CaseFile& c, const Parts& parts = {});
 
 nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c);
 std::string to_text(const SolveReport& r, const io::CaseFile& c);

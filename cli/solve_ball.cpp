@@ -26,16 +26,16 @@ struct Scalar<reference::Ball> {
   static void keep_final(SolveReport&, const reference::Matrix<reference::Ball>&, const std::vector<reference::Ball>&) {}
 };
 
-SolveReport solve_ball(const io::CaseFile& c, double& max_radius) {
+SolveReport solve_ball(const io::CaseFile& c, double& max_radius, const Parts& parts) {
   widest = 0;
-  SolveReport out = solve_exact<reference::Ball>(c);
+  SolveReport out = solve_exact<reference::Ball>(c, parts);
   max_radius = widest;
   return out;
 }
 
-SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius) {
+SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius, const Parts& parts) {
   widest = 0;
-  SolveReport out = solve_circuit_exact<reference::Ball>(n, c);
+  SolveReport out = solve_circuit_exact<reference::Ball>(n, c, parts);
   max_radius = widest;
   return out;
 }

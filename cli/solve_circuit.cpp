@@ -74,7 +74,7 @@ void to_circuit_units(SolveReport& r, const io::Units& u, std::size_t branches) 
 
 }  // namespace
 
-SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
+SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c, const Parts& parts) {
   // the twin without units: double sees values near 1 whatever the circuit's units (fF … kH)
   io::Units units;
   const io::Netlist n = io::dimensionless(deck, units);
@@ -83,10 +83,11 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
   const bool dense = n.circuit.branches.size() <= kDenseBranches;
   SolveReport out;
   out.certified = true;
-  if (c.has_pontryagin && n.circuit.branches.size() <= kAdaptedBranches) {  // §7 on T*TQ by the generic fast pipeline
+  if (c.has_pontryagin && n.circuit.branches.size() <= kAdaptedBranches && parts.adapted) {  // §7 on T*TQ by the generic fast pipeline
     io::CaseFile twin = io::netlist_case(n, true);
     twin.variables = c.variables;
-    const SolveReport generic = solve_fast(twin);
+    Parts only_adapted{false, false, false, true};
+    const SolveReport generic = solve_fast(twin, only_adapted);
     out.has_adapted = generic.has_adapted;
     out.adapted_setting = generic.adapted_setting;
     out.adapted_variables = generic.adapted_variables;
@@ -114,7 +115,7 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
     }
     out.tower.push_back(step);
   }
-  if (dense) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
+  if (dense && parts.reduced) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
     const fast::CircuitMotion mo =
         fast::circuit_motion(circuit_graph(n, opt), t, std::vector<int>(c.coordinates.begin(), c.coordinates.end()), opt);
     out.certified = out.certified && mo.certain;
@@ -144,17 +145,18 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c) {
   return out;
 }
 
-SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c) {
+SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c, const Parts& parts) {
   io::Units units;
   const io::Netlist twin = io::dimensionless(n, units);  // same graph, values near 1 for the cross-check
   fast::Options opt;
   const fast::CircuitGraph graph = circuit_graph(twin, opt);
   if (n.circuit.branches.size() > kDenseBranches && fast::is_physical(graph)) {
-    SolveReport r = solve_circuit_fast(n, c);  // the graph route decides nothing for L, C > 0 (CEF Thms 6.4, 6.6, 6.8)
+    SolveReport r = solve_circuit_fast(n, c, parts);  // the graph route decides nothing for L, C > 0 (CEF Thms 6.4, 6.6, 6.8)
     r.backend = "certified";
     return r;
   }
-  SolveReport r = certify([&](double& radius) { return solve_circuit_ball(n, c, radius); }, [&] { return solve_circuit_reference(n, c); });
+  SolveReport r = certify([&](double& radius) { return solve_circuit_ball(n, c, radius, parts); },
+                          [&] { return solve_circuit_reference(n, c, parts); });
   const fast::CircuitTower t = fast::circuit_tower(graph, opt);
   if (t.physical && t.dims != r.dims)  // a combinatorial theorem disagrees with a certified computation: a bug
     throw std::logic_error("graph route and certified CAD disagree on " + c.file + "; please report it");

@@ -20,13 +20,13 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt);
 
 /// `c`: the netlist's case (io::netlist_case) with the dense system if n ≤ kDenseBranches, else
 /// variables only.
-SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c);
+SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The structured route (solve_circuit_exact.hpp) exactly.
-SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c);
+SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The same in ball arithmetic; throws reference::Uncertain at the first undecidable zero test.
-SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius);
+SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius, const Parts& parts = {});
 /// solve_circuit_ball, recomputed exactly if a decision is uncertain there; cross-checked against
 /// the graph route's combinatorial tower (physical values).
-SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c);
+SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 
 }  // namespace dcad::cli

@@ -14,7 +14,7 @@
 namespace dcad::cli {
 
 template <class T>
-SolveReport solve_circuit_exact(const io::Netlist& deck, const io::CaseFile& c) {
+SolveReport solve_circuit_exact(const io::Netlist& deck, const io::CaseFile& c, const Parts& parts = {}) {
   namespace ref = dcad::reference;
   ref::Circuit<T> circ;
   circ.nodes = deck.circuit.nodes;
@@ -33,15 +33,18 @@ SolveReport solve_circuit_exact(const io::Netlist& deck, const io::CaseFile& c) 
     for (ref::Index i = 0; i < added[j].rows(); ++i) step.equations.push_back(row_equation(added[j], i));
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
-    for (const Equation& e : step.equations) out.final_constraints.push_back(e);  // all of them: M_c
+    if (parts.final_constraints)
+      for (const Equation& e : step.equations) out.final_constraints.push_back(e);  // all of them: M_c
   }
   const ref::ProductStep<T>& mc = tower.back();
-  out.has_final_constraints = true;
-  Scalar<T>::keep_final(out, ref::product_basis(circ, mc), std::vector<T>(3 * n, T(0)));
+  if (parts.final_constraints) {
+    out.has_final_constraints = true;
+    Scalar<T>::keep_final(out, ref::product_basis(circ, mc), std::vector<T>(3 * n, T(0)));
+  }
   const ref::ReducedEquations<T> red = ref::circuit_reduced_equations(circ, mc, c.coordinates);
   out.solution_rank = static_cast<long>(red.g.cols());  // dim ker A = dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]
-  keep_reduced(out, red);
-  if (c.has_pontryagin && n <= kAdaptedBranches) exact_foliated<T>(out, c);
+  if (parts.reduced) keep_reduced(out, red);
+  if (c.has_pontryagin && n <= kAdaptedBranches && parts.adapted) exact_foliated<T>(out, c);
   return out;
 }
 

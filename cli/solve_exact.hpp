@@ -121,7 +121,7 @@ void keep_reduced(SolveReport& out, const reference::ReducedEquations<T>& red) {
 }
 
 template <class T>
-SolveReport solve_exact(const io::CaseFile& c) {
+SolveReport solve_exact(const io::CaseFile& c, const Parts& parts = {}) {
   if (c.has_pontryagin && c.pontryagin.has_forces)  // the unforced pipeline must never drop them silently
     throw std::invalid_argument("a case with `forces` goes by the forced route (solve_forced_case), not this one");
   namespace ref = dcad::reference;
@@ -139,7 +139,7 @@ SolveReport solve_exact(const io::CaseFile& c) {
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
   }
-  if (r.consistent) {
+  if (r.consistent && parts.final_constraints) {
     const ref::Matrix<T> a = ref::annihilator(r.final_step().m.direction).basis();  // M_c = {a x = a·point}
     const std::vector<T>& point = r.final_step().m.point;
     ref::Matrix<T> rows(a.rows(), c.n + 1);
@@ -153,7 +153,7 @@ SolveReport solve_exact(const io::CaseFile& c) {
     out.has_final_constraints = true;
     Scalar<T>::keep_final(out, r.final_step().m.direction.basis(), point);
   }
-  if (c.has_constrained && r.consistent) {  // first and second class on M_c, Dirac bracket  [Lemma 3.23]
+  if (c.has_constrained && r.consistent && parts.classes) {  // first and second class on M_c, Dirac bracket  [Lemma 3.23]
     ref::Matrix<T> all(0, c.n + 1);
     for (const auto& st : r.tower) all = ref::vstack(all, st.equations);
     const ref::Matrix<T> w = lift<T>(c.constrained.w);
@@ -165,14 +165,17 @@ SolveReport solve_exact(const io::CaseFile& c) {
       out.dirac_bracket.push_back({});
       for (ref::Index j = 0; j < c.n; ++j) out.dirac_bracket.back().push_back(Scalar<T>::text(cl.dirac_tensor(i, j)));
     }
+  }
+  if (c.has_constrained && r.consistent && parts.adapted) {  // Theorem 3.28 on N
+    const ref::Matrix<T> w = lift<T>(c.constrained.w);
     ref::Matrix<T> secondary(0, c.n + 1);
     for (ref::Index k = 1; k < r.tower.size(); ++k) secondary = ref::vstack(secondary, r.tower[k].equations);
     out.adapted_setting = "N";
     out.adapted_variables = c.variables;
     exact_adapted(out, w, r.tower[0].equations, secondary, ref::Matrix<T>(0, c.n + 1));
   }
-  if (c.has_pontryagin && r.consistent) exact_foliated<T>(out, c);
-  if (r.consistent) keep_reduced(out, ref::reduced_equations(s, r, c.coordinates));
+  if (c.has_pontryagin && r.consistent && parts.adapted) exact_foliated<T>(out, c);
+  if (r.consistent && parts.reduced) keep_reduced(out, ref::reduced_equations(s, r, c.coordinates));
   return out;
 }
 

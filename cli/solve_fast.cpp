@@ -69,7 +69,7 @@ Eigen::MatrixXd secondary_rows(const fa::CadResult& r, int width) {
   return sec;
 }
 
-SolveReport solve_fast(const io::CaseFile& c) {
+SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
   if (c.has_pontryagin && c.pontryagin.has_forces)  // the unforced pipeline must never drop them silently
     throw std::invalid_argument("a case with `forces` goes by the forced route (solve_forced_case), not this one");
   fa::Options opt;
@@ -98,7 +98,7 @@ SolveReport solve_fast(const io::CaseFile& c) {
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
   }
-  if (c.has_constrained && r.consistent) {  // 2s = rank {φ_i, φ_j} on M_c, decided
+  if (c.has_constrained && r.consistent && parts.classes) {  // 2s = rank {φ_i, φ_j} on M_c, decided
     Eigen::MatrixXd a(0, c.n);
     for (const auto& st : r.tower) {
       Eigen::MatrixXd more(a.rows() + st.equations.rows(), c.n);
@@ -110,12 +110,14 @@ SolveReport solve_fast(const io::CaseFile& c) {
     out.certified = out.certified && d.certain;
     out.second_class = d.rank;
     out.first_class = a.rows() - d.rank;
+  }
+  if (c.has_constrained && r.consistent && parts.adapted) {  // Theorem 3.28 on N
     out.adapted_setting = "N";
     out.adapted_variables = c.variables;
     fast_adapted(out, to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_rows(r, c.n + 1),
                  Eigen::MatrixXd(0, c.n + 1), opt);
   }
-  if (c.has_pontryagin && r.consistent) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
+  if (c.has_pontryagin && r.consistent && parts.adapted) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
     const std::size_t n = c.pontryagin.n;
     const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(s, to_double(c.pontryagin.k, in_opt));
     Eigen::MatrixXd both(f.primary.rows() + f.leaf.rows(), f.primary.cols());
@@ -129,7 +131,7 @@ SolveReport solve_fast(const io::CaseFile& c) {
     for (std::size_t i = 0; i < n; ++i) out.adapted_variables.push_back("nu_" + c.variables[n + i]);
     if (rf.consistent) fast_adapted(out, f.omega, f.primary, secondary_rows(rf, 4 * static_cast<int>(n) + 1), f.leaf, opt);
   }
-  if (r.consistent) {
+  if (r.consistent && parts.reduced) {
     std::vector<int> coords(c.coordinates.begin(), c.coordinates.end());
     const fa::ReducedEquations red = fa::reduced_equations(s, r, coords, opt);
     out.certified = out.certified && red.certain;

@@ -15,14 +15,14 @@ struct Scalar<io::Rational> {
   }
 };
 
-SolveReport solve_reference(const io::CaseFile& c) {
-  SolveReport out = solve_exact<io::Rational>(c);
+SolveReport solve_reference(const io::CaseFile& c, const Parts& parts) {
+  SolveReport out = solve_exact<io::Rational>(c, parts);
   out.backend = "reference";
   return out;
 }
 
-SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c) {
-  SolveReport out = solve_circuit_exact<io::Rational>(n, c);
+SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts) {
+  SolveReport out = solve_circuit_exact<io::Rational>(n, c, parts);
   out.backend = "reference";
   out.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
              std::string(c.has_pontryagin && n.circuit.branches.size() <= kAdaptedBranches

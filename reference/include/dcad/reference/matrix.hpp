@@ -47,7 +47,7 @@ class Matrix {
 
  public:
   Matrix() = default;
-  Matrix(Index rows, Index cols) : rows_(rows), cols_(cols), a_(rows * cols, T(0)) {}
+  Matrix(Index rows, Index cols) : rows_(rows), cols_(cols), a_(rows * cols) {}  // T() is 0
   static Matrix identity(Index n) {
     Matrix m(n, n);
     for (Index i = 0; i < n; ++i) m(i, i) = T(1);
@@ -159,7 +159,13 @@ Matrix<T> vstack(const Matrix<T>& a, const Matrix<T>& b) {
 /// [a b] (columns of a, then columns of b).
 template <class T>
 Matrix<T> hstack(const Matrix<T>& a, const Matrix<T>& b) {
-  return vstack(a.transpose(), b.transpose()).transpose();
+  require(a.rows() == b.rows(), "hstack", "equal row counts", shape(a) + " beside " + shape(b));
+  Matrix<T> m(a.rows(), a.cols() + b.cols());
+  for (Index i = 0; i < a.rows(); ++i) {
+    for (Index j = 0; j < a.cols(); ++j) m(i, j) = a(i, j);
+    for (Index j = 0; j < b.cols(); ++j) m(i, a.cols() + j) = b(i, j);
+  }
+  return m;
 }
 
 template <class T>
@@ -220,10 +226,16 @@ Rref<T> rref(Matrix<T> m) {
     for (Index j = 0; j < m.cols(); ++j) std::swap(m(row, j), m(p, j));
     const T inv = T(1) / m(row, col);
     for (Index j = 0; j < m.cols(); ++j) m(row, j) *= inv;
+    T f, t;  // reused: an assignment into a scalar that has its limbs already allocates nothing
     for (Index i = 0; i < m.rows(); ++i) {
       if (i == row || known_zero(m(i, col))) continue;
-      const T f = m(i, col);
-      for (Index j = 0; j < m.cols(); ++j) m(i, j) -= f * m(row, j);
+      f = m(i, col);
+      for (Index j = 0; j < m.cols(); ++j) {  // row i −= f · row `row` (a zero entry of it changes nothing)
+        if (known_zero(m(row, j))) continue;
+        t = f;
+        t *= m(row, j);
+        m(i, j) -= t;
+      }
     }
     pivots.push_back(col);
     ++row;

@@ -1,0 +1,120 @@
+// `dcad solve` as a CI runs it (issue 14): several files in one process (JSON lines) and `--with`,
+// which computes only the parts asked for (linear cases and netlists) or prints only them (the
+// forced route and the expression form compute everything they report).  Each test compares two routes to the same answer: a
+// file solved alone against the same file in a batch; `--with none` or one part against `--with
+// all` (the default), on every case and netlist of cases/ and on all three backends.
+#include "cli_run.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+using nlohmann::json;
+
+namespace {
+
+const std::vector<std::string> kRequired = {"dcad", "backend", "certified", "dims", "steps", "consistent", "solution_rank", "unique"};
+const std::vector<std::string> kOptional = {"final_constraints", "reduced", "constraint_classes", "dirac_bracket", "adapted"};
+
+/// Every case file and netlist of cases/ (linear, forced, expression form: --with applies to all).
+std::vector<std::string> corpus() {
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases")) {
+    const std::string ext = e.path().extension().string();
+    if (ext == ".cir" || ext == ".json") files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+json solved(const std::string& args) {
+  const Outcome o = run("solve --json " + args);
+  EXPECT_EQ(o.rc, 0) << args << "\n" << o.err;
+  return o.rc == 0 ? json::parse(o.out) : json();
+}
+
+}  // namespace
+
+// --with none keeps every required key with the value --with all gives, and drops the optional
+// parts; --with P gives part P exactly as --with all does.  Killed by: a part computed from a
+// different tower, a required key computed only when a part is asked for, a flag read wrongly.
+TEST(SolveWith, PartsAgreeWithTheFullResult) {
+  int files = 0;
+  for (const std::string& f : corpus()) {
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const json all = solved("--backend " + backend + " " + f);
+      if (all.is_null()) continue;
+      const json none = solved("--backend " + backend + " --with none " + f);
+      for (const std::string& k : kRequired)
+        if (k != "certified") EXPECT_EQ(none[k], all[k]) << f << " " << backend << " " << k;
+      // fewer parts, fewer decisions: what is certified with all parts is certified without them
+      if (all["certified"] == true) EXPECT_EQ(none["certified"], true) << f << " " << backend;
+      if (backend != "certified") {
+        EXPECT_EQ(none["tower"], all["tower"]) << f << " " << backend;
+      } else {  // certified may print a ball's midpoint where a part made it recompute exactly
+        ASSERT_EQ(none["tower"].size(), all["tower"].size()) << f;
+        for (std::size_t k = 0; k < all["tower"].size(); ++k)
+          EXPECT_EQ(none["tower"][k]["new_constraints"].size(), all["tower"][k]["new_constraints"].size()) << f << " M_" << k;
+      }
+      for (const std::string& k : {"final_constraints", "reduced", "adapted", "dirac_bracket"})
+        EXPECT_FALSE(none.contains(k)) << f << " " << backend << " --with none printed " << k;
+      for (const auto& [part, key] : std::vector<std::pair<std::string, std::string>>{
+               {"final", "final_constraints"}, {"reduced", "reduced"}, {"classes", "constraint_classes"}, {"adapted", "adapted"}}) {
+        const json one = solved("--backend " + backend + " --with " + part + " " + f);
+        EXPECT_EQ(one.contains(key), all.contains(key)) << f << " " << backend << " --with " << part;
+        if (all.contains(key) && backend != "certified") EXPECT_EQ(one[key], all[key]) << f << " " << backend << " --with " << part;
+        for (const std::string& other : kOptional)
+          if (other != key && !(part == "classes" && other == "dirac_bracket"))
+            EXPECT_FALSE(one.contains(other)) << f << " " << backend << " --with " << part << " printed " << other;
+      }
+      ++files;
+    }
+  }
+  EXPECT_GE(files, 30);  // the corpus is there and was read
+}
+
+TEST(SolveWith, UnknownPartIsBadUsage) {
+  const Outcome o = run("solve --with final,bracket " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json");
+  EXPECT_EQ(o.rc, 2);
+  EXPECT_NE(o.err.find("found 'bracket'"), std::string::npos) << o.err;
+  EXPECT_TRUE(o.out.empty());
+}
+
+// Several files in one process: line k is file k's result, as when it is solved alone; a bad
+// file is a line with its error and exit code, the others still run, the process exits 1.
+TEST(SolveBatch, JsonLinesMatchOneFileAtATime) {
+  const std::vector<std::string> files = corpus();
+  ASSERT_GE(files.size(), 10u);
+  const std::string bad = write_temp("dcad_batch_bad.json", "{\"dcad\": 1, \"variables\": [\"x\"], \"dirac\": {\"presymplectic\": [[1]]}}");
+  std::string args = "solve --jsonl --backend reference";
+  for (std::size_t i = 0; i < 6; ++i) args += " " + files[i];
+  args += " " + bad + " " + files[6];
+  const Outcome o = run(args);
+  EXPECT_EQ(o.rc, 1);
+  const std::vector<std::string> lines = split_lines(o.out);
+  ASSERT_EQ(lines.size(), 8u) << o.out << o.err;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const json line = json::parse(lines[i]);
+    if (i == 6) {
+      EXPECT_EQ(line["file"], bad);
+      EXPECT_EQ(line["exit"], 1);
+      EXPECT_NE(line["error"].get<std::string>().find(bad), std::string::npos) << line;
+      EXPECT_NE(o.err.find(line["error"].get<std::string>()), std::string::npos);  // and on stderr, as for one file
+      continue;
+    }
+    const std::string f = files[i < 6 ? i : 6];
+    EXPECT_EQ(line["file"], f);
+    json alone = solved("--backend reference " + f);
+    alone["file"] = f;
+    EXPECT_EQ(line, alone) << f;
+  }
+  // --json with several files is JSON lines too; one file with --json stays one indented object
+  const Outcome two = run("solve --json --with none " + files[0] + " " + files[1]);
+  EXPECT_EQ(two.rc, 0);
+  EXPECT_EQ(split_lines(two.out).size(), 2u);
+  const Outcome one = run("solve --json --with none " + files[0]);
+  EXPECT_GT(split_lines(one.out).size(), 2u);
+}
