@@ -1,10 +1,18 @@
+#include "dcad/reference/small_rational.hpp"
 #include "method_generic.hpp"
 
 namespace dcad::bench {
 
+/// What `dcad solve --backend reference` does: the CAD on SmallRational, on mpq_rational if a
+/// number outgrows 64 bits (small_rational.hpp: the same exact arithmetic either way).
 Outcome run_reference(const families::Instance& in) {
   using Q = families::Q;
-  return run_generic<Q>(in, [](const Q& q) { return q; }, [](const Q& q) { return q.convert_to<double>(); });
+  using S = reference::SmallRational;
+  try {
+    return run_generic<S>(in, [](const Q& q) { return S::from(q); }, [](const S& s) { return s.value().convert_to<double>(); });
+  } catch (const reference::Overflow&) {
+    return run_generic<Q>(in, [](const Q& q) { return q; }, [](const Q& q) { return q.convert_to<double>(); });
+  }
 }
 
 }  // namespace dcad::bench

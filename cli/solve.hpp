@@ -74,7 +74,11 @@ std::string float_text(double x);
 /// Row i of [a | b] (exact) as an Equation.
 Equation row_equation(const io::QMatrix& rows, std::size_t i);
 
+/// The reference: the pipeline on SmallRational (exact in machine words), recomputed on
+/// mpq_rational if a number outgrows 64 bits; the same result either way (small_rational.hpp).
 SolveReport solve_reference(const io::CaseFile& c, const Parts& parts = {});
+/// The pipeline on SmallRational alone; throws reference::Overflow (solve_small.cpp).
+SolveReport solve_small(const io::CaseFile& c, const Parts& parts = {});
 SolveReport solve_fast(const io::CaseFile& c, const Parts& parts = {});
 /// The reference pipeline in ball arithmetic (solve_ball.cpp); throws reference::Uncertain at the
 /// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.

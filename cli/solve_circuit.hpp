@@ -23,6 +23,8 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt);
 SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The structured route (solve_circuit_exact.hpp) exactly.
 SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
+/// The structured route on SmallRational alone; throws reference::Overflow (solve_small.cpp).
+SolveReport solve_circuit_small(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The same in ball arithmetic; throws reference::Uncertain at the first undecidable zero test.
 SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius, const Parts& parts = {});
 /// solve_circuit_ball, recomputed exactly if a decision is uncertain there; cross-checked against

@@ -1,4 +1,5 @@
 // The CAD by the exact reference (the one translation unit that instantiates solve_exact on mpq_rational).
+#include "dcad/reference/small_rational.hpp"
 #include "solve_circuit_exact.hpp"
 
 namespace dcad::cli {
@@ -16,13 +17,23 @@ struct Scalar<io::Rational> {
 };
 
 SolveReport solve_reference(const io::CaseFile& c, const Parts& parts) {
-  SolveReport out = solve_exact<io::Rational>(c, parts);
+  SolveReport out;
+  try {
+    out = solve_small(c, parts);
+  } catch (const reference::Overflow&) {
+    out = solve_exact<io::Rational>(c, parts);
+  }
   out.backend = "reference";
   return out;
 }
 
 SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts) {
-  SolveReport out = solve_circuit_exact<io::Rational>(n, c, parts);
+  SolveReport out;
+  try {
+    out = solve_circuit_small(n, c, parts);
+  } catch (const reference::Overflow&) {
+    out = solve_circuit_exact<io::Rational>(n, c, parts);
+  }
   out.backend = "reference";
   out.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
              std::string(c.has_pontryagin && n.circuit.branches.size() <= kAdaptedBranches

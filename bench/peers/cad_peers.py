@@ -142,10 +142,20 @@ def angle(a, b):
     return math.asin(min(1.0, s[0] if s.size else 0.0))
 
 
+def one_case(path):
+    """--one FILE: the sympy CAD on one dcad case file (presymplectic ω, Hessian), as a process of its own."""
+    with open(path) as f:
+        case = json.load(f)
+    dims, srank, _ = cad(Sympy, Sympy.convert(case["dirac"]["presymplectic"]), Sympy.convert(case["energy"]["hessian"]))
+    print(json.dumps({"dims": dims, "solution_rank": srank}))
+
+
 def main():
     args = sys.argv[1:]
     if not args:
         sys.exit(__doc__)
+    if args[0] == "--one":
+        return one_case(args[1])
     sympy_max_n = 1 << 30
     if "--sympy-max-n" in args:
         i = args.index("--sympy-max-n")
