@@ -1,14 +1,26 @@
 #include "dcad/reference/ball.hpp"
+#include "dcad/reference/small_rational.hpp"
 #include "method_generic.hpp"
 
 namespace dcad::bench {
 
+/// What `dcad solve --backend certified` does: exact in machine words (N ≤ kSmallFirstUpTo), else
+/// or on Overflow the reference in ball arithmetic, exactly recomputed (mpq) on an uncertain test.
 Outcome run_certified(const families::Instance& in) {
   using reference::Ball;
+  using S = reference::SmallRational;
+  if (in.n() <= reference::kSmallFirstUpTo) {
+    try {
+      Outcome o = run_generic<S>(in, [](const families::Q& q) { return S::from(q); }, [](const S& s) { return s.value().convert_to<double>(); });
+      o.machine_words = true;
+      return o;
+    } catch (const reference::Overflow&) {
+    }
+  }
   try {
     return run_generic<Ball>(in, [](const families::Q& q) { return Ball::enclosing(q); }, [](const Ball& b) { return b.mid(); });
   } catch (const reference::Uncertain&) {
-    Outcome o = run_reference(in);
+    Outcome o = run_mpq(in);
     o.recomputed = true;
     return o;
   }

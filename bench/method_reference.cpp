@@ -11,8 +11,13 @@ Outcome run_reference(const families::Instance& in) {
   try {
     return run_generic<S>(in, [](const Q& q) { return S::from(q); }, [](const S& s) { return s.value().convert_to<double>(); });
   } catch (const reference::Overflow&) {
-    return run_generic<Q>(in, [](const Q& q) { return q; }, [](const Q& q) { return q.convert_to<double>(); });
+    return run_mpq(in);
   }
+}
+
+Outcome run_mpq(const families::Instance& in) {
+  using Q = families::Q;
+  return run_generic<Q>(in, [](const Q& q) { return q; }, [](const Q& q) { return q.convert_to<double>(); });
 }
 
 }  // namespace dcad::bench

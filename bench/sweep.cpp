@@ -117,7 +117,7 @@ Exact exact_answer(const fam::Instance& in, const Outcome& ref) {
 int adversarial(long count, unsigned long seed) {
   std::mt19937_64 rng(seed);
   const auto ps = plans(false, 1);
-  long wrong_answers = 0, recomputed = 0, done = 0;
+  long wrong_answers = 0, recomputed = 0, machine_words = 0, done = 0;
   std::map<std::string, long> per_family;
   while (done < count) {
     for (const Plan& p : ps) {
@@ -131,7 +131,7 @@ int adversarial(long count, unsigned long seed) {
           e.dims = in.dims;
           e.solution_rank = in.solution_rank;
         } else {
-          const Outcome r = dcad::bench::run_reference(in);
+          const Outcome r = dcad::bench::run_mpq(in);  // independent of SmallRational
           e.dims = r.dims;
           e.solution_rank = r.solution_rank;
         }
@@ -140,13 +140,15 @@ int adversarial(long count, unsigned long seed) {
           std::fprintf(stderr, "\nWRONG: certified on %s(%g)\n", in.family.c_str(), param);
         }
         recomputed += c.recomputed;
+        machine_words += c.machine_words;
         ++per_family[p.family];
         if (++done % 1000 == 0 || done == count) progress(done, count, "adversarial: certified vs exact");
       }
     }
   }
-  std::printf("certified on %ld adversarial instances (seed %lu): %ld wrong, %ld exact recomputations\n", count, seed,
-              wrong_answers, recomputed);
+  std::printf("certified on %ld adversarial instances (seed %lu): %ld wrong; %ld exact in machine words, %ld in ball "
+              "arithmetic, %ld exact recomputations\n",
+              count, seed, wrong_answers, machine_words, count - machine_words - recomputed, recomputed);
   for (const auto& [f, n] : per_family) std::printf("  %s: %ld\n", f.c_str(), n);
   return wrong_answers == 0 ? 0 : 3;
 }
@@ -188,7 +190,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "dcad_sweep: cannot write to %s\n", out.c_str());
     return 2;
   }
-  csv << "family,param,n,method,instances,wrong,wrong_claimed_certain,uncertain,recomputed,max_angle,mean_seconds\n";
+  csv << "family,param,n,method,instances,wrong,wrong_claimed_certain,uncertain,recomputed,max_angle,mean_seconds,machine_words\n";
   std::mt19937_64 rng(seed);
   const auto ps = plans(quick, reps);
   long total = 0, done = 0;
@@ -196,7 +198,7 @@ int main(int argc, char** argv) {
   for (const Plan& p : ps) {
     for (double param : p.params) {
       struct Acc {
-        long wrong = 0, wrong_certain = 0, uncertain = 0, recomputed = 0;
+        long wrong = 0, wrong_certain = 0, uncertain = 0, recomputed = 0, machine_words = 0;
         double angle = 0, seconds = 0;
       };
       std::vector<Acc> acc(methods.size());
@@ -216,6 +218,7 @@ int main(int argc, char** argv) {
           acc[m].wrong_certain += wrong(outs[m], e) && !outs[m].uncertain;
           acc[m].uncertain += outs[m].uncertain;
           acc[m].recomputed += outs[m].recomputed;
+          acc[m].machine_words += outs[m].machine_words;
           acc[m].angle = std::max(acc[m].angle, tower_angle(outs[m], e));
         }
         if (!in.pontryagin)
@@ -229,7 +232,8 @@ int main(int argc, char** argv) {
       }
       for (std::size_t m = 0; m < methods.size(); ++m)
         csv << p.family << ',' << param << ',' << n << ',' << methods[m].first << ',' << p.reps << ',' << acc[m].wrong << ','
-            << acc[m].wrong_certain << ',' << acc[m].uncertain << ',' << acc[m].recomputed << ',' << acc[m].angle << ',' << acc[m].seconds / p.reps << "\n";
+            << acc[m].wrong_certain << ',' << acc[m].uncertain << ',' << acc[m].recomputed << ',' << acc[m].angle << ',' << acc[m].seconds / p.reps << ','
+            << acc[m].machine_words << "\n";
     }
   }
   std::fprintf(stderr, "wrote %s/sweep.csv and %s/instances.jsonl (seed %lu)\n", out.c_str(), out.c_str(), seed);

@@ -1,6 +1,7 @@
 #include "solve.hpp"
 
 #include "dcad/reference/ball.hpp"
+#include "dcad/reference/small_rational.hpp"
 
 #include <functional>
 #include <sstream>
@@ -39,7 +40,22 @@ Equation row_equation(const io::QMatrix& rows, std::size_t i) {
   return e;
 }
 
-SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::function<SolveReport()>& exact) {
+SolveReport certify(const std::function<SolveReport()>& small, const std::function<SolveReport(double&)>& ball,
+                    const std::function<SolveReport()>& exact) {
+  std::string overflow;
+  if (small) {
+    try {
+      SolveReport r = small();
+      r.backend = "certified";
+      r.certified = true;
+      r.decisions_machine_words = 1;
+      r.note = (r.note.empty() ? "" : r.note + "; ") +
+               "the reference algorithm in exact 64-bit rationals (every number fitted in machine words)";
+      return r;
+    } catch (const reference::Overflow& e) {
+      overflow = std::string("exact 64-bit rationals gave up (") + e.what() + "); ";
+    }
+  }
   reference::Ball::decisions() = 0;
   reference::Ball::verifications() = 0;
   try {
@@ -51,7 +67,7 @@ SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::
     r.decisions_verified = reference::Ball::verifications();
     std::ostringstream o;
     o.precision(2);
-    o << (r.note.empty() ? "" : r.note + "; ") << "the reference algorithm in ball arithmetic: " << r.decisions_float
+    o << (r.note.empty() ? "" : r.note + "; ") << overflow << "the reference algorithm in ball arithmetic: " << r.decisions_float
       << " zero tests certified in floating point, " << r.decisions_verified
       << " by exact comparison of input numbers; numbers are ball midpoints, exact values within " << radius;
     r.note = o.str();
@@ -63,14 +79,16 @@ SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::
     out.decisions_float = done;
     out.decisions_verified = reference::Ball::verifications();
     out.decisions_exact = 1;
-    out.note = (out.note.empty() ? "" : out.note + "; ") + "zero test " + std::to_string(done + 1) + " undecidable in floating point (" +
+    out.note = (out.note.empty() ? "" : out.note + "; ") + overflow + "zero test " + std::to_string(done + 1) + " undecidable in floating point (" +
                e.what() + "): recomputed exactly from the exact input";
     return out;
   }
 }
 
 SolveReport solve_certified(const io::CaseFile& c, const Parts& parts) {
-  return certify([&](double& radius) { return solve_ball(c, radius, parts); }, [&] { return solve_reference(c, parts); });
+  std::function<SolveReport()> small;
+  if (c.n <= reference::kSmallFirstUpTo) small = [&] { return solve_small(c, parts); };
+  return certify(small, [&](double& radius) { return solve_ball(c, radius, parts); }, [&] { return solve_rational(c, parts); });
 }
 
 Parts parse_parts(const std::string& list) {
@@ -155,7 +173,10 @@ nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c) {
                     {"abridged_total_energy_constraints", terms},
                     {"secondary_first_class", r.secondary_first_class}};
   }
-  j["decisions"] = {{"float", r.decisions_float}, {"exact_verification", r.decisions_verified}, {"exact_recomputation", r.decisions_exact}};
+  j["decisions"] = {{"float", r.decisions_float},
+                    {"exact_verification", r.decisions_verified},
+                    {"exact_recomputation", r.decisions_exact},
+                    {"exact_machine_words", r.decisions_machine_words}};
   if (!r.note.empty()) j["note"] = r.note;
   return j;
 }

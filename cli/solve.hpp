@@ -53,6 +53,7 @@ struct SolveReport {
   std::vector<Equation> final_constraints;  ///< equations of M_c (reference and ball pipeline; JSON `final_constraints`)
   std::string note;  ///< e.g. why `certified` recomputed exactly
   long decisions_float = 0, decisions_verified = 0, decisions_exact = 0;
+  long decisions_machine_words = 0;  ///< certified: 1 if the whole run was exact in 64-bit rationals
 };
 
 /// What `dcad solve` computes beyond the CONTRACT's required keys and the tower (`--with`): a CI
@@ -79,15 +80,19 @@ Equation row_equation(const io::QMatrix& rows, std::size_t i);
 SolveReport solve_reference(const io::CaseFile& c, const Parts& parts = {});
 /// The pipeline on SmallRational alone; throws reference::Overflow (solve_small.cpp).
 SolveReport solve_small(const io::CaseFile& c, const Parts& parts = {});
+/// The pipeline on mpq_rational alone.
+SolveReport solve_rational(const io::CaseFile& c, const Parts& parts = {});
 SolveReport solve_fast(const io::CaseFile& c, const Parts& parts = {});
 /// The reference pipeline in ball arithmetic (solve_ball.cpp); throws reference::Uncertain at the
 /// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.
 SolveReport solve_ball(const io::CaseFile& c, double& max_radius, const Parts& parts = {});
-/// `ball` (a reference pipeline in ball arithmetic); if it throws reference::Uncertain, `exact` (the
-/// same pipeline exactly).  Either way every discrete output equals the reference's (ball.hpp).
-SolveReport certify(const std::function<SolveReport(double&)>& ball, const std::function<SolveReport()>& exact);
-/// solve_ball; if a decision is uncertain there, the whole result recomputed exactly (reference).
-/// Either way every discrete output equals the reference's (ball.hpp gives the proof).
+/// `small` (the reference pipeline in 64-bit rationals; skipped if empty); if it throws
+/// reference::Overflow, `ball` (the pipeline in ball arithmetic); if that throws
+/// reference::Uncertain, `exact` (the pipeline on mpq_rational).  Every discrete output equals the
+/// reference's whichever finishes (small_rational.hpp, ball.hpp give the proofs).
+SolveReport certify(const std::function<SolveReport()>& small, const std::function<SolveReport(double&)>& ball,
+                    const std::function<SolveReport()>& exact);
+/// certify(solve_small up to kSmallFirstUpTo variables, solve_ball, solve_rational).
 SolveReport solve_certified(const io::CaseFile& c, const Parts& parts = {});
 
 nlohmann::json to_json(const SolveReport& r, const io::CaseFile& c);

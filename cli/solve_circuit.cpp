@@ -1,6 +1,7 @@
 #include "solve_circuit.hpp"
 #include "convert_fast.hpp"
 #include "dcad/fast/circuit_motion.hpp"
+#include "dcad/reference/small_rational.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -155,8 +156,10 @@ SolveReport solve_circuit_certified(const io::Netlist& n, const io::CaseFile& c,
     r.backend = "certified";
     return r;
   }
-  SolveReport r = certify([&](double& radius) { return solve_circuit_ball(n, c, radius, parts); },
-                          [&] { return solve_circuit_reference(n, c, parts); });
+  std::function<SolveReport()> small;
+  if (3 * n.circuit.branches.size() <= reference::kSmallFirstUpTo) small = [&] { return solve_circuit_small(n, c, parts); };
+  SolveReport r = certify(small, [&](double& radius) { return solve_circuit_ball(n, c, radius, parts); },
+                          [&] { return solve_circuit_rational(n, c, parts); });
   const fast::CircuitTower t = fast::circuit_tower(graph, opt);
   if (t.physical && t.dims != r.dims)  // a combinatorial theorem disagrees with a certified computation: a bug
     throw std::logic_error("graph route and certified CAD disagree on " + c.file + "; please report it");

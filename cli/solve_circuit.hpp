@@ -25,6 +25,8 @@ SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c, cons
 SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The structured route on SmallRational alone; throws reference::Overflow (solve_small.cpp).
 SolveReport solve_circuit_small(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
+/// The structured route on mpq_rational alone.
+SolveReport solve_circuit_rational(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The same in ball arithmetic; throws reference::Uncertain at the first undecidable zero test.
 SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius, const Parts& parts = {});
 /// solve_circuit_ball, recomputed exactly if a decision is uncertain there; cross-checked against

@@ -21,10 +21,20 @@ SolveReport solve_reference(const io::CaseFile& c, const Parts& parts) {
   try {
     out = solve_small(c, parts);
   } catch (const reference::Overflow&) {
-    out = solve_exact<io::Rational>(c, parts);
+    out = solve_rational(c, parts);
   }
   out.backend = "reference";
   return out;
+}
+
+SolveReport solve_rational(const io::CaseFile& c, const Parts& parts) {
+  SolveReport out = solve_exact<io::Rational>(c, parts);
+  out.backend = "reference";
+  return out;
+}
+
+SolveReport solve_circuit_rational(const io::Netlist& n, const io::CaseFile& c, const Parts& parts) {
+  return solve_circuit_exact<io::Rational>(n, c, parts);
 }
 
 SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts) {
@@ -32,7 +42,7 @@ SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c,
   try {
     out = solve_circuit_small(n, c, parts);
   } catch (const reference::Overflow&) {
-    out = solve_circuit_exact<io::Rational>(n, c, parts);
+    out = solve_circuit_rational(n, c, parts);
   }
   out.backend = "reference";
   out.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
