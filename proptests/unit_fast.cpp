@@ -65,15 +65,19 @@ TEST(DecideRank, PivotedQrBracketsTheCut) {
   EXPECT_LE(d.scale, s.scale * (1 + 1e-12));         // … and a lower bound
 }
 
-// A singular value inside the band (τ0, τ1] is uncertain on the QR route too: the route hands
-// such a matrix to the SVD instead of deciding.  Killed by: accepting the QR when either bound fails.
+// A singular value inside the band (τ0, τ1] is uncertain on the QR route too: the route says so
+// when its bounds put σ_rank in the band, and hands other unclear matrices to the SVD.  Killed by:
+// accepting the QR when either bound fails, or calling an in-band value certain.
 TEST(DecideRank, PivotedQrNeverDecidesInsideTheBand) {
   std::srand(6);
   VectorXd sigma = VectorXd::Constant(60, 1.0);
   sigma(59) = 1e-12;
   const RankDecision d = decide_rank(with_singular_values(80, 80, sigma));
   EXPECT_FALSE(d.certain);
-  EXPECT_FALSE(d.by_qr);
+  EXPECT_EQ(d.rank, 60);
+  sigma(59) = 2e-13;  // near τ0 = 1.4e-13: neither bound decides, the SVD does (uncertain)
+  const RankDecision s = decide_rank(with_singular_values(80, 80, sigma));
+  EXPECT_FALSE(s.certain);
   sigma(59) = 1e-3;  // clearly nonzero: QR decides, rank 60 of 80, certain
   const RankDecision e = decide_rank(with_singular_values(80, 80, sigma));
   EXPECT_TRUE(e.by_qr);

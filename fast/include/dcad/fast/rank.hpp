@@ -55,6 +55,10 @@ void assess_input(const MatrixXd& a, Options& opt);
 ///    bounds that hold for the R of A + E with ‖E‖ ≲ p(m,n) ε ‖A‖ (the same backward error as an
 ///    SVD's): σ_rank ≥ σ_min(R₁₁) ≥ 1/‖R₁₁⁻¹‖_F (R₁₁ = R[0:r, 0:r], a column subset of A P) and
 ///    σ_{rank+1} ≤ ‖R₂₂‖₂ ≤ ‖R₂₂‖_F (Weyl: R minus a rank-r matrix; Golub–Van Loan §5.4.2).
+///    Where ‖R₂₂‖_F exceeds τ0 by less than √rank(R₂₂) (rounding residue of a large block: N ≳ 1000),
+///    twice a 30-step power estimate of ‖R₂₂‖₂ stands in for the bound — a heuristic, like τ0 itself.
+///    When σ_rank is provably inside the band (τ0 < 1/‖R₁₁⁻¹‖_F and ‖R[r−1:, r−1:]‖_F ≤ τ1), the QR
+///    route answers "uncertain" itself, as the SVD would.
 ///    The QR route answers only when σ_{rank+1} ≤ τ0 and σ_rank > τ1 follow from those bounds, i.e.
 ///    when the SVD would give the same rank, certain; otherwise the SVD decides.
 struct RankDecision {
