@@ -5,7 +5,7 @@
 
 #include "dcad/reference/circuit.hpp"
 #include "dcad/reference/system.hpp"
-#include "support/gen.hpp"
+#include "gen.hpp"
 
 #include <sstream>
 #include <string>

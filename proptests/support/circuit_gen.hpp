@@ -1,7 +1,7 @@
 // Random LC circuits for the properties (CEF §6): connected multigraphs with parallel branches.
 #pragma once
 
-#include "support/gen.hpp"
+#include "gen.hpp"
 
 #include "dcad/fast/circuit.hpp"
 #include "dcad/reference/circuit.hpp"

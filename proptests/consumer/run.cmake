@@ -1,0 +1,13 @@
+# ctest `install_consumer`: install this build into a fresh prefix, then configure, build and run
+# proptests/consumer (a project that only knows find_package(dcad CONFIG)).  -DBUILD= -DSRC= -DWORK=
+file(REMOVE_RECURSE ${WORK})
+foreach(step
+    "${CMAKE_COMMAND};--install;${BUILD};--prefix;${WORK}/prefix"
+    "${CMAKE_COMMAND};-S;${SRC};-B;${WORK}/build;-DCMAKE_BUILD_TYPE=Release;-DCMAKE_PREFIX_PATH=${WORK}/prefix"
+    "${CMAKE_COMMAND};--build;${WORK}/build"
+    "${WORK}/build/consumer")
+  execute_process(COMMAND ${step} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "install_consumer: '${step}' failed (${rc})")
+  endif()
+endforeach()
