@@ -71,11 +71,11 @@ TEST(DecideRank, PivotedQrBracketsTheCut) {
 TEST(DecideRank, PivotedQrNeverDecidesInsideTheBand) {
   std::srand(6);
   VectorXd sigma = VectorXd::Constant(60, 1.0);
-  sigma(59) = 1e-12;
+  sigma(59) = 1e-10;  // τ0 = 64·80·ε = 1.1e-12 < 1e-10 < τ1 = 1.5e-8
   const RankDecision d = decide_rank(with_singular_values(80, 80, sigma));
   EXPECT_FALSE(d.certain);
   EXPECT_EQ(d.rank, 60);
-  sigma(59) = 2e-13;  // near τ0 = 1.4e-13: neither bound decides, the SVD does (uncertain)
+  sigma(59) = 1.5e-12;  // just above τ0: neither bound decides, the SVD does (uncertain)
   const RankDecision s = decide_rank(with_singular_values(80, 80, sigma));
   EXPECT_FALSE(s.certain);
   sigma(59) = 1e-3;  // clearly nonzero: QR decides, rank 60 of 80, certain

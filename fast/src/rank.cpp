@@ -49,19 +49,28 @@ namespace {
 RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double scale, const Options& opt);
 
 /// A with entries |a_ij| ≤ tiny set to 0, then rows and columns scaled by powers of two (exact) to
-/// max-norm in [1, 2); two passes.
-MatrixXd equilibrated(MatrixXd a, double tiny) {
+/// max-norm in [1, 2); two passes: E = D_r A D_c.  `gain` = max D_r · max D_c ≥ ‖D_r X D_c‖₂ / ‖X‖₂
+/// for any X — how much A's rounding residue can grow in E.
+MatrixXd equilibrated(MatrixXd a, double tiny, double& gain) {
   a = a.unaryExpr([tiny](double x) { return std::abs(x) <= tiny ? 0.0 : x; });
+  VectorXd dr = VectorXd::Ones(a.rows()), dc = VectorXd::Ones(a.cols());
   for (int pass = 0; pass < 2; ++pass) {
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
       const double m = a.row(i).cwiseAbs().maxCoeff();
-      if (m > 0) a.row(i) *= std::ldexp(1.0, -std::ilogb(m));
+      if (m > 0) {
+        a.row(i) *= std::ldexp(1.0, -std::ilogb(m));
+        dr(i) *= std::ldexp(1.0, -std::ilogb(m));
+      }
     }
     for (Eigen::Index j = 0; j < a.cols(); ++j) {
       const double m = a.col(j).cwiseAbs().maxCoeff();
-      if (m > 0) a.col(j) *= std::ldexp(1.0, -std::ilogb(m));
+      if (m > 0) {
+        a.col(j) *= std::ldexp(1.0, -std::ilogb(m));
+        dc(j) *= std::ldexp(1.0, -std::ilogb(m));
+      }
     }
   }
+  gain = (dr.size() ? dr.maxCoeff() : 1.0) * (dc.size() ? dc.maxCoeff() : 1.0);
   return a;
 }
 
@@ -148,13 +157,20 @@ RankDecision decide_plain(const MatrixXd& a, double scale, const Options& opt) {
 /// decide_rank).  On a large matrix whose equilibrated QR does not decide, the check fails at once
 /// (no SVD): where pivoted QR's bounds are not conclusive, the equilibrated ranks seen differ
 /// (equilibration lifts rounding residue), and an SVD would only confirm the failure at 50× the cost.
+///
+/// E's zero threshold is A's, times the gain of the scaling: the rounding residue A carries (below
+/// τ0(A) by the decision's own hypothesis) is scaled with it, so E = D_r A D_c is decided with
+/// scale gain · scale(A).  Graded data (gain 10^16) then has nothing certain in E, and the check
+/// fails; a computed matrix whose rows merely differ by a few powers of two passes.
 bool survives_equilibration(const MatrixXd& a, const RankDecision& d, const Options& opt) {
-  const MatrixXd e = equilibrated(a, d.zero_threshold);
+  double gain = 1;
+  const MatrixXd e = equilibrated(a, d.zero_threshold, gain);
+  const double scale = gain * d.scale;
   RankDecision de;
   if (std::min(e.rows(), e.cols()) > opt.qr_from) {
-    if (!decide_by_qr(Eigen::ColPivHouseholderQR<MatrixXd>(e), e, -1, opt, de)) return false;
+    if (!decide_by_qr(Eigen::ColPivHouseholderQR<MatrixXd>(e), e, scale, opt, de)) return false;
   } else {
-    de = decide_plain(e, -1, opt);
+    de = decide_plain(e, scale, opt);
   }
   return de.rank == d.rank && de.certain;
 }
