@@ -22,7 +22,7 @@ set xlabel 'N'
 set ylabel 'mean time per instance [s]'
 set format y '10^{%L}'
 set autoscale y
-plot 'bench/results/plot/size_reference.dat' using 1:2 with linespoints lw 2 pt 1 title "reference (mpq)  N^{2.8}", 'bench/results/plot/size_certified.dat' using 1:2 with linespoints lw 2 pt 2 title "certified (ball + exact)  N^{3.5}", 'bench/results/plot/size_bf100.dat' using 1:2 with linespoints lw 2 pt 3 title "bin\\_float\\_100 + tol  N^{2.9}", 'bench/results/plot/size_bf50.dat' using 1:2 with linespoints lw 2 pt 4 title "bin\\_float\\_50 + tol  N^{2.9}", 'bench/results/plot/size_naive.dat' using 1:2 with linespoints lw 2 pt 5 title "naive double + tol  N^{2.1}", 'bench/results/plot/size_fast.dat' using 1:2 with linespoints lw 2 pt 6 title "fast (SVD)  N^{2.7}", 'bench/results/plot/size_sympy.dat' using 1:2 with linespoints lw 2 pt 7 title "sympy (exact)  N^{3.5}", 'bench/results/plot/size_numpy.dat' using 1:2 with linespoints lw 2 pt 8 title "numpy (SVD)  N^{2.1}", 'bench/results/plot/size_scipy.dat' using 1:2 with linespoints lw 2 pt 9 title "scipy (pivoted QR)  N^{1.8}"
+plot 'bench/results/plot/size_reference.dat' using 1:2 with linespoints lw 2 pt 1 title "reference (mpq)  N^{2.3}", 'bench/results/plot/size_certified.dat' using 1:2 with linespoints lw 2 pt 2 title "certified (ball + exact)  N^{2.3}", 'bench/results/plot/size_bf100.dat' using 1:2 with linespoints lw 2 pt 3 title "bin\\_float\\_100 + tol  N^{2.7}", 'bench/results/plot/size_bf50.dat' using 1:2 with linespoints lw 2 pt 4 title "bin\\_float\\_50 + tol  N^{2.6}", 'bench/results/plot/size_naive.dat' using 1:2 with linespoints lw 2 pt 5 title "naive double + tol  N^{2.0}", 'bench/results/plot/size_fast.dat' using 1:2 with linespoints lw 2 pt 6 title "fast (SVD)  N^{2.5}", 'bench/results/plot/size_sympy.dat' using 1:2 with linespoints lw 2 pt 7 title "sympy (exact)  N^{3.4}", 'bench/results/plot/size_numpy.dat' using 1:2 with linespoints lw 2 pt 8 title "numpy (SVD)  N^{2.1}", 'bench/results/plot/size_scipy.dat' using 1:2 with linespoints lw 2 pt 9 title "scipy (pivoted QR)  N^{1.7}"
 set output 'bench/charts/trajectory.png'
 set title '4-port (CEF Fig. 6.1): trajectory error against run time'
 set logscale xy
@@ -40,3 +40,11 @@ set ylabel 'max relative error of i_L'
 set format y '10^{%L}'
 set format x '%g'
 plot 'bench/results/plot/rlc_rlc-series_dcad.dat' using 1:2 with linespoints pt 7 lw 2 title 'dcad, series RLC',      'bench/results/plot/rlc_rlc-series_ngspice.dat' using 1:2 with linespoints pt 5 lw 2 title 'ngspice, series RLC', '' using 1:2:3 with labels offset 0,1 font ',7' notitle,      'bench/results/plot/rlc_rl-step_dcad.dat' using 1:2 with linespoints pt 9 lw 2 title 'dcad, RL step',      'bench/results/plot/rlc_rl-step_ngspice.dat' using 1:2 with linespoints pt 11 lw 2 title 'ngspice, RL step', '' using 1:2:3 with labels offset 0,-1 font ',7' notitle
+set output 'bench/charts/fast_cad_vs_qr.png'
+set title 'Fast CAD against one pivoted QR, one SVD (NxN)'
+set logscale xy
+set xlabel 'N'
+set ylabel 'time [s]'
+set format y '10^{%L}'
+set format x '%g'
+plot 'bench/results/plot/kernel_FastCad.dat' using 1:2 with linespoints lw 2 pt 5 title "FastCad  N^{2.81}", 'bench/results/plot/kernel_ColPivQR.dat' using 1:2 with linespoints lw 2 pt 6 title "ColPivQR  N^{3.00}", 'bench/results/plot/kernel_JacobiSingularValues.dat' using 1:2 with linespoints lw 2 pt 7 title "JacobiSingularValues  N^{3.09}"

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Mutation testing (issue 15): do the tests fail when the code is wrong?
+
+    python3 proptests/mutate.py [--count N] [--seed S] [--dirs reference,fast,cli] [--keep]
+
+Picks N single-token mutants at random (seeded) in the C++ sources of the given directories — an
+arithmetic, comparison or logical operator swapped (+ -, < <=, > >=, == !=, && ||), a numeric
+literal changed (0 ↔ 1, k → k + 1, sign flipped), true ↔ false — and for each one, in a git
+worktree of HEAD under build-mutate/ (your checkout is never touched): applies it, rebuilds
+incrementally, runs ctest.  A mutant is
+  killed     when a test fails (or the suite times out),
+  survived   when every test passes — a test is missing or the change is equivalent,
+  stillborn  when it does not compile (not counted in the score).
+Prints one line per mutant and the score killed / (killed + survived); writes every line to
+build-mutate/mutants.txt.  A reference/ header rebuilds most of the tree (minutes per mutant); fast/
+and cli/ sources rebuild one file and relink.  Standard library only.
+"""
+import argparse
+import os
+import random
+import re
+import subprocess
+import sys
+import time
+
+SWAPS = [(" + ", " - "), (" - ", " + "), (" < ", " <= "), (" <= ", " < "), (" > ", " >= "), (" >= ", " > "),
+         (" == ", " != "), (" != ", " == "), (" && ", " || "), (" || ", " && "), ("true", "false"), ("false", "true")]
+NUMBER = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?(?:e[+-]?\d+)?)(?![\w.])")
+
+
+def in_string_or_comment(line, pos):
+    code = line.split("//", 1)[0]
+    if pos >= len(code):
+        return True
+    return code[:pos].count('"') % 2 == 1
+
+
+def candidates(root, dirs):
+    out = []
+    for d in dirs:
+        for base, _, files in os.walk(os.path.join(root, d)):
+            for f in sorted(files):
+                if not f.endswith((".cpp", ".hpp")):
+                    continue
+                path = os.path.relpath(os.path.join(base, f), root)
+                with open(os.path.join(root, path), encoding="utf-8") as fh:
+                    lines = fh.read().split("\n")
+                for i, line in enumerate(lines):
+                    s = line.strip()
+                    if not s or s.startswith(("//", "#", "*", "/*")) or "static_assert" in s:
+                        continue
+                    for a, b in SWAPS:
+                        start = 0
+                        while (k := line.find(a, start)) >= 0:
+                            if a in ("true", "false") and (line[k - 1:k].isalnum() or line[k + len(a):k + len(a) + 1].isalnum()):
+                                start = k + 1
+                                continue
+                            if not in_string_or_comment(line, k):
+                                out.append((path, i, k, a, b))
+                            start = k + 1
+                    for m in NUMBER.finditer(line):
+                        if in_string_or_comment(line, m.start()):
+                            continue
+                        v = m.group(1)
+                        new = "1" if v == "0" else "0" if v == "1" else ("-" + v if "." in v or "e" in v else str(int(v) + 1))
+                        out.append((path, i, m.start(), v, new))
+    return out
+
+
+def run(cmd, cwd, timeout):
+    try:
+        return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout).returncode
+    except subprocess.TimeoutExpired:
+        return "timeout"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--count", type=int, default=20)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--dirs", default="reference,fast,cli")
+    ap.add_argument("--keep", action="store_true", help="keep the worktree's build for the next run")
+    args = ap.parse_args()
+    root = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True, text=True, check=True).stdout.strip()
+    work = os.path.join(root, "build-mutate")
+    tree, build = os.path.join(work, "tree"), os.path.join(work, "build")
+    os.makedirs(work, exist_ok=True)
+    if not os.path.isdir(tree):
+        subprocess.run(["git", "worktree", "add", "--detach", tree, "HEAD"], cwd=root, check=True, capture_output=True)
+    else:
+        subprocess.run(["git", "checkout", "--detach", "--force", subprocess.run(["git", "rev-parse", "HEAD"], cwd=root,
+                        capture_output=True, text=True).stdout.strip()], cwd=tree, check=True, capture_output=True)
+    print(f"[mutate] building the unmutated tree in {build} (once)", flush=True)
+    if run(["cmake", "-S", tree, "-B", build, "-DCMAKE_BUILD_TYPE=Release"], tree, 600) != 0 or \
+            run(["cmake", "--build", build, "-j2"], tree, 7200) != 0:
+        sys.exit("mutate: the unmutated tree does not build")
+    if run(["ctest", "--test-dir", build, "-j2", "-LE", "install"], tree, 1800) != 0:
+        sys.exit("mutate: the unmutated tree fails its tests: fix that first")
+    pool = candidates(tree, args.dirs.split(","))
+    rng = random.Random(args.seed)
+    picks = rng.sample(pool, min(args.count, len(pool)))
+    log = open(os.path.join(work, "mutants.txt"), "w")
+    tally = {"killed": 0, "survived": 0, "stillborn": 0}
+    for n, (path, i, k, a, b) in enumerate(picks, 1):
+        full = os.path.join(tree, path)
+        with open(full, encoding="utf-8") as fh:
+            original = fh.read()
+        lines = original.split("\n")
+        lines[i] = lines[i][:k] + b + lines[i][k + len(a):]
+        with open(full, "w", encoding="utf-8") as fh:
+            fh.write("\n".join(lines))
+        t0 = time.time()
+        built = run(["cmake", "--build", build, "-j2"], tree, 3600)
+        if built != 0:
+            verdict = "stillborn"
+        else:
+            tested = run(["ctest", "--test-dir", build, "-j2", "-LE", "install", "--timeout", "300", "--stop-on-failure"], tree, 3600)
+            verdict = "survived" if tested == 0 else "killed"
+        with open(full, "w", encoding="utf-8") as fh:
+            fh.write(original)
+        tally[verdict] += 1
+        line = f"{verdict.upper():9} {path}:{i + 1}: '{a.strip()}' -> '{b.strip()}'   ({time.time() - t0:.0f} s)   {lines[i].strip()[:100]}"
+        print(f"[{n}/{len(picks)}] {line}", flush=True)
+        log.write(line + "\n")
+        log.flush()
+    run(["cmake", "--build", build, "-j2"], tree, 7200)  # back to the unmutated build
+    scored = tally["killed"] + tally["survived"]
+    summary = (f"mutation score {tally['killed']}/{scored} = {100.0 * tally['killed'] / max(scored, 1):.0f} % "
+               f"({tally['stillborn']} stillborn; seed {args.seed}; {len(pool)} candidate mutants in {args.dirs})")
+    print(summary)
+    log.write(summary + "\n")
+    if not args.keep:
+        subprocess.run(["git", "worktree", "remove", "--force", tree], cwd=root, capture_output=True)
+
+
+if __name__ == "__main__":
+    main()
