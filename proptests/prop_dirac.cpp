@@ -63,11 +63,21 @@ RC_GTEST_PROP(Dirac, Proposition4_3_RoundTrip, ()) {
   }
 }
 
-// Prop. 4.4: D^♭(W) = (W^D)° for W ⊆ E_D.
+// Prop. 4.4: D^♭(W) = (W^D)° for W ⊆ E_D.  Both sides also against the planted data of
+// D = D_{E,ω} (Prop. 4.3: (v, α) ∈ D ⇔ v ∈ E and α|_E = ω(v, ·)|_E), which never goes through D's
+// basis: D^♭(W) = ω^♭(W) + E° and W^D = E ∩ {X : ω(w, X) = 0 ∀ w ∈ W}.  Killed by: `intersection`
+// returning its first argument; dirac_from_distribution with ω transposed; dirac_orthogonal
+// reading the vector part instead of the covector part.
 RC_GTEST_PROP(Dirac, Proposition4_4, ()) {
-  const DiracStructure<Q> d = any_dirac();
-  const QSub w = random_subspace_of(dirac_distribution(d));
-  RC_ASSERT(dirac_flat(d, w) == annihilator(dirac_orthogonal(d, w)));
+  const PlantedDirac p = planted_dirac_from_distribution();
+  const QSub w = random_subspace_of(p.e);
+  const QM flats = w.basis() * p.w;  // rows: ω(w_i, ·)
+  RC_ASSERT(dirac_flat(p.d, w) == sum(QSub::span(flats), annihilator(p.e)));
+  RC_ASSERT(dirac_orthogonal(p.d, w) == intersection(p.e, QSub::solutions(flats)));
+  RC_ASSERT(dirac_flat(p.d, w) == annihilator(dirac_orthogonal(p.d, w)));
+  const DiracStructure<Q> d = any_dirac();  // and on every kind of Dirac structure
+  const QSub v = random_subspace_of(dirac_distribution(d));
+  RC_ASSERT(dirac_flat(d, v) == annihilator(dirac_orthogonal(d, v)));
 }
 
 // §4: W^D ∩ E_D = W^{ω_D} — the Dirac route against the presymplectic route.

@@ -82,6 +82,7 @@ struct PlantedSymplectic {
   Index m = 0, a = 0, t = 0;
   QM w, a_map;
   QSub v = QSub::zero(0);
+  QSub kernel = QSub::zero(0);  ///< V ∩ V^Ω as planted: span{e_{a+1}..e_{a+t}} in J-coordinates
 };
 
 inline PlantedSymplectic planted_symplectic(Index max_m = 6) {
@@ -98,6 +99,9 @@ inline PlantedSymplectic planted_symplectic(Index max_m = 6) {
   }
   for (Index i = p.a; i < p.a + p.t; ++i) idx.push_back(i);
   p.v = coordinate_subspace(reference::inverse(p.a_map), idx);
+  std::vector<Index> isotropic;
+  for (Index i = p.a; i < p.a + p.t; ++i) isotropic.push_back(i);
+  p.kernel = coordinate_subspace(reference::inverse(p.a_map), isotropic);
   return p;
 }
 
