@@ -22,10 +22,29 @@ bool solves(const QM& w, const QM& h, const std::vector<Q>& g, const std::vector
   return true;
 }
 
+/// The λ parametrise all solutions, one direction each: the differences X(e_i) − X(0) are
+/// independent and span {Y ∈ T : Ω(Y, δx) = 0 ∀ δx ∈ tangent'} — the solution directions of (3.18)
+/// / (7.7) computed from the definition, not from the adapted constraints.
+template <class Field>
+bool parametrises_all(const Field& field, Index multipliers, const QM& w, const Subspace<Q>& t, const Subspace<Q>& tangent) {
+  const std::vector<Q> x0 = field(std::vector<Q>(multipliers, Q(0)));
+  QM diffs(multipliers, w.rows());
+  for (Index i = 0; i < multipliers; ++i) {
+    std::vector<Q> e(multipliers, Q(0));
+    e[i] = Q(1);
+    const std::vector<Q> xi = field(e);
+    for (Index j = 0; j < w.rows(); ++j) diffs(i, j) = xi[j] - x0[j];
+  }
+  const Subspace<Q> directions = intersection(t, Subspace<Q>::solutions(tangent.basis() * w.transpose()));
+  return rank(diffs) == multipliers && Subspace<Q>::span(diffs) == directions;
+}
+
 }  // namespace
 
 // Thm 3.28 (one leaf): for x ∈ S = M_c and every λ, X_(χ),E_AT(x) is tangent to S and solves (3.18)
-// for δx ∈ T S' (S' = M primary); a' − s' = d^(c) (Remark 3.30); first class X_ψ ∈ ker ω_c.
+// for δx ∈ T S' (S' = M primary), and the λ give every solution, each once (parametrises_all);
+// a' − s' = d^(c) (Remark 3.30); first class X_ψ ∈ ker ω_c.  Killed by: an abridged field that
+// drops a multiplier's term (then λ misses solutions).
 RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
   const ConstrainedSystem<Q> s = any_constrained_system();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
@@ -43,6 +62,8 @@ RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
   const Subspace<Q>& ts = db.tower.back().direction;
   RC_ASSERT(contains(ts, xdot));
   RC_ASSERT(solves(s.omega, s.hessian, s.gradient, x, xdot, kernel(gradients(s.primary))));
+  const auto field = [&](const std::vector<Q>& l) { return abridged_field(ad, db.constraints, s.hessian, s.gradient, x, l); };
+  RC_ASSERT(parametrises_all(field, ad.abridged.size(), s.omega, ts, kernel(gradients(s.primary))));
   // Lemma 3.23 / Remark 3.30: the Hamiltonian fields of first class constraints span ker ω_c
   const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
   const QM fields = gradients(cl.first) * poisson_tensor(s.omega).transpose();  // rows (J a_ψ)ᵀ
@@ -79,5 +100,7 @@ RC_GTEST_PROP(Adapted, Theorem7_4_Foliated, ()) {
   const Subspace<Q> ts_c = intersection(r.final_step().m.direction, kernel(gradients(leaf)));  // T S_C
   RC_ASSERT(contains(ts_c, xdot));
   RC_ASSERT(solves(s.omega, s.hessian, s.gradient, x, xdot, kernel(gradients(both))));  // δx ∈ T S'_C
+  const auto field = [&](const std::vector<Q>& l) { return abridged_field(ad, all, s.hessian, s.gradient, x, l); };
+  RC_ASSERT(parametrises_all(field, ad.abridged.size(), s.omega, ts_c, kernel(gradients(both))));
   RC_ASSERT(ad.abridged.size() == r.solution_rank);  // a' − s' = d^(c) on the leaves
 }
