@@ -84,19 +84,25 @@ RC_GTEST_PROP(Cad, Theorem5_4_SolutionRank, ()) {
 }
 
 // Lemma 5.5 (A): uniqueness (d^(c) = 0) ⇔ (i) ker ω_D ∩ T M_c = 0 ⇔ (ii) W_c ∩ E_D^{ω_D} = 0;
-// (B) ω_D|W_c symplectic ⇔ W_c ∩ W_c^{ω_D} = 0, and then solutions are unique.
+// (B) ω_D|W_c symplectic ⇔ W_c ∩ W_c^{ω_D} = 0, and then solutions are unique.  Each side by its own
+// route: uniqueness from the velocities (ẋ ∈ T M_c, (ẋ, dE(x)) ∈ D: D itself, not ω_D), (i) and (ii)
+// from ω_D's kernel, "symplectic" from the determinant of ω_D's Gram matrix on W_c, the other side
+// of (B) from W_c^{ω_D}.  Killed by: the solution rank or W_c computed from the wrong step, a
+// determinant or form kernel that ignores a row.
 RC_GTEST_PROP(Cad, Lemma5_5, ()) {
   const LinearSystem<Q> s = any_system();
   const CadResult<Q> r = constraint_tower(s);
   if (!r.consistent) return;
   const PresymplecticForm<Q> om = dirac_form(s.d);
   const Subspace<Q>& w = r.final_step().w;
-  const bool unique = r.unique();
+  const bool unique = velocities(s, r, some_point(r.final_step().m)).direction.dim() == 0;
   const bool a_i = intersection(form_kernel(om), r.final_step().m.direction).dim() == 0;
   const bool a_ii = intersection(w, orthogonal(om, om.space)).dim() == 0;
+  RC_ASSERT(unique == r.unique());
   RC_ASSERT(unique == a_i);
   RC_ASSERT(a_i == a_ii);
-  const bool symplectic = form_kernel(restrict_form(om, w)).dim() == 0;
+  const bool symplectic = w.dim() == 0 || determinant(gram(restrict_form(om, w))) != 0;
+  RC_ASSERT(symplectic == (form_kernel(restrict_form(om, w)).dim() == 0));
   RC_ASSERT(symplectic == (intersection(w, orthogonal(om, w)).dim() == 0));
   if (symplectic) RC_ASSERT(unique);
   RC_CLASSIFY(symplectic, "omega_D|W_c symplectic");
