@@ -13,10 +13,15 @@ namespace fa = dcad::fast;
 
 namespace {
 
-fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt) {
+/// `why_uncertain`: set when an input property could not be decided (a result, not bad input).
+fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt, std::string& why_uncertain) {
   if (c.has_constrained) {
     const Eigen::MatrixXd w = to_double(c.constrained.w, opt), prim = to_double(c.constrained.primary, opt);
-    fa::require_symplectic(w, "solve", opt);
+    const fa::Answer symplectic = fa::is_symplectic(w, opt);  // degenerate: bad input; undecided: the result says so
+    if (!symplectic.value && symplectic.certain)
+      throw std::invalid_argument("solve: expected a nondegenerate form, found " + fa::decide_rank(w, -1, opt).describe());
+    if (!symplectic.certain)
+      why_uncertain = "whether the symplectic form is nondegenerate is uncertain (" + fa::decide_rank(w, -1, opt).describe() + ")";
     return {fa::dirac_from_distribution(fa::kernel(prim.leftCols(c.n), opt), w), to_double(c.energy.hessian, opt),
             to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
   }
@@ -73,7 +78,8 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
   if (c.has_pontryagin && c.pontryagin.has_forces)  // the unforced pipeline must never drop them silently
     throw std::invalid_argument("a case with `forces` goes by the forced route (solve_forced_case), not this one");
   fa::Options opt;
-  const fa::LinearSystem s = fast_system(c, opt);
+  std::string why_uncertain;
+  const fa::LinearSystem s = fast_system(c, opt, why_uncertain);
   fa::Options in_opt = opt;
   const Eigen::MatrixXd initial = c.has_constrained ? to_double(c.constrained.primary, in_opt) : Eigen::MatrixXd();
   const fa::CadResult r = fa::constraint_tower(s, opt, initial);
@@ -98,7 +104,9 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
     out.dims.push_back(step.dim);
     out.tower.push_back(step);
   }
-  if (c.has_constrained && r.consistent && parts.classes) {  // 2s = rank {φ_i, φ_j} on M_c, decided
+  // the classes and the adapted constraints need Ω⁻¹: not from a form whose nondegeneracy is undecided
+  const bool invertible = why_uncertain.empty();
+  if (c.has_constrained && r.consistent && parts.classes && invertible) {  // 2s = rank {φ_i, φ_j} on M_c, decided
     Eigen::MatrixXd a(0, c.n);
     for (const auto& st : r.tower) {
       Eigen::MatrixXd more(a.rows() + st.equations.rows(), c.n);
@@ -111,7 +119,7 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
     out.second_class = d.rank;
     out.first_class = a.rows() - d.rank;
   }
-  if (c.has_constrained && r.consistent && parts.adapted) {  // Theorem 3.28 on N
+  if (c.has_constrained && r.consistent && parts.adapted && invertible) {  // Theorem 3.28 on N
     out.adapted_setting = "N";
     out.adapted_variables = c.variables;
     fast_adapted(out, to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_rows(r, c.n + 1),
@@ -149,7 +157,12 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
       for (Eigen::Index j = 0; j < red.g.cols(); ++j) out.g.back().push_back(float_text(red.g(i, j)));
     }
   }
-  if (!out.certified) out.note = "some rank decision was uncertain (see `dcad solve --backend certified`)";
+  if (!why_uncertain.empty()) {
+    out.certified = false;
+    if (c.has_constrained && (parts.classes || parts.adapted)) why_uncertain += "; constraint classes and adapted constraints not computed";
+  }
+  if (!out.certified)
+    out.note = (why_uncertain.empty() ? "some rank decision was uncertain" : why_uncertain) + " (see `dcad solve --backend certified`)";
   return out;
 }
 

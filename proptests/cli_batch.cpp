@@ -118,3 +118,31 @@ TEST(SolveBatch, JsonLinesMatchOneFileAtATime) {
   const Outcome one = run("solve --json --with none " + files[0]);
   EXPECT_GT(split_lines(one.out).size(), 2u);
 }
+
+// Issue 15, three error channels: an input property fast cannot decide is a result that says so
+// (exit 0, "certified": false, the evidence in the note), never "bad input"; a property that
+// certainly fails is bad input (exit 1) on every backend.
+TEST(ErrorChannels, UndecidedInputIsAResultNotBadInput) {
+  const auto constrained = [](const std::string& tiny) {
+    return "{\"dcad\": 1, \"variables\": [\"q1\", \"p1\", \"q2\", \"p2\"], \"constrained\": {\"symplectic\": "
+           "[[\"0\", \"1\", \"0\", \"0\"], [\"-1\", \"0\", \"0\", \"0\"], [\"0\", \"0\", \"0\", \"" + tiny + "\"], [\"0\", \"0\", \"-" +
+           tiny + "\", \"0\"]], \"primary\": [[\"0\", \"0\", \"1\", \"0\", \"0\"]]}, \"energy\": {\"hessian\": "
+           "[[\"1\", \"0\", \"0\", \"0\"], [\"0\", \"1\", \"0\", \"0\"], [\"0\", \"0\", \"1\", \"0\"], [\"0\", \"0\", \"0\", \"1\"]]}}";
+  };
+  const std::string band = write_temp("dcad_channels_band.json", constrained("1e-10"));  // σ = 1e-10: between τ0 and τ1
+  const Outcome fast = run("solve --json --backend fast " + band);
+  ASSERT_EQ(fast.rc, 0) << fast.err;
+  const json r = json::parse(fast.out);
+  EXPECT_EQ(r["certified"], false);
+  EXPECT_NE(r["note"].get<std::string>().find("nondegenerate is uncertain"), std::string::npos) << r["note"];
+  const Outcome exact = run("solve --json --backend reference " + band);  // exactly nondegenerate: a plain result
+  ASSERT_EQ(exact.rc, 0) << exact.err;
+  EXPECT_EQ(json::parse(exact.out)["certified"], true);
+  const std::string degenerate = write_temp("dcad_channels_degenerate.json", constrained("0"));
+  for (const std::string backend : {"fast", "reference", "certified"}) {
+    const Outcome o = run("solve --backend " + backend + " " + degenerate);
+    EXPECT_EQ(o.rc, 1) << backend << ": " << o.err;
+    EXPECT_NE(o.err.find("nondegenerate"), std::string::npos) << backend << ": " << o.err;
+    EXPECT_NE(o.err.find(degenerate), std::string::npos) << backend << ": " << o.err;
+  }
+}
