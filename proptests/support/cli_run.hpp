@@ -6,7 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -65,3 +68,46 @@ inline std::vector<std::vector<double>> csv_rows(const std::string& text) {
   return rows;
 }
 
+struct BadCase {
+  const char* name;
+  const char* text;
+  const char* needle;  // must appear in stderr
+};
+
+/// Bad input: exit 1, and stderr names the file, contains `needle`, and says expected/found.
+inline void expect_input_error(const Outcome& r, const std::string& file, const std::string& needle, const std::string& label) {
+  EXPECT_EQ(r.rc, 1) << label << "\n" << r.out << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << label << ": " << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << label << ": " << r.err;
+  EXPECT_NE(r.err.find("expected"), std::string::npos) << label << ": " << r.err;
+  EXPECT_NE(r.err.find("found"), std::string::npos) << label << ": " << r.err;
+}
+
+/// `dcad simulate DECK ARGS` as rows of named numbers (the CSV header names the columns); exit 0 expected.
+inline std::vector<std::map<std::string, double>> simulate_rows(const std::string& deck, const std::string& args, std::string* err = nullptr) {
+  const Outcome r = run("simulate " + deck + " " + args);
+  EXPECT_EQ(r.rc, 0) << r.err;
+  if (err) *err = r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> head;
+  {
+    std::istringstream h(line);
+    for (std::string c; std::getline(h, c, ',');) head.push_back(c);
+  }
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::istringstream l(line);
+    std::map<std::string, double> row;
+    std::size_t k = 0;
+    for (std::string c; std::getline(l, c, ',') && k < head.size(); ++k) row[head[k]] = std::stod(c);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+inline double case_value(const std::string& text, const std::string& key) {  // "balance ... holds to X"
+  const std::size_t at = text.find(key);
+  return at == std::string::npos ? 1.0 : std::stod(text.substr(at + key.size()));
+}

@@ -1,0 +1,232 @@
+// `dcad check` (issue 5): results validate against the schema and round-trip; disagreements exit 3;
+// the regression workflow of `dcad cases`.
+#include "cli_run.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <map>
+#include <string>
+#include <tuple>
+
+#include <unistd.h>
+
+// ---- dcad check (issue 5) ------------------------------------------------------------------------
+
+/// The keywords cases/schema/result.schema.json uses (type, required, properties, items, enum,
+/// minimum, minItems), checked literally; returns the first violation as "path: what".
+std::string schema_violation(const nlohmann::json& schema, const nlohmann::json& v, const std::string& path = "") {
+  if (schema.contains("type")) {
+    const auto is = [&](const std::string& t) {
+      return (t == "object" && v.is_object()) || (t == "array" && v.is_array()) || (t == "string" && v.is_string()) ||
+             (t == "integer" && v.is_number_integer()) || (t == "number" && v.is_number()) || (t == "boolean" && v.is_boolean()) ||
+             (t == "null" && v.is_null());
+    };
+    bool ok = false;
+    for (const auto& t : schema["type"].is_array() ? schema["type"] : nlohmann::json::array({schema["type"]})) ok = ok || is(t.get<std::string>());
+    if (!ok) return path + ": type " + schema["type"].dump() + ", found " + v.dump().substr(0, 80);
+  }
+  if (schema.contains("enum") && std::find(schema["enum"].begin(), schema["enum"].end(), v) == schema["enum"].end())
+    return path + ": one of " + schema["enum"].dump();
+  if (schema.contains("minimum") && v.is_number() && v.get<double>() < schema["minimum"].get<double>()) return path + ": below minimum";
+  if (v.is_object()) {
+    for (const auto& key : schema.value("required", nlohmann::json::array()))
+      if (!v.contains(key.get<std::string>())) return path + ": required " + key.get<std::string>();
+    const nlohmann::json properties = schema.value("properties", nlohmann::json::object());
+    for (const auto& [key, sub] : properties.items())
+      if (v.contains(key))
+        if (std::string why = schema_violation(sub, v[key], path + "/" + key); !why.empty()) return why;
+  }
+  if (v.is_array()) {
+    if (schema.contains("minItems") && v.size() < schema["minItems"].get<std::size_t>()) return path + ": too few items";
+    if (schema.contains("items"))
+      for (std::size_t i = 0; i < v.size(); ++i)
+        if (std::string why = schema_violation(schema["items"], v[i], path + "/" + std::to_string(i)); !why.empty()) return why;
+  }
+  return "";
+}
+
+std::vector<fs::path> every_case() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases"))
+    if (e.path().extension() == ".json" || e.path().extension() == ".cir") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Every case, every backend: the result validates against the schema, and `dcad check` accepts the
+// certified ones (comparing final_constraints as subspaces whenever the reference gives M_c).
+TEST(Check, EveryCaseValidatesAndRoundTrips) {
+  const nlohmann::json schema = nlohmann::json::parse(slurp(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json"));
+  int checked = 0;
+  for (const fs::path& file : every_case()) {
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + file.string() + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << file << " " << backend << ": " << r.err;
+      const nlohmann::json got = nlohmann::json::parse(r.out);
+      EXPECT_EQ(schema_violation(schema, got), "") << file << " " << backend;
+      if (!got["certified"].get<bool>()) continue;
+      const std::string result = write_temp("dcad_check_result.json", r.out);
+      const Outcome c = run("check " + result + " " + file.string());
+      const bool known_failure = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).value("known_failures", nlohmann::json::object()).contains(backend);
+      EXPECT_EQ(c.rc, known_failure ? 3 : 0) << file << " " << backend << ": " << c.out << c.err;  // check catches it
+      const bool forced = (file.extension() == ".cir" && slurp(file).find("\nR") != std::string::npos) ||
+                          slurp(file).find("\"forces\"") != std::string::npos;  // the forced route compares the tower only
+      const bool expression = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).contains("lagrangian");  // compared: the velocity
+      if (backend == "reference" && !forced && !expression) EXPECT_NE(c.out.find("final_constraints"), std::string::npos) << file;
+      if (expression) EXPECT_NE(c.out.find("velocity"), std::string::npos) << file;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 30);
+}
+
+// Gauge freedom (CEF (5.12): λ free): F + G K and f + G k are as right as F and f, a G that spans
+// another space is wrong, and a result without G is compared modulo span(G) with a note saying so.
+TEST(Check, EquationsOfMotionModuloGauge) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/gauge-free-particle.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend reference --json").out);
+  ASSERT_EQ(good["reduced"]["G"].size(), 4u);
+  // G = (0, 0, 1, 1)ᵀ and rows 2, 3 of F and f are 0 (v1' = v2' = λ): F + G K puts K in those rows
+  ASSERT_EQ(good["reduced"]["G"], nlohmann::json::parse(R"([["0"], ["0"], ["1"], ["1"]])"));
+  nlohmann::json shifted = good;
+  const nlohmann::json k = nlohmann::json::parse(R"(["1", "-2", 3.5, "1/2"])");
+  shifted["reduced"]["F"][2] = k;
+  shifted["reduced"]["F"][3] = k;
+  shifted["reduced"]["f"][2] = "7";
+  shifted["reduced"]["f"][3] = "7";
+  const Outcome ok = run("check " + write_temp("dcad_gauge_ok.json", shifted.dump()) + " " + file);
+  EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
+  EXPECT_NE(ok.out.find("reduced.F modulo span(G)"), std::string::npos) << ok.out;
+  nlohmann::json wrong_g = good;
+  wrong_g["reduced"]["G"][3][0] = "0";
+  const Outcome bad = run("check " + write_temp("dcad_gauge_bad.json", wrong_g.dump()) + " " + file);
+  EXPECT_EQ(bad.rc, 3) << bad.out;
+  EXPECT_NE(bad.out.find("reduced.G"), std::string::npos) << bad.out;
+  nlohmann::json wrong_f = good;
+  wrong_f["reduced"]["F"][0][0] = "1";  // q1' = q1 + v1 is not in the family
+  EXPECT_EQ(run("check " + write_temp("dcad_gauge_badf.json", wrong_f.dump()) + " " + file).rc, 3);
+  nlohmann::json no_g = good;
+  no_g["reduced"].erase("G");
+  const Outcome partial = run("check " + write_temp("dcad_gauge_nog.json", no_g.dump()) + " " + file);
+  EXPECT_EQ(partial.rc, 0) << partial.out;
+  EXPECT_NE(partial.out.find("not compared: reduced.G"), std::string::npos) << partial.out;
+}
+
+// Wrong results are caught (exit 3) with the disagreement named.
+TEST(Check, DisagreementsExitThree) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend reference --json").out);
+  const auto expect_three = [&](nlohmann::json bad, const std::string& needle) {
+    const Outcome c = run("check " + write_temp("dcad_check_bad.json", bad.dump()) + " " + file);
+    EXPECT_EQ(c.rc, 3) << needle << ": " << c.out << c.err;
+    EXPECT_NE(c.out.find(needle), std::string::npos) << c.out;
+  };
+  nlohmann::json bad = good;
+  bad["dims"] = {12, 6, 4};
+  expect_three(bad, "dims: expected [12,6,5,4], found [12,6,4]");
+  bad = good;
+  bad["solution_rank"] = 1;
+  expect_three(bad, "solution_rank");
+  bad = good;
+  bad["reduced"]["F"][3][1] = -1.0 / 3 + 1e-3;  // a float 1e-3 off the exact −1/3
+  expect_three(bad, "reduced.F: differs from the reference (component 3,1");
+  bad = good;
+  bad["reduced"]["F"][3][1] = -1.0 / 3;  // the correctly rounded float passes
+  EXPECT_EQ(run("check " + write_temp("dcad_check_ok.json", bad.dump()) + " " + file).rc, 0);
+  bad = good;
+  bad["final_constraints"][0][3] = "-3/8";  // q_C1 − 3/8 q_C3 = 0 is not the KVLPC equation
+  expect_three(bad, "final_constraints[0]");
+  bad = good;
+  bad["final_constraints"].erase(0);  // one equation short: a 5-dimensional claim
+  expect_three(bad, "5-dimensional");
+}
+
+// Not a result for this case: exit 1 with where, expected and found; never exit 0 uncompared.
+TEST(Check, BadResultsExitOne) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend reference --json").out);
+  const auto expect_one = [&](const std::string& text, const std::string& needle) {
+    const std::string result = write_temp("dcad_check_input.json", text);
+    expect_input_error(run("check " + result + " " + file), result, needle, needle);
+  };
+  expect_one("{\"dims\": [12, 6", "expected valid JSON");
+  expect_one("[1, 2]", "a JSON object");
+  nlohmann::json bad = good;
+  bad.erase("dims");
+  expect_one(bad.dump(), "/dims");
+  bad = good;
+  bad["steps"] = "three";
+  expect_one(bad.dump(), "/steps");
+  const std::string other = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/harmonic-oscillator.json --json").out;
+  expect_one(other, "another case");
+  bad = good;
+  bad["final_constraints"][0][1] = "x";
+  expect_one(bad.dump(), "/final_constraints/0/1");
+  EXPECT_EQ(run("check").rc, 2);
+}
+
+// The worked example of the README: an independent, naive Python CAD (proptests/peers/naive_cad.py)
+// is right on the 4-port and wrong on a circuit with a 1 pH inductor, and `dcad check` says so.
+TEST(Check, NaivePythonPeer) {
+  if (std::system("command -v python3 > /dev/null 2>&1") != 0) FAIL() << "python3 not installed: run bash .ci/setup (the README's test command does)";
+  const std::string peer = std::string(DCAD_SOURCE_DIR) + "/proptests/peers/naive_cad.py";
+  const auto peer_result = [&](const std::string& deck) {
+    const std::string out = (fs::temp_directory_path() / "dcad_peer.json").string();
+    EXPECT_EQ(std::system(("python3 " + peer + " " + deck + " > " + out).c_str()), 0);
+    return out;
+  };
+  for (const char* ok : {"lc-4port.cir", "remark-6-7.cir", "lc-empty-loop.cir"}) {
+    const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/" + ok;
+    const Outcome c = run("check " + peer_result(deck) + " " + deck);
+    EXPECT_EQ(c.rc, 0) << ok << ": " << c.out << c.err;
+  }
+  const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/lc-picohenry.cir";
+  const Outcome c = run("check " + peer_result(deck) + " " + deck);
+  EXPECT_EQ(c.rc, 3) << c.out << c.err;
+  EXPECT_NE(c.out.find("dims: expected [9,5,4,3]"), std::string::npos) << c.out;
+}
+
+// Regression workflow: a property's failure log (its "dcad case: {…}" line, RC_LOG) → `dcad cases
+// freeze LOG NAME` → a golden case whose expectations the reference computed; `cases list/show/export`.
+TEST(Cases, FreezeListShowExport) {
+  const fs::path dir = fs::temp_directory_path() / "dcad_corpus_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "schema");
+  fs::copy_file(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json", dir / "schema/result.schema.json");
+  const std::string log = write_temp(
+      "dcad_property.log",
+      "Falsifiable after 12 tests and 3 shrinks\n"
+      "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"pontryagin\": {\"Q\": 1, \"constraints\": [], \"lagrangian\": "
+      "{\"vv\": [[\"1\"]], \"qq\": [[\"-1\"]]}}}\n"
+      "/work/main/proptests/prop_cad_fast.cpp:48: RC_ASSERT(...)\n");
+  setenv("DCAD_CASES", dir.c_str(), 1);
+  const Outcome f = run("cases freeze " + log + " regression-oscillator");
+  EXPECT_EQ(f.rc, 0) << f.err;
+  EXPECT_EQ(run("cases freeze " + log + " regression-oscillator").rc, 1);  // never overwrites
+  const Outcome l = run("cases list");
+  const Outcome s = run("cases show regression-oscillator");
+  const Outcome e = run("cases export " + (dir / "out").string());
+  EXPECT_EQ(run("cases show nosuchcase").rc, 1);
+  unsetenv("DCAD_CASES");
+  EXPECT_NE(l.out.find("regression-oscillator.json"), std::string::npos) << l.out;
+  const nlohmann::json frozen = nlohmann::json::parse(s.out);
+  EXPECT_EQ(frozen["expect"]["dims"], nlohmann::json::array({3, 2}));  // regular: M_1 = {p = v}, c = 1
+  EXPECT_EQ(frozen["expect"]["solution_rank"], 0);
+  EXPECT_EQ(e.rc, 0) << e.err;
+  EXPECT_TRUE(fs::exists(dir / "out/regression-oscillator.expected.json"));
+  EXPECT_TRUE(fs::exists(dir / "out/result.schema.json"));
+  // the frozen case is a golden case like any other: solve reproduces its expectations
+  const nlohmann::json got = nlohmann::json::parse(run("solve " + (dir / "regression-oscillator.json").string() + " --json").out);
+  EXPECT_EQ(got["dims"], frozen["expect"]["dims"]);
+}
+
+// ---- issue 12: forced decks (R, sources) against closed forms, ngspice and their own structure ----

@@ -1,0 +1,265 @@
+// Bad input as a user meets it (issue 3, 15): exit 1 naming the file, the JSON path or line, expected and
+// found; exit 2 for usage; netlists written the way SPICE users write them.
+#include "cli_run.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <map>
+#include <string>
+#include <tuple>
+
+#include <unistd.h>
+
+class BadNetlist : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadNetlist, ExitOneWithFileLineExpectedFound) {
+  const BadCase& b = GetParam();
+  const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".cir", b.text);
+  expect_input_error(run("solve " + file), file + ":", b.needle, b.name);  // FILE:LINE
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadNetlist,
+    testing::Values(BadCase{"resistor", "title\nL1 1 0 1\nR1 1 0 10 extra\n.end\n", "nothing after the resistance"},
+                    BadCase{"diode", "title\nD1 1 0 dmod\n", "element D1"},
+                    BadCase{"novalue", "title\nL1 1 0\n", ":2:"},
+                    BadCase{"badvalue", "title\nC1 1 0 abc\n", "\"abc\""},
+                    BadCase{"nan", "title\nC1 1 0 nan\n", "\"nan\""},
+                    BadCase{"zeroc", "title\nC1 1 0 0\n", "open branch"},
+                    BadCase{"dup", "title\nL1 1 0 1\nl1 1 0 2\n", "duplicate"},
+                    BadCase{"empty", "", "empty file"},
+                    BadCase{"noelements", "title only\n* nothing\n.end\n", "none"},
+                    BadCase{"vsource", "title\nV1 1 0 SIN(0 1)\n", "FREQ"},
+                    BadCase{"pulse", "title\nV1 1 0 PULSE(0 1 0 0 1n 1u 2u)\nR1 1 0 1\n", "TR > 0"},
+                    BadCase{"exp", "title\nI1 1 0 EXP(0 1 0 1 2 1)\nR1 1 0 1\n", "EXP, SFFM, AM are not supported"},
+                    BadCase{"pwl", "title\nV1 1 0 PWL(0 0 1 1 1 2)\nR1 1 0 1\n", "increasing PWL times"},
+                    BadCase{"kmissing", "title\nL1 1 0 1\nK1 L1 L9 0.5\n", "\"l9\""},
+                    BadCase{"kbig", "title\nL1 1 0 1\nL2 1 0 1\nK1 L1 L2 2\n", "|k| <= 1"},
+                    BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="},
+                    BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""},
+                    // SPICE as ngspice reads it: what would change the circuit and is not supported is an error
+                    BadCase{"model", "title\n.model d1 D\nL1 1 0 1\n", "unsupported .model"},
+                    BadCase{"global", "title\n.global vdd\nL1 1 0 1\n", "unsupported .global"},
+                    BadCase{"nosubckt", "title\nX1 1 0 nope\n", "unknown subcircuit \"nope\""},
+                    BadCase{"subcktports", "title\n.subckt t a b\nL1 a b 1\n.ends\nX1 1 t\n", "2 nodes for t"},
+                    BadCase{"noends", "title\n.subckt t a b\nL1 a b 1\n", ".ends for .subckt t"},
+                    BadCase{"recursive", "title\n.subckt t a\nX1 a t\n.ends\nX1 1 t\n", "nested at most 32"},
+                    BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" (no such file)"},
+                    BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
+                    BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
+                    BadCase{"icnode", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(7)=1\n", "v(7)"}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+// A deck written the way ngspice users write it — a library section with a parametrised .subckt,
+// .param with expressions, X instances (one with overrides), .ic on nodes, ; and $ comments,
+// .include — is the same circuit as its hand-flattened twin: same tower, same trajectory.
+TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
+  const fs::path dir = fs::temp_directory_path() / "dcad_hier";
+  fs::create_directories(dir / "lib");
+  std::ofstream(dir / "lib" / "parts.lib") << "* library\n.lib tanks\n.subckt tank a b params: l=1u c=1n\nL1 a b {l}\nC1 a b {c} ; shunt\n"
+                                              ".ends\n.endl\n.lib other\n.subckt junk x\nR1 x 0 1\n.ends\n.endl\n";
+  std::ofstream(dir / "extra.inc") << "C9 n2 0 1n $ the load\n";
+  std::ofstream(dir / "deck.spice") << "two tanks\n.param lval=2u cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
+                                       "X1 n1 0 tank params: l={lval} c={cval}\nX2 n1 n2 tank\n.include extra.inc\n"
+                                       ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u\n.end\n";
+  std::ofstream(dir / "flat.cir") << "two tanks, flat\nL.x1.l1 n1 0 2u\nC.x1.c1 n1 0 1n IC=1\nL.x2.l1 n1 n2 1u\n"
+                                     "C.x2.c1 n1 n2 1n IC=0.5\nC9 n2 0 1n IC=0.5\n.end\n";
+  const std::string deck = (dir / "deck.spice").string(), flat = (dir / "flat.cir").string();
+  const Outcome h = run("solve " + deck + " --json"), f = run("solve " + flat + " --json");
+  ASSERT_EQ(h.rc, 0) << h.err;
+  ASSERT_EQ(f.rc, 0) << f.err;
+  const nlohmann::json jh = nlohmann::json::parse(h.out), jf = nlohmann::json::parse(f.out);
+  for (const char* key : {"dims", "steps", "solution_rank", "variables", "tower", "reduced"}) EXPECT_EQ(jh[key], jf[key]) << key;
+  EXPECT_EQ(jh["circuit"]["branches"], 5);  // the unused .subckt adds nothing
+  const Outcome sh = run("simulate " + deck + " --tstop 1e-6 --step 1e-8"), sf = run("simulate " + flat + " --tstop 1e-6 --step 1e-8");
+  ASSERT_EQ(sh.rc, 0) << sh.err;
+  EXPECT_EQ(sh.out, sf.out);
+  EXPECT_NE(sh.err.find("ignored .tran"), std::string::npos) << "simulate shows the netlist warnings: " << sh.err;
+}
+
+// Found by fuzz_netlist (proptests/fuzz/regressions/netlist/formfeed-line): a line of white space
+// other than blanks and tabs (\f, \v) had no token and the reader read tok[0] of an empty vector.
+TEST(Cli, NetlistLinesOfOtherWhiteSpace) {
+  const std::string file = write_temp("dcad_formfeed.cir", "title\nL1 1 0 1\n\f\n\v \f\nC1 1 0 1\n");
+  const Outcome r = run("solve " + file + " --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["circuit"]["branches"], 2);
+  const std::string found = fs::path(DCAD_SOURCE_DIR) / "proptests/fuzz/regressions/netlist/formfeed-line";
+  const std::string copy = write_temp("dcad_formfeed_found.cir", slurp(found));
+  expect_input_error(run("solve " + copy), copy, ":2:", "the fuzzer's input");
+}
+
+// Found by fuzz_netlist: "0.010" read as 1/125 (octal digits), exit 0 — a silently wrong circuit.
+TEST(Cli, LeadingZerosAreDecimal) {
+  const std::string file = write_temp("dcad_leading_zeros.cir", "title\nL1 1 0 0.010\nC1 1 0 010m\n");
+  const Outcome r = run("solve " + file + " --backend reference");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("-1/100*v_L1 + p_L1 = 0"), std::string::npos) << r.out;
+  const std::string json = write_temp("dcad_leading_zeros.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "0.010"], ["-0.010", 0]]}, "energy": {"hessian": [["08", 0], [0, 1]]}})");
+  const Outcome j = run("solve " + json + " --backend reference");
+  ASSERT_EQ(j.rc, 0) << j.err;
+  // dE = Wᵀẋ with W = [[0, a], [−a, 0]], a = 1/100, H = diag(8, 1): ẋ1 = 100 x2, ẋ2 = −800 x1
+  EXPECT_NE(j.out.find("d/dt x1 = 100*x2"), std::string::npos) << j.out;
+  EXPECT_NE(j.out.find("d/dt x2 = -800*x1"), std::string::npos) << j.out;
+}
+
+TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
+  const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\nC1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\n.end\n");
+  const Outcome r = run("solve " + file + " --json");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("ignored .tran"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("ignored .control"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::array({6, 3}));  // p = Φv (2), KCL (1)
+}
+
+// The 4-port (L = 2, C = 3, 5, 7; IC: V_C1 = V_C3 = 1, V_C2 = 2, I_L = 0) against its analytic
+// solution: u = V13 + V2 obeys u'' = −ω² u with ω² = (C1+C2+C3)/(L C2 (C1+C3)) (CEF (6.44)), so
+// i(t) = −u0 sin(ωt)/(Lω) and V2(t) = V2(0) − u0 (1 − cos ωt)/(L ω² C2); and the energy
+
+TEST(Cli, HelpVersionUsage) {
+  EXPECT_EQ(run("--help").rc, 0);
+  const Outcome v = run("--version");
+  EXPECT_EQ(v.rc, 0);
+  EXPECT_NE(v.out.find("dcad "), std::string::npos);
+  EXPECT_EQ(run("").rc, 2);
+  EXPECT_EQ(run("inspect").rc, 2);
+  EXPECT_EQ(run("inspect x.json --backend magic").rc, 2);
+  EXPECT_EQ(run("frobnicate").rc, 2);
+}
+
+class BadInput : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ExitOneWithWhereExpectedFound) {
+  const BadCase& b = GetParam();
+  const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".json", b.text);
+  for (const std::string backend : {"reference", "fast"}) {
+    expect_input_error(run("inspect " + file + " --backend " + backend), file, b.needle, std::string(b.name) + " " + backend);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadInput,
+    testing::Values(
+        BadCase{"syntax", "{\"dcad\": 1,\n \"dirac\": {\"presymplectic\": [[0, 1], [-1 0]]}}", ":2:"},
+        BadCase{"empty", "", ":1:1"},
+        BadCase{"version", R"({"dcad": 2, "dirac": {"presymplectic": [[0]]}})", "/dcad"},
+        BadCase{"noversion", R"({"dirac": {"presymplectic": [[0]]}})", "\"dcad\""},
+        BadCase{"nonsquare", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0, 0]]}})", "/dirac/presymplectic/1"},
+        BadCase{"nonskew", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [2, 0]]}})", "/dirac/presymplectic/0/1"},
+        BadCase{"zerodiv", R"({"dcad": 1, "dirac": {"poisson": [["0", "1/0"], ["-1", "0"]]}})", "/dirac/poisson/0/1"},
+        BadCase{"notanumber", R"({"dcad": 1, "dirac": {"poisson": [[0, "one"], [-1, 0]]}})", "/dirac/poisson/0/1"},
+        BadCase{"nullentry", R"({"dcad": 1, "dirac": {"poisson": [[0, null], [-1, 0]]}})", "/dirac/poisson/0/1"},
+        BadCase{"unknownform", R"({"dcad": 1, "dirac": {"symplectic": [[0]]}})", "/dirac"},
+        BadCase{"mismatch", R"({"dcad": 1, "variables": ["a", "b", "c"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})",
+                "/dirac/presymplectic"},
+        BadCase{"basisshape", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0], [0, 1, 0]]}})", "/dirac/basis"},
+        BadCase{"notisotropic", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 1], [0, 1, 1, 0]]}})", "not isotropic"},
+        BadCase{"wrongdim", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 0], [2, 0, 0, 0]]}})", "dim D = 1"},
+        BadCase{"nodirac", R"({"dcad": 1, "energy": {}})", "\"dirac\""},
+        BadCase{"distrcols", R"({"dcad": 1, "dirac": {"distribution": [[1, 0, 0]], "form": [[0, 1], [-1, 0]]}})",
+                "/dirac/distribution/0"},
+        BadCase{"noform", R"({"dcad": 1, "dirac": {"distribution": [[1, 0]]}})", "form"}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+class BadSolveInput : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadSolveInput, ExitOneWithWhereExpectedFound) {
+  const BadCase& b = GetParam();
+  const std::string file = write_temp(std::string("dcad_badsolve_") + b.name + ".json", b.text);
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    expect_input_error(run("solve " + file + " --backend " + backend), file, b.needle, std::string(b.name) + " " + backend);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadSolveInput,
+    testing::Values(
+        BadCase{"asymhessian", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hessian": [[1, 2], [0, 1]]}})",
+                "/energy/hessian/0/1"},
+        BadCase{"gradlen", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 2, 3]}})",
+                "/energy/gradient"},
+        BadCase{"zerodenominator", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"constant": "1/0"}})",
+                "/energy/constant"},
+        BadCase{"notdirac", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 1], [0, 1, 1, 0]]}})", "not isotropic"},
+        BadCase{"version", R"({"dcad": "1", "dirac": {"presymplectic": [[0]]}})", "/dcad"},
+        BadCase{"both", R"({"dcad": 1, "dirac": {"presymplectic": [[0]]}, "pontryagin": {"Q": 1}})", "both"},
+        BadCase{"pontQ", R"({"dcad": 1, "pontryagin": {"Q": 0}})", "/pontryagin/Q"},
+        BadCase{"pontsym", R"({"dcad": 1, "pontryagin": {"Q": 2, "lagrangian": {"vv": [[1, 1], [0, 1]]}}})",
+                "/pontryagin/lagrangian/vv/0/1"},
+        BadCase{"pontkcl", R"({"dcad": 1, "pontryagin": {"Q": 2, "constraints": [[1, 2, 3]]}})", "/pontryagin/constraints/0"},
+        BadCase{"pontkey", R"({"dcad": 1, "pontryagin": {"Q": 1, "lagrangian": {"vw": [[1]]}}})", "/pontryagin/lagrangian/vw"},
+        BadCase{"pontvars", R"({"dcad": 1, "variables": ["a"], "pontryagin": {"Q": 1}})", "/variables"},
+        BadCase{"coords", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "coordinates": ["nope"]})",
+                "/coordinates/0"},
+        BadCase{"badcoords",
+                R"({"dcad": 1, "variables": ["q", "v", "p"], "pontryagin": {"Q": 1, "lagrangian": {"vv": [[1]]}}, "coordinates": ["v", "p"]})",
+                "coordinates"},
+        // strict input: a misspelt or repeated key would otherwise solve another system silently
+        BadCase{"hesian", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hesian": [[1, 0], [0, 1]]}})",
+                "did you mean \"hessian\""},
+        BadCase{"enregy", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "enregy": {"hessian": [[1, 0], [0, 1]]}})",
+                "did you mean \"energy\""},
+        BadCase{"constraint", R"({"dcad": 1, "constraint": {"symplectic": [[0, 1], [-1, 0]]}})", "did you mean \"constrained\""},
+        BadCase{"dupkey", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 0], "gradient": [0, 1]}})",
+                "/energy: expected each key once"},
+        BadCase{"dupvar", R"({"dcad": 1, "variables": ["x", "x"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})", "/variables/1"},
+        BadCase{"twoforms", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]], "poisson": [[0, 1], [-1, 0]]}})",
+                "exactly one form"},
+        BadCase{"deep", "{\"dcad\": 1, \"x\": [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]}",
+                "nested at most 64"},
+        BadCase{"expressionform", R"({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "v_x^^2"}})", "/lagrangian/L: column 5: expected an integer exponent"}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+// Values beyond double: the exact backends take them, the fast one says it cannot, nothing raises
+// a signal (gmpq_set_d on an infinity raised SIGFPE), and JSON nested 10^5 deep is refused.
+TEST(Cli, ValuesBeyondDoubleAndDeepNesting) {
+  const std::string json = write_temp("dcad_1e309.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "1e309"], ["-1e309", 0]]}})");
+  const std::string deck = write_temp("dcad_1e309.cir", "huge\nL1 a 0 1e309 IC=1\nC1 a 0 1\n.end\n");
+  for (const std::string backend : {"reference", "certified"}) {
+    EXPECT_EQ(run("solve " + json + " --json --backend " + backend).rc, 0) << backend;
+    EXPECT_EQ(run("solve " + deck + " --json --backend " + backend).rc, 0) << backend;
+  }
+  expect_input_error(run("solve " + json + " --backend fast"), json, "double's range", "fast 1e309");
+  const Outcome fast_deck = run("solve " + deck + " --json --backend fast");  // the dimensionless twin is in range
+  EXPECT_EQ(fast_deck.rc, 0) << fast_deck.err;
+  expect_input_error(run("simulate " + deck + " --tstop 1 --step 0.1"), deck, "double's range", "simulate 1e309");
+  const std::string deep = write_temp("dcad_deep.json", std::string(100000, '[') + std::string(100000, ']'));
+  for (const std::string& cmd : std::vector<std::string>{"solve ", "inspect ", "check " + deep + " "})
+    expect_input_error(run(cmd + deep), deep, "nested at most 64", cmd);
+}
+
+TEST(Cli, SolveInconsistentIsAResult) {
+  // E = x1 on D_0 = R^1 ⊕ 0 (ω = 0): M_1 = {dE ⊥ R} = ∅ — exit 0, consistent false, dims [1, -1].
+  const std::string file = write_temp("dcad_inconsistent.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0]]}, "energy": {"gradient": [1]}})");
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    const Outcome r = run("solve " + file + " --json --backend " + backend);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["consistent"], false);
+    EXPECT_EQ(j["dims"], nlohmann::json::array({1, -1}));
+    EXPECT_EQ(j["steps"], 1);
+    EXPECT_TRUE(j["solution_rank"].is_null());
+    EXPECT_TRUE(j["unique"].is_null());
+  }
+}
+
+TEST(Cli, MissingFile) {
+  const Outcome r = run("inspect /nonexistent/case.json");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("/nonexistent/case.json"), std::string::npos);
+}
+
+TEST(Cli, TextReportNamesTheStructure) {
+  const Outcome r = run("inspect " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port-dirac.json");
+  EXPECT_EQ(r.rc, 0);
+  EXPECT_NE(r.out.find("dim E_D          = 10"), std::string::npos) << r.out;
+}
