@@ -1,18 +1,14 @@
-// dcad: the command-line tool.  Exit codes per ../shared/CONTRACT.md:
-// 0 success, 1 bad input (file + line or JSON path, expected vs found), 2 bad usage.
+// dcad: the command-line tool, a shell over dcad::api (include/dcad/api.hpp) and the inspect and cases
+// commands.  Exit codes per ../shared/CONTRACT.md: 0 success, 1 bad input (file + line or JSON path,
+// expected vs found), 2 bad usage, 3 check disagrees; 4 internal error.
+#include "dcad/api.hpp"
+
 #include "case_file.hpp"
 #include "inspect.hpp"
 #include "cases.hpp"
-#include "check.hpp"
-#include "circuit_report.hpp"
+#include "netlist.hpp"  // parse_spice_value: --tstop 20n
 #include "plot.hpp"
-#include "simulate.hpp"
-#include "solve_circuit.hpp"
-#include "solve_forced.hpp"
-#include "simulate_forced.hpp"
 #include "solve.hpp"
-#include "solve_file.hpp"
-#include "lagrangian_case.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -25,6 +21,48 @@
 #ifndef DCAD_VERSION
 #define DCAD_VERSION "0"
 #endif
+
+namespace {
+
+/// `dcad solve FILE…`: each file solved in this one process, in order.  One file: the report, or with
+/// `json` the result JSON (indented).  With `lines` (or `json` and several files): one compact JSON
+/// object per file and line, with "file"; a file that fails gives {"file", "error", "exit"} and the
+/// others still run.  Returns the exit code: 0, else the largest of a file's (1 bad input, 4 internal
+/// error); messages go to `err` as for one file.
+int solve_files(const std::vector<std::string>& files, const dcad::api::SolveOptions& options, bool json, bool lines,
+                std::ostream& out, std::ostream& err) {
+  lines = lines || (json && files.size() > 1);
+  int worst = 0;
+  for (const std::string& file : files) {
+    std::string message;
+    int code = 0;
+    try {
+      const dcad::api::Solved s = dcad::api::solve(file, options);
+      for (const std::string& w : s.warnings) err << "warning: " << w << "\n";
+      if (lines) {
+        nlohmann::json j = {{"file", file}};
+        j.update(s.result);
+        out << j.dump() << "\n";
+      } else {
+        out << (json ? s.result.dump(2) + "\n" : s.report);
+        if (files.size() > 1) out << "\n";
+      }
+      continue;
+    } catch (const dcad::api::InternalError& e) {  // an internal invariant: never an answer, never a crash
+      message = std::string("dcad: internal error: ") + e.what() + "; please report it with the input";
+      code = 4;
+    } catch (const std::exception& e) {
+      message = e.what();
+      code = dcad::api::exit_code(e);
+    }
+    err << message << "\n";
+    if (lines) out << nlohmann::json({{"file", file}, {"error", message}, {"exit", code}}).dump() << "\n";
+    worst = std::max(worst, code);
+  }
+  return worst;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"dcad: verified reference implementation of linear Dirac structures and constraint algorithms"};
@@ -41,13 +79,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"reference", "fast"}));
   inspect->add_flag("--json", as_json, "print the result as JSON");
 
-  std::vector<std::string> solve_files;
+  std::vector<std::string> solve_files_list;
   std::string solve_backend = "certified", solve_with = "all";
   bool solve_json = false, solve_lines = false;
   CLI::App* solve = app.add_subcommand(
       "solve", "Run the constraint algorithm (CAD, CEF §5) on a case file: the constraint tower M_0 ⊇ M_1 ⊇ …, "
                "the final constraint submanifold, the solution rank (Thm 5.4) and the equations of motion (5.12).");
-  solve->add_option("FILE", solve_files,
+  solve->add_option("FILE", solve_files_list,
                     "case files (.json) or LC netlists (.cir, .sp, .net); several are solved in one process, in order")
       ->required();
   solve->add_option("--backend", solve_backend,
@@ -63,7 +101,7 @@ int main(int argc, char** argv) {
                     "motion), classes (first/second class, Dirac bracket), adapted (Thm 3.28 / 7.4)");
 
   std::string sim_file, sim_csv;
-  dcad::cli::SimulateOptions sim_opt;
+  dcad::api::SimulateOptions sim_opt;
   CLI::App* sim = app.add_subcommand(
       "simulate", "Integrate the equations of motion on M_c from the file's initial condition (IC= in netlists); "
                   "exact flow of the linear reduced system (matrix exponential). CSV: t, then every variable.");
@@ -131,37 +169,21 @@ int main(int argc, char** argv) {
       }
     }
     if (solve->parsed()) {
-      dcad::cli::Parts parts;
       try {
-        parts = dcad::cli::parse_parts(solve_with);
+        dcad::cli::parse_parts(solve_with);
       } catch (const std::invalid_argument& e) {
         std::cerr << "solve: " << e.what() << "\n";
         return 2;  // bad usage
       }
-      return dcad::cli::solve_files(solve_files, solve_backend, parts, solve_json, solve_lines, std::cout, std::cerr);
+      return solve_files(solve_files_list, {solve_backend, solve_with}, solve_json, solve_lines, std::cout, std::cerr);
     }
     if (cases->parsed()) return dcad::cli::cases_command(cases_action, cases_args, std::cout, std::cerr);
     if (check->parsed()) {
-      const bool expression = dcad::io::is_expression_file(check_file);
-      const bool netlist = dcad::io::is_netlist_file(check_file);
-      const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(check_file) : dcad::io::Netlist();
-      const dcad::io::CaseFile c = expression ? dcad::io::CaseFile()
-                                   : netlist  ? dcad::io::netlist_case(deck, deck.circuit.branches.size() <= dcad::cli::kDenseBranches)
-                                              : dcad::io::read_case(check_file);
-      dcad::cli::CheckOutcome o;
-      try {
-        o = expression ? dcad::cli::check_lagrangian_result(check_result_file, dcad::io::read_lagrangian_case(check_file))
-                       : dcad::cli::check_result(check_result_file, c, netlist ? &deck : nullptr);
-      } catch (const dcad::io::InputError&) {
-        throw;
-      } catch (const std::invalid_argument& e) {
-        std::cerr << check_file << ": " << e.what() << "\n";
-        return 1;
-      }
+      const dcad::api::Checked o = dcad::api::check(check_result_file, check_file);
       std::string keys;
       for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
       for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";
-      if (o.disagreements.empty()) {
+      if (o.agrees) {
         std::cout << "dcad check: " << check_result_file << " agrees with the reference on " << check_file << " (compared: " << keys << ")\n";
         return 0;
       }
@@ -179,28 +201,8 @@ int main(int argc, char** argv) {
           return 2;
         }
       }
-      if (dcad::io::is_expression_file(sim_file)) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
-        const dcad::io::LagrangianCase lc = dcad::io::read_lagrangian_case(sim_file);
-        std::ofstream file_out;
-        if (!sim_csv.empty()) {
-          file_out.open(sim_csv);
-          if (!file_out) {
-            std::cerr << sim_csv << ": cannot open for writing\n";
-            return 1;
-          }
-        }
-        dcad::cli::simulate_lagrangian(lc, sim_opt, sim_csv.empty() ? std::cout : file_out, std::cerr);
-        return 0;
-      }
-      const bool netlist = dcad::io::is_netlist_file(sim_file);
-      const dcad::io::Netlist deck = netlist ? dcad::io::read_netlist(sim_file) : dcad::io::Netlist();
-      const dcad::io::CaseFile c = netlist ? dcad::io::netlist_case(deck, false) : dcad::io::read_case(sim_file);
-      std::vector<std::optional<dcad::io::Rational>> init(c.n);
-      if (netlist) init = dcad::cli::netlist_initial(deck);
-      else if (!c.initial.empty())
-        for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
-      std::vector<std::string> header{"t"};
-      header.insert(header.end(), c.variables.begin(), c.variables.end());
+      const dcad::api::SimulateLayout layout = dcad::api::simulate_layout(sim_file);
+      const std::vector<std::string>& header = layout.columns;
       std::vector<std::size_t> plot_cols;
       if (!sim_png.empty()) {
         try {
@@ -210,7 +212,6 @@ int main(int argc, char** argv) {
           return 2;
         }
       }
-      for (const std::string& w : deck.warnings) std::cerr << "warning: " << w << "\n";
       // rows go out as they are computed: to --csv, or to a temporary file for --plot (then copied
       // to stdout), or straight to stdout
       const std::string csv_path = !sim_csv.empty() ? sim_csv : !sim_png.empty() ? sim_png + ".csv" : "";
@@ -222,24 +223,16 @@ int main(int argc, char** argv) {
           return 1;
         }
       }
-      std::ostream& csv_out = csv_path.empty() ? std::cout : file_out;
       std::ofstream energy_out;
       if (!sim_energy.empty()) {
-        if (!(netlist && deck.forced) && !(c.has_pontryagin && c.pontryagin.has_forces)) {
-          std::cerr << sim_file << ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)\n";
-          return 2;
-        }
         energy_out.open(sim_energy);
         if (!energy_out) {
           std::cerr << sim_energy << ": cannot open for writing\n";
           return 1;
         }
       }
-      const dcad::cli::SimulateSummary sum =
-          netlist && deck.forced ? dcad::cli::simulate_forced(deck, c, init, sim_opt, csv_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out)
-          : !netlist && c.has_pontryagin && c.pontryagin.has_forces
-              ? dcad::cli::simulate_forced_case(c, init, sim_opt, csv_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out)
-              : dcad::cli::simulate(c, netlist ? &deck : nullptr, init, sim_opt, csv_out, std::cerr);
+      dcad::api::simulate(sim_file, sim_opt, csv_path.empty() ? std::cout : file_out, std::cerr,
+                          sim_energy.empty() ? nullptr : &energy_out);
       if (!csv_path.empty()) {
         file_out.close();
         if (!file_out) {
@@ -251,16 +244,12 @@ int main(int argc, char** argv) {
         std::cerr << "simulate: cannot write to standard output\n";
         return 1;
       }
-      std::cerr << "simulate: " << sum.rows << " rows; estimated error " << dcad::cli::float_text(sum.error_estimate)
-                << " relative to each variable's largest magnitude (worst " << sum.worst_variable
-                << "; difference from the same exact flow in long double)\n";
       if (sim_csv.empty() && !sim_png.empty()) {
         std::ifstream copy(csv_path);
         std::cout << copy.rdbuf();
       }
       if (!sim_png.empty()) {
-        const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png,
-                                                    c.name.empty() ? c.file : c.name);
+        const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png, layout.title);
         if (sim_csv.empty()) std::remove(csv_path.c_str());
         if (!why.empty()) {
           std::cerr << sim_png << ": " << why << "\n";
@@ -271,6 +260,12 @@ int main(int argc, char** argv) {
   } catch (const dcad::io::InputError& e) {
     std::cerr << e.what() << "\n";
     return 1;
+  } catch (const dcad::api::InputError& e) {  // the message names the file
+    std::cerr << e.what() << "\n";
+    return 1;
+  } catch (const dcad::api::UsageError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
   } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
     std::cerr << (sim->parsed() ? sim_file : check->parsed() ? check_file : file) << ": " << e.what() << "\n";
     return 1;

@@ -82,40 +82,4 @@ SolvedFile solve_any(const std::string& file, const std::string& backend, const 
 
 }  // namespace
 
-int solve_files(const std::vector<std::string>& files, const std::string& backend, const Parts& parts, bool json,
-                bool lines, std::ostream& out, std::ostream& err) {
-  lines = lines || (json && files.size() > 1);
-  int worst = 0;
-  for (const std::string& file : files) {
-    std::string message;
-    int code = 0;
-    try {
-      const SolvedFile sf = solve_file(file, backend, parts);
-      for (const std::string& w : sf.warnings) err << "warning: " << w << "\n";
-      if (lines) {
-        nlohmann::json j = {{"file", file}};
-        j.update(sf.json);
-        out << j.dump() << "\n";
-      } else {
-        out << (json ? sf.json.dump(2) + "\n" : sf.text);
-        if (files.size() > 1) out << "\n";
-      }
-      continue;
-    } catch (const io::InputError& e) {
-      message = e.what();
-      code = 1;
-    } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
-      message = file + ": " + e.what();
-      code = 1;
-    } catch (const std::exception& e) {  // an internal invariant: never an answer, never a crash
-      message = std::string("dcad: internal error: ") + e.what() + "; please report it with the input";
-      code = 4;
-    }
-    err << message << "\n";
-    if (lines) out << nlohmann::json({{"file", file}, {"error", message}, {"exit", code}}).dump() << "\n";
-    worst = std::max(worst, code);
-  }
-  return worst;
-}
-
 }  // namespace dcad::cli

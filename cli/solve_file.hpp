@@ -26,12 +26,4 @@ struct SolvedFile {
 /// everything they report.
 SolvedFile solve_file(const std::string& file, const std::string& backend, const Parts& parts = {});
 
-/// `dcad solve FILE…`: each file solved in this one process, in order.  One file: the report, or
-/// with `json` the result JSON (indented).  With `lines` (or `json` and several files): one compact
-/// JSON object per file and line, with "file"; a file that fails gives {"file", "error", "exit"}
-/// and the others still run.  Returns the exit code: 0, else the largest of a file's (1 bad input,
-/// 4 internal error); messages go to `err` as for one file.
-int solve_files(const std::vector<std::string>& files, const std::string& backend, const Parts& parts, bool json,
-                bool lines, std::ostream& out, std::ostream& err);
-
 }  // namespace dcad::cli

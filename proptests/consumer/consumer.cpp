@@ -27,3 +27,19 @@ RC_GTEST_PROP(MyCad, AgreesWithTheReferenceWhereItIsCertain, ()) {
   for (std::size_t k = 0; k < exact.tower.size(); ++k) RC_ASSERT(r.tower[k].dim() == exact.tower[k].dim());
   RC_ASSERT(r.consistent == exact.consistent);
 }
+
+// The pipeline as a library (dcad::api): solve a netlist, and check a result — here the fast backend's —
+// against the exact reference, as `dcad solve` and `dcad check` would.
+#include "dcad/api.hpp"
+
+#include <fstream>
+
+TEST(MyPipeline, FastResultAgreesWithTheReference) {
+  const std::string deck = DCAD_CASES "/lc-4port.cir";
+  const dcad::api::Solved mine = dcad::api::solve(deck, {"fast", "none"});
+  ASSERT_TRUE(mine.result["certified"].get<bool>());
+  EXPECT_EQ(mine.result["dims"], nlohmann::json::parse("[12, 6, 5, 4]"));
+  std::ofstream("lc-4port.result.json") << mine.result.dump();
+  EXPECT_TRUE(dcad::api::check("lc-4port.result.json", deck).agrees);
+  EXPECT_THROW(dcad::api::solve("no-such-deck.cir"), dcad::api::InputError);
+}
