@@ -57,7 +57,9 @@ reference::LinearSystem<T> exact_system(const io::CaseFile& c) {
     const std::vector<T> g = lift<T>(c.energy.gradient);
     ref::require_symplectic(w, "solve");
     ref::require_regular_primary(ref::ConstrainedSystem<T>{w, h, g, prim}, "solve");
-    return {ref::dirac_from_distribution(ref::kernel(ref::gradients(prim)), w), h, g, constant};
+    ref::LinearSystem<T> s = ref::gotay_nester_system(ref::ConstrainedSystem<T>{w, h, g, prim});
+    s.constant = constant;
+    return s;
   }
   if (c.has_pontryagin) {
     const io::PontryaginInput& p = c.pontryagin;
@@ -74,10 +76,9 @@ template <class T>
 void exact_adapted(SolveReport& out, const reference::Matrix<T>& w, const reference::Matrix<T>& prim,
                    const reference::Matrix<T>& secondary, const reference::Matrix<T>& leaf) {
   namespace ref = dcad::reference;
-  const ref::Matrix<T> all = ref::vstack(ref::vstack(prim, secondary), leaf);
-  std::vector<bool> primary(all.rows(), false);
-  for (ref::Index i = 0; i < all.rows(); ++i) primary[i] = i < prim.rows() || i >= prim.rows() + secondary.rows();
-  const ref::AdaptedConstraints<T> ad = ref::adapted_constraints(w, all, primary);
+  const ref::AdaptedToPrimary<T> to = ref::adapted_to_primary(w, prim, secondary, leaf);
+  const ref::Matrix<T>& all = to.constraints;
+  const ref::AdaptedConstraints<T>& ad = to.adapted;
   out.has_adapted = true;
   out.s_prime = static_cast<long>(ad.s_prime);
   out.adapted_second = static_cast<long>(2 * ad.s);
@@ -95,11 +96,8 @@ void exact_foliated(SolveReport& out, const io::CaseFile& c) {
   const io::PontryaginInput& p = c.pontryagin;
   const ref::FoliatedEmbedding<T> f = ref::tangent_cotangent_embedding(
       ref::PontryaginInput<T>{p.n, lift<T>(p.k), lift<T>(p.vv), lift<T>(p.qv), lift<T>(p.qq), lift<T>(p.q), lift<T>(p.v)});
-  const ref::Matrix<T> both = ref::vstack(f.primary, f.leaf);
-  const ref::LinearSystem<T> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(both)), f.omega), f.hessian, f.gradient, T(0)};
-  const ref::CadResult<T> rf = ref::constraint_tower(ls, f.primary);
-  ref::Matrix<T> secondary(0, 4 * p.n + 1);
-  for (ref::Index k = 1; k < rf.tower.size(); ++k) secondary = ref::vstack(secondary, rf.tower[k].equations);
+  const ref::CadResult<T> rf = ref::foliated_tower(f);
+  const ref::Matrix<T> secondary = ref::secondary_constraints(rf);
   out.adapted_setting = "T*TQ";
   out.adapted_variables = c.variables;
   for (std::size_t i = 0; i < p.n; ++i) out.adapted_variables.push_back("nu_" + c.variables[p.n + i]);
@@ -168,8 +166,7 @@ SolveReport solve_exact(const io::CaseFile& c, const Parts& parts = {}) {
   }
   if (c.has_constrained && r.consistent && parts.adapted) {  // Theorem 3.28 on N
     const ref::Matrix<T> w = lift<T>(c.constrained.w);
-    ref::Matrix<T> secondary(0, c.n + 1);
-    for (ref::Index k = 1; k < r.tower.size(); ++k) secondary = ref::vstack(secondary, r.tower[k].equations);
+    const ref::Matrix<T> secondary = ref::secondary_constraints(r);
     out.adapted_setting = "N";
     out.adapted_variables = c.variables;
     exact_adapted(out, w, r.tower[0].equations, secondary, ref::Matrix<T>(0, c.n + 1));

@@ -22,8 +22,9 @@ fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt, std::strin
       throw std::invalid_argument("solve: expected a nondegenerate form, found " + fa::decide_rank(w, -1, opt).describe());
     if (!symplectic.certain)
       why_uncertain = "whether the symplectic form is nondegenerate is uncertain (" + fa::decide_rank(w, -1, opt).describe() + ")";
-    return {fa::dirac_from_distribution(fa::kernel(prim.leftCols(c.n), opt), w), to_double(c.energy.hessian, opt),
-            to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
+    fa::LinearSystem s = fa::gotay_nester_system({w, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), prim}, opt);
+    s.constant = c.energy.constant.convert_to<double>();
+    return s;
   }
   if (c.has_pontryagin) {
     const io::PontryaginInput& p = c.pontryagin;
@@ -43,11 +44,9 @@ fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt, std::strin
 /// Theorem 3.28 on (W, [primary; secondary; leaf]) by the fast backend; rows shown as in the tower.
 void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::MatrixXd& prim, const Eigen::MatrixXd& secondary,
                   const Eigen::MatrixXd& leaf, const fa::Options& opt) {
-  Eigen::MatrixXd all(prim.rows() + secondary.rows() + leaf.rows(), prim.cols());
-  all << prim, secondary, leaf;
-  std::vector<bool> primary(all.rows(), false);
-  for (Eigen::Index i = 0; i < all.rows(); ++i) primary[i] = i < prim.rows() || i >= prim.rows() + secondary.rows();
-  const fa::AdaptedConstraints ad = fa::adapted_constraints(w, all, primary, opt);
+  const fa::AdaptedToPrimary to = fa::adapted_to_primary(w, prim, secondary, leaf, opt);
+  const Eigen::MatrixXd& all = to.constraints;
+  const fa::AdaptedConstraints& ad = to.adapted;
   out.certified = out.certified && ad.certain;
   out.has_adapted = true;
   out.s_prime = ad.s_prime;
@@ -62,16 +61,6 @@ void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::Matri
   for (int i : ad.chi) out.adapted_chi.push_back(row(i));
   for (int k : ad.abridged) out.abridged_terms.push_back(row(k));
   out.secondary_first_class = static_cast<long>(all.rows()) - 2 * ad.s - static_cast<long>(ad.abridged.size());
-}
-
-Eigen::MatrixXd secondary_rows(const fa::CadResult& r, int width) {
-  Eigen::MatrixXd sec(0, width);
-  for (std::size_t k = 1; k < r.tower.size(); ++k) {
-    Eigen::MatrixXd more(sec.rows() + r.tower[k].equations.rows(), width);
-    more << sec, r.tower[k].equations;
-    sec = more;
-  }
-  return sec;
 }
 
 SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
@@ -122,22 +111,18 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
   if (c.has_constrained && r.consistent && parts.adapted && invertible) {  // Theorem 3.28 on N
     out.adapted_setting = "N";
     out.adapted_variables = c.variables;
-    fast_adapted(out, to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_rows(r, c.n + 1),
+    fast_adapted(out, to_double(c.constrained.w, in_opt), r.tower[0].equations, fa::secondary_constraints(r),
                  Eigen::MatrixXd(0, c.n + 1), opt);
   }
   if (c.has_pontryagin && r.consistent && parts.adapted) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
     const std::size_t n = c.pontryagin.n;
     const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(s, to_double(c.pontryagin.k, in_opt));
-    Eigen::MatrixXd both(f.primary.rows() + f.leaf.rows(), f.primary.cols());
-    both << f.primary, f.leaf;
-    const fa::LinearSystem ls{fa::dirac_from_distribution(fa::kernel(both.leftCols(4 * n), opt), f.omega), f.hessian,
-                              f.gradient, 0.0};
-    const fa::CadResult rf = fa::constraint_tower(ls, opt, f.primary);
+    const fa::CadResult rf = fa::foliated_tower(f, opt);
     out.certified = out.certified && rf.certain;
     out.adapted_setting = "T*TQ";
     out.adapted_variables = c.variables;
     for (std::size_t i = 0; i < n; ++i) out.adapted_variables.push_back("nu_" + c.variables[n + i]);
-    if (rf.consistent) fast_adapted(out, f.omega, f.primary, secondary_rows(rf, 4 * static_cast<int>(n) + 1), f.leaf, opt);
+    if (rf.consistent) fast_adapted(out, f.omega, f.primary, fa::secondary_constraints(rf), f.leaf, opt);
   }
   if (r.consistent && parts.reduced) {
     std::vector<int> coords(c.coordinates.begin(), c.coordinates.end());

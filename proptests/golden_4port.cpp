@@ -253,20 +253,14 @@ TEST_P(FourPort, Section6_LeafHamiltonianAndMotion) {
 TEST_P(FourPort, Section7_DiracBracketMotion) {
   const Circuit c = GetParam();
   const FoliatedEmbedding<Q> f = tangent_cotangent_embedding(cef_input(c));
-  const QM both = vstack(f.primary, f.leaf);
-  const LinearSystem<Q> ls{dirac_from_distribution(kernel(gradients(both)), f.omega), f.hessian, f.gradient, Q(0)};
-  const CadResult<Q> r = constraint_tower(ls, f.primary);
+  const CadResult<Q> r = foliated_tower(f);
   ASSERT_TRUE(r.consistent);
   std::vector<long> dims;
   for (const auto& st : r.tower) dims.push_back(st.dim());
   EXPECT_EQ(dims, (std::vector<long>{12, 6, 5, 4}));
-  QM secondary(0, 17);
-  for (Index k = 1; k < r.tower.size(); ++k) secondary = vstack(secondary, r.tower[k].equations);
-  const QM all = vstack(vstack(f.primary, secondary), f.leaf);
-  std::vector<bool> primary(all.rows(), false);
-  for (Index i = 0; i < 4; ++i) primary[i] = true;
-  for (Index i = 0; i < 2; ++i) primary[all.rows() - 1 - i] = true;
-  const AdaptedConstraints<Q> ad = adapted_constraints(f.omega, all, primary);
+  const AdaptedToPrimary<Q> to = adapted_to_primary(f.omega, f.primary, secondary_constraints(r), f.leaf);
+  const QM& all = to.constraints;
+  const AdaptedConstraints<Q>& ad = to.adapted;
   EXPECT_EQ(all.rows(), 14u);
   EXPECT_EQ(2 * ad.s, 14u);
   EXPECT_TRUE(ad.abridged.empty());  // a' − s' = 0 = d^(c): E_AT = E

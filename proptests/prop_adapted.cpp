@@ -52,8 +52,7 @@ RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
   std::vector<bool> primary(db.constraints.rows(), false);
   for (Index i = 0; i < s.primary.rows(); ++i) primary[i] = true;  // dirac_bergmann keeps the primary rows first
   const AdaptedConstraints<Q> ad = adapted_constraints(s.omega, db.constraints, primary);
-  const CadResult<Q> gn = constraint_tower(
-      LinearSystem<Q>{dirac_from_distribution(kernel(gradients(s.primary)), s.omega), s.hessian, s.gradient, Q(0)}, s.primary);
+  const CadResult<Q> gn = gotay_nester(s);
   RC_TAG("a' - s' = " + std::to_string(s.primary.rows() - ad.s_prime));
   RC_ASSERT(s.primary.rows() - ad.s_prime == gn.solution_rank);
   const std::vector<Q> x = some_point(db.tower.back());
@@ -82,18 +81,13 @@ RC_GTEST_PROP(Adapted, Theorem7_4_Foliated, ()) {
   QM both = vstack(s.primary, leaf);
   if (rank(gradients(both)) != both.rows()) return;  // defined regularly
   // the CAD of D_{(T S'_C, Ω)} on M_0 = S'
-  const LinearSystem<Q> ls{dirac_from_distribution(kernel(gradients(both)), s.omega), s.hessian, s.gradient, Q(0)};
-  const CadResult<Q> r = constraint_tower(ls, s.primary);
+  const CadResult<Q> r = foliated_tower(FoliatedEmbedding<Q>{s.omega, s.hessian, s.gradient, s.primary, leaf});
   if (!r.consistent) return;
   RC_TAG("leaves: " + std::to_string(nleaf));
-  QM secondary(0, n + 1);
-  for (Index k = 1; k < r.tower.size(); ++k) secondary = vstack(secondary, r.tower[k].equations);
   // constraints of S_0 in the paper's order: primary, secondary, leaf (primary flags on 1 and 3)
-  const QM all = vstack(vstack(s.primary, secondary), leaf);
-  std::vector<bool> primary(all.rows(), false);
-  for (Index i = 0; i < s.primary.rows(); ++i) primary[i] = true;
-  for (Index i = 0; i < nleaf; ++i) primary[s.primary.rows() + secondary.rows() + i] = true;
-  const AdaptedConstraints<Q> ad = adapted_constraints(s.omega, all, primary);
+  const AdaptedToPrimary<Q> to = adapted_to_primary(s.omega, s.primary, secondary_constraints(r), leaf);
+  const QM& all = to.constraints;
+  const AdaptedConstraints<Q>& ad = to.adapted;
   const std::vector<Q> x = some_point(r.final_step().m);  // any leaf: C = leaf(x)
   const std::vector<Q> lambda = integer_vector(ad.abridged.size());
   const std::vector<Q> xdot = abridged_field(ad, all, s.hessian, s.gradient, x, lambda);

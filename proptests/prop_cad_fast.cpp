@@ -5,7 +5,7 @@
 #include "support/fast_options.hpp"
 #include "support/tally.hpp"
 
-#include "dcad/fast/cad.hpp"
+#include "dcad/fast/dirac_bergmann.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -20,14 +20,11 @@ namespace ref = dcad::reference;
 // Gotay–Nester for (N, Ω, E, M) (the CAD of D_{(TM, Ω)} from M_0 = M) by both backends.
 RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
   const ref::ConstrainedSystem<Q> s = any_constrained_system();
-  const ref::LinearSystem<Q> ls{ref::dirac_from_distribution(ref::kernel(ref::gradients(s.primary)), s.omega), s.hessian,
-                                s.gradient, Q(0)};
-  const ref::CadResult<Q> r = ref::constraint_tower(ls, s.primary);
+  const ref::CadResult<Q> r = ref::gotay_nester(s);
   fast::Options opt = any_route_options();
-  const Eigen::MatrixXd w = to_double(s.omega, &opt), prim = to_double(s.primary, &opt);
-  const fast::LinearSystem fs{fast::dirac_from_distribution(fast::kernel(prim.leftCols(w.rows()), opt), w),
-                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
-  const fast::CadResult f = fast::constraint_tower(fs, opt, prim);
+  const fast::CadResult f = fast::gotay_nester(
+      {to_double(s.omega, &opt), to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), to_double(s.primary, &opt)},
+      opt);
   bool same_dims = f.tower.size() == r.tower.size();
   for (Index k = 0; same_dims && k < r.tower.size(); ++k) same_dims = f.tower[k].dim() == r.tower[k].dim();
   RC_ASSERT(!tally("GN dims of M_k", f.certain, same_dims));
@@ -64,6 +61,33 @@ RC_GTEST_PROP(FastVsReference, Cad, ()) {
   const double scale = 1 + to_double(rr.f_matrix).norm() + to_double(rr.f).norm();
   RC_ASSERT((fr.f_matrix - to_double(rr.f_matrix)).norm() <= bound * scale * 1e3);
   RC_ASSERT((fr.f - to_double(rr.f)).norm() <= bound * scale * 1e3);
+}
+
+// CEF (5.7)–(5.8), Thm 5.4: at a point x of M_c the velocities form an affine space of dimension
+// dim(ker ω_D ∩ T M_c); the fast twin's, where certain, has the reference's dimension and contains the
+// reference's exact velocity (to rounding).
+RC_GTEST_PROP(FastVsReference, Velocities, ()) {
+  const ref::LinearSystem<Q> s = any_system();
+  const ref::CadResult<Q> r = ref::constraint_tower(s);
+  if (!r.consistent) return;
+  fast::Options opt = any_route_options();
+  const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
+                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
+  const fast::CadResult f = fast::constraint_tower(fs, opt);
+  if (!f.certain || !f.consistent) return;
+  const std::vector<Q> x = some_point(r.final_step().m);
+  const ref::AffineSubspace<Q> rv = ref::velocities(s, r, x);
+  const fast::AffineSubspace fv = fast::velocities(fs, f, to_double(QM::column(x)).col(0), opt);
+  RC_ASSERT(!rv.empty);  // Thm 5.4: solutions exist at every point of M_c
+  RC_ASSERT(!tally("velocities exist", fv.certain, !fv.empty));
+  if (fv.empty) return;
+  RC_ASSERT(!tally("velocities: dimension", fv.certain, static_cast<Index>(fv.direction.dim()) == rv.direction.dim()));
+  if (!fv.certain) return;
+  const Eigen::VectorXd gap = to_double(QM::column(rv.point)).col(0) - fv.point;
+  const Eigen::MatrixXd& dir = fv.direction.basis();
+  const Eigen::VectorXd off = gap - dir * (dir.transpose() * gap);  // the part of the gap off the directions
+  const double scale = 1 + to_double(QM::column(rv.point)).norm();
+  RC_ASSERT(off.norm() <= 1e6 * (s.d.n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian)) * scale);
 }
 
 // Certainty floor (issue 15): on well-conditioned planted data — the tower family (integer data,

@@ -71,4 +71,26 @@ FoliatedEmbedding tangent_cotangent_embedding(const LinearSystem& s, const Matri
   return f;
 }
 
+LinearSystem foliated_system(const FoliatedEmbedding& f, const Options& opt) {
+  MatrixXd both(f.primary.rows() + f.leaf.rows(), f.primary.cols());
+  both << f.primary, f.leaf;
+  return {dirac_from_distribution(kernel(both.leftCols(f.omega.rows()), opt), f.omega), f.hessian, f.gradient, 0.0};
+}
+
+CadResult foliated_tower(const FoliatedEmbedding& f, const Options& opt) {
+  return constraint_tower(foliated_system(f, opt), opt, f.primary);
+}
+
+AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary, const MatrixXd& leaf,
+                                    const Options& opt) {
+  AdaptedToPrimary out;
+  out.constraints.resize(primary.rows() + secondary.rows() + leaf.rows(), primary.cols());
+  out.constraints << primary, secondary, leaf;
+  std::vector<bool> is_primary(out.constraints.rows(), false);
+  for (Eigen::Index i = 0; i < out.constraints.rows(); ++i)
+    is_primary[i] = i < primary.rows() || i >= primary.rows() + secondary.rows();
+  out.adapted = adapted_constraints(w, out.constraints, is_primary, opt);
+  return out;
+}
+
 }  // namespace dcad::fast

@@ -206,4 +206,21 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   return red;
 }
 
+VectorXd energy_differential(const LinearSystem& s, const VectorXd& x) { return s.hessian * x + s.gradient; }
+
+AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const VectorXd& x, const Options& opt) {
+  const int n = s.d.n;
+  // ẋ = B w (B: basis of T M_c); (B w, dE) ∈ D ⇔ Γ_v B w = −Γ_α dE for the equations Γ of D
+  const MatrixXd& b = r.final_step().m.direction.basis();
+  const MatrixXd g = annihilator(s.d.d).basis();
+  const MatrixXd gv = g.topRows(n).transpose(), ga = g.bottomRows(n).transpose();
+  const AffineSubspace w = solve(gv * b, -(ga * energy_differential(s, x)), opt);
+  AffineSubspace out;
+  out.empty = w.empty;
+  out.certain = w.certain && r.certain;
+  out.direction = map(b, w.direction, opt);
+  if (!w.empty) out.point = b * w.point;
+  return out;
+}
+
 }  // namespace dcad::fast

@@ -88,4 +88,22 @@ ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constr
   return out;
 }
 
+LinearSystem gotay_nester_system(const ConstrainedSystem& s, const Options& opt) {
+  return {dirac_from_distribution(kernel(s.primary.leftCols(s.omega.rows()), opt), s.omega), s.hessian, s.gradient, 0.0};
+}
+
+CadResult gotay_nester(const ConstrainedSystem& s, const Options& opt) {
+  return constraint_tower(gotay_nester_system(s, opt), opt, s.primary);
+}
+
+MatrixXd secondary_constraints(const CadResult& r) {
+  MatrixXd out(0, r.tower.front().equations.cols());
+  for (std::size_t k = 1; k < r.tower.size(); ++k) {
+    MatrixXd more(out.rows() + r.tower[k].equations.rows(), out.cols());
+    more << out, r.tower[k].equations;
+    out = more;
+  }
+  return out;
+}
+
 }  // namespace dcad::fast

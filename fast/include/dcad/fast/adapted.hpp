@@ -27,4 +27,17 @@ struct FoliatedEmbedding {
 };
 FoliatedEmbedding tangent_cotangent_embedding(const LinearSystem& pontryagin, const MatrixXd& k);
 
+/// §7 (7.1): D on S' = {primary = 0} with the presymplectic leaves S'_C = S' ∩ {leaf = C}, and E.
+LinearSystem foliated_system(const FoliatedEmbedding& f, const Options& opt = {});
+/// The CAD of (7.1) from M_0 = S'.
+CadResult foliated_tower(const FoliatedEmbedding& f, const Options& opt = {});
+
+/// [primary; secondary; leaf] and Theorem 3.28 / 7.4 on them, primary and leaf rows counted as primary.
+struct AdaptedToPrimary {
+  MatrixXd constraints;
+  AdaptedConstraints adapted;
+};
+AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary, const MatrixXd& leaf,
+                                    const Options& opt = {});
+
 }  // namespace dcad::fast

@@ -51,6 +51,13 @@ int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorX
 /// {x : a x = b} for orthonormal rows a: point aᵀ b, direction the complement of the rows.
 AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b);
 
+/// dE(x) = H x + g.
+VectorXd energy_differential(const LinearSystem& s, const VectorXd& x);
+
+/// {ẋ ∈ T M_c : (ẋ, dE(x)) ∈ D} at a point x of M_c: the solutions of (5.7)–(5.8) (the twin of the
+/// reference's).  `certain` is cleared if the tower or the solve decided anything uncertainly.
+AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const VectorXd& x, const Options& opt = {});
+
 struct ReducedEquations {
   std::vector<int> coords;
   MatrixXd f_matrix;

@@ -36,4 +36,11 @@ struct ConstraintClasses {
 };
 ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt = {});
 
+/// Gotay–Nester's setting for (N, Ω, E, M): D_{(T M, Ω)} with E (the twin of the reference's).
+LinearSystem gotay_nester_system(const ConstrainedSystem& s, const Options& opt = {});
+/// The Gotay–Nester algorithm: the CAD of gotay_nester_system(s) from M_0 = M  [CEF §2.2].
+CadResult gotay_nester(const ConstrainedSystem& s, const Options& opt = {});
+/// The equations the tower added after M_0, rows [a | b], in order.
+MatrixXd secondary_constraints(const CadResult& r);
+
 }  // namespace dcad::fast

@@ -106,4 +106,37 @@ FoliatedEmbedding<T> tangent_cotangent_embedding(const PontryaginInput<T>& in) {
   return f;
 }
 
+/// §7 (7.1): the Dirac structure on S' = {primary = 0} whose presymplectic leaves are the
+/// S'_C = S' ∩ {leaf = C} with the pullback of Ω, and the energy E.  Any FoliatedEmbedding is such a
+/// setting (tangent_cotangent_embedding gives the one of CEF App. A for a Pontryagin system).
+template <class T>
+LinearSystem<T> foliated_system(const FoliatedEmbedding<T>& f) {
+  return {dirac_from_distribution(kernel(gradients(vstack(f.primary, f.leaf))), f.omega), f.hessian, f.gradient, T(0)};
+}
+
+/// The CAD of (7.1) from M_0 = S': its M_c is the final foliated constraint submanifold S of §7.
+template <class T>
+CadResult<T> foliated_tower(const FoliatedEmbedding<T>& f) {
+  return constraint_tower(foliated_system(f), f.primary);
+}
+
+/// The constraints of S_0 in the paper's order — primary, secondary, leaf — and Theorem 3.28 / 7.4 on
+/// them with the primary and the leaf rows counted as primary (χ adapted to S'_0, E_AT for S_0).
+template <class T>
+struct AdaptedToPrimary {
+  Matrix<T> constraints;           ///< [primary; secondary; leaf], rows [a | b]
+  AdaptedConstraints<T> adapted;   ///< indices into `constraints`
+};
+
+template <class T>
+AdaptedToPrimary<T> adapted_to_primary(const Matrix<T>& w, const Matrix<T>& primary, const Matrix<T>& secondary,
+                                       const Matrix<T>& leaf) {
+  AdaptedToPrimary<T> out;
+  out.constraints = vstack(vstack(primary, secondary), leaf);
+  std::vector<bool> is_primary(out.constraints.rows(), false);
+  for (Index i = 0; i < out.constraints.rows(); ++i) is_primary[i] = i < primary.rows() || i >= primary.rows() + secondary.rows();
+  out.adapted = adapted_constraints(w, out.constraints, is_primary);
+  return out;
+}
+
 }  // namespace dcad::reference

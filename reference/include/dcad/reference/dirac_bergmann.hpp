@@ -108,6 +108,27 @@ std::vector<T> total_energy_field(const ConstrainedSystem<T>& s, const std::vect
 /// First and second class constraints of a constraint set (CEF §2.1, Lemma 3.23): χ are 2s of the
 /// given constraints with det {χ_i, χ_j} ≠ 0 (2s = rank of the bracket matrix); ψ are the
 /// combinations λ^j φ_j with λ^j {φ_j, φ_k} = 0 for all k.
+/// Gotay–Nester's setting for (N, Ω, E, M): the Dirac structure D_{(T M, Ω)} (E_D = T M, ω_D = Ω|) with
+/// the energy E  [CEF §2.2; §5: "the Gotay–Nester algorithm corresponds to E_D = TM"].
+template <class T>
+LinearSystem<T> gotay_nester_system(const ConstrainedSystem<T>& s) {
+  return {dirac_from_distribution(kernel(gradients(s.primary)), s.omega), s.hessian, s.gradient, T(0)};
+}
+
+/// The Gotay–Nester algorithm: the CAD of gotay_nester_system(s) from M_0 = M  [CEF §2.2].
+template <class T>
+CadResult<T> gotay_nester(const ConstrainedSystem<T>& s) {
+  return constraint_tower(gotay_nester_system(s), s.primary);
+}
+
+/// The secondary constraints of a tower: the equations it added after M_0, rows [a | b], in order.
+template <class T>
+Matrix<T> secondary_constraints(const CadResult<T>& r) {
+  Matrix<T> out(0, r.tower.front().equations.cols());
+  for (Index k = 1; k < r.tower.size(); ++k) out = vstack(out, r.tower[k].equations);
+  return out;
+}
+
 template <class T>
 struct ConstraintClasses {
   Index s = 0;

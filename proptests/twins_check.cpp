@@ -1,0 +1,80 @@
+// The twins' public namespaces, diffed (issue 15): every top-level function and type name declared in
+// reference/include/dcad/reference/*.hpp and fast/include/dcad/fast/*.hpp is in both, or is listed in
+// proptests/twins.txt with the reason it is in one only.  A new name in one twin without its twin — or
+// a listed difference that has gone — fails, so the list stays the truth about the twins.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Names declared at column 0 of the headers in `dir`: functions (a return type, the name, "(") and
+/// types (struct, class, enum).  Members are indented and so not counted.
+std::set<std::string> public_names(const fs::path& dir) {
+  static const std::regex function(
+      R"(^(?!return|if|for|while|else|using|namespace|struct|class|template|static_assert|typedef)[A-Za-z][\w:<>, *&]*?[\s*&]+(~?[A-Za-z_]\w*)\()");
+  static const std::regex type(R"(^(?:struct|class|enum class|enum) (\w+))");
+  std::set<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() != ".hpp") continue;
+    std::ifstream in(e.path());
+    std::smatch m;
+    for (std::string line; std::getline(in, line);)
+      if (std::regex_search(line, m, function) || std::regex_search(line, m, type)) out.insert(m[1]);
+  }
+  return out;
+}
+
+struct Listed {
+  std::map<std::string, std::string> reference_only, fast_only;  ///< name → reason
+};
+
+Listed read_list(const fs::path& file) {
+  Listed out;
+  std::ifstream in(file);
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t colon = line.find(" : ");
+    EXPECT_NE(colon, std::string::npos) << file << ":" << number << ": expected 'side NAME... : reason'";
+    if (colon == std::string::npos) continue;
+    std::istringstream words(line.substr(0, colon));
+    std::string side, name;
+    words >> side;
+    EXPECT_TRUE(side == "reference-only" || side == "fast-only") << file << ":" << number << ": side " << side;
+    auto& target = side == "fast-only" ? out.fast_only : out.reference_only;
+    while (words >> name) EXPECT_TRUE(target.emplace(name, line.substr(colon + 3)).second) << file << ":" << number << ": " << name << " twice";
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(Twins, PublicNamesDifferOnlyAsListed) {
+  const fs::path root(DCAD_SOURCE_DIR);
+  const std::set<std::string> ref = public_names(root / "reference/include/dcad/reference");
+  const std::set<std::string> fast = public_names(root / "fast/include/dcad/fast");
+  const Listed listed = read_list(root / "proptests/twins.txt");
+  ASSERT_GE(ref.size(), 100u);  // the scan sees the headers
+  ASSERT_GE(fast.size(), 60u);
+  for (const std::string& n : {"constraint_tower", "gotay_nester", "foliated_tower", "velocities", "dirac_bergmann",
+                               "classify_constraints", "adapted_to_primary", "reduced_equations", "pointwise_cad"})
+    EXPECT_TRUE(ref.count(n) && fast.count(n)) << n << " must be in both twins";
+  for (const std::string& n : ref)
+    if (!fast.count(n)) EXPECT_TRUE(listed.reference_only.count(n)) << "reference-only and not in twins.txt: " << n;
+  for (const std::string& n : fast)
+    if (!ref.count(n)) EXPECT_TRUE(listed.fast_only.count(n)) << "fast-only and not in twins.txt: " << n;
+  for (const auto& [n, why] : listed.reference_only)
+    EXPECT_TRUE(ref.count(n) && !fast.count(n)) << "twins.txt lists " << n << " as reference-only; it is not (" << why << ")";
+  for (const auto& [n, why] : listed.fast_only)
+    EXPECT_TRUE(fast.count(n) && !ref.count(n)) << "twins.txt lists " << n << " as fast-only; it is not (" << why << ")";
+}
