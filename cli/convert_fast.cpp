@@ -37,4 +37,8 @@ fast::DiracStructure fast_dirac(const io::DiracInput& in, fast::Options& opt) {
   return {static_cast<int>(g.cols() / 2), fast::Subspace::span(g.transpose(), -1, opt)};
 }
 
+fast::PontryaginInput fast_pontryagin(const io::PontryaginInput& p, fast::Options& opt) {
+  return {p.n, to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt), to_double(p.q, opt), to_double(p.v, opt)};
+}
+
 }  // namespace dcad::cli

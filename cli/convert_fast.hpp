@@ -3,7 +3,7 @@
 #pragma once
 
 #include "case_file.hpp"
-#include "dcad/fast/dirac.hpp"
+#include "dcad/fast/cad.hpp"
 
 namespace dcad::cli {
 
@@ -13,6 +13,8 @@ namespace dcad::cli {
 double to_double(const io::Rational& x, fast::Options& opt);
 Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt);
 Eigen::VectorXd to_double(const std::vector<io::Rational>& v, fast::Options& opt);
+/// A case's `pontryagin` data in double (forces are not part of it).
+fast::PontryaginInput fast_pontryagin(const io::PontryaginInput& p, fast::Options& opt);
 fast::DiracStructure fast_dirac(const io::DiracInput& in, fast::Options& opt);
 
 }  // namespace dcad::cli

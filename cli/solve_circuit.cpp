@@ -18,10 +18,7 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
       lo = std::min(lo, std::abs(v));
       hi = std::max(hi, std::abs(v));
     }
-    g.branches.push_back({b.kind == reference::BranchKind::inductor    ? fast::BranchKind::inductor
-                          : b.kind == reference::BranchKind::capacitor ? fast::BranchKind::capacitor
-                                                                       : fast::BranchKind::empty,
-                          b.from, b.to, v});
+    g.branches.push_back({b.kind, b.from, b.to, v});  // one BranchKind for both twins (dcad/types.hpp)
   }
   if (lo > 0 && hi / lo > 1 / opt.nonzero_factor) opt.input_well_scaled = false;
   return g;

@@ -28,8 +28,7 @@ fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt, std::strin
   }
   if (c.has_pontryagin) {
     const io::PontryaginInput& p = c.pontryagin;
-    return fa::pontryagin_system(to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt),
-                                 to_double(p.q, opt), to_double(p.v, opt), opt);
+    return fa::pontryagin_system(fast_pontryagin(p, opt), opt);
   }
   fa::DiracStructure d = fast_dirac(c.dirac, opt);
   if (c.dirac.form == "basis") {  // certainly not Dirac: bad input; uncertain: the result says so
@@ -116,7 +115,7 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
   }
   if (c.has_pontryagin && r.consistent && parts.adapted) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
     const std::size_t n = c.pontryagin.n;
-    const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(s, to_double(c.pontryagin.k, in_opt));
+    const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(fast_pontryagin(c.pontryagin, in_opt), opt);
     const fa::CadResult rf = fa::foliated_tower(f, opt);
     out.certified = out.certified && rf.certain;
     out.adapted_setting = "T*TQ";

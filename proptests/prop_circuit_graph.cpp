@@ -111,8 +111,8 @@ RC_GTEST_PROP(CircuitGraphRoute, EqualsGenericFastCad, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
   const ref::PontryaginInput<Q> in = ref::circuit_lagrangian(c);
   fast::Options opt;
-  const fast::LinearSystem s = fast::pontryagin_system(to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt),
-                                                       to_double(in.qq, &opt), to_double(in.q), to_double(in.v), opt);
+  const fast::LinearSystem s = fast::pontryagin_system(
+      {in.n, to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt), to_double(in.qq, &opt), to_double(in.q), to_double(in.v)}, opt);
   const fast::CadResult f = fast::constraint_tower(s, opt);
   const fast::CircuitTower t = fast::circuit_tower(fast_graph(c));
   const bool certain = f.certain && t.certain;

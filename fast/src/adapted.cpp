@@ -52,7 +52,9 @@ VectorXd abridged_field(const AdaptedConstraints& ad, const MatrixXd& constraint
   return ad.dirac_tensor * d;
 }
 
-FoliatedEmbedding tangent_cotangent_embedding(const LinearSystem& s, const MatrixXd& k) {
+FoliatedEmbedding tangent_cotangent_embedding(const PontryaginInput& in, const Options& opt) {
+  const LinearSystem s = pontryagin_system(in, opt);  // as the reference: E on TQ ⊕ T*Q
+  const MatrixXd& k = in.k;
   const int n = static_cast<int>(s.hessian.rows() / 3), m = 4 * n;
   FoliatedEmbedding f;
   f.omega = MatrixXd::Zero(m, m);

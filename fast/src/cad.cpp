@@ -7,9 +7,12 @@
 
 namespace dcad::fast {
 
-LinearSystem pontryagin_system(const MatrixXd& k, const MatrixXd& vv, const MatrixXd& qv, const MatrixXd& qq,
-                               const VectorXd& q, const VectorXd& v, const Options& opt) {
+LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
+  const MatrixXd &k = in.k, &vv = in.vv, &qv = in.qv, &qq = in.qq;
+  const VectorXd &q = in.q, &v = in.v;
   const int n = static_cast<int>(vv.rows());
+  if (in.n != vv.rows() || qq.rows() != n || qv.rows() != n || q.size() != n || v.size() != n || (k.rows() && k.cols() != n))
+    throw std::invalid_argument("pontryagin_system: expected n = " + std::to_string(in.n) + " rows in vv, qv, qq, q, v and columns in k");
   for (const MatrixXd* m : {&k, &vv, &qv, &qq}) require_finite(*m, "pontryagin_system");
   if (vv != vv.transpose() || qq != qq.transpose())
     throw std::invalid_argument("pontryagin_system: expected symmetric vv and qq, found an asymmetric one");

@@ -51,10 +51,7 @@ inline fast::CircuitGraph fast_graph(const Circuit<Q>& c) {
   fast::CircuitGraph g;
   g.nodes = c.nodes;
   for (const Branch<Q>& b : c.branches)
-    g.branches.push_back({b.kind == BranchKind::inductor    ? fast::BranchKind::inductor
-                          : b.kind == BranchKind::capacitor ? fast::BranchKind::capacitor
-                                                            : fast::BranchKind::empty,
-                          b.from, b.to, b.value.convert_to<double>()});
+    g.branches.push_back({b.kind, b.from, b.to, b.value.convert_to<double>()});
   return g;
 }
 

@@ -25,7 +25,7 @@ struct FoliatedEmbedding {
   MatrixXd omega, hessian, primary, leaf;
   VectorXd gradient;
 };
-FoliatedEmbedding tangent_cotangent_embedding(const LinearSystem& pontryagin, const MatrixXd& k);
+FoliatedEmbedding tangent_cotangent_embedding(const PontryaginInput& in, const Options& opt = {});
 
 /// §7 (7.1): D on S' = {primary = 0} with the presymplectic leaves S'_C = S' ∩ {leaf = C}, and E.
 LinearSystem foliated_system(const FoliatedEmbedding& f, const Options& opt = {});

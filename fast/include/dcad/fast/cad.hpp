@@ -5,6 +5,7 @@
 #pragma once
 
 #include "dcad/fast/dirac.hpp"
+#include "dcad/types.hpp"
 
 namespace dcad::fast {
 
@@ -15,9 +16,11 @@ struct LinearSystem {
   double constant = 0;
 };
 
+/// The `pontryagin` data in double (dcad/types.hpp; the reference's is PontryaginInput<T>).
+using PontryaginInput = PontryaginData<MatrixXd, VectorXd>;
+
 /// Same formulas as dcad::reference::pontryagin_system (CEF §6), Δ = ker K decided here.
-LinearSystem pontryagin_system(const MatrixXd& k, const MatrixXd& vv, const MatrixXd& qv, const MatrixXd& qq,
-                               const VectorXd& q, const VectorXd& v, const Options& opt = {});
+LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt = {});
 
 struct CadStep {
   AffineSubspace m;

@@ -18,13 +18,14 @@
 #pragma once
 
 #include "dcad/fast/rank.hpp"
+#include "dcad/types.hpp"
 
 #include <cstddef>
 #include <vector>
 
 namespace dcad::fast {
 
-enum class BranchKind { inductor, capacitor, empty };
+using dcad::BranchKind;  // dcad/types.hpp: the reference's type
 
 struct CircuitBranch {
   BranchKind kind = BranchKind::empty;

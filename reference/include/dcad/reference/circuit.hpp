@@ -9,7 +9,7 @@
 
 namespace dcad::reference {
 
-enum class BranchKind { inductor, capacitor, empty };
+using dcad::BranchKind;  // dcad/types.hpp (via system.hpp)
 
 template <class T>
 struct Branch {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "dcad/reference/dirac.hpp"
+#include "dcad/types.hpp"
 
 namespace dcad::reference {
 
@@ -35,11 +36,7 @@ std::vector<T> energy_differential(const LinearSystem<T>& s, const std::vector<T
 
 /// L(q, v) = ½ vᵀ A v + qᵀ B v + ½ qᵀ C q + aᵀ q + bᵀ v on Q^n, with Δ = ker K  [CONTRACT `pontryagin`].
 template <class T>
-struct PontryaginInput {
-  Index n = 0;
-  Matrix<T> k, vv, qv, qq;
-  std::vector<T> q, v;
-};
+using PontryaginInput = PontryaginData<Matrix<T>, std::vector<T>>;  // dcad/types.hpp
 
 /// M = TQ ⊕ T*Q = Q^{3n}, x = (q, v, p); D̄_Δ = {(ẋ, (α, γ, β)) : q̇ ∈ Δ, α + ṗ ∈ Δ°, β = q̇, γ = 0},
 /// i.e. E_D = Δ ⊕ Q^n ⊕ Q^n with ω_D = dq ∧ dp (CEF (6.10)–(6.13), ERRATA conventions);
