@@ -4,7 +4,7 @@
 // H symmetric of rank N/2 and g in the range of H (so systems are consistent with c ≥ 1).
 //   build/bench_cad [max_N_reference=120] [max_N=200]
 #include "dcad/fast/cad.hpp"
-#include "dcad/reference/ball.hpp"
+#include "dcad/certified/ball.hpp"
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/rational.hpp"
 
@@ -55,10 +55,10 @@ Problem make(std::size_t n, unsigned seed) {
   return p;
 }
 
-ref::Matrix<ref::Ball> lift(const QM& m) {
-  ref::Matrix<ref::Ball> b(m.rows(), m.cols());
+ref::Matrix<dcad::certified::Ball> lift(const QM& m) {
+  ref::Matrix<dcad::certified::Ball> b(m.rows(), m.cols());
   for (std::size_t i = 0; i < m.rows(); ++i)
-    for (std::size_t j = 0; j < m.cols(); ++j) b(i, j) = ref::Ball::enclosing(m(i, j));
+    for (std::size_t j = 0; j < m.cols(); ++j) b(i, j) = dcad::certified::Ball::enclosing(m(i, j));
   return b;
 }
 
@@ -91,12 +91,12 @@ int main(int argc, char** argv) {
       c = static_cast<long>(rr.steps);
       const auto t0 = std::chrono::steady_clock::now();
       try {  // certified: balls first, the exact run only if a zero test is undecidable
-        const ref::LinearSystem<ref::Ball> b{
-            {p.exact.d.n, ref::Subspace<ref::Ball>::span(lift(p.exact.d.d.basis()))}, lift(p.exact.hessian),
-            lift(ref::Matrix<Q>::column(p.exact.gradient)).col(0), ref::Ball(0)};
+        const ref::LinearSystem<dcad::certified::Ball> b{
+            {p.exact.d.n, ref::Subspace<dcad::certified::Ball>::span(lift(p.exact.d.d.basis()))}, lift(p.exact.hessian),
+            lift(ref::Matrix<Q>::column(p.exact.gradient)).col(0), dcad::certified::Ball(0)};
         ref::constraint_tower(b);
         in_float = true;
-      } catch (const ref::Uncertain&) {
+      } catch (const dcad::certified::Uncertain&) {
         ref::constraint_tower(p.exact);
       }
       tc = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -3,7 +3,7 @@
 // FastCad/N against ColPivQR/N is the "fast CAD at N = 500 against one pivoted QR" ratio;
 // RrefExact/N against RrefBall/N is the exact kernel against its certified floating twin.
 #include "dcad/fast/cad.hpp"
-#include "dcad/reference/ball.hpp"
+#include "dcad/certified/ball.hpp"
 #include "dcad/reference/matrix.hpp"
 
 #include <Eigen/QR>
@@ -75,13 +75,13 @@ void RrefExact(benchmark::State& st) {
 BENCHMARK(RrefExact)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 void RrefBall(benchmark::State& st) {
-  const auto m = lifted<ref::Ball>(deficient(static_cast<int>(st.range(0))), [](double x) { return ref::Ball(static_cast<int>(x)); });
+  const auto m = lifted<dcad::certified::Ball>(deficient(static_cast<int>(st.range(0))), [](double x) { return dcad::certified::Ball(static_cast<int>(x)); });
   std::size_t pivots = 0;
   bool certified = true;
   for (auto _ : st) {
     try {
       pivots = ref::rref(m).pivots.size();
-    } catch (const ref::Uncertain&) {
+    } catch (const dcad::certified::Uncertain&) {
       certified = false;
     }
     benchmark::DoNotOptimize(pivots);

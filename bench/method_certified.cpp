@@ -1,4 +1,4 @@
-#include "dcad/reference/ball.hpp"
+#include "dcad/certified/ball.hpp"
 #include "dcad/reference/small_rational.hpp"
 #include "method_generic.hpp"
 
@@ -7,7 +7,7 @@ namespace dcad::bench {
 /// What `dcad solve --backend certified` does: exact in machine words (N ≤ kSmallFirstUpTo), else
 /// or on Overflow the reference in ball arithmetic, exactly recomputed (mpq) on an uncertain test.
 Outcome run_certified(const families::Instance& in) {
-  using reference::Ball;
+  using certified::Ball;
   using S = reference::SmallRational;
   if (in.n() <= reference::kSmallFirstUpTo) {
     try {
@@ -19,7 +19,7 @@ Outcome run_certified(const families::Instance& in) {
   }
   try {
     return run_generic<Ball>(in, [](const families::Q& q) { return Ball::enclosing(q); }, [](const Ball& b) { return b.mid(); });
-  } catch (const reference::Uncertain&) {
+  } catch (const certified::Uncertain&) {
     Outcome o = run_mpq(in);
     o.recomputed = true;
     return o;

@@ -1,6 +1,6 @@
 #include "solve.hpp"
 
-#include "dcad/reference/ball.hpp"
+#include "dcad/certified/ball.hpp"
 #include "dcad/reference/small_rational.hpp"
 
 #include <functional>
@@ -56,15 +56,15 @@ SolveReport certify(const std::function<SolveReport()>& small, const std::functi
       overflow = std::string("exact 64-bit rationals gave up (") + e.what() + "); ";
     }
   }
-  reference::Ball::decisions() = 0;
-  reference::Ball::verifications() = 0;
+  certified::Ball::decisions() = 0;
+  certified::Ball::verifications() = 0;
   try {
     double radius = 0;
     SolveReport r = ball(radius);
     r.backend = "certified";
     r.certified = true;
-    r.decisions_float = reference::Ball::decisions();
-    r.decisions_verified = reference::Ball::verifications();
+    r.decisions_float = certified::Ball::decisions();
+    r.decisions_verified = certified::Ball::verifications();
     std::ostringstream o;
     o.precision(2);
     o << (r.note.empty() ? "" : r.note + "; ") << overflow << "the reference algorithm in ball arithmetic: " << r.decisions_float
@@ -72,12 +72,12 @@ SolveReport certify(const std::function<SolveReport()>& small, const std::functi
       << " by exact comparison of input numbers; numbers are ball midpoints, exact values within " << radius;
     r.note = o.str();
     return r;
-  } catch (const reference::Uncertain& e) {
-    const long done = reference::Ball::decisions();
+  } catch (const certified::Uncertain& e) {
+    const long done = certified::Ball::decisions();
     SolveReport out = exact();
     out.backend = "certified";
     out.decisions_float = done;
-    out.decisions_verified = reference::Ball::verifications();
+    out.decisions_verified = certified::Ball::verifications();
     out.decisions_exact = 1;
     out.note = (out.note.empty() ? "" : out.note + "; ") + overflow + "zero test " + std::to_string(done + 1) + " undecidable in floating point (" +
                e.what() + "): recomputed exactly from the exact input";

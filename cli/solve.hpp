@@ -83,12 +83,12 @@ SolveReport solve_small(const io::CaseFile& c, const Parts& parts = {});
 /// The pipeline on mpq_rational alone.
 SolveReport solve_rational(const io::CaseFile& c, const Parts& parts = {});
 SolveReport solve_fast(const io::CaseFile& c, const Parts& parts = {});
-/// The reference pipeline in ball arithmetic (solve_ball.cpp); throws reference::Uncertain at the
+/// The reference pipeline in ball arithmetic (solve_ball.cpp); throws certified::Uncertain at the
 /// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.
 SolveReport solve_ball(const io::CaseFile& c, double& max_radius, const Parts& parts = {});
 /// `small` (the reference pipeline in 64-bit rationals; skipped if empty); if it throws
 /// reference::Overflow, `ball` (the pipeline in ball arithmetic); if that throws
-/// reference::Uncertain, `exact` (the pipeline on mpq_rational).  Every discrete output equals the
+/// certified::Uncertain, `exact` (the pipeline on mpq_rational).  Every discrete output equals the
 /// reference's whichever finishes (small_rational.hpp, ball.hpp give the proofs).
 SolveReport certify(const std::function<SolveReport()>& small, const std::function<SolveReport(double&)>& ball,
                     const std::function<SolveReport()>& exact);

@@ -27,7 +27,7 @@ SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c,
 SolveReport solve_circuit_small(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The structured route on mpq_rational alone.
 SolveReport solve_circuit_rational(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
-/// The same in ball arithmetic; throws reference::Uncertain at the first undecidable zero test.
+/// The same in ball arithmetic; throws certified::Uncertain at the first undecidable zero test.
 SolveReport solve_circuit_ball(const io::Netlist& n, const io::CaseFile& c, double& max_radius, const Parts& parts = {});
 /// solve_circuit_ball, recomputed exactly if a decision is uncertain there; cross-checked against
 /// the graph route's combinatorial tower (physical values).

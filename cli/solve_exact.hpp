@@ -2,7 +2,7 @@
 // written once over the scalar T and instantiated twice, one translation unit each:
 //   T = Rational (solve_reference.cpp): the reference itself;
 //   T = Ball     (solve_ball.cpp): the same algorithm in certified interval arithmetic — every
-//     branch it takes is the exact one or it throws reference::Uncertain (see ball.hpp), so its
+//     branch it takes is the exact one or it throws certified::Uncertain (see ball.hpp), so its
 //     discrete outputs are the reference's by construction.
 // `Scalar<T>` lifts the exact input and prints numbers.
 #pragma once

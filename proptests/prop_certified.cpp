@@ -10,7 +10,8 @@
 //   * Input rounding: an input that double cannot represent decides exactly, not as rounded.
 #include "convert.hpp"
 #include "dcad/fast/cad.hpp"
-#include "dcad/reference/ball.hpp"
+#include "dcad/certified/ball.hpp"
+#include "dcad/certified/cad.hpp"
 #include "dcad/reference/cad.hpp"
 #include "families.hpp"
 #include "gen.hpp"
@@ -24,8 +25,8 @@
 namespace dcad::test {
 namespace {
 
-using reference::Ball;
-using reference::Uncertain;
+using certified::Ball;
+using certified::Uncertain;
 namespace fam = dcad::families;
 
 bool encloses(const Ball& b, const Q& exact) { return abs(exact - Q(b.mid())) <= Q(b.rad()); }
@@ -137,6 +138,24 @@ RC_GTEST_PROP(Certified, NeverDisagreesWithTheExactAnswerOnAnyFamily, ()) {
   RC_TAG(b ? "certified in floating point" : "recomputed exactly");
   RC_ASSERT(!tally("certified (" + in.family + ")", b.has_value(), b && *b == truth));
   if (in.planted && *rc::gen::inRange(0, 4) == 0) RC_ASSERT(exact_run(in) == truth);  // the generator's own claim
+}
+
+// The library entry point (dcad/certified/cad.hpp): whichever route it takes — 64-bit words, balls,
+// mpq — its discrete answers are the exact reference's (the induction of ball.hpp, and SmallRational =
+// mpq while it fits); where every number fits in 64 bits it takes the first route.  A route that
+// answered with the wrong scalar's decisions (e.g. a ball answer taken although Uncertain) fails it.
+RC_GTEST_PROP(Certified, LibraryTowerIsTheExactTower, ()) {
+  std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+  const fam::Instance in = any_instance(rng);
+  const reference::LinearSystem<Q> s = fam::system_over<Q>(in, [](const Q& q) { return q; });
+  const certified::CertifiedTower t = certified::constraint_tower(s);
+  const Discrete truth = exact_run(in);
+  RC_TAG(in.family + ": " + certified::route_name(t.route));
+  RC_ASSERT(t.dims == truth.dims);
+  RC_ASSERT(static_cast<long>(t.solution_rank) == truth.solution_rank);
+  RC_ASSERT(t.consistent == truth.consistent);
+  RC_ASSERT(t.steps + 1 == t.dims.size());
+  RC_ASSERT((t.route == certified::Route::machine_words) == t.why.empty());
 }
 
 /// A ball and its exact value side by side: every zero test is put to both.  The exact answer

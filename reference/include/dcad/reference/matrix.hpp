@@ -1,8 +1,10 @@
 // Dense matrices over an exact field and exact row reduction.
 // Everything here is a literal textbook algorithm: no pivoting strategy, no tolerance;
-// a zero test is `x == 0`.  The scalar must be exact (std::numeric_limits<T>::is_exact), or declare
-// what its zero test is (`T::zero_test`): Ball (ball.hpp) answers it with a proof or throws, and
-// the benchmark's tolerance scalars answer it approximately (a comparison method, never the product).
+// a zero test is `x == 0`.  The scalar must be an exact field (std::numeric_limits<T>::is_exact,
+// e.g. mpq_rational, SmallRational) or declare what its zero test is (`T::zero_test`): the certified
+// route's dcad::certified::Ball (dcad/certified/ball.hpp) answers it with a proof or throws, and the
+// benchmark's tolerance scalars (bench/approx.hpp) say they answer it approximately (a comparison
+// method there, never part of the product).
 #pragma once
 
 #include <cstddef>
@@ -43,7 +45,8 @@ using Index = std::size_t;
 /// Row-major dense matrix over an exact field.  Vectors are r×1 or 1×c matrices or std::vector<T>.
 template <class T>
 class Matrix {
-  static_assert(admissible_scalar<T>::value, "dcad::reference works over an exact field only (e.g. mpq_rational)");
+  static_assert(admissible_scalar<T>::value,
+                "dcad::reference works over an exact field (e.g. mpq_rational), or a scalar that declares its zero test (T::zero_test)");
 
  public:
   Matrix() = default;

@@ -1,3 +1,6 @@
+// dcad::certified::Ball (the certified route, issue 15: its own namespace; the reference admits it
+// through the generic zero-test hook of matrix.hpp, `T::zero_test`).
+//
 // Ball: a double-precision enclosure ⟨mid, rad⟩ = [mid − rad, mid + rad] of one exact rational,
 // so that the reference's *own* algorithms can run in floating point with certified decisions.
 //
@@ -36,7 +39,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace dcad::reference {
+namespace dcad::certified {
+
+using reference::Rational;
 
 /// A decision the floating-point enclosure cannot make; the caller recomputes exactly.
 struct Uncertain : std::runtime_error {
@@ -165,4 +170,4 @@ class Ball {
   std::shared_ptr<const Rational> exact_;  ///< the exact value, for input numbers and their negations
 };
 
-}  // namespace dcad::reference
+}  // namespace dcad::certified
