@@ -118,43 +118,11 @@ ExactModel circuit_model(const io::Netlist& deck, const io::CaseFile& c) {
 }
 
 std::vector<Q> initial_point(const ExactModel& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c) {
-  const ref::Index n = c.n;
-  QM given(0, n + 1), defaults(0, n + 1);
-  for (ref::Index i = 0; i < n; ++i) {
-    QM row(1, n + 1);
-    row(0, i) = Q(1);
-    row(0, n) = initial[i] ? *initial[i] : Q(0);
-    if (initial[i]) given = ref::vstack(given, row);
-    else defaults = ref::vstack(defaults, row);
-  }
-  QM constraints(0, n + 1);
-  for (const QM& rows : r.levels) constraints = ref::vstack(constraints, rows);
-  // the first constraint of the tower that the prescribed values cannot meet is the violated one:
-  // consistency of given + rows 0…i is monotone in i, so one solve when all is well, a bisection
-  // (log of the number of rows) when not
-  const auto meets = [&](ref::Index rows) {
-    return !ref::affine_from_augmented(ref::vstack(given, constraints.block(0, rows, 0, n + 1))).empty;
-  };
-  if (!meets(constraints.rows())) {
-    ref::Index lo = 0, hi = constraints.rows();  // meets(lo), !meets(hi)
-    while (hi - lo > 1) {
-      const ref::Index mid = (lo + hi) / 2;
-      (meets(mid) ? lo : hi) = mid;
-    }
-    const ref::Index i = hi - 1;
-    std::string level;
-    for (ref::Index k = 0, seen = 0; k < r.levels.size(); seen += r.levels[k].rows(), ++k)
-      if (i < seen + r.levels[k].rows()) {
-        level = "M_" + std::to_string(k);
-        break;
-      }
+  const ref::InitialPoint<Q> p = ref::consistent_initial_point(r.levels, initial);
+  if (!p.consistent)
     throw io::InputError(c.file + ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
-                         equation_text(row_equation(constraints, i), c.variables) + " (a constraint of " + level + ")");
-  }
-  const QM acc = ref::vstack(given, constraints);
-  ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(acc, defaults));
-  const ref::AffineSubspace<Q> chosen = with_defaults.empty ? ref::affine_from_augmented(acc) : with_defaults;
-  return chosen.point;
+                         equation_text(row_equation(p.violated, 0), c.variables) + " (a constraint of M_" + std::to_string(p.level) + ")");
+  return p.point;
 }
 
 }  // namespace

@@ -90,6 +90,52 @@ RC_GTEST_PROP(FastVsReference, Velocities, ()) {
   RC_ASSERT(off.norm() <= 1e6 * (s.d.n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian)) * scale);
 }
 
+// Consistent initial points (CEF §5: solutions pass exactly through M_c): values of some variables taken
+// from a point of M_c are consistent in both twins, and the fast point has them and lies on M_c; the same
+// values with one of them moved by 1 are inconsistent in both or consistent in both, and where
+// inconsistent, both name the same first level M_k they violate.
+RC_GTEST_PROP(FastVsReference, ConsistentInitialPoints, ()) {
+  const ref::LinearSystem<Q> s = any_system();
+  const ref::CadResult<Q> r = ref::constraint_tower(s);
+  if (!r.consistent) return;
+  fast::Options opt = any_route_options();
+  const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
+                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
+  const fast::CadResult f = fast::constraint_tower(fs, opt);
+  if (!f.certain || !f.consistent) return;
+  const std::vector<Q> x = some_point(r.final_step().m);
+  const Index n = x.size();
+  std::vector<std::optional<Q>> given(n);
+  std::vector<std::optional<double>> given_d(n);
+  const Index count = *rc::gen::inRange<Index>(1, n + 1);
+  const std::vector<Index> idx = *rc::gen::unique<std::vector<Index>>(count, rc::gen::inRange<Index>(0, n));
+  for (Index i : idx) given[i] = x[i], given_d[i] = x[i].convert_to<double>();
+  const ref::InitialPoint<Q> rp = ref::consistent_initial_point(r, given);
+  RC_ASSERT(rp.consistent);
+  RC_ASSERT(r.final_step().m.contains_point(rp.point));
+  for (Index i = 0; i < n; ++i)
+    if (given[i]) RC_ASSERT(rp.point[i] == *given[i]);
+  const fast::InitialPoint fp = fast::consistent_initial_point(f, given_d, opt);
+  RC_ASSERT(!tally("initial point consistent", fp.certain, fp.consistent));
+  const double tol = 1e6 * (n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian)) * (1 + to_double(QM::column(x)).norm());
+  if (fp.certain && fp.consistent) {
+    for (Index i = 0; i < n; ++i)
+      if (given_d[i]) RC_ASSERT(std::abs(fp.point(i) - *given_d[i]) <= tol);
+    const Eigen::VectorXd off = fp.point - to_double(QM::column(some_point(r.final_step().m))).col(0);
+    const Eigen::MatrixXd& dir = f.final_step().m.direction.basis();
+    RC_ASSERT((off - dir * (dir.transpose() * off)).norm() <= tol);  // on M_c
+  }
+  const Index moved = *rc::gen::elementOf(idx);
+  given[moved] = *given[moved] + 1;
+  given_d[moved] = *given_d[moved] + 1;
+  const ref::InitialPoint<Q> rq = ref::consistent_initial_point(r, given);
+  const fast::InitialPoint fq = fast::consistent_initial_point(f, given_d, opt);
+  RC_CLASSIFY(!rq.consistent, "moved value inconsistent");
+  RC_ASSERT(!tally("moved initial value: consistent", fq.certain, fq.consistent == rq.consistent));
+  if (!rq.consistent && !fq.consistent)
+    RC_ASSERT(!tally("moved initial value: level", fq.certain, static_cast<Index>(fq.level) == rq.level));
+}
+
 // Certainty floor (issue 15): on well-conditioned planted data — the tower family (integer data,
 // c = 1 … 4) and the graded tower at condition 10² — fast answers certainly on most instances, and
 // rightly (the planted answer).  Fixed seeds, so the count is the same on every run.  Killed by: a

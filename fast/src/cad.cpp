@@ -226,4 +226,50 @@ AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const Vecto
   return out;
 }
 
+InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt) {
+  const int n = static_cast<int>(given.size());
+  std::vector<int> rows_of_level;  // equations of the tower, level by level
+  int total = 0;
+  for (const CadStep& st : r.tower) rows_of_level.push_back(total += static_cast<int>(st.equations.rows()));
+  MatrixXd constraints(total, n + 1);
+  for (int k = 0, at = 0; k < static_cast<int>(r.tower.size()); at = rows_of_level[k++])
+    constraints.middleRows(at, r.tower[k].equations.rows()) = r.tower[k].equations;
+  int fixed = 0;
+  for (const auto& g : given) fixed += g.has_value();
+  InitialPoint out;
+  out.certain = r.certain;
+  // the given values, the first `rows` equations of the tower and, with `defaults`, the free variables = 0
+  const auto system = [&](int rows, bool defaults) {
+    const int m = fixed + rows + (defaults ? n - fixed : 0);
+    MatrixXd a = MatrixXd::Zero(m, n);
+    VectorXd b = VectorXd::Zero(m);
+    int at = 0;
+    for (int i = 0; i < n; ++i)
+      if (given[i]) a(at, i) = 1, b(at++) = *given[i];
+    a.middleRows(at, rows) = constraints.topLeftCorner(rows, n);
+    b.segment(at, rows) = constraints.col(n).head(rows);
+    at += rows;
+    if (defaults)
+      for (int i = 0; i < n; ++i)
+        if (!given[i]) a(at++, i) = 1;
+    const AffineSubspace s = solve(a, b, opt);
+    out.certain = out.certain && s.certain;
+    return s;
+  };
+  if (system(total, false).empty) {
+    int lo = 0, hi = total;  // meets(lo), !meets(hi)
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      (system(mid, false).empty ? hi : lo) = mid;
+    }
+    out.violated = constraints.row(hi - 1).transpose();
+    while (rows_of_level[out.level] < hi) ++out.level;
+    return out;
+  }
+  const AffineSubspace with_defaults = system(total, true);
+  out.consistent = true;
+  out.point = (with_defaults.empty ? system(total, false) : with_defaults).point;
+  return out;
+}
+
 }  // namespace dcad::fast

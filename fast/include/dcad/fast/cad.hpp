@@ -7,6 +7,8 @@
 #include "dcad/fast/dirac.hpp"
 #include "dcad/types.hpp"
 
+#include <optional>
+
 namespace dcad::fast {
 
 struct LinearSystem {
@@ -60,6 +62,17 @@ VectorXd energy_differential(const LinearSystem& s, const VectorXd& x);
 /// {ẋ ∈ T M_c : (ẋ, dE(x)) ∈ D} at a point x of M_c: the solutions of (5.7)–(5.8) (the twin of the
 /// reference's).  `certain` is cleared if the tower or the solve decided anything uncertainly.
 AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const VectorXd& x, const Options& opt = {});
+
+/// A consistent initial point (the twin of the reference's): a point of M_c with the given values, the
+/// free ones 0 where M_c allows; or the first level M_k whose equations the given values cannot meet.
+struct InitialPoint {
+  bool consistent = false;
+  VectorXd point;
+  int level = 0;
+  VectorXd violated;   ///< the first equation they cannot meet, [a | b]
+  bool certain = true;  ///< every consistency decision was certain (and the tower was)
+};
+InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt = {});
 
 struct ReducedEquations {
   std::vector<int> coords;

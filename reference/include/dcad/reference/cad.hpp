@@ -5,6 +5,8 @@
 
 #include "dcad/reference/system.hpp"
 
+#include <optional>
+
 namespace dcad::reference {
 
 template <class T>
@@ -98,6 +100,63 @@ AffineSubspace<T> velocities(const LinearSystem<T>& s, const CadResult<T>& r, co
   out.direction = map(b.transpose(), w.direction);
   if (!w.empty) out.point = (b.transpose() * Matrix<T>::column(w.point)).col(0);
   return out;
+}
+
+/// A consistent initial point: solutions of (1.1) pass exactly through the points of M_c (CEF §5), so an
+/// initial condition that prescribes some variables (`given[i]`, the rest free) is consistent iff the
+/// prescribed values meet every equation of the tower.  `levels[k]`: the equations M_k adds, rows [a | b]
+/// (the `equations` of a CadResult's steps, or a circuit route's levels).
+template <class T>
+struct InitialPoint {
+  bool consistent = false;
+  std::vector<T> point;  ///< consistent: a point of M_c with the given values, the free ones 0 where M_c allows
+  Index level = 0;       ///< inconsistent: the first M_k whose equations the given values cannot meet …
+  Matrix<T> violated;    ///< … and the first such equation, a row [a | b]
+};
+
+template <class T>
+InitialPoint<T> consistent_initial_point(const std::vector<Matrix<T>>& levels, const std::vector<std::optional<T>>& given) {
+  const Index n = given.size();
+  Matrix<T> fixed(0, n + 1), defaults(0, n + 1), constraints(0, n + 1);
+  for (Index i = 0; i < n; ++i) {
+    Matrix<T> row(1, n + 1);
+    row(0, i) = T(1);
+    row(0, n) = given[i] ? *given[i] : T(0);
+    if (given[i]) fixed = vstack(fixed, row);
+    else defaults = vstack(defaults, row);
+  }
+  for (const Matrix<T>& rows : levels) constraints = vstack(constraints, rows);
+  // consistency of the given values with rows 0 … k of the tower is monotone in k: one solve when all
+  // is well, a bisection for the first violated row when not
+  const auto meets = [&](Index rows) { return !affine_from_augmented(vstack(fixed, constraints.block(0, rows, 0, n + 1))).empty; };
+  InitialPoint<T> out;
+  if (!meets(constraints.rows())) {
+    Index lo = 0, hi = constraints.rows();  // meets(lo), !meets(hi)
+    while (hi - lo > 1) {
+      const Index mid = (lo + hi) / 2;
+      (meets(mid) ? lo : hi) = mid;
+    }
+    out.violated = constraints.block(hi - 1, hi, 0, n + 1);
+    for (Index k = 0, seen = 0; k < levels.size(); seen += levels[k].rows(), ++k)
+      if (hi - 1 < seen + levels[k].rows()) {
+        out.level = k;
+        break;
+      }
+    return out;
+  }
+  const Matrix<T> acc = vstack(fixed, constraints);
+  const AffineSubspace<T> with_defaults = affine_from_augmented(vstack(acc, defaults));
+  out.consistent = true;
+  out.point = (with_defaults.empty ? affine_from_augmented(acc) : with_defaults).point;
+  return out;
+}
+
+/// The same for a tower: its steps' equations are the levels.
+template <class T>
+InitialPoint<T> consistent_initial_point(const CadResult<T>& r, const std::vector<std::optional<T>>& given) {
+  std::vector<Matrix<T>> levels;
+  for (const CadStep<T>& st : r.tower) levels.push_back(st.equations);
+  return consistent_initial_point(levels, given);
 }
 
 /// ż = F z + f + G λ on M_c in coordinates z = S x (S selects variables `coords`), [CEF (5.12)].
