@@ -11,11 +11,43 @@
 #include <rapidcheck/gtest.h>
 
 #include <cstdio>
+#include <optional>
 #include <random>
 
 using namespace dcad;
 using namespace dcad::test;
 namespace ref = dcad::reference;
+
+namespace {
+
+/// The fast system of an exact one (rounded entries; `opt` records what rounding did).
+fast::LinearSystem fast_twin(const ref::LinearSystem<Q>& s, fast::Options& opt) {
+  return {fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt), to_double(s.hessian, &opt),
+          to_double(QM::column(s.gradient), &opt).col(0), 0.0};
+}
+
+/// A random system with both towers, when the reference's is consistent and fast's certain and consistent.
+struct Twins {
+  ref::LinearSystem<Q> s;
+  ref::CadResult<Q> r;
+  fast::Options opt;
+  fast::LinearSystem fs;
+  fast::CadResult f;
+};
+
+std::optional<Twins> consistent_twins() {
+  Twins t;
+  t.s = any_system();
+  t.r = ref::constraint_tower(t.s);
+  if (!t.r.consistent) return std::nullopt;
+  t.opt = any_route_options();
+  t.fs = fast_twin(t.s, t.opt);
+  t.f = fast::constraint_tower(t.fs, t.opt);
+  if (!t.f.certain || !t.f.consistent) return std::nullopt;
+  return t;
+}
+
+}  // namespace
 
 // Gotay–Nester for (N, Ω, E, M) (the CAD of D_{(TM, Ω)} from M_0 = M) by both backends.
 RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
@@ -37,8 +69,7 @@ RC_GTEST_PROP(FastVsReference, Cad, ()) {
   const ref::LinearSystem<Q> s = any_system();
   RC_LOG() << case_json(s);
   fast::Options opt = any_route_options();
-  const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
-                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
+  const fast::LinearSystem fs = fast_twin(s, opt);
   const ref::CadResult<Q> r = ref::constraint_tower(s);
   const fast::CadResult f = fast::constraint_tower(fs, opt);
   RC_CLASSIFY(!f.certain, "fast uncertain");
@@ -67,14 +98,9 @@ RC_GTEST_PROP(FastVsReference, Cad, ()) {
 // dim(ker ω_D ∩ T M_c); the fast twin's, where certain, has the reference's dimension and contains the
 // reference's exact velocity (to rounding).
 RC_GTEST_PROP(FastVsReference, Velocities, ()) {
-  const ref::LinearSystem<Q> s = any_system();
-  const ref::CadResult<Q> r = ref::constraint_tower(s);
-  if (!r.consistent) return;
-  fast::Options opt = any_route_options();
-  const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
-                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
-  const fast::CadResult f = fast::constraint_tower(fs, opt);
-  if (!f.certain || !f.consistent) return;
+  const std::optional<Twins> t = consistent_twins();
+  if (!t) return;
+  const auto& [s, r, opt, fs, f] = *t;
   const std::vector<Q> x = some_point(r.final_step().m);
   const ref::AffineSubspace<Q> rv = ref::velocities(s, r, x);
   const fast::AffineSubspace fv = fast::velocities(fs, f, to_double(QM::column(x)).col(0), opt);
@@ -95,14 +121,9 @@ RC_GTEST_PROP(FastVsReference, Velocities, ()) {
 // values with one of them moved by 1 are inconsistent in both or consistent in both, and where
 // inconsistent, both name the same first level M_k they violate.
 RC_GTEST_PROP(FastVsReference, ConsistentInitialPoints, ()) {
-  const ref::LinearSystem<Q> s = any_system();
-  const ref::CadResult<Q> r = ref::constraint_tower(s);
-  if (!r.consistent) return;
-  fast::Options opt = any_route_options();
-  const fast::LinearSystem fs{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt),
-                              to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), 0.0};
-  const fast::CadResult f = fast::constraint_tower(fs, opt);
-  if (!f.certain || !f.consistent) return;
+  const std::optional<Twins> t = consistent_twins();
+  if (!t) return;
+  const auto& [s, r, opt, fs, f] = *t;
   const std::vector<Q> x = some_point(r.final_step().m);
   const Index n = x.size();
   std::vector<std::optional<Q>> given(n);
