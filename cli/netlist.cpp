@@ -562,7 +562,7 @@ class Flattener {
 }  // namespace
 
 /// K elements: M = k √(L_a L_b), exact when k² L_a L_b is the square of a rational, otherwise
-/// rounded to 40 significant digits (with a warning).
+/// truncated to 80 decimal places (with a warning).
 static void resolve_couplings(Netlist& out, const Flattener& f) {
   for (const auto& c : f.couplings) {
     const auto find = [&](const std::string& n) -> std::size_t {

@@ -144,6 +144,13 @@ std::vector<std::vector<std::string>> loops(const io::Netlist& n, const std::fun
   return out;
 }
 
+/// CONTRACT `empty_loops`: the dimension of the cycle space of the subgraph of empty branches (the
+/// wires, zero-volt sources; CEF Thm 6.8) — one fundamental loop per independent cycle.
+long empty_loop_count(const io::Netlist& n) {
+  const auto wire = [](RlcKind k) { return k == RlcKind::wire; };
+  return static_cast<long>(loops(n, wire, wire, [](const fast::Loop&) { return true; }).size());
+}
+
 /// Cutsets made only of branches with `in(kind)`: contract every other branch; the cut around each
 /// resulting super-node (one per connected piece left out) — independent cutsets, signed (+ = leaving).
 std::vector<std::vector<std::string>> cutsets(const io::Netlist& n, const std::function<bool(RlcKind)>& in,
@@ -391,7 +398,7 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
     for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
     out.circuit = {{"branches", n.rlc.branches.size()}, {"nodes", n.rlc.nodes + 1},
                    {"pc_loops", out.report.consistent && out.report.dims.size() > 2 ? out.report.dims[1] - out.report.dims[2] : 0},
-                   {"empty_loops", 0}};
+                   {"empty_loops", empty_loop_count(n)}};
     return out;
   }
   exact_report(ref::rlc_system(circuit_of(n)), n.waveforms, netlist_variables(n), backend, out);
@@ -417,7 +424,7 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
   out.circuit = {{"branches", n.rlc.branches.size()},
                  {"nodes", n.rlc.nodes + 1},
                  {"pc_loops", s.consistent && s.dims.size() > 2 ? s.dims[1] - s.dims[2] : 0},
-                 {"empty_loops", 0},
+                 {"empty_loops", empty_loop_count(n)},
                  {"inductors", counts[0]},
                  {"capacitors", counts[1]},
                  {"resistors", counts[2]},

@@ -44,6 +44,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"pwl", "title\nV1 1 0 PWL(0 0 1 1 1 2)\nR1 1 0 1\n", "increasing PWL times"},
                     BadCase{"kmissing", "title\nL1 1 0 1\nK1 L1 L9 0.5\n", "\"l9\""},
                     BadCase{"kbig", "title\nL1 1 0 1\nL2 1 0 1\nK1 L1 L2 2\n", "|k| <= 1"},
+                    BadCase{"kself", "title\nL1 1 0 1\nK1 L1 l1 0.5\n", "two different inductors for k1, found one twice"},
+                    BadCase{"ktwice", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L2 L1 0.25\n", "one coupling per pair of inductors, found a second one (k2)"},
+                    BadCase{"ktwicesame", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L1 L2 0.25\n", "found a second one (k2)"},
                     BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="},
                     BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""},
                     // SPICE as ngspice reads it: what would change the circuit and is not supported is an error
@@ -112,8 +115,55 @@ TEST(Cli, LeadingZerosAreDecimal) {
   EXPECT_NE(j.out.find("d/dt x2 = -800*x1"), std::string::npos) << j.out;
 }
 
+// K: M = k √(L1 L2) enters p = Φ v (YM §4) as the off-diagonal of the inductance matrix.  L1 = 1u,
+// L2 = 4u, k = 1/2: M = 1u, Φ = [[1u, 1u], [1u, 4u]], det Φ = 3e-12; the motion L-side is
+// Φ d/dt(v) = (q_C1/C1, q_C2/C2) with C = 1n, so d/dt v = Φ⁻¹ · 1e9 q = (1e15/3) [[4, −1], [−1, 1]] q.
+// The order of the pair in K does not matter; a negative k flips the sign of M.
+TEST(Cli, CouplingGivesTheInductanceMatrix) {
+  const std::string tanks = "title\nL1 a 0 1u\nC1 a 0 1n\nL2 b 0 4u\nC2 b 0 1n\n";
+  const std::string file = write_temp("dcad_k.cir", tanks + "K1 L1 L2 0.5\n"), swapped = write_temp("dcad_k_swapped.cir", tanks + "K1 L2 L1 0.5\n"),
+                    negative = write_temp("dcad_k_negative.cir", tanks + "K1 L1 L2 -0.5\n");
+  const Outcome r = run("solve " + file + " --backend reference");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const char* line : {"-1/1000000*v_L1 - 1/1000000*v_L2 + p_L1 = 0", "-1/1000000*v_L1 - 1/250000*v_L2 + p_L2 = 0",
+                           "d/dt v_L1 = 4000000000000000/3*q_C1 - 1000000000000000/3*q_C2",
+                           "d/dt v_L2 = -1000000000000000/3*q_C1 + 1000000000000000/3*q_C2", "1 K"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  const Outcome s = run("solve " + swapped + " --backend reference"), n = run("solve " + negative + " --backend reference");
+  ASSERT_EQ(s.rc, 0) << s.err;
+  EXPECT_EQ(s.out.substr(s.out.find('\n')), r.out.substr(r.out.find('\n')));  // all but the file name
+  ASSERT_EQ(n.rc, 0) << n.err;
+  EXPECT_NE(n.out.find("-1/1000000*v_L1 + 1/1000000*v_L2 + p_L1 = 0"), std::string::npos) << n.out;
+  for (const std::string backend : {"reference", "fast"}) {
+    const nlohmann::json j = nlohmann::json::parse(run("solve " + file + " --json --backend " + backend).out);
+    EXPECT_EQ(j["dims"], nlohmann::json::array({12, 6})) << backend;  // Φ invertible: c = 1, four circuit states
+  }
+  // two couplings that share an inductor are two pairs, not a second coupling of one pair
+  const std::string shared = write_temp("dcad_k_shared.cir", tanks + "L3 b 0 1u\nK1 L1 L3 0.5\nK2 L2 L3 0.5\n");
+  const Outcome sh = run("solve " + shared + " --json");
+  ASSERT_EQ(sh.rc, 0) << sh.err;
+  EXPECT_EQ(nlohmann::json::parse(sh.out)["circuit"]["couplings"], 2);
+  // k² L1 L2 not a rational square: M is rounded (80 places) and the user is told
+  const std::string irrational = write_temp("dcad_k_irrational.cir", "title\nL1 a 0 1u\nC1 a 0 1n\nL2 b 0 2u\nC2 b 0 1n\nK1 L1 L2 0.5\n");
+  const Outcome i = run("solve " + irrational + " --json");
+  ASSERT_EQ(i.rc, 0) << i.err;
+  EXPECT_NE(i.err.find(":6: K1: M = k*sqrt(Lx*Ly) is irrational"), std::string::npos) << i.err;
+}
+
+// CEF-style check of cases/transformer-perfect-coupling.cir by hand: with k = 1 the secondary
+// constraint is the ideal transformer's 2 V_C1 = V_C2, and the motion left is one tank with
+// ω² = 1/(L1 (C1 + n² C2)) = 2e14 (n = 2).
+TEST(Cli, PerfectCouplingIsOneTank) {
+  const std::string file = (fs::path(DCAD_SOURCE_DIR) / "cases/transformer-perfect-coupling.cir").string();
+  const Outcome r = run("solve " + file + " --backend reference");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const char* line : {"-2000000000*q_C1 + 1000000000*q_C2 = 0", "v_L1 - 1/2*v_L2 = 0", "d/dt q_C1 = -v_L1", "d/dt v_L1 = 200000000000000*q_C1"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+}
+
 TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
-  const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\nC1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\n.end\n");
+  // an element after .endc is read: the script ends there
+  const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\nC1 1 0 1\n.end\n");
   const Outcome r = run("solve " + file + " --json");
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("ignored .tran"), std::string::npos) << r.err;

@@ -439,6 +439,7 @@ std::string series_rlc(const std::string& name, const std::string& sources) {
 // A PULSE is the PWL through its corners: the exact flow cuts its substeps at all four corners of every
 // period (rise start, rise end, fall start, fall end), so both decks give the same rows.  Corners off
 // the output grid; a corner left out (mutation test: the end of the fall) integrates a kink as a line.
+// "DC 0.25" before PULSE is the operating point only (as in ngspice): the transient is the PULSE.
 TEST(Forced, PulseEqualsItsPwlTwin) {
   const double td = 10.5e-6, tr = 3.3e-6, pw = 20.1e-6, tf = 7.7e-6, per = 50e-6;
   std::ostringstream pwl;
@@ -448,7 +449,7 @@ TEST(Forced, PulseEqualsItsPwlTwin) {
     pwl << " " << b << " 0 " << b + tr << " 1 " << b + tr + pw << " 1 " << b + tr + pw + tf << " 0";
   }
   pwl << ")";
-  const std::string pulse = series_rlc("dcad_pulse", "V1 mid 0 PULSE(0 1 10.5u 3.3u 7.7u 20.1u 50u)\n"),
+  const std::string pulse = series_rlc("dcad_pulse", "V1 mid 0 DC 0.25 PULSE(0 1 10.5u 3.3u 7.7u 20.1u 50u)\n"),
                     twin = series_rlc("dcad_pwl", "V1 mid 0 " + pwl.str() + "\n");
   const auto a = simulate_rows(pulse, "--tstop 200u --step 2u"), b = simulate_rows(twin, "--tstop 200u --step 2u");
   ASSERT_EQ(a.size(), 101u);
