@@ -43,6 +43,18 @@ RC_GTEST_PROP(FastVsReference, Symplectic, ()) {
   compare_subspace("V^omega", fast::form_kernel(om), ref::form_kernel(ref::restrict_form(p.w, p.v)), bound);
   const fast::NormalFormBasis nf = fast::normal_form_basis(w, v);
   DCAD_COMPARE("Lemma 3.1 s", nf.certain, static_cast<Index>(nf.s), ref::normal_form_basis(p.w, p.v).s);
+  if (nf.certain) {  // the fast basis itself is a normal form (Lemma 3.1), to rounding: X spans V^Ω and
+    // α_i(X_j) = X_iᵀ W X_j is δ_{i,j−s} (i ≤ s), −δ_{i−s,j} (s < i ≤ 2s), 0 otherwise
+    compare_subspace("Lemma 3.1 span X", fast::Subspace::span(nf.x.transpose()), ref::symplectic_complement(p.w, p.v), bound);
+    const Index r = nf.x.rows(), s = nf.s;
+    Eigen::MatrixXd want = Eigen::MatrixXd::Zero(r, r);
+    for (Index i = 0; i < s; ++i) {
+      want(i, i + s) = 1;
+      want(i + s, i) = -1;
+    }
+    const double scale = std::max(1.0, nf.x.squaredNorm()) * w.norm();
+    RC_ASSERT((nf.alpha * nf.x.transpose() - want).norm() <= bound * scale);
+  }
   const std::vector<Q> beta = integer_vector(n);
   const auto rs = ref::solve_restricted(p.w, p.v, beta);
   const auto fs = fast::solve_restricted(w, v, to_double(beta));

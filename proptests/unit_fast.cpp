@@ -1,5 +1,6 @@
 // Unit tests of the fast backend's decisions and its bad-input handling.
 #include "dcad/fast/dirac.hpp"
+#include "dcad/fast/dirac_bergmann.hpp"
 
 #include <Eigen/QR>
 #include <gtest/gtest.h>
@@ -172,4 +173,28 @@ TEST(BadInput, NanInfAndShapes) {
   g << 1, 0, 0, 1;
   EXPECT_THROW(dirac_from_basis(g), std::invalid_argument);
   EXPECT_THROW(intersection(Subspace::zero(2), Subspace::zero(3)), std::invalid_argument);
+}
+
+// Dirac–Bergmann (CEF §2.1) reports an undecided bracket matrix: on canonical R⁴ (q1, q2, p1, p2)
+// with φ1 = p2, φ2 = p1 + ε q2 the constraint rows are clearly independent, but {φ1, φ2} = ±ε, so
+// C = [{φ_i, φ_j}] has σ = ε inside the band (τ0, τ1] for ε = 1e-10: neither first nor second class
+// is decidable in double, and the result must say so.  ε = 1e-3 (clearly second class) and
+// ε = 0 (clearly first class) stay certain.
+TEST(DiracBergmann, UndecidedBracketMatrixIsUncertain) {
+  const auto run = [](double eps) {
+    dcad::fast::ConstrainedSystem s;
+    s.omega = Eigen::MatrixXd::Zero(4, 4);
+    s.omega.block(0, 2, 2, 2) = Eigen::MatrixXd::Identity(2, 2);
+    s.omega.block(2, 0, 2, 2) = -Eigen::MatrixXd::Identity(2, 2);
+    s.hessian = Eigen::MatrixXd::Identity(4, 4);
+    s.gradient = Eigen::VectorXd::Zero(4);
+    s.primary = Eigen::MatrixXd::Zero(2, 5);
+    s.primary(0, 3) = 1;    // p2
+    s.primary(1, 2) = 1;    // p1
+    s.primary(1, 1) = eps;  // + ε q2
+    return dcad::fast::dirac_bergmann(s);
+  };
+  EXPECT_FALSE(run(1e-10).certain);
+  EXPECT_TRUE(run(1e-3).certain);
+  EXPECT_TRUE(run(0).certain);
 }
