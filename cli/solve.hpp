@@ -43,7 +43,7 @@ struct SolveReport {
   bool has_adapted = false;
   std::string adapted_setting;                 ///< "N" (constrained) or "T*TQ" (pontryagin, §7)
   std::vector<std::string> adapted_variables;
-  long s_prime = 0, adapted_second = 0, secondary_first_class = 0;
+  long s_prime = 0, secondary_first_class = 0;
   std::vector<Equation> adapted_chi, abridged_terms;
   /// M_c exactly (reference only): point + span of the rows of the basis, for `dcad check`
   bool has_final = false;

@@ -90,7 +90,6 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c, c
     out.adapted_setting = generic.adapted_setting;
     out.adapted_variables = generic.adapted_variables;
     out.s_prime = generic.s_prime;
-    out.adapted_second = generic.adapted_second;
     out.secondary_first_class = generic.secondary_first_class;
     out.adapted_chi = generic.adapted_chi;
     out.abridged_terms = generic.abridged_terms;

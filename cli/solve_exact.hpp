@@ -81,7 +81,6 @@ void exact_adapted(SolveReport& out, const reference::Matrix<T>& w, const refere
   const ref::AdaptedConstraints<T>& ad = to.adapted;
   out.has_adapted = true;
   out.s_prime = static_cast<long>(ad.s_prime);
-  out.adapted_second = static_cast<long>(2 * ad.s);
   for (ref::Index i : ad.chi) out.adapted_chi.push_back(row_equation(all, i));
   for (ref::Index k : ad.abridged) out.abridged_terms.push_back(row_equation(all, k));
   const long first = static_cast<long>(all.rows() - 2 * ad.s), primary_first = static_cast<long>(ad.abridged.size());

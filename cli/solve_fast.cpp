@@ -49,7 +49,6 @@ void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::Matri
   out.certified = out.certified && ad.certain;
   out.has_adapted = true;
   out.s_prime = ad.s_prime;
-  out.adapted_second = 2 * ad.s;
   const auto row = [&](int i) {
     Equation e;
     for (Eigen::Index j = 0; j + 1 < all.cols(); ++j)

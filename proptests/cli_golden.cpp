@@ -37,6 +37,18 @@ std::string case_name(const testing::TestParamInfo<fs::path>& info) {
   return s;
 }
 
+/// The report's tower lists M_0 … M_c in order, each with the dimension `dims` gives it (two fields of
+/// one result that other tools read separately).
+void expect_tower_is_dims(const nlohmann::json& got, const std::string& label) {
+  if (!got.contains("tower")) return;
+  const nlohmann::json& t = got["tower"];
+  ASSERT_EQ(t.size(), got["dims"].size()) << label;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    EXPECT_EQ(t[k]["k"], k) << label << " tower[" << k << "]";
+    EXPECT_EQ(t[k]["dim"], got["dims"][k]) << label << " tower[" << k << "]";
+  }
+}
+
 class GoldenInspect : public testing::TestWithParam<fs::path> {};
 class GoldenSolve : public testing::TestWithParam<fs::path> {};
 class GoldenNetlist : public testing::TestWithParam<fs::path> {};
@@ -73,6 +85,7 @@ TEST_P(GoldenSolve, EveryBackend) {
   const nlohmann::json c = nlohmann::json::parse(slurp(path));
   {
     const nlohmann::json& want = c["expect"];
+    nlohmann::json adapted_variables;  // the reference's
     for (const std::string backend : {"reference", "fast", "certified"}) {
       const Outcome r = run("solve " + path.string() + " --backend " + backend + " --json");
       ASSERT_EQ(r.rc, 0) << path << " " << backend << ": " << r.err;
@@ -82,6 +95,7 @@ TEST_P(GoldenSolve, EveryBackend) {
       for (const char* key : {"dcad", "backend", "certified", "dims", "steps", "consistent", "solution_rank", "unique"})
         EXPECT_TRUE(got.contains(key)) << key;
       if (backend != "fast") EXPECT_TRUE(got["certified"].get<bool>());
+      expect_tower_is_dims(got, path.string() + " " + backend);
       if (c.contains("known_failures") && c["known_failures"].contains(backend)) {  // documented, must stay visible
         const bool differs = got["dims"] != want["dims"] || got["solution_rank"] != want["solution_rank"];
         EXPECT_TRUE(!got["certified"].get<bool>() || differs)
@@ -95,6 +109,10 @@ TEST_P(GoldenSolve, EveryBackend) {
           if (g.is_object()) g.erase("second_class_constraints");  // compared: the counts
           EXPECT_EQ(g, want[key]) << path << " " << backend << " " << key;
         }
+      }
+      if (got.contains("adapted")) {  // the coordinates the chi are written in: certain or not, the reference's
+        if (backend == "reference") adapted_variables = got["adapted"]["variables"];
+        EXPECT_EQ(got["adapted"]["variables"], adapted_variables) << path << " " << backend;
       }
       if (want.contains("adapted") && got["certified"].get<bool>()) {  // Theorem 3.28 / 7.4
         const nlohmann::json& wa = want["adapted"];
@@ -143,6 +161,7 @@ TEST_P(GoldenNetlist, EveryBackend) {
       const Outcome r = run("solve " + path.string() + " --backend " + backend + " --json");
       ASSERT_EQ(r.rc, 0) << path << " " << backend << ": " << r.err;
       const nlohmann::json got = nlohmann::json::parse(r.out);
+      expect_tower_is_dims(got, path.string() + " " + backend);
       if (!got["certified"].get<bool>()) continue;
       for (const auto& [key, value] : want.items()) {
         if (key == "circuit") {

@@ -302,6 +302,34 @@ TEST(Cli, SolveInconsistentIsAResult) {
   }
 }
 
+// Two voltage sources in parallel (YM §4): the loop V1 V2 makes V1(t) − V2(t) = 0 a source condition,
+// decided against the waveforms — fails (different amplitudes: M_2 = ∅, a result), holds (the same
+// SIN: exact cancellation), or undecided (a DC and a flat PULSE equal at every sample: holds null,
+// certified false, the evidence given — never a guess).
+TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
+  const auto verdict = [](const std::string& name, const std::string& v2) {
+    const std::string file = write_temp(name, "parallel sources\nV1 a 0 SIN(0 1 1k)\nV2 a 0 " + v2 + "\nR1 a 0 1\n.end\n");
+    const Outcome r = run("solve " + file + " --json --backend reference");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json fails = verdict("dcad_cond_fails.cir", "SIN(0 2 1k)"), holds = verdict("dcad_cond_holds.cir", "SIN(0 1 1k)");
+  ASSERT_EQ(fails["sources"]["conditions"].size(), 1u);
+  EXPECT_EQ(fails["sources"]["conditions"][0]["condition"], "V1(t) - V2(t) = 0");
+  EXPECT_EQ(fails["sources"]["conditions"][0]["holds"], false);
+  EXPECT_NE(fails["sources"]["conditions"][0]["evidence"].get<std::string>().find("fails at t = "), std::string::npos);
+  EXPECT_EQ(fails["consistent"], false);
+  EXPECT_EQ(fails["dims"], nlohmann::json::array({9, 5, -1}));
+  EXPECT_EQ(holds["sources"]["conditions"][0]["holds"], true);
+  EXPECT_EQ(holds["consistent"], true);
+  EXPECT_EQ(holds["certified"], true);
+  const std::string flat = write_temp("dcad_cond_undecided.cir", "parallel sources\nV1 a 0 DC 1\nV2 a 0 PULSE(1 1 0 1u 1u 1m 2m)\nR1 a 0 1\n.end\n");
+  const nlohmann::json undecided = nlohmann::json::parse(run("solve " + flat + " --json --backend reference").out);
+  EXPECT_TRUE(undecided["sources"]["conditions"][0]["holds"].is_null());
+  EXPECT_EQ(undecided["certified"], false);
+  EXPECT_NE(undecided["sources"]["conditions"][0]["evidence"].get<std::string>().find("cannot decide exactly"), std::string::npos);
+}
+
 TEST(Cli, MissingFile) {
   const Outcome r = run("inspect /nonexistent/case.json");
   EXPECT_EQ(r.rc, 1);
@@ -312,4 +340,16 @@ TEST(Cli, TextReportNamesTheStructure) {
   const Outcome r = run("inspect " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port-dirac.json");
   EXPECT_EQ(r.rc, 0);
   EXPECT_NE(r.out.find("dim E_D          = 10"), std::string::npos) << r.out;
+}
+
+// A solution that is not unique is printed with its multipliers (CEF (5.12): ẋ = F x + f + G λ): the
+// free loop current of cases/rc-empty-loop.cir is d/dt v_V1 = −λ1 (δv_V1 = −δv_V2).  (The fast forced
+// route reports the tower without equations: proptests/twins.txt, forced motion.)
+TEST(Cli, TextReportNamesTheMultipliers) {
+  for (const std::string backend : {"reference", "certified"}) {
+    const Outcome r = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/rc-empty-loop.cir --backend " + backend);
+    EXPECT_EQ(r.rc, 0) << r.err;
+    EXPECT_NE(r.out.find("solution rank dim(ker omega_D ∩ T M_c) = 1 (not unique)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("d/dt v_V1 = -lambda1\n"), std::string::npos) << backend << "\n" << r.out;
+  }
 }
