@@ -44,9 +44,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"pwl", "title\nV1 1 0 PWL(0 0 1 1 1 2)\nR1 1 0 1\n", "increasing PWL times"},
                     BadCase{"kmissing", "title\nL1 1 0 1\nK1 L1 L9 0.5\n", "\"l9\""},
                     BadCase{"kbig", "title\nL1 1 0 1\nL2 1 0 1\nK1 L1 L2 2\n", "|k| <= 1"},
-                    BadCase{"kself", "title\nL1 1 0 1\nK1 L1 l1 0.5\n", "two different inductors for k1, found one twice"},
-                    BadCase{"ktwice", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L2 L1 0.25\n", "one coupling per pair of inductors, found a second one (k2)"},
-                    BadCase{"ktwicesame", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L1 L2 0.25\n", "found a second one (k2)"},
+                    BadCase{"kself", "title\nL1 1 0 1\nK1 L1 l1 0.5\n", "two different inductors for K1, found one twice"},
+                    BadCase{"ktwice", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L2 L1 0.25\n", "one coupling per pair of inductors, found a second one (K2)"},
+                    BadCase{"ktwicesame", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L1 L2 0.25\n", "found a second one (K2)"},
                     BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="},
                     BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""},
                     // SPICE as ngspice reads it: what would change the circuit and is not supported is an error
