@@ -117,16 +117,30 @@ double Waveform::omega() const { return kind == Kind::sin ? 2 * kPi * d(p[2]) : 
 namespace {
 
 /// Piecewise-linear pieces (t_i, v_i) of PULSE (one period, shifted) or PWL at t: value and slope.
-void linear_at(const Waveform& w, double t, double& v, double& slope) {
+double floor_of(double x) { return std::floor(x); }
+Rational floor_of(const Rational& x) {
+  using boost::multiprecision::mpz_int;
+  const mpz_int n = boost::multiprecision::numerator(x), q = boost::multiprecision::denominator(x);
+  mpz_int f = n / q;  // truncates toward zero
+  if (f * q > n) f -= 1;
+  return Rational(f);
+}
+double as(double, const Rational& x) { return d(x); }
+Rational as(const Rational&, const Rational& x) { return x; }
+
+/// PULSE and PWL: the value and slope at t (right limit), in double or exactly (T = Rational).
+template <class T>
+void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
+  const auto p = [&](std::size_t i) { return as(t, w.p[i]); };
   slope = 0;
   if (w.kind == Waveform::Kind::pulse) {
-    const double v1 = d(w.p[0]), v2 = d(w.p[1]), td = d(w.p[2]), tr = d(w.p[3]), tf = d(w.p[4]), pw = d(w.p[5]), per = d(w.p[6]);
+    const T v1 = p(0), v2 = p(1), td = p(2), tr = p(3), tf = p(4), pw = p(5), per = p(6);
     if (t < td) {
       v = v1;
       return;
     }
-    double tau = t - td;
-    if (per > 0) tau -= per * std::floor(tau / per);
+    T tau = t - td;
+    if (per > 0) tau -= per * floor_of(T(tau / per));
     if (tau < tr) {
       slope = (v2 - v1) / tr;
       v = v1 + slope * tau;
@@ -141,20 +155,20 @@ void linear_at(const Waveform& w, double t, double& v, double& slope) {
     return;
   }
   const std::size_t n = w.p.size() / 2;
-  if (t < d(w.p[0])) {
-    v = d(w.p[1]);
+  if (t < p(0)) {
+    v = p(1);
     return;
   }
   for (std::size_t i = 0; i + 1 < n; ++i) {
-    const double t0 = d(w.p[2 * i]), t1 = d(w.p[2 * i + 2]);
+    const T t0 = p(2 * i), t1 = p(2 * i + 2);
     if (t < t1) {
-      const double v0 = d(w.p[2 * i + 1]), v1 = d(w.p[2 * i + 3]);
+      const T v0 = p(2 * i + 1), v1 = p(2 * i + 3);
       slope = (v1 - v0) / (t1 - t0);
       v = v0 + slope * (t - t0);
       return;
     }
   }
-  v = d(w.p[2 * n - 1]);
+  v = p(2 * n - 1);
 }
 
 }  // namespace
@@ -175,6 +189,27 @@ double Waveform::value(double t, int order) const {
       double v, slope;
       linear_at(*this, t, v, slope);
       return order == 0 ? v : order == 1 ? slope : 0.0;
+    }
+  }
+}
+
+std::optional<Rational> Waveform::exact_at_zero(int order) const {
+  switch (kind) {
+    case Kind::dc:
+      return order == 0 ? p[0] : Rational(0);
+    case Kind::sin: {
+      if (p[3] > 0 || p[1] == 0) return order == 0 ? p[0] : Rational(0);  // before TD, or no sine: VO
+      if (order > 0) return std::nullopt;                                  // VA (−θ + iω)^order …: ω = 2π FREQ
+      const Rational phase = p[5] - 360 * floor_of(Rational(p[5] / 360));         // VO + VA sin φ, rational at quarter turns
+      if (phase == 0 || phase == 180) return p[0];
+      if (phase == 90) return p[0] + p[1];
+      if (phase == 270) return p[0] - p[1];
+      return std::nullopt;
+    }
+    default: {
+      Rational v, slope;
+      linear_at(*this, Rational(0), v, slope);
+      return order == 0 ? v : order == 1 ? slope : Rational(0);
     }
   }
 }

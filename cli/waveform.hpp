@@ -8,6 +8,7 @@
 #include "dcad/reference/rational.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct Waveform {
   bool constant() const;
   /// σ^{(order)}(t), right limit at breakpoints (t ≥ 0).  order ≥ 2 of PULSE/PWL is 0 (away from corners).
   double value(double t, int order = 0) const;
+  /// σ^{(order)}(0) (right limit) exactly, when it is rational (DC, PULSE, PWL; SIN before its
+  /// delay, or at a quarter-turn phase for order 0); nullopt when it involves π.
+  std::optional<Rational> exact_at_zero(int order) const;
   /// The times in (0, tstop] where σ or a derivative is discontinuous (corners, SIN's TD), sorted.
   /// Throws std::invalid_argument beyond kMaxPeriods periods of a PULSE.
   std::vector<double> breakpoints(double tstop) const;

@@ -482,3 +482,31 @@ TEST(Forced, SinDelayWithinRoundingOfAnOutputTime) {
   ASSERT_EQ(a.size(), 51u);
   EXPECT_LT(relative_gap(a, b, {"v_L1", "q_C1"}), 1e-9);
 }
+
+// A capacitor across a source is on M_c(0) when charged to the source's value: q_C = C σ(0) (KVL of
+// the loop, YM §4).  At C = 1u and 1n this is q_C = 1/1000000 and 3/2000000000, which the source's
+// value taken in double (1e-6 ≠ 1/1000000) used to refuse as "off M_c(0)" — exact at realistic
+// values, where every unit-valued test passed.  DC, PWL, and SIN at a quarter-turn phase (σ(0) = VO + VA).
+TEST(Forced, CapacitorChargedToItsSourceIsOnMc) {
+  const auto deck = [](const std::string& name, const std::string& c, const std::string& v) {
+    return write_temp(name, "cap across a source\nC1 a 0 " + c + "\nV1 a 0 " + v + "\nR1 a 0 1k\n.end\n");
+  };
+  std::string err;
+  const auto dc = simulate_rows(deck("dcad_cap_dc.cir", "1u IC=1", "DC 1"), "--tstop 1m --step 0.25m", &err);
+  ASSERT_EQ(dc.size(), 5u) << err;
+  for (const auto& row : dc) {
+    EXPECT_NEAR(row.at("q_C1"), 1e-6, 1e-21);
+    EXPECT_NEAR(row.at("v_R1"), 1e-3, 1e-18);  // 1 V across 1k
+  }
+  const auto sine = simulate_rows(deck("dcad_cap_sin.cir", "1n IC=1.5", "SIN(0.5 1 1k 0 0 90)"), "--tstop 1m --step 0.25m", &err);
+  ASSERT_EQ(sine.size(), 5u) << err;
+  EXPECT_NEAR(sine[0].at("q_C1"), 1.5e-9, 1e-24);
+  EXPECT_NEAR(sine[2].at("q_C1"), 1e-9 * (0.5 + std::cos(2 * M_PI * 1e3 * 5e-4)), 1e-20);  // σ(t) = 0.5 + sin(ωt + π/2)
+  const auto ramp = simulate_rows(deck("dcad_cap_pwl.cir", "1u IC=0.1", "PWL(0 0.1 1m 2.1)"), "--tstop 1m --step 0.25m", &err);
+  ASSERT_EQ(ramp.size(), 5u) << err;
+  EXPECT_NEAR(ramp[2].at("q_C1"), 1.1e-6, 1e-20);  // σ(0.5m) = 1.1 V
+  EXPECT_NEAR(ramp[2].at("v_C1"), 2e-3, 1e-17);    // C σ' = 1u · 2000 V/s
+  const std::string off = deck("dcad_cap_off.cir", "1u IC=2", "DC 1");
+  const Outcome r = run("simulate " + off + " --tstop 1m --step 0.25m");
+  expect_input_error(r, off, "violates q_C1 - 1/1000000*V1(t) = 0 at t = 0", "a capacitor at 2 V across a 1 V source");
+}
