@@ -182,7 +182,7 @@ SimulateSummary simulate_lagrangian(const io::LagrangianCase& c, const SimulateO
   log << "simulate: " << sum.rows << " rows, " << substeps << " RK4 substeps, " << f.evaluations
       << " evaluations of the pointwise CAD; estimated error " << float_text(estimate) << " per output step (relative), largest projection onto M_c "
       << float_text(drift) << " (relative: the drift RK4 made and the projection removed); energy p·v − L varied by " << float_text(emax)
-      << " from " << float_text(e0) << (c.system.forces.empty() && !c.system.has_time ? " (conserved by the exact motion)" : "") << "\n";
+      << " from " << float_text(e0) << (conservative(c.system) ? " (conserved by the exact motion)" : "") << "\n";
   return sum;
 }
 

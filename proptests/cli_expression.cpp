@@ -177,6 +177,25 @@ TEST(Expression, SimulatePendulumStaysOnMcAndKeepsItsEnergy) {
     EXPECT_NEAR(row[3], (row[4] * row[4] + row[5] * row[5] - 9.81 * row[2]), 1e-9);  // mu = m (v² − g y) / l²
   }
   EXPECT_LT(rows.back()[1], 0.6);  // it has started to swing
+  // the log's energy E = p·v − L (YM: conserved with no forces, t-independent L and linear constraints)
+  const std::string key = "energy p·v − L varied by ";
+  const auto at = r.err.find(key);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_LT(std::stod(r.err.substr(at + key.size())), 1e-8) << r.err;
+  EXPECT_NE(r.err.find("from -7.84", at), std::string::npos) << r.err;  // E(0) = m g y(0) = 9.81 · (−0.8)
+  EXPECT_NE(r.err.find("(conserved by the exact motion)"), std::string::npos) << r.err;
+}
+
+// The claim "conserved" follows YM's conditions on the formulas, not on how the file is written: the
+// rolling disk declares a time variable and zero forces, and is conservative; Vignolo's time-dependent
+// constraint (V §3.5) is not.
+TEST(Expression, SimulateSaysWhenEnergyIsConserved) {
+  const Outcome disk = run("simulate " + case_path("rolling-disk") + " --tstop 0.5 --step 0.25");
+  ASSERT_EQ(disk.rc, 0) << disk.err;
+  EXPECT_NE(disk.err.find("(conserved by the exact motion)"), std::string::npos) << disk.err;
+  const Outcome v = run("simulate " + case_path("vignolo-3-5") + " --tstop 0.5 --step 0.25");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_EQ(v.err.find("(conserved by the exact motion)"), std::string::npos) << v.err;
 }
 
 // sympy.physics.mechanics on the 3D rolling disc (sympy issue 27631), judged by dcad check
@@ -229,4 +248,20 @@ TEST(Expression, SingularPointsAreReportedNotUsed) {
   const json got = json::parse(run("solve " + write_temp("dcad_regular_mass.json", m.dump()) + " --json").out);
   EXPECT_TRUE(got["regular"].get<bool>());
   EXPECT_EQ(got["dims"], json::parse("[3, 2]"));
+}
+
+// The motion is refused where it leaves the regular part (CONTRACT: a singular point is reported,
+// never used): L = ½|v|², constraint x v_y from x = 1 at v_x = −1 reaches x = 0 at t = 1, where the
+// constraint's velocity coefficient vanishes (Δ changes dimension).  The rows before are the free
+// motion x = 1 − t, y = 0; simulate stops there with exit 1 and the time, not a trajectory through it.
+TEST(Expression, SimulateStopsWhereDeltaChangesDimension) {
+  const std::string file = write_temp("dcad_delta_drops.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "y"],
+      "L": "1/2*v_x^2 + 1/2*v_y^2", "constraints": ["x*v_y"]}, "initial": {"x": "1", "y": "0", "v_x": "-1", "v_y": "0"}})J");
+  const Outcome r = run("simulate " + file + " --tstop 2 --step 0.25");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.err.find(file + ": simulate: expected the motion to stay on a regular M_c, found at t = 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("rank 0 < 1"), std::string::npos) << r.err;
+  const auto rows = split_lines(r.out);
+  ASSERT_EQ(rows.size(), 5u) << r.out;  // header and t = 0, 0.25, 0.5, 0.75
+  EXPECT_EQ(rows[4].substr(0, 10), "0.75,0.25,");
 }
