@@ -498,7 +498,7 @@ class Flattener {
       try {
         w = parse_waveform(spec, [&](const std::string& t) { return number(t, "a source value"); });
       } catch (const std::invalid_argument& e) {
-        fail(l, "a source: [DC] VALUE, SIN(...), PULSE(...) or PWL(...)", e.what());
+        throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
       }
       w.element = name;
       b.kind = reference::BranchKind::empty;

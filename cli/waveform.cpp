@@ -81,7 +81,8 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
       throw std::invalid_argument("expected PULSE(V1 V2 TD TR TF PW PER) with all seven values (dcad has no TSTEP/TSTOP defaults), found " +
                                   std::to_string(a.size()));
     if (a[2] < 0 || a[3] <= 0 || a[4] <= 0 || a[5] < 0 || a[6] < a[3] + a[4] + a[5])
-      throw std::invalid_argument("expected PULSE with TD >= 0, TR > 0, TF > 0, PW >= 0 and PER >= TR + PW + TF, found other values");
+      throw std::invalid_argument("expected PULSE with TD >= 0, TR > 0, TF > 0, PW >= 0 and PER >= TR + PW + TF, found TD = " + a[2].str() +
+                                  ", TR = " + a[3].str() + ", TF = " + a[4].str() + ", PW = " + a[5].str() + ", PER = " + a[6].str());
     w.kind = Waveform::Kind::pulse;
   } else if (fn == "pwl") {
     if (a.size() < 2 || a.size() % 2 != 0) throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) + " values");

@@ -224,6 +224,9 @@ TEST(Cases, FreezeListShowExport) {
   EXPECT_EQ(e.rc, 0) << e.err;
   EXPECT_TRUE(fs::exists(dir / "out/regression-oscillator.expected.json"));
   EXPECT_TRUE(fs::exists(dir / "out/result.schema.json"));
+  std::size_t exported = 0;  // the count printed is the count written
+  for (const auto& f : fs::directory_iterator(dir / "out")) exported += f.path().string().find(".expected.json") != std::string::npos;
+  EXPECT_NE(e.out.find("exported " + std::to_string(exported) + " cases"), std::string::npos) << e.out << " (" << exported << " files)";
   // the frozen case is a golden case like any other: solve reproduces its expectations
   const nlohmann::json got = nlohmann::json::parse(run("solve " + (dir / "regression-oscillator.json").string() + " --json").out);
   EXPECT_EQ(got["dims"], frozen["expect"]["dims"]);

@@ -265,3 +265,18 @@ TEST(Expression, SimulateStopsWhereDeltaChangesDimension) {
   ASSERT_EQ(rows.size(), 5u) << r.out;  // header and t = 0, 0.25, 0.5, 0.75
   EXPECT_EQ(rows[4].substr(0, 10), "0.75,0.25,");
 }
+
+// Numbers in formulas: 2.5e3, 2.5E+3, 25e2 and 250000e-2 are 2500 exactly (the velocity at x = 1 is
+// d/dt v_x = −2500, the same as with 2500 written out).
+TEST(Expression, ExponentNotationIsExact) {
+  const auto reduced = [](const std::string& k) {
+    const std::string file = write_temp("dcad_exp_" + std::to_string(std::hash<std::string>()(k)) + ".json",
+                                        R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/2*v_x^2 - 1/2*)J" + k + R"J(*x^2"}, "initial": {"x": "1", "v_x": "0"}})J");
+    const Outcome r = run("solve " + file + " --backend reference --json");
+    EXPECT_EQ(r.rc, 0) << k << ": " << r.err;
+    return json::parse(r.out)["velocity"];
+  };
+  const json want = reduced("2500");
+  EXPECT_EQ(want["v_x"], "-2500");
+  for (const char* k : {"2.5e3", "2.5E+3", "25e2", "250000e-2"}) EXPECT_EQ(reduced(k), want) << k;
+}

@@ -161,6 +161,26 @@ TEST(Cli, PerfectCouplingIsOneTank) {
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
 }
 
+// Netlist expressions: ^ takes integer exponents (exactly: {1m*2^2} is 1/250), and a fractional one is
+// refused rather than rounded.
+TEST(Cli, NetlistExpressionPowers) {
+  const std::string file = write_temp("dcad_power.cir", "title\nL1 1 0 {1m*2^2}\nC1 1 0 {(10^-3)**2}\n.end\n");
+  const Outcome r = run("solve " + file + " --backend reference");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("-1/250*v_L1 + p_L1 = 0"), std::string::npos) << r.out;
+  const std::string bad = write_temp("dcad_power_bad.cir", "title\nL1 1 0 {2^0.5}\n.end\n");
+  expect_input_error(run("solve " + bad), bad, "integer exponent of at most 64, found 1/2", "a fractional exponent");
+}
+
+// The text report names the loops it counts: the KVLPC loop C1–C3 of CEF Fig. 6.1 (C1 and C3 both
+// from node 1 to node 2: the loop runs along one and against the other) and the wire loop V1–V2.
+TEST(Cli, TextReportNamesTheLoops) {
+  const Outcome pc = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir --backend reference");
+  EXPECT_NE(pc.out.find("      KVL loop 1: +C3 -C1  (sum of ±q/C"), std::string::npos) << pc.out;
+  const Outcome empty = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-empty-loop.cir --backend reference");
+  EXPECT_NE(empty.out.find("      empty loop 1: +V2 -V1\n"), std::string::npos) << empty.out;
+}
+
 TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   // an element after .endc is read: the script ends there
   const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\nC1 1 0 1\n.end\n");
@@ -323,6 +343,11 @@ TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   EXPECT_EQ(holds["sources"]["conditions"][0]["holds"], true);
   EXPECT_EQ(holds["consistent"], true);
   EXPECT_EQ(holds["certified"], true);
+  // a difference that only shows after 5 s (PULSE TD = 5) is found: the samples reach past every
+  // waveform's features, not a fixed second
+  const std::string late = write_temp("dcad_cond_late.cir", "parallel sources\nV1 a 0 DC 0\nV2 a 0 PULSE(0 1 5 1 1 1 10)\nR1 a 0 1\n.end\n");
+  const nlohmann::json l = nlohmann::json::parse(run("solve " + late + " --json --backend reference").out);
+  EXPECT_EQ(l["sources"]["conditions"][0]["holds"], false) << l["sources"];
   const std::string flat = write_temp("dcad_cond_undecided.cir", "parallel sources\nV1 a 0 DC 1\nV2 a 0 PULSE(1 1 0 1u 1u 1m 2m)\nR1 a 0 1\n.end\n");
   const nlohmann::json undecided = nlohmann::json::parse(run("solve " + flat + " --json --backend reference").out);
   EXPECT_TRUE(undecided["sources"]["conditions"][0]["holds"].is_null());

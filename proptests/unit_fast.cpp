@@ -1,6 +1,7 @@
 // Unit tests of the fast backend's decisions and its bad-input handling.
 #include "dcad/fast/dirac.hpp"
 #include "dcad/fast/dirac_bergmann.hpp"
+#include "dcad/fast/circuit.hpp"
 
 #include <Eigen/QR>
 #include <gtest/gtest.h>
@@ -197,4 +198,26 @@ TEST(DiracBergmann, UndecidedBracketMatrixIsUncertain) {
   EXPECT_FALSE(run(1e-10).certain);
   EXPECT_TRUE(run(1e-3).certain);
   EXPECT_TRUE(run(0).certain);
+}
+
+// A graph the fast circuit route cannot read is refused naming the branch (1-based, as in a netlist's
+// order) and what was expected — a node past the last one, a capacitor of value 0.
+TEST(BadInput, CircuitGraphNamesTheBranch) {
+  dcad::fast::CircuitGraph g;
+  g.nodes = 2;
+  g.branches = {{dcad::fast::BranchKind::inductor, 0, -1, 1e-3}, {dcad::fast::BranchKind::capacitor, 0, 2, 1e-6}};
+  const auto message = [](const dcad::fast::CircuitGraph& c) {
+    try {
+      dcad::fast::circuit_tower(c);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(g), "circuit_tower: branch 2: expected nodes in [-1, 2), found 0, 2");
+  g.branches[1].to = 1;
+  g.branches[1].value = 0;
+  EXPECT_EQ(message(g), "circuit_tower: branch 2: expected a finite nonzero L or C in double, found 0.000000");
+  g.branches[1].value = 1e-6;
+  EXPECT_EQ(message(g), "no error");
 }
