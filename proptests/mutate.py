@@ -6,19 +6,29 @@
 Picks N single-token mutants at random (seeded) in the C++ sources of the given directories — an
 arithmetic, comparison or logical operator swapped (+ -, < <=, > >=, == !=, && ||), a numeric
 literal changed (0 ↔ 1, k → k + 1, sign flipped), true ↔ false — and for each one, in a git
-worktree of HEAD under build-mutate/ (your checkout is never touched): applies it, rebuilds
-incrementally, runs ctest.  A mutant is
-  killed     when a test fails (or the suite times out),
+worktree of HEAD under build-mutate/ (your checkout is never touched): applies it, rebuilds and
+runs the tests (ctest's own test list, every test but the `install` label).  A mutant is
+  killed     when a test fails (or times out),
   survived   when every test passes — a test is missing or the change is equivalent,
   stillborn  when it does not compile (not counted in the score).
-Prints one line per mutant and the score killed / (killed + survived); writes every line to
-build-mutate/mutants.txt.  A reference/ header rebuilds most of the tree (minutes per mutant); fast/
-and cli/ sources rebuild one file and relink.  Standard library only.
+Prints one line per mutant (with the test executable that killed it) and the score
+killed / (killed + survived); writes every line to build-mutate/mutants.txt.
+
+The verdict is that of a full rebuild and a full ctest run, reached sooner:
+  * test executables are built and run one at a time, the one that killed most mutants of the same
+    file (then directory) so far first, and the first failure ends the mutant (killed);
+  * an executable the rebuild did not relink (and, for the CLI tests, whose `dcad` binary did not
+    change either) cannot see the mutant: its tests are the unmutated run's, which passed;
+  * ccache (`bash .ci/setup --mutate` installs it) turns the rebuild after each revert into cache hits.
+A survivor therefore cost a full rebuild and every test; a killed mutant usually one executable.
+Standard library only.
 """
 import argparse
+import json
 import os
 import random
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -67,11 +77,31 @@ def candidates(root, dirs):
     return out
 
 
-def run(cmd, cwd, timeout):
+def run(cmd, cwd, timeout, env=None):
     try:
-        return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout).returncode
+        return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env).returncode
     except subprocess.TimeoutExpired:
         return "timeout"
+
+
+def test_executables(build, tree):
+    """{executable path: [ctest test numbers]} from ctest's own list (every test but label `install`)."""
+    out = subprocess.run(["ctest", "--test-dir", build, "--show-only=json-v1"], cwd=tree, capture_output=True,
+                         text=True, check=True).stdout
+    groups = {}
+    for number, t in enumerate(json.loads(out)["tests"], 1):
+        labels = [p["value"] for p in t.get("properties", []) if p["name"] == "LABELS"]
+        if any("install" in (l if isinstance(l, list) else [l]) for l in labels):
+            continue
+        groups.setdefault(t["command"][0], []).append(number)
+    return groups
+
+
+def mtime(path):
+    try:
+        return os.stat(path).st_mtime_ns
+    except FileNotFoundError:
+        return None
 
 
 def main():
@@ -90,12 +120,21 @@ def main():
     else:
         subprocess.run(["git", "checkout", "--detach", "--force", subprocess.run(["git", "rev-parse", "HEAD"], cwd=root,
                         capture_output=True, text=True).stdout.strip()], cwd=tree, check=True, capture_output=True)
+    env = dict(os.environ, CCACHE_DIR=os.path.join(work, "ccache"))
+    launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"] if shutil.which("ccache") else []
+    if not launcher:
+        print("[mutate] no ccache (bash .ci/setup --mutate): every revert rebuilds for real", flush=True)
     print(f"[mutate] building the unmutated tree in {build} (once)", flush=True)
-    if run(["cmake", "-S", tree, "-B", build, "-DCMAKE_BUILD_TYPE=Release"], tree, 600) != 0 or \
-            run(["cmake", "--build", build, "-j2"], tree, 7200) != 0:
+    if run(["cmake", "-S", tree, "-B", build, "-DCMAKE_BUILD_TYPE=Release"] + launcher, tree, 600, env) != 0 or \
+            run(["cmake", "--build", build, "-j2"], tree, 7200, env) != 0:
         sys.exit("mutate: the unmutated tree does not build")
-    if run(["ctest", "--test-dir", build, "-j2", "-LE", "install"], tree, 1800) != 0:
+    if run(["ctest", "--test-dir", build, "-j2", "-LE", "install"], tree, 1800, env) != 0:
         sys.exit("mutate: the unmutated tree fails its tests: fix that first")
+    groups = test_executables(build, tree)
+    binary = os.path.join(build, "dcad")
+    # the CLI tests run the dcad binary (its path is compiled into them): they see a mutant through it too
+    uses_binary = {exe for exe in groups if binary.encode() in open(exe, "rb").read()}
+    kills = {}  # (scope, executable) -> mutants it killed, scope = file or directory
     pool = candidates(tree, args.dirs.split(","))
     rng = random.Random(args.seed)
     picks = rng.sample(pool, min(args.count, len(pool)))
@@ -110,20 +149,36 @@ def main():
         with open(full, "w", encoding="utf-8") as fh:
             fh.write("\n".join(lines))
         t0 = time.time()
-        built = run(["cmake", "--build", build, "-j2"], tree, 3600)
-        if built != 0:
-            verdict = "stillborn"
-        else:
-            tested = run(["ctest", "--test-dir", build, "-j2", "-LE", "install", "--timeout", "300", "--stop-on-failure"], tree, 3600)
-            verdict = "survived" if tested == 0 else "killed"
+        scopes = (path, os.path.dirname(path))
+        order = sorted(groups, key=lambda e: (-kills.get((scopes[0], e), 0), -kills.get((scopes[1], e), 0), e))
+        verdict, killer = "survived", ""
+        binary_before = mtime(binary)
+        for exe in order:
+            before = mtime(exe)
+            target = os.path.basename(exe)
+            if run(["cmake", "--build", build, "-j2", "--target", target], tree, 3600, env) != 0:
+                verdict, killer = "stillborn", target
+                break
+            if mtime(exe) == before and not (exe in uses_binary and mtime(binary) != binary_before):
+                continue  # not relinked: it runs the unmutated code, whose tests passed
+            numbers = ",".join(str(t) for t in groups[exe])
+            tested = run(["ctest", "--test-dir", build, "-j2", "--timeout", "300", "-I", f"0,0,0,{numbers}"], tree, 3600, env)
+            if tested != 0:
+                verdict, killer = "killed", target
+                for s in scopes:
+                    kills[(s, exe)] = kills.get((s, exe), 0) + 1
+                break
+        if verdict == "survived" and run(["cmake", "--build", build, "-j2"], tree, 3600, env) != 0:
+            verdict = "stillborn"  # a target that no test uses does not compile
         with open(full, "w", encoding="utf-8") as fh:
             fh.write(original)
         tally[verdict] += 1
-        line = f"{verdict.upper():9} {path}:{i + 1}: '{a.strip()}' -> '{b.strip()}'   ({time.time() - t0:.0f} s)   {lines[i].strip()[:100]}"
+        by = f" by {killer}" if verdict == "killed" else ""
+        line = f"{verdict.upper():9} {path}:{i + 1}: '{a.strip()}' -> '{b.strip()}'{by}   ({time.time() - t0:.0f} s)   {lines[i].strip()[:100]}"
         print(f"[{n}/{len(picks)}] {line}", flush=True)
         log.write(line + "\n")
         log.flush()
-    run(["cmake", "--build", build, "-j2"], tree, 7200)  # back to the unmutated build
+    run(["cmake", "--build", build, "-j2"], tree, 7200, env)  # back to the unmutated build
     scored = tally["killed"] + tally["survived"]
     summary = (f"mutation score {tally['killed']}/{scored} = {100.0 * tally['killed'] / max(scored, 1):.0f} % "
                f"({tally['stillborn']} stillborn; seed {args.seed}; {len(pool)} candidate mutants in {args.dirs})")
