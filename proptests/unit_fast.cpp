@@ -108,6 +108,44 @@ TEST(RankRevealing, RangeCorangeAndMinimumNormSolutions) {
   }
 }
 
+// solve_range: A X = Y for Y ∈ im A, on both routes (the QR route's basic solution, the SVD's minimum
+// norm one).  Killed by: Qᵀ not applied (Q Y instead), R₁₁ solved as lower triangular, the
+// permutation left out.
+TEST(RankRevealing, SolveRangeSolvesOnTheRange) {
+  std::srand(8);
+  const MatrixXd a = with_singular_values(70, 60, VectorXd::LinSpaced(40, 2.0, 1.0));
+  const MatrixXd y = a * MatrixXd::Random(60, 4);
+  for (int from : {0, 1 << 30}) {
+    Options opt;
+    opt.qr_from = from;
+    const RankRevealing f(a, -1, opt);
+    ASSERT_EQ(f.rank(), 40);
+    EXPECT_LE((a * f.solve_range(y) - y).norm(), 1e-11 * y.norm()) << "qr_from " << from;
+  }
+}
+
+// A matrix of rounding residue (‖A‖_F ≤ τ0) is rank 0 without a factorization, certain, and its
+// corange is everything; just above τ0 the factorization decides.  Killed by: comparing σ₁'s bound
+// with τ1 instead of τ0 (a 1e-10 matrix is then called zero).
+TEST(DecideRank, ResidueIsRankZeroByItsNorm) {
+  std::srand(9);
+  const MatrixXd noise = 1e-16 * MatrixXd::Random(100, 60);
+  const RankRevealing f(noise, 1.0, Options{});
+  EXPECT_TRUE(f.decision().by_norm);
+  EXPECT_EQ(f.rank(), 0);
+  EXPECT_TRUE(f.decision().certain);
+  EXPECT_EQ(f.corange().cols(), 100);
+  EXPECT_LE((f.corange() - MatrixXd::Identity(100, 100)).norm(), 0.0);
+  EXPECT_NE(f.decision().describe().find("Frobenius"), std::string::npos);
+  const RankDecision small = decide_rank(1e-10 * MatrixXd::Random(100, 60), 1.0);
+  EXPECT_FALSE(small.by_norm);
+  EXPECT_EQ(small.rank, 60);
+  EXPECT_FALSE(small.certain);  // 1e-10 is inside the band (τ0, τ1]
+  Options inexact;
+  inexact.input_exact = false;  // a deficiency from inexact input is never certain, by norm or not
+  EXPECT_FALSE(RankRevealing(noise, 1.0, inexact).decision().certain);
+}
+
 TEST(DecideRank, InexactInputNeverCertifiesADeficiency) {
   MatrixXd a(2, 2);
   a << 1, 1, 1, 1;
@@ -133,6 +171,36 @@ TEST(DecideRank, GradedRegression) {
   EXPECT_TRUE(opt.input_well_scaled);
   const RankDecision d = decide_rank(w, -1, opt);
   EXPECT_TRUE(d.rank == 4 || !d.certain) << d.describe();
+}
+
+// Regression (shrunk counterexample of EveryBackendFast.CertainAnswersAreThePlantedOnes, the perturbed
+// family of families.hpp at k = 40): ω = J_2 ⊕ 2^-40 e_4∧e_5 moved by a shear, entries 1 + 2^-40 and
+// the like — none small, so the old assess_input called it well scaled, and ω's singular value 2^-40
+// (below τ0) was decided "rank 4, certain".  Digits spanning 2^40 make every deficiency uncertain.
+TEST(DecideRank, EntriesWhoseDigitsSpanMoreThanTauOne) {
+  MatrixXd w = MatrixXd::Zero(6, 6);
+  w(0, 2) = w(1, 3) = 1;
+  w(4, 5) = std::ldexp(1.0, -40);
+  w -= MatrixXd(w.transpose());
+  MatrixXd shear = MatrixXd::Identity(6, 6);
+  shear(3, 4) = shear(0, 4) = shear(2, 5) = shear(3, 5) = 1;  // the only entries ≠ 0, ±1 are ±(1 + 2^-40)
+  const MatrixXd moved = shear.transpose() * w * shear;
+  EXPECT_EQ(moved(4, 5), 1 + std::ldexp(1.0, -40));
+  EXPECT_EQ((moved.array().abs() < 0.5 && moved.array() != 0).count(), 0);  // nothing small on its own
+  Options opt;
+  assess_input(moved, opt);
+  EXPECT_FALSE(opt.input_well_scaled);
+  const RankDecision d = decide_rank(moved, -1, opt);
+  EXPECT_TRUE(d.rank == 6 || !d.certain) << d.describe();
+  Options plain;  // the same form without the 2^-40: well scaled, and rank 4 is certain
+  MatrixXd w4 = MatrixXd::Zero(6, 6);
+  w4(0, 2) = w4(1, 3) = 1;
+  w4 -= MatrixXd(w4.transpose());
+  assess_input(shear.transpose() * w4 * shear, plain);
+  EXPECT_TRUE(plain.input_well_scaled);
+  const RankDecision d4 = decide_rank(shear.transpose() * w4 * shear, -1, plain);
+  EXPECT_EQ(d4.rank, 4);
+  EXPECT_TRUE(d4.certain) << d4.describe();
 }
 
 TEST(DecideRank, Empty) {

@@ -85,6 +85,70 @@ AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b) {
   return m;
 }
 
+namespace {
+
+/// D in the coordinates of its distribution E = E_D (CEF §4, Prop. 4.3): an orthonormal basis Q_E of
+/// E (n×e) and the matrix of ω_D in it, Ω_ij = ω_D(q_i, q_j) = α_i(q_j) for (q_i, α_i) ∈ D — the α_i
+/// differ by elements of E° between solutions, which vanish on E.  For a D built as the graph of ω,
+/// E = R^n and Ω = ω with nothing to decide.
+struct Frame {
+  bool whole = false;  ///< E = R^n and Q_E = I
+  MatrixXd qe;
+  MatrixXd omega;
+  double scale = 1;  ///< of Ω's entries, as dirac_form's: ‖α‖ for unit q
+  /// Coordinates in E of the columns of x (n×m), and back.
+  MatrixXd to_e(const MatrixXd& x) const { return whole ? x : MatrixXd(qe.transpose() * x); }
+  MatrixXd from_e(const MatrixXd& y) const { return whole ? y : MatrixXd(qe * y); }
+};
+
+Frame frame_of(const DiracStructure& d, const Options& opt, CadResult& out) {
+  Frame f;
+  out.certain = out.certain && d.d.certain();
+  if (d.graph_of.size()) {
+    f.whole = true;
+    f.omega = d.graph_of;
+    f.scale = std::max(1.0, norm2(d.graph_of));
+    return f;
+  }
+  const RankRevealing fv(d.v_part(), 1.0, opt);  // E_D = im V, as dirac_distribution decides it
+  record(out, fv.decision());
+  f.qe = fv.range();
+  const MatrixXd alphas = d.alpha_part() * fv.solve_range(f.qe);  // V c_i = q_i, α_i = A c_i
+  const MatrixXd g = alphas.transpose() * f.qe;
+  f.omega = (g - g.transpose()) / 2;  // skew up to rounding; keep it exactly skew
+  f.scale = std::max(1.0, norm2(alphas));
+  return f;
+}
+
+/// W_k^D in E's coordinates, from its definition (CEF §4, (5.5)–(5.6)): with R_k = Q_Eᵀ A_kᵀ (the
+/// equations' rows seen on E), W_k = T M_k ∩ E_D = ker R_kᵀ, and for W ⊆ E_D, D^♭(W) = ω_D^♭(W) + E_D°,
+/// so W_k^D = {s ∈ E : ω_D(w, s) = 0 ∀ w ∈ W_k} = ker(W_kᵀ Ω).  Both from orthonormal bases, decided on
+/// the data's scale (1 for R, Ω's for Ω W).  Also dim(ker ω_D ∩ T M_k) = dim ker(Ω W_k) = dim W_k −
+/// rank(Ω W_k) (Thm 5.4(b)), from the same decision.
+struct DOrthogonal {
+  MatrixXd basis;  ///< W_k^D, orthonormal columns in E's coordinates
+  int kernel_dim = 0;  ///< dim(ker ω_D ∩ W_k)
+};
+
+DOrthogonal d_orthogonal(const Frame& f, const MatrixXd& a, const Options& opt, CadResult& out) {
+  const Eigen::Index e = f.omega.rows();
+  MatrixXd w;  // W_k, orthonormal columns in E's coordinates
+  if (a.rows() == 0) {
+    w = MatrixXd::Identity(e, e);
+  } else if (f.whole) {
+    w = orthogonal_complement(a.transpose());  // the rows are orthonormal: nothing to decide
+  } else {
+    const RankRevealing fr(f.to_e(a.transpose()), 1.0, opt);  // a row may vanish on E
+    record(out, fr.decision());
+    w = fr.corange();
+  }
+  const RankRevealing fo(a.rows() == 0 ? f.omega : MatrixXd(f.omega * w), f.scale, opt);  // ker (Ω W)ᵀ = ker Wᵀ Ω
+  record(out, fo.decision());
+  return {fo.corange(), static_cast<int>(w.cols()) - fo.rank()};
+}
+
+}  // namespace
+
 CadResult constraint_tower(const LinearSystem& s, const Options& opt, const MatrixXd& initial) {
   const int n = s.d.n;
   require_finite(s.hessian, "constraint_tower");
@@ -94,64 +158,66 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt, const Matr
                                 " Hessian and a gradient of length " + std::to_string(n) + ", found other sizes");
   if (s.hessian != s.hessian.transpose())
     throw std::invalid_argument("constraint_tower: expected a symmetric Hessian, found an asymmetric one");
-  CadResult out;
-  const Subspace e = dirac_distribution(s.d, opt);
-  out.certain = e.certain() && s.d.d.certain();
-  const double hscale = std::max(norm2(s.hessian), s.gradient.norm());
-  MatrixXd a(0, n);  // orthonormal rows
-  VectorXd b(0);
-  CadStep step;
-  step.m.empty = false;
-  step.m.point = VectorXd::Zero(n);
-  step.m.direction = Subspace::whole(n);
-  step.equations = MatrixXd(0, n + 1);
   if (initial.rows() && initial.cols() != n + 1)
     throw std::invalid_argument("constraint_tower: expected initial equations [a | b] of width " + std::to_string(n + 1) +
                                 ", found width " + std::to_string(initial.cols()));
-  bool first = initial.rows() > 0;  // the initial equations go through the same reduction as step 0
-  for (;;) {
-    if (!first) {
-      step.w = intersection(step.m.direction, e, opt);
-      record(out, step.w.evidence());
-      out.tower.push_back(step);
-    }
-    MatrixXd ca;
-    VectorXd cb;
-    if (first) {
-      ca = initial.leftCols(n);
-      cb = initial.col(n);
-    } else {  // candidates c x = β with c = uᵀ H, β = −uᵀ g
-      const Subspace u = dirac_orthogonal(s.d, step.w, opt);
-      out.certain = out.certain && u.certain();
-      ca = u.basis().transpose() * s.hessian;
-      cb = -(u.basis().transpose() * s.gradient);
-    }
-    const double cscale = first ? std::max(norm2(ca), 1e-300) : hscale;
-    const double xscale = first ? cb.norm() : hscale * (1 + step.m.point.norm()) + s.gradient.norm();
+  CadResult out;
+  const Frame frame = frame_of(s.d, opt, out);
+  const double hscale = std::max(norm2(s.hessian), s.gradient.norm());
+  MatrixXd a(0, n);  // orthonormal rows
+  VectorXd b(0);
+  const auto push_empty = [&] {
+    CadStep empty;
+    empty.m.empty = true;
+    empty.equations = MatrixXd(0, n + 1);
+    out.tower.push_back(empty);
+    out.consistent = false;
+  };
+  // absorbs candidate equations ca x = cb; returns the new rows' count (−1: inconsistent)
+  const auto absorb = [&](const MatrixXd& ca, const VectorXd& cb, double cscale, double xscale) {
     const Eigen::Index before = a.rows();
     const int added = absorb_equations(a, b, ca, cb, cscale, xscale, opt, out.decisions, out.certain);
-    if (added < 0) {  // M_{k+1} = ∅
-      CadStep empty;
-      empty.m.empty = true;
-      empty.equations = MatrixXd(0, n + 1);
-      out.tower.push_back(empty);
-      out.consistent = false;
+    if (added > 0) {
+      CadStep step;
+      step.m = affine_from_orthonormal(a, b);
+      step.equations.resize(added, n + 1);
+      step.equations << a.bottomRows(a.rows() - before), b.tail(b.size() - before);
+      out.tower.push_back(step);
+    }
+    return added;
+  };
+  // M_0: R^n, or {initial} (Gotay–Nester), whose rows go through the same reduction as the steps
+  if (initial.rows()) {
+    if (absorb(initial.leftCols(n), initial.col(n), std::max(norm2(initial.leftCols(n)), 1e-300), initial.col(n).norm()) < 0) {
+      push_empty();
+      out.steps = 0;
+      return out;
+    }
+  }
+  if (out.tower.empty()) {  // no initial equations, or each was 0 = 0
+    CadStep whole;
+    whole.m = affine_from_orthonormal(a, b);
+    whole.equations = MatrixXd(0, n + 1);
+    out.tower.push_back(whole);
+  }
+  // M_{k+1} = {x ∈ M_k : ⟨H x + g, u⟩ = 0, u ∈ W_k^D} until no equation is new
+  for (;;) {
+    const DOrthogonal wd = d_orthogonal(frame, a, opt, out);
+    const MatrixXd u = frame.from_e(wd.basis);  // orthonormal
+    const MatrixXd ca = u.transpose() * s.hessian;
+    const VectorXd cb = -(u.transpose() * s.gradient);
+    const double xscale = hscale * (1 + out.tower.back().m.point.norm()) + s.gradient.norm();
+    const int added = u.cols() ? absorb(ca, cb, hscale, xscale) : 0;
+    if (added < 0) {
+      push_empty();
       break;
     }
-    if (added == 0 && !first) break;  // M_{k+1} = M_k
-    step = CadStep();
-    step.m = affine_from_orthonormal(a, b);
-    step.equations.resize(added, n + 1);
-    step.equations << a.bottomRows(a.rows() - before), b.tail(b.size() - before);
-    first = false;
+    if (added == 0) {  // M_{k+1} = M_k = M_c
+      out.solution_rank = wd.kernel_dim;
+      break;
+    }
   }
   out.steps = static_cast<int>(out.tower.size()) - 1;
-  if (out.consistent) {
-    const Subspace k = intersection(form_kernel(dirac_form(s.d, opt), opt), out.final_step().m.direction, opt);
-    record(out, k.evidence());
-    out.certain = out.certain && k.certain();
-    out.solution_rank = k.dim();
-  }
   return out;
 }
 

@@ -49,7 +49,7 @@ DiracStructure dirac_from_presymplectic(const MatrixXd& w) {
   const int n = static_cast<int>(w.rows());
   MatrixXd cols(2 * n, n);  // columns (e_i, Wᵀ e_i)
   cols << MatrixXd::Identity(n, n), w.transpose();
-  return {n, orthonormalize(cols)};
+  return {n, orthonormalize(cols), w};
 }
 
 DiracStructure dirac_from_distribution(const Subspace& e, const MatrixXd& w) {

@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -187,11 +188,32 @@ RankDecision decide_rank(const MatrixXd& a, const VectorXd& s, double scale, con
 
 RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt) {
   const Eigen::Index m = a.rows(), p = std::min(m, a.cols());
+  if (p > opt.qr_from && scale >= 0) {  // σ₁ ≤ ‖A‖_F ≤ τ0: rank 0 with nothing to factor
+    const double frobenius = a.norm(), tau0 = zero_threshold(static_cast<int>(m), static_cast<int>(a.cols()), scale, opt);
+    if (frobenius <= tau0) {
+      d_.rows = static_cast<int>(m);
+      d_.cols = static_cast<int>(a.cols());
+      d_.scale = scale;
+      d_.zero_threshold = tau0;
+      d_.nonzero_threshold = std::max(opt.nonzero_factor * scale, tau0);
+      d_.by_qr = d_.by_norm = true;  // Q = I: no reflectors
+      d_.largest = d_.dropped_upper = frobenius;
+      d_.kept_lower = d_.gap = std::numeric_limits<double>::infinity();
+      d_.certain = opt.input_exact && opt.input_well_scaled;
+      m_ = m;
+      n_ = a.cols();
+      qr_ = MatrixXd::Zero(m, a.cols());
+      tau_ = VectorXd(0);
+      p_.setIdentity(a.cols());
+      return;
+    }
+  }
   if (p > opt.qr_from) {
     Eigen::ColPivHouseholderQR<MatrixXd> qr(a);
     if (decide_by_qr(qr, a, scale, opt, d_)) {
       if (d_.rank < p && d_.certain && d_.rank > 0 && !survives_equilibration(a, d_, opt)) d_.certain = false;
       m_ = m;
+      n_ = a.cols();
       qr_ = qr.matrixQR();
       tau_ = qr.hCoeffs();
       p_ = qr.colsPermutation();
@@ -201,6 +223,7 @@ RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt
   const Svd s = full_svd(a);
   d_ = decide_rank(a, s.sigma, scale, opt);
   m_ = m;
+  n_ = a.cols();
   u_ = s.u;
   v_ = s.v.leftCols(d_.rank);
   sigma_ = s.sigma.head(d_.rank);
@@ -230,6 +253,19 @@ MatrixXd RankRevealing::min_norm_transposed(const MatrixXd& b) const {
   }
   // Aᵀ = V Σ Uᵀ:  X = U_r Σ_r⁻¹ V_rᵀ B
   return u_.leftCols(r) * (sigma_.cwiseInverse().asDiagonal() * (v_.transpose() * b));
+}
+
+MatrixXd RankRevealing::solve_range(const MatrixXd& y) const {
+  const int r = d_.rank;
+  if (d_.by_qr) {  // A P = Q R:  R₁₁ (Pᵀ X)_top = (Qᵀ Y)_top, (Pᵀ X)_rest = 0
+    MatrixXd qty = y;
+    qty.applyOnTheLeft(Eigen::householderSequence(qr_.leftCols(tau_.size()), tau_).transpose());
+    MatrixXd px = MatrixXd::Zero(n_, y.cols());
+    px.topRows(r) = qr_.topLeftCorner(r, r).triangularView<Eigen::Upper>().solve(qty.topRows(r));
+    return p_ * px;
+  }
+  // A = U Σ Vᵀ:  X = V_r Σ_r⁻¹ U_rᵀ Y
+  return v_ * (sigma_.cwiseInverse().asDiagonal() * (u_.leftCols(r).transpose() * y));
 }
 
 namespace {
@@ -263,6 +299,11 @@ RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double sca
 std::string RankDecision::describe() const {
   std::ostringstream o;
   o.precision(3);
+  if (by_norm) {
+    o << "rank 0 of " << rows << "x" << cols << (certain ? " (certain)" : " (UNCERTAIN)") << ": Frobenius norm "
+      << dropped_upper << " <= zero threshold " << zero_threshold;
+    return o.str();
+  }
   o << "rank " << rank << " of " << rows << "x" << cols << (certain ? " (certain)" : " (UNCERTAIN)")
     << (by_qr ? ": pivoted QR, |r_ii| around the cut [" : ": sigma around the cut [");
   const int lo = std::max(0, rank - 2), hi = std::min<int>(singular_values.size(), rank + 2);
@@ -273,12 +314,24 @@ std::string RankDecision::describe() const {
   return o.str();
 }
 
+namespace {
+/// The value of x's lowest nonzero binary digit (x ≠ 0, finite): 1 + 2^-40 → 2^-40.
+double lowest_digit(double x) {
+  int e = 0;
+  const double m = std::frexp(std::abs(x), &e);  // x = m · 2^e, m ∈ [1/2, 1)
+  const auto mantissa = static_cast<std::uint64_t>(std::ldexp(m, 53));  // exact: 53 bits
+  return std::ldexp(1.0, e - 53 + __builtin_ctzll(mantissa));
+}
+}  // namespace
+
 void assess_input(const MatrixXd& a, Options& opt) {
+  // the magnitudes present in the data: each entry's largest and smallest binary digit (an entry
+  // 1 + 2^-40 carries 2^-40 as much as an entry 2^-40 does, and can cancel down to it)
   double lo = 1, hi = 1;  // 1 is in the range: D pairs vectors (unit 1 in its basis) with covectors
   for (Eigen::Index i = 0; i < a.size(); ++i) {
     const double x = std::abs(a.data()[i]);
-    if (x == 0) continue;
-    lo = std::min(lo, x);
+    if (x == 0 || !std::isfinite(x)) continue;
+    lo = std::min(lo, lowest_digit(x));
     hi = std::max(hi, x);
   }
   if (hi > 0 && lo < hi * opt.nonzero_factor) opt.input_well_scaled = false;

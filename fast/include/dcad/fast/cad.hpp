@@ -2,6 +2,10 @@
 // orthonormal rows A (with right-hand sides b), so M_k = {x : A x = b} = Aᵀ b + (row A)^⊥ needs no
 // further decision; each step projects the candidate equations ⟨H x + g, u⟩ = 0, u ∈ W_k^D, off the
 // old rows and decides (a) how many are new and (b) whether the rest is consistent.
+// Cost (issue 14): E_D and ω_D are decided once (not at all for the graph of a presymplectic form),
+// and each step works in E_D's coordinates: W_k = T M_k ∩ E_D is the complement of the equations'
+// rows and W_k^D = ker(W_kᵀ Ω) one decision — no intersections of annihilators in R^{2n} (cad.cpp,
+// d_orthogonal).
 #pragma once
 
 #include "dcad/fast/dirac.hpp"
@@ -24,10 +28,11 @@ using PontryaginInput = PontryaginData<MatrixXd, VectorXd>;
 /// Same formulas as dcad::reference::pontryagin_system (CEF §6), Δ = ker K decided here.
 LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt = {});
 
+/// One level of the tower.  Unlike the reference's, it does not hold W_k = T M_k ∩ E_D: the fast CAD
+/// never forms it (intersection(m.direction, dirac_distribution(d)) does, at the cost of a decision).
 struct CadStep {
   AffineSubspace m;
   MatrixXd equations;  ///< new equations [a | b] (orthonormal a, orthogonal to earlier ones)
-  Subspace w = Subspace::zero(0);
   long dim() const { return m.empty ? -1 : m.direction.dim(); }
 };
 

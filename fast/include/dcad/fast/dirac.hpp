@@ -9,6 +9,9 @@ namespace dcad::fast {
 struct DiracStructure {
   int n = 0;
   Subspace d = Subspace::zero(0);
+  /// The presymplectic form ω when D was built as its graph (dirac_from_presymplectic), else empty:
+  /// then E_D = R^n and ω_D = ω (CEF §4), which the CAD uses instead of deciding them again.
+  MatrixXd graph_of;
   MatrixXd v_part() const { return d.basis().topRows(n); }
   MatrixXd alpha_part() const { return d.basis().bottomRows(n); }
 };

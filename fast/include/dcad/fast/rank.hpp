@@ -34,8 +34,9 @@ using Eigen::VectorXd;
 /// Two properties of the *input* void that hypothesis, and then no rank deficiency is ever certain:
 ///  * `input_exact` false — some input value was not representable in double, so rounding the
 ///    input may have destroyed the very degeneracy being decided (1 + 2^-60 reads as 1);
-///  * `input_well_scaled` false — the nonzero input entries span more than 1/τ1 in magnitude
-///    (graded data), so a singular value below τ0 may be a true one, not rounding.
+///  * `input_well_scaled` false — the binary digits of the nonzero input entries span more than 1/τ1
+///    in magnitude: graded data (entries 1 and 2^-30), or an entry 1 + 2^-40, which carries 2^-40 as
+///    much as an entry 2^-40 does; so a singular value below τ0 may be a true one, not rounding.
 /// `assess_input` sets the second from each input matrix.  The scale passed to a decision must be
 /// that of the *data* (never the norm of a computed matrix that is zero in exact arithmetic).
 struct Options {
@@ -48,11 +49,13 @@ struct Options {
   int qr_from = 48;
 };
 
-/// Clears opt.input_well_scaled if the nonzero entries of `a`, together with 1, span more than
-/// 1/nonzero_factor in magnitude.
+/// Clears opt.input_well_scaled if the binary digits of the nonzero entries of `a` (each entry's
+/// largest and its lowest nonzero digit), together with 1, span more than 1/nonzero_factor in magnitude.
 void assess_input(const MatrixXd& a, Options& opt);
 
-/// A decision is made in one of two ways (the evidence says which):
+/// A decision is made in one of three ways (the evidence says which):
+///  * by the norm alone: ‖A‖_F ≤ τ0 bounds every singular value, so rank 0 without a factorization
+///    (the last step of every CAD, whose candidates all project to rounding residue);
 ///  * by an SVD: `singular_values` are all of them, descending;
 ///  * by a column-pivoted QR, A P = Q R (large matrices, issue 14): `singular_values` are |r_ii|
 ///    (descending, a rank-revealing estimate, not singular values), and the verdict rests on two
@@ -77,6 +80,7 @@ struct RankDecision {
   double kept_lower = 0;                ///< σ_rank (QR: a lower bound of it); ∞ if rank = 0
   double dropped_upper = 0;             ///< σ_{rank+1} (QR: an upper bound of it); 0 if none
   bool by_qr = false;
+  bool by_norm = false;                 ///< rank 0 because ‖A‖_F ≤ τ0 (then σ₁ ≤ ‖A‖_F): no factorization
   bool certain = true;
   std::string describe() const;  ///< evidence in one line
 };
@@ -111,6 +115,10 @@ class RankRevealing {
   /// X = Q_r Y with (Aᵀ restricted to the decided rank) X = B: the minimum-norm solution when
   /// Aᵀ X = B is consistent; the caller checks consistency (the residual B − Aᵀ X).
   MatrixXd min_norm_transposed(const MatrixXd& b) const;
+  /// X with A X = Y for Y in im A (on the decided rank): the basic solution P [R₁₁⁻¹ (QᵀY)_top; 0]
+  /// on the QR route, V_r Σ_r⁻¹ U_rᵀ Y on the SVD route.  For Y off im A it solves for Y's part in
+  /// the decided range.
+  MatrixXd solve_range(const MatrixXd& y) const;
 
  private:
   /// Q · [0; I; 0] with the identity in rows [from, from + count): Q's columns, formed only when asked.
@@ -122,6 +130,7 @@ class RankRevealing {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic> p_;   // QR: A P = Q R
   MatrixXd u_;                                                    // SVD: U (m×m)
   MatrixXd v_;                                                    // SVD: V[:, 0:r]
+  Eigen::Index n_ = 0;                                            // columns of A
   VectorXd sigma_;                                                // SVD: σ_1..σ_r
 };
 
