@@ -8,10 +8,9 @@ namespace dcad::bench {
 /// or on Overflow the reference in ball arithmetic, exactly recomputed (mpq) on an uncertain test.
 Outcome run_certified(const families::Instance& in) {
   using certified::Ball;
-  using S = reference::SmallRational;
   if (in.n() <= reference::kSmallFirstUpTo) {
     try {
-      Outcome o = run_generic<S>(in, [](const families::Q& q) { return S::from(q); }, [](const S& s) { return s.value().convert_to<double>(); });
+      Outcome o = run_small(in);  // the reference's own first tier
       o.machine_words = true;
       return o;
     } catch (const reference::Overflow&) {

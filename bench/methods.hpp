@@ -1,9 +1,9 @@
 // The methods compared by the sweep (issue 6), one translation unit each (heavy templates):
-//   reference  the exact CAD (SmallRational, mpq_rational on Overflow) method_reference.cpp
+//   reference  the exact CAD (64-, then 128-bit words, mpq_rational on Overflow) method_reference.cpp
 //   bf100/bf50 the same algorithm in cpp_bin_float_100/_50, |x| ≤ 1e-85/1e-40 × scale is zero
 //   naive      the same algorithm in double, |x| ≤ 1e-9 × scale is zero   method_approx_*.cpp
 //   fast       dcad::fast (orthogonal decompositions, SVD rank decisions)  method_fast.cpp
-//   certified  SmallRational first (N ≤ 64), else or on Overflow the algorithm in ball arithmetic,
+//   certified  machine words first (N ≤ 64), else or on Overflow the algorithm in ball arithmetic,
 //              exact (mpq) on an uncertain test                        method_certified.cpp
 #pragma once
 
@@ -22,7 +22,7 @@ struct Outcome {
   bool consistent = true;
   bool uncertain = false;   ///< the method said so (fast's verdict)
   bool recomputed = false;  ///< certified: some zero test needed the exact recomputation
-  bool machine_words = false;  ///< certified: decided exactly in 64-bit rationals (SmallRational)
+  bool machine_words = false;  ///< certified: decided exactly in 64- or 128-bit rationals
   bool failed = false;      ///< threw (message in `error`): counted as a wrong answer
   std::string error;
   std::vector<Eigen::MatrixXd> tower;  ///< columns span T M_k, k = 0 … c (double)
@@ -30,6 +30,10 @@ struct Outcome {
 
 using Method = Outcome (*)(const families::Instance&);
 Outcome run_reference(const families::Instance&);
+/// The reference in machine words — SmallRational, then WideRational — or reference::Overflow: the
+/// first tier of both `reference` and `certified`, one instantiation, so that the two are timed on the
+/// same code, as in `dcad solve`.
+Outcome run_small(const families::Instance&);
 /// The reference on mpq_rational only: the truth of the adversarial check, independent of SmallRational.
 Outcome run_mpq(const families::Instance&);
 Outcome run_bf100(const families::Instance&);

@@ -49,11 +49,11 @@ SolveReport certify(const std::function<SolveReport()>& small, const std::functi
       r.backend = "certified";
       r.certified = true;
       r.decisions_machine_words = 1;
-      r.note = (r.note.empty() ? "" : r.note + "; ") +
-               "the reference algorithm in exact 64-bit rationals (every number fitted in machine words)";
+      r.note = (r.note.empty() ? "" : r.note + "; ") + "the reference algorithm in exact " + std::to_string(r.word_bits) +
+               "-bit rationals (every number fitted in machine words" + (r.word_bits > 64 ? ", once 64 bits gave up)" : ")");
       return r;
     } catch (const reference::Overflow& e) {
-      overflow = std::string("exact 64-bit rationals gave up (") + e.what() + "); ";
+      overflow = std::string("exact 128-bit rationals gave up (") + e.what() + "); ";
     }
   }
   certified::Ball::decisions() = 0;

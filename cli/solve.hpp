@@ -53,7 +53,8 @@ struct SolveReport {
   std::vector<Equation> final_constraints;  ///< equations of M_c (reference and ball pipeline; JSON `final_constraints`)
   std::string note;  ///< e.g. why `certified` recomputed exactly
   long decisions_float = 0, decisions_verified = 0, decisions_exact = 0;
-  long decisions_machine_words = 0;  ///< certified: 1 if the whole run was exact in 64-bit rationals
+  long decisions_machine_words = 0;  ///< certified: 1 if the whole run was exact in 64- or 128-bit rationals
+  int word_bits = 0;  ///< the run in machine words (solve_small): 64, or 128 when a number outgrew 64 bits
 };
 
 /// What `dcad solve` computes beyond the CONTRACT's required keys and the tower (`--with`): a CI
@@ -75,10 +76,11 @@ std::string float_text(double x);
 /// Row i of [a | b] (exact) as an Equation.
 Equation row_equation(const io::QMatrix& rows, std::size_t i);
 
-/// The reference: the pipeline on SmallRational (exact in machine words), recomputed on
-/// mpq_rational if a number outgrows 64 bits; the same result either way (small_rational.hpp).
+/// The reference: the pipeline in exact machine words (solve_small), recomputed on mpq_rational if a
+/// number outgrows 128 bits; the same result either way (small_rational.hpp).
 SolveReport solve_reference(const io::CaseFile& c, const Parts& parts = {});
-/// The pipeline on SmallRational alone; throws reference::Overflow (solve_small.cpp).
+/// The pipeline on SmallRational, then on WideRational if a number outgrows 64 bits; throws
+/// reference::Overflow if one outgrows 128 (solve_small.cpp).
 SolveReport solve_small(const io::CaseFile& c, const Parts& parts = {});
 /// The pipeline on mpq_rational alone.
 SolveReport solve_rational(const io::CaseFile& c, const Parts& parts = {});
@@ -86,7 +88,7 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts = {});
 /// The reference pipeline in ball arithmetic (solve_ball.cpp); throws certified::Uncertain at the
 /// first zero test it cannot certify.  `max_radius`: the widest ball among the printed numbers.
 SolveReport solve_ball(const io::CaseFile& c, double& max_radius, const Parts& parts = {});
-/// `small` (the reference pipeline in 64-bit rationals; skipped if empty); if it throws
+/// `small` (the reference pipeline in 64-, then 128-bit rationals; skipped if empty); if it throws
 /// reference::Overflow, `ball` (the pipeline in ball arithmetic); if that throws
 /// certified::Uncertain, `exact` (the pipeline on mpq_rational).  Every discrete output equals the
 /// reference's whichever finishes (small_rational.hpp, ball.hpp give the proofs).

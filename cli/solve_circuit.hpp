@@ -23,7 +23,7 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt);
 SolveReport solve_circuit_fast(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The structured route (solve_circuit_exact.hpp) exactly.
 SolveReport solve_circuit_reference(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
-/// The structured route on SmallRational alone; throws reference::Overflow (solve_small.cpp).
+/// The structured route on SmallRational, then WideRational; throws reference::Overflow (solve_small.cpp).
 SolveReport solve_circuit_small(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});
 /// The structured route on mpq_rational alone.
 SolveReport solve_circuit_rational(const io::Netlist& n, const io::CaseFile& c, const Parts& parts = {});

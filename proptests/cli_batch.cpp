@@ -146,3 +146,22 @@ TEST(ErrorChannels, UndecidedInputIsAResultNotBadInput) {
     EXPECT_NE(o.err.find(degenerate), std::string::npos) << backend << ": " << o.err;
   }
 }
+
+// Issue 14: the reference in machine words goes on in 128-bit words when a number outgrows 64 bits
+// (ω perturbed by 2^-50: products of 2^-50 need more than 64 bits), instead of recomputing in mpq; the
+// result is the mpq run's (the same JSON but for the note and decisions), and certified says which.
+TEST(SolveWords, WideWordsWhenSixtyFourBitsGiveUp) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/regression-fast-perturbed-2e-50.json";
+  const Outcome cert = run("solve " + file + " --backend certified --json");
+  ASSERT_EQ(cert.rc, 0) << cert.err;
+  const nlohmann::json c = nlohmann::json::parse(cert.out);
+  EXPECT_EQ(c["decisions"]["exact_machine_words"], 1);
+  EXPECT_NE(c["note"].get<std::string>().find("128-bit"), std::string::npos) << c["note"];
+  const Outcome ref = run("solve " + file + " --backend reference --json");
+  ASSERT_EQ(ref.rc, 0) << ref.err;
+  nlohmann::json r = nlohmann::json::parse(ref.out), cc = c;
+  for (nlohmann::json* j : {&r, &cc})
+    for (const char* k : {"backend", "note", "decisions"}) j->erase(k);
+  EXPECT_EQ(r, cc);
+  EXPECT_EQ(r["dims"], c["dims"]);
+}

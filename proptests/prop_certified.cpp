@@ -140,9 +140,10 @@ RC_GTEST_PROP(Certified, NeverDisagreesWithTheExactAnswerOnAnyFamily, ()) {
   if (in.planted && *rc::gen::inRange(0, 4) == 0) RC_ASSERT(exact_run(in) == truth);  // the generator's own claim
 }
 
-// The library entry point (dcad/certified/cad.hpp): whichever route it takes — 64-bit words, balls,
-// mpq — its discrete answers are the exact reference's (the induction of ball.hpp, and SmallRational =
-// mpq while it fits); where every number fits in 64 bits it takes the first route.  A route that
+// The library entry point (dcad/certified/cad.hpp): whichever route it takes — 64- or 128-bit words,
+// balls, mpq — its discrete answers are the exact reference's (the induction of ball.hpp, and
+// SmallRational, WideRational = mpq while they fit); where every number fits in 64 bits it takes the
+// first route, and any later route says why the cheaper ones gave up.  A route that
 // answered with the wrong scalar's decisions (e.g. a ball answer taken although Uncertain) fails it.
 RC_GTEST_PROP(Certified, LibraryTowerIsTheExactTower, ()) {
   std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
@@ -150,12 +151,13 @@ RC_GTEST_PROP(Certified, LibraryTowerIsTheExactTower, ()) {
   const reference::LinearSystem<Q> s = fam::system_over<Q>(in, [](const Q& q) { return q; });
   const certified::CertifiedTower t = certified::constraint_tower(s);
   const Discrete truth = exact_run(in);
-  RC_TAG(in.family + ": " + certified::route_name(t.route));
+  RC_TAG(in.family + ": " + certified::route_name(t.route) + (t.word_bits ? " (" + std::to_string(t.word_bits) + " bits)" : ""));
   RC_ASSERT(t.dims == truth.dims);
   RC_ASSERT(static_cast<long>(t.solution_rank) == truth.solution_rank);
   RC_ASSERT(t.consistent == truth.consistent);
   RC_ASSERT(t.steps + 1 == t.dims.size());
-  RC_ASSERT((t.route == certified::Route::machine_words) == t.why.empty());
+  RC_ASSERT((t.route == certified::Route::machine_words) == (t.word_bits == 64 || t.word_bits == 128));
+  RC_ASSERT((t.route == certified::Route::machine_words && t.word_bits == 64) == t.why.empty());  // else: why it gave up
 }
 
 /// A ball and its exact value side by side: every zero test is put to both.  The exact answer

@@ -1,6 +1,8 @@
-// SmallRational (issue 14) is mpq_rational while the numbers fit in 64 bits: the arithmetic
-// operation by operation, and the whole reference CAD on random systems (CEF §5), compared
-// exactly with the mpq_rational run.  A wrong reduction, sign or overflow bound fails here.
+// SmallRational and WideRational (issue 14) are mpq_rational while the numbers fit in 64 / 128 bits:
+// the arithmetic operation by operation, and the whole reference CAD on random systems (CEF §5) and on
+// the sweep's perturbed family (numbers beyond 64 bits), compared exactly with the mpq_rational run.
+// A wrong reduction, sign, gcd or overflow bound fails here.
+#include "support/families.hpp"
 #include "support/gen.hpp"
 
 #include "dcad/reference/cad.hpp"
@@ -16,32 +18,42 @@ using namespace dcad;
 using namespace dcad::test;
 namespace ref = dcad::reference;
 using S = ref::SmallRational;
+using W = ref::WideRational;
 
 namespace {
 
-/// An int64 whose magnitude has a random bit length (1 … 63): small, medium and near-limit values.
-rc::Gen<std::int64_t> any_word() {
-  return rc::gen::mapcat(rc::gen::inRange(1, 64), [](int bits) {
-    const std::int64_t hi = bits == 63 ? std::numeric_limits<std::int64_t>::max() : (std::int64_t{1} << bits) - 1;
-    return rc::gen::inRange<std::int64_t>(-hi, hi);
+/// An integer whose magnitude has a random bit length (1 … bits − 1): small, medium and near-limit values.
+rc::Gen<ref::Rational> any_integer(int bits) {
+  return rc::gen::mapcat(rc::gen::inRange(1, bits), [](int length) {
+    return rc::gen::map(rc::gen::pair(rc::gen::arbitrary<std::uint64_t>(), rc::gen::arbitrary<std::uint64_t>()),
+                        [length](const std::pair<std::uint64_t, std::uint64_t>& words) {
+                          boost::multiprecision::mpz_int z = words.first;
+                          z <<= 64;
+                          z += words.second;
+                          z &= (boost::multiprecision::mpz_int(1) << length) - 1;  // below 2^length
+                          const bool negative = words.first & 1;
+                          return ref::Rational(negative ? boost::multiprecision::mpz_int(-z) : z);
+                        });
   });
 }
 
-ref::Rational any_fraction() {
-  const std::int64_t p = *any_word();
-  const std::int64_t q = *any_word().as("denominator");
+ref::Rational any_fraction(int bits) {
+  const ref::Rational p = *any_integer(bits);
+  const ref::Rational q = *any_integer(bits).as("denominator");
   RC_PRE(q != 0);
-  return ref::Rational(p) / ref::Rational(q);
+  return p / q;
 }
 
-bool fits(const ref::Rational& q) {
-  const boost::multiprecision::mpz_int lim = std::numeric_limits<std::int64_t>::max();
+bool fits(const ref::Rational& q, int bits) {
+  const boost::multiprecision::mpz_int lim = (boost::multiprecision::mpz_int(1) << (bits - 1)) - 1;
   return abs(numerator(q)) <= lim && denominator(q) <= lim;
 }
 
-/// op on SmallRational gives op on mpq exactly, or throws Overflow exactly when that does not fit.
-template <class Op>
-void same_as_mpq(const ref::Rational& a, const ref::Rational& b, Op op) {
+/// op on T gives op on mpq exactly, or throws Overflow — for 64-bit words exactly when mpq's result
+/// does not fit; for 128-bit words also when an intermediate does not, but never when the operands
+/// are below 2^63 (their products are below 2^126, as in the 64-bit case) and the result fits.
+template <class T, class Op>
+void same_as_mpq(const ref::Rational& a, const ref::Rational& b, int bits, Op op) {
   ref::Rational exact;
   try {
     exact = op(a, b);
@@ -49,13 +61,29 @@ void same_as_mpq(const ref::Rational& a, const ref::Rational& b, Op op) {
     return;  // division by zero: not asked of SmallRational by the reference
   }
   try {
-    const S r = op(S::from(a), S::from(b));
-    RC_ASSERT(fits(exact));
+    const T r = op(T::from(a), T::from(b));
+    RC_ASSERT(fits(exact, bits));
     RC_ASSERT(r.value() == exact);
     RC_ASSERT(r.str() == exact.str());  // the printed number is mpq's
   } catch (const ref::Overflow&) {
-    RC_ASSERT(!fits(exact));
+    RC_ASSERT(!fits(exact, bits) || (bits == 128 && !(fits(a, 64) && fits(b, 64))));
   }
+}
+
+template <class T>
+void arithmetic_is_mpq_or_overflow(int bits, int operand_bits) {
+  const ref::Rational a = any_fraction(operand_bits), b = any_fraction(operand_bits);
+  RC_PRE(fits(a, bits) && fits(b, bits));
+  same_as_mpq<T>(a, b, bits, [](const auto& x, const auto& y) { return x + y; });
+  same_as_mpq<T>(a, b, bits, [](const auto& x, const auto& y) { return x - y; });
+  same_as_mpq<T>(a, b, bits, [](const auto& x, const auto& y) { return x * y; });
+  same_as_mpq<T>(a, b, bits, [](const auto& x, const auto& y) {
+    if (y == 0) throw std::domain_error("0");
+    return x / y;
+  });
+  RC_CLASSIFY(!fits(a * b, bits), "the product overflows");
+  RC_ASSERT((T::from(a) == T::from(b)) == (a == b));
+  RC_ASSERT((-T::from(a)).value() == -a);
 }
 
 template <class From, class To, class Lift>
@@ -66,52 +94,27 @@ ref::Matrix<To> lift_matrix(const ref::Matrix<From>& m, Lift lift) {
   return out;
 }
 
-ref::Matrix<Q> value(const ref::Matrix<S>& m) { return lift_matrix<S, Q>(m, [](const S& x) { return x.value(); }); }
-
-}  // namespace
-
-RC_GTEST_PROP(SmallRational, ArithmeticIsMpqOrOverflow, ()) {
-  const ref::Rational a = any_fraction(), b = any_fraction();
-  RC_PRE(fits(a) && fits(b));
-  same_as_mpq(a, b, [](const auto& x, const auto& y) { return x + y; });
-  same_as_mpq(a, b, [](const auto& x, const auto& y) { return x - y; });
-  same_as_mpq(a, b, [](const auto& x, const auto& y) { return x * y; });
-  same_as_mpq(a, b, [](const auto& x, const auto& y) {
-    if (y == 0) throw std::domain_error("0");
-    return x / y;
-  });
-  RC_CLASSIFY(!fits(a * b), "the product overflows");
-  RC_ASSERT((S::from(a) == S::from(b)) == (a == b));
-  RC_ASSERT((-S::from(a)).value() == -a);
+template <class T>
+ref::Matrix<Q> value(const ref::Matrix<T>& m) {
+  return lift_matrix<T, Q>(m, [](const T& x) { return x.value(); });
 }
 
-TEST(SmallRational, OverflowAtTheWordLimit) {
-  const S big = S::from(ref::Rational(std::numeric_limits<std::int64_t>::max()));
-  EXPECT_THROW(big + S(1), ref::Overflow);
-  EXPECT_THROW(big * S(2), ref::Overflow);
-  EXPECT_EQ((big - S(1) + S(1)).value(), ref::Rational(std::numeric_limits<std::int64_t>::max()));
-  EXPECT_EQ((-big).value(), -ref::Rational(std::numeric_limits<std::int64_t>::max()));
-  EXPECT_THROW(S::from(ref::Rational(std::numeric_limits<std::int64_t>::min())), ref::Overflow);  // |p| ≤ 2^63 − 1
-  EXPECT_EQ((S(6) / S(-4)).str(), "-3/2");
-  EXPECT_EQ((S(-6) / S(-3)).str(), "2");
-}
-
-// The CAD of CEF §5 on SmallRational is the mpq_rational CAD: every M_k (equations, point, basis),
-// c, consistency, solution rank, and the reduced equations (5.12) — or an Overflow (then solve
-// recomputes in mpq).
-RC_GTEST_PROP(SmallRational, ReferenceCadIsTheMpqCad, ()) {
-  const ref::LinearSystem<Q> s = any_system();
-  const auto small = [](const Q& q) { return S::from(q); };
+/// The CAD of CEF §5 on T is the mpq_rational CAD: every M_k (equations, point, basis), c, consistency,
+/// solution rank, and the reduced equations (5.12) — or an Overflow (then solve recomputes).  Returns
+/// false on Overflow.
+template <class T>
+bool cad_is_the_mpq_cad(const ref::LinearSystem<Q>& s) {
+  const auto lift = [](const Q& q) { return T::from(q); };
   try {
-    const ref::LinearSystem<S> t{{s.d.n, ref::Subspace<S>::span(lift_matrix<Q, S>(s.d.d.basis(), small))},
-                                 lift_matrix<Q, S>(s.hessian, small),
+    const ref::LinearSystem<T> t{{s.d.n, ref::Subspace<T>::span(lift_matrix<Q, T>(s.d.d.basis(), lift))},
+                                 lift_matrix<Q, T>(s.hessian, lift),
                                  [&] {
-                                   std::vector<S> g;
-                                   for (const Q& x : s.gradient) g.push_back(S::from(x));
+                                   std::vector<T> g;
+                                   for (const Q& x : s.gradient) g.push_back(T::from(x));
                                    return g;
                                  }(),
-                                 S::from(s.constant)};
-    const ref::CadResult<S> a = ref::constraint_tower(t);
+                                 T::from(s.constant)};
+    const ref::CadResult<T> a = ref::constraint_tower(t);
     const ref::CadResult<Q> b = ref::constraint_tower(s);
     RC_ASSERT(a.tower.size() == b.tower.size());
     RC_ASSERT(a.consistent == b.consistent);
@@ -123,16 +126,66 @@ RC_GTEST_PROP(SmallRational, ReferenceCadIsTheMpqCad, ()) {
       RC_ASSERT(value(a.tower[k].m.direction.basis()) == b.tower[k].m.direction.basis());
       for (std::size_t i = 0; i < b.tower[k].m.point.size(); ++i) RC_ASSERT(a.tower[k].m.point[i].value() == b.tower[k].m.point[i]);
     }
-    if (!b.consistent) return;
+    if (!b.consistent) return true;
     RC_ASSERT(a.solution_rank == b.solution_rank);
-    const ref::ReducedEquations<S> ra = ref::reduced_equations(t, a);
+    const ref::ReducedEquations<T> ra = ref::reduced_equations(t, a);
     const ref::ReducedEquations<Q> rb = ref::reduced_equations(s, b);
     RC_ASSERT(ra.coords == rb.coords);
     RC_ASSERT(value(ra.f_matrix) == rb.f_matrix);
     RC_ASSERT(value(ra.g) == rb.g);
     for (std::size_t i = 0; i < rb.f.size(); ++i) RC_ASSERT(ra.f[i].value() == rb.f[i]);
-    RC_CLASSIFY(true, "fits in 64 bits");
+    return true;
   } catch (const ref::Overflow&) {
-    RC_CLASSIFY(true, "overflow: solve recomputes in mpq");
+    return false;
   }
+}
+
+}  // namespace
+
+RC_GTEST_PROP(SmallRational, ArithmeticIsMpqOrOverflow, ()) { arithmetic_is_mpq_or_overflow<S>(64, 64); }
+
+// Operands of up to 127 bits (beyond 64: Knuth's formulas with checked 128-bit intermediates and the
+// 128-bit gcd), and of up to 63 bits (where WideRational must never give up on a result that fits).
+RC_GTEST_PROP(WideRational, ArithmeticIsMpqOrOverflow, ()) {
+  arithmetic_is_mpq_or_overflow<W>(128, *rc::gen::element(64, 128));
+}
+
+TEST(SmallRational, OverflowAtTheWordLimit) {
+  const S big = S::from(ref::Rational(std::numeric_limits<std::int64_t>::max()));
+  EXPECT_THROW(big + S(1), ref::Overflow);
+  EXPECT_THROW(big * S(2), ref::Overflow);
+  EXPECT_EQ((big - S(1) + S(1)).value(), ref::Rational(std::numeric_limits<std::int64_t>::max()));
+  EXPECT_EQ((-big).value(), -ref::Rational(std::numeric_limits<std::int64_t>::max()));
+  EXPECT_THROW(S::from(ref::Rational(std::numeric_limits<std::int64_t>::min())), ref::Overflow);  // |p| ≤ 2^63 − 1
+  EXPECT_EQ((S(6) / S(-4)).str(), "-3/2");
+  EXPECT_EQ((S(-6) / S(-3)).str(), "2");
+  // … and the same numbers in 128-bit words, which hold them
+  const W wide = W::from(big);
+  EXPECT_EQ((wide + W(1)).value(), ref::Rational(std::numeric_limits<std::int64_t>::max()) + 1);
+  EXPECT_EQ((wide * W(2)).str(), (ref::Rational(std::numeric_limits<std::int64_t>::max()) * 2).str());
+  const boost::multiprecision::mpz_int top = (boost::multiprecision::mpz_int(1) << 127) - 1;  // 2^127 − 1
+  const W w127 = W::from(ref::Rational(top));
+  EXPECT_THROW(w127 + W(1), ref::Overflow);
+  EXPECT_EQ((-w127).value(), -ref::Rational(top));
+  EXPECT_EQ((W(1) / w127).str(), "1/" + top.str());
+  EXPECT_THROW(W::from(ref::Rational(top + 1)), ref::Overflow);
+}
+
+// The CAD of CEF §5 on SmallRational is the mpq_rational CAD (or an Overflow: then solve recomputes).
+RC_GTEST_PROP(SmallRational, ReferenceCadIsTheMpqCad, ()) {
+  RC_CLASSIFY(cad_is_the_mpq_cad<S>(any_system()), "fits in 64 bits");
+}
+
+// The same on WideRational, on random systems and on the sweep's perturbed family (ω moved by a shear
+// and perturbed by 2^-k, k up to 60: numbers that outgrow 64 bits, the reason WideRational exists).
+RC_GTEST_PROP(WideRational, ReferenceCadIsTheMpqCad, ()) {
+  if (*rc::gen::arbitrary<bool>()) {
+    RC_CLASSIFY(cad_is_the_mpq_cad<W>(any_system()), "random system, fits in 128 bits");
+    return;
+  }
+  std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+  const families::Instance in = families::perturbed(*rc::gen::inRange(30, 61), rng);
+  const ref::LinearSystem<Q> s = families::system_over<Q>(in, [](const Q& q) { return q; });
+  RC_CLASSIFY(!cad_is_the_mpq_cad<S>(s), "perturbed beyond 64 bits");
+  RC_CLASSIFY(cad_is_the_mpq_cad<W>(s), "perturbed, fits in 128 bits");
 }

@@ -1,8 +1,8 @@
 // dcad::certified::constraint_tower — the CAD with certified decisions as a library call (issue 15; the
 // route of `dcad solve --backend certified`, issue 14).  Every route runs the reference's own algorithm
 // (reference::constraint_tower, CEF Remark 5.2) on another scalar, cheapest first:
-//   1. SmallRational: the same exact arithmetic in 64-bit words (up to kSmallFirstUpTo variables),
-//      or reference::Overflow when a number does not fit;
+//   1. SmallRational, then WideRational: the same exact arithmetic in 64-bit, then 128-bit words (up to
+//      kSmallFirstUpTo variables), or reference::Overflow when a number does not fit;
 //   2. Ball: floating point with every zero test proved, or certified::Uncertain (ball.hpp);
 //   3. mpq_rational: the reference itself.
 // A route that finishes took every branch the exact run takes, so the discrete answers — dims of the
@@ -24,11 +24,12 @@ using reference::Matrix;
 enum class Route { machine_words, balls, exact };
 
 inline const char* route_name(Route r) {
-  return r == Route::machine_words ? "exact in 64-bit words" : r == Route::balls ? "ball arithmetic" : "exact (mpq)";
+  return r == Route::machine_words ? "exact in machine words" : r == Route::balls ? "ball arithmetic" : "exact (mpq)";
 }
 
 struct CertifiedTower {
   Route route = Route::exact;
+  int word_bits = 0;  ///< machine_words: 64, or 128 when a number outgrew 64 bits
   std::vector<long> dims;  ///< dim M_0 … M_c (−1 for an empty M_k)
   Index steps = 0;         ///< c
   bool consistent = true;
@@ -73,10 +74,21 @@ inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& 
   std::string why;
   if (s.d.n <= reference::kSmallFirstUpTo) {
     try {
-      return detail::run<reference::SmallRational>(s, initial, Route::machine_words,
-                                                   [](const Rational& q) { return reference::SmallRational::from(q); });
+      CertifiedTower out = detail::run<reference::SmallRational>(s, initial, Route::machine_words,
+                                                                 [](const Rational& q) { return reference::SmallRational::from(q); });
+      out.word_bits = 64;
+      return out;
     } catch (const reference::Overflow& e) {
       why = std::string("64-bit words: ") + e.what() + "; ";
+    }
+    try {
+      CertifiedTower out = detail::run<reference::WideRational>(s, initial, Route::machine_words,
+                                                                [](const Rational& q) { return reference::WideRational::from(q); });
+      out.word_bits = 128;
+      out.why = why;
+      return out;
+    } catch (const reference::Overflow& e) {
+      why += std::string("128-bit words: ") + e.what() + "; ";
     }
   }
   Ball::decisions() = 0;
