@@ -50,7 +50,7 @@ Problem make(std::size_t n, unsigned seed) {
   const std::vector<Q> g = (h * QM::column(random_matrix(rng, n, 1, 2).col(0))).col(0);
   Problem p;
   p.exact = {ref::dirac_from_distribution(ref::Subspace<Q>::span(e), w), h, g, Q(0)};
-  p.dbl = {fa::dirac_from_distribution(fa::Subspace::span(to_double(e).transpose()), to_double(w)), to_double(h),
+  p.dbl = {fa::dirac_from_distribution(fa::Subspace::span(to_double(e)), to_double(w)), to_double(h),
            to_double(QM::column(g)).col(0), 0.0};
   return p;
 }

@@ -26,7 +26,7 @@ Outcome run_fast(const families::Instance& in) {
     o.uncertain = !r.certain;
     for (const auto& st : r.tower) {
       o.dims.push_back(st.dim());
-      o.tower.push_back(st.m.empty ? Eigen::MatrixXd() : st.m.direction.basis());
+      o.tower.push_back(st.m.empty ? Eigen::MatrixXd() : st.m.direction.columns());
     }
   } catch (const std::exception& e) {
     o.failed = true;

@@ -30,11 +30,11 @@ fast::DiracStructure fast_dirac(const io::DiracInput& in, fast::Options& opt) {
   if (in.form == "presymplectic") return fast::dirac_from_presymplectic(to_double(in.w, opt));
   if (in.form == "distribution") {
     const Eigen::MatrixXd b = to_double(in.b, opt), w = to_double(in.w, opt);
-    return fast::dirac_from_distribution(fast::Subspace::span(b.transpose(), -1, opt), w);
+    return fast::dirac_from_distribution(fast::Subspace::span(b, -1, opt), w);
   }
   if (in.form == "poisson") return fast::dirac_from_poisson(to_double(in.p, opt));
   const Eigen::MatrixXd g = to_double(in.g, opt);  // `basis`: validated by the caller
-  return {static_cast<int>(g.cols() / 2), fast::Subspace::span(g.transpose(), -1, opt)};
+  return {static_cast<int>(g.cols() / 2), fast::Subspace::span(g, -1, opt)};
 }
 
 fast::PontryaginInput fast_pontryagin(const io::PontryaginInput& p, fast::Options& opt) {

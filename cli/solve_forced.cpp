@@ -251,7 +251,7 @@ ref::RlcCircuit<Q> forced_twin(const ref::RlcCircuit<Q>& c) {
 void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
   fast::ForcedSystem g;
   g.s.d.n = static_cast<int>(f.s.d.n);
-  g.s.d.d = fast::Subspace::span(to_d(f.s.d.d.basis()).transpose());
+  g.s.d.d = fast::Subspace::span(to_d(f.s.d.d.basis()));
   g.s.hessian = to_d(f.s.hessian);
   g.s.gradient = Eigen::VectorXd::Zero(f.s.d.n);
   g.force = to_d(f.force);

@@ -110,7 +110,7 @@ RC_GTEST_PROP(FastVsReference, Velocities, ()) {
   RC_ASSERT(!tally("velocities: dimension", fv.certain, static_cast<Index>(fv.direction.dim()) == rv.direction.dim()));
   if (!fv.certain) return;
   const Eigen::VectorXd gap = to_double(QM::column(rv.point)).col(0) - fv.point;
-  const Eigen::MatrixXd& dir = fv.direction.basis();
+  const Eigen::MatrixXd& dir = fv.direction.columns();
   const Eigen::VectorXd off = gap - dir * (dir.transpose() * gap);  // the part of the gap off the directions
   const double scale = 1 + to_double(QM::column(rv.point)).norm();
   RC_ASSERT(off.norm() <= 1e6 * (s.d.n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian)) * scale);
@@ -143,7 +143,7 @@ RC_GTEST_PROP(FastVsReference, ConsistentInitialPoints, ()) {
     for (Index i = 0; i < n; ++i)
       if (given_d[i]) RC_ASSERT(std::abs(fp.point(i) - *given_d[i]) <= tol);
     const Eigen::VectorXd off = fp.point - to_double(QM::column(some_point(r.final_step().m))).col(0);
-    const Eigen::MatrixXd& dir = f.final_step().m.direction.basis();
+    const Eigen::MatrixXd& dir = f.final_step().m.direction.columns();
     RC_ASSERT((off - dir * (dir.transpose() * off)).norm() <= tol);  // on M_c
   }
   const Index moved = *rc::gen::elementOf(idx);

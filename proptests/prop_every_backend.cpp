@@ -35,7 +35,7 @@ using dcad::test::tally;
 using dcad::test::to_double;
 
 /// A backend's answer: the discrete results, its own certainty, and (when it gives them) orthonormal
-/// bases of T M_0 … T M_c as columns in double.
+/// bases of T M_0 … T M_c as rows in double — both twins' orientation.
 struct Answer {
   std::vector<long> dims;
   long solution_rank = 0;
@@ -44,9 +44,10 @@ struct Answer {
   std::vector<Eigen::MatrixXd> tangent;
 };
 
-Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& columns) {
-  if (columns.cols() == 0) return columns;
-  return Eigen::JacobiSVD<Eigen::MatrixXd>(columns, Eigen::ComputeThinU).matrixU();
+/// Orthonormal rows spanning the rows of `rows`.
+Eigen::MatrixXd orthonormal(const Eigen::MatrixXd& rows) {
+  if (rows.rows() == 0) return rows;
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(rows, Eigen::ComputeThinV).matrixV().transpose();
 }
 
 struct Reference {
@@ -59,7 +60,7 @@ struct Reference {
     for (const auto& st : r.tower) {
       a.dims.push_back(st.dim());
       if (st.m.empty) break;
-      a.tangent.push_back(orthonormal(to_double(st.m.direction.basis()).transpose()));  // rows → columns
+      a.tangent.push_back(orthonormal(to_double(st.m.direction.basis())));
     }
     return a;
   }
@@ -135,9 +136,9 @@ void tower_decreases_and_nests() {
   for (std::size_t k = 0; k + 1 < a.tangent.size(); ++k) {
     const Eigen::MatrixXd& big = a.tangent[k];
     const Eigen::MatrixXd& small = a.tangent[k + 1];
-    if (small.cols() == 0) continue;
-    const double off = (small - big * (big.transpose() * small)).norm();
-    RC_ASSERT(off <= 1e-8 * std::sqrt(static_cast<double>(small.cols())));
+    if (small.rows() == 0) continue;
+    const double off = (small - (small * big.transpose()) * big).norm();  // rows of T M_{k+1} off T M_k
+    RC_ASSERT(off <= 1e-8 * std::sqrt(static_cast<double>(small.rows())));
   }
 }
 

@@ -85,7 +85,7 @@ std::vector<Q> point_of_mc(const ref::ForcedResult<Q>& r, Index n, const std::ve
 fast::ForcedSystem to_fast(const ref::ForcedSystem<Q>& f) {
   fast::ForcedSystem g;
   g.s.d.n = static_cast<int>(f.s.d.n);
-  g.s.d.d = fast::Subspace::span(to_double(f.s.d.d.basis()).transpose());
+  g.s.d.d = fast::Subspace::span(to_double(f.s.d.d.basis()));
   g.s.hessian = to_double(f.s.hessian);
   g.s.gradient = to_double(f.s.gradient);
   g.force = to_double(f.force);

@@ -213,12 +213,12 @@ TEST(Subspace, Operations) {
   MatrixXd u(3, 2), w(3, 2);
   u << 1, 0, 0, 1, 0, 0;
   w << 0, 0, 1, 0, 0, 1;
-  const Subspace su = Subspace::span(u), sw = Subspace::span(w);
+  const Subspace su = Subspace::span_columns(u), sw = Subspace::span_columns(w);
   EXPECT_EQ(intersection(su, sw).dim(), 1);
   EXPECT_EQ(sum(su, sw).dim(), 3);
   EXPECT_TRUE(contains(sum(su, sw), su).value);
   EXPECT_FALSE(contains(su, sw).value);
-  EXPECT_NEAR(std::abs(intersection(su, sw).basis()(1, 0)), 1.0, 1e-15);
+  EXPECT_NEAR(std::abs(intersection(su, sw).basis()(0, 1)), 1.0, 1e-15);  // one row: ±e_2
 }
 
 TEST(BadInput, NanInfAndShapes) {

@@ -18,7 +18,7 @@ LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
     throw std::invalid_argument("pontryagin_system: expected symmetric vv and qq, found an asymmetric one");
   const Subspace delta = k.rows() ? kernel(k, opt) : Subspace::whole(n);
   MatrixXd e = MatrixXd::Zero(3 * n, delta.dim() + 2 * n);
-  e.topLeftCorner(n, delta.dim()) = delta.basis();
+  e.topLeftCorner(n, delta.dim()) = delta.columns();
   e.bottomRightCorner(2 * n, 2 * n).setIdentity();
   MatrixXd w = MatrixXd::Zero(3 * n, 3 * n), h = MatrixXd::Zero(3 * n, 3 * n);
   w.block(0, 2 * n, n, n).setIdentity();
@@ -33,7 +33,7 @@ LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
   g.head(n) = -q;
   g.segment(n, n) = -v;
   // the columns of e are orthonormal already: Δ's basis in the q-block, the identity below
-  return {dirac_from_distribution(Subspace::from_orthonormal(e, delta.certain()), w), h, g, 0.0};
+  return {dirac_from_distribution(Subspace::from_orthonormal_columns(e, delta.certain()), w), h, g, 0.0};
 }
 
 namespace {
@@ -81,7 +81,7 @@ AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b) {
   AffineSubspace m;
   m.empty = false;
   m.point = a.transpose() * b;
-  m.direction = Subspace::from_orthonormal(orthogonal_complement(a.transpose()), true);
+  m.direction = Subspace::from_orthonormal_columns(orthogonal_complement(a.transpose()), true);
   return m;
 }
 
@@ -224,7 +224,7 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt, const Matr
 ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords, const Options& opt) {
   if (!r.consistent) throw std::invalid_argument("reduced_equations: expected a consistent system, found M_c empty");
   const int n = s.d.n;
-  const MatrixXd b = r.final_step().m.direction.basis();  // n × m
+  const MatrixXd b = r.final_step().m.direction.columns();  // n × m
   const int m = static_cast<int>(b.cols());
   ReducedEquations red;
   if (coords.empty()) {  // greedy: variable j joins if it raises the rank of the selected rows of B
@@ -271,7 +271,7 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   red.coords = coords;
   red.f_matrix = t * p * tinv;
   red.f = t * p0 - red.f_matrix * (sel * x0);
-  red.g = kernel_w.cols() ? MatrixXd(t * Subspace::span(kernel_w, 1.0, opt).basis()) : MatrixXd(m, 0);
+  red.g = kernel_w.cols() ? MatrixXd(t * Subspace::span_columns(kernel_w, 1.0, opt).columns()) : MatrixXd(m, 0);
   return red;
 }
 
@@ -280,8 +280,8 @@ VectorXd energy_differential(const LinearSystem& s, const VectorXd& x) { return 
 AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const VectorXd& x, const Options& opt) {
   const int n = s.d.n;
   // ẋ = B w (B: basis of T M_c); (B w, dE) ∈ D ⇔ Γ_v B w = −Γ_α dE for the equations Γ of D
-  const MatrixXd& b = r.final_step().m.direction.basis();
-  const MatrixXd g = annihilator(s.d.d).basis();
+  const MatrixXd& b = r.final_step().m.direction.columns();
+  const MatrixXd g = annihilator(s.d.d).columns();
   const MatrixXd gv = g.topRows(n).transpose(), ga = g.bottomRows(n).transpose();
   const AffineSubspace w = solve(gv * b, -(ga * energy_differential(s, x)), opt);
   AffineSubspace out;

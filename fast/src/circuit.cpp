@@ -150,7 +150,7 @@ void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
       trace.push_back(a.evidence());
       t.certain = t.certain && a.certain();
     }
-    const MatrixXd r = a.basis().transpose() * bl * psi.asDiagonal();  // ψ(·) ∈ φ(Δ_{k−1}) + Δ°
+    const MatrixXd r = a.columns().transpose() * bl * psi.asDiagonal();  // ψ(·) ∈ φ(Δ_{k−1}) + Δ°
     const Eigen::Index q0 = aq.rows(), v0 = av.rows();
     absorb_equations(aq, bq, r, VectorXd::Zero(r.rows()), psi_scale, psi_scale, opt, trace, t.certain);
     if (!add_step(aq, q0, 0)) break;  // M_{2k}

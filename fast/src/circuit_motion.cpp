@@ -48,7 +48,7 @@ CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::
   const Subspace s = Subspace::solutions(block_rows(t, n, 0), -1, opt), v = Subspace::solutions(block_rows(t, n, 1), -1, opt);
   const Subspace delta = kernel(k, opt);
   for (const Subspace* sub : {&s, &v, &delta}) record(out, sub->evidence());
-  const MatrixXd &bs = s.basis(), &bv = v.basis(), &bd = delta.basis();
+  const MatrixXd &bs = s.columns(), &bv = v.columns(), &bd = delta.columns();
   const Eigen::Index ds = bs.cols(), dv = bv.cols(), m = ds + dv;
   // ȧ = R b with B_S R = B_V (V ⊂ S, B_S orthonormal); A ḃ = −B_Δᵀ ψ B_S a, A = B_Δᵀ φ B_V
   const MatrixXd r = bs.transpose() * bv, a = bd.transpose() * phi * bv, rhs = -(bd.transpose() * psi * bs);

@@ -13,7 +13,7 @@ namespace {
 Subspace orthonormalize(const MatrixXd& cols) {
   Eigen::HouseholderQR<MatrixXd> qr(cols);
   const MatrixXd q = qr.householderQ() * MatrixXd::Identity(cols.rows(), cols.cols());
-  return Subspace::from_orthonormal(q, true);
+  return Subspace::from_orthonormal_columns(q, true);
 }
 }  // namespace
 
@@ -38,7 +38,7 @@ DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
   if (rows.cols() % 2 != 0)
     throw std::invalid_argument("dirac_from_basis: expected rows (v, α) of even length 2n, found length " +
                                 std::to_string(rows.cols()));
-  DiracStructure d{static_cast<int>(rows.cols() / 2), Subspace::span(rows.transpose(), -1, opt)};
+  DiracStructure d{static_cast<int>(rows.cols() / 2), Subspace::span_columns(rows.transpose(), -1, opt)};
   require_dirac(d, "dirac_from_basis", opt);
   d.d.and_certain(dirac_defect(d, opt).valid.certain);
   return d;
@@ -60,7 +60,7 @@ DiracStructure dirac_from_distribution(const Subspace& e, const MatrixXd& w) {
                                 ", found " + std::to_string(n) + "x" + std::to_string(n));
   // (q_i, Wᵀ q_i) for an orthonormal basis q of E, and (0, γ) for γ ∈ E° — then project the α of
   // the first kind onto E's dual (subtract its E° part), which keeps the span and orthogonality.
-  const MatrixXd q = e.basis(), g = annihilator(e).basis();
+  const MatrixXd q = e.columns(), g = annihilator(e).columns();
   MatrixXd cols = MatrixXd::Zero(2 * n, n);
   cols.topLeftCorner(n, q.cols()) = q;
   cols.bottomLeftCorner(n, q.cols()) = q * (q.transpose() * w.transpose() * q);
@@ -79,7 +79,7 @@ DiracStructure dirac_from_poisson(const MatrixXd& p) {
 }
 
 Subspace dirac_distribution(const DiracStructure& d, const Options& opt) {
-  return Subspace::span(d.v_part(), 1.0, opt).and_certain(d.d.certain());
+  return Subspace::span_columns(d.v_part(), 1.0, opt).and_certain(d.d.certain());
 }
 
 AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Options& opt) {
@@ -88,19 +88,19 @@ AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Opti
   AffineSubspace out;
   out.empty = c.empty;
   out.certain = c.certain && d.d.certain();
-  out.direction = Subspace::span(d.alpha_part() * c.direction.basis(), 1.0, opt);
+  out.direction = Subspace::span_columns(d.alpha_part() * c.direction.columns(), 1.0, opt);
   if (!c.empty) out.point = d.alpha_part() * c.point;
   return out;
 }
 
 Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt) {
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);  // {c : V c ∈ W}
-  return Subspace::span(d.alpha_part() * c.basis(), 1.0, opt).and_certain(c.certain() && d.d.certain());
+  return Subspace::span_columns(d.alpha_part() * c.columns(), 1.0, opt).and_certain(c.certain() && d.d.certain());
 }
 
 PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
   const Subspace e = dirac_distribution(d, opt);
-  const MatrixXd q = e.basis();
+  const MatrixXd q = e.columns();
   // α_i with (q_i, α_i) ∈ D: c_i = V⁺ q_i (q_i ∈ im V), α_i = A c_i;  G_ij = α_i(q_j).
   // c_i: the minimum-norm solution of V c = q_i, on the rank decided for E (V = (Vᵀ)ᵀ)
   const RankRevealing f(d.v_part().transpose(), 1.0, opt);
@@ -113,7 +113,7 @@ PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
 
 Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt) {
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);
-  return Subspace::solutions((d.alpha_part() * c.basis()).transpose(), 1.0, opt).and_certain(c.certain() && d.d.certain());
+  return Subspace::solutions((d.alpha_part() * c.columns()).transpose(), 1.0, opt).and_certain(c.certain() && d.d.certain());
 }
 
 Answer is_presymplectic(const DiracStructure& d, const Options& opt) {
@@ -122,7 +122,7 @@ Answer is_presymplectic(const DiracStructure& d, const Options& opt) {
 }
 
 Answer is_poisson(const DiracStructure& d, const Options& opt) {
-  const Subspace a = Subspace::span(d.alpha_part(), 1.0, opt).and_certain(d.d.certain());
+  const Subspace a = Subspace::span_columns(d.alpha_part(), 1.0, opt).and_certain(d.d.certain());
   return {a.dim() == d.n, a.certain()};
 }
 

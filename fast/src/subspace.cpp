@@ -14,12 +14,17 @@ void require_same_ambient(const Subspace& u, const Subspace& w, const char* fn) 
 }
 }  // namespace
 
-Subspace Subspace::span(const MatrixXd& cols, double scale, const Options& opt) {
+Subspace Subspace::span_columns(const MatrixXd& cols, double scale, const Options& opt) {
   require_finite(cols, "Subspace::span");
   const RankRevealing f(cols, scale, opt);
   Subspace out(f.range(), f.decision().certain);
   out.evidence_ = f.decision();
   return out;
+}
+
+Subspace Subspace::span(const MatrixXd& rows, double scale, const Options& opt) {
+  require_finite(rows, "Subspace::span");
+  return span_columns(rows.transpose(), scale, opt);
 }
 
 Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Options& opt) {
@@ -33,12 +38,12 @@ Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Opti
 Subspace sum(const Subspace& u, const Subspace& w, const Options& opt) {
   require_same_ambient(u, w, "sum");
   MatrixXd both(u.ambient(), u.dim() + w.dim());
-  both << u.basis(), w.basis();
-  return Subspace::span(both, 1.0, opt).and_certain(u.certain() && w.certain());
+  both << u.columns(), w.columns();
+  return Subspace::span_columns(both, 1.0, opt).and_certain(u.certain() && w.certain());
 }
 
 Subspace annihilator(const Subspace& u) {
-  return Subspace::from_orthonormal(orthogonal_complement(u.basis()), u.certain());
+  return Subspace::from_orthonormal_columns(orthogonal_complement(u.columns()), u.certain());
 }
 
 Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt) {
@@ -48,13 +53,13 @@ Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt) 
 
 Subspace kernel(const MatrixXd& a, const Options& opt) { return Subspace::solutions(a, -1, opt); }
 
-Subspace image(const MatrixXd& a, const Options& opt) { return Subspace::span(a, -1, opt); }
+Subspace image(const MatrixXd& a, const Options& opt) { return Subspace::span_columns(a, -1, opt); }
 
 Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt, double scale) {
   if (a.rows() != w.ambient())
     throw std::invalid_argument("preimage: expected a map into R^" + std::to_string(w.ambient()) + ", found a " +
                                 std::to_string(a.rows()) + "x" + std::to_string(a.cols()) + " matrix");
-  return Subspace::solutions(annihilator(w).basis().transpose() * a, scale >= 0 ? scale : norm2(a), opt)
+  return Subspace::solutions(annihilator(w).columns().transpose() * a, scale >= 0 ? scale : norm2(a), opt)
       .and_certain(w.certain());
 }
 
@@ -62,7 +67,7 @@ Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt) {
   if (a.cols() != u.ambient())
     throw std::invalid_argument("map: expected a map from R^" + std::to_string(u.ambient()) + ", found a " +
                                 std::to_string(a.rows()) + "x" + std::to_string(a.cols()) + " matrix");
-  return Subspace::span(a * u.basis(), norm2(a), opt).and_certain(u.certain());
+  return Subspace::span_columns(a * u.columns(), norm2(a), opt).and_certain(u.certain());
 }
 
 Answer contains(const Subspace& u, const Subspace& w, const Options& opt) {
@@ -77,7 +82,7 @@ Answer contains(const Subspace& u, const VectorXd& x, const Options& opt) {
                                 ", found length " + std::to_string(x.size()));
   const double nx = x.norm();
   if (nx == 0) return {true, u.certain()};
-  return contains(u, Subspace::from_orthonormal(x / nx, true), opt);
+  return contains(u, Subspace::from_orthonormal_columns(x / nx, true), opt);
 }
 
 Answer equal(const Subspace& u, const Subspace& w, const Options& opt) {
@@ -88,7 +93,7 @@ Answer equal(const Subspace& u, const Subspace& w, const Options& opt) {
 double largest_principal_angle_sin(const Subspace& u, const Subspace& w) {
   if (u.ambient() != w.ambient() || u.dim() != w.dim()) return 1.0;
   if (u.dim() == 0) return 0.0;
-  return norm2(w.basis() - u.basis() * (u.basis().transpose() * w.basis()));
+  return norm2(w.columns() - u.columns() * (u.columns().transpose() * w.columns()));
 }
 
 AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, double scale) {
@@ -102,7 +107,7 @@ AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, d
   ab << a, b;
   const RankDecision rab = decide_rank(ab, std::max(scale, b.norm()), opt);
   out.certain = ra.certain && rab.certain;
-  out.direction = Subspace::from_orthonormal(f.corange(), ra.certain);
+  out.direction = Subspace::from_orthonormal_columns(f.corange(), ra.certain);
   out.empty = rab.rank > ra.rank;
   if (!out.empty) out.point = f.min_norm_transposed(b);  // minimum-norm solution on the decided rank
   return out;

@@ -38,7 +38,7 @@ VectorXd sharp(const MatrixXd& w, const VectorXd& alpha) {
 
 Subspace symplectic_complement(const MatrixXd& w, const Subspace& v, const Options& opt) {
   require_skew(w, "symplectic_complement");
-  return Subspace::solutions((w * v.basis()).transpose(), norm2(w), opt).and_certain(v.certain());
+  return Subspace::solutions((w * v.columns()).transpose(), norm2(w), opt).and_certain(v.certain());
 }
 
 PresymplecticForm restrict_form(const MatrixXd& w, const Subspace& v) {
@@ -57,7 +57,7 @@ PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, c
   return g;
 }
 
-MatrixXd gram(const PresymplecticForm& f) { return f.space.basis().transpose() * f.matrix * f.space.basis(); }
+MatrixXd gram(const PresymplecticForm& f) { return f.space.columns().transpose() * f.matrix * f.space.columns(); }
 
 RankDecision form_rank(const PresymplecticForm& f, const Options& opt) {
   RankDecision d = decide_rank(gram(f), f.scale, opt);
@@ -67,22 +67,22 @@ RankDecision form_rank(const PresymplecticForm& f, const Options& opt) {
 
 Subspace orthogonal(const PresymplecticForm& f, const Subspace& w, const Options& opt) {
   // v = Q c with ω(Q c, w_j) = cᵀ Qᵀ M w_j = 0 for all j.
-  const MatrixXd& q = f.space.basis();
-  const Subspace c = Subspace::solutions((q.transpose() * f.matrix * w.basis()).transpose(), f.scale, opt);
-  return Subspace::from_orthonormal(q * c.basis(), c.certain() && f.space.certain() && w.certain());
+  const MatrixXd& q = f.space.columns();
+  const Subspace c = Subspace::solutions((q.transpose() * f.matrix * w.columns()).transpose(), f.scale, opt);
+  return Subspace::from_orthonormal_columns(q * c.columns(), c.certain() && f.space.certain() && w.certain());
 }
 
 Subspace form_kernel(const PresymplecticForm& f, const Options& opt) { return orthogonal(f, f.space, opt); }
 
 Subspace flat(const PresymplecticForm& f, const Subspace& w, const Options& opt) {
-  const MatrixXd images = f.matrix.transpose() * w.basis();  // columns: y ↦ wᵀ M y
-  return sum(Subspace::span(images, f.scale, opt), annihilator(f.space), opt).and_certain(w.certain());
+  const MatrixXd images = f.matrix.transpose() * w.columns();  // columns: y ↦ wᵀ M y
+  return sum(Subspace::span_columns(images, f.scale, opt), annihilator(f.space), opt).and_certain(w.certain());
 }
 
 NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Options& opt) {
   require_symplectic(w, "normal_form_basis", opt);
   const Subspace comp = symplectic_complement(w, v, opt);
-  MatrixXd rest = comp.basis();  // columns
+  MatrixXd rest = comp.columns();  // columns
   const double scale = norm2(w), tol = opt.nonzero_factor * scale;  // pairs below τ1 are not split off
   NormalFormBasis out;
   out.certain = comp.certain();
@@ -120,7 +120,7 @@ NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Op
 RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const VectorXd& beta, const Options& opt) {
   require_symplectic(w, "solve_restricted", opt);
   require_finite(beta, "solve_restricted");
-  const MatrixXd gamma = annihilator(v).basis();                // columns γ_i
+  const MatrixXd gamma = annihilator(v).columns();                // columns γ_i
   const MatrixXd y = w.transpose().fullPivLu().solve(gamma);    // columns Y_i = γ_i^♯
   const MatrixXd coeff = (gamma.transpose() * y).transpose();   // (i, j) = γ_j(Y_i)
   RestrictedSolution out;
@@ -134,12 +134,12 @@ RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const 
 }
 
 AffineSubspace solve_on_subspace(const PresymplecticForm& f, const VectorXd& beta, const Options& opt) {
-  const MatrixXd& q = f.space.basis();
+  const MatrixXd& q = f.space.columns();
   const AffineSubspace c = solve(gram(f).transpose(), q.transpose() * beta, opt, f.scale);
   AffineSubspace out;
   out.empty = c.empty;
   out.certain = c.certain && f.space.certain();
-  out.direction = Subspace::from_orthonormal(q * c.direction.basis(), c.direction.certain());
+  out.direction = Subspace::from_orthonormal_columns(q * c.direction.columns(), c.direction.certain());
   if (!c.empty) out.point = q * c.point;
   return out;
 }

@@ -27,7 +27,7 @@ inline Eigen::VectorXd to_double(const std::vector<Q>& v) {
 /// The exact subspace as a fast one (for angles; small exact bases are well conditioned).
 inline fast::Subspace to_fast(const QSub& s) {
   if (s.dim() == 0) return fast::Subspace::zero(static_cast<int>(s.ambient()));
-  return fast::Subspace::span(to_double(s.basis()).transpose());
+  return fast::Subspace::span(to_double(s.basis()));  // both twins: rows
 }
 
 /// 2-norm condition number of an exact square matrix, in double.

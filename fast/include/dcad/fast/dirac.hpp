@@ -12,8 +12,8 @@ struct DiracStructure {
   /// The presymplectic form ω when D was built as its graph (dirac_from_presymplectic), else empty:
   /// then E_D = R^n and ω_D = ω (CEF §4), which the CAD uses instead of deciding them again.
   MatrixXd graph_of;
-  MatrixXd v_part() const { return d.basis().topRows(n); }
-  MatrixXd alpha_part() const { return d.basis().bottomRows(n); }
+  MatrixXd v_part() const { return d.columns().topRows(n); }
+  MatrixXd alpha_part() const { return d.columns().bottomRows(n); }
 };
 
 /// Lemma 4.1: dim D = n and ⟨⟨D, D⟩⟩ = 0; `why` explains a negative answer.

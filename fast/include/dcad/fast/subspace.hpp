@@ -1,4 +1,5 @@
-// Subspaces of R^n by orthonormal bases (columns); the twin of dcad/reference/subspace.hpp.
+// Subspaces of R^n by orthonormal bases; the twin of dcad/reference/subspace.hpp.  basis() gives the
+// vectors as rows, as the reference does (one orientation at every boundary); columns() as columns.
 // Each subspace and each yes/no answer says whether every rank decision behind it was certain.
 #pragma once
 
@@ -14,18 +15,25 @@ struct Answer {
 
 class Subspace {
  public:
-  /// Column span of `cols` (n = rows); `scale` for the rank decision (<0: ‖cols‖₂).
-  static Subspace span(const MatrixXd& cols, double scale = -1, const Options& opt = {});
+  /// Row span of `rows` (n = cols), as the reference's Subspace<T>::span; `scale` for the rank
+  /// decision (<0: ‖rows‖₂).
+  static Subspace span(const MatrixXd& rows, double scale = -1, const Options& opt = {});
+  /// Column span of `cols` (n = rows): fast's own products make columns.
+  static Subspace span_columns(const MatrixXd& cols, double scale = -1, const Options& opt = {});
   /// {x : equations · x = 0}.
   static Subspace solutions(const MatrixXd& equations, double scale = -1, const Options& opt = {});
   static Subspace zero(int n) { return Subspace(MatrixXd(n, 0), true); }
   static Subspace whole(int n) { return Subspace(MatrixXd::Identity(n, n), true); }
-  /// An orthonormal basis, trusted as given (no decision).
-  static Subspace from_orthonormal(MatrixXd q, bool certain) { return Subspace(std::move(q), certain); }
+  /// Orthonormal columns, trusted as given (no decision).
+  static Subspace from_orthonormal_columns(MatrixXd q, bool certain) { return Subspace(std::move(q), certain); }
 
   int ambient() const { return static_cast<int>(basis_.rows()); }
   int dim() const { return static_cast<int>(basis_.cols()); }
-  const MatrixXd& basis() const { return basis_; }  ///< orthonormal columns
+  /// An orthonormal basis, one vector per row (dim × n): the reference's orientation
+  /// (Subspace<T>::basis(), rows of the RREF), so results compare without a transpose.
+  MatrixXd basis() const { return basis_.transpose(); }
+  /// The same vectors as columns (n × dim), for fast's own products.
+  const MatrixXd& columns() const { return basis_; }
   bool certain() const { return certain_; }
   /// The decision that produced this subspace, if any (its evidence).
   const RankDecision& evidence() const { return evidence_; }
@@ -41,7 +49,7 @@ class Subspace {
 
  private:
   Subspace(MatrixXd q, bool certain) : basis_(std::move(q)), certain_(certain) {}
-  MatrixXd basis_;
+  MatrixXd basis_;  // orthonormal columns
   bool certain_ = true;
   RankDecision evidence_;
 };
