@@ -78,6 +78,9 @@ RC_GTEST_PROP(FastVsReference, Cad, ()) {
   RC_ASSERT(!tally("CAD dims of M_k", f.certain, same_dims));
   RC_ASSERT(!tally("CAD steps c", f.certain, static_cast<Index>(f.steps) == r.steps));
   RC_ASSERT(!tally("CAD consistent", f.certain, f.consistent == r.consistent));
+  // unique: consistent and solution rank 0 (CEF Thm 5.4(b)) — on inconsistent towers too, where the
+  // rank is meaningless and unique() must be false (a unique() reading "or" fails here)
+  RC_ASSERT(!tally("CAD unique", f.certain, f.unique() == r.unique()));
   if (!r.consistent || !f.consistent) return;
   RC_ASSERT(!tally("CAD solution rank", f.certain, static_cast<Index>(f.solution_rank) == r.solution_rank));
   if (!f.certain || !same_dims) return;

@@ -1,0 +1,46 @@
+// The input layer at unit level (cli/waveform.hpp): what a source is worth at t = 0, exactly, and
+// where it is not rational.  These values decide whether a deck's initial condition is on M_c(0)
+// (simulate_forced.cpp), and a wrong "exact" or a needless "involves π" changes that verdict or its
+// message; the CLI tests see them only through whole decks.
+#include "waveform.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using dcad::io::parse_waveform;
+using dcad::io::Rational;
+using dcad::io::Waveform;
+
+namespace {
+
+Waveform wave(const std::string& spec) {
+  return parse_waveform(spec, [](const std::string& s) { return dcad::reference::parse_rational(s); });
+}
+
+}  // namespace
+
+// ngspice §4.1.2: SIN(VO VA FREQ TD THETA PHASE) is VO before TD and VO + VA sin(φ) at TD = 0.  Before
+// TD every derivative is 0 exactly; with VA = 0 too.  At TD = 0 the derivatives involve ω = 2π FREQ
+// (not rational) and the value is rational only at quarter turns.  Killed by: "before TD or no
+// sine" read as "and" (a delayed sine's derivative at 0 then "involves π"), a phase taken in radians.
+TEST(Waveform, SineAtZeroIsExactWhereItIsRational) {
+  const Waveform delayed = wave("SIN(0.5 2 1000 1e-3)");
+  EXPECT_EQ(delayed.exact_at_zero(0), Rational(1, 2));
+  EXPECT_EQ(delayed.exact_at_zero(1), Rational(0));
+  EXPECT_EQ(delayed.exact_at_zero(2), Rational(0));
+  const Waveform flat = wave("SIN(3 0 1000)");  // VA = 0: a constant, every derivative exactly 0
+  EXPECT_EQ(flat.exact_at_zero(0), Rational(3));
+  EXPECT_EQ(flat.exact_at_zero(1), Rational(0));
+  const Waveform now = wave("SIN(1 2 1000 0 0 90)");  // VO + VA sin 90° = 3; σ'(0) = VA ω cos φ: involves π
+  EXPECT_EQ(now.exact_at_zero(0), Rational(3));
+  EXPECT_FALSE(now.exact_at_zero(1).has_value());
+  EXPECT_EQ(wave("SIN(1 2 1000 0 0 270)").exact_at_zero(0), Rational(-1));
+  EXPECT_EQ(wave("SIN(1 2 1000 0 0 540)").exact_at_zero(0), Rational(1));  // 540° = 180°
+  EXPECT_FALSE(wave("SIN(1 2 1000 0 0 45)").exact_at_zero(0).has_value());
+  // the floating-point values agree with the exact ones
+  EXPECT_DOUBLE_EQ(delayed.value(0.0, 0), 0.5);
+  EXPECT_DOUBLE_EQ(now.value(0.0, 0), 3.0);
+  EXPECT_NEAR(now.value(0.0, 1), 0.0, 1e-9);  // cos 90° = 0 (rounded π)
+  EXPECT_NEAR(wave("SIN(0 1 1000)").value(0.0, 1), 2 * M_PI * 1000, 1e-9);
+}
