@@ -33,9 +33,10 @@ std::string case_path(const std::string& name) { return std::string(DCAD_SOURCE_
 
 }  // namespace
 
-// YM §6 rolling disk, V §3.5, the Cartesian pendulum (index 3), the 4-port with a nonlinear capacitor.
+// YM §6 rolling disk, V §3.5, the Cartesian pendulum (index 3), the 4-port with a nonlinear capacitor,
+// a cubic damper (YM §4: a nonlinear force).
 TEST(Expression, PapersScenesOnEveryBackend) {
-  for (const std::string name : {"rolling-disk", "vignolo-3-5", "cartesian-pendulum", "lc-4port-nonlinear"}) {
+  for (const std::string name : {"rolling-disk", "vignolo-3-5", "cartesian-pendulum", "lc-4port-nonlinear", "cubic-damper"}) {
     const json want = json::parse(slurp(case_path(name)))["expect"];
     for (const std::string backend : {"reference", "certified", "fast"}) {
       const Outcome r = run("solve " + case_path(name) + " --backend " + backend + " --json");

@@ -101,3 +101,21 @@ RC_GTEST_PROP(CircuitMotion, FastEqualsReference, ()) {
   RC_ASSERT(!tally("circuit motion: F modulo G", f.certain, f_ok));
   RC_ASSERT(!tally("circuit motion: span G", f.certain, g_ok));
 }
+
+// The coordinates a caller may give: as many as dim M_c (or none: the default ones), each a variable
+// of Q^{3n}, parametrizing M_c; anything else is refused (an index of 3n would read past the basis).  Killed by: the index bound
+// taken as ≤ 3n.
+RC_GTEST_PROP(CircuitMotion, CoordinatesOutsideTheVariablesAreRefused, ()) {
+  const Circuit<Q> c = random_circuit(true, false);
+  const ref::ProductStep<Q> mc = ref::circuit_tower(c).back();
+  const ref::ReducedEquations<Q> red = ref::circuit_reduced_equations(c, mc);
+  RC_PRE(!red.coords.empty());
+  const Index n3 = ref::product_basis(c, mc).cols();  // the variables (q, v, p) of every branch
+  std::vector<Index> bad = red.coords;
+  bad.back() = n3;
+  RC_ASSERT_THROWS_AS(ref::circuit_reduced_equations(c, mc, bad), std::invalid_argument);
+  bad.back() = red.coords.back();
+  bad.push_back(red.coords.front());  // one more than dim M_c (an empty list means: the default ones)
+  RC_ASSERT_THROWS_AS(ref::circuit_reduced_equations(c, mc, bad), std::invalid_argument);
+  RC_ASSERT(ref::circuit_reduced_equations(c, mc, red.coords).coords == red.coords);
+}

@@ -44,3 +44,38 @@ TEST(Waveform, SineAtZeroIsExactWhereItIsRational) {
   EXPECT_NEAR(now.value(0.0, 1), 0.0, 1e-9);  // cos 90° = 0 (rounded π)
   EXPECT_NEAR(wave("SIN(0 1 1000)").value(0.0, 1), 2 * M_PI * 1000, 1e-9);
 }
+
+// A DC source is V at 0 with every derivative 0; PULSE and PWL start at their first value with their
+// first slope.  Killed by: a DC derivative taken as 1.
+TEST(Waveform, PiecewiseLinearAndDcAtZero) {
+  const Waveform dc = wave("5");
+  EXPECT_EQ(dc.exact_at_zero(0), Rational(5));
+  EXPECT_EQ(dc.exact_at_zero(1), Rational(0));
+  EXPECT_EQ(dc.exact_at_zero(2), Rational(0));
+  const Waveform ramp = wave("PWL(0 1 2 5)");  // slope 2
+  EXPECT_EQ(ramp.exact_at_zero(0), Rational(1));
+  EXPECT_EQ(ramp.exact_at_zero(1), Rational(2));
+  const Waveform pulse = wave("PULSE(0 1 0 1/2 1/2 1 4)");  // rises at slope 2 from 0
+  EXPECT_EQ(pulse.exact_at_zero(0), Rational(0));
+  EXPECT_EQ(pulse.exact_at_zero(1), Rational(2));
+}
+
+// constant(): what simulate integrates without a breakpoint — DC, and a SIN that cannot move (no
+// amplitude, or frequency and phase 0).  Killed by: DC's test inverted (every SIN "constant").
+TEST(Waveform, ConstantIsDcOrASineThatCannotMove) {
+  EXPECT_TRUE(wave("5").constant());
+  EXPECT_TRUE(wave("SIN(3 0 1000)").constant());
+  EXPECT_TRUE(wave("SIN(3 2 0)").constant());  // FREQ 0, PHASE 0: VO + VA sin 0
+  EXPECT_FALSE(wave("SIN(0 1 1000)").constant());
+  EXPECT_FALSE(wave("PULSE(0 1 0 1 1 1 4)").constant());
+  EXPECT_FALSE(wave("PWL(0 0 1 1)").constant());
+}
+
+// PWL times start at 0 or later and increase (ngspice); values may be anything.  Killed by: the
+// first *value* checked for sign instead of the first time.
+TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {
+  EXPECT_THROW(wave("PWL(-1 0 1 1)"), std::invalid_argument);
+  EXPECT_NO_THROW(wave("PWL(0 -1 1 1)"));
+  EXPECT_THROW(wave("PWL(0 0 2 1 1 0)"), std::invalid_argument);  // times decrease
+  EXPECT_THROW(wave("PWL(0 0 1)"), std::invalid_argument);        // not pairs
+}
