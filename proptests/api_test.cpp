@@ -100,3 +100,11 @@ TEST(Api, ErrorChannels) {
   EXPECT_THROW(dcad::api::simulate(case_path("rlc-series.cir"), {-1, 1e-6, "certified"}, csv, log), dcad::api::InputError);
   EXPECT_EQ(dcad::api::exit_code(dcad::api::InternalError("x")), 4);
 }
+
+// A default-constructed verdict claims nothing: a caller that fills in a Checked itself (or forgets to)
+// must not read "agrees".  (A survivor of the seed-25 mutation sample: `agrees = true` by default.)
+TEST(Api, DefaultVerdictDoesNotAgree) {
+  const dcad::api::Checked none;
+  EXPECT_FALSE(none.agrees);
+  EXPECT_TRUE(none.compared.empty());
+}
