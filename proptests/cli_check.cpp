@@ -124,6 +124,32 @@ TEST(Check, EquationsOfMotionModuloGauge) {
   EXPECT_NE(partial.out.find("not compared: reduced.G"), std::string::npos) << partial.out;
 }
 
+// The same in floating point (a fast result: G = ±(0, 0, 1, 1)/√2 to rounding): F + G K passes, a G
+// with more columns than free directions fails, and F outside the family fails.  (A survivor of the
+// seed-25 mutation sample: no test reached the float route of the comparison modulo span(G).)
+TEST(Check, FloatEquationsOfMotionModuloGauge) {
+  const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/gauge-free-particle.json";
+  const nlohmann::json good = nlohmann::json::parse(run("solve " + file + " --backend fast --json").out);
+  ASSERT_EQ(good["reduced"]["G"].size(), 4u);
+  ASSERT_EQ(good["reduced"]["G"][0].size(), 1u);
+  const Outcome same = run("check " + write_temp("dcad_fgauge_same.json", good.dump()) + " " + file);
+  EXPECT_EQ(same.rc, 0) << same.out << same.err;
+  nlohmann::json shifted = good, twice = good, wrong_f = good;
+  const double g2 = std::stod(good["reduced"]["G"][2][0].get<std::string>()), g3 = std::stod(good["reduced"]["G"][3][0].get<std::string>());
+  for (int j = 0; j < 4; ++j) {  // F + G K with K = (1, −2, 3.5, 0.5)/g
+    const double kj = std::vector<double>{1, -2, 3.5, 0.5}[j];
+    shifted["reduced"]["F"][2][j] = std::to_string(std::stod(good["reduced"]["F"][2][j].get<std::string>()) + g2 * kj);
+    shifted["reduced"]["F"][3][j] = std::to_string(std::stod(good["reduced"]["F"][3][j].get<std::string>()) + g3 * kj);
+  }
+  EXPECT_EQ(run("check " + write_temp("dcad_fgauge_ok.json", shifted.dump()) + " " + file).rc, 0);
+  for (auto& row : twice["reduced"]["G"]) row.push_back(row[0]);  // the same direction twice
+  const Outcome dup = run("check " + write_temp("dcad_fgauge_twice.json", twice.dump()) + " " + file);
+  EXPECT_EQ(dup.rc, 3) << dup.out << dup.err;  // G's columns are the free directions: as many as the solution rank
+  EXPECT_NE(dup.out.find("among 2 columns"), std::string::npos) << dup.out;
+  wrong_f["reduced"]["F"][0][0] = "1.0";  // q1' = q1 + v1 is not in the family
+  EXPECT_EQ(run("check " + write_temp("dcad_fgauge_bad.json", wrong_f.dump()) + " " + file).rc, 3);
+}
+
 // Wrong results are caught (exit 3) with the disagreement named.
 TEST(Check, DisagreementsExitThree) {
   const std::string file = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.json";

@@ -117,6 +117,36 @@ TEST(Expression, BadInputNamesPathAndColumn) {
   }
 }
 
+// The velocity modulo the gauge in floating point (a fast result with two gauge directions): the
+// velocity moved along a gauge direction agrees, moved along another one does not.  (A survivor of the
+// seed-25 mutation sample: no test reached the float route of the comparison modulo the gauge.)
+TEST(Expression, CheckComparesFloatVelocitiesModuloTheGauge) {
+  const std::string file = case_path("regression-pointwise-skipped-column");
+  const Outcome ok = run("solve " + file + " --backend fast --json");
+  ASSERT_EQ(ok.rc, 0) << ok.err;
+  const json r = json::parse(ok.out);
+  ASSERT_EQ(r["gauge"].size(), 2u);
+  const json& vars = r["variables"];
+  const auto moved = [&](const std::vector<double>& dir) {
+    json m = r;
+    for (std::size_t i = 0; i < vars.size(); ++i) {
+      const std::string name = vars[i];
+      m["velocity"][name] = std::to_string(number_of(r["velocity"][name]) + dir[i]);
+    }
+    return m;
+  };
+  std::vector<double> along(vars.size()), across(vars.size(), 0.0);
+  for (std::size_t i = 0; i < vars.size(); ++i)
+    along[i] = 2 * number_of(r["gauge"][0][i]) - 3 * number_of(r["gauge"][1][i]);
+  across[0] = 1;  // Q1' = v_Q1 on M_1: not a gauge direction
+  const Outcome same = run("check " + write_temp("dcad_gauge_f_same.json", r.dump()) + " " + file);
+  EXPECT_EQ(same.rc, 0) << same.out << same.err;
+  const Outcome a = run("check " + write_temp("dcad_gauge_f_along.json", moved(along).dump()) + " " + file);
+  EXPECT_EQ(a.rc, 0) << a.out << a.err;
+  const Outcome b = run("check " + write_temp("dcad_gauge_f_across.json", moved(across).dump()) + " " + file);
+  EXPECT_EQ(b.rc, 3) << b.out << b.err;
+}
+
 // dcad check compares the velocity at the result's own point, modulo the gauge: a wrong component
 // is exit 3, a point off M_c is exit 3, and a result for another case is exit 1.
 TEST(Expression, CheckCatchesAWrongVelocityAndAPointOffMc) {
