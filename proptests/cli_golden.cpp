@@ -179,3 +179,18 @@ TEST_P(GoldenNetlist, EveryBackend) {
 INSTANTIATE_TEST_SUITE_P(Cases, GoldenInspect, testing::ValuesIn(cases_with(".json", "inspect")), case_name);
 INSTANTIATE_TEST_SUITE_P(Cases, GoldenSolve, testing::ValuesIn(cases_with(".json", "dims")), case_name);
 INSTANTIATE_TEST_SUITE_P(Cases, GoldenNetlist, testing::ValuesIn(cases_with(".cir", "")), case_name);
+
+// The report cites a theorem of CEF §6 only where its hypotheses hold: Thm 6.6 (L, C > 0 and no empty
+// branch) on the 4-port with its c, not on a tank with wires; Thm 6.8 (C > 0) on both, with its
+// verdict.  (A survivor of the seed-25 mutation sample: Thm 6.6 cited when either hypothesis held.)
+TEST(GoldenReport, TheoremsCitedOnlyUnderTheirHypotheses) {
+  const Outcome four = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir");
+  ASSERT_EQ(four.rc, 0) << four.err;
+  EXPECT_NE(four.out.find("CEF Thm 6.6 (L, C > 0, no empty branch): c ∈ {1, 3}, c = 3 iff a purely capacitive loop exists — here c = 3"),
+            std::string::npos) << four.out;
+  EXPECT_NE(four.out.find("there are no empty loops — here symplectic"), std::string::npos) << four.out;
+  const Outcome wires = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/lc-empty-loop.cir");
+  ASSERT_EQ(wires.rc, 0) << wires.err;
+  EXPECT_EQ(wires.out.find("CEF Thm 6.6"), std::string::npos) << wires.out;
+  EXPECT_NE(wires.out.find("there are no empty loops — here not symplectic"), std::string::npos) << wires.out;
+}

@@ -1,7 +1,8 @@
-// The input layer at unit level (cli/waveform.hpp): what a source is worth at t = 0, exactly, and
-// where it is not rational.  These values decide whether a deck's initial condition is on M_c(0)
-// (simulate_forced.cpp), and a wrong "exact" or a needless "involves π" changes that verdict or its
-// message; the CLI tests see them only through whole decks.
+// The pipeline's helpers at unit level, which the CLI tests see only through whole decks:
+//  * waveforms (cli/waveform.hpp): what a source is worth at t = 0, exactly, and where it is not
+//    rational — these decide whether a deck's initial condition is on M_c(0) (simulate_forced.cpp);
+//  * balancing (cli/simulate.hpp): the diagonal similarity that makes simulate unit-independent.
+#include "simulate.hpp"
 #include "waveform.hpp"
 
 #include <gtest/gtest.h>
@@ -78,4 +79,26 @@ TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {
   EXPECT_NO_THROW(wave("PWL(0 -1 1 1)"));
   EXPECT_THROW(wave("PWL(0 0 2 1 1 0)"), std::invalid_argument);  // times decrease
   EXPECT_THROW(wave("PWL(0 0 1)"), std::invalid_argument);        // not pairs
+}
+
+// Parlett–Reinsch balancing equalises each index's off-diagonal column and row sums (the diagonal is
+// invariant under the similarity and takes no part), by powers of two.  Killed by: the diagonal
+// counted in the column sum (a large diagonal then hides a 10^8 imbalance).
+TEST(Balancing, EqualisesOffDiagonalSumsByPowersOfTwo) {
+  Eigen::MatrixXd a(3, 3);
+  a << 100, 1e4, 0,
+       1e-4, 100, 1e3,
+       0, 1e-3, -50;
+  const std::vector<double> d = dcad::cli::balancing(a);
+  ASSERT_EQ(d.size(), 3u);
+  Eigen::MatrixXd b = a;  // D⁻¹ A D
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) b(i, j) = a(i, j) * d[j] / d[i];
+  for (int i = 0; i < 3; ++i) {
+    int e = 0;
+    EXPECT_EQ(std::frexp(d[i], &e), 0.5) << "a power of two: " << d[i];
+    EXPECT_EQ(b(i, i), a(i, i));
+    const double c = b.col(i).cwiseAbs().sum() - std::abs(b(i, i)), r = b.row(i).cwiseAbs().sum() - std::abs(b(i, i));
+    EXPECT_LE(std::max(c / r, r / c), 4.0) << "index " << i << ": column " << c << ", row " << r;
+  }
 }
