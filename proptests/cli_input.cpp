@@ -63,15 +63,16 @@ INSTANTIATE_TEST_SUITE_P(
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 // A deck written the way ngspice users write it — a library section with a parametrised .subckt,
-// .param with expressions, X instances (one with overrides), .ic on nodes, ; and $ comments,
-// .include — is the same circuit as its hand-flattened twin: same tower, same trajectory.
+// .param with expressions (numbers with signed exponents inside braces: a mutation survivor read
+// "0.2e-6" there as "0.2e" minus 6), X instances (one with overrides), .ic on nodes, ; and $
+// comments, .include — is the same circuit as its hand-flattened twin: same tower, same trajectory.
 TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   const fs::path dir = fs::temp_directory_path() / "dcad_hier";
   fs::create_directories(dir / "lib");
   std::ofstream(dir / "lib" / "parts.lib") << "* library\n.lib tanks\n.subckt tank a b params: l=1u c=1n\nL1 a b {l}\nC1 a b {c} ; shunt\n"
                                               ".ends\n.endl\n.lib other\n.subckt junk x\nR1 x 0 1\n.ends\n.endl\n";
   std::ofstream(dir / "extra.inc") << "C9 n2 0 1n $ the load\n";
-  std::ofstream(dir / "deck.spice") << "two tanks\n.param lval=2u cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
+  std::ofstream(dir / "deck.spice") << "two tanks\n.param lval={1e+1*0.2e-6} cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
                                        "X1 n1 0 tank params: l={lval} c={cval}\nX2 n1 n2 tank\n.include extra.inc\n"
                                        ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u\n.end\n";
   std::ofstream(dir / "flat.cir") << "two tanks, flat\nL.x1.l1 n1 0 2u\nC.x1.c1 n1 0 1n IC=1\nL.x2.l1 n1 n2 1u\n"

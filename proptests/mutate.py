@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Mutation testing (issue 15): do the tests fail when the code is wrong?
 
-    python3 proptests/mutate.py [--count N] [--seed S] [--dirs reference,fast,cli] [--keep]
+    python3 proptests/mutate.py [--count N] [--seed S] [--dirs reference,fast,cli] [--keep] [--start K]
 
 Picks N single-token mutants at random (seeded) in the C++ sources of the given directories — an
 arithmetic, comparison or logical operator swapped (+ -, < <=, > >=, == !=, && ||), a numeric
@@ -21,6 +21,7 @@ The verdict is that of a full rebuild and a full ctest run, reached sooner:
     change either) cannot see the mutant: its tests are the unmutated run's, which passed;
   * ccache (`bash .ci/setup --mutate` installs it) turns the rebuild after each revert into cache hits.
 A survivor therefore cost a full rebuild and every test; a killed mutant usually one executable.
+Ctrl-C reverts the mutant under test, prints the score so far and the --start that resumes the sample.
 Standard library only.
 """
 import argparse
@@ -110,6 +111,9 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--dirs", default="reference,fast,cli")
     ap.add_argument("--keep", action="store_true", help="keep the worktree's build for the next run")
+    ap.add_argument("--start", type=int, default=1,
+                    help="begin at mutant START of the seeded sample (continue an interrupted run: same --count, "
+                         "--seed and commit; mutants.txt is appended to)")
     args = ap.parse_args()
     root = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True, text=True, check=True).stdout.strip()
     work = os.path.join(root, "build-mutate")
@@ -138,16 +142,37 @@ def main():
     pool = candidates(tree, args.dirs.split(","))
     rng = random.Random(args.seed)
     picks = rng.sample(pool, min(args.count, len(pool)))
-    log = open(os.path.join(work, "mutants.txt"), "w")
+    log = open(os.path.join(work, "mutants.txt"), "a" if args.start > 1 else "w")
     tally = {"killed": 0, "survived": 0, "stillborn": 0}
-    for n, (path, i, k, a, b) in enumerate(picks, 1):
-        full = os.path.join(tree, path)
-        with open(full, encoding="utf-8") as fh:
-            original = fh.read()
-        lines = original.split("\n")
-        lines[i] = lines[i][:k] + b + lines[i][k + len(a):]
-        with open(full, "w", encoding="utf-8") as fh:
-            fh.write("\n".join(lines))
+    n = args.start
+    try:
+        for n, pick in enumerate(picks, 1):
+            if n >= args.start:
+                one_mutant(n, len(picks), pick, tree, build, env, groups, uses_binary, binary, kills, tally, log)
+    except KeyboardInterrupt:  # Ctrl-C: the mutant was reverted (one_mutant's finally); say where to resume
+        print(f"[mutate] interrupted: resume with --start {n} (same --count, --seed, commit)", flush=True)
+    run(["cmake", "--build", build, "-j2"], tree, 7200, env)  # back to the unmutated build
+    scored = tally["killed"] + tally["survived"]
+    summary = (f"mutation score {tally['killed']}/{scored} = {100.0 * tally['killed'] / max(scored, 1):.0f} % "
+               f"({tally['stillborn']} stillborn; seed {args.seed}; mutants {args.start}..{args.start + sum(tally.values()) - 1} of {len(picks)}; "
+               f"{len(pool)} candidate mutants in {args.dirs})")
+    print(summary)
+    log.write(summary + "\n")
+    if not args.keep:
+        subprocess.run(["git", "worktree", "remove", "--force", tree], cwd=root, capture_output=True)
+
+
+def one_mutant(n, total, pick, tree, build, env, groups, uses_binary, binary, kills, tally, log):
+    """Apply one mutant, reach its verdict, revert it (also when interrupted)."""
+    path, i, k, a, b = pick
+    full = os.path.join(tree, path)
+    with open(full, encoding="utf-8") as fh:
+        original = fh.read()
+    lines = original.split("\n")
+    lines[i] = lines[i][:k] + b + lines[i][k + len(a):]
+    with open(full, "w", encoding="utf-8") as fh:
+        fh.write("\n".join(lines))
+    try:
         t0 = time.time()
         scopes = (path, os.path.dirname(path))
         order = sorted(groups, key=lambda e: (-kills.get((scopes[0], e), 0), -kills.get((scopes[1], e), 0), e))
@@ -170,22 +195,15 @@ def main():
                 break
         if verdict == "survived" and run(["cmake", "--build", build, "-j2"], tree, 3600, env) != 0:
             verdict = "stillborn"  # a target that no test uses does not compile
+    finally:
         with open(full, "w", encoding="utf-8") as fh:
             fh.write(original)
-        tally[verdict] += 1
-        by = f" by {killer}" if verdict == "killed" else ""
-        line = f"{verdict.upper():9} {path}:{i + 1}: '{a.strip()}' -> '{b.strip()}'{by}   ({time.time() - t0:.0f} s)   {lines[i].strip()[:100]}"
-        print(f"[{n}/{len(picks)}] {line}", flush=True)
-        log.write(line + "\n")
-        log.flush()
-    run(["cmake", "--build", build, "-j2"], tree, 7200, env)  # back to the unmutated build
-    scored = tally["killed"] + tally["survived"]
-    summary = (f"mutation score {tally['killed']}/{scored} = {100.0 * tally['killed'] / max(scored, 1):.0f} % "
-               f"({tally['stillborn']} stillborn; seed {args.seed}; {len(pool)} candidate mutants in {args.dirs})")
-    print(summary)
-    log.write(summary + "\n")
-    if not args.keep:
-        subprocess.run(["git", "worktree", "remove", "--force", tree], cwd=root, capture_output=True)
+    tally[verdict] += 1
+    by = f" by {killer}" if verdict == "killed" else ""
+    line = f"{verdict.upper():9} {path}:{i + 1}: '{a.strip()}' -> '{b.strip()}'{by}   ({time.time() - t0:.0f} s)   {lines[i].strip()[:100]}"
+    print(f"[{n}/{total}] {line}", flush=True)
+    log.write(line + "\n")
+    log.flush()
 
 
 if __name__ == "__main__":

@@ -126,6 +126,20 @@ std::vector<long> linear_dims(const reference::CadResult<Q>& r) {
 // Two routes to the tower of a linear Lagrangian system: the linear CAD on subspaces (CEF (5.5)–
 // (5.6)) and the pointwise CAD on its formulas; and the velocity at a point of M_c lies in the
 // affine space of Thm 5.4 (velocities()), with the same solution rank.
+// The jet space of order K in d variables has C(d + K, K) monomials (stars and bars), counted degree
+// by degree; dcad computes jets up to 200 000 monomials and refuses beyond with a length_error, never
+// an allocation that takes the machine.  Killed by: the limit written 2001 (a mutation survivor:
+// no scene reached a jet of more than 2001 monomials).
+TEST(JetSpace, MonomialsAreBinomialsUpToTheStatedLimit) {
+  const reference::JetSpace s(3, 22);
+  EXPECT_EQ(s.size(), 2300u);  // C(25, 3)
+  EXPECT_EQ(s.count_up_to(0), 1u);
+  EXPECT_EQ(s.count_up_to(1), 4u);
+  EXPECT_EQ(s.count_up_to(2), 10u);  // C(5, 2)
+  EXPECT_EQ(s.count_up_to(21), 2024u);  // C(24, 3)
+  EXPECT_THROW(reference::JetSpace(6, 30), std::length_error);  // C(36, 6) = 1 947 792 monomials
+}
+
 RC_GTEST_PROP(Pointwise, LinearFormulasGiveTheLinearTower, ()) {
   const Planted p = planted(3);
   const PR r = exact_at(pulled_back(p.in, identity_map(p.in.n)), qvt_of(p.x0, p.in.n));
