@@ -255,15 +255,22 @@ TEST(Expression, SympyRollingDiscVerdict) {
 
 // A point where a rank drops is reported, never used (CONTRACT): a mass x² that vanishes at x = 0
 // (the Legendre rank drops there, not nearby), and a constraint x v_y − y v_x whose coefficients all
-// vanish at the origin.  Exit 0, "regular": false with the reason, no solution rank, not certified;
-// at x = 1/2 the same system is regular: [3, 2].
+// vanish at the origin; and two multiplier-like coordinates a, b (L = ½v_x² − ½a² − ⅓b³: M_1 is the
+// graph p = ∂L/∂v, dim 9 − 3 = 6, and step 1 finds a = 0 and b² = 0, the second with no differential
+// at b = 0 though it is not zero on {a = 0}).  Exit 0, "regular": false with the reason, no solution
+// rank, not certified, `steps` the last index of `dims` (CONTRACT: dims[k] for k = 0…steps) — killed
+// by: steps = dims.size() + 1 on that report (a mutation survivor); at x = 1/2 the first system is
+// regular: [3, 2].
 TEST(Expression, SingularPointsAreReportedNotUsed) {
   const std::string mass = write_temp("dcad_singular_mass.json",
                                       R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/2*x^2*v_x^2 - x^4"}, "initial": {"x": "0", "v_x": "1"}})J");
   const std::string cons = write_temp("dcad_singular_cons.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "y"], "L": "1/2*(v_x^2 + v_y^2)",
       "constraints": ["x*v_y - y*v_x"]}, "initial": {"x": "0", "y": "0"}})J");
+  const std::string mult = write_temp("dcad_singular_mult.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "a", "b"],
+      "L": "1/2*v_x^2 - 1/2*a^2 - 1/3*b^3"}, "initial": {"x": "0", "a": "0", "b": "0", "v_x": "1"}})J");
   for (const auto& [file, why] : {std::pair<std::string, std::string>{mass, "rank of the system for (d/dt s, lambda) drops"},
-                                  std::pair<std::string, std::string>{cons, "velocity coefficients have rank 0 < 1"}})
+                                  std::pair<std::string, std::string>{cons, "velocity coefficients have rank 0 < 1"},
+                                  std::pair<std::string, std::string>{mult, "on M_2: a constraint of step 1 vanishes with its differential"}})
     for (const std::string backend : {"reference", "fast", "certified"}) {
       const Outcome r = run("solve " + file + " --backend " + backend + " --json");
       ASSERT_EQ(r.rc, 0) << file << " " << backend << r.err;
@@ -272,6 +279,8 @@ TEST(Expression, SingularPointsAreReportedNotUsed) {
       EXPECT_FALSE(got["certified"].get<bool>()) << file << " " << backend;
       EXPECT_TRUE(got["solution_rank"].is_null());
       EXPECT_NE(got["why"].get<std::string>().find(why), std::string::npos) << got["why"];
+      EXPECT_EQ(got["steps"].get<std::size_t>() + 1, got["dims"].size()) << file << " " << backend;
+      if (file == mult) EXPECT_EQ(got["dims"], json::parse("[9, 6]")) << backend;
       EXPECT_NE(run("solve " + file + " --backend " + backend).out.find("SINGULAR POINT"), std::string::npos);
     }
   json m = json::parse(slurp(mass));
