@@ -20,6 +20,8 @@ The verdict is that of a full rebuild and a full ctest run, reached sooner:
   * an executable the rebuild did not relink (and, for the CLI tests, whose `dcad` binary did not
     change either) cannot see the mutant: its tests are the unmutated run's, which passed;
   * ccache (`bash .ci/setup --mutate` installs it) turns the rebuild after each revert into cache hits.
+  * a test that runs 5x as long as the slowest test of the unmutated run (at least 60 s) kills the
+    mutant: a moved loop bound that hangs costs a minute, not ctest's 10.
 A survivor therefore cost a full rebuild and every test; a killed mutant usually one executable.
 Ctrl-C reverts the mutant under test, prints the score so far and the --start that resumes the sample.
 Standard library only.
@@ -98,6 +100,21 @@ def test_executables(build, tree):
     return groups
 
 
+def test_timeout(build):
+    """5x the slowest test of the unmutated run (ctest's CTestCostData: name, runs, mean seconds), at least
+    60 s: a mutant that hangs (a loop bound moved) is killed in about a minute, not ctest's 10."""
+    slowest = 0.0
+    try:
+        with open(os.path.join(build, "Testing", "Temporary", "CTestCostData.txt")) as f:
+            for row in f:
+                parts = row.split()
+                if len(parts) == 3:
+                    slowest = max(slowest, float(parts[2]))
+    except (OSError, ValueError):
+        return 300
+    return max(60, int(5 * slowest + 1))
+
+
 def mtime(path):
     try:
         return os.stat(path).st_mtime_ns
@@ -135,6 +152,9 @@ def main():
     if run(["ctest", "--test-dir", build, "-j2", "-LE", "install"], tree, 1800, env) != 0:
         sys.exit("mutate: the unmutated tree fails its tests: fix that first")
     groups = test_executables(build, tree)
+    timeout = test_timeout(build)
+    print(f"[mutate] a test running longer than {timeout} s kills the mutant (5x the slowest unmutated test, at least 60 s)",
+          flush=True)
     binary = os.path.join(build, "dcad")
     # the CLI tests run the dcad binary (its path is compiled into them): they see a mutant through it too
     uses_binary = {exe for exe in groups if binary.encode() in open(exe, "rb").read()}
@@ -148,7 +168,7 @@ def main():
     try:
         for n, pick in enumerate(picks, 1):
             if n >= args.start:
-                one_mutant(n, len(picks), pick, tree, build, env, groups, uses_binary, binary, kills, tally, log)
+                one_mutant(n, len(picks), pick, tree, build, env, groups, uses_binary, binary, kills, tally, log, timeout)
     except KeyboardInterrupt:  # Ctrl-C: the mutant was reverted (one_mutant's finally); say where to resume
         print(f"[mutate] interrupted: resume with --start {n} (same --count, --seed, commit)", flush=True)
     run(["cmake", "--build", build, "-j2"], tree, 7200, env)  # back to the unmutated build
@@ -162,7 +182,7 @@ def main():
         subprocess.run(["git", "worktree", "remove", "--force", tree], cwd=root, capture_output=True)
 
 
-def one_mutant(n, total, pick, tree, build, env, groups, uses_binary, binary, kills, tally, log):
+def one_mutant(n, total, pick, tree, build, env, groups, uses_binary, binary, kills, tally, log, timeout):
     """Apply one mutant, reach its verdict, revert it (also when interrupted)."""
     path, i, k, a, b = pick
     full = os.path.join(tree, path)
@@ -187,7 +207,7 @@ def one_mutant(n, total, pick, tree, build, env, groups, uses_binary, binary, ki
             if mtime(exe) == before and not (exe in uses_binary and mtime(binary) != binary_before):
                 continue  # not relinked: it runs the unmutated code, whose tests passed
             numbers = ",".join(str(t) for t in groups[exe])
-            tested = run(["ctest", "--test-dir", build, "-j2", "--timeout", "300", "-I", f"0,0,0,{numbers}"], tree, 3600, env)
+            tested = run(["ctest", "--test-dir", build, "-j2", "--timeout", str(timeout), "-I", f"0,0,0,{numbers}"], tree, 3600, env)
             if tested != 0:
                 verdict, killer = "killed", target
                 for s in scopes:
