@@ -48,6 +48,28 @@ def in_string_or_comment(line, pos):
     return code[:pos].count('"') % 2 == 1
 
 
+def inside_literal(line, pos):
+    """Whether `pos` is inside a string or character literal or a // comment, reading escapes (\\")
+    and digit separators (200'000).  The sampler's in_string_or_comment counts quotes only, and is kept
+    so that a seed picks the same mutants as before; a pick that this exact test puts in a literal is
+    skipped (a changed message, and a rebuild of everything that includes it, for nothing)."""
+    quote, i = None, 0
+    while i < pos:
+        c = line[i]
+        if quote:
+            if c == "\\":
+                i += 2
+                continue
+            if c == quote:
+                quote = None
+        elif line.startswith("//", i):
+            return True
+        elif c == '"' or (c == "'" and not (line[i - 1:i].isalnum() and line[i + 1:i + 2].isalnum())):
+            quote = c
+        i += 1
+    return quote is not None
+
+
 def candidates(root, dirs):
     out = []
     for d in dirs:
@@ -174,7 +196,7 @@ def main():
     run(["cmake", "--build", build, "-j2"], tree, 7200, env)  # back to the unmutated build
     scored = tally["killed"] + tally["survived"]
     summary = (f"mutation score {tally['killed']}/{scored} = {100.0 * tally['killed'] / max(scored, 1):.0f} % "
-               f"({tally['stillborn']} stillborn; seed {args.seed}; mutants {args.start}..{args.start + sum(tally.values()) - 1} of {len(picks)}; "
+               f"({tally['stillborn']} stillborn, {tally.get('in a literal', 0)} skipped inside literals; seed {args.seed}; mutants {args.start}..{args.start + sum(tally.values()) - 1} of {len(picks)}; "
                f"{len(pool)} candidate mutants in {args.dirs})")
     print(summary)
     log.write(summary + "\n")
@@ -189,6 +211,10 @@ def one_mutant(n, total, pick, tree, build, env, groups, uses_binary, binary, ki
     with open(full, encoding="utf-8") as fh:
         original = fh.read()
     lines = original.split("\n")
+    if inside_literal(lines[i], k):
+        tally["in a literal"] = tally.get("in a literal", 0) + 1
+        print(f"[{n}/{total}] SKIPPED   {path}:{i + 1}: '{a.strip()}' -> '{b.strip()}' inside a literal", flush=True)
+        return
     lines[i] = lines[i][:k] + b + lines[i][k + len(a):]
     with open(full, "w", encoding="utf-8") as fh:
         fh.write("\n".join(lines))
