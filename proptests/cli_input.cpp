@@ -90,6 +90,21 @@ TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   EXPECT_NE(sh.err.find("ignored .tran"), std::string::npos) << "simulate shows the netlist warnings: " << sh.err;
 }
 
+// A subcircuit without ports (its elements tied to ground and its own internal nodes) is instanced
+// by "X1 NAME", two tokens, and is the circuit of its flat twin.  Killed by: an instance line of two
+// tokens refused as "expected XNAME NODE… SUBCKT" (a mutation survivor, k <= 2).
+TEST(Cli, SubcircuitWithoutPortsEqualsItsFlatTwin) {
+  const std::string deck = write_temp("dcad_zero_port.cir", "zero-port subcircuit\n.subckt tank0\nL1 a 0 1u\nC1 a 0 1n\n.ends\n"
+                                                         "X1 tank0\nC2 b 0 1n\nL2 b 0 1u\n.end\n");
+  const std::string flat = write_temp("dcad_zero_port_flat.cir", "flat\nL.x1.l1 x1.a 0 1u\nC.x1.c1 x1.a 0 1n\nC2 b 0 1n\nL2 b 0 1u\n.end\n");
+  const Outcome h = run("solve " + deck + " --json"), f = run("solve " + flat + " --json");
+  ASSERT_EQ(h.rc, 0) << h.err;
+  ASSERT_EQ(f.rc, 0) << f.err;
+  const nlohmann::json jh = nlohmann::json::parse(h.out), jf = nlohmann::json::parse(f.out);
+  for (const char* key : {"dims", "steps", "solution_rank", "variables", "tower", "reduced"}) EXPECT_EQ(jh[key], jf[key]) << key;
+  EXPECT_EQ(jh["circuit"]["branches"], 4);
+}
+
 // Found by fuzz_netlist (proptests/fuzz/regressions/netlist/formfeed-line): a line of white space
 // other than blanks and tabs (\f, \v) had no token and the reader read tok[0] of an empty vector.
 TEST(Cli, NetlistLinesOfOtherWhiteSpace) {
