@@ -64,10 +64,28 @@ void check_against_generic(const Circuit<Q>& c, const std::string& family) {
 // (M_{c+1} = M_c), on random circuits with signed values and empty branches — every case of §6.
 RC_GTEST_PROP(CircuitClosedForm, EqualsGenericCad, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
+  for (const auto& b : c.branches)
+    RC_LOG() << "{" << static_cast<int>(b.kind) << ", " << b.from << ", " << b.to << ", Q(\"" << b.value << "\")} ";
   const ref::CadResult<Q> r = generic(c);
   RC_TAG("c = " + std::to_string(r.steps));
   for (Index j = 1; j <= r.steps + 1; ++j)
     RC_ASSERT(ref::closed_form_m(c, j) == r.tower[std::min(j, r.steps)].m.direction);
+}
+
+// The shrunk circuit on which the closed form's odd M_{2k−1} needs v ∈ Δ_{k−1}, not a later Δ: two
+// capacitors 3 and −3 across one node pair (the elastances cancel), an inductor alone on another node
+// and an empty branch — a tower of length 5 (0.4 % of random circuits, so 200 cases rarely meet one).
+// Killed by: Δ_{k+1} in place of Δ_{k−1} (a mutation survivor; the property above finds it after ~1400
+// cases).
+TEST(CircuitClosedForm, CancellingCapacitorsTowerOfFive) {
+  Circuit<Q> c;
+  c.nodes = 3;
+  using K = BranchKind;
+  c.branches = {{"E", K::empty, 0, -1, Q(0)}, {"L1", K::inductor, 1, -1, Q(1)}, {"L2", K::inductor, 2, -1, Q(1)},
+                {"C1", K::capacitor, 1, -1, Q(3)}, {"C2", K::capacitor, -1, 1, Q(-3)}};
+  const ref::CadResult<Q> r = generic(c);
+  EXPECT_EQ(r.steps, 5);
+  for (Index j = 1; j <= r.steps + 1; ++j) EXPECT_TRUE(ref::closed_form_m(c, j) == r.tower[std::min(j, r.steps)].m.direction) << j;
 }
 
 // The graph route = the generic exact CAD: physical circuits (L, C > 0, empty branches) by
