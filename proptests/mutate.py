@@ -23,7 +23,7 @@ The verdict is that of a full rebuild and a full ctest run, reached sooner:
   * a test that runs 5x as long as the slowest test of the unmutated run (at least 60 s) kills the
     mutant: a moved loop bound that hangs costs a minute, not ctest's 10.
 A survivor therefore cost a full rebuild and every test; a killed mutant usually one executable.
-Ctrl-C reverts the mutant under test, prints the score so far and the --start that resumes the sample.
+Ctrl-C (or kill) reverts the mutant under test, prints the score so far and the --start that resumes the sample.
 Standard library only.
 """
 import argparse
@@ -32,6 +32,7 @@ import os
 import random
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -154,6 +155,10 @@ def main():
                     help="begin at mutant START of the seeded sample (continue an interrupted run: same --count, "
                          "--seed and commit; mutants.txt is appended to)")
     args = ap.parse_args()
+    # Ctrl-C, and kill (SIGTERM), end the run cleanly — also when started in the background, where a shell
+    # leaves SIGINT ignored
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
     root = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True, text=True, check=True).stdout.strip()
     work = os.path.join(root, "build-mutate")
     tree, build = os.path.join(work, "tree"), os.path.join(work, "build")
