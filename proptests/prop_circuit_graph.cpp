@@ -64,6 +64,7 @@ void check_against_generic(const Circuit<Q>& c, const std::string& family) {
 // (M_{c+1} = M_c), on random circuits with signed values and empty branches — every case of §6.
 RC_GTEST_PROP(CircuitClosedForm, EqualsGenericCad, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
+  RC_LOG() << "nodes " << c.nodes << "; branches {kind (0 L, 1 C, 2 empty), from, to, value}: ";  // a falsified circuit, to keep as a test
   for (const auto& b : c.branches)
     RC_LOG() << "{" << static_cast<int>(b.kind) << ", " << b.from << ", " << b.to << ", Q(\"" << b.value << "\")} ";
   const ref::CadResult<Q> r = generic(c);
