@@ -268,6 +268,24 @@ TEST(DiracBergmann, UndecidedBracketMatrixIsUncertain) {
   EXPECT_TRUE(run(0).certain);
 }
 
+// A tower that ends empty keeps the shape cad.hpp documents for every step's equations, [a | b] of
+// width N + 1, so a caller reading b as the last column (secondary_constraints, the CLI's report)
+// reads it on the empty step too. ω = 0 on R², E = x1²/2 + x2: dE = (x1, 1) ∈ D° asks 1 = 0, M_1 = ∅.
+// Killed by: the empty step's equations built N wide (seed-26 survivor [64]).
+TEST(Cad, InconsistentTowerKeepsTheEquationsWidth) {
+  LinearSystem s;
+  s.d = dirac_from_presymplectic(MatrixXd::Zero(2, 2));
+  s.hessian = MatrixXd::Zero(2, 2);
+  s.hessian(0, 0) = 1;
+  s.gradient = VectorXd::Unit(2, 1);
+  const CadResult r = constraint_tower(s);
+  ASSERT_FALSE(r.consistent);
+  ASSERT_TRUE(r.certain);
+  EXPECT_TRUE(r.final_step().m.empty);
+  for (const CadStep& step : r.tower) EXPECT_EQ(step.equations.cols(), 3);
+  EXPECT_EQ(secondary_constraints(r).cols(), 3);
+}
+
 // A graph the fast circuit route cannot read is refused naming the branch (1-based, as in a netlist's
 // order) and what was expected — a node past the last one, a capacitor of value 0.
 TEST(BadInput, CircuitGraphNamesTheBranch) {
