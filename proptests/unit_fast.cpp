@@ -221,6 +221,18 @@ TEST(Subspace, Operations) {
   EXPECT_NEAR(std::abs(intersection(su, sw).basis()(0, 1)), 1.0, 1e-15);  // one row: ±e_2
 }
 
+// The default scale of a span is the matrix's own norm (subspace.hpp: "<0: ‖rows‖₂"): two columns
+// that differ by 1e-18 span a line at that scale; a decision at scale 0 counts the rounding residue.
+// Killed by: span_columns' default scale −1 → 0 (seed-26 survivor [68]).
+TEST(Subspace, DefaultScaleIsTheNorm) {
+  MatrixXd u(2, 2);
+  u << 1, 1, 0, 1e-18;
+  EXPECT_EQ(Subspace::span_columns(u).dim(), 1);
+  EXPECT_EQ(Subspace::span(u.transpose()).dim(), 1);
+  EXPECT_EQ(Subspace::solutions(u.transpose()).dim(), 1);
+  EXPECT_EQ(Subspace::span_columns(u, 0).dim(), 2);
+}
+
 TEST(BadInput, NanInfAndShapes) {
   MatrixXd w(2, 2);
   w << 0, std::numeric_limits<double>::quiet_NaN(), 0, 0;
