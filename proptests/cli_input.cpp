@@ -364,6 +364,12 @@ TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   const std::string late = write_temp("dcad_cond_late.cir", "parallel sources\nV1 a 0 DC 0\nV2 a 0 PULSE(0 1 5 1 1 1 10)\nR1 a 0 1\n.end\n");
   const nlohmann::json l = nlohmann::json::parse(run("solve " + late + " --json --backend reference").out);
   EXPECT_EQ(l["sources"]["conditions"][0]["holds"], false) << l["sources"];
+  // and a PWL's features end at its last time (7 s here), not at twice its values (the samples
+  // stopped at 2 s, where V2 is still 0, and the condition was reported undecided).
+  // Killed by: Waveform::horizon() read p[size − 3] for PWL (seed-26 survivor [69]).
+  const std::string pwl = write_temp("dcad_cond_late_pwl.cir", "parallel sources\nV1 a 0 DC 0\nV2 a 0 PWL(0 0 5 0 6 1 7 0)\nR1 a 0 1\n.end\n");
+  const nlohmann::json lp = nlohmann::json::parse(run("solve " + pwl + " --json --backend reference").out);
+  EXPECT_EQ(lp["sources"]["conditions"][0]["holds"], false) << lp["sources"];
   const std::string flat = write_temp("dcad_cond_undecided.cir", "parallel sources\nV1 a 0 DC 1\nV2 a 0 PULSE(1 1 0 1u 1u 1m 2m)\nR1 a 0 1\n.end\n");
   const nlohmann::json undecided = nlohmann::json::parse(run("solve " + flat + " --json --backend reference").out);
   EXPECT_TRUE(undecided["sources"]["conditions"][0]["holds"].is_null());
