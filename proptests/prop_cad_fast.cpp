@@ -38,6 +38,7 @@ struct Twins {
 std::optional<Twins> consistent_twins() {
   Twins t;
   t.s = any_system();
+  RC_LOG() << case_json(t.s);
   t.r = ref::constraint_tower(t.s);
   if (!t.r.consistent) return std::nullopt;
   t.opt = any_route_options();

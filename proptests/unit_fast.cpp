@@ -298,6 +298,31 @@ TEST(Cad, InconsistentTowerKeepsTheEquationsWidth) {
   EXPECT_EQ(secondary_constraints(r).cols(), 3);
 }
 
+// Regression (FastVsReference.Velocities, shrunk; cases/regression-fast-velocities-residue.json):
+// D = span{(e1 − e2, 0), (0, e1 + e2)}, E = −x1² + x2² − 2x1 − 2x2. M_c = {x1 + x2 = 0} = E_D, so
+// every ẋ ∈ T M_c solves (5.7)–(5.8): an affine space of dimension 1 (CEF Thm 5.4, solution rank 1).
+// Γ_v B (Γ_v: v-rows of D's equations, B: basis of T M_c) is 0 exactly and rounding residue in
+// double; decided at its own norm it was rank 1, certain, and the velocities a single point.
+TEST(Velocities, ResidueOfAProductIsNotItsRank) {
+  MatrixXd basis(2, 4);
+  basis << 1, -1, 0, 0, 0, 0, 1, 1;
+  LinearSystem s;
+  s.d = dirac_from_basis(basis);
+  s.hessian = MatrixXd::Zero(2, 2);
+  s.hessian(0, 0) = -2;
+  s.hessian(1, 1) = 2;
+  s.gradient = VectorXd::Constant(2, -2);
+  const CadResult r = constraint_tower(s);
+  ASSERT_TRUE(r.certain && r.consistent);
+  ASSERT_EQ(r.final_step().dim(), 1);
+  for (double a : {1.0, 1.0 / 3, 1e6}) {
+    const AffineSubspace v = velocities(s, r, Eigen::Vector2d(a, -a));
+    EXPECT_TRUE(v.certain) << a;
+    EXPECT_FALSE(v.empty) << a;
+    EXPECT_EQ(v.direction.dim(), 1) << a;
+  }
+}
+
 // A graph the fast circuit route cannot read is refused naming the branch (1-based, as in a netlist's
 // order) and what was expected — a node past the last one, a capacitor of value 0.
 TEST(BadInput, CircuitGraphNamesTheBranch) {

@@ -283,7 +283,10 @@ AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const Vecto
   const MatrixXd& b = r.final_step().m.direction.columns();
   const MatrixXd g = annihilator(s.d.d).columns();
   const MatrixXd gv = g.topRows(n).transpose(), ga = g.bottomRows(n).transpose();
-  const AffineSubspace w = solve(gv * b, -(ga * energy_differential(s, x)), opt);
+  // scales of the factors (b orthonormal; dE = Hx + g rounded at ‖H‖‖x‖ + ‖g‖), not of the products:
+  // where Γ_v B is rounding residue (T M_c ⊂ ker Γ_v, e.g. a 1-dim E_D), its own norm called it rank 1
+  const double de_scale = norm2(s.hessian) * x.norm() + s.gradient.norm();
+  const AffineSubspace w = solve(gv * b, -(ga * energy_differential(s, x)), opt, norm2(gv), norm2(ga) * de_scale);
   AffineSubspace out;
   out.empty = w.empty;
   out.certain = w.certain && r.certain;

@@ -96,7 +96,7 @@ double largest_principal_angle_sin(const Subspace& u, const Subspace& w) {
   return norm2(w.columns() - u.columns() * (u.columns().transpose() * w.columns()));
 }
 
-AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, double scale) {
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, double scale, double rhs_scale) {
   require_finite(a, "solve");
   require_finite(b, "solve");
   AffineSubspace out;
@@ -105,7 +105,7 @@ AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, d
   const RankDecision& ra = f.decision();
   MatrixXd ab(a.rows(), a.cols() + 1);
   ab << a, b;
-  const RankDecision rab = decide_rank(ab, std::max(scale, b.norm()), opt);
+  const RankDecision rab = decide_rank(ab, std::max(scale, rhs_scale < 0 ? b.norm() : rhs_scale), opt);
   out.certain = ra.certain && rab.certain;
   out.direction = Subspace::from_orthonormal_columns(f.corange(), ra.certain);
   out.empty = rab.rank > ra.rank;

@@ -79,7 +79,9 @@ struct AffineSubspace {
   bool certain = true;
 };
 
-/// {x : A x = b}: solvable iff rank A = rank [A b] (both decided), least-squares point.
-AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {}, double scale = -1);
+/// {x : A x = b}: solvable iff rank A = rank [A b] (both decided), least-squares point.  `scale`: of
+/// A's rounding (<0: ‖A‖₂); `rhs_scale`: of b's (<0: ‖b‖).  A product's own norm is no scale: when
+/// the product is all rounding residue, its residue would be decided its rank.
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {}, double scale = -1, double rhs_scale = -1);
 
 }  // namespace dcad::fast
