@@ -329,6 +329,16 @@ RC_GTEST_PROP(ImplicitLagrangian, ConstrainedSystemByRestrictionIsTheCad, ()) {
   RC_ASSERT(ref::contains(tp, big_x));  // tangent to P: X_V = 0
   RC_ASSERT(ref::dirac_defect(ref::constrained_dirac(in)).empty());  // D_P is Dirac (Prop. 5.2)
   const std::vector<Q> c = ref::constrained_part(in, big_x);
+  // (5.11) T_P(T*Q) = T P ⊕ V: a planted part (0, η), η ∈ Δ°, is split off again and c is unchanged.
+  // Killed by: constrained_part's loop over Δ°'s basis starting at 1 (seed-26 survivor [85]; X alone
+  // has no V part, so any basis of V passed).
+  const QSub ann = ref::annihilator(in.k.rows() ? ref::kernel(in.k) : QSub::whole(n));
+  std::vector<Q> planted = big_x;
+  for (Index i = 0; i < ann.dim(); ++i) {
+    const Q w(*rc::gen::inRange(-3, 4));
+    for (Index j = 0; j < n; ++j) planted[n + j] += w * ann.basis()(i, j);
+  }
+  RC_ASSERT(ref::constrained_part(in, planted) == c);
   const ref::AffineSubspace<Q> xp = ref::implicit_constrained_fields(in, q, v);
   RC_ASSERT(!xp.empty);
   std::vector<Q> d(c.size());

@@ -2,6 +2,7 @@
 #include "dcad/fast/dirac.hpp"
 #include "dcad/fast/dirac_bergmann.hpp"
 #include "dcad/fast/circuit.hpp"
+#include "dcad/fast/pointwise.hpp"
 
 #include <Eigen/QR>
 #include <gtest/gtest.h>
@@ -321,6 +322,30 @@ TEST(Velocities, ResidueOfAProductIsNotItsRank) {
     EXPECT_FALSE(v.empty) << a;
     EXPECT_EQ(v.direction.dim(), 1) << a;
   }
+}
+
+// The pointwise decisions' bands as pointwise.hpp documents them: |v| ≤ 8e zero, |v| > 64e nonzero,
+// both certain; in between uncertain. Killed by: nonzero_factor 64 → 65 (seed-26 survivor [78]).
+TEST(ToleranceDecisions, BandsAreThoseDocumented) {
+  const auto decide = [](double v, bool& certain) {
+    ToleranceDecisions d;
+    d.step_data({Tracked(1)});
+    Tracked x;
+    x.v = v;
+    x.e = 1e-10;
+    const bool zero = d.zero(x);
+    certain = d.certain;
+    return zero;
+  };
+  bool certain = false;
+  EXPECT_FALSE(decide(64.5e-10, certain));
+  EXPECT_TRUE(certain);
+  EXPECT_TRUE(decide(7.9e-10, certain));
+  EXPECT_TRUE(certain);
+  decide(63.5e-10, certain);
+  EXPECT_FALSE(certain);
+  decide(8.1e-10, certain);
+  EXPECT_FALSE(certain);
 }
 
 // A graph the fast circuit route cannot read is refused naming the branch (1-based, as in a netlist's
