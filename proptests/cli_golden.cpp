@@ -154,8 +154,11 @@ TEST_P(GoldenNetlist, EveryBackend) {
   {
     std::istringstream in(slurp(path));
     nlohmann::json want;
-    for (std::string line; std::getline(in, line);)
+    bool fast_uncertain = false;  // "* fast-uncertain: why" in the deck
+    for (std::string line; std::getline(in, line);) {
       if (line.rfind("* expect:", 0) == 0) want = nlohmann::json::parse(line.substr(9));
+      fast_uncertain = fast_uncertain || line.rfind("* fast-uncertain:", 0) == 0;
+    }
     ASSERT_FALSE(want.is_null()) << path << " has no '* expect:' line";
     // fast twice: with everything (often not certified: the reduced equations of inexact values) and
     // with the tower alone, which the graph route decides without a rank decision
@@ -164,6 +167,11 @@ TEST_P(GoldenNetlist, EveryBackend) {
       ASSERT_EQ(r.rc, 0) << path << " " << backend << ": " << r.err;
       const nlohmann::json got = nlohmann::json::parse(r.out);
       expect_tower_is_dims(got, path.string() + " " + backend);
+      // the certainty floor: these decks are small and well conditioned, at their realistic values;
+      // the tower in double must be certain where the deck does not say why not.
+      // Killed by: the forced route's projection residual with + (seed-26 survivor [94]: every
+      // forced deck went uncertain, two with wrong dims, and the test skipped them)
+      if (backend == "fast --with none" && !fast_uncertain) EXPECT_TRUE(got["certified"].get<bool>()) << path << " " << got["note"];
       if (!got["certified"].get<bool>()) continue;
       for (const auto& [key, value] : want.items()) {
         if (key == "circuit") {

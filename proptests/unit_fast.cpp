@@ -204,6 +204,16 @@ TEST(DecideRank, EntriesWhoseDigitsSpanMoreThanTauOne) {
   EXPECT_TRUE(d4.certain) << d4.describe();
 }
 
+// The evidence a decision carries is the matrix's: `largest` is σ₁ (the trace prints it next to the
+// thresholds it scales). Killed by: the SVD route reporting σ₂ (seed-26 survivor [92]).
+TEST(DecideRank, EvidenceNamesTheLargestSingularValue) {
+  const MatrixXd a = Eigen::Vector3d(2, 3, 1e-20).asDiagonal();
+  const RankDecision d = decide_rank(a);  // 3×3: below qr_from, the SVD route
+  EXPECT_EQ(d.rank, 2);
+  EXPECT_NEAR(d.largest, 3, 1e-15);
+  EXPECT_NEAR(d.kept_lower, 2, 1e-15);
+}
+
 TEST(DecideRank, Empty) {
   EXPECT_EQ(decide_rank(MatrixXd(0, 3)).rank, 0);
   EXPECT_TRUE(decide_rank(MatrixXd(0, 3)).certain);
