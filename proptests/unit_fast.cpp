@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 
 using namespace dcad::fast;
 
@@ -212,6 +213,9 @@ TEST(DecideRank, EvidenceNamesTheLargestSingularValue) {
   EXPECT_EQ(d.rank, 2);
   EXPECT_NEAR(d.largest, 3, 1e-15);
   EXPECT_NEAR(d.kept_lower, 2, 1e-15);
+  // and the text shows the singular values on both sides of the cut.  Killed by: the window starting
+  // at rank + 2 (seed-26 survivor [102])
+  EXPECT_NE(d.describe().find("sigma around the cut [3, 2, | 1e-20]"), std::string::npos) << d.describe();
 }
 
 TEST(DecideRank, Empty) {
@@ -356,6 +360,31 @@ TEST(ToleranceDecisions, BandsAreThoseDocumented) {
   EXPECT_FALSE(certain);
   decide(8.1e-10, certain);
   EXPECT_FALSE(certain);
+}
+
+// Gotay–Nester's M_0 = {q = 1} (an `initial` row) in the canonical plane with E = p²/2: M_1 adds p = 0
+// (CEF §5 on D = graph ω), so the consistent initial point is (1, 0), and a given q = 2 violates M_0
+// itself. Killed by: consistent_initial_point leaving out the tower's first level, the initial rows
+// (seed-26 survivor [100]; the property's towers start at M_0 = R^n, whose level has no rows).
+TEST(Cad, InitialPointMeetsTheInitialEquations) {
+  MatrixXd w(2, 2), initial(1, 3);
+  w << 0, 1, -1, 0;
+  initial << 1, 0, 1;
+  LinearSystem s;
+  s.d = dirac_from_presymplectic(w);
+  s.hessian = MatrixXd::Zero(2, 2);
+  s.hessian(1, 1) = 1;
+  s.gradient = VectorXd::Zero(2);
+  const CadResult r = constraint_tower(s, {}, initial);
+  ASSERT_TRUE(r.certain && r.consistent);
+  ASSERT_EQ(r.final_step().dim(), 0);
+  const InitialPoint free = consistent_initial_point(r, {std::nullopt, std::nullopt});
+  ASSERT_TRUE(free.consistent);
+  EXPECT_NEAR(free.point(0), 1, 1e-15);
+  EXPECT_NEAR(free.point(1), 0, 1e-15);
+  const InitialPoint off = consistent_initial_point(r, {2.0, std::nullopt});
+  EXPECT_FALSE(off.consistent);
+  EXPECT_EQ(off.level, 0);
 }
 
 // A graph the fast circuit route cannot read is refused naming the branch (1-based, as in a netlist's
