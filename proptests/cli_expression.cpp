@@ -229,6 +229,25 @@ TEST(Expression, SimulateSaysWhenEnergyIsConserved) {
   EXPECT_EQ(v.err.find("(conserved by the exact motion)"), std::string::npos) << v.err;
 }
 
+// The cubic damper (cases/cubic-damper.json) started at rest at its equilibrium: Euler–Lagrange gives
+// the zero motion, which RK4 reproduces exactly: the step controller's m and 2m substeps agree at the
+// first try (2 substeps per output step) and its error estimate is 0. Killed by: distance() without
+// its floor of 1 on the scale (seed-26 survivor [106]: 0/0 is NaN, never accepted, and the
+// controller refined to 4096 substeps at every step — the estimate's max() then swallowed the NaN).
+TEST(Expression, SimulateAtRestStaysAtRest) {
+  nlohmann::json c = nlohmann::json::parse(slurp(case_path("cubic-damper")));
+  c["initial"] = {{"x", "0"}, {"v_x", "0"}};
+  c.erase("expect");
+  std::string err;
+  const auto rows = simulate_rows(write_temp("dcad_cubic_rest.json", c.dump()), "--tstop 1 --step 0.1", &err);
+  ASSERT_EQ(rows.size(), 11u) << err;
+  for (const auto& r : rows)
+    for (const auto& [name, value] : r)
+      if (name != "t") EXPECT_EQ(value, 0.0) << name << " at t = " << r.at("t");
+  EXPECT_EQ(case_value(err, "estimated error "), 0.0) << err;
+  EXPECT_NE(err.find("11 rows, 20 RK4 substeps"), std::string::npos) << err;
+}
+
 // sympy.physics.mechanics on the 3D rolling disc (sympy issue 27631), judged by dcad check
 // (proptests/peers/sympy_rolling_disc.py): the documented "rolling disk using the Lagrange method"
 // (Euler–Lagrange on the kinetic energy with rolling substituted: YM §5's L_c without its curvature
