@@ -11,7 +11,7 @@ runs the tests (ctest's own test list, every test but the `install` label).  A m
   killed     when a test fails (or times out),
   survived   when every test passes — a test is missing or the change is equivalent,
   stillborn  when it does not compile (not counted in the score).
-Prints one line per mutant (with the test executable that killed it) and the score
+Prints one line per mutant (with the test executable and the tests that killed it) and the score
 killed / (killed + survived); writes every line to build-mutate/mutants.txt.
 
 The verdict is that of a full rebuild and a full ctest run, reached sooner:
@@ -104,10 +104,29 @@ def candidates(root, dirs):
 
 
 def run(cmd, cwd, timeout, env=None):
+    return run_output(cmd, cwd, timeout, env)[0]
+
+
+def run_output(cmd, cwd, timeout, env=None):
+    """(return code or "timeout", standard output)."""
     try:
-        return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env).returncode
-    except subprocess.TimeoutExpired:
-        return "timeout"
+        done = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
+        return done.returncode, done.stdout
+    except subprocess.TimeoutExpired as e:
+        out = e.stdout.decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
+        return "timeout", out
+
+
+def failed_tests(ctest_output):
+    """The names under ctest's "The following tests FAILED:" ("  12 - Suite.Name (Failed)"), so that a kill
+    names its test, not only its executable: a kill by a test that cannot see the mutant is a flaky test."""
+    names, listing = [], False
+    for row in ctest_output.splitlines():
+        if "The following tests FAILED" in row:
+            listing = True
+        elif listing and (m := re.match(r"\s*\d+ - (\S+)", row)):
+            names.append(m.group(1))
+    return names
 
 
 def test_executables(build, tree):
@@ -238,9 +257,12 @@ def one_mutant(n, total, pick, tree, build, env, groups, uses_binary, binary, ki
             if mtime(exe) == before and not (exe in uses_binary and mtime(binary) != binary_before):
                 continue  # not relinked: it runs the unmutated code, whose tests passed
             numbers = ",".join(str(t) for t in groups[exe])
-            tested = run(["ctest", "--test-dir", build, "-j2", "--timeout", str(timeout), "-I", f"0,0,0,{numbers}"], tree, 3600, env)
+            tested, output = run_output(["ctest", "--test-dir", build, "-j2", "--timeout", str(timeout), "-I", f"0,0,0,{numbers}"],
+                                        tree, 3600, env)
             if tested != 0:
-                verdict, killer = "killed", target
+                names = failed_tests(output)
+                verdict, killer = "killed", target + (f" ({', '.join(names[:3])}{', …' if len(names) > 3 else ''})" if names else
+                                                       " (ctest timed out)" if tested == "timeout" else "")
                 for s in scopes:
                     kills[(s, exe)] = kills.get((s, exe), 0) + 1
                 break
