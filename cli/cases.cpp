@@ -10,6 +10,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
+
+#include <unistd.h>
 
 #ifndef DCAD_CASES_DIR
 #define DCAD_CASES_DIR "cases"
@@ -88,12 +91,29 @@ int freeze(const std::vector<std::string>& args, std::ostream& out) {
   const std::string name = args.size() > 1 ? args[1] : "regression-" + from.stem().string();
   const fs::path to = fs::path(cases_dir()) / (name + (netlist ? from.extension().string() : ".json"));
   if (fs::exists(to)) throw io::InputError(to.string() + ": expected a new case name, found an existing case");
-  const fs::path tmp = fs::temp_directory_path() / ("dcad_freeze" + std::string(netlist ? from.extension().string() : ".json"));
+  // a file of this process's own (two freezes at once must not read each other's), removed however we leave
+  const fs::path tmp = fs::temp_directory_path() /
+                       ("dcad_freeze_" + std::to_string(::getpid()) + std::string(netlist ? from.extension().string() : ".json"));
+  struct Removed {
+    fs::path path;
+    ~Removed() {
+      std::error_code ignored;
+      fs::remove(path, ignored);
+    }
+  } removed{tmp};
   {
     std::ofstream t(tmp);
     t << text;
   }
-  const json result = reference_result(tmp);  // bad input throws here, naming the file
+  json result;
+  try {
+    result = reference_result(tmp);
+  } catch (const io::InputError& e) {  // bad input: the message names the user's file, not the copy
+    std::string m = e.what();
+    const std::string copy = tmp.string(), named = from.string() + (netlist ? "" : " (its \"dcad case:\" line)");
+    for (std::size_t k; (k = m.find(copy)) != std::string::npos;) m.replace(k, copy.size(), named);
+    throw io::InputError(m);
+  }
   std::ofstream o(to);
   if (netlist) {
     std::istringstream in(text);
@@ -110,7 +130,6 @@ int freeze(const std::vector<std::string>& args, std::ostream& out) {
     c["expect"] = expectations(result);
     o << c.dump(2) << "\n";
   }
-  fs::remove(tmp);
   out << "wrote " << to.string() << " (expectations by the reference backend: dims " << result["dims"].dump() << ")\n";
   return 0;
 }

@@ -209,7 +209,7 @@ TEST(Check, NaivePythonPeer) {
   if (std::system("command -v python3 > /dev/null 2>&1") != 0) FAIL() << "python3 not installed: run bash .ci/setup (the README's test command does)";
   const std::string peer = std::string(DCAD_SOURCE_DIR) + "/proptests/peers/naive_cad.py";
   const auto peer_result = [&](const std::string& deck) {
-    const std::string out = (fs::temp_directory_path() / "dcad_peer.json").string();
+    const std::string out = temp_path("dcad_peer.json");
     EXPECT_EQ(std::system(("python3 " + peer + " " + deck + " > " + out).c_str()), 0);
     return out;
   };
@@ -227,7 +227,7 @@ TEST(Check, NaivePythonPeer) {
 // Regression workflow: a property's failure log (its "dcad case: {…}" line, RC_LOG) → `dcad cases
 // freeze LOG NAME` → a golden case whose expectations the reference computed; `cases list/show/export`.
 TEST(Cases, FreezeListShowExport) {
-  const fs::path dir = fs::temp_directory_path() / "dcad_corpus_test";
+  const fs::path dir = fs::path(temp_path("dcad_corpus_test"));
   fs::remove_all(dir);
   fs::create_directories(dir / "schema");
   fs::copy_file(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json", dir / "schema/result.schema.json");
@@ -259,6 +259,24 @@ TEST(Cases, FreezeListShowExport) {
   // the frozen case is a golden case like any other: solve reproduces its expectations
   const nlohmann::json got = nlohmann::json::parse(run("solve " + (dir / "regression-oscillator.json").string() + " --json").out);
   EXPECT_EQ(got["dims"], frozen["expect"]["dims"]);
+}
+
+// A log whose case line is bad input: exit 1, and the message names the log (not the temporary copy
+// that freeze solves, /tmp/dcad_freeze.json before: a fixed name that two freezes at once shared, and
+// that a bad case left behind); nothing is written to the corpus.
+TEST(Cases, FreezeOfBadInputNamesTheLog) {
+  const fs::path dir = fs::path(temp_path("dcad_corpus_bad"));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string log = write_temp("dcad_bad_property.log", "Falsifiable after 3 tests\ndcad case: {\"dcad\": 1, \"pontryagin\": {\"Q\": \"two\"}}\n");
+  setenv("DCAD_CASES", dir.c_str(), 1);
+  const Outcome r = run("cases freeze " + log + " regression-bad");
+  unsetenv("DCAD_CASES");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind(log + " (its \"dcad case:\" line)", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("dcad_freeze"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("expected"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir));
 }
 
 // ---- issue 12: forced decks (R, sources) against closed forms, ngspice and their own structure ----

@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(
 // "0.2e-6" there as "0.2e" minus 6), X instances (one with overrides), .ic on nodes, ; and $
 // comments, .include — is the same circuit as its hand-flattened twin: same tower, same trajectory.
 TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
-  const fs::path dir = fs::temp_directory_path() / "dcad_hier";
+  const fs::path dir = fs::path(temp_path("dcad_hier"));
   fs::create_directories(dir / "lib");
   std::ofstream(dir / "lib" / "parts.lib") << "* library\n.lib tanks\n.subckt tank a b params: l=1u c=1n\nL1 a b {l}\nC1 a b {c} ; shunt\n"
                                               ".ends\n.endl\n.lib other\n.subckt junk x\nR1 x 0 1\n.ends\n.endl\n";

@@ -50,7 +50,7 @@ TEST(Simulate, AgreesWithNgspice) {
   if (std::system("command -v ngspice > /dev/null 2>&1") != 0) FAIL() << "ngspice not installed: run bash .ci/setup (the README's test command does)";
   std::string deck = slurp(fs::path(DCAD_SOURCE_DIR) / "cases/lc-4port.cir");
   deck = deck.substr(0, deck.find(".tran"));
-  const std::string data = (fs::temp_directory_path() / "dcad_ngspice.txt").string();
+  const std::string data = temp_path("dcad_ngspice.txt");
   std::filesystem::remove(data);
   deck += ".options reltol=1e-10 abstol=1e-15 vntol=1e-12\n.tran 1m 10 0 1m uic\n.control\nset numdgt=16\nrun\n"
           "linearize v(2) i(l1)\nwrdata " + data + " v(2) i(l1)\n.endc\n.end\n";
@@ -114,7 +114,7 @@ TEST(Simulate, RandomCircuitsAgreeWithNgspice) {
       }
     }
     const std::string base = deck.str();
-    const std::string data = (fs::temp_directory_path() / ("dcad_ngspice_random_" + std::to_string(k) + ".txt")).string();
+    const std::string data = temp_path("dcad_ngspice_random_" + std::to_string(k) + ".txt");
     std::filesystem::remove(data);
     std::string vectors;
     for (int i = 1; i <= nodes; ++i) vectors += " v(" + node(i) + ")";
@@ -188,7 +188,7 @@ TEST(Simulate, PlotWritesAPng) {
   const std::string deck = std::string(DCAD_SOURCE_DIR) + "/cases/lc-4port.cir";
   EXPECT_EQ(run("simulate " + deck + " --tstop 1 --step 0.1 --plot /tmp/dcad_x.png --plot-vars q_C1,nope").rc, 2);
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) FAIL() << "gnuplot not installed: run bash .ci/setup (the README's test command does)";
-  const std::string png = (fs::temp_directory_path() / "dcad_plot.png").string();
+  const std::string png = temp_path("dcad_plot.png");
   std::filesystem::remove(png);
   const Outcome r = run("simulate " + deck + " --tstop 20 --step 0.01 --plot " + png + " --plot-vars q_C1,q_C2,v_L1");
   ASSERT_EQ(r.rc, 0) << r.err;

@@ -38,10 +38,22 @@ inline Outcome run(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
 
+/// A path for a temporary file `name` in a directory of this process's own: test executables run in
+/// parallel, and two runs of the suite (a mutation run beside a developer's) read each other's fixed
+/// /tmp names (Check.EveryCaseValidatesAndRoundTrips checked another case's result that way).
+inline std::string temp_path(const std::string& name) {
+  static const fs::path dir = [] {
+    const fs::path d = fs::temp_directory_path() / ("dcad_test_" + std::to_string(getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return (dir / name).string();
+}
+
 inline std::string write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / name;
+  const std::string p = temp_path(name);
   std::ofstream(p) << text;
-  return p.string();
+  return p;
 }
 
 /// The non-empty lines of a text.
