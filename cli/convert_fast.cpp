@@ -1,8 +1,28 @@
 #include "convert_fast.hpp"
 
+#include <boost/multiprecision/integer.hpp>
+
+#include <algorithm>
 #include <cmath>
 
 namespace dcad::cli {
+
+namespace {
+
+using boost::multiprecision::mpz_int;
+
+mpz_int odd_part(mpz_int z) {
+  z = abs(z);
+  return z == 0 ? mpz_int(1) : mpz_int(z >> boost::multiprecision::lsb(z));
+}
+
+}  // namespace
+
+io::Rational height(const io::Rational& x) {
+  return io::Rational(std::max(odd_part(numerator(x)), odd_part(denominator(x))));
+}
+
+double resolution(const io::Rational& x) { return x == 0 ? 0.0 : io::Rational(abs(x) / height(x)).convert_to<double>(); }
 
 double to_double(const io::Rational& x, fast::Options& opt) {
   const double d = x.convert_to<double>();
@@ -10,20 +30,49 @@ double to_double(const io::Rational& x, fast::Options& opt) {
     throw std::invalid_argument("expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +
                                 std::string(x > 0 ? "" : "-") + (d == 0 ? "a nonzero value below it" : "a value above it") +
                                 "; the exact backends (--backend reference or certified) take any rational");
-  if (io::Rational(d) != x) opt.input_exact = false;  // gmpq_set_d: finite d only (SIGFPE otherwise)
+  // gmpq_set_d: finite d only (SIGFPE otherwise)
+  if (io::Rational(d) != x && height(x) * io::Rational(opt.nonzero_factor) > 1) opt.input_exact = false;
   return d;
 }
 
 Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt) {
   Eigen::MatrixXd d(m.rows(), m.cols());
+  double lo = 1, hi = 1;  // as fast::assess_input: 1 is in the range
   for (std::size_t i = 0; i < m.rows(); ++i)
-    for (std::size_t k = 0; k < m.cols(); ++k) d(i, k) = to_double(m(i, k), opt);
-  fast::assess_input(d, opt);
+    for (std::size_t k = 0; k < m.cols(); ++k) {
+      d(i, k) = to_double(m(i, k), opt);
+      if (m(i, k) == 0) continue;
+      lo = std::min(lo, resolution(m(i, k)));
+      hi = std::max(hi, std::abs(d(i, k)));
+    }
+  if (lo < hi * opt.nonzero_factor) opt.input_well_scaled = false;
   return d;
+}
+
+std::vector<double> to_double_values(const std::vector<io::Rational>& values, fast::Options& opt) {
+  std::vector<double> out;
+  double lo = 1, hi = 1;
+  for (const io::Rational& v : values) {
+    out.push_back(to_double(v, opt));
+    if (v == 0) continue;
+    lo = std::min(lo, std::abs(out.back()));
+    hi = std::max(hi, std::abs(out.back()));
+  }
+  if (hi / lo > 1 / opt.nonzero_factor) opt.input_well_scaled = false;
+  return out;
 }
 
 Eigen::VectorXd to_double(const std::vector<io::Rational>& v, fast::Options& opt) {
   return to_double(io::QMatrix::from_rows({v}, v.size()), opt).transpose();
+}
+
+std::string input_caveat(const fast::Options& opt) {
+  const std::string bound = std::to_string(std::lround(1 / opt.nonzero_factor));
+  std::string s;
+  if (!opt.input_exact) s = "a value that double rounds has height above " + bound + " (the digits rounding drops may be what a decision turns on)";
+  if (!opt.input_well_scaled)
+    s += (s.empty() ? "" : "; ") + std::string("the input's magnitudes and lowest digits span more than ") + bound + " (graded values)";
+  return s.empty() ? s : "no rank deficiency is certain in double: " + s;
 }
 
 fast::DiracStructure fast_dirac(const io::DiracInput& in, fast::Options& opt) {

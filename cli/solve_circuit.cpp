@@ -9,18 +9,15 @@
 namespace dcad::cli {
 
 fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
+  std::vector<io::Rational> values;  // of the elements (an empty branch has none)
+  for (const auto& b : n.circuit.branches)
+    if (b.kind != reference::BranchKind::empty) values.push_back(b.value);
+  const std::vector<double> v = to_double_values(values, opt);
   fast::CircuitGraph g;
   g.nodes = n.circuit.nodes;
-  double lo = 1, hi = 1;
-  for (const auto& b : n.circuit.branches) {
-    const double v = b.kind == reference::BranchKind::empty ? 0.0 : to_double(b.value, opt);
-    if (b.kind != reference::BranchKind::empty) {
-      lo = std::min(lo, std::abs(v));
-      hi = std::max(hi, std::abs(v));
-    }
-    g.branches.push_back({b.kind, b.from, b.to, v});  // one BranchKind for both twins (dcad/types.hpp)
-  }
-  if (lo > 0 && hi / lo > 1 / opt.nonzero_factor) opt.input_well_scaled = false;
+  std::size_t next = 0;
+  for (const auto& b : n.circuit.branches)  // one BranchKind for both twins (dcad/types.hpp)
+    g.branches.push_back({b.kind, b.from, b.to, b.kind == reference::BranchKind::empty ? 0.0 : v[next++]});
   return g;
 }
 
@@ -138,7 +135,9 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c, c
          ", time unit 1e" + std::to_string(units.m()) + " s)";
   if (!dense)
     how += "; equations of motion omitted above " + std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
-  out.note = how + (out.certified ? "" : "; some rank decision was uncertain");
+  out.note = how + (out.certified              ? ""
+                    : !input_caveat(opt).empty() ? "; " + input_caveat(opt)
+                                                 : "; a rank decision fell between the zero and nonzero thresholds");
   return out;
 }
 

@@ -145,7 +145,10 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
     if (c.has_constrained && (parts.classes || parts.adapted)) why_uncertain += "; constraint classes and adapted constraints not computed";
   }
   if (!out.certified)
-    out.note = (why_uncertain.empty() ? "some rank decision was uncertain" : why_uncertain) + " (see `dcad solve --backend certified`)";
+    out.note = (!why_uncertain.empty()          ? why_uncertain
+                : !input_caveat(opt).empty()     ? input_caveat(opt)
+                                                 : std::string("a rank decision fell between the zero and nonzero thresholds")) +
+               " (see `dcad solve --backend certified`)";
   return out;
 }
 

@@ -1,4 +1,5 @@
 #include "solve_forced.hpp"
+#include "convert_fast.hpp"
 
 #include "dcad/fast/circuit.hpp"
 #include "dcad/fast/forced.hpp"
@@ -247,8 +248,24 @@ ref::RlcCircuit<Q> forced_twin(const ref::RlcCircuit<Q>& c) {
   return out;
 }
 
-/// The fast twin on the exact system rounded to double (YM §4 in double, fast/forced.hpp).
-void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
+/// The input assessment of the fast forced twin: the element values of the (dimensionless) circuit, as
+/// the LC route's (solve_circuit.cpp).  The exact system's matrices are derived from them exactly and
+/// rounded once, which is less than computing them in double.
+fast::Options circuit_options(const ref::RlcCircuit<Q>& c) {
+  std::vector<Q> values;
+  for (const auto& b : c.branches)
+    if (b.kind == RlcKind::inductor || b.kind == RlcKind::capacitor || b.kind == RlcKind::resistor) values.push_back(b.value);
+  for (const auto& mu : c.mutuals) values.push_back(mu.m);
+  fast::Options opt;
+  to_double_values(values, opt);
+  return opt;
+}
+
+/// The fast twin on the exact system rounded to double (YM §4 in double, fast/forced.hpp), with the
+/// input's assessment `opt`: a value that rounding may have changed in a decisive digit makes every
+/// rank deficiency uncertain (a C of -3.0000000000000000001 beside one of 3 read as their cancellation,
+/// certain, and gave a tower two steps too long).
+void fast_tower(const ref::ForcedSystem<Q>& f, const fast::Options& opt, SolveReport& s) {
   fast::ForcedSystem g;
   g.s.d.n = static_cast<int>(f.s.d.n);
   g.s.d.d = fast::Subspace::span(to_d(f.s.d.d.basis()));
@@ -259,7 +276,7 @@ void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
   g.source_force = to_d(f.source_force);
   g.shift = to_d(f.shift);
   g.given_conditions = to_d(f.given_conditions);
-  const fast::ForcedResult r = fast::forced_tower(g);
+  const fast::ForcedResult r = fast::forced_tower(g, opt);
   s.dims.assign(r.dims.begin(), r.dims.end());
   for (long d : s.dims) {
     SolveReport::Step st;
@@ -272,7 +289,8 @@ void fast_tower(const ref::ForcedSystem<Q>& f, SolveReport& s) {
   s.certified = r.certain && r.conditions.rows() == 0;
   s.decisions_float = static_cast<long>(r.decisions.size());
   s.note = "forced route, fast twin (double, SVD rank decisions)";
-  if (!r.certain)
+  if (!r.certain && !input_caveat(opt).empty()) s.note += "; " + input_caveat(opt) + ": use --backend certified";
+  if (!r.certain && input_caveat(opt).empty())
     for (std::size_t i = 0; i < r.decisions.size(); ++i)
       if (!r.decisions[i].certain) {
         s.note += "; rank decision " + std::to_string(i + 1) + " of " + std::to_string(r.decisions.size()) +
@@ -377,7 +395,11 @@ ForcedReport solve_forced_case(const io::CaseFile& c, const std::string& backend
   const ref::ForcedSystem<Q> f = case_forced_system(c);
   if (backend == "fast") {
     out.report.backend = "fast";
-    fast_tower(f, out.report);
+    fast::Options opt;  // the case's own numbers, assessed (the matrices are discarded)
+    fast_pontryagin(c.pontryagin, opt);
+    to_double(c.pontryagin.fq, opt);
+    to_double(c.pontryagin.fv, opt);
+    fast_tower(f, opt, out.report);
     out.names = c.variables;
     return out;
   }
@@ -393,7 +415,8 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
   ForcedReport out;
   if (backend == "fast") {
     out.report.backend = "fast";
-    fast_tower(ref::rlc_system(forced_twin(n.rlc)), out.report);  // the dimensionless twin: same tower
+    const ref::RlcCircuit<Q> twin = forced_twin(n.rlc);  // the dimensionless twin: same tower
+    fast_tower(ref::rlc_system(twin), circuit_options(twin), out.report);
     out.names = netlist_variables(n);
     for (const io::Waveform& w : n.waveforms) out.source_names.push_back(w.element);
     out.circuit = {{"branches", n.rlc.branches.size()}, {"nodes", n.rlc.nodes + 1},

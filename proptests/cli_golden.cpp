@@ -202,3 +202,31 @@ TEST(GoldenReport, TheoremsCitedOnlyUnderTheirHypotheses) {
   EXPECT_EQ(wires.out.find("CEF Thm 6.6"), std::string::npos) << wires.out;
   EXPECT_NE(wires.out.find("there are no empty loops — here not symplectic"), std::string::npos) << wires.out;
 }
+
+// What fast may certify is decided by the heights of the exact input (cli/convert_fast.hpp), not by
+// whether double holds it.  Small heights: the 4-port of CEF §6 as a `pontryagin` case (1/C = 1/3, 1/5,
+// 1/7: the README's worked example) is certified by fast with every part, as by the exact backends
+// (fast used to say "NOT certified" on it: 1/3 is not a double).  Large heights decide the answer and
+// fast must not certify: the cancelling pair of capacitors (C2 = -3.0000000000000000001, the forced
+// route: it certified a tower two steps too long) and input-rounding.json (1 + 10^-17 reads as 1); the
+// note names the cause.
+TEST(GoldenFast, CertainExactlyWhereTheInputsHeightAllows) {
+  const std::string dir = std::string(DCAD_SOURCE_DIR) + "/cases/";
+  const nlohmann::json exact = nlohmann::json::parse(run("solve " + dir + "lc-4port.json --json").out);
+  const Outcome four = run("solve " + dir + "lc-4port.json --backend fast --json");
+  ASSERT_EQ(four.rc, 0) << four.err;
+  const nlohmann::json got = nlohmann::json::parse(four.out);
+  EXPECT_TRUE(got["certified"].get<bool>()) << got["note"];
+  for (const char* key : {"dims", "steps", "solution_rank", "unique"}) EXPECT_EQ(got[key], exact[key]) << key;
+  EXPECT_EQ(got["adapted"]["s_prime"], exact["adapted"]["s_prime"]);
+  for (const std::string file : {"regression-fast-forced-rounded-cancellation.cir", "input-rounding.json"}) {
+    const Outcome r = run("solve " + dir + file + " --backend fast --json --with none");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(j["certified"].get<bool>()) << file << ": " << j["dims"];
+    EXPECT_NE(j["note"].get<std::string>().find("height above 67108864"), std::string::npos) << file << ": " << j["note"];
+    const nlohmann::json e = nlohmann::json::parse(run("solve " + dir + file + " --json --with none").out);
+    EXPECT_TRUE(j["dims"] != e["dims"] || j["solution_rank"] != e["solution_rank"])
+        << file << ": the rounded input's answer differs from the exact one (else this case shows nothing)";
+  }
+}

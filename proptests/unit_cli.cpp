@@ -1,13 +1,16 @@
 // The pipeline's helpers at unit level, which the CLI tests see only through whole decks:
 //  * waveforms (cli/waveform.hpp): what a source is worth at t = 0, exactly, and where it is not
 //    rational — these decide whether a deck's initial condition is on M_c(0) (simulate_forced.cpp);
-//  * balancing (cli/simulate.hpp): the diagonal similarity that makes simulate unit-independent.
+//  * balancing (cli/simulate.hpp): the diagonal similarity that makes simulate unit-independent;
+//  * the input assessment of the fast backend (cli/convert_fast.hpp): what may be certain in double.
+#include "convert_fast.hpp"
 #include "simulate.hpp"
 #include "waveform.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 using dcad::io::parse_waveform;
 using dcad::io::Rational;
@@ -101,4 +104,83 @@ TEST(Balancing, EqualisesOffDiagonalSumsByPowersOfTwo) {
     const double c = b.col(i).cwiseAbs().sum() - std::abs(b(i, i)), r = b.row(i).cwiseAbs().sum() - std::abs(b(i, i));
     EXPECT_LE(std::max(c / r, r / c), 4.0) << "index " << i << ": column " << c << ", row " << r;
   }
+}
+
+// The height of x = 2^e p/q (p, q odd, coprime) is max(|p|, q): a double's odd mantissa, and for a
+// decimal its odd parts; the resolution |x|/height is then a double's lowest binary digit.
+TEST(ConvertFast, HeightIsTheLargerOddPart) {
+  using dcad::cli::height;
+  using dcad::cli::resolution;
+  EXPECT_EQ(height(Rational(1, 3)), 3);
+  EXPECT_EQ(height(Rational(1, 10)), 5);
+  EXPECT_EQ(height(Rational(3, 8)), 3);
+  EXPECT_EQ(height(Rational(-7, 12)), 7);
+  EXPECT_EQ(height(Rational(0)), 1);
+  EXPECT_EQ(height(1 + Rational(1, 1) / Rational(boost::multiprecision::mpz_int(1) << 40)),
+            Rational(boost::multiprecision::mpz_int(1) << 40) + 1);
+  EXPECT_EQ(height(dcad::reference::parse_rational("1.00000000000000001")), Rational(100000000000000001LL));
+  EXPECT_EQ(resolution(Rational(1, 10)), 1.0 / 50);
+  EXPECT_EQ(resolution(Rational(3, 8)), 1.0 / 8);  // 0.375 = 0.011 in binary
+  EXPECT_EQ(resolution(Rational(-6)), 2.0);
+}
+
+// Rounding voids certainty only where the rounded digits may matter: 1/3, 0.1, 1/47 (heights 3, 5, 47)
+// keep input_exact; 1.00000000000000001 (height 10^17 + 1) and 1/(2^26 + 1) (just above the bound
+// 1/nonzero_factor = 2^26) clear it, and 1/(2^26 − 1) (just below) keeps it.
+TEST(ConvertFast, RoundingVoidsCertaintyAboveTheHeightBound) {
+  const auto exact_after = [](const Rational& x) {
+    dcad::fast::Options opt;
+    dcad::cli::to_double(x, opt);
+    return opt.input_exact;
+  };
+  const Rational two26 = Rational(boost::multiprecision::mpz_int(1) << 26);
+  EXPECT_TRUE(exact_after(Rational(1, 3)));
+  EXPECT_TRUE(exact_after(Rational(1, 10)));
+  EXPECT_TRUE(exact_after(Rational(-1, 47)));
+  EXPECT_TRUE(exact_after(1 / (two26 - 1)));
+  EXPECT_FALSE(exact_after(1 / (two26 + 1)));
+  EXPECT_FALSE(exact_after(dcad::reference::parse_rational("1.00000000000000001")));
+  EXPECT_TRUE(exact_after(1 + 1 / (two26 * two26)));  // 1 + 2^-52 is a double: not rounded (its span is the other flag's)
+}
+
+// Two routes to one flag: on entries exact in double, the exact assessment (resolution = |x|/height)
+// clears input_well_scaled exactly when fast::assess_input does on the doubles (lowest binary digit).
+// Random matrices of m·2^e, m up to 2^30, e in [-12, 12] (seeded). Off doubles: {1/3, 2} is well scaled
+// (resolutions 1/9 and 2), as 1/3's full mantissa was not; {1, 5^-12} is graded (resolution 5^-24).
+TEST(ConvertFast, ExactAssessmentIsAssessInputOnDoubles) {
+  std::mt19937_64 rng(15);
+  int graded = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const std::size_t rows = 1 + rng() % 3, cols = 1 + rng() % 3;
+    dcad::io::QMatrix q(rows, cols);
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t j = 0; j < cols; ++j) {
+        const long long m = static_cast<long long>(rng() % (1ULL << (rng() % 31))) * (rng() % 2 ? 1 : -1);
+        const int e = static_cast<int>(rng() % 25) - 12;
+        q(i, j) = e >= 0 ? Rational(m) * Rational(boost::multiprecision::mpz_int(1) << e)
+                         : Rational(m) / Rational(boost::multiprecision::mpz_int(1) << -e);
+      }
+    dcad::fast::Options exact, doubles;
+    const Eigen::MatrixXd d = dcad::cli::to_double(q, exact);
+    dcad::fast::assess_input(d, doubles);
+    ASSERT_TRUE(exact.input_exact);
+    ASSERT_EQ(exact.input_well_scaled, doubles.input_well_scaled) << d;
+    graded += !exact.input_well_scaled;
+  }
+  EXPECT_GT(graded, 200);  // both answers are met
+  EXPECT_LT(graded, 1800);
+  dcad::fast::Options third, fifth;
+  dcad::cli::to_double(dcad::io::QMatrix::from_rows({{Rational(1, 3), Rational(2)}}, 2), third);
+  EXPECT_TRUE(third.input_well_scaled);
+  dcad::cli::to_double(dcad::io::QMatrix::from_rows({{Rational(1), 1 / Rational(244140625)}}, 2), fifth);  // 5^-12
+  EXPECT_FALSE(fifth.input_well_scaled);
+}
+
+// Element values: their magnitudes span at most 1/nonzero_factor (2^26 ≈ 6.7e7) or no deficiency is certain.
+TEST(ConvertFast, ElementValuesSpan) {
+  dcad::fast::Options near, far;
+  EXPECT_EQ(dcad::cli::to_double_values({Rational(3), Rational(1, 10000000)}, near), (std::vector<double>{3.0, 1e-7}));
+  EXPECT_TRUE(near.input_well_scaled);  // 3e7
+  dcad::cli::to_double_values({Rational(1), Rational(1, 100000000)}, far);
+  EXPECT_FALSE(far.input_well_scaled);  // 1e8
 }
