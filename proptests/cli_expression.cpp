@@ -62,6 +62,28 @@ TEST(Expression, PapersScenesOnEveryBackend) {
   }
 }
 
+// L = x: no kinetic term, a constant force, and Euler–Lagrange demands 0 = 1 (CEF §5: M_2 is empty).
+// On every backend the tower is the dims (CONTRACT: −1 for the empty M_k), its last level says why,
+// and the result is certain. Killed by: the empty level written with dim −0 (seed-26 survivor [173]).
+TEST(Expression, InconsistentTowerEndsInAnEmptyLevel) {
+  const std::string file = write_temp("dcad_force_without_mass.json",
+                                      R"({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "x"}, "initial": {"x": "0", "v_x": "0"}})");
+  for (const std::string backend : {"reference", "certified", "fast"}) {
+    const Outcome r = run("solve " + file + " --backend " + backend + " --json");
+    ASSERT_EQ(r.rc, 0) << backend << r.err;
+    const json got = json::parse(r.out);
+    EXPECT_EQ(got["dims"], json::parse("[3, 2, -1]")) << backend;
+    EXPECT_FALSE(got["consistent"].get<bool>()) << backend;
+    EXPECT_TRUE(got["certified"].get<bool>()) << backend;
+    ASSERT_EQ(got["tower"].size(), got["dims"].size()) << backend;
+    for (std::size_t k = 0; k < got["dims"].size(); ++k) {
+      EXPECT_EQ(got["tower"][k]["k"], k) << backend;
+      EXPECT_EQ(got["tower"][k]["dim"], got["dims"][k]) << backend << " M_" << k;
+    }
+    EXPECT_NE(got["tower"][2]["new_constraints"][0].get<std::string>().find("requires 0 = 1"), std::string::npos) << backend << got["tower"][2];
+  }
+}
+
 // The text report: M_1 as formulas (symbolic ∂L/∂v), later constraints as tangent equations.
 TEST(Expression, TextReportShowsFormulasAndTangents) {
   const Outcome r = run("solve " + case_path("vignolo-3-5"));
