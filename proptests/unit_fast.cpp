@@ -338,6 +338,34 @@ TEST(Velocities, ResidueOfAProductIsNotItsRank) {
   }
 }
 
+// The shrunk counterexample of FastVsReference.MultipliersFarAlongMc: canonical Ω on R^6, E = ½xᵀHx + gᵀx
+// with H = diag(−1, −1, 2, 0, 0, 0), g = −2·1, one primary constraint −2 Σx_i = 24 (the case as logged:
+// dcad case: {"dcad": 1, "constrained": {"symplectic": canonical, "primary": [[-2, -2, -2, -2, -2, -2, 24]]},
+// "energy": {"hessian": H, "gradient": g}}). At x = (−3000000011, −3000000003, −3000000007, −3000000003,
+// −3000000003, 15000000015) on M_c, Λ^(c) is a line exactly (CEF (3.12), the reference); the right-hand side
+// −A J (H x + g), rounding residue of size ε‖H‖‖x‖ off im C, was decided against ‖J‖ alone: fast called
+// Λ empty, certain.
+TEST(DiracBergmann, MultipliersFarAlongMcAreNotCalledEmpty) {
+  ConstrainedSystem s;
+  s.omega = MatrixXd::Zero(6, 6);
+  s.omega.topRightCorner(3, 3).setIdentity();
+  s.omega.bottomLeftCorner(3, 3) = -MatrixXd::Identity(3, 3);
+  s.hessian = MatrixXd::Zero(6, 6);
+  s.hessian.diagonal() << -1, -1, 2, 0, 0, 0;
+  s.gradient = VectorXd::Constant(6, -2);
+  s.primary = MatrixXd::Constant(1, 7, -2);
+  s.primary(0, 6) = 24;
+  const DiracBergmannResult r = dirac_bergmann(s);
+  ASSERT_TRUE(r.certain && r.consistent);
+  VectorXd x(6);
+  x << -3000000011.0, -3000000003.0, -3000000007.0, -3000000003.0, -3000000003.0, 15000000015.0;
+  ASSERT_LT((r.constraints.leftCols(6) * x - r.constraints.col(6)).norm(), 1e-6 * x.norm()) << "x is on M_c";
+  const AffineSubspace far = multipliers(s, r, x);
+  EXPECT_TRUE(far.certain);
+  EXPECT_FALSE(far.empty);
+  EXPECT_EQ(far.direction.dim(), 1);
+}
+
 // The pointwise decisions' bands as pointwise.hpp documents them: |v| ≤ 8e zero, |v| > 64e nonzero,
 // both certain; in between uncertain. Killed by: nonzero_factor 64 → 65 (seed-26 survivor [78]).
 TEST(ToleranceDecisions, BandsAreThoseDocumented) {

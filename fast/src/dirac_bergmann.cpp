@@ -61,7 +61,11 @@ AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult
   const int n = static_cast<int>(s.omega.rows());
   const MatrixXd j = poisson_tensor(s.omega, opt), a = r.constraints.leftCols(n), p = s.primary.leftCols(n);
   const MatrixXd c = a * j * p.transpose();
-  return solve(c, -(a * j * (s.hessian * x + s.gradient)), opt, norm2(j) * std::max(1.0, norm2(p)));
+  // each side at the scale of its factors: −A J (H x + g) is exactly 0 off im C on M_c, and its rounding
+  // grows with ‖H‖‖x‖ (at ‖x‖ = 10^7 the residue was decided a certain inconsistency against ‖J‖ alone)
+  const double aj = norm2(a) * norm2(j);
+  return solve(c, -(a * j * (s.hessian * x + s.gradient)), opt, aj * std::max(1.0, norm2(p)),
+               aj * (norm2(s.hessian) * x.norm() + s.gradient.norm()));
 }
 
 ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt) {

@@ -81,7 +81,9 @@ struct AffineSubspace {
 
 /// {x : A x = b}: solvable iff rank A = rank [A b] (both decided), least-squares point.  `scale`: of
 /// A's rounding (<0: ‖A‖₂); `rhs_scale`: of b's (<0: ‖b‖).  A product's own norm is no scale: when
-/// the product is all rounding residue, its residue would be decided its rank.
+/// the product is all rounding residue, its residue would be decided its rank.  Where rhs_scale
+/// exceeds scale, solvability is b's part off im A (an orthonormal complement from A's factorization),
+/// decided at rhs_scale: a right-hand side computed from large factors is not held to A's threshold.
 AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {}, double scale = -1, double rhs_scale = -1);
 
 }  // namespace dcad::fast
