@@ -16,13 +16,30 @@ using namespace dcad;
 using namespace dcad::test;
 namespace ref = dcad::reference;
 
+namespace {
+
+/// A random constrained system, its fast twin (rounded, assessed) and both Dirac–Bergmann towers.
+struct Twins {
+  ref::ConstrainedSystem<Q> s;
+  fast::Options opt;
+  fast::ConstrainedSystem fs;
+  ref::DiracBergmannResult<Q> r;
+  fast::DiracBergmannResult f;
+};
+
+Twins any_twins() {
+  Twins t{any_constrained_system(), any_route_options(), {}, {}, {}};
+  t.fs = {to_double(t.s.omega, &t.opt), to_double(t.s.hessian, &t.opt), to_double(QM::column(t.s.gradient), &t.opt).col(0),
+          to_double(t.s.primary, &t.opt)};
+  t.r = ref::dirac_bergmann(t.s);
+  t.f = fast::dirac_bergmann(t.fs, t.opt);
+  return t;
+}
+
+}  // namespace
+
 RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
-  const ref::ConstrainedSystem<Q> s = any_constrained_system();
-  fast::Options opt = any_route_options();
-  const fast::ConstrainedSystem fs{to_double(s.omega, &opt), to_double(s.hessian, &opt),
-                                   to_double(QM::column(s.gradient), &opt).col(0), to_double(s.primary, &opt)};
-  const ref::DiracBergmannResult<Q> r = ref::dirac_bergmann(s);
-  const fast::DiracBergmannResult f = fast::dirac_bergmann(fs, opt);
+  const auto& [s, opt, fs, r, f] = any_twins();
   bool same = f.tower.size() == r.tower.size();
   for (Index k = 0; same && k < r.tower.size(); ++k)
     same = (f.tower[k].empty ? -1 : f.tower[k].direction.dim()) == (r.tower[k].empty ? -1L : static_cast<long>(r.tower[k].direction.dim()));
@@ -84,12 +101,7 @@ RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
 // exactly 0 off im C, but computed from H x of norm 10^k its rounding is ε‖J‖‖H‖‖x‖: decided against ‖J‖
 // alone, that residue was called a certain inconsistency.
 RC_GTEST_PROP(FastVsReference, MultipliersFarAlongMc, ()) {
-  const ref::ConstrainedSystem<Q> s = any_constrained_system();
-  fast::Options opt = any_route_options();
-  const fast::ConstrainedSystem fs{to_double(s.omega, &opt), to_double(s.hessian, &opt),
-                                   to_double(QM::column(s.gradient), &opt).col(0), to_double(s.primary, &opt)};
-  const ref::DiracBergmannResult<Q> r = ref::dirac_bergmann(s);
-  const fast::DiracBergmannResult f = fast::dirac_bergmann(fs, opt);
+  const auto& [s, opt, fs, r, f] = any_twins();
   if (!r.consistent || !f.consistent || !f.certain || r.tower.back().direction.dim() == 0) return;
   std::vector<Q> x = some_point(r.tower.back());
   Q far = 1;
