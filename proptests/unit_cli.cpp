@@ -184,3 +184,17 @@ TEST(ConvertFast, ElementValuesSpan) {
   dcad::cli::to_double_values({Rational(1), Rational(1, 100000000)}, far);
   EXPECT_FALSE(far.input_well_scaled);  // 1e8
 }
+
+// The simulation's error estimate (cli/simulate.hpp): the worst relative error over the variables,
+// err / mag, naming the variable; a variable that stays exactly 0 has no relative error and is skipped
+// (0/0 is NaN, and a rounding speck over 0 would be infinite). Killed by: the skip test mag == 1
+// (seed-26 survivor [200]: a variable whose largest magnitude is exactly 1 lost its say).
+TEST(Simulate, ErrorEstimateIsTheWorstRelativeError) {
+  const dcad::cli::SimulateSummary s = dcad::cli::summarize(11, {1e-15L, 1e-16L, 1e-300L}, {1.0L, 1000.0L, 0.0L}, {"q_C1", "v_L1", "p_C1"});
+  EXPECT_EQ(s.rows, 11);
+  EXPECT_EQ(s.worst_variable, "q_C1");
+  EXPECT_DOUBLE_EQ(s.error_estimate, 1e-15);
+  const dcad::cli::SimulateSummary z = dcad::cli::summarize(2, {0.0L, 3e-17L}, {0.0L, 2.0L}, {"at_rest", "moving"});
+  EXPECT_EQ(z.worst_variable, "moving");
+  EXPECT_DOUBLE_EQ(z.error_estimate, 1.5e-17);
+}
