@@ -292,6 +292,44 @@ TEST(Forced, RlDampedSineMatchesClosedForm) {
       << "E(0) = " << first[1] << ", E(T) = " << last[1] << ", W_forces = " << w_forces << ", W_sources = " << w_sources;
 }
 
+// V1 (a PULSE with 1 ms edges) across C1 = 3 µF, feeding L1 = 1 mH in series with L2 = −1 mH ∥ C2 = 1 µF:
+// L1 + L2 = 0 cancels the loop's inductance (CEF Remark 6.7: non-physical), and the tower's motion reads
+// q̇_C2 = v_C2, v̇_C2 = 1000 V1(t), v̇_V1 = 10^9 q_C2 − 1000 V1(t) − 3·10⁻⁶ V1''(t) (dcad solve). Its closed
+// form: v_C2 = 1000 ∫V1, q_C2 = ∫v_C2 and v_V1 = ∫(10^9 q_C2 − 1000 V1) − 3·10⁻⁶ V1'(t): the source
+// current jumps by −C1 ΔV1' at every corner (C1's current follows V1's slope; a row at a corner is the
+// value after it). The corners are where M_c(t) moves with σ' (V §3): the rows there must be exact.
+TEST(Forced, SourceCurrentJumpsAtPulseCorners) {
+  const std::string deck = write_temp("dcad_pulse_corners.cir",
+                                      "cancelling inductors behind a CV loop\nV1 a 0 PULSE(0 1 1m 1m 1m 2m 10m)\nC1 a 0 3u\nL1 a b 1m\n"
+                                      "C2 b 0 1u\nL2 b 0 -1m\n.end\n");
+  const auto rows = simulate_rows(deck, "--tstop 6m --step 10u");
+  ASSERT_EQ(rows.size(), 601u);
+  struct Piece {
+    double t0, t1, a, b;  // V1 = a + b (t − t0) on [t0, t1)
+  };
+  const std::vector<Piece> pieces{{0, 1e-3, 0, 0}, {1e-3, 2e-3, 0, 1000}, {2e-3, 4e-3, 1, 0}, {4e-3, 5e-3, 1, -1000}, {5e-3, 1e-2, 0, 0}};
+  double worst = 0, mag = 0, worst_c = 0, mag_c = 0;
+  for (const auto& r : rows) {
+    const double t = r.at("t");
+    double v = 0, q = 0, w = 0, slope = 0;
+    for (const Piece& p : pieces) {
+      const double tau = std::min(t, p.t1) - p.t0;
+      if (tau < 0) break;
+      w += 1e9 * (q * tau + v * tau * tau / 2 + 1000 * (p.a * tau * tau * tau / 6 + p.b * tau * tau * tau * tau / 24)) - 1000 * (p.a * tau + p.b * tau * tau / 2);
+      q += v * tau + 1000 * (p.a * tau * tau / 2 + p.b * tau * tau * tau / 6);
+      v += 1000 * (p.a * tau + p.b * tau * tau / 2);
+      slope = p.b;
+      if (t < p.t1 - 1e-12) break;
+    }
+    worst = std::max(worst, std::abs(r.at("v_V1") - (w - 3e-6 * slope)));
+    mag = std::max(mag, std::abs(w));
+    worst_c = std::max({worst_c, std::abs(r.at("v_C2") - v), std::abs(r.at("q_C2") - q) * 1e3});
+    mag_c = std::max(mag_c, std::abs(v));
+  }
+  EXPECT_LT(worst / mag, 1e-12) << "largest |v_V1| " << mag << ", a jump of C1 ΔV1' is 3e-3";
+  EXPECT_LT(worst_c / mag_c, 1e-12);
+}
+
 // A current source in an LI cutset (cases/li-cutset-isource.cir): KCL on the cutset holds along the
 // trajectory, and the source branch carries exactly I(t) (a PULSE with 1 µs edges).
 TEST(Forced, CurrentSourceFixesItsCutset) {
