@@ -30,8 +30,12 @@ double to_double(const io::Rational& x, fast::Options& opt) {
     throw std::invalid_argument("expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +
                                 std::string(x > 0 ? "" : "-") + (d == 0 ? "a nonzero value below it" : "a value above it") +
                                 "; the exact backends (--backend reference or certified) take any rational");
-  // gmpq_set_d: finite d only (SIGFPE otherwise)
-  if (io::Rational(d) != x && height(x) * io::Rational(opt.nonzero_factor) > 1) opt.input_exact = false;
+  // a value of large height spans more digits than a decision can tell apart (3 + 3·2^-50, a double, beside
+  // −3 cancels to 2^-50 relative), as fast::assess_input reads one entry; rounded, it also lost them
+  if (height(x) * io::Rational(opt.nonzero_factor) > 1) {
+    opt.input_well_scaled = false;
+    if (io::Rational(d) != x) opt.input_exact = false;  // gmpq_set_d: finite d only (SIGFPE otherwise)
+  }
   return d;
 }
 
@@ -71,7 +75,8 @@ std::string input_caveat(const fast::Options& opt) {
   std::string s;
   if (!opt.input_exact) s = "a value that double rounds has height above " + bound + " (the digits rounding drops may be what a decision turns on)";
   if (!opt.input_well_scaled)
-    s += (s.empty() ? "" : "; ") + std::string("the input's magnitudes and lowest digits span more than ") + bound + " (graded values)";
+    s += (s.empty() ? "" : "; ") + std::string("the input's magnitudes and digits span more than ") + bound +
+         " (graded values, or a value of more digits, such as 1 + 2^-40)";
   return s.empty() ? s : "no rank deficiency is certain in double: " + s;
 }
 

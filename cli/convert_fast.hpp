@@ -17,9 +17,10 @@ double resolution(const io::Rational& x);
 
 /// x rounded to double.  Throws std::invalid_argument for a value beyond double's range (|x| > 1.8e308,
 /// or a nonzero |x| < 4.9e-324 that would read as 0): the fast backend cannot represent it, the exact
-/// ones can.  Clears opt.input_exact if the rounding changed x and x's height exceeds
-/// 1/nonzero_factor (2^26): what rounding then drops may be the very difference a rank decision is
-/// about (1.00000000000000001 reads as 1).  A rounded value of small height (1/3, 0.1, 1/47) moves by
+/// ones can.  If x's height exceeds 1/nonzero_factor (2^26), clears opt.input_well_scaled (x's own
+/// digits span more than a decision tells apart: 3 + 3·2^-50 beside −3 cancels to 2^-50 relative, as
+/// fast::assess_input reads one entry) and, if rounding changed x, opt.input_exact (what rounding
+/// drops may be the very difference a rank decision is about: 1.00000000000000001 reads as 1).  A rounded value of small height (1/3, 0.1, 1/47) moves by
 /// at most 2^-53 relative, as the first step of any computation on it would: the separation
 /// hypothesis of fast::Options (nonzero singular values of the exact data above τ1, the small-height
 /// data dcad is built for) covers it as it covers the rounding inside every decision.

@@ -141,6 +141,18 @@ TEST(ConvertFast, RoundingVoidsCertaintyAboveTheHeightBound) {
   EXPECT_FALSE(exact_after(1 / (two26 + 1)));
   EXPECT_FALSE(exact_after(dcad::reference::parse_rational("1.00000000000000001")));
   EXPECT_TRUE(exact_after(1 + 1 / (two26 * two26)));  // 1 + 2^-52 is a double: not rounded (its span is the other flag's)
+  // ... the other flag: a value of height above 2^26 spans more digits than a decision tells apart, rounded
+  // or not (3 + 3·2^-50 is a double; beside −3 it cancels to 2^-50 relative, and its circuit's tower was
+  // certified two steps short); height 2^26 − 1 and less does not.
+  const auto well_scaled_after = [](const Rational& x) {
+    dcad::fast::Options opt;
+    dcad::cli::to_double(x, opt);
+    return opt.input_well_scaled;
+  };
+  EXPECT_FALSE(well_scaled_after(3 + 3 / (two26 * two26 * 256)));
+  EXPECT_FALSE(well_scaled_after(1 / (two26 + 1)));
+  EXPECT_TRUE(well_scaled_after(1 / (two26 - 1)));
+  EXPECT_TRUE(well_scaled_after(Rational(47, 10)));
 }
 
 // Two routes to one flag: on entries exact in double, the exact assessment (resolution = |x|/height)
