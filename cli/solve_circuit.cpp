@@ -135,9 +135,10 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c, c
          ", time unit 1e" + std::to_string(units.m()) + " s)";
   if (!dense)
     how += "; equations of motion omitted above " + std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
-  out.note = how + (out.certified              ? ""
-                    : !input_caveat(opt).empty() ? "; " + input_caveat(opt)
-                                                 : "; a rank decision fell between the zero and nonzero thresholds");
+  const std::string caveat = input_caveat(opt);
+  out.note = how + (out.certified      ? ""
+                    : !caveat.empty()  ? "; " + caveat
+                                       : "; a rank decision fell between the zero and nonzero thresholds");
   return out;
 }
 

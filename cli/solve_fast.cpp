@@ -144,10 +144,11 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
     out.certified = false;
     if (c.has_constrained && (parts.classes || parts.adapted)) why_uncertain += "; constraint classes and adapted constraints not computed";
   }
+  const std::string caveat = input_caveat(opt);
   if (!out.certified)
-    out.note = (!why_uncertain.empty()          ? why_uncertain
-                : !input_caveat(opt).empty()     ? input_caveat(opt)
-                                                 : std::string("a rank decision fell between the zero and nonzero thresholds")) +
+    out.note = (!why_uncertain.empty() ? why_uncertain
+                : !caveat.empty()      ? caveat
+                                       : std::string("a rank decision fell between the zero and nonzero thresholds")) +
                " (see `dcad solve --backend certified`)";
   return out;
 }

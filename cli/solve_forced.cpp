@@ -289,8 +289,9 @@ void fast_tower(const ref::ForcedSystem<Q>& f, const fast::Options& opt, SolveRe
   s.certified = r.certain && r.conditions.rows() == 0;
   s.decisions_float = static_cast<long>(r.decisions.size());
   s.note = "forced route, fast twin (double, SVD rank decisions)";
-  if (!r.certain && !input_caveat(opt).empty()) s.note += "; " + input_caveat(opt) + ": use --backend certified";
-  if (!r.certain && input_caveat(opt).empty())
+  const std::string caveat = input_caveat(opt);
+  if (!r.certain && !caveat.empty()) s.note += "; " + caveat + ": use --backend certified";
+  if (!r.certain && caveat.empty())
     for (std::size_t i = 0; i < r.decisions.size(); ++i)
       if (!r.decisions[i].certain) {
         s.note += "; rank decision " + std::to_string(i + 1) + " of " + std::to_string(r.decisions.size()) +
