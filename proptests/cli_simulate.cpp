@@ -293,9 +293,12 @@ TEST(Forced, RlDampedSineMatchesClosedForm) {
 }
 
 // V1 (a PULSE with 1 ms edges) across C1 = 3 µF, feeding L1 = 1 mH in series with L2 = −1 mH ∥ C2 = 1 µF:
-// L1 + L2 = 0 cancels the loop's inductance (CEF Remark 6.7: non-physical), and the tower's motion reads
-// q̇_C2 = v_C2, v̇_C2 = 1000 V1(t), v̇_V1 = 10^9 q_C2 − 1000 V1(t) − 3·10⁻⁶ V1''(t) (dcad solve). Its closed
-// form: v_C2 = 1000 ∫V1, q_C2 = ∫v_C2 and v_V1 = ∫(10^9 q_C2 − 1000 V1) − 3·10⁻⁶ V1'(t): the source
+// L1 + L2 = 0 cancels the loop's inductance (CEF Remark 6.7: non-physical). By hand, from KVL and KCL (not
+// from dcad's tower): V1 = L1 i_L1' + q_C2/C2 and i_L1 = i_C2 + i_L2 with L2 i_L2' = q_C2/C2 give
+// L1 i_C2' = V1 (as L1 + L2 = 0), so v̇_C2 = 1000 V1(t) (v = current), q̇_C2 = v_C2, i_L1' = 1000 V1 − 10^9 q_C2;
+// at node a the source carries −(i_C1 + i_L1), with i_C1 = C1 V1': v̇_V1 = 10^9 q_C2 − 1000 V1 − 3·10⁻⁶ V1''
+// (dcad solve prints the same). Closed form: v_C2 = 1000 ∫V1, q_C2 = ∫v_C2 and v_V1 = ∫(10^9 q_C2 − 1000 V1)
+// − 3·10⁻⁶ V1'(t): the source
 // current jumps by −C1 ΔV1' at every corner (C1's current follows V1's slope; a row at a corner is the
 // value after it). The corners are where M_c(t) moves with σ' (V §3): the rows there must be exact.
 TEST(Forced, SourceCurrentJumpsAtPulseCorners) {

@@ -161,12 +161,15 @@ def binary_users(groups, build, binary):
     """The test executables that run the dcad binary (compiled with -DDCAD_BINARY=…): they see a mutant
     through it too.  Read from CMake's flags.make of each target; searching the executable for the path
     missed cli_check, where GCC stores the literal in pieces (its 7 tests never saw a mutant of cli/)."""
+    flags = {}  # target name -> its flags.make files (one walk of the build tree)
+    for root, _, files in os.walk(build):
+        if root.endswith(".dir") and "flags.make" in files:
+            flags.setdefault(os.path.basename(root)[:-4], []).append(os.path.join(root, "flags.make"))
     users = set()
     for exe in groups:
-        name = os.path.basename(exe)
-        flags = [os.path.join(root, "flags.make") for root, dirs, _ in os.walk(build) if root.endswith(os.sep + name + ".dir")]
-        if flags:
-            if any("DCAD_BINARY" in open(f, encoding="utf-8", errors="replace").read() for f in flags):
+        found = flags.get(os.path.basename(exe))
+        if found:
+            if any("DCAD_BINARY" in open(f, encoding="utf-8", errors="replace").read() for f in found):
                 users.add(exe)
         elif binary.encode() in open(exe, "rb").read():  # not a Makefile build: the path, where it is whole
             users.add(exe)
