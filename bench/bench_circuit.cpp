@@ -8,7 +8,7 @@
 //         loops through ground, empty loops where wires close a loop).
 // Prints one CSV line: family,branches,nodes,read_s,tower_s,json_s,total_s,c,dim_Mc,peak_rss_mb.
 // bench/circuit_scaling.sh runs the sizes 10^2 … 10^6 and fits the exponent.
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve_circuit.hpp"
 
 #include <sys/resource.h>

@@ -3,8 +3,8 @@
 #include "dcad/api.hpp"
 
 #include "check.hpp"
-#include "lagrangian_case.hpp"
-#include "netlist.hpp"
+#include "dcad/io/lagrangian_case.hpp"
+#include "dcad/io/netlist.hpp"
 #include "simulate.hpp"
 #include "simulate_forced.hpp"
 #include "solve_circuit.hpp"

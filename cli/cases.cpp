@@ -1,7 +1,7 @@
 #include "cases.hpp"
 
 #include "circuit_report.hpp"
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve_file.hpp"
 #include "solve.hpp"
 

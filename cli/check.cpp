@@ -1,4 +1,5 @@
 #include "check.hpp"
+#include "json_input.hpp"  // dcad::io's exact JSON reader (build tree)
 
 #include "circuit_report.hpp"
 #include "solve_circuit.hpp"

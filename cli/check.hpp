@@ -3,9 +3,9 @@
 // `dirac_bracket`) as subspaces or within a condition-aware tolerance (documented in the README).
 #pragma once
 
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve.hpp"
-#include "lagrangian_case.hpp"
+#include "dcad/io/lagrangian_case.hpp"
 
 #include <ostream>
 

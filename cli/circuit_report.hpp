@@ -1,7 +1,7 @@
 // The circuit part of `dcad solve` on a netlist: CONTRACT keys and the report for people (CEF §6).
 #pragma once
 
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve.hpp"
 
 namespace dcad::cli {

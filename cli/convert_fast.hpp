@@ -2,7 +2,7 @@
 // the input was exact in double and well scaled) and the fast Dirac structure of a `dirac` member.
 #pragma once
 
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
 #include "dcad/fast/cad.hpp"
 
 namespace dcad::cli {

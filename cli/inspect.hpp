@@ -1,7 +1,9 @@
 // `dcad inspect`: what a Dirac structure is (CEF §4), by either backend.
 #pragma once
 
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>

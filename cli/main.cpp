@@ -3,10 +3,10 @@
 // expected vs found), 2 bad usage, 3 check disagrees; 4 internal error.
 #include "dcad/api.hpp"
 
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
 #include "inspect.hpp"
 #include "cases.hpp"
-#include "netlist.hpp"  // parse_spice_value: --tstop 20n
+#include "dcad/io/netlist.hpp"  // parse_spice_value: --tstop 20n
 #include "plot.hpp"
 #include "solve.hpp"
 

@@ -1,8 +1,8 @@
 // `dcad simulate`: integrate the equations of motion on M_c from the file's initial condition.
 #pragma once
 
-#include "lagrangian_case.hpp"
-#include "netlist.hpp"
+#include "dcad/io/lagrangian_case.hpp"
+#include "dcad/io/netlist.hpp"
 
 #include <Eigen/Core>
 

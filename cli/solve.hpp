@@ -2,7 +2,9 @@
 // ../shared/CONTRACT.md.  Numbers are already formatted: exact "p/q" (reference) or %.17g (fast).
 #pragma once
 
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <string>

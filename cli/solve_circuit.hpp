@@ -5,7 +5,7 @@
 #pragma once
 
 #include "dcad/fast/circuit.hpp"
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve.hpp"
 
 namespace dcad::cli {

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "dcad/reference/circuit_motion.hpp"
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve_circuit.hpp"
 #include "solve_exact.hpp"
 

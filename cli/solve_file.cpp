@@ -1,7 +1,7 @@
 #include "solve_file.hpp"
 
 #include "circuit_report.hpp"
-#include "lagrangian_case.hpp"
+#include "dcad/io/lagrangian_case.hpp"
 #include "solve.hpp"
 #include "solve_circuit.hpp"
 #include "solve_forced.hpp"

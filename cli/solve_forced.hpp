@@ -5,7 +5,7 @@
 // the circuit (CV loops on q, LI cutsets on v) by element.
 #pragma once
 
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve.hpp"
 
 namespace dcad::cli {

@@ -3,7 +3,7 @@
 // or exactly where the point's values are rational and in double otherwise (certified).
 #pragma once
 
-#include "lagrangian_case.hpp"
+#include "dcad/io/lagrangian_case.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -5,7 +5,7 @@
 //  * the input assessment of the fast backend (cli/convert_fast.hpp): what may be certain in double.
 #include "convert_fast.hpp"
 #include "simulate.hpp"
-#include "waveform.hpp"
+#include "dcad/io/waveform.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Case files (.json): exact JSON reader, every form, strict keys; in the expression form also the
 // formula reader and, for small systems, the pointwise CAD itself (exact, then double).
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
 #include "fuzz_input.hpp"
-#include "lagrangian_case.hpp"
+#include "dcad/io/lagrangian_case.hpp"
 #include "solve_lagrangian.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

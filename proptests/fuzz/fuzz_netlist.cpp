@@ -3,7 +3,7 @@
 // rounded to double with range checks); small decks with R, sources or K also go through the forced
 // route, exact and fast (source conditions against the waveforms, loops and cutsets by name).
 #include "fuzz_input.hpp"
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 #include "solve_circuit.hpp"
 #include "solve_forced.hpp"
 

@@ -4,7 +4,7 @@
 // the column: "FILE: /lagrangian/L: column 7: expected …, found …".
 #pragma once
 
-#include "case_file.hpp"
+#include "json_input.hpp"
 #include "dcad/reference/expression.hpp"
 
 #include <map>

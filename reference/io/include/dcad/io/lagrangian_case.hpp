@@ -3,7 +3,7 @@
 // the JSON path (and the column inside an expression), what was expected and what was found.
 #pragma once
 
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
 #include "dcad/reference/lagrangian_system.hpp"
 
 #include <map>
@@ -22,15 +22,11 @@ struct LagrangianCase {
   std::vector<std::optional<Rational>> initial;  ///< size 2n + 1: q, v, t
   std::vector<std::optional<Rational>> initial_p;  ///< size n
   bool has_initial = false;
-  nlohmann::json expect;
 };
 
-/// The case holds `lagrangian` (or `parameters`): the expression form.
-bool is_expression_case(const nlohmann::json& j);
 /// FILE is a .json case in the expression form (false if it is not, or cannot be read: read_case
 /// then reports why).
 bool is_expression_file(const std::string& file);
 LagrangianCase read_lagrangian_case(const std::string& file);
-LagrangianCase read_lagrangian_case(const nlohmann::json& j, const std::string& file);
 
 }  // namespace dcad::io

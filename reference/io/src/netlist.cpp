@@ -1,4 +1,4 @@
-#include "netlist.hpp"
+#include "dcad/io/netlist.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -101,16 +101,25 @@ class Reader {
   std::vector<Line> lines;
   std::vector<std::string> warnings;
 
-  void read(const std::string& file, bool top, const std::string& section, int depth, const Line* from) {
+  /// `text`: the top deck's contents (a deck given as a string, named `file` in messages; its
+  /// includes are read relative to `directory`), else the file is opened.
+  void read(const std::string& file, bool top, const std::string& section, int depth, const Line* from,
+            std::istream* text = nullptr, const std::string& directory = "") {
     if (depth > 16) fail(*from, "includes nested at most 16 deep", "deeper (an include cycle?)");
     std::error_code ec;
     if (from && !std::filesystem::is_regular_file(file, ec))  // not a device or a pipe: never a hang
       fail(*from, "a regular file to include", "\"" + file + "\" (" + (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file") + ")");
-    std::ifstream in(file);
-    if (!in) {
-      if (from) fail(*from, "a readable file to include", "\"" + file + "\" cannot be opened");
-      throw InputError(file + ": cannot open the file for reading");
+    std::ifstream opened;
+    if (!text) {
+      opened.open(file);
+      if (!opened) {
+        if (from) fail(*from, "a readable file to include", "\"" + file + "\" cannot be opened");
+        throw InputError(file + ": cannot open the file for reading");
+      }
     }
+    std::istream& in = text ? *text : opened;
+    // includes beside this deck (a deck given as text: in `directory`)
+    const std::string beside_this = text ? (directory.empty() ? std::string("./") : directory + "/") + "deck" : file;
     std::string raw;
     std::size_t number = 0;
     bool first = top, in_control = false, in_section = section.empty();
@@ -155,12 +164,12 @@ class Reader {
       }
       if (head == ".include" || head == ".inc") {
         if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
-        read(beside(file, unquote(tok[1])), false, "", depth + 1, &here);
+        read(beside(beside_this, unquote(tok[1])), false, "", depth + 1, &here);
         if (ended) return;
         continue;
       }
       if (head == ".lib" && tok.size() == 3) {
-        read(beside(file, unquote(tok[1])), false, tok[2], depth + 1, &here);
+        read(beside(beside_this, unquote(tok[1])), false, tok[2], depth + 1, &here);
         continue;
       }
       if (head == ".lib") fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
@@ -598,9 +607,13 @@ static void resolve_couplings(Netlist& out, const Flattener& f) {
   }
 }
 
+namespace {
+
+Netlist flatten(const std::string& file, Reader& reader);
+
+}  // namespace
+
 Netlist read_netlist(const std::string& file) {
-  Netlist out;
-  out.file = file;
   Reader reader;
   reader.read(file, true, "", 0, nullptr);
   if (reader.title.empty() && reader.lines.empty()) {
@@ -608,6 +621,22 @@ Netlist read_netlist(const std::string& file) {
     if (probe.peek() == std::ifstream::traits_type::eof())
       throw InputError(file + ":1: expected a title line and LC elements, found an empty file");
   }
+  return flatten(file, reader);
+}
+
+Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory) {
+  if (text.empty()) throw InputError(name + ":1: expected a title line and LC elements, found an empty deck");
+  std::istringstream in(text);
+  Reader reader;
+  reader.read(name, true, "", 0, nullptr, &in, directory);
+  return flatten(name, reader);
+}
+
+namespace {
+
+Netlist flatten(const std::string& file, Reader& reader) {
+  Netlist out;
+  out.file = file;
   out.title = reader.title;
   out.warnings = reader.warnings;
   Flattener f(out);
@@ -636,8 +665,6 @@ Netlist read_netlist(const std::string& file) {
       throw InputError(file + ": .ic: expected a node of the circuit, found v(" + node + ")");
   return out;
 }
-
-namespace {
 
 Rational pow10(int e) {
   Rational r(1);

@@ -1,4 +1,4 @@
-#include "waveform.hpp"
+#include "dcad/io/waveform.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,8 @@
-#include "lagrangian_case.hpp"
+#include "dcad/io/lagrangian_case.hpp"
 
 #include "expression_parse.hpp"
+#include "json_input.hpp"
+#include "forms.hpp"
 
 #include <algorithm>
 #include <set>
@@ -48,7 +50,6 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   c.file = file;
   if (j.contains("name")) c.name = read_string(j["name"], root / "name", "a string");
   if (j.contains("description")) c.description = read_string(j["description"], root / "description", "a string");
-  if (j.contains("expect")) c.expect = j["expect"];
   const json& lag = j["lagrangian"];
   const Where l = root / "lagrangian";
   if (!lag.is_object()) l.fail("an object {coordinates, L, constraints, forces, time}", describe(lag));

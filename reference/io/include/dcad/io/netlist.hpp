@@ -2,10 +2,10 @@
 // rationals).  Errors: InputError "FILE:LINE: expected …, found …".
 #pragma once
 
-#include "case_file.hpp"
+#include "dcad/io/case_file.hpp"
 #include "dcad/reference/circuit.hpp"
 #include "dcad/reference/rlc.hpp"
-#include "waveform.hpp"
+#include "dcad/io/waveform.hpp"
 
 #include <optional>
 
@@ -27,6 +27,8 @@ struct Netlist {
 
 bool is_netlist_file(const std::string& file);
 Netlist read_netlist(const std::string& file);
+/// A deck given as text, named `name` in messages; `.include`/`.lib` files are read from `directory`.
+Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory);
 /// SPICE value: number with optional suffix f p n u m k meg g t (case-insensitive), trailing unit
 /// letters ignored ("10uF"); exact.  Throws std::invalid_argument.
 Rational parse_spice_value(const std::string& text);

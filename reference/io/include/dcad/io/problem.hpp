@@ -1,0 +1,47 @@
+// One Problem of exact data from any input form (../shared/CONTRACT.md): a linear case file
+// (`dirac`, `pontryagin`, `constrained`), an expression-form case (`lagrangian`) or a SPICE netlist.
+// Read once, dispatched once: every route of every backend starts from a Problem.
+#pragma once
+
+#include "dcad/io/case_file.hpp"
+#include "dcad/io/lagrangian_case.hpp"
+#include "dcad/io/netlist.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dcad::io {
+
+enum class Form {
+  linear,      ///< a `dirac`, `pontryagin` or `constrained` case (CEF §2, §5, §6)
+  netlist,     ///< an LC or RLC netlist (CEF §6, YM §4)
+  expression,  ///< the expression form: a Lagrangian system by formulas (YM §4–§6, V §3)
+};
+
+struct Problem {
+  Form form = Form::linear;
+  std::string file;            ///< where it was read from (names every message)
+  CaseFile linear;             ///< Form::linear: the case; Form::netlist: the circuit's variable names (q_*, v_*, p_*)
+  Netlist netlist;             ///< Form::netlist
+  LagrangianCase expression;   ///< Form::expression
+
+  /// The state's variable names, in order: x of a linear case, (q, v, p) of a circuit or a Lagrangian system.
+  std::vector<std::string> variables() const;
+  /// The case's `name`, the netlist's title, or "".
+  std::string name() const;
+  /// The reader's warnings (a netlist's ignored cards, non-physical values), each naming file:line.
+  const std::vector<std::string>& warnings() const { return netlist.warnings; }
+};
+
+/// Any input file: a netlist by its extension (.cir, .sp, .net, .spice, .ckt), else a JSON case in
+/// the expression form or a linear one — the JSON is read once.  InputError for bad input.
+Problem read_problem(const std::string& file);
+
+/// A netlist given as text; `name` stands for the file in messages, and `.include`/`.lib` paths are
+/// taken relative to `directory`.
+Problem parse_netlist(const std::string& text, const std::string& name = "netlist.cir", const std::string& directory = ".");
+
+/// A JSON case (linear or expression form) given as text; `name` stands for the file in messages.
+Problem parse_case(const std::string& text, const std::string& name = "case.json");
+
+}  // namespace dcad::io

@@ -1,0 +1,16 @@
+// The JSON forms from parsed JSON: one read of a file decides its form (problem.cpp).
+#pragma once
+
+#include "dcad/io/case_file.hpp"
+#include "dcad/io/lagrangian_case.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace dcad::io {
+
+/// The case holds `lagrangian` (or `parameters`): the expression form.
+bool is_expression_case(const nlohmann::json& j);
+LagrangianCase read_lagrangian_case(const nlohmann::json& j, const std::string& file);
+CaseFile read_case(const nlohmann::json& j, const std::string& file);
+
+}  // namespace dcad::io
