@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
       tc = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     std::printf("%6zu %4ld %12.4g %12.4g %12.4g %10.3g %10.3g %s %s\n", n, c, tr, tf, tc, tr > 0 ? tr / tf : 0.0, tc / tf,
-                fr.certain ? "yes" : "no", n <= max_ref ? (in_float ? "in float" : "exact") : "");
+                fr.certain.yes() ? "yes" : "no", n <= max_ref ? (in_float ? "in float" : "exact") : "");
     std::fflush(stdout);
   }
 }

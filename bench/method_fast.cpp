@@ -1,4 +1,4 @@
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 #include "dcad/fast/cad.hpp"
 #include "methods.hpp"
 
@@ -6,7 +6,7 @@
 
 namespace dcad::bench {
 
-using cli::to_double;  // exact → double with the CLI's bookkeeping of input exactness and scaling
+using fast::to_double;  // exact → double with the CLI's bookkeeping of input exactness and scaling
 
 Outcome run_fast(const families::Instance& in) {
   fast::Options opt;
@@ -23,7 +23,7 @@ Outcome run_fast(const families::Instance& in) {
     const fast::CadResult r = fast::constraint_tower(s, opt);
     o.consistent = r.consistent;
     o.solution_rank = r.solution_rank;
-    o.uncertain = !r.certain;
+    o.uncertain = r.certain.unknown();
     for (const auto& st : r.tower) {
       o.dims.push_back(st.dim());
       o.tower.push_back(st.m.empty ? Eigen::MatrixXd() : st.m.direction.columns());

@@ -1,6 +1,6 @@
 #include "circuit_report.hpp"
 
-#include "dcad/fast/circuit.hpp"
+#include "dcad/graph.hpp"
 
 #include <sstream>
 
@@ -28,18 +28,17 @@ bool has_empty_branch(const io::Netlist& n) {
 /// The fundamental loops of the non-inductive subgraph (forest through the empty branches first):
 /// purely capacitive (first) and empty (second), each as signed branch names.  Graph facts only.
 std::pair<std::vector<std::vector<std::string>>, std::vector<std::vector<std::string>>> named_loops(const io::Netlist& n) {
-  fast::CircuitGraph g;
-  g.nodes = n.circuit.nodes;
+  std::vector<graph::Edge> edges;
   std::vector<bool> keep, prefer;
   for (const auto& b : n.circuit.branches) {
-    g.branches.push_back({fast::BranchKind::empty, b.from, b.to, 0.0});
+    edges.push_back({b.from, b.to});
     keep.push_back(b.kind != BranchKind::inductor);
     prefer.push_back(b.kind == BranchKind::empty);
   }
   std::pair<std::vector<std::vector<std::string>>, std::vector<std::vector<std::string>>> out;
-  for (const fast::Loop& l : fast::fundamental_loops(g, keep, prefer)) {
+  for (const graph::Loop& l : graph::fundamental_loops(n.circuit.nodes, edges, keep, prefer)) {
     std::vector<std::string> names;
-    for (const fast::LoopBranch& lb : l) names.push_back((lb.sign > 0 ? "+" : "-") + n.circuit.branches[lb.branch].name);
+    for (const graph::LoopBranch& lb : l) names.push_back((lb.sign > 0 ? "+" : "-") + n.circuit.branches[lb.branch].name);
     (n.circuit.branches[l.front().branch].kind == BranchKind::capacitor ? out.first : out.second).push_back(names);
   }
   return out;

@@ -1,5 +1,5 @@
 #include "dcad/fast/dirac.hpp"
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 #include "inspect.hpp"
 
 namespace fast = dcad::fast;
@@ -8,8 +8,8 @@ namespace dcad::cli {
 
 namespace {
 
-void note(InspectReport& r, const std::string& what, bool certain, const std::string& evidence) {
-  if (certain) return;
+void note(InspectReport& r, const std::string& what, Truth certain, const std::string& evidence) {
+  if (certain.yes()) return;
   r.certified = false;
   r.uncertain.push_back(what);
   if (!evidence.empty()) r.evidence.push_back(what + ": " + evidence);
@@ -25,11 +25,11 @@ InspectReport inspect_fast(const io::CaseFile& c) {
   r.form = c.dirac.form;
   fa::Options opt;
   const io::DiracInput& in = c.dirac;
-  const fa::DiracStructure d = fast_dirac(in, opt);
+  const fa::DiracStructure d = fast::to_fast(in, opt);
   const fa::DiracCheck check = fa::dirac_defect(d, opt);
-  r.valid = check.valid.value;
+  r.valid = check.valid.yes() || (check.valid.unknown() && check.why.empty());  // the likely answer when unknown
   r.why = check.why;
-  note(r, "valid", check.valid.certain, d.d.evidence().describe());
+  note(r, "valid", check.valid.known() ? yes : unknown, d.d.evidence().describe());
   if (!r.valid) return r;
   const fa::PresymplecticForm w = fa::dirac_form(d, opt);
   r.dim_e = w.space.dim();
@@ -40,11 +40,12 @@ InspectReport inspect_fast(const io::CaseFile& c) {
   const fa::Subspace ker = fa::form_kernel(w, opt);
   r.dim_ker_omega = ker.dim();
   note(r, "dim_ker_omega_D", ker.certain(), "");
-  const fa::Answer pre = fa::is_presymplectic(d, opt), poi = fa::is_poisson(d, opt);
-  r.presymplectic = pre.value;
-  r.poisson = poi.value;
-  note(r, "presymplectic", pre.certain, "");
-  note(r, "poisson", poi.certain, "");
+  const Truth pre = fa::is_presymplectic(d, opt), poi = fa::is_poisson(d, opt);
+  // the likely answers where a verdict is unknown: from the dimensions decided
+  r.presymplectic = pre.known() ? pre.value() : r.dim_e == static_cast<long>(c.n);
+  r.poisson = poi.known() ? poi.value() : fa::Subspace::span_columns(d.alpha_part(), 1.0, opt).dim() == d.n;
+  note(r, "presymplectic", pre.known() ? yes : unknown, "");
+  note(r, "poisson", poi.known() ? yes : unknown, "");
   return r;
 }
 

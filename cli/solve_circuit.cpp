@@ -1,5 +1,5 @@
 #include "solve_circuit.hpp"
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 #include "dcad/fast/circuit_motion.hpp"
 #include "dcad/reference/small_rational.hpp"
 
@@ -12,7 +12,7 @@ fast::CircuitGraph circuit_graph(const io::Netlist& n, fast::Options& opt) {
   std::vector<io::Rational> values;  // of the elements (an empty branch has none)
   for (const auto& b : n.circuit.branches)
     if (b.kind != reference::BranchKind::empty) values.push_back(b.value);
-  const std::vector<double> v = to_double_values(values, opt);
+  const std::vector<double> v = fast::to_double_values(values, opt);
   fast::CircuitGraph g;
   g.nodes = n.circuit.nodes;
   std::size_t next = 0;
@@ -112,7 +112,7 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c, c
   if (dense && parts.reduced) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
     const fast::CircuitMotion mo =
         fast::circuit_motion(circuit_graph(n, opt), t, std::vector<int>(c.coordinates.begin(), c.coordinates.end()), opt);
-    out.certified = out.certified && mo.certain;
+    out.certified = out.certified && mo.certain.yes();
     out.decisions_float += static_cast<long>(mo.decisions.size());
     out.has_reduced = true;
     out.coords.assign(mo.coords.begin(), mo.coords.end());
@@ -128,14 +128,14 @@ SolveReport solve_circuit_fast(const io::Netlist& deck, const io::CaseFile& c, c
   }
   to_circuit_units(out, units, n.circuit.branches.size());
   out.decisions_float += static_cast<long>(t.decisions.size());
-  out.certified = out.certified && t.certain;
+  out.certified = out.certified && t.certain.yes();
   std::string how = t.physical ? "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision)"
                                : "graph route (CEF §6 closed form in loop coordinates, signed values)";
   how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" + std::to_string(units.b) +
          ", time unit 1e" + std::to_string(units.m()) + " s)";
   if (!dense)
     how += "; equations of motion omitted above " + std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
-  const std::string caveat = input_caveat(opt);
+  const std::string caveat = fast::input_caveat(opt);
   out.note = how + (out.certified      ? ""
                     : !caveat.empty()  ? "; " + caveat
                                        : "; a rank decision fell between the zero and nonzero thresholds");

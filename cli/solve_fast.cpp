@@ -1,5 +1,5 @@
 #include "dcad/fast/adapted.hpp"
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 #include "solve.hpp"
 
 #include <Eigen/LU>
@@ -16,26 +16,26 @@ namespace {
 /// `why_uncertain`: set when an input property could not be decided (a result, not bad input).
 fa::LinearSystem fast_system(const io::CaseFile& c, fa::Options& opt, std::string& why_uncertain) {
   if (c.has_constrained) {
-    const Eigen::MatrixXd w = to_double(c.constrained.w, opt), prim = to_double(c.constrained.primary, opt);
-    const fa::Answer symplectic = fa::is_symplectic(w, opt);  // degenerate: bad input; undecided: the result says so
-    if (!symplectic.value && symplectic.certain)
+    const Eigen::MatrixXd w = fa::to_double(c.constrained.w, opt), prim = fa::to_double(c.constrained.primary, opt);
+    const Truth symplectic = fa::is_symplectic(w, opt);  // degenerate: bad input; undecided: the result says so
+    if (symplectic.no())
       throw std::invalid_argument("solve: expected a nondegenerate form, found " + fa::decide_rank(w, -1, opt).describe());
-    if (!symplectic.certain)
+    if (symplectic.unknown())
       why_uncertain = "whether the symplectic form is nondegenerate is uncertain (" + fa::decide_rank(w, -1, opt).describe() + ")";
-    fa::LinearSystem s = fa::gotay_nester_system({w, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), prim}, opt);
+    fa::LinearSystem s = fa::gotay_nester_system({w, fa::to_double(c.energy.hessian, opt), fa::to_double(c.energy.gradient, opt), prim}, opt);
     s.constant = c.energy.constant.convert_to<double>();
     return s;
   }
   if (c.has_pontryagin) {
     const io::PontryaginInput& p = c.pontryagin;
-    return fa::pontryagin_system(fast_pontryagin(p, opt), opt);
+    return fa::pontryagin_system(fast::to_fast(p, opt), opt);
   }
-  fa::DiracStructure d = fast_dirac(c.dirac, opt);
+  fa::DiracStructure d = fast::to_fast(c.dirac, opt);
   if (c.dirac.form == "basis") {  // certainly not Dirac: bad input; uncertain: the result says so
     fa::require_dirac(d, "solve", opt);
-    d.d.and_certain(fa::dirac_defect(d, opt).valid.certain);
+    d.d.and_certain(fa::dirac_defect(d, opt).valid);  // not no: require_dirac threw
   }
-  return {d, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
+  return {d, fa::to_double(c.energy.hessian, opt), fa::to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
 }
 
 }  // namespace
@@ -46,7 +46,7 @@ void fast_adapted(SolveReport& out, const Eigen::MatrixXd& w, const Eigen::Matri
   const fa::AdaptedToPrimary to = fa::adapted_to_primary(w, prim, secondary, leaf, opt);
   const Eigen::MatrixXd& all = to.constraints;
   const fa::AdaptedConstraints& ad = to.adapted;
-  out.certified = out.certified && ad.certain;
+  out.certified = out.certified && ad.certain.yes();
   out.has_adapted = true;
   out.s_prime = ad.s_prime;
   const auto row = [&](int i) {
@@ -68,11 +68,11 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
   std::string why_uncertain;
   const fa::LinearSystem s = fast_system(c, opt, why_uncertain);
   fa::Options in_opt = opt;
-  const Eigen::MatrixXd initial = c.has_constrained ? to_double(c.constrained.primary, in_opt) : Eigen::MatrixXd();
+  const Eigen::MatrixXd initial = c.has_constrained ? fa::to_double(c.constrained.primary, in_opt) : Eigen::MatrixXd();
   const fa::CadResult r = fa::constraint_tower(s, opt, initial);
   SolveReport out;
   out.backend = "fast";
-  out.certified = r.certain;
+  out.certified = r.certain.yes();
   out.consistent = r.consistent;
   out.steps = r.steps;
   out.solution_rank = r.solution_rank;
@@ -100,23 +100,23 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
       more << a, st.equations.leftCols(c.n);
       a = more;
     }
-    const Eigen::MatrixXd j = to_double(c.constrained.w, in_opt).transpose().inverse();
+    const Eigen::MatrixXd j = fa::to_double(c.constrained.w, in_opt).transpose().inverse();
     const fa::RankDecision d = fa::decide_rank(a * j * a.transpose(), fa::norm2(j), opt);
-    out.certified = out.certified && d.certain;
+    out.certified = out.certified && d.certain.yes();
     out.second_class = d.rank;
     out.first_class = a.rows() - d.rank;
   }
   if (c.has_constrained && r.consistent && parts.adapted && invertible) {  // Theorem 3.28 on N
     out.adapted_setting = "N";
     out.adapted_variables = c.variables;
-    fast_adapted(out, to_double(c.constrained.w, in_opt), r.tower[0].equations, fa::secondary_constraints(r),
+    fast_adapted(out, fa::to_double(c.constrained.w, in_opt), r.tower[0].equations, fa::secondary_constraints(r),
                  Eigen::MatrixXd(0, c.n + 1), opt);
   }
   if (c.has_pontryagin && r.consistent && parts.adapted) {  // §7: S' = {ν = 0} ⊂ T*TQ, leaves κ·q = C
     const std::size_t n = c.pontryagin.n;
-    const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(fast_pontryagin(c.pontryagin, in_opt), opt);
+    const fa::FoliatedEmbedding f = fa::tangent_cotangent_embedding(fast::to_fast(c.pontryagin, in_opt), opt);
     const fa::CadResult rf = fa::foliated_tower(f, opt);
-    out.certified = out.certified && rf.certain;
+    out.certified = out.certified && rf.certain.yes();
     out.adapted_setting = "T*TQ";
     out.adapted_variables = c.variables;
     for (std::size_t i = 0; i < n; ++i) out.adapted_variables.push_back("nu_" + c.variables[n + i]);
@@ -125,7 +125,7 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
   if (r.consistent && parts.reduced) {
     std::vector<int> coords(c.coordinates.begin(), c.coordinates.end());
     const fa::ReducedEquations red = fa::reduced_equations(s, r, coords, opt);
-    out.certified = out.certified && red.certain;
+    out.certified = out.certified && red.certain.yes();
     out.has_reduced = true;
     out.coords.assign(red.coords.begin(), red.coords.end());
     // display: entries at rounding level relative to the largest are shown as 0
@@ -144,7 +144,7 @@ SolveReport solve_fast(const io::CaseFile& c, const Parts& parts) {
     out.certified = false;
     if (c.has_constrained && (parts.classes || parts.adapted)) why_uncertain += "; constraint classes and adapted constraints not computed";
   }
-  const std::string caveat = input_caveat(opt);
+  const std::string caveat = fast::input_caveat(opt);
   if (!out.certified)
     out.note = (!why_uncertain.empty() ? why_uncertain
                 : !caveat.empty()      ? caveat

@@ -1,7 +1,7 @@
 #include "solve_forced.hpp"
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 
-#include "dcad/fast/circuit.hpp"
+#include "dcad/graph.hpp"
 #include "dcad/fast/forced.hpp"
 #include "dcad/reference/rlc.hpp"
 
@@ -125,23 +125,29 @@ ref::RlcCircuit<Q> circuit_of(const io::Netlist& n) { return n.rlc; }
 
 /// Loops of the subgraph `keep` that pass through a branch of kind `through`, by a spanning forest
 /// that takes the `prefer` branches first (so each reported loop has one `through` chord).
+std::vector<graph::Edge> edges_of(const io::Netlist& n) {
+  std::vector<graph::Edge> e;
+  for (const auto& b : n.rlc.branches) e.push_back({b.from, b.to});
+  return e;
+}
+
+std::vector<bool> which(const io::Netlist& n, const std::function<bool(RlcKind)>& kind) {
+  std::vector<bool> out;
+  for (const auto& b : n.rlc.branches) out.push_back(kind(b.kind));
+  return out;
+}
+
+std::vector<std::string> signed_names(const io::Netlist& n, const graph::Loop& l) {
+  std::vector<std::string> names;
+  for (const graph::LoopBranch& lb : l) names.push_back((lb.sign > 0 ? "+" : "-") + n.rlc.branches[lb.branch].name);
+  return names;
+}
+
 std::vector<std::vector<std::string>> loops(const io::Netlist& n, const std::function<bool(RlcKind)>& keep,
-                                            const std::function<bool(RlcKind)>& prefer, const std::function<bool(const fast::Loop&)>& report) {
-  fast::CircuitGraph g;
-  g.nodes = n.rlc.nodes;
-  std::vector<bool> k, p;
-  for (const auto& b : n.rlc.branches) {
-    g.branches.push_back({fast::BranchKind::empty, b.from, b.to, 0.0});
-    k.push_back(keep(b.kind));
-    p.push_back(prefer(b.kind));
-  }
+                                            const std::function<bool(RlcKind)>& prefer, const std::function<bool(const graph::Loop&)>& report) {
   std::vector<std::vector<std::string>> out;
-  for (const fast::Loop& l : fast::fundamental_loops(g, k, p)) {
-    if (!report(l)) continue;
-    std::vector<std::string> names;
-    for (const fast::LoopBranch& lb : l) names.push_back((lb.sign > 0 ? "+" : "-") + n.rlc.branches[lb.branch].name);
-    out.push_back(names);
-  }
+  for (const graph::Loop& l : graph::fundamental_loops(n.rlc.nodes, edges_of(n), which(n, keep), which(n, prefer)))
+    if (report(l)) out.push_back(signed_names(n, l));
   return out;
 }
 
@@ -149,39 +155,15 @@ std::vector<std::vector<std::string>> loops(const io::Netlist& n, const std::fun
 /// wires, zero-volt sources; CEF Thm 6.8) — one fundamental loop per independent cycle.
 long empty_loop_count(const io::Netlist& n) {
   const auto wire = [](RlcKind k) { return k == RlcKind::wire; };
-  return static_cast<long>(loops(n, wire, wire, [](const fast::Loop&) { return true; }).size());
+  return static_cast<long>(loops(n, wire, wire, [](const graph::Loop&) { return true; }).size());
 }
 
 /// Cutsets made only of branches with `in(kind)`: contract every other branch; the cut around each
 /// resulting super-node (one per connected piece left out) — independent cutsets, signed (+ = leaving).
 std::vector<std::vector<std::string>> cutsets(const io::Netlist& n, const std::function<bool(RlcKind)>& in,
                                               const std::function<bool(RlcKind)>& must) {
-  const std::size_t v = n.rlc.nodes + 1;
-  std::vector<std::size_t> parent(v);
-  std::iota(parent.begin(), parent.end(), 0);
-  const std::function<std::size_t(std::size_t)> find = [&](std::size_t x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
-  for (const auto& b : n.rlc.branches)
-    if (!in(b.kind)) parent[find(b.from + 1)] = find(b.to + 1);
-  // super-nodes joined by the kept branches: drop one super-node per connected piece
-  std::vector<std::size_t> piece(v);
-  std::iota(piece.begin(), piece.end(), 0);
-  const std::function<std::size_t(std::size_t)> findp = [&](std::size_t x) { return piece[x] == x ? x : piece[x] = findp(piece[x]); };
-  for (const auto& b : n.rlc.branches)
-    if (in(b.kind)) piece[findp(find(b.from + 1))] = findp(find(b.to + 1));
   std::vector<std::vector<std::string>> out;
-  for (std::size_t s = 0; s < v; ++s) {
-    if (find(s) != s || findp(s) == s) continue;  // not a super-node, or the dropped representative
-    std::vector<std::string> names;
-    bool ok = false;
-    for (const auto& b : n.rlc.branches) {
-      if (!in(b.kind)) continue;
-      const bool from = find(b.from + 1) == s, to = find(b.to + 1) == s;
-      if (from == to) continue;
-      names.push_back((from ? "+" : "-") + b.name);
-      ok = ok || must(b.kind);
-    }
-    if (ok && !names.empty()) out.push_back(names);
-  }
+  for (const graph::Cutset& c : graph::cutsets(n.rlc.nodes, edges_of(n), which(n, in), which(n, must))) out.push_back(signed_names(n, c));
   return out;
 }
 
@@ -257,7 +239,7 @@ fast::Options circuit_options(const ref::RlcCircuit<Q>& c) {
     if (b.kind == RlcKind::inductor || b.kind == RlcKind::capacitor || b.kind == RlcKind::resistor) values.push_back(b.value);
   for (const auto& mu : c.mutuals) values.push_back(mu.m);
   fast::Options opt;
-  to_double_values(values, opt);
+  fast::to_double_values(values, opt);
   return opt;
 }
 
@@ -286,14 +268,14 @@ void fast_tower(const ref::ForcedSystem<Q>& f, const fast::Options& opt, SolveRe
   s.steps = r.steps;
   s.consistent = r.consistent;
   s.solution_rank = r.solution_rank;
-  s.certified = r.certain && r.conditions.rows() == 0;
+  s.certified = r.certain.yes() && r.conditions.rows() == 0;
   s.decisions_float = static_cast<long>(r.decisions.size());
   s.note = "forced route, fast twin (double, SVD rank decisions)";
-  const std::string caveat = input_caveat(opt);
-  if (!r.certain && !caveat.empty()) s.note += "; " + caveat + ": use --backend certified";
-  if (!r.certain && caveat.empty())
+  const std::string caveat = fast::input_caveat(opt);
+  if (r.certain.unknown() && !caveat.empty()) s.note += "; " + caveat + ": use --backend certified";
+  if (r.certain.unknown() && caveat.empty())
     for (std::size_t i = 0; i < r.decisions.size(); ++i)
-      if (!r.decisions[i].certain) {
+      if (r.decisions[i].certain.unknown()) {
         s.note += "; rank decision " + std::to_string(i + 1) + " of " + std::to_string(r.decisions.size()) +
                   " was uncertain (" + r.decisions[i].describe() + "): use --backend certified";
         break;
@@ -397,9 +379,9 @@ ForcedReport solve_forced_case(const io::CaseFile& c, const std::string& backend
   if (backend == "fast") {
     out.report.backend = "fast";
     fast::Options opt;  // the case's own numbers, assessed (the matrices are discarded)
-    fast_pontryagin(c.pontryagin, opt);
-    to_double(c.pontryagin.fq, opt);
-    to_double(c.pontryagin.fv, opt);
+    fast::to_fast(c.pontryagin, opt);
+    fast::to_double(c.pontryagin.fq, opt);
+    fast::to_double(c.pontryagin.fv, opt);
     fast_tower(f, opt, out.report);
     out.names = c.variables;
     return out;
@@ -432,8 +414,8 @@ ForcedReport solve_forced(const io::Netlist& n, const std::string& backend) {
     return [ks](RlcKind k) { return std::find(ks.begin(), ks.end(), k) != ks.end(); };
   };
   const auto has = [&](RlcKind kind) {
-    return [&n, kind](const fast::Loop& l) {
-      for (const fast::LoopBranch& b : l)
+    return [&n, kind](const graph::Loop& l) {
+      for (const graph::LoopBranch& b : l)
         if (n.rlc.branches[b.branch].kind == kind) return true;
       return false;
     };

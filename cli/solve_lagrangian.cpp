@@ -127,8 +127,8 @@ LagrangianReport solve_double(const io::LagrangianCase& c) {
   });
   LagrangianReport out = report_of(r, c);
   out.route = "pointwise double";
-  out.certified = decide.certain && r.regular;
-  if (!decide.certain) out.note = "not certified: " + decide.evidence;
+  out.certified = decide.certain.yes() && r.regular;
+  if (decide.certain.unknown()) out.note = "not certified: " + decide.evidence;
   return out;
 }
 

@@ -44,7 +44,7 @@ std::optional<Twins> consistent_twins() {
   t.opt = any_route_options();
   t.fs = fast_twin(t.s, t.opt);
   t.f = fast::constraint_tower(t.fs, t.opt);
-  if (!t.f.certain || !t.f.consistent) return std::nullopt;
+  if (t.f.certain.unknown() || !t.f.consistent) return std::nullopt;
   return t;
 }
 
@@ -60,10 +60,10 @@ RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
       opt);
   bool same_dims = f.tower.size() == r.tower.size();
   for (Index k = 0; same_dims && k < r.tower.size(); ++k) same_dims = f.tower[k].dim() == r.tower[k].dim();
-  RC_ASSERT(!tally("GN dims of M_k", f.certain, same_dims));
-  RC_ASSERT(!tally("GN consistent", f.certain, f.consistent == r.consistent));
+  RC_ASSERT(!tally("GN dims of M_k", f.certain.yes(), same_dims));
+  RC_ASSERT(!tally("GN consistent", f.certain.yes(), f.consistent == r.consistent));
   if (r.consistent && f.consistent)
-    RC_ASSERT(!tally("GN solution rank", f.certain, static_cast<Index>(f.solution_rank) == r.solution_rank));
+    RC_ASSERT(!tally("GN solution rank", f.certain.yes(), static_cast<Index>(f.solution_rank) == r.solution_rank));
 }
 
 RC_GTEST_PROP(FastVsReference, Cad, ()) {
@@ -73,18 +73,18 @@ RC_GTEST_PROP(FastVsReference, Cad, ()) {
   const fast::LinearSystem fs = fast_twin(s, opt);
   const ref::CadResult<Q> r = ref::constraint_tower(s);
   const fast::CadResult f = fast::constraint_tower(fs, opt);
-  RC_CLASSIFY(!f.certain, "fast uncertain");
+  RC_CLASSIFY(f.certain.unknown(), "fast uncertain");
   bool same_dims = f.tower.size() == r.tower.size();
   for (Index k = 0; same_dims && k < r.tower.size(); ++k) same_dims = f.tower[k].dim() == r.tower[k].dim();
-  RC_ASSERT(!tally("CAD dims of M_k", f.certain, same_dims));
-  RC_ASSERT(!tally("CAD steps c", f.certain, static_cast<Index>(f.steps) == r.steps));
-  RC_ASSERT(!tally("CAD consistent", f.certain, f.consistent == r.consistent));
+  RC_ASSERT(!tally("CAD dims of M_k", f.certain.yes(), same_dims));
+  RC_ASSERT(!tally("CAD steps c", f.certain.yes(), static_cast<Index>(f.steps) == r.steps));
+  RC_ASSERT(!tally("CAD consistent", f.certain.yes(), f.consistent == r.consistent));
   // unique: consistent and solution rank 0 (CEF Thm 5.4(b)) — on inconsistent towers too, where the
   // rank is meaningless and unique() must be false (a unique() reading "or" fails here)
-  RC_ASSERT(!tally("CAD unique", f.certain, f.unique() == r.unique()));
+  RC_ASSERT(!tally("CAD unique", f.certain.yes(), f.unique() == r.unique()));
   if (!r.consistent || !f.consistent) return;
-  RC_ASSERT(!tally("CAD solution rank", f.certain, static_cast<Index>(f.solution_rank) == r.solution_rank));
-  if (!f.certain || !same_dims) return;
+  RC_ASSERT(!tally("CAD solution rank", f.certain.yes(), static_cast<Index>(f.solution_rank) == r.solution_rank));
+  if (f.certain.unknown() || !same_dims) return;
   // M_c as a subspace: principal angle against the exact one
   const double bound = 1e6 * (s.d.n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian));
   RC_ASSERT(fast::largest_principal_angle_sin(f.final_step().m.direction, to_fast(r.final_step().m.direction)) <= bound);
@@ -109,10 +109,10 @@ RC_GTEST_PROP(FastVsReference, Velocities, ()) {
   const ref::AffineSubspace<Q> rv = ref::velocities(s, r, x);
   const fast::AffineSubspace fv = fast::velocities(fs, f, to_double(QM::column(x)).col(0), opt);
   RC_ASSERT(!rv.empty);  // Thm 5.4: solutions exist at every point of M_c
-  RC_ASSERT(!tally("velocities exist", fv.certain, !fv.empty));
+  RC_ASSERT(!tally("velocities exist", fv.certain.yes(), !fv.empty));
   if (fv.empty) return;
-  RC_ASSERT(!tally("velocities: dimension", fv.certain, static_cast<Index>(fv.direction.dim()) == rv.direction.dim()));
-  if (!fv.certain) return;
+  RC_ASSERT(!tally("velocities: dimension", fv.certain.yes(), static_cast<Index>(fv.direction.dim()) == rv.direction.dim()));
+  if (fv.certain.unknown()) return;
   const Eigen::VectorXd gap = to_double(QM::column(rv.point)).col(0) - fv.point;
   const Eigen::MatrixXd& dir = fv.direction.columns();
   const Eigen::VectorXd off = gap - dir * (dir.transpose() * gap);  // the part of the gap off the directions
@@ -141,9 +141,9 @@ RC_GTEST_PROP(FastVsReference, ConsistentInitialPoints, ()) {
   for (Index i = 0; i < n; ++i)
     if (given[i]) RC_ASSERT(rp.point[i] == *given[i]);
   const fast::InitialPoint fp = fast::consistent_initial_point(f, given_d, opt);
-  RC_ASSERT(!tally("initial point consistent", fp.certain, fp.consistent));
+  RC_ASSERT(!tally("initial point consistent", fp.certain.yes(), fp.consistent));
   const double tol = 1e6 * (n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian)) * (1 + to_double(QM::column(x)).norm());
-  if (fp.certain && fp.consistent) {
+  if (fp.certain.yes() && fp.consistent) {
     for (Index i = 0; i < n; ++i)
       if (given_d[i]) RC_ASSERT(std::abs(fp.point(i) - *given_d[i]) <= tol);
     const Eigen::VectorXd off = fp.point - to_double(QM::column(some_point(r.final_step().m))).col(0);
@@ -156,9 +156,9 @@ RC_GTEST_PROP(FastVsReference, ConsistentInitialPoints, ()) {
   const ref::InitialPoint<Q> rq = ref::consistent_initial_point(r, given);
   const fast::InitialPoint fq = fast::consistent_initial_point(f, given_d, opt);
   RC_CLASSIFY(!rq.consistent, "moved value inconsistent");
-  RC_ASSERT(!tally("moved initial value: consistent", fq.certain, fq.consistent == rq.consistent));
+  RC_ASSERT(!tally("moved initial value: consistent", fq.certain.yes(), fq.consistent == rq.consistent));
   if (!rq.consistent && !fq.consistent)
-    RC_ASSERT(!tally("moved initial value: level", fq.certain, static_cast<Index>(fq.level) == rq.level));
+    RC_ASSERT(!tally("moved initial value: level", fq.certain.yes(), static_cast<Index>(fq.level) == rq.level));
 }
 
 // Certainty floor (issue 15): on well-conditioned planted data — the tower family (integer data,
@@ -177,7 +177,7 @@ TEST(FastCertaintyFloor, PlantedTowers) {
                                  to_double(in.gradient), 0.0};
       const fast::CadResult r = fast::constraint_tower(s, opt);
       ++total;
-      if (!r.certain) continue;
+      if (r.certain.unknown()) continue;
       ++certain;
       std::vector<long> dims;
       for (const auto& st : r.tower) dims.push_back(st.dim());

@@ -50,12 +50,12 @@ void check_against_generic(const Circuit<Q>& c, const std::string& family) {
   RC_TAG("c = " + std::to_string(r.steps));
   bool same_dims = t.dims.size() == r.tower.size();
   for (std::size_t k = 0; same_dims && k < t.dims.size(); ++k) same_dims = t.dims[k] == r.tower[k].dim();
-  if (t.physical) RC_ASSERT(t.certain);  // combinatorial: nothing to be uncertain about
-  RC_ASSERT(!tally(family + ": dims of M_k", t.certain, same_dims));
-  RC_ASSERT(!tally(family + ": solution rank", t.certain, t.solution_rank == static_cast<long>(r.solution_rank)));
+  if (t.physical) RC_ASSERT(t.certain.yes());  // combinatorial: nothing to be uncertain about
+  RC_ASSERT(!tally(family + ": dims of M_k", t.certain.yes(), same_dims));
+  RC_ASSERT(!tally(family + ": solution rank", t.certain.yes(), t.solution_rank == static_cast<long>(r.solution_rank)));
   if (!same_dims) return;
   for (std::size_t k = 1; k < t.dims.size(); ++k)
-    RC_ASSERT(!tally(family + ": M_k equations", t.certain, rows_vanish_on(t, k, r.tower[k].m.direction)));
+    RC_ASSERT(!tally(family + ": M_k equations", t.certain.yes(), rows_vanish_on(t, k, r.tower[k].m.direction)));
 }
 
 }  // namespace
@@ -134,7 +134,7 @@ RC_GTEST_PROP(CircuitGraphRoute, EqualsGenericFastCad, ()) {
       {in.n, to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt), to_double(in.qq, &opt), to_double(in.q), to_double(in.v)}, opt);
   const fast::CadResult f = fast::constraint_tower(s, opt);
   const fast::CircuitTower t = fast::circuit_tower(fast_graph(c));
-  const bool certain = f.certain && t.certain;
+  const bool certain = f.certain.yes() && t.certain.yes();
   bool same = f.tower.size() == t.dims.size() && f.solution_rank == t.solution_rank;
   for (std::size_t k = 0; same && k < t.dims.size(); ++k) same = f.tower[k].dim() == t.dims[k];
   RC_ASSERT(!tally("graph vs generic fast: tower and solution rank", certain, same));

@@ -43,18 +43,18 @@ RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
   bool same = f.tower.size() == r.tower.size();
   for (Index k = 0; same && k < r.tower.size(); ++k)
     same = (f.tower[k].empty ? -1 : f.tower[k].direction.dim()) == (r.tower[k].empty ? -1L : static_cast<long>(r.tower[k].direction.dim()));
-  RC_ASSERT(!tally("DB dims of M_k", f.certain, same));
-  RC_ASSERT(!tally("DB consistent", f.certain, f.consistent == r.consistent));
-  if (!r.consistent || !f.consistent || !f.certain || !same) return;
+  RC_ASSERT(!tally("DB dims of M_k", f.certain.yes(), same));
+  RC_ASSERT(!tally("DB consistent", f.certain.yes(), f.consistent == r.consistent));
+  if (!r.consistent || !f.consistent || f.certain.unknown() || !same) return;
   const ref::ConstraintClasses<Q> rc_ = ref::classify_constraints(s.omega, r.constraints);
   const fast::ConstraintClasses fc = fast::classify_constraints(fs.omega, f.constraints, opt);
-  RC_ASSERT(!tally("second class 2s", fc.certain, static_cast<Index>(fc.s) == rc_.s));
-  RC_ASSERT(!tally("first class count", fc.certain, static_cast<Index>(fc.first.rows()) == rc_.first.rows()));
+  RC_ASSERT(!tally("second class 2s", fc.certain.yes(), static_cast<Index>(fc.s) == rc_.s));
+  RC_ASSERT(!tally("first class count", fc.certain.yes(), static_cast<Index>(fc.first.rows()) == rc_.first.rows()));
   const std::vector<Q> x = some_point(r.tower.back());
   const ref::AffineSubspace<Q> rl = ref::multipliers(s, r, x);
   const fast::AffineSubspace fl = fast::multipliers(fs, f, to_double(x), opt);
-  RC_ASSERT(!tally("dim Lambda^(c)", fl.certain, !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
-  if (!fc.certain || fl.empty || !fl.certain) return;
+  RC_ASSERT(!tally("dim Lambda^(c)", fl.certain.yes(), !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
+  if (fc.certain.unknown() || fl.empty || fl.certain.unknown()) return;
   // Lemma 3.23 (e) and the motion: J* skew, G J* = 0, J*(dE + λ·a) = J(dE + λ·a) on M_c
   const int n = static_cast<int>(fs.omega.rows());
   const Eigen::MatrixXd j = fast::poisson_tensor(fs.omega);
@@ -79,10 +79,10 @@ RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
   fast::Options opt = any_route_options();
   const Eigen::MatrixXd w = to_double(s.omega, &opt), cons = to_double(r.constraints, &opt);
   const fast::AdaptedConstraints fa = fast::adapted_constraints(w, cons, primary, opt);
-  RC_ASSERT(!tally("adapted s'", fa.certain, static_cast<Index>(fa.s_prime) == ra.s_prime));
-  RC_ASSERT(!tally("adapted 2s", fa.certain, static_cast<Index>(fa.s) == ra.s));
-  RC_ASSERT(!tally("adapted chi", fa.certain, std::vector<Index>(fa.chi.begin(), fa.chi.end()) == ra.chi));
-  if (!fa.certain) return;
+  RC_ASSERT(!tally("adapted s'", fa.certain.yes(), static_cast<Index>(fa.s_prime) == ra.s_prime));
+  RC_ASSERT(!tally("adapted 2s", fa.certain.yes(), static_cast<Index>(fa.s) == ra.s));
+  RC_ASSERT(!tally("adapted chi", fa.certain.yes(), std::vector<Index>(fa.chi.begin(), fa.chi.end()) == ra.chi));
+  if (fa.certain.unknown()) return;
   const int n = static_cast<int>(w.rows());
   const Eigen::VectorXd x = to_double(some_point(r.tower.back()));
   const Eigen::VectorXd lambda = to_double(integer_vector(fa.abridged.size()));
@@ -102,7 +102,7 @@ RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
 // alone, that residue was called a certain inconsistency.
 RC_GTEST_PROP(FastVsReference, MultipliersFarAlongMc, ()) {
   const auto& [s, opt, fs, r, f] = any_twins();
-  if (!r.consistent || !f.consistent || !f.certain || r.tower.back().direction.dim() == 0) return;
+  if (!r.consistent || !f.consistent || f.certain.unknown() || r.tower.back().direction.dim() == 0) return;
   std::vector<Q> x = some_point(r.tower.back());
   Q far = 1;
   for (int k = *rc::gen::inRange(6, 13); k > 0; --k) far *= 10;
@@ -112,7 +112,7 @@ RC_GTEST_PROP(FastVsReference, MultipliersFarAlongMc, ()) {
   const ref::AffineSubspace<Q> rl = ref::multipliers(s, r, x);
   const fast::AffineSubspace fl = fast::multipliers(fs, f, to_double(x), opt);
   RC_LOG() << case_json(s) << "x = " << json_vector(x) << "\nexact dim Lambda " << rl.direction.dim() << ", fast "
-           << (fl.empty ? -1 : fl.direction.dim()) << (fl.certain ? " (certain)" : " (uncertain)") << "\n";
+           << (fl.empty ? -1 : fl.direction.dim()) << (fl.certain.yes() ? " (certain)" : " (uncertain)") << "\n";
   RC_ASSERT(!rl.empty);
-  RC_ASSERT(!tally("dim Lambda^(c) far along M_c", fl.certain, !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
+  RC_ASSERT(!tally("dim Lambda^(c) far along M_c", fl.certain.yes(), !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
 }

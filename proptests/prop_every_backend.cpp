@@ -94,7 +94,7 @@ struct Fast {
     const fast::CadResult r = fast::constraint_tower(s, opt);
     Answer a;
     a.consistent = r.consistent;
-    a.certain = r.certain;
+    a.certain = r.certain.yes();
     a.solution_rank = r.solution_rank;
     for (const auto& st : r.tower) {
       a.dims.push_back(st.dim());

@@ -19,8 +19,8 @@ namespace {
   RC_ASSERT(!tally(what, certain, (fast_value) == (ref_value)));
 
 void compare_subspace(const std::string& what, const fast::Subspace& f, const QSub& r, double bound) {
-  DCAD_COMPARE(what + " dim", f.certain(), static_cast<Index>(f.dim()), r.dim());
-  if (f.certain() && static_cast<Index>(f.dim()) == r.dim() && bound < 0.1) {
+  DCAD_COMPARE(what + " dim", f.certain().yes(), static_cast<Index>(f.dim()), r.dim());
+  if (f.certain().yes() && static_cast<Index>(f.dim()) == r.dim() && bound < 0.1) {
     const double s = fast::largest_principal_angle_sin(f, to_fast(r));
     RC_ASSERT(s <= bound);
   }
@@ -39,11 +39,11 @@ RC_GTEST_PROP(FastVsReference, Symplectic, ()) {
   compare_subspace("V^Omega", comp, ref::symplectic_complement(p.w, p.v), bound);
   const fast::PresymplecticForm om = fast::restrict_form(w, v);
   const fast::RankDecision rk = fast::form_rank(om);
-  DCAD_COMPARE("rank Omega|V", rk.certain, static_cast<Index>(rk.rank), ref::form_rank(ref::restrict_form(p.w, p.v)));
+  DCAD_COMPARE("rank Omega|V", rk.certain.yes(), static_cast<Index>(rk.rank), ref::form_rank(ref::restrict_form(p.w, p.v)));
   compare_subspace("V^omega", fast::form_kernel(om), ref::form_kernel(ref::restrict_form(p.w, p.v)), bound);
   const fast::NormalFormBasis nf = fast::normal_form_basis(w, v);
-  DCAD_COMPARE("Lemma 3.1 s", nf.certain, static_cast<Index>(nf.s), ref::normal_form_basis(p.w, p.v).s);
-  if (nf.certain) {  // the fast basis itself is a normal form (Lemma 3.1), to rounding: X spans V^Ω and
+  DCAD_COMPARE("Lemma 3.1 s", nf.certain.yes(), static_cast<Index>(nf.s), ref::normal_form_basis(p.w, p.v).s);
+  if (nf.certain.yes()) {  // the fast basis itself is a normal form (Lemma 3.1), to rounding: X spans V^Ω and
     // α_i(X_j) = X_iᵀ W X_j is δ_{i,j−s} (i ≤ s), −δ_{i−s,j} (s < i ≤ 2s), 0 otherwise
     compare_subspace("Lemma 3.1 span X", fast::Subspace::span(nf.x), ref::symplectic_complement(p.w, p.v), bound);
     const Index r = nf.x.rows(), s = nf.s;
@@ -58,9 +58,9 @@ RC_GTEST_PROP(FastVsReference, Symplectic, ()) {
   const std::vector<Q> beta = integer_vector(n);
   const auto rs = ref::solve_restricted(p.w, p.v, beta);
   const auto fs = fast::solve_restricted(w, v, to_double(beta));
-  DCAD_COMPARE("Lemma 3.5 solvable", fs.x.certain, !fs.x.empty, !rs.x.empty);
-  if (!rs.x.empty && fs.x.certain && !fs.x.empty) {
-    DCAD_COMPARE("Lemma 3.6 solution dim", fs.x.certain, static_cast<Index>(fs.x.direction.dim()), rs.x.direction.dim());
+  DCAD_COMPARE("Lemma 3.5 solvable", fs.x.certain.yes(), !fs.x.empty, !rs.x.empty);
+  if (!rs.x.empty && fs.x.certain.yes() && !fs.x.empty) {
+    DCAD_COMPARE("Lemma 3.6 solution dim", fs.x.certain.yes(), static_cast<Index>(fs.x.direction.dim()), rs.x.direction.dim());
     // the fast point solves i_X ω = β|_V up to rounding
     const Eigen::VectorXd resid = v.basis() * (w.transpose() * fs.x.point - to_double(beta));
     RC_ASSERT(resid.norm() <= bound * (1 + to_double(beta).norm()) * 1e3);
@@ -94,16 +94,16 @@ RC_GTEST_PROP(FastVsReference, Dirac, ()) {
   const Index n = rd.n;
   const double bound = angle_bound(2 * n, kappa);
   const fast::DiracCheck chk = fast::dirac_defect(fd);
-  DCAD_COMPARE("Dirac valid", chk.valid.certain, chk.valid.value, true);
+  DCAD_COMPARE("Dirac valid", chk.valid.known(), chk.valid.yes(), true);
   const ref::PresymplecticForm<Q> rom = ref::dirac_form(rd);
   const fast::PresymplecticForm fom = fast::dirac_form(fd);
   compare_subspace("E_D", fom.space, rom.space, bound);
   const fast::RankDecision rk = fast::form_rank(fom);
-  DCAD_COMPARE("rank omega_D", rk.certain, static_cast<Index>(rk.rank), ref::form_rank(rom));
+  DCAD_COMPARE("rank omega_D", rk.certain.yes(), static_cast<Index>(rk.rank), ref::form_rank(rom));
   compare_subspace("ker omega_D", fast::form_kernel(fom), ref::form_kernel(rom), bound);
-  const fast::Answer pre = fast::is_presymplectic(fd), poi = fast::is_poisson(fd);
-  DCAD_COMPARE("presymplectic", pre.certain, pre.value, ref::is_presymplectic(rd));
-  DCAD_COMPARE("poisson", poi.certain, poi.value, ref::is_poisson(rd));
+  const Truth pre = fast::is_presymplectic(fd), poi = fast::is_poisson(fd);
+  DCAD_COMPARE("presymplectic", pre.known(), pre.yes(), ref::is_presymplectic(rd));
+  DCAD_COMPARE("poisson", poi.known(), poi.yes(), ref::is_poisson(rd));
   const QSub w = random_subspace_of(rom.space);
   const fast::Subspace fw = to_fast(w);
   compare_subspace("D^flat(W)", fast::dirac_flat(fd, fw), ref::dirac_flat(rd, w), bound);
@@ -128,11 +128,11 @@ RC_GTEST_PROP(FastVsReference, NearDegenerate, ()) {
   const Index exact = ref::rank(w);
   const fast::RankDecision d = fast::decide_rank(wd, -1, opt);
   RC_CLASSIFY(exact != 2 * p.h, "rank moved by 2^-k");
-  RC_CLASSIFY(!d.certain, "fast uncertain");
-  RC_ASSERT(!tally("near-degenerate rank (2^-" + std::to_string(k) + ")", d.certain, static_cast<Index>(d.rank) == exact));
+  RC_CLASSIFY(d.certain.unknown(), "fast uncertain");
+  RC_ASSERT(!tally("near-degenerate rank (2^-" + std::to_string(k) + ")", d.certain.yes(), static_cast<Index>(d.rank) == exact));
   const fast::Subspace ker = fast::form_kernel(fast::restrict_form(wd, fast::Subspace::whole(static_cast<int>(p.n))), opt);
   const Index exact_kernel = ref::form_kernel(ref::restrict_form(w, QSub::whole(p.n))).dim();
-  RC_ASSERT(!tally("near-degenerate kernel dim", ker.certain(), static_cast<Index>(ker.dim()) == exact_kernel));
+  RC_ASSERT(!tally("near-degenerate kernel dim", ker.certain().yes(), static_cast<Index>(ker.dim()) == exact_kernel));
 }
 
 // Adversarial: graded scaling G W G with G = diag(2^{g_i}), g_i ∈ [-24, 24] — exact rank unchanged,
@@ -153,5 +153,5 @@ RC_GTEST_PROP(FastVsReference, Graded, ()) {
   RC_ASSERT(opt.input_exact);  // powers of two: exact in double
   RC_CLASSIFY(!opt.input_well_scaled, "flagged as graded");
   const fast::RankDecision d = fast::decide_rank(wd, -1, opt);
-  RC_ASSERT(!tally("graded rank", d.certain, static_cast<Index>(d.rank) == 2 * p.h));
+  RC_ASSERT(!tally("graded rank", d.certain.yes(), static_cast<Index>(d.rank) == 2 * p.h));
 }

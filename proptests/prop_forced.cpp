@@ -117,9 +117,9 @@ RC_GTEST_PROP(ForcedTower, FastEqualsReference, ()) {
   const ref::ForcedSystem<Q> f = ref::rlc_system(random_rlc({}));
   const ref::ForcedResult<Q> r = ref::forced_tower(f);
   const fast::ForcedResult g = fast::forced_tower(to_fast(f));
-  RC_TAG(std::string(g.certain ? "certain" : "uncertain") + ", c = " + std::to_string(r.steps) +
+  RC_TAG(std::string(g.certain.yes() ? "certain" : "uncertain") + ", c = " + std::to_string(r.steps) +
          (r.conditions.rows() ? ", source conditions" : "") + (r.consistent ? "" : ", inconsistent"));
-  if (!g.certain) return;  // an uncertain fast result says so; nothing to compare
+  if (g.certain.unknown()) return;  // an uncertain fast result says so; nothing to compare
   RC_ASSERT(g.consistent == r.consistent);
   RC_ASSERT(std::vector<long>(g.dims) == r.dims);
   RC_ASSERT(g.steps == static_cast<int>(r.steps));

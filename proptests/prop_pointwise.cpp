@@ -196,9 +196,9 @@ RC_GTEST_PROP(Pointwise, FastEqualsReferenceOnPulledBackSystems, ()) {
   for (const Q& x : start) xd.push_back(x.convert_to<double>());
   fast::ToleranceDecisions d;
   const auto f = fast::pointwise_cad(s, xd, std::vector<bool>(xd.size(), false), d);
-  const bool certain = d.certain && f.regular;
+  const bool certain = d.certain.yes() && f.regular;
   RC_LOG() << "exact dims" << to_text(r.dims) << " rank " << r.solution_rank << "; double dims" << to_text(f.dims) << " rank " << f.solution_rank
-           << " moves " << f.moves << " certain " << d.certain << "\n";
+           << " moves " << f.moves << " certain " << d.certain.text() << "\n";
   for (Index i = 0; i < r.velocity.size() && i < f.velocity.size(); ++i) RC_LOG() << "  x " << (i < start.size() ? start[i].str() : "") << " exact " << r.velocity[i].convert_to<double>() << " double " << f.velocity[i] << "\n";
   RC_ASSERT(!tally("pointwise dims", certain, f.dims == r.dims));
   RC_ASSERT(!tally("pointwise solution rank", certain, f.solution_rank == r.solution_rank));

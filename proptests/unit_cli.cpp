@@ -3,7 +3,7 @@
 //    rational — these decide whether a deck's initial condition is on M_c(0) (simulate_forced.cpp);
 //  * balancing (cli/simulate.hpp): the diagonal similarity that makes simulate unit-independent;
 //  * the input assessment of the fast backend (cli/convert_fast.hpp): what may be certain in double.
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 #include "simulate.hpp"
 #include "dcad/io/waveform.hpp"
 
@@ -109,8 +109,8 @@ TEST(Balancing, EqualisesOffDiagonalSumsByPowersOfTwo) {
 // The height of x = 2^e p/q (p, q odd, coprime) is max(|p|, q): a double's odd mantissa, and for a
 // decimal its odd parts; the resolution |x|/height is then a double's lowest binary digit.
 TEST(ConvertFast, HeightIsTheLargerOddPart) {
-  using dcad::cli::height;
-  using dcad::cli::resolution;
+  using dcad::fast::height;
+  using dcad::fast::resolution;
   EXPECT_EQ(height(Rational(1, 3)), 3);
   EXPECT_EQ(height(Rational(1, 10)), 5);
   EXPECT_EQ(height(Rational(3, 8)), 3);
@@ -130,7 +130,7 @@ TEST(ConvertFast, HeightIsTheLargerOddPart) {
 TEST(ConvertFast, RoundingVoidsCertaintyAboveTheHeightBound) {
   const auto exact_after = [](const Rational& x) {
     dcad::fast::Options opt;
-    dcad::cli::to_double(x, opt);
+    dcad::fast::to_double(x, opt);
     return opt.input_exact;
   };
   const Rational two26 = Rational(boost::multiprecision::mpz_int(1) << 26);
@@ -146,7 +146,7 @@ TEST(ConvertFast, RoundingVoidsCertaintyAboveTheHeightBound) {
   // certified two steps short); height 2^26 − 1 and less does not.
   const auto well_scaled_after = [](const Rational& x) {
     dcad::fast::Options opt;
-    dcad::cli::to_double(x, opt);
+    dcad::fast::to_double(x, opt);
     return opt.input_well_scaled;
   };
   EXPECT_FALSE(well_scaled_after(3 + 3 / (two26 * two26 * 256)));
@@ -173,7 +173,7 @@ TEST(ConvertFast, ExactAssessmentIsAssessInputOnDoubles) {
                          : Rational(m) / Rational(boost::multiprecision::mpz_int(1) << -e);
       }
     dcad::fast::Options exact, doubles;
-    const Eigen::MatrixXd d = dcad::cli::to_double(q, exact);
+    const Eigen::MatrixXd d = dcad::fast::to_double(q, exact);
     dcad::fast::assess_input(d, doubles);
     ASSERT_TRUE(exact.input_exact);
     ASSERT_EQ(exact.input_well_scaled, doubles.input_well_scaled) << d;
@@ -182,18 +182,18 @@ TEST(ConvertFast, ExactAssessmentIsAssessInputOnDoubles) {
   EXPECT_GT(graded, 200);  // both answers are met
   EXPECT_LT(graded, 1800);
   dcad::fast::Options third, fifth;
-  dcad::cli::to_double(dcad::io::QMatrix::from_rows({{Rational(1, 3), Rational(2)}}, 2), third);
+  dcad::fast::to_double(dcad::io::QMatrix::from_rows({{Rational(1, 3), Rational(2)}}, 2), third);
   EXPECT_TRUE(third.input_well_scaled);
-  dcad::cli::to_double(dcad::io::QMatrix::from_rows({{Rational(1), 1 / Rational(244140625)}}, 2), fifth);  // 5^-12
+  dcad::fast::to_double(dcad::io::QMatrix::from_rows({{Rational(1), 1 / Rational(244140625)}}, 2), fifth);  // 5^-12
   EXPECT_FALSE(fifth.input_well_scaled);
 }
 
 // Element values: their magnitudes span at most 1/nonzero_factor (2^26 ≈ 6.7e7) or no deficiency is certain.
 TEST(ConvertFast, ElementValuesSpan) {
   dcad::fast::Options near, far;
-  EXPECT_EQ(dcad::cli::to_double_values({Rational(3), Rational(1, 10000000)}, near), (std::vector<double>{3.0, 1e-7}));
+  EXPECT_EQ(dcad::fast::to_double_values({Rational(3), Rational(1, 10000000)}, near), (std::vector<double>{3.0, 1e-7}));
   EXPECT_TRUE(near.input_well_scaled);  // 3e7
-  dcad::cli::to_double_values({Rational(1), Rational(1, 100000000)}, far);
+  dcad::fast::to_double_values({Rational(1), Rational(1, 100000000)}, far);
   EXPECT_FALSE(far.input_well_scaled);  // 1e8
 }
 

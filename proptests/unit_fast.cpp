@@ -19,7 +19,7 @@ TEST(DecideRank, CertainOnClearGap) {
   a << 1, 2, 3, 2, 4, 6, 0, 1, 1;
   const RankDecision d = decide_rank(a);
   EXPECT_EQ(d.rank, 2);
-  EXPECT_TRUE(d.certain);
+  EXPECT_TRUE(d.certain.yes());
   EXPECT_GT(d.gap, 1e12);
   EXPECT_EQ(d.singular_values.size(), 3u);
   EXPECT_NE(d.describe().find("rank 2 of 3x3 (certain)"), std::string::npos);
@@ -29,10 +29,10 @@ TEST(DecideRank, UncertainInsideTheBand) {
   MatrixXd a = MatrixXd::Identity(3, 3);
   a(2, 2) = std::ldexp(1.0, -40);  // 9e-13: neither rounding noise nor clearly nonzero
   const RankDecision d = decide_rank(a);
-  EXPECT_FALSE(d.certain);
+  EXPECT_FALSE(d.certain.yes());
   EXPECT_NE(d.describe().find("UNCERTAIN"), std::string::npos);
   a(2, 2) = std::ldexp(1.0, -20);  // 1e-6 > √ε: certainly nonzero
-  EXPECT_TRUE(decide_rank(a).certain);
+  EXPECT_TRUE(decide_rank(a).certain.yes());
   EXPECT_EQ(decide_rank(a).rank, 3);
 }
 
@@ -55,7 +55,7 @@ TEST(DecideRank, PivotedQrBracketsTheCut) {
   const RankDecision d = decide_rank(a);
   EXPECT_TRUE(d.by_qr);
   EXPECT_EQ(d.rank, 70);
-  EXPECT_TRUE(d.certain);
+  EXPECT_TRUE(d.certain.yes());
   EXPECT_LE(d.kept_lower, 0.5 * (1 + 1e-12));
   EXPECT_GT(d.kept_lower, 0.5 / 100);  // within √rank of σ_min in practice
   EXPECT_LE(d.dropped_upper, d.zero_threshold);
@@ -77,16 +77,16 @@ TEST(DecideRank, PivotedQrNeverDecidesInsideTheBand) {
   VectorXd sigma = VectorXd::Constant(60, 1.0);
   sigma(59) = 1e-10;  // τ0 = 64·80·ε = 1.1e-12 < 1e-10 < τ1 = 1.5e-8
   const RankDecision d = decide_rank(with_singular_values(80, 80, sigma));
-  EXPECT_FALSE(d.certain);
+  EXPECT_FALSE(d.certain.yes());
   EXPECT_EQ(d.rank, 60);
   sigma(59) = 1.5e-12;  // just above τ0: neither bound decides, the SVD does (uncertain)
   const RankDecision s = decide_rank(with_singular_values(80, 80, sigma));
-  EXPECT_FALSE(s.certain);
+  EXPECT_FALSE(s.certain.yes());
   sigma(59) = 1e-3;  // clearly nonzero: QR decides, rank 60 of 80, certain
   const RankDecision e = decide_rank(with_singular_values(80, 80, sigma));
   EXPECT_TRUE(e.by_qr);
   EXPECT_EQ(e.rank, 60);
-  EXPECT_TRUE(e.certain);
+  EXPECT_TRUE(e.certain.yes());
 }
 
 // The factorization's answers: range ⟂ corange, range spans im A, and min_norm_transposed solves
@@ -135,17 +135,17 @@ TEST(DecideRank, ResidueIsRankZeroByItsNorm) {
   const RankRevealing f(noise, 1.0, Options{});
   EXPECT_TRUE(f.decision().by_norm);
   EXPECT_EQ(f.rank(), 0);
-  EXPECT_TRUE(f.decision().certain);
+  EXPECT_TRUE(f.decision().certain.yes());
   EXPECT_EQ(f.corange().cols(), 100);
   EXPECT_LE((f.corange() - MatrixXd::Identity(100, 100)).norm(), 0.0);
   EXPECT_NE(f.decision().describe().find("Frobenius"), std::string::npos);
   const RankDecision small = decide_rank(1e-10 * MatrixXd::Random(100, 60), 1.0);
   EXPECT_FALSE(small.by_norm);
   EXPECT_EQ(small.rank, 60);
-  EXPECT_FALSE(small.certain);  // 1e-10 is inside the band (τ0, τ1]
+  EXPECT_FALSE(small.certain.yes());  // 1e-10 is inside the band (τ0, τ1]
   Options inexact;
   inexact.input_exact = false;  // a deficiency from inexact input is never certain, by norm or not
-  EXPECT_FALSE(RankRevealing(noise, 1.0, inexact).decision().certain);
+  EXPECT_FALSE(RankRevealing(noise, 1.0, inexact).decision().certain.yes());
 }
 
 TEST(DecideRank, InexactInputNeverCertifiesADeficiency) {
@@ -154,8 +154,8 @@ TEST(DecideRank, InexactInputNeverCertifiesADeficiency) {
   Options opt;
   opt.input_exact = false;
   EXPECT_EQ(decide_rank(a, -1, opt).rank, 1);
-  EXPECT_FALSE(decide_rank(a, -1, opt).certain);
-  EXPECT_TRUE(decide_rank(MatrixXd::Identity(2, 2), -1, opt).certain);  // full rank is still certain
+  EXPECT_FALSE(decide_rank(a, -1, opt).certain.yes());
+  EXPECT_TRUE(decide_rank(MatrixXd::Identity(2, 2), -1, opt).certain.yes());  // full rank is still certain
 }
 
 // Regression (shrunk counterexample of FastVsReference.Graded): exact rank 4, entries 2^-20, 2^-15
@@ -172,7 +172,7 @@ TEST(DecideRank, GradedRegression) {
   assess_input(w, opt);
   EXPECT_TRUE(opt.input_well_scaled);
   const RankDecision d = decide_rank(w, -1, opt);
-  EXPECT_TRUE(d.rank == 4 || !d.certain) << d.describe();
+  EXPECT_TRUE(d.rank == 4 || d.certain.unknown()) << d.describe();
 }
 
 // Regression (shrunk counterexample of EveryBackendFast.CertainAnswersAreThePlantedOnes, the perturbed
@@ -193,7 +193,7 @@ TEST(DecideRank, EntriesWhoseDigitsSpanMoreThanTauOne) {
   assess_input(moved, opt);
   EXPECT_FALSE(opt.input_well_scaled);
   const RankDecision d = decide_rank(moved, -1, opt);
-  EXPECT_TRUE(d.rank == 6 || !d.certain) << d.describe();
+  EXPECT_TRUE(d.rank == 6 || d.certain.unknown()) << d.describe();
   Options plain;  // the same form without the 2^-40: well scaled, and rank 4 is certain
   MatrixXd w4 = MatrixXd::Zero(6, 6);
   w4(0, 2) = w4(1, 3) = 1;
@@ -202,7 +202,7 @@ TEST(DecideRank, EntriesWhoseDigitsSpanMoreThanTauOne) {
   EXPECT_TRUE(plain.input_well_scaled);
   const RankDecision d4 = decide_rank(shear.transpose() * w4 * shear, -1, plain);
   EXPECT_EQ(d4.rank, 4);
-  EXPECT_TRUE(d4.certain) << d4.describe();
+  EXPECT_TRUE(d4.certain.yes()) << d4.describe();
 }
 
 // The evidence a decision carries is the matrix's: `largest` is σ₁ (the trace prints it next to the
@@ -220,7 +220,7 @@ TEST(DecideRank, EvidenceNamesTheLargestSingularValue) {
 
 TEST(DecideRank, Empty) {
   EXPECT_EQ(decide_rank(MatrixXd(0, 3)).rank, 0);
-  EXPECT_TRUE(decide_rank(MatrixXd(0, 3)).certain);
+  EXPECT_TRUE(decide_rank(MatrixXd(0, 3)).certain.yes());
   EXPECT_EQ(decide_rank(MatrixXd::Zero(2, 2)).rank, 0);
 }
 
@@ -231,8 +231,8 @@ TEST(Subspace, Operations) {
   const Subspace su = Subspace::span_columns(u), sw = Subspace::span_columns(w);
   EXPECT_EQ(intersection(su, sw).dim(), 1);
   EXPECT_EQ(sum(su, sw).dim(), 3);
-  EXPECT_TRUE(contains(sum(su, sw), su).value);
-  EXPECT_FALSE(contains(su, sw).value);
+  EXPECT_TRUE(contains(sum(su, sw), su).yes());
+  EXPECT_TRUE(contains(su, sw).no());
   EXPECT_NEAR(std::abs(intersection(su, sw).basis()(0, 1)), 1.0, 1e-15);  // one row: ±e_2
 }
 
@@ -290,9 +290,9 @@ TEST(DiracBergmann, UndecidedBracketMatrixIsUncertain) {
     s.primary(1, 1) = eps;  // + ε q2
     return dcad::fast::dirac_bergmann(s);
   };
-  EXPECT_FALSE(run(1e-10).certain);
-  EXPECT_TRUE(run(1e-3).certain);
-  EXPECT_TRUE(run(0).certain);
+  EXPECT_FALSE(run(1e-10).certain.yes());
+  EXPECT_TRUE(run(1e-3).certain.yes());
+  EXPECT_TRUE(run(0).certain.yes());
 }
 
 // A tower that ends empty keeps the shape cad.hpp documents for every step's equations, [a | b] of
@@ -307,7 +307,7 @@ TEST(Cad, InconsistentTowerKeepsTheEquationsWidth) {
   s.gradient = VectorXd::Unit(2, 1);
   const CadResult r = constraint_tower(s);
   ASSERT_FALSE(r.consistent);
-  ASSERT_TRUE(r.certain);
+  ASSERT_TRUE(r.certain.yes());
   EXPECT_TRUE(r.final_step().m.empty);
   for (const CadStep& step : r.tower) EXPECT_EQ(step.equations.cols(), 3);
   EXPECT_EQ(secondary_constraints(r).cols(), 3);
@@ -328,11 +328,11 @@ TEST(Velocities, ResidueOfAProductIsNotItsRank) {
   s.hessian(1, 1) = 2;
   s.gradient = VectorXd::Constant(2, -2);
   const CadResult r = constraint_tower(s);
-  ASSERT_TRUE(r.certain && r.consistent);
+  ASSERT_TRUE(r.certain.yes() && r.consistent);
   ASSERT_EQ(r.final_step().dim(), 1);
   for (double a : {1.0, 1.0 / 3, 1e6}) {
     const AffineSubspace v = velocities(s, r, Eigen::Vector2d(a, -a));
-    EXPECT_TRUE(v.certain) << a;
+    EXPECT_TRUE(v.certain.yes()) << a;
     EXPECT_FALSE(v.empty) << a;
     EXPECT_EQ(v.direction.dim(), 1) << a;
   }
@@ -356,12 +356,12 @@ TEST(DiracBergmann, MultipliersFarAlongMcAreNotCalledEmpty) {
   s.primary = MatrixXd::Constant(1, 7, -2);
   s.primary(0, 6) = 24;
   const DiracBergmannResult r = dirac_bergmann(s);
-  ASSERT_TRUE(r.certain && r.consistent);
+  ASSERT_TRUE(r.certain.yes() && r.consistent);
   VectorXd x(6);
   x << -3000000011.0, -3000000003.0, -3000000007.0, -3000000003.0, -3000000003.0, 15000000015.0;
   ASSERT_LT((r.constraints.leftCols(6) * x - r.constraints.col(6)).norm(), 1e-6 * x.norm()) << "x is on M_c";
   const AffineSubspace far = multipliers(s, r, x);
-  EXPECT_TRUE(far.certain);
+  EXPECT_TRUE(far.certain.yes());
   EXPECT_FALSE(far.empty);
   EXPECT_EQ(far.direction.dim(), 1);
 }
@@ -376,7 +376,7 @@ TEST(ToleranceDecisions, BandsAreThoseDocumented) {
     x.v = v;
     x.e = 1e-10;
     const bool zero = d.zero(x);
-    certain = d.certain;
+    certain = d.certain.yes();
     return zero;
   };
   bool certain = false;
@@ -404,7 +404,7 @@ TEST(Cad, InitialPointMeetsTheInitialEquations) {
   s.hessian(1, 1) = 1;
   s.gradient = VectorXd::Zero(2);
   const CadResult r = constraint_tower(s, {}, initial);
-  ASSERT_TRUE(r.certain && r.consistent);
+  ASSERT_TRUE(r.certain.yes() && r.consistent);
   ASSERT_EQ(r.final_step().dim(), 0);
   const InitialPoint free = consistent_initial_point(r, {std::nullopt, std::nullopt});
   ASSERT_TRUE(free.consistent);

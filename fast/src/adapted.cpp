@@ -26,7 +26,7 @@ AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constr
       MatrixXd more(chosen.rows() + 1, phi.cols());
       more << chosen, phi.row(i);
       const RankDecision d = decide_rank(more, scale, opt);
-      out.certain = out.certain && d.certain;
+      out.certain &= d.certain;
       if (d.rank > chosen.rows()) {
         chosen = more;
         out.chi.push_back(i);
@@ -38,7 +38,7 @@ AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constr
   take(true);
   out.s_prime = static_cast<int>(out.chi.size());
   take(false);
-  if (static_cast<int>(out.chi.size()) != 2 * out.s) out.certain = false;
+  if (static_cast<int>(out.chi.size()) != 2 * out.s) out.certain = unknown;
   MatrixXd g(out.chi.size(), n);
   for (std::size_t p = 0; p < out.chi.size(); ++p) g.row(p) = a.row(out.chi[p]);
   out.dirac_tensor = g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;

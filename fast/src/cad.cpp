@@ -39,14 +39,14 @@ LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
 namespace {
 
 void record(CadResult& r, const RankDecision& d) {
-  r.certain = r.certain && d.certain;
+  r.certain &= d.certain;
   r.decisions.push_back(d);
 }
 
 }  // namespace
 
 int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorXd& cb, double scale, double rhs_scale,
-                     const Options& opt, std::vector<RankDecision>& trace, bool& certain) {
+                     const Options& opt, std::vector<RankDecision>& trace, Truth& certain) {
   const MatrixXd y = ca * a.transpose();
   const MatrixXd ra = ca - y * a;
   const VectorXd rb = cb - y * b;
@@ -55,7 +55,7 @@ int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorX
   const int room = static_cast<int>(a.cols() - a.rows());
   if (d.rank > room) {  // more new rows than codimensions left: only rounding can say so
     d.rank = room;
-    d.certain = false;
+    d.certain = unknown;
   }
   trace.push_back(d);
   const MatrixXd rows = f.range().leftCols(d.rank).transpose();
@@ -64,7 +64,7 @@ int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorX
   const VectorXd x0 = f.min_norm_transposed(rb);
   const VectorXd rest = rb - ra * x0;
   const RankDecision dc = decide_rank(MatrixXd(rest), std::max(rhs_scale, scale), opt);
-  certain = certain && d.certain && dc.certain;
+  certain &= d.certain & dc.certain;
   trace.push_back(dc);
   if (dc.rank > 0) return -1;
   if (d.rank == 0) return 0;
@@ -81,7 +81,7 @@ AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b) {
   AffineSubspace m;
   m.empty = false;
   m.point = a.transpose() * b;
-  m.direction = Subspace::from_orthonormal_columns(orthogonal_complement(a.transpose()), true);
+  m.direction = Subspace::from_orthonormal_columns(orthogonal_complement(a.transpose()), yes);
   return m;
 }
 
@@ -103,7 +103,7 @@ struct Frame {
 
 Frame frame_of(const DiracStructure& d, const Options& opt, CadResult& out) {
   Frame f;
-  out.certain = out.certain && d.d.certain();
+  out.certain &= d.d.certain();
   if (d.graph_of.size()) {
     f.whole = true;
     f.omega = d.graph_of;
@@ -233,7 +233,7 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
       MatrixXd more(rows.rows() + 1, m);
       more << rows, b.row(j);
       const RankDecision d = decide_rank(more, 1.0, opt);
-      red.certain = red.certain && d.certain;
+      red.certain &= d.certain;
       if (d.rank > rows.rows()) {
         rows = more;
         coords.push_back(j);
@@ -248,7 +248,7 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   const MatrixXd t = sel * b;
   const RankDecision dt = decide_rank(t, 1.0, opt);
   if (dt.rank < m) throw std::invalid_argument("reduced_equations: expected coordinates that parametrize M_c, found variables that do not");
-  red.certain = red.certain && dt.certain;
+  red.certain &= dt.certain;
   const MatrixXd tinv = m ? MatrixXd(t.fullPivLu().inverse()) : MatrixXd(0, 0);  // M_c may be a point
   const VectorXd x0 = r.final_step().m.point;
   // (B w, dE) ∈ D ⇔ B w = V c, dE = A c for some c: solve [V; A] c = [B w; dE] — in w and c jointly:
@@ -260,7 +260,7 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   lhs.topRightCorner(n, m) = -b;
   lhs.bottomLeftCorner(n, k) = da;
   const RankRevealing fl(lhs.transpose(), 1.0 + norm2(s.hessian), opt);  // ker lhs = (im lhsᵀ)^⊥
-  red.certain = red.certain && fl.decision().certain;
+  red.certain &= fl.decision().certain;
   MatrixXd rhs_y = MatrixXd::Zero(2 * n, m);
   rhs_y.bottomRows(n) = s.hessian * b;
   VectorXd rhs0 = VectorXd::Zero(2 * n);
@@ -271,7 +271,13 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   red.coords = coords;
   red.f_matrix = t * p * tinv;
   red.f = t * p0 - red.f_matrix * (sel * x0);
-  red.g = kernel_w.cols() ? MatrixXd(t * Subspace::span_columns(kernel_w, 1.0, opt).columns()) : MatrixXd(m, 0);
+  if (kernel_w.cols()) {
+    const Subspace free = Subspace::span_columns(kernel_w, 1.0, opt);
+    red.certain &= free.certain();
+    red.g = t * free.columns();
+  } else {
+    red.g = MatrixXd(m, 0);
+  }
   return red;
 }
 
@@ -289,7 +295,7 @@ AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const Vecto
   const AffineSubspace w = solve(gv * b, -(ga * energy_differential(s, x)), opt, norm2(gv), norm2(ga) * de_scale);
   AffineSubspace out;
   out.empty = w.empty;
-  out.certain = w.certain && r.certain;
+  out.certain = w.certain & r.certain;
   out.direction = map(b, w.direction, opt);
   if (!w.empty) out.point = b * w.point;
   return out;
@@ -322,7 +328,7 @@ InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std:
       for (int i = 0; i < n; ++i)
         if (!given[i]) a(at++, i) = 1;
     const AffineSubspace s = solve(a, b, opt);
-    out.certain = out.certain && s.certain;
+    out.certain &= s.certain;
     return s;
   };
   if (system(total, false).empty) {

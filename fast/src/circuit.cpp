@@ -13,7 +13,7 @@ namespace dcad::fast {
 
 namespace {
 
-std::size_t vertex(long node) { return static_cast<std::size_t>(node + 1); }  // ground is vertex 0
+using graph::vertex;  // ground is vertex 0
 
 void validate(const CircuitGraph& g) {
   for (std::size_t b = 0; b < g.branches.size(); ++b) {
@@ -28,24 +28,15 @@ void validate(const CircuitGraph& g) {
   }
 }
 
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-};
-
 /// KCL per node: Σ (+1 leaving, −1 entering) v_b = 0, one node of each component without ground
 /// left out (its row is minus the sum of the others), so the rows are independent.  CEF §6: Δ = ker K.
 std::vector<SparseRow> kcl_rows(const CircuitGraph& g, std::size_t n) {
   const std::size_t nv = g.nodes + 1;
-  UnionFind uf(nv);
+  graph::UnionFind uf(nv);
   std::vector<std::vector<Term>> rows(g.nodes);
   for (std::size_t b = 0; b < g.branches.size(); ++b) {
     const CircuitBranch& br = g.branches[b];
-    uf.parent[uf.find(vertex(br.from))] = uf.find(vertex(br.to));
+    uf.join(vertex(br.from), vertex(br.to));
     if (br.from == br.to) continue;
     if (br.from >= 0) rows[br.from].push_back({n + b, 1.0});
     if (br.to >= 0) rows[br.to].push_back({n + b, -1.0});
@@ -114,7 +105,7 @@ void physical_route(const CircuitGraph& g, CircuitTower& t) {
 /// The closed form with each rank decided: q-constraints aq (rows of S^⊥), v-constraints av (Δ_k^⊥).
 void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
   const std::size_t n = g.branches.size();
-  const std::vector<Loop> loops = fundamental_loops(g, std::vector<bool>(n, true), std::vector<bool>(n, false));
+  const std::vector<Loop> loops = graph::fundamental_loops(g.nodes, edges(g), std::vector<bool>(n, true), std::vector<bool>(n, false));
   const Eigen::Index m = static_cast<Eigen::Index>(loops.size()), nn = static_cast<Eigen::Index>(n);
   MatrixXd bl = MatrixXd::Zero(m, nn);  // rows: loop currents, a basis of Δ
   for (Eigen::Index i = 0; i < m; ++i)
@@ -148,7 +139,7 @@ void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
     const Subspace a = x.rows() ? Subspace::solutions(x, phi_scale, opt) : Subspace::whole(static_cast<int>(m));
     if (x.rows()) {
       trace.push_back(a.evidence());
-      t.certain = t.certain && a.certain();
+      t.certain &= a.certain();
     }
     const MatrixXd r = a.columns().transpose() * bl * psi.asDiagonal();  // ψ(·) ∈ φ(Δ_{k−1}) + Δ°
     const Eigen::Index q0 = aq.rows(), v0 = av.rows();
@@ -166,7 +157,7 @@ void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
   }
   const RankDecision d = decide_rank(bl * phi.asDiagonal() * zv, phi_scale, opt);
   trace.push_back(d);
-  t.certain = t.certain && d.certain;
+  t.certain &= d.certain;
   t.solution_rank = zv.cols() - d.rank;
 }
 
@@ -178,86 +169,10 @@ bool is_physical(const CircuitGraph& g) {
   return true;
 }
 
-std::vector<Loop> fundamental_loops(const CircuitGraph& g, const std::vector<bool>& keep, const std::vector<bool>& prefer) {
-  const std::size_t nv = g.nodes + 1, n = g.branches.size();
-  std::vector<std::size_t> start(nv + 1, 0), adj;  // CSR adjacency of the kept branches
-  for (std::size_t b = 0; b < n; ++b)
-    if (keep[b] && g.branches[b].from != g.branches[b].to) {
-      ++start[vertex(g.branches[b].from) + 1];
-      ++start[vertex(g.branches[b].to) + 1];
-    }
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  adj.resize(start[nv]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t b = 0; b < n; ++b)
-    if (keep[b] && g.branches[b].from != g.branches[b].to) {
-      adj[fill[vertex(g.branches[b].from)]++] = b;
-      adj[fill[vertex(g.branches[b].to)]++] = b;
-    }
-  const std::size_t none = static_cast<std::size_t>(-1);
-  std::vector<std::size_t> parent_edge(nv, none), parent(nv, none), depth(nv, 0), queue, flood;
-  std::vector<bool> seen(nv, false), in_tree(n, false);
-  const auto other = [&](std::size_t b, std::size_t v) {
-    return vertex(g.branches[b].from) == v ? vertex(g.branches[b].to) : vertex(g.branches[b].from);
-  };
-  const auto reach = [&](std::size_t b, std::size_t from, std::size_t to) {
-    seen[to] = true;
-    parent_edge[to] = b;
-    parent[to] = from;
-    depth[to] = depth[from] + 1;
-    in_tree[b] = true;
-  };
-  // whole components of the preferred branches at once, so the forest spans them first
-  const auto flood_from = [&](std::size_t v0) {
-    flood.assign(1, v0);
-    for (std::size_t i = 0; i < flood.size(); ++i) {
-      const std::size_t x = flood[i];
-      queue.push_back(x);
-      for (std::size_t k = start[x]; k < start[x + 1]; ++k) {
-        const std::size_t b = adj[k], y = other(b, x);
-        if (prefer[b] && !seen[y]) {
-          reach(b, x, y);
-          flood.push_back(y);
-        }
-      }
-    }
-  };
-  for (std::size_t root = 0; root < nv; ++root) {
-    if (seen[root]) continue;
-    seen[root] = true;
-    queue.clear();
-    flood_from(root);
-    for (std::size_t i = 0; i < queue.size(); ++i) {  // breadth first: short loops
-      const std::size_t x = queue[i];
-      for (std::size_t k = start[x]; k < start[x + 1]; ++k) {
-        const std::size_t b = adj[k], y = other(b, x);
-        if (!seen[y]) {
-          reach(b, x, y);
-          flood_from(y);
-        }
-      }
-    }
-  }
-  std::vector<Loop> loops;
-  for (std::size_t b = 0; b < n; ++b) {
-    if (!keep[b] || in_tree[b]) continue;
-    Loop up{{b, 1}}, down;  // b runs from → to; back to `from` through the tree
-    std::size_t x = vertex(g.branches[b].to), y = vertex(g.branches[b].from);
-    while (x != y) {
-      if (depth[x] >= depth[y]) {  // x → parent(x)
-        const std::size_t e = parent_edge[x];
-        up.push_back({e, vertex(g.branches[e].from) == x ? 1 : -1});
-        x = parent[x];
-      } else {  // parent(y) → y, collected upwards
-        const std::size_t e = parent_edge[y];
-        down.push_back({e, vertex(g.branches[e].to) == y ? 1 : -1});
-        y = parent[y];
-      }
-    }
-    up.insert(up.end(), down.rbegin(), down.rend());
-    loops.push_back(std::move(up));
-  }
-  return loops;
+std::vector<graph::Edge> edges(const CircuitGraph& g) {
+  std::vector<graph::Edge> out;
+  for (const CircuitBranch& b : g.branches) out.push_back({b.from, b.to});
+  return out;
 }
 
 CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt) {
@@ -281,7 +196,7 @@ CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt) {
     keep[b] = g.branches[b].kind != BranchKind::inductor;
     prefer[b] = g.branches[b].kind == BranchKind::empty;
   }
-  for (Loop& l : fundamental_loops(g, keep, prefer))
+  for (Loop& l : graph::fundamental_loops(g.nodes, edges(g), keep, prefer))
     (g.branches[l.front().branch].kind == BranchKind::capacitor ? t.pc_loops : t.empty_loops).push_back(std::move(l));
   if (t.physical) {
     physical_route(g, t);

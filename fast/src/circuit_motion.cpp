@@ -26,7 +26,7 @@ MatrixXd block_rows(const CircuitTower& t, std::size_t n, std::size_t block) {
 }
 
 void record(CircuitMotion& out, const RankDecision& d) {
-  out.certain = out.certain && d.certain;
+  out.certain &= d.certain;
   out.decisions.push_back(d);
 }
 

@@ -13,25 +13,25 @@ namespace {
 Subspace orthonormalize(const MatrixXd& cols) {
   Eigen::HouseholderQR<MatrixXd> qr(cols);
   const MatrixXd q = qr.householderQ() * MatrixXd::Identity(cols.rows(), cols.cols());
-  return Subspace::from_orthonormal_columns(q, true);
+  return Subspace::from_orthonormal_columns(q, yes);
 }
 }  // namespace
 
 DiracCheck dirac_defect(const DiracStructure& d, const Options& opt) {
-  if (d.d.ambient() != 2 * d.n) return {{false, true}, "a subspace of R^" + std::to_string(2 * d.n)};
+  if (d.d.ambient() != 2 * d.n) return {no, "a subspace of R^" + std::to_string(2 * d.n)};
   if (d.d.dim() != d.n)
-    return {{false, d.d.certain()}, "dim D = " + std::to_string(d.d.dim()) + " (a Dirac structure on R^" +
+    return {Truth::decided(false, d.d.certain()), "dim D = " + std::to_string(d.d.dim()) + " (a Dirac structure on R^" +
                                         std::to_string(d.n) + " has dim " + std::to_string(d.n) + ")"};
   // ⟨⟨a, b⟩⟩ = α_a·v_b + α_b·v_a: Gram matrix Aᵀ V + Vᵀ A in the orthonormal basis.
   const MatrixXd g = d.alpha_part().transpose() * d.v_part() + d.v_part().transpose() * d.alpha_part();
   const RankDecision r = decide_rank(g, d.d.conditioning(), opt);
-  if (r.rank > 0) return {{false, r.certain && d.d.certain()}, "D is not isotropic: " + r.describe()};
-  return {{true, r.certain && d.d.certain()}, ""};
+  if (r.rank > 0) return {Truth::decided(false, r.certain & d.d.certain()), "D is not isotropic: " + r.describe()};
+  return {Truth::decided(true, r.certain & d.d.certain()), ""};
 }
 
 void require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt) {
   const DiracCheck c = dirac_defect(d, opt);
-  if (!c.valid.value && c.valid.certain) throw std::invalid_argument(fn + ": expected a Dirac structure (Lemma 4.1), found " + c.why);
+  if (c.valid.no()) throw std::invalid_argument(fn + ": expected a Dirac structure (Lemma 4.1), found " + c.why);
 }
 
 DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
@@ -40,7 +40,7 @@ DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
                                 std::to_string(rows.cols()));
   DiracStructure d{static_cast<int>(rows.cols() / 2), Subspace::span_columns(rows.transpose(), -1, opt)};
   require_dirac(d, "dirac_from_basis", opt);
-  d.d.and_certain(dirac_defect(d, opt).valid.certain);
+  d.d.and_certain(dirac_defect(d, opt).valid);  // not no: require_dirac threw
   return d;
 }
 
@@ -87,15 +87,15 @@ AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Opti
   const AffineSubspace c = solve(d.v_part(), x, opt, 1.0);  // v-part of an orthonormal basis
   AffineSubspace out;
   out.empty = c.empty;
-  out.certain = c.certain && d.d.certain();
-  out.direction = Subspace::span_columns(d.alpha_part() * c.direction.columns(), 1.0, opt);
+  out.certain = c.certain & d.d.certain();
+  out.direction = Subspace::span_columns(d.alpha_part() * c.direction.columns(), 1.0, opt).and_certain(c.direction.certain() & d.d.certain());
   if (!c.empty) out.point = d.alpha_part() * c.point;
   return out;
 }
 
 Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt) {
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);  // {c : V c ∈ W}
-  return Subspace::span_columns(d.alpha_part() * c.columns(), 1.0, opt).and_certain(c.certain() && d.d.certain());
+  return Subspace::span_columns(d.alpha_part() * c.columns(), 1.0, opt).and_certain(c.certain() & d.d.certain());
 }
 
 PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
@@ -113,17 +113,17 @@ PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
 
 Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt) {
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);
-  return Subspace::solutions((d.alpha_part() * c.columns()).transpose(), 1.0, opt).and_certain(c.certain() && d.d.certain());
+  return Subspace::solutions((d.alpha_part() * c.columns()).transpose(), 1.0, opt).and_certain(c.certain() & d.d.certain());
 }
 
-Answer is_presymplectic(const DiracStructure& d, const Options& opt) {
+Truth is_presymplectic(const DiracStructure& d, const Options& opt) {
   const Subspace e = dirac_distribution(d, opt);
-  return {e.dim() == d.n, e.certain()};
+  return Truth::decided(e.dim() == d.n, e.certain());
 }
 
-Answer is_poisson(const DiracStructure& d, const Options& opt) {
+Truth is_poisson(const DiracStructure& d, const Options& opt) {
   const Subspace a = Subspace::span_columns(d.alpha_part(), 1.0, opt).and_certain(d.d.certain());
-  return {a.dim() == d.n, a.certain()};
+  return Truth::decided(a.dim() == d.n, a.certain());
 }
 
 }  // namespace dcad::fast

@@ -38,7 +38,7 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
     const MatrixXd c = a * j * p.transpose();  // {φ_j, φ_i}: rows the orthonormal constraints, cols primary
     const Svd sc = full_svd(c);
     const RankDecision dc = decide_rank(c, sc.sigma, jn * std::max(1.0, norm2(p)), opt);
-    out.certain = out.certain && dc.certain;
+    out.certain &= dc.certain;
     const MatrixXd mu = sc.u.rightCols(c.rows() - dc.rank).transpose();  // μ C = 0
     const MatrixXd ca = mu * a * j * s.hessian;
     const VectorXd cb = -(mu * a * j * s.gradient);
@@ -82,7 +82,8 @@ ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constr
   const MatrixXd c = q * j * q.transpose();
   const Svd sc = full_svd(c);
   const RankDecision ds = decide_rank(c, sc.sigma, norm2(j), opt);
-  out.certain = out.certain && ds.certain && ds.rank % 2 == 0;
+  out.certain &= ds.certain;
+  if (ds.rank % 2 != 0) out.certain = unknown;  // the rank of a skew matrix is even: rounding decided this one
   out.s = ds.rank / 2;
   // first class: the null space of C (C is skew: left = right); second class: its complement
   out.first = sc.v.rightCols(c.cols() - ds.rank).transpose() * basis;

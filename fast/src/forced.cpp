@@ -38,22 +38,15 @@ Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, doubl
   // equilibration cross-check of decide_rank, can make a clear gap look uncertain) and on
   // [old; candidates] minus the old rows (no cancellation, but computed rows near the old span).
   // Both routes are decided; a verdict that either one certifies and both agree on is certain.
-  RankDecision d = decide_rank(vcat(ex, cand.leftCols(n)), std::max(scale, 1.0), opt);
-  d.rank -= static_cast<int>(eq.rows());
-  const RankDecision dr = decide_rank(res.leftCols(n), sv.sigma, scale, opt);
-  if (dr.rank == d.rank && (d.certain || dr.certain)) {
-    d = dr;
-    d.certain = true;
-  } else if (dr.rank != d.rank) {
-    d.certain = false;
-  }
+  RankDecision d = decide_rank_either(vcat(ex, cand.leftCols(n)), static_cast<int>(eq.rows()), std::max(scale, 1.0), res.leftCols(n),
+                                      sv.sigma, scale, opt);
   const int room = n - static_cast<int>(eq.rows());
   if (d.rank < 0 || d.rank > room) {
     d.rank = std::clamp(d.rank, 0, room);
-    d.certain = false;
+    d.certain = unknown;
   }
   r.decisions.push_back(d);
-  r.certain = r.certain && d.certain;
+  r.certain &= d.certain;
   const MatrixXd rest = sv.u.rightCols(res.rows() - d.rank).transpose() * res;  // x-part ≈ 0
   if (d.rank > 0) {
     MatrixXd rows = sv.u.leftCols(d.rank).transpose() * res;  // x-part = Σ Vᵀ
@@ -67,14 +60,14 @@ Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, doubl
     const Svd cs = full_svd(c);
     const RankDecision dc = decide_rank(c, cs.sigma, scale, opt);
     r.decisions.push_back(dc);
-    r.certain = r.certain && dc.certain;
+    r.certain &= dc.certain;
     cond = cs.v.leftCols(dc.rank).transpose();
     // 0 = 1: a condition with a constant and no source part
     if (dc.rank > 0) {
       const MatrixXd src = cond.rightCols(cond.cols() - 1);
       const RankDecision ds = decide_rank(src, 1.0, opt);
       r.decisions.push_back(ds);
-      r.certain = r.certain && ds.certain;
+      r.certain &= ds.certain;
       if (ds.rank < dc.rank) out.consistent = false;
     }
   }
@@ -112,7 +105,7 @@ ForcedResult forced_tower(const ForcedSystem& f, const Options& opt) {
     const Svd sv = full_svd(lhs);
     RankDecision d = decide_rank(lhs, sv.sigma, -1, opt);
     r.decisions.push_back(d);
-    r.certain = r.certain && d.certain;
+    r.certain &= d.certain;
     const MatrixXd cand = sv.u.rightCols(lhs.rows() - d.rank).transpose() * rhs;
     ++r.orders;
     eq = widen(eq, m);
@@ -138,7 +131,7 @@ ForcedResult forced_tower(const ForcedSystem& f, const Options& opt) {
     const RankDecision dk = decide_rank(ker, 1.0, opt);
     r.decisions.push_back(d);
     r.decisions.push_back(dk);
-    r.certain = r.certain && d.certain && dk.certain;
+    r.certain &= d.certain & dk.certain;
     r.solution_rank = dk.rank;
   }
   return r;

@@ -83,6 +83,12 @@ RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
 
 namespace {
 
+/// Every decision leaves through here once (DecisionProbe: testing).
+RankDecision& counted(RankDecision& d, const Options& opt) {
+  if (opt.probe && opt.probe->made++ == opt.probe->uncertain_at) d.certain = unknown;
+  return d;
+}
+
 double zero_threshold(int rows, int cols, double scale, const Options& opt) {
   return opt.zero_factor * std::max(rows, cols) * std::numeric_limits<double>::epsilon() * scale;
 }
@@ -134,13 +140,13 @@ bool decide_by_qr(const Eigen::ColPivHouseholderQR<MatrixXd>& qr, const MatrixXd
                          MatrixXd(f.block(k - 1, k - 1, p - k + 1, n - k + 1).triangularView<Eigen::Upper>()).norm() <=
                              d.nonzero_threshold;
     if (!in_band) return false;
-    d.certain = false;
+    d.certain = unknown;
   }
   d.rank = static_cast<int>(k);
   d.largest = p ? std::abs(f(0, 0)) : 0.0;
   for (Eigen::Index i = 0; i < p; ++i) d.singular_values.push_back(std::abs(f(i, i)));
   d.gap = d.dropped_upper > 0 ? d.kept_lower / d.dropped_upper : std::numeric_limits<double>::infinity();
-  if (k < p && !(opt.input_exact && opt.input_well_scaled)) d.certain = false;
+  if (k < p && !(opt.input_exact && opt.input_well_scaled)) d.certain = unknown;
   return true;
 }
 
@@ -173,20 +179,51 @@ bool survives_equilibration(const MatrixXd& a, const RankDecision& d, const Opti
   } else {
     de = decide_plain(e, scale, opt);
   }
-  return de.rank == d.rank && de.certain;
+  return de.rank == d.rank && de.certain.yes();
+}
+
+}  // namespace
+
+namespace {
+
+/// decide_rank with the singular values, not counted (RankRevealing counts its own decision once).
+RankDecision decide_with_sigma(const MatrixXd& a, const VectorXd& s, double scale, const Options& opt) {
+  RankDecision d = decide_from_sigma(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
+  const bool deficient = d.rank < static_cast<int>(s.size());
+  if (!deficient || d.certain.unknown() || d.rank == 0) return d;
+  if (!survives_equilibration(a, d, opt)) d.certain = unknown;  // grading hides or fakes a singular value
+  return d;
 }
 
 }  // namespace
 
 RankDecision decide_rank(const MatrixXd& a, const VectorXd& s, double scale, const Options& opt) {
-  RankDecision d = decide_from_sigma(s, static_cast<int>(a.rows()), static_cast<int>(a.cols()), scale, opt);
-  const bool deficient = d.rank < static_cast<int>(s.size());
-  if (!deficient || !d.certain || d.rank == 0) return d;
-  if (!survives_equilibration(a, d, opt)) d.certain = false;  // grading hides or fakes a singular value
-  return d;
+  RankDecision d = decide_with_sigma(a, s, scale, opt);
+  return counted(d, opt);
 }
 
-RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt) {
+RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b, const VectorXd& sigma_b,
+                                double scale_b, const Options& opt) {
+  RankDecision d = RankRevealing(a, scale_a, opt, false).decision();
+  d.rank -= offset;
+  const RankDecision db = decide_with_sigma(b, sigma_b, scale_b, opt);
+  if (db.rank == d.rank) {
+    const Truth either = d.certain | db.certain;  // either route proves the same rank
+    if (either.yes()) d = db;
+    d.certain = either;
+  } else {
+    d.certain = unknown;
+  }
+  d.by_two_routes = true;
+  return counted(d, opt);
+}
+
+RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt, bool count) {
+  decide(a, scale, opt);
+  if (count) counted(d_, opt);
+}
+
+void RankRevealing::decide(const MatrixXd& a, double scale, const Options& opt) {
   const Eigen::Index m = a.rows(), p = std::min(m, a.cols());
   if (p > opt.qr_from && scale >= 0) {  // σ₁ ≤ ‖A‖_F ≤ τ0: rank 0 with nothing to factor
     const double frobenius = a.norm(), tau0 = zero_threshold(static_cast<int>(m), static_cast<int>(a.cols()), scale, opt);
@@ -199,7 +236,7 @@ RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt
       d_.by_qr = d_.by_norm = true;  // Q = I: no reflectors
       d_.largest = d_.dropped_upper = frobenius;
       d_.kept_lower = d_.gap = std::numeric_limits<double>::infinity();
-      d_.certain = opt.input_exact && opt.input_well_scaled;
+      d_.certain = opt.input_exact && opt.input_well_scaled ? yes : unknown;
       m_ = m;
       n_ = a.cols();
       qr_ = MatrixXd::Zero(m, a.cols());
@@ -211,7 +248,7 @@ RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt
   if (p > opt.qr_from) {
     Eigen::ColPivHouseholderQR<MatrixXd> qr(a);
     if (decide_by_qr(qr, a, scale, opt, d_)) {
-      if (d_.rank < p && d_.certain && d_.rank > 0 && !survives_equilibration(a, d_, opt)) d_.certain = false;
+      if (d_.rank < p && d_.certain.yes() && d_.rank > 0 && !survives_equilibration(a, d_, opt)) d_.certain = unknown;
       m_ = m;
       n_ = a.cols();
       qr_ = qr.matrixQR();
@@ -221,7 +258,7 @@ RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt
     }
   }
   const Svd s = full_svd(a);
-  d_ = decide_rank(a, s.sigma, scale, opt);
+  d_ = decide_with_sigma(a, s.sigma, scale, opt);
   m_ = m;
   n_ = a.cols();
   u_ = s.u;
@@ -280,10 +317,10 @@ RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double sca
   d.nonzero_threshold = std::max(opt.nonzero_factor * d.scale, d.zero_threshold);
   for (double x : d.singular_values) {
     if (x > d.zero_threshold) ++d.rank;
-    if (x > d.zero_threshold && x <= d.nonzero_threshold) d.certain = false;
+    if (x > d.zero_threshold && x <= d.nonzero_threshold) d.certain = unknown;
   }
   const bool deficient = d.rank < static_cast<int>(d.singular_values.size());
-  if (deficient && !(opt.input_exact && opt.input_well_scaled)) d.certain = false;
+  if (deficient && !(opt.input_exact && opt.input_well_scaled)) d.certain = unknown;
   const double inf = std::numeric_limits<double>::infinity();
   const double above = d.rank > 0 ? d.singular_values[d.rank - 1] : inf;
   const double below = deficient ? d.singular_values[d.rank] : 0.0;
@@ -300,11 +337,11 @@ std::string RankDecision::describe() const {
   std::ostringstream o;
   o.precision(3);
   if (by_norm) {
-    o << "rank 0 of " << rows << "x" << cols << (certain ? " (certain)" : " (UNCERTAIN)") << ": Frobenius norm "
+    o << "rank 0 of " << rows << "x" << cols << (certain.yes() ? " (certain)" : " (UNCERTAIN)") << ": Frobenius norm "
       << dropped_upper << " <= zero threshold " << zero_threshold;
     return o.str();
   }
-  o << "rank " << rank << " of " << rows << "x" << cols << (certain ? " (certain)" : " (UNCERTAIN)")
+  o << "rank " << rank << " of " << rows << "x" << cols << (certain.yes() ? " (certain)" : " (UNCERTAIN)")
     << (by_qr ? ": pivoted QR, |r_ii| around the cut [" : ": sigma around the cut [");
   const int lo = std::max(0, rank - 2), hi = std::min<int>(singular_values.size(), rank + 2);
   for (int i = lo; i < hi; ++i) o << (i > lo ? ", " : "") << (i == rank ? "| " : "") << singular_values[i];

@@ -39,7 +39,7 @@ Subspace sum(const Subspace& u, const Subspace& w, const Options& opt) {
   require_same_ambient(u, w, "sum");
   MatrixXd both(u.ambient(), u.dim() + w.dim());
   both << u.columns(), w.columns();
-  return Subspace::span_columns(both, 1.0, opt).and_certain(u.certain() && w.certain());
+  return Subspace::span_columns(both, 1.0, opt).and_certain(u.certain() & w.certain());
 }
 
 Subspace annihilator(const Subspace& u) {
@@ -70,25 +70,22 @@ Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt) {
   return Subspace::span_columns(a * u.columns(), norm2(a), opt).and_certain(u.certain());
 }
 
-Answer contains(const Subspace& u, const Subspace& w, const Options& opt) {
+Truth contains(const Subspace& u, const Subspace& w, const Options& opt) {
   require_same_ambient(u, w, "contains");
   const Subspace s = sum(u, w, opt);
-  return {s.dim() == u.dim(), s.certain()};
+  return Truth::decided(s.dim() == u.dim(), s.certain());
 }
 
-Answer contains(const Subspace& u, const VectorXd& x, const Options& opt) {
+Truth contains(const Subspace& u, const VectorXd& x, const Options& opt) {
   if (x.size() != u.ambient())
     throw std::invalid_argument("contains: expected a vector of R^" + std::to_string(u.ambient()) +
                                 ", found length " + std::to_string(x.size()));
   const double nx = x.norm();
-  if (nx == 0) return {true, u.certain()};
-  return contains(u, Subspace::from_orthonormal_columns(x / nx, true), opt);
+  if (nx == 0) return Truth::decided(true, u.certain());
+  return contains(u, Subspace::from_orthonormal_columns(x / nx, yes), opt);
 }
 
-Answer equal(const Subspace& u, const Subspace& w, const Options& opt) {
-  const Answer a = contains(u, w, opt), b = contains(w, u, opt);
-  return {a.value && b.value, a.certain && b.certain};
-}
+Truth equal(const Subspace& u, const Subspace& w, const Options& opt) { return contains(u, w, opt) & contains(w, u, opt); }
 
 double largest_principal_angle_sin(const Subspace& u, const Subspace& w) {
   if (u.ambient() != w.ambient() || u.dim() != w.dim()) return 1.0;
@@ -109,7 +106,7 @@ AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, d
     MatrixXd ab(a.rows(), a.cols() + 1);
     ab << a, b;
     const RankDecision rab = decide_rank(ab, scale, opt);
-    out.certain = ra.certain && rab.certain;
+    out.certain = ra.certain & rab.certain;
     out.empty = rab.rank > ra.rank;
   } else {
     // b's rounding is rhs's, far above A's: its part off im A is decided by itself at rhs.  Deciding
@@ -119,7 +116,8 @@ AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, d
     const RankRevealing g(a, scale, opt);  // im A, and (im A)^⊥ = corange
     const MatrixXd off = g.corange().transpose() * b;
     const RankDecision rb = off.rows() ? decide_rank(off, rhs, opt) : RankDecision{};
-    out.certain = ra.certain && g.decision().certain && g.rank() == ra.rank && rb.certain;
+    out.certain = ra.certain & g.decision().certain & rb.certain;
+    if (g.rank() != ra.rank) out.certain = unknown;  // A's rank decided twice, differently
     out.empty = rb.rank > 0;
   }
   if (!out.empty) out.point = f.min_norm_transposed(b);  // minimum-norm solution on the decided rank

@@ -16,15 +16,14 @@ void require_skew(const MatrixXd& w, const std::string& fn) {
   if (w != -w.transpose()) throw std::invalid_argument(fn + ": expected a skew matrix (W = -Wᵀ), found one that is not");
 }
 
-Answer is_symplectic(const MatrixXd& w, const Options& opt) {
+Truth is_symplectic(const MatrixXd& w, const Options& opt) {
   require_skew(w, "is_symplectic");
   const RankDecision d = decide_rank(w, -1, opt);
-  return {d.rank == w.rows(), d.certain};
+  return Truth::decided(d.rank == w.rows(), d.certain);
 }
 
 void require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt) {
-  const Answer a = is_symplectic(w, opt);
-  if (!a.value || !a.certain)
+  if (!is_symplectic(w, opt).yes())
     throw std::invalid_argument(fn + ": expected a nondegenerate form, found " +
                                 decide_rank(w, -1, opt).describe());
 }
@@ -50,10 +49,10 @@ PresymplecticForm restrict_form(const MatrixXd& w, const Subspace& v) {
 }
 
 PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, const Options& opt) {
-  const Answer in = contains(f.space, u, opt);
-  if (!in.value) throw std::invalid_argument("restrict_form: expected a subspace of the form's domain, found one outside it");
+  const Truth in = contains(f.space, u, opt);
+  if (in.no()) throw std::invalid_argument("restrict_form: expected a subspace of the form's domain, found one outside it");
   PresymplecticForm g{u, f.matrix, f.scale};
-  g.space.and_certain(in.certain);
+  g.space.and_certain(in);
   return g;
 }
 
@@ -61,7 +60,7 @@ MatrixXd gram(const PresymplecticForm& f) { return f.space.columns().transpose()
 
 RankDecision form_rank(const PresymplecticForm& f, const Options& opt) {
   RankDecision d = decide_rank(gram(f), f.scale, opt);
-  d.certain = d.certain && f.space.certain();
+  d.certain &= f.space.certain();
   return d;
 }
 
@@ -69,7 +68,7 @@ Subspace orthogonal(const PresymplecticForm& f, const Subspace& w, const Options
   // v = Q c with ω(Q c, w_j) = cᵀ Qᵀ M w_j = 0 for all j.
   const MatrixXd& q = f.space.columns();
   const Subspace c = Subspace::solutions((q.transpose() * f.matrix * w.columns()).transpose(), f.scale, opt);
-  return Subspace::from_orthonormal_columns(q * c.columns(), c.certain() && f.space.certain() && w.certain());
+  return Subspace::from_orthonormal_columns(q * c.columns(), c.certain() & f.space.certain() & w.certain());
 }
 
 Subspace form_kernel(const PresymplecticForm& f, const Options& opt) { return orthogonal(f, f.space, opt); }
@@ -92,7 +91,7 @@ NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Op
     Eigen::Index i = 0, j = 0;
     const double big = g.cwiseAbs().maxCoeff(&i, &j);
     if (big <= tol) {
-      if (big > decide_rank(g, scale, opt).zero_threshold) out.certain = false;  // neither zero nor clearly not
+      if (big > decide_rank(g, scale, opt).zero_threshold) out.certain = unknown;  // neither zero nor clearly not
       break;
     }
     const VectorXd e = rest.col(i), f = rest.col(j) / g(i, j);
@@ -125,7 +124,7 @@ RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const 
   const MatrixXd coeff = (gamma.transpose() * y).transpose();   // (i, j) = γ_j(Y_i)
   RestrictedSolution out;
   out.lambda = solve(coeff, -(y.transpose() * beta), opt, norm2(y));  // coeff may vanish exactly
-  out.lambda.certain = out.lambda.certain && v.certain();
+  out.lambda.certain &= v.certain();
   out.x.empty = out.lambda.empty;
   out.x.certain = out.lambda.certain;
   out.x.direction = map(y, out.lambda.direction, opt);
@@ -138,8 +137,8 @@ AffineSubspace solve_on_subspace(const PresymplecticForm& f, const VectorXd& bet
   const AffineSubspace c = solve(gram(f).transpose(), q.transpose() * beta, opt, f.scale);
   AffineSubspace out;
   out.empty = c.empty;
-  out.certain = c.certain && f.space.certain();
-  out.direction = Subspace::from_orthonormal_columns(q * c.direction.columns(), c.direction.certain());
+  out.certain = c.certain & f.space.certain();
+  out.direction = Subspace::from_orthonormal_columns(q * c.direction.columns(), c.direction.certain() & f.space.certain());
   if (!c.empty) out.point = q * c.point;
   return out;
 }

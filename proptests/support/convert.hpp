@@ -1,21 +1,17 @@
-// Exact → double conversion for fast-vs-reference properties.
+// Exact → double conversion for fast-vs-reference properties: dcad::fast_exact's, the one the CLI uses.
 #pragma once
 
 #include "dcad/fast/dirac.hpp"
+#include "dcad/fast/exact.hpp"
 #include "gen.hpp"
 
 namespace dcad::test {
 
-/// Rounds to double; with `opt`, records as the CLI does whether the input was exact and well scaled.
+/// Rounds to double (fast::to_double); with `opt`, records as the CLI does whether the input's
+/// heights and span leave fast's rank deficiencies certain.
 inline Eigen::MatrixXd to_double(const QM& m, fast::Options* opt = nullptr) {
-  Eigen::MatrixXd d(m.rows(), m.cols());
-  for (Index i = 0; i < m.rows(); ++i)
-    for (Index j = 0; j < m.cols(); ++j) {
-      d(i, j) = m(i, j).convert_to<double>();
-      if (opt && Q(d(i, j)) != m(i, j)) opt->input_exact = false;
-    }
-  if (opt) fast::assess_input(d, *opt);
-  return d;
+  fast::Options ignored;
+  return fast::to_double(m, opt ? *opt : ignored);
 }
 
 inline Eigen::VectorXd to_double(const std::vector<Q>& v) {

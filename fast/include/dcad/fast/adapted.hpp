@@ -11,7 +11,7 @@ struct AdaptedConstraints {
   int s_prime = 0, s = 0;
   std::vector<int> chi, abridged;
   MatrixXd dirac_tensor;
-  bool certain = true;
+  Truth certain = yes;
 };
 
 AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constraints, const std::vector<bool>& primary,

@@ -41,7 +41,7 @@ struct CadResult {
   bool consistent = true;
   int steps = 0;
   int solution_rank = 0;
-  bool certain = true;                  ///< every decision below was certain
+  Truth certain = yes;                  ///< yes if every decision below was certain, else unknown
   std::vector<RankDecision> decisions;  ///< every decision, in order (the trace's evidence)
   bool unique() const { return consistent && solution_rank == 0; }
   const CadStep& final_step() const { return tower.back(); }
@@ -53,10 +53,10 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt = {}, const
 /// The step shared by the fast CAD and the fast Dirac–Bergmann: adds the equations ca x = cb to the
 /// orthonormal system a x = b — projects them off the rows of a, decides (scale `scale`) how many are
 /// new and (scale max(rhs_scale, scale)) whether what is left is consistent.  Appends the new rows
-/// to a, b and returns how many, or −1 if inconsistent.  Both decisions go to `trace`; `certain`
-/// is cleared by any uncertain one.
+/// to a, b and returns how many, or −1 if inconsistent.  Both decisions go to `trace` and their
+/// verdicts into `certain`.
 int absorb_equations(MatrixXd& a, VectorXd& b, const MatrixXd& ca, const VectorXd& cb, double scale, double rhs_scale,
-                     const Options& opt, std::vector<RankDecision>& trace, bool& certain);
+                     const Options& opt, std::vector<RankDecision>& trace, Truth& certain);
 
 /// {x : a x = b} for orthonormal rows a: point aᵀ b, direction the complement of the rows.
 AffineSubspace affine_from_orthonormal(const MatrixXd& a, const VectorXd& b);
@@ -75,7 +75,7 @@ struct InitialPoint {
   VectorXd point;
   int level = 0;
   VectorXd violated;   ///< the first equation they cannot meet, [a | b]
-  bool certain = true;  ///< every consistency decision was certain (and the tower was)
+  Truth certain = yes;  ///< every consistency decision was certain (and the tower was)
 };
 InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt = {});
 
@@ -84,7 +84,7 @@ struct ReducedEquations {
   MatrixXd f_matrix;
   VectorXd f;
   MatrixXd g;
-  bool certain = true;
+  Truth certain = yes;
 };
 /// Default coordinates as in the reference: the first variables, in order, independent on T M_c.
 ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords = {},

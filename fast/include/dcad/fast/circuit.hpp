@@ -18,6 +18,7 @@
 #pragma once
 
 #include "dcad/fast/rank.hpp"
+#include "dcad/graph.hpp"
 #include "dcad/types.hpp"
 
 #include <cstddef>
@@ -44,11 +45,8 @@ struct Term {
 };
 using SparseRow = std::vector<Term>;  ///< Σ coeff·x_var = 0
 
-struct LoopBranch {
-  std::size_t branch = 0;
-  int sign = 1;  ///< +1 if the branch current runs along the loop
-};
-using Loop = std::vector<LoopBranch>;
+using graph::Loop;  // dcad/graph.hpp: the topology every route shares
+using graph::LoopBranch;
 
 struct CircuitTower {
   bool physical = true;  ///< the combinatorial route was taken
@@ -58,7 +56,7 @@ struct CircuitTower {
   long solution_rank = 0;
   std::vector<Loop> pc_loops;     ///< fundamental purely capacitive loops (physical: one KVLPC equation each)
   std::vector<Loop> empty_loops;  ///< fundamental loops of the empty subgraph (CEF Thm 6.8)
-  bool certain = true;
+  Truth certain = yes;
   std::vector<RankDecision> decisions;  ///< signed route only
 };
 
@@ -69,10 +67,7 @@ CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt = {});
 /// No negative L or C: then circuit_tower takes the combinatorial route and decides nothing.
 bool is_physical(const CircuitGraph& g);
 
-/// The fundamental loops of the spanning forest of the branches with keep(b) that spans the branches
-/// with prefer(b) first: one loop per branch outside the forest, that branch first with sign +1.
-/// (With keep = non-inductive and prefer = empty, the loops through a capacitor are the KVLPC loops
-/// and the others lie in the empty subgraph.)
-std::vector<Loop> fundamental_loops(const CircuitGraph& g, const std::vector<bool>& keep, const std::vector<bool>& prefer);
+/// The circuit's branches as edges (dcad/graph.hpp).
+std::vector<graph::Edge> edges(const CircuitGraph& g);
 
 }  // namespace dcad::fast

@@ -12,7 +12,7 @@ struct CircuitMotion {
   std::vector<int> coords;  ///< z = x[coords]: unless given, m well-conditioned variables (pivoted QR), in order
   MatrixXd f_matrix;        ///< ż = F z + G λ (no sources: f = 0)
   MatrixXd g;               ///< columns span the free directions; their number is the solution rank
-  bool certain = true;
+  Truth certain = yes;
   std::vector<RankDecision> decisions;
 };
 

@@ -18,8 +18,8 @@ struct DiracStructure {
 
 /// Lemma 4.1: dim D = n and ⟨⟨D, D⟩⟩ = 0; `why` explains a negative answer.
 struct DiracCheck {
-  Answer valid;
-  std::string why;
+  Truth valid;
+  std::string why;  ///< why D is not Dirac (also when that is only likely: valid unknown)
 };
 DiracCheck dirac_defect(const DiracStructure& d, const Options& opt = {});
 /// Throws if D is certainly not Dirac; an uncertain verdict is left to the caller (D.d.certain()).
@@ -35,7 +35,7 @@ AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Opti
 Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt = {});
 PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt = {});
 Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt = {});
-Answer is_presymplectic(const DiracStructure& d, const Options& opt = {});
-Answer is_poisson(const DiracStructure& d, const Options& opt = {});
+Truth is_presymplectic(const DiracStructure& d, const Options& opt = {});
+Truth is_poisson(const DiracStructure& d, const Options& opt = {});
 
 }  // namespace dcad::fast

@@ -20,7 +20,7 @@ struct DiracBergmannResult {
   std::vector<AffineSubspace> tower;
   MatrixXd constraints;  ///< orthonormal gradient rows with right-hand sides, [a | b]
   bool consistent = true;
-  bool certain = true;
+  Truth certain = yes;
 };
 DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt = {});
 
@@ -32,7 +32,7 @@ struct ConstraintClasses {
   MatrixXd first;         ///< orthonormal rows [a | b] of ψ
   MatrixXd second;        ///< orthonormal rows [a | b] of χ (complement of ψ in the constraint span)
   MatrixXd dirac_tensor;  ///< J* = J − J Gᵀ Σ⁻¹ G J
-  bool certain = true;
+  Truth certain = yes;
 };
 ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt = {});
 

@@ -26,7 +26,7 @@ struct ForcedResult {
   MatrixXd equations;   ///< jet rows, x-parts orthonormal
   MatrixXd conditions;  ///< source conditions [1 | σ …], orthonormal rows
   int solution_rank = 0;
-  bool certain = true;
+  Truth certain = yes;
   std::vector<RankDecision> decisions;
 };
 

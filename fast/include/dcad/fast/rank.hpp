@@ -3,6 +3,8 @@
 // its evidence and a verdict: certain or uncertain.
 #pragma once
 
+#include "dcad/truth.hpp"
+
 #include <Eigen/Core>
 
 #include <string>
@@ -42,6 +44,15 @@ using Eigen::VectorXd;
 ///    much as an entry 2^-40 does; so a singular value below τ0 may be a true one, not rounding.
 /// `assess_input` sets the second from each input matrix.  The scale passed to a decision must be
 /// that of the *data* (never the norm of a computed matrix that is zero in exact arithmetic).
+///
+/// `probe` (testing only): counts the decisions made with these options, in order, and reports the
+/// one numbered `uncertain_at` uncertain whatever its evidence.  Every result built on a decision
+/// must then say uncertain (prop_uncertainty: a verdict dropped at any place that combines them fails).
+struct DecisionProbe {
+  long made = 0;          ///< decisions made so far
+  long uncertain_at = -1;  ///< the decision (0-based) to report uncertain; −1: none
+};
+
 struct Options {
   double zero_factor = 64.0;
   double nonzero_factor = 1.4901161193847656e-08;  // √ε
@@ -50,6 +61,7 @@ struct Options {
   /// Decisions on matrices with more than this many rows and columns go by pivoted QR first (see
   /// RankDecision); the properties set it to 0 to put every decision through that route.
   int qr_from = 48;
+  DecisionProbe* probe = nullptr;  ///< testing: see DecisionProbe (shared by copies of these options)
 };
 
 /// Clears opt.input_well_scaled if the binary digits of the nonzero entries of `a` (each entry's
@@ -84,7 +96,8 @@ struct RankDecision {
   double dropped_upper = 0;             ///< σ_{rank+1} (QR: an upper bound of it); 0 if none
   bool by_qr = false;
   bool by_norm = false;                 ///< rank 0 because ‖A‖_F ≤ τ0 (then σ₁ ≤ ‖A‖_F): no factorization
-  bool certain = true;
+  bool by_two_routes = false;           ///< decide_rank_either: the verdict of two routes
+  Truth certain = yes;                  ///< yes, or unknown
   std::string describe() const;  ///< evidence in one line
 };
 
@@ -97,6 +110,12 @@ struct RankDecision {
 RankDecision decide_rank(const MatrixXd& a, double scale = -1, const Options& opt = {});
 /// The same decision when the singular values (descending) of A are already computed.
 RankDecision decide_rank(const MatrixXd& a, const VectorXd& sigma, double scale, const Options& opt);
+/// One rank reached two ways — rank(A) − offset and rank(B) (B's singular values `sigma_b`), for a rank
+/// both describe (fast::forced_tower: the new rows of a step, from [old; candidates] and from the
+/// candidates projected off the old rows): certain when the two agree and either is certain (then with
+/// B's evidence), else A's, uncertain.  One decision (DecisionProbe counts it once).
+RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b, const VectorXd& sigma_b,
+                                double scale_b, const Options& opt);
 
 /// Singular value decomposition A = U Σ Vᵀ with full U and V (one instantiation, in rank.cpp).
 struct Svd {
@@ -110,7 +129,8 @@ Svd full_svd(const MatrixXd& a);
 /// the decided rank.  Column-pivoted QR when its bounds decide (see RankDecision), else the SVD.
 class RankRevealing {
  public:
-  RankRevealing(const MatrixXd& a, double scale, const Options& opt);
+  /// `count`: the decision is one of the caller's (DecisionProbe); false inside another decision.
+  RankRevealing(const MatrixXd& a, double scale, const Options& opt, bool count = true);
   const RankDecision& decision() const { return d_; }
   int rank() const { return d_.rank; }
   MatrixXd range() const;    ///< im A: Q's first `rank` columns
@@ -124,6 +144,7 @@ class RankRevealing {
   MatrixXd solve_range(const MatrixXd& y) const;
 
  private:
+  void decide(const MatrixXd& a, double scale, const Options& opt);
   /// Q · [0; I; 0] with the identity in rows [from, from + count): Q's columns, formed only when asked.
   MatrixXd q_columns(Eigen::Index from, Eigen::Index count) const;
   RankDecision d_;

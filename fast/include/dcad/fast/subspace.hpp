@@ -7,12 +7,6 @@
 
 namespace dcad::fast {
 
-/// A yes/no answer that may be uncertain.
-struct Answer {
-  bool value = false;
-  bool certain = true;
-};
-
 class Subspace {
  public:
   /// Row span of `rows` (n = cols), as the reference's Subspace<T>::span; `scale` for the rank
@@ -22,10 +16,10 @@ class Subspace {
   static Subspace span_columns(const MatrixXd& cols, double scale = -1, const Options& opt = {});
   /// {x : equations · x = 0}.
   static Subspace solutions(const MatrixXd& equations, double scale = -1, const Options& opt = {});
-  static Subspace zero(int n) { return Subspace(MatrixXd(n, 0), true); }
-  static Subspace whole(int n) { return Subspace(MatrixXd::Identity(n, n), true); }
+  static Subspace zero(int n) { return Subspace(MatrixXd(n, 0), yes); }
+  static Subspace whole(int n) { return Subspace(MatrixXd::Identity(n, n), yes); }
   /// Orthonormal columns, trusted as given (no decision).
-  static Subspace from_orthonormal_columns(MatrixXd q, bool certain) { return Subspace(std::move(q), certain); }
+  static Subspace from_orthonormal_columns(MatrixXd q, Truth certain) { return Subspace(std::move(q), certain); }
 
   int ambient() const { return static_cast<int>(basis_.rows()); }
   int dim() const { return static_cast<int>(basis_.cols()); }
@@ -34,7 +28,8 @@ class Subspace {
   MatrixXd basis() const { return basis_.transpose(); }
   /// The same vectors as columns (n × dim), for fast's own products.
   const MatrixXd& columns() const { return basis_; }
-  bool certain() const { return certain_; }
+  /// yes when every decision behind this basis was certain, else unknown.
+  Truth certain() const { return certain_; }
   /// The decision that produced this subspace, if any (its evidence).
   const RankDecision& evidence() const { return evidence_; }
   /// σ₁/σ_r of the spanning set this basis came from (1 for a basis built orthonormal): rounding
@@ -42,15 +37,15 @@ class Subspace {
   double conditioning() const {
     return evidence_.rank > 0 ? evidence_.largest / evidence_.kept_lower : 1.0;
   }
-  Subspace& and_certain(bool c) {
-    certain_ = certain_ && c;
+  Subspace& and_certain(Truth c) {
+    certain_ &= c;
     return *this;
   }
 
  private:
-  Subspace(MatrixXd q, bool certain) : basis_(std::move(q)), certain_(certain) {}
+  Subspace(MatrixXd q, Truth certain) : basis_(std::move(q)), certain_(certain) {}
   MatrixXd basis_;  // orthonormal columns
-  bool certain_ = true;
+  Truth certain_ = yes;
   RankDecision evidence_;
 };
 
@@ -63,10 +58,10 @@ Subspace image(const MatrixXd& a, const Options& opt = {});
 Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt = {}, double scale = -1);
 Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt = {});
 /// W ⊆ U.
-Answer contains(const Subspace& u, const Subspace& w, const Options& opt = {});
+Truth contains(const Subspace& u, const Subspace& w, const Options& opt = {});
 /// x ∈ U.
-Answer contains(const Subspace& u, const VectorXd& x, const Options& opt = {});
-Answer equal(const Subspace& u, const Subspace& w, const Options& opt = {});
+Truth contains(const Subspace& u, const VectorXd& x, const Options& opt = {});
+Truth equal(const Subspace& u, const Subspace& w, const Options& opt = {});
 
 /// sin of the largest principal angle between equal-dimensional subspaces (1 if dims differ).
 double largest_principal_angle_sin(const Subspace& u, const Subspace& w);
@@ -76,7 +71,7 @@ struct AffineSubspace {
   bool empty = true;
   VectorXd point;
   Subspace direction = Subspace::zero(0);
-  bool certain = true;
+  Truth certain = yes;  ///< whether `empty` and the rank behind `direction` were decided certainly
 };
 
 /// {x : A x = b}: solvable iff rank A = rank [A b] (both decided), least-squares point.  `scale`: of

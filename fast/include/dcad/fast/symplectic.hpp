@@ -9,7 +9,7 @@ namespace dcad::fast {
 /// Skew (exactly: W + Wᵀ = 0 in double, which holds for any input read as a skew matrix) and finite.
 void require_skew(const MatrixXd& w, const std::string& fn);
 /// Skew and nondegenerate; a nondegeneracy that is uncertain is reported by `is_symplectic`.
-Answer is_symplectic(const MatrixXd& w, const Options& opt = {});
+Truth is_symplectic(const MatrixXd& w, const Options& opt = {});
 void require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt = {});
 
 VectorXd flat(const MatrixXd& w, const VectorXd& x);
@@ -36,7 +36,7 @@ struct NormalFormBasis {
   int s = 0;
   MatrixXd x;      ///< rows X_1 … X_r
   MatrixXd alpha;  ///< rows α_i = X_i^♭
-  bool certain = true;
+  Truth certain = yes;
 };
 /// Lemma 3.1 by a pivoted symplectic Gram–Schmidt (largest |Ω(X_i, X_j)| first).
 NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Options& opt = {});

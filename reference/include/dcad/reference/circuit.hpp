@@ -3,9 +3,8 @@
 // KCL from the reduced incidence matrix, φ = diag(L_i), Ψ = diag(1/C_i), L(q, v) = ½ vᵀΦv − ½ qᵀΨq.
 #pragma once
 
+#include "dcad/graph.hpp"
 #include "dcad/reference/system.hpp"
-
-#include <numeric>
 
 namespace dcad::reference {
 
@@ -62,26 +61,16 @@ PontryaginInput<T> circuit_lagrangian(const Circuit<T>& c) {
 }
 
 /// Cycle rank (edges − vertices + components, ground included) of the subgraph of the branches
-/// with keep(kind) — union–find, no arithmetic.
+/// with keep(kind) — union–find, no arithmetic (dcad/graph.hpp).
 template <class T, class Keep>
 Index cycle_rank(const Circuit<T>& c, Keep keep) {
-  std::vector<long> parent(c.nodes + 1);
-  std::iota(parent.begin(), parent.end(), 0L);
-  const auto find = [&](long x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  Index cycles = 0;
+  std::vector<graph::Edge> edges;
+  std::vector<bool> kept;
   for (const Branch<T>& b : c.branches) {
-    if (!keep(b.kind)) continue;
-    const long u = find(b.from + 1), v = find(b.to + 1);  // ground is vertex 0
-    if (u == v) {
-      ++cycles;
-    } else {
-      parent[u] = v;
-    }
+    edges.push_back({b.from, b.to});
+    kept.push_back(keep(b.kind));
   }
-  return cycles;
+  return graph::cycle_rank(c.nodes, edges, kept);
 }
 
 /// Independent KVL equations of purely capacitive loops that constrain q (CEF Thm 6.4): loops of

@@ -1,11 +1,11 @@
-#include "convert_fast.hpp"
+#include "dcad/fast/exact.hpp"
 
 #include <boost/multiprecision/integer.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-namespace dcad::cli {
+namespace dcad::fast {
 
 namespace {
 
@@ -24,7 +24,7 @@ io::Rational height(const io::Rational& x) {
 
 double resolution(const io::Rational& x) { return x == 0 ? 0.0 : io::Rational(abs(x) / height(x)).convert_to<double>(); }
 
-double to_double(const io::Rational& x, fast::Options& opt) {
+double to_double(const io::Rational& x, Options& opt) {
   const double d = x.convert_to<double>();
   if (!std::isfinite(d) || (d == 0 && x != 0))
     throw std::invalid_argument("expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +
@@ -39,7 +39,7 @@ double to_double(const io::Rational& x, fast::Options& opt) {
   return d;
 }
 
-Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt) {
+Eigen::MatrixXd to_double(const io::QMatrix& m, Options& opt) {
   Eigen::MatrixXd d(m.rows(), m.cols());
   double lo = 1, hi = 1;  // as fast::assess_input: 1 is in the range
   for (std::size_t i = 0; i < m.rows(); ++i)
@@ -53,7 +53,7 @@ Eigen::MatrixXd to_double(const io::QMatrix& m, fast::Options& opt) {
   return d;
 }
 
-std::vector<double> to_double_values(const std::vector<io::Rational>& values, fast::Options& opt) {
+std::vector<double> to_double_values(const std::vector<io::Rational>& values, Options& opt) {
   std::vector<double> out;
   double lo = 1, hi = 1;
   for (const io::Rational& v : values) {
@@ -66,11 +66,11 @@ std::vector<double> to_double_values(const std::vector<io::Rational>& values, fa
   return out;
 }
 
-Eigen::VectorXd to_double(const std::vector<io::Rational>& v, fast::Options& opt) {
+Eigen::VectorXd to_double(const std::vector<io::Rational>& v, Options& opt) {
   return to_double(io::QMatrix::from_rows({v}, v.size()), opt).transpose();
 }
 
-std::string input_caveat(const fast::Options& opt) {
+std::string input_caveat(const Options& opt) {
   const std::string bound = std::to_string(std::lround(1 / opt.nonzero_factor));
   std::string s;
   if (!opt.input_exact) s = "a value that double rounds has height above " + bound + " (the digits rounding drops may be what a decision turns on)";
@@ -80,19 +80,19 @@ std::string input_caveat(const fast::Options& opt) {
   return s.empty() ? s : "no rank deficiency is certain in double: " + s;
 }
 
-fast::DiracStructure fast_dirac(const io::DiracInput& in, fast::Options& opt) {
-  if (in.form == "presymplectic") return fast::dirac_from_presymplectic(to_double(in.w, opt));
+DiracStructure to_fast(const io::DiracInput& in, Options& opt) {
+  if (in.form == "presymplectic") return dirac_from_presymplectic(to_double(in.w, opt));
   if (in.form == "distribution") {
     const Eigen::MatrixXd b = to_double(in.b, opt), w = to_double(in.w, opt);
-    return fast::dirac_from_distribution(fast::Subspace::span(b, -1, opt), w);
+    return dirac_from_distribution(Subspace::span(b, -1, opt), w);
   }
-  if (in.form == "poisson") return fast::dirac_from_poisson(to_double(in.p, opt));
+  if (in.form == "poisson") return dirac_from_poisson(to_double(in.p, opt));
   const Eigen::MatrixXd g = to_double(in.g, opt);  // `basis`: validated by the caller
-  return {static_cast<int>(g.cols() / 2), fast::Subspace::span(g, -1, opt)};
+  return {static_cast<int>(g.cols() / 2), Subspace::span(g, -1, opt)};
 }
 
-fast::PontryaginInput fast_pontryagin(const io::PontryaginInput& p, fast::Options& opt) {
+PontryaginInput to_fast(const io::PontryaginInput& p, Options& opt) {
   return {p.n, to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt), to_double(p.q, opt), to_double(p.v, opt)};
 }
 
-}  // namespace dcad::cli
+}  // namespace dcad::fast

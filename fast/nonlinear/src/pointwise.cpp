@@ -22,7 +22,7 @@ bool ToleranceDecisions::zero(const Tracked& x) {
   if (a > nonzero_factor * x.e + tiny) return false;
   if (x.v == 0 && x.e == 0) return true;  // nothing was ever added to it
   if (a <= zero_factor * x.e + tiny && well_scaled && x.e <= 0x1p-26 * scale) return true;
-  if (certain) {
+  if (certain.yes()) {
     std::ostringstream s;
     s << "a value " << x.v << " with a rounding-error bound " << x.e
       << (a > zero_factor * x.e + tiny ? " (between 8 and 64 times it: rounding or not?)"
@@ -30,7 +30,7 @@ bool ToleranceDecisions::zero(const Tracked& x) {
                                       : " too large against the step's data scale " + std::to_string(scale) + ": zero or a small nonzero?");
     evidence = s.str();
   }
-  certain = false;
+  certain = unknown;
   return a <= zero_factor * x.e + tiny;
 }
 

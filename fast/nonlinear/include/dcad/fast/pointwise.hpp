@@ -4,6 +4,7 @@
 #pragma once
 
 #include "dcad/fast/tracked.hpp"
+#include "dcad/truth.hpp"
 #include "dcad/reference/pointwise.hpp"
 
 #include <string>
@@ -26,7 +27,7 @@ struct ToleranceDecisions {
   double zero_factor = 8, nonzero_factor = 64, graded = 1 / 1.4901161193847656e-08;
   bool well_scaled = true;  ///< of the current step's data
   double scale = 0;         ///< its largest constant term
-  bool certain = true;
+  Truth certain = yes;
   std::size_t decisions = 0;
   std::string evidence;  ///< the first uncertain decision
 
