@@ -9,7 +9,8 @@
 // Prints one CSV line: family,branches,nodes,read_s,tower_s,json_s,total_s,c,dim_Mc,peak_rss_mb.
 // bench/circuit_scaling.sh runs the sizes 10^2 … 10^6 and fits the exponent.
 #include "dcad/io/netlist.hpp"
-#include "solve_circuit.hpp"
+#include "dcad/fast/solve.hpp"
+#include "dcad/io/report.hpp"
 
 #include <sys/resource.h>
 
@@ -79,15 +80,16 @@ int main(int argc, char** argv) {
   const double read_s = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   const dcad::io::CaseFile c = dcad::io::netlist_case(n, false);
-  const dcad::cli::SolveReport r = dcad::cli::solve_circuit_fast(n, c);
+  dcad::fast::Solution r = dcad::fast::solve_lc(n, c, {});
+  r.circuit = dcad::io::circuit_facts(n);
   const double tower_s = seconds_since(t1);
   const auto t2 = std::chrono::steady_clock::now();
-  const std::string json = dcad::cli::to_json(r, c).dump(2);
+  const std::string json = dcad::io::result_json(dcad::io::printed(r));
   const double json_s = seconds_since(t2);
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   std::printf("%s,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%ld,%ld,%.1f\n", family.c_str(), n.circuit.branches.size(), n.circuit.nodes + 1,
-              read_s, tower_s, json_s, seconds_since(t0), r.steps, r.dims.back(), u.ru_maxrss / 1024.0);
+              read_s, tower_s, json_s, seconds_since(t0), r.steps, r.dims().back(), u.ru_maxrss / 1024.0);
   std::remove(deck.c_str());
   return json.empty() ? 1 : 0;
 }

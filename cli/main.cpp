@@ -1,14 +1,11 @@
-// dcad: the command-line tool, a shell over dcad::api (include/dcad/api.hpp) and the inspect and cases
-// commands.  Exit codes per ../shared/CONTRACT.md: 0 success, 1 bad input (file + line or JSON path,
-// expected vs found), 2 bad usage, 3 check disagrees; 4 internal error.
+// dcad: the command-line tool, a shell over dcad::api (fast/api/include/dcad/api.hpp): it parses
+// arguments, prints what the library returns (text and JSON by dcad/io/report.hpp) and sets exit codes.
+// Exit codes per ../shared/CONTRACT.md: 0 success, 1 bad input (file + line or JSON path, expected vs
+// found), 2 bad usage, 3 check disagrees; 4 internal error.
 #include "dcad/api.hpp"
 
-#include "dcad/io/case_file.hpp"
-#include "inspect.hpp"
-#include "cases.hpp"
 #include "dcad/io/netlist.hpp"  // parse_spice_value: --tstop 20n
 #include "plot.hpp"
-#include "solve.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -29,7 +26,7 @@ namespace {
 /// object per file and line, with "file"; a file that fails gives {"file", "error", "exit"} and the
 /// others still run.  Returns the exit code: 0, else the largest of a file's (1 bad input, 4 internal
 /// error); messages go to `err` as for one file.
-int solve_files(const std::vector<std::string>& files, const dcad::api::SolveOptions& options, bool json, bool lines,
+int solve_files(const std::vector<std::string>& files, dcad::api::Backend backend, const dcad::Parts& parts, bool json, bool lines,
                 std::ostream& out, std::ostream& err) {
   lines = lines || (json && files.size() > 1);
   int worst = 0;
@@ -37,14 +34,12 @@ int solve_files(const std::vector<std::string>& files, const dcad::api::SolveOpt
     std::string message;
     int code = 0;
     try {
-      const dcad::api::Solved s = dcad::api::solve(file, options);
+      const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::read_problem(file), backend, parts));
       for (const std::string& w : s.warnings) err << "warning: " << w << "\n";
       if (lines) {
-        nlohmann::json j = {{"file", file}};
-        j.update(s.result);
-        out << j.dump() << "\n";
+        out << dcad::io::result_json_line(s, file) << "\n";
       } else {
-        out << (json ? s.result.dump(2) + "\n" : s.report);
+        out << (json ? dcad::io::result_json(s) + "\n" : dcad::io::report_text(s));
         if (files.size() > 1) out << "\n";
       }
       continue;
@@ -56,10 +51,32 @@ int solve_files(const std::vector<std::string>& files, const dcad::api::SolveOpt
       code = dcad::api::exit_code(e);
     }
     err << message << "\n";
-    if (lines) out << nlohmann::json({{"file", file}, {"error", message}, {"exit", code}}).dump() << "\n";
+    if (lines) out << dcad::io::error_json_line(file, message, code) << "\n";
     worst = std::max(worst, code);
   }
   return worst;
+}
+
+/// `dcad cases list|show|export|freeze`: the corpus functions of dcad::api, printed.
+int cases_command(const std::string& action, const std::vector<std::string>& args) {
+  if (action == "list") {
+    for (const dcad::api::CaseEntry& e : dcad::api::list_cases()) std::cout << e.file << "\t" << e.summary << "\n";
+    return 0;
+  }
+  if (action == "show") {
+    if (args.empty()) throw dcad::io::InputError("dcad cases show: expected a case name, found nothing");
+    std::cout << dcad::api::show_case(args[0]);
+    return 0;
+  }
+  if (action == "export") {
+    if (args.empty()) throw dcad::io::InputError("dcad cases export: expected a directory, found nothing");
+    const int n = dcad::api::export_cases(args[0]);
+    std::cout << "exported " << n << " cases with their reference results (NAME.expected.json) and result.schema.json to " << args[0] << "\n";
+    return 0;
+  }
+  // freeze
+  std::cout << dcad::api::freeze_case(args.empty() ? "" : args[0], args.size() > 1 ? args[1] : "") << "\n";
+  return 0;
 }
 
 }  // namespace
@@ -100,7 +117,7 @@ int main(int argc, char** argv) {
                     "all (default), none, or a comma-separated list of final (final_constraints), reduced (equations of "
                     "motion), classes (first/second class, Dirac bracket), adapted (Thm 3.28 / 7.4)");
 
-  std::string sim_file, sim_csv;
+  std::string sim_file, sim_csv, sim_backend = "certified";
   dcad::api::SimulateOptions sim_opt;
   CLI::App* sim = app.add_subcommand(
       "simulate", "Integrate the equations of motion on M_c from the file's initial condition (IC= in netlists); "
@@ -109,7 +126,7 @@ int main(int argc, char** argv) {
   std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
   sim->add_option("--tstop", sim_tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
   sim->add_option("--step", sim_step, "output step (seconds; SPICE suffixes)")->required();
-  sim->add_option("--backend", sim_opt.backend, "certified|reference|fast (the model is built exactly in this version)")
+  sim->add_option("--backend", sim_backend, "certified|reference|fast (the model is built exactly in this version)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
   std::string sim_png, sim_vars, sim_energy;
@@ -148,38 +165,27 @@ int main(int argc, char** argv) {
 
   try {
     if (inspect->parsed()) {
-      const dcad::io::CaseFile c = dcad::io::read_case(file);
-      if (!c.has_dirac) {
-        std::cerr << file << ": /dirac: expected a `dirac` member for inspect, found a " << (c.has_pontryagin ? "`pontryagin`" : "`constrained`")
-                  << " case\n";
-        return 1;
-      }
-      dcad::cli::InspectReport r;
-      try {
-        r = backend == "fast" ? dcad::cli::inspect_fast(c) : dcad::cli::inspect_reference(c);
-      } catch (const std::invalid_argument& e) {
-        std::cerr << file << ": " << c.dirac.path << ": " << e.what() << "\n";
-        return 1;
-      }
-      std::cout << (as_json ? dcad::cli::to_json(r).dump(2) + "\n" : dcad::cli::to_text(r, c));
+      const dcad::io::Problem p = dcad::io::read_problem(file);
+      const dcad::Inspection r = dcad::api::inspect(p, dcad::api::backend_named(backend));
+      std::cout << (as_json ? dcad::io::inspection_json(r) + "\n" : dcad::io::inspection_text(r));
       if (!r.valid) {
-        std::cerr << file << ": " << c.dirac.path << ": expected a Dirac structure (CEF Lemma 4.1), found " << r.why
-                  << "\n";
+        std::cerr << file << ": " << p.linear.dirac.path << ": expected a Dirac structure (CEF Lemma 4.1), found " << r.why << "\n";
         return 1;
       }
     }
     if (solve->parsed()) {
+      dcad::Parts parts;
       try {
-        dcad::cli::parse_parts(solve_with);
-      } catch (const std::invalid_argument& e) {
+        parts = dcad::api::parts_named(solve_with);
+      } catch (const dcad::api::UsageError& e) {
         std::cerr << "solve: " << e.what() << "\n";
         return 2;  // bad usage
       }
-      return solve_files(solve_files_list, {solve_backend, solve_with}, solve_json, solve_lines, std::cout, std::cerr);
+      return solve_files(solve_files_list, dcad::api::backend_named(solve_backend), parts, solve_json, solve_lines, std::cout, std::cerr);
     }
-    if (cases->parsed()) return dcad::cli::cases_command(cases_action, cases_args, std::cout, std::cerr);
+    if (cases->parsed()) return cases_command(cases_action, cases_args);
     if (check->parsed()) {
-      const dcad::api::Checked o = dcad::api::check(check_result_file, check_file);
+      const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file));
       std::string keys;
       for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
       for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";
@@ -201,8 +207,10 @@ int main(int argc, char** argv) {
           return 2;
         }
       }
-      const dcad::api::SimulateLayout layout = dcad::api::simulate_layout(sim_file);
-      const std::vector<std::string>& header = layout.columns;
+      sim_opt.backend = dcad::api::backend_named(sim_backend);
+      const dcad::io::Problem problem = dcad::io::read_problem(sim_file);
+      const std::vector<std::string> header = dcad::api::simulate_columns(problem);
+      const std::string title = problem.name().empty() ? sim_file : problem.name();
       std::vector<std::size_t> plot_cols;
       if (!sim_png.empty()) {
         try {
@@ -231,8 +239,7 @@ int main(int argc, char** argv) {
           return 1;
         }
       }
-      dcad::api::simulate(sim_file, sim_opt, csv_path.empty() ? std::cout : file_out, std::cerr,
-                          sim_energy.empty() ? nullptr : &energy_out);
+      dcad::api::simulate(problem, sim_opt, csv_path.empty() ? std::cout : file_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out);
       if (!csv_path.empty()) {
         file_out.close();
         if (!file_out) {
@@ -249,7 +256,7 @@ int main(int argc, char** argv) {
         std::cout << copy.rdbuf();
       }
       if (!sim_png.empty()) {
-        const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png, layout.title);
+        const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png, title);
         if (sim_csv.empty()) std::remove(csv_path.c_str());
         if (!why.empty()) {
           std::cerr << sim_png << ": " << why << "\n";
@@ -257,10 +264,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-  } catch (const dcad::io::InputError& e) {
-    std::cerr << e.what() << "\n";
-    return 1;
-  } catch (const dcad::api::InputError& e) {  // the message names the file
+  } catch (const dcad::io::InputError& e) {  // the message names the file
     std::cerr << e.what() << "\n";
     return 1;
   } catch (const dcad::api::UsageError& e) {

@@ -1,12 +1,14 @@
-// dcad::api (issue 15): the pipeline as a library gives what the dcad binary prints — the same result
-// JSON, the same check verdict, the same CSV — and its errors come on the three channels (InputError
-// naming the file, UsageError, InternalError), each with the CLI's exit code.
+// dcad::api (issue 26): the library gives what the dcad binary prints — the same result JSON and
+// report (formatted once, by dcad::io), the same check verdict, the same CSV — from typed solutions,
+// and its errors come on the three channels (InputError naming the file, UsageError, InternalError),
+// each with the CLI's exit code.
 #include "cli_run.hpp"
 #include "dcad/api.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -14,57 +16,85 @@ namespace {
 
 std::string case_path(const std::string& name) { return std::string(DCAD_SOURCE_DIR) + "/cases/" + name; }
 
+std::string slurp(const std::string& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+using dcad::api::Backend;
+
 }  // namespace
 
 // Two routes to one result: the library call and the binary, for every input form and backend.
 TEST(Api, SolveEqualsTheBinary) {
   for (const char* name : {"lc-4port.json", "lc-4port.cir", "rlc-series.cir", "rolling-disk.json", "constrained-gauge.json"})
     for (const std::string backend : {"reference", "fast", "certified"}) {
-      const dcad::api::Solved s = dcad::api::solve(case_path(name), {backend, "all"});
+      const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::read_problem(case_path(name)), dcad::api::backend_named(backend)));
       const Outcome bin = run("solve " + case_path(name) + " --backend " + backend + " --json");
       ASSERT_EQ(bin.rc, 0) << name << bin.err;
-      EXPECT_EQ(s.result, nlohmann::json::parse(bin.out)) << name << " " << backend;
-      EXPECT_EQ(s.report, run("solve " + case_path(name) + " --backend " + backend).out) << name << " " << backend;
+      EXPECT_EQ(nlohmann::json::parse(dcad::io::result_json(s)), nlohmann::json::parse(bin.out)) << name << " " << backend;
+      EXPECT_EQ(dcad::io::report_text(s), run("solve " + case_path(name) + " --backend " + backend).out) << name << " " << backend;
     }
+}
+
+// The typed solution is what the JSON says, and a deck given as text is the deck in the file.
+TEST(Api, TypedSolutionOfADeckGivenAsText) {
+  const dcad::io::Problem from_file = dcad::io::read_problem(case_path("lc-4port.cir"));
+  const dcad::io::Problem from_text = dcad::io::parse_netlist(slurp(case_path("lc-4port.cir")), "lc-4port.cir");
+  const dcad::certified::Solution a = dcad::certified::solve(from_file), b = dcad::certified::solve(from_text);
+  EXPECT_EQ(a.dims(), (std::vector<long>{12, 6, 5, 4}));  // CEF §6 (6.31)-(6.36)
+  EXPECT_EQ(b.dims(), a.dims());
+  EXPECT_TRUE(b.certified.yes());
+  ASSERT_TRUE(b.motion);
+  EXPECT_EQ(b.motion->f_matrix.size(), 4u);  // ż = F z on the 4-dimensional M_c
+  for (const auto& row : b.motion->f_matrix)
+    for (const dcad::certified::Number& x : row) EXPECT_TRUE(x.exact);
+  EXPECT_EQ(b.variables, a.variables);
 }
 
 // `--with none` is the CONTRACT's required keys and the tower only.
 TEST(Api, SolveComputesWhatIsAsked) {
-  const nlohmann::json all = dcad::api::solve(case_path("lc-4port.json"), {"reference", "all"}).result;
-  const nlohmann::json none = dcad::api::solve(case_path("lc-4port.json"), {"reference", "none"}).result;
-  EXPECT_TRUE(all.contains("adapted"));
-  EXPECT_FALSE(none.contains("adapted"));
-  EXPECT_EQ(all["dims"], none["dims"]);
+  const dcad::io::Problem p = dcad::io::read_problem(case_path("lc-4port.json"));
+  const dcad::reference::Solution all = dcad::reference::solve(p), none = dcad::reference::solve(p, dcad::Parts::none());
+  EXPECT_TRUE(all.adapted.has_value());
+  EXPECT_TRUE(all.motion.has_value());
+  EXPECT_FALSE(none.adapted.has_value());
+  EXPECT_FALSE(none.motion.has_value());
+  EXPECT_EQ(all.dims(), none.dims());
 }
 
 // check: a result agrees with itself; the same result with one dimension changed disagrees, naming it.
 TEST(Api, CheckAgreesAndDisagrees) {
   const std::string file = case_path("lc-4port.json");
-  nlohmann::json result = dcad::api::solve(file, {"fast", "none"}).result;
+  const dcad::io::Problem p = dcad::io::read_problem(file);
+  nlohmann::json result = nlohmann::json::parse(dcad::io::result_json(dcad::api::printed(dcad::api::solve(p, Backend::fast, dcad::Parts::none()))));
   const std::string good = write_temp("dcad_api_good.json", result.dump());
-  const dcad::api::Checked ok = dcad::api::check(good, file);
+  const dcad::api::Checked ok = dcad::api::check(good, p);
   EXPECT_TRUE(ok.agrees);
   EXPECT_TRUE(ok.disagreements.empty());
   result["dims"][1] = result["dims"][1].get<long>() + 1;
-  const dcad::api::Checked bad = dcad::api::check(write_temp("dcad_api_bad.json", result.dump()), file);
+  const dcad::api::Checked bad = dcad::api::check(write_temp("dcad_api_bad.json", result.dump()), p);
   EXPECT_FALSE(bad.agrees);
   ASSERT_FALSE(bad.disagreements.empty());
   EXPECT_NE(bad.disagreements[0].find("dims"), std::string::npos) << bad.disagreements[0];
   EXPECT_EQ(run("check " + good + " " + file).rc, 0);
 }
 
-// simulate: the CSV the binary prints, row for row; the layout names its columns.
+// simulate: the CSV the binary prints, row for row; the columns name its header.
 TEST(Api, SimulateEqualsTheBinary) {
   for (const char* name : {"rlc-series.cir", "lc-4port.cir"}) {
+    const dcad::io::Problem p = dcad::io::read_problem(case_path(name));
     std::ostringstream csv, log;
-    const dcad::api::Simulated s = dcad::api::simulate(case_path(name), {1e-4, 1e-6, "certified"}, csv, log);
+    const dcad::api::Simulated s = dcad::api::simulate(p, {1e-4, 1e-6, Backend::certified}, csv, log);
     EXPECT_EQ(s.rows, 101);
     EXPECT_LT(s.error_estimate, 1e-9);
     EXPECT_EQ(csv.str(), run("simulate " + case_path(name) + " --tstop 1e-4 --step 1e-6").out) << name;
-    const dcad::api::SimulateLayout layout = dcad::api::simulate_layout(case_path(name));
-    EXPECT_EQ(layout.columns.front(), "t");
+    const std::vector<std::string> columns = dcad::api::simulate_columns(p);
+    EXPECT_EQ(columns.front(), "t");
     std::string header;
-    for (const std::string& c : layout.columns) header += (header.empty() ? "" : ",") + c;
+    for (const std::string& c : columns) header += (header.empty() ? "" : ",") + c;
     EXPECT_EQ(csv.str().substr(0, csv.str().find('\n')), header);
   }
 }
@@ -73,7 +103,7 @@ TEST(Api, SimulateEqualsTheBinary) {
 TEST(Api, ErrorChannels) {
   const std::string missing = case_path("no-such-case.json");
   try {
-    dcad::api::solve(missing);
+    dcad::io::read_problem(missing);
     ADD_FAILURE() << "no error for a missing file";
   } catch (const dcad::api::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
@@ -81,23 +111,24 @@ TEST(Api, ErrorChannels) {
   }
   const std::string bad = write_temp("dcad_api_bad_case.json", R"({"dcad": 1, "dirac": {"form": [[0, 1], [1, 0]]}})");
   try {
-    dcad::api::solve(bad);
+    dcad::api::solve(dcad::io::read_problem(bad), Backend::certified);
     ADD_FAILURE() << "no error for a symmetric form";
   } catch (const dcad::api::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("expected"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(dcad::api::solve(case_path("lc-4port.json"), {"exact", "all"}), dcad::api::UsageError);
-  EXPECT_THROW(dcad::api::solve(case_path("lc-4port.json"), {"reference", "bracket,final"}), dcad::api::UsageError);
+  EXPECT_THROW(dcad::api::backend_named("exact"), dcad::api::UsageError);
+  EXPECT_THROW(dcad::api::parts_named("bracket,final"), dcad::api::UsageError);
   std::ostringstream csv, log, energy;
   try {
-    dcad::api::simulate(case_path("lc-4port.cir"), {1e-3, 1e-4, "certified"}, csv, log, &energy);
+    dcad::api::simulate(dcad::io::read_problem(case_path("lc-4port.cir")), {1e-3, 1e-4, Backend::certified}, csv, log, &energy);
     ADD_FAILURE() << "--energy of a lossless circuit";
   } catch (const dcad::api::UsageError& e) {
     EXPECT_EQ(dcad::api::exit_code(e), 2);
     EXPECT_NE(std::string(e.what()).find("lossless"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(dcad::api::simulate(case_path("rlc-series.cir"), {-1, 1e-6, "certified"}, csv, log), dcad::api::InputError);
+  EXPECT_THROW(dcad::api::simulate(dcad::io::read_problem(case_path("rlc-series.cir")), {-1, 1e-6, Backend::certified}, csv, log),
+               dcad::api::InputError);
   EXPECT_EQ(dcad::api::exit_code(dcad::api::InternalError("x")), 4);
 }
 

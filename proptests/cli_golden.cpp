@@ -203,7 +203,7 @@ TEST(GoldenReport, TheoremsCitedOnlyUnderTheirHypotheses) {
   EXPECT_NE(wires.out.find("there are no empty loops — here not symplectic"), std::string::npos) << wires.out;
 }
 
-// What fast may certify is decided by the heights of the exact input (cli/convert_fast.hpp), not by
+// What fast may certify is decided by the heights of the exact input (dcad/fast/exact.hpp), not by
 // whether double holds it.  Small heights: the 4-port of CEF §6 as a `pontryagin` case (1/C = 1/3, 1/5,
 // 1/7: the README's worked example) is certified by fast with every part, as by the exact backends
 // (fast used to say "NOT certified" on it: 1/3 is not a double).  Large heights decide the answer and

@@ -1,8 +1,8 @@
 // The pipeline's helpers at unit level, which the CLI tests see only through whole decks:
-//  * waveforms (cli/waveform.hpp): what a source is worth at t = 0, exactly, and where it is not
+//  * waveforms (dcad/io/waveform.hpp): what a source is worth at t = 0, exactly, and where it is not
 //    rational — these decide whether a deck's initial condition is on M_c(0) (simulate_forced.cpp);
-//  * balancing (cli/simulate.hpp): the diagonal similarity that makes simulate unit-independent;
-//  * the input assessment of the fast backend (cli/convert_fast.hpp): what may be certain in double.
+//  * balancing (dcad::api, fast/api/src/simulate.hpp): the diagonal similarity that makes simulate unit-independent;
+//  * the input assessment of the fast backend (dcad/fast/exact.hpp): what may be certain in double.
 #include "dcad/fast/exact.hpp"
 #include "simulate.hpp"
 #include "dcad/io/waveform.hpp"
@@ -92,7 +92,7 @@ TEST(Balancing, EqualisesOffDiagonalSumsByPowersOfTwo) {
   a << 100, 1e4, 0,
        1e-4, 100, 1e3,
        0, 1e-3, -50;
-  const std::vector<double> d = dcad::cli::balancing(a);
+  const std::vector<double> d = dcad::api::balancing(a);
   ASSERT_EQ(d.size(), 3u);
   Eigen::MatrixXd b = a;  // D⁻¹ A D
   for (int i = 0; i < 3; ++i)
@@ -197,16 +197,16 @@ TEST(ConvertFast, ElementValuesSpan) {
   EXPECT_FALSE(far.input_well_scaled);  // 1e8
 }
 
-// The simulation's error estimate (cli/simulate.hpp): the worst relative error over the variables,
+// The simulation's error estimate (dcad::api, fast/api/src/simulate.hpp): the worst relative error over the variables,
 // err / mag, naming the variable; a variable that stays exactly 0 has no relative error and is skipped
 // (0/0 is NaN, and a rounding speck over 0 would be infinite). Killed by: the skip test mag == 1
 // (seed-26 survivor [200]: a variable whose largest magnitude is exactly 1 lost its say).
 TEST(Simulate, ErrorEstimateIsTheWorstRelativeError) {
-  const dcad::cli::SimulateSummary s = dcad::cli::summarize(11, {1e-15L, 1e-16L, 1e-300L}, {1.0L, 1000.0L, 0.0L}, {"q_C1", "v_L1", "p_C1"});
+  const dcad::api::Simulated s = dcad::api::summarize(11, {1e-15L, 1e-16L, 1e-300L}, {1.0L, 1000.0L, 0.0L}, {"q_C1", "v_L1", "p_C1"});
   EXPECT_EQ(s.rows, 11);
   EXPECT_EQ(s.worst_variable, "q_C1");
   EXPECT_DOUBLE_EQ(s.error_estimate, 1e-15);
-  const dcad::cli::SimulateSummary z = dcad::cli::summarize(2, {0.0L, 3e-17L}, {0.0L, 2.0L}, {"at_rest", "moving"});
+  const dcad::api::Simulated z = dcad::api::summarize(2, {0.0L, 3e-17L}, {0.0L, 2.0L}, {"at_rest", "moving"});
   EXPECT_EQ(z.worst_variable, "moving");
   EXPECT_DOUBLE_EQ(z.error_estimate, 1.5e-17);
 }

@@ -3,9 +3,9 @@
 file(REMOVE_RECURSE ${WORK})
 foreach(step
     "${CMAKE_COMMAND};--install;${BUILD};--prefix;${WORK}/prefix"
-    "${CMAKE_COMMAND};-S;${SRC};-B;${WORK}/build;-DCMAKE_BUILD_TYPE=Release;-DCMAKE_PREFIX_PATH=${WORK}/prefix;-DDCAD_CASES=${SRC}/../../cases"
+    "${CMAKE_COMMAND};-S;${SRC};-B;${WORK}/build;-DCMAKE_BUILD_TYPE=Release;-DCMAKE_PREFIX_PATH=${WORK}/prefix"
     "${CMAKE_COMMAND};--build;${WORK}/build"
-    "${WORK}/build/consumer")
+    "${WORK}/build/consumer;--gtest_brief=1")
   execute_process(COMMAND ${step} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "install_consumer: '${step}' failed (${rc})")

@@ -698,18 +698,23 @@ double mean_exponent(const Netlist& n, reference::BranchKind kind) {
 
 }  // namespace
 
-Netlist dimensionless(const Netlist& n, Units& u) {
-  u.a = static_cast<int>(std::lround(mean_exponent(n, reference::BranchKind::inductor)));
-  u.b = static_cast<int>(std::lround(mean_exponent(n, reference::BranchKind::capacitor)));
-  // a + b odd: C0 one decade up, so that a power-of-ten C becomes 1/10 and its elastance 1/C̃ = 10
-  // stays exact in double (C0 one decade down would make it 1/10: an inexact input for fast)
-  if ((u.a + u.b) % 2 != 0) ++u.b;
+Units units_of(const Netlist& n) {
+  return Units::nearest(mean_exponent(n, reference::BranchKind::inductor), mean_exponent(n, reference::BranchKind::capacitor));
+}
+
+Netlist dimensionless(const Netlist& n, const Units& u) {
   Netlist out = n;
-  const Rational l0 = pow10(u.a), c0 = pow10(u.b);
+  const Rational l0 = pow10(u.a), c0 = pow10(u.b), r0 = pow10(u.r());
   for (auto& b : out.circuit.branches) {
     if (b.kind == reference::BranchKind::inductor) b.value /= l0;
     if (b.kind == reference::BranchKind::capacitor) b.value /= c0;
   }
+  for (auto& b : out.rlc.branches) {
+    if (b.kind == reference::RlcKind::inductor) b.value /= l0;
+    if (b.kind == reference::RlcKind::capacitor) b.value /= c0;
+    if (b.kind == reference::RlcKind::resistor) b.value /= r0;
+  }
+  for (auto& mu : out.rlc.mutuals) mu.m /= l0;
   return out;
 }
 

@@ -19,6 +19,7 @@
 
 #include "dcad/fast/rank.hpp"
 #include "dcad/graph.hpp"
+#include "dcad/lc_graph.hpp"
 #include "dcad/types.hpp"
 
 #include <cstddef>
@@ -26,36 +27,21 @@
 
 namespace dcad::fast {
 
-using dcad::BranchKind;  // dcad/types.hpp: the reference's type
-
-struct CircuitBranch {
-  BranchKind kind = BranchKind::empty;
-  long from = -1, to = -1;  ///< node indices, −1 = ground; current flows from → to
-  double value = 0;         ///< L or C
-};
+using dcad::BranchKind;     // dcad/types.hpp: the reference's type
+using graph::Loop;          // dcad/graph.hpp: the topology every route shares
+using graph::LoopBranch;
+using CircuitBranch = lc::Branch<double>;  ///< kind, nodes (−1 = ground), L or C
+using Term = lc::Term<double>;
+using SparseRow = lc::Row<double>;         ///< Σ coeff·x_var = 0
 
 struct CircuitGraph {
   std::size_t nodes = 0;  ///< non-ground nodes 0 … nodes−1
   std::vector<CircuitBranch> branches;
 };
 
-struct Term {
-  std::size_t var = 0;  ///< 0 … 3n−1: q, then v, then p
-  double coeff = 0;
-};
-using SparseRow = std::vector<Term>;  ///< Σ coeff·x_var = 0
-
-using graph::Loop;  // dcad/graph.hpp: the topology every route shares
-using graph::LoopBranch;
-
-struct CircuitTower {
+/// The tower (dcad/lc_graph.hpp's, in double) and how it was reached.
+struct CircuitTower : lc::Tower<double> {
   bool physical = true;  ///< the combinatorial route was taken
-  std::vector<long> dims;                         ///< dim M_0 … M_c
-  std::vector<std::vector<SparseRow>> equations;  ///< the constraints added to reach M_k (k = 0: none)
-  int steps = 0;
-  long solution_rank = 0;
-  std::vector<Loop> pc_loops;     ///< fundamental purely capacitive loops (physical: one KVLPC equation each)
-  std::vector<Loop> empty_loops;  ///< fundamental loops of the empty subgraph (CEF Thm 6.8)
   Truth certain = yes;
   std::vector<RankDecision> decisions;  ///< signed route only
 };
@@ -67,7 +53,6 @@ CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt = {});
 /// No negative L or C: then circuit_tower takes the combinatorial route and decides nothing.
 bool is_physical(const CircuitGraph& g);
 
-/// The circuit's branches as edges (dcad/graph.hpp).
-std::vector<graph::Edge> edges(const CircuitGraph& g);
+
 
 }  // namespace dcad::fast

@@ -36,7 +36,7 @@ using Eigen::VectorXd;
 /// Two properties of the *input* void that hypothesis, and then no rank deficiency is ever certain:
 ///  * `input_exact` false — some input value was rounded to double in a digit that may decide the
 ///    answer, so rounding the input may have destroyed the very degeneracy being decided (1 + 2^-60
-///    reads as 1).  The CLI's converters (cli/convert_fast.hpp) clear it for a rounded value of height
+///    reads as 1).  The one exact → double conversion (dcad/fast/exact.hpp) clears it for a rounded value of height
 ///    above 1/nonzero_factor (x = 2^e p/q, p, q odd: max(|p|, q)); a rounded 1/3 moves by 2^-53
 ///    relative, as the first step of any computation does, and leaves the hypothesis as it was;
 ///  * `input_well_scaled` false — the binary digits of the nonzero input entries span more than 1/τ1

@@ -4,6 +4,8 @@
 #pragma once
 
 #include "dcad/fast/tracked.hpp"
+#include "dcad/io/lagrangian_case.hpp"
+#include "dcad/solution.hpp"
 #include "dcad/truth.hpp"
 #include "dcad/reference/pointwise.hpp"
 
@@ -46,5 +48,10 @@ struct ToleranceDecisions {
 reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
                                                  const std::vector<bool>& fixed, ToleranceDecisions& decide,
                                                  const std::vector<std::vector<std::size_t>>* plan = nullptr);
+
+/// The expression form in double at the case's point (or a generic one): the pointwise CAD above, its
+/// result as a Solution (backend "fast"; certified when every zero test was).  io::InputError for given
+/// values off M_c, as the exact route.
+dcad::Solution<double> solve_expression(const io::LagrangianCase& c);
 
 }  // namespace dcad::fast

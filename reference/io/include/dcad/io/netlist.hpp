@@ -6,6 +6,8 @@
 #include "dcad/reference/circuit.hpp"
 #include "dcad/reference/rlc.hpp"
 #include "dcad/io/waveform.hpp"
+#include "dcad/solution.hpp"
+#include "dcad/units.hpp"
 
 #include <optional>
 
@@ -26,6 +28,10 @@ struct Netlist {
 };
 
 bool is_netlist_file(const std::string& file);
+/// The deck's graph facts (dcad/graph.hpp): counts, and the loops and cutsets by signed branch names —
+/// for an LC deck CEF Thm 6.4's purely capacitive and Thm 6.8's empty loops; with resistors, sources or
+/// couplings (YM §4) the CV loops, loops of voltage sources, LI cutsets and cutsets of current sources.
+CircuitFacts circuit_facts(const Netlist& n);
 Netlist read_netlist(const std::string& file);
 /// A deck given as text, named `name` in messages; `.include`/`.lib` files are read from `directory`.
 Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory);
@@ -36,17 +42,11 @@ Rational parse_spice_value(const std::string& text);
 /// `dense`, only the names (no n×n and 3n×3n matrices: for the graph route on large circuits).
 CaseFile netlist_case(const Netlist& n, bool dense = true);
 
-/// The dimensionless twin of a circuit: every L divided by L0 = 10^a, every C by C0 = 10^b, with
-/// 10^a and 10^b the powers of ten nearest the geometric means (b one up if a + b is odd) and a + b
-/// even, so that the time
-/// unit T = √(L0 C0) = 10^m, m = (a + b)/2, is exact.  A solution of the twin gives one of the
-/// circuit by t = T t̃, q = q̃, v = ṽ/T, p = (L0/T) p̃ (and ν = L0 ν̃ on T*TQ): the Lagrangian
-/// becomes (C0 times) that of the twin (CEF §6: L = ½ vᵀΦv − ½ qᵀΨq), so the towers are equal and
-/// the equations of motion correspond (x = S x̃, d/dt = T⁻¹ d/dt̃).  Exact (rational values).
-struct Units {
-  int a = 0, b = 0;  ///< L0 = 10^a, C0 = 10^b
-  int m() const { return (a + b) / 2; }
-};
-Netlist dimensionless(const Netlist& n, Units& u);
+/// The exponents of the circuit's dimensionless twin (dcad/units.hpp), from its L and C values (exact
+/// log10, any magnitude).
+Units units_of(const Netlist& n);
+/// The dimensionless twin, exactly: every L / L0, C / C0, R / R0 and mutual inductance / L0 (both the
+/// LC `circuit` and the `rlc` elements).  The same graph, tower and sources; values near 1.
+Netlist dimensionless(const Netlist& n, const Units& u);
 
 }  // namespace dcad::io

@@ -44,4 +44,18 @@ Problem parse_netlist(const std::string& text, const std::string& name = "netlis
 /// A JSON case (linear or expression form) given as text; `name` stands for the file in messages.
 Problem parse_case(const std::string& text, const std::string& name = "case.json");
 
+/// f() with a linear case's library preconditions (std::invalid_argument: not a Dirac structure, a
+/// degenerate form …) as InputError naming the file and the case's form (`/pontryagin`,
+/// `/constrained` or the `dirac` form's path).  Every twin's solve reports its input this way.
+template <class F>
+auto at_input(const CaseFile& c, F f) {
+  try {
+    return f();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw InputError(c.file + ": " + (c.has_pontryagin ? "/pontryagin" : c.has_constrained ? "/constrained" : c.dirac.path) + ": " + e.what());
+  }
+}
+
 }  // namespace dcad::io

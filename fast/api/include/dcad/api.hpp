@@ -1,0 +1,102 @@
+// dcad::api — everything the dcad tool does, as a library (issue 26): a Problem in (dcad::io reads any
+// input form, from a file or from text), a typed Solution out, by the backend asked for; `dcad check`,
+// `simulate`, `inspect` and the golden corpus.  The tool (cli/main.cpp) only parses arguments, prints
+// and sets exit codes.  Each twin's own solve is a library call too: reference::solve
+// (dcad/reference/solve.hpp), fast::solve (dcad/fast/solve.hpp), certified::solve
+// (dcad/certified/solve.hpp); text and JSON are written by dcad/io/report.hpp.
+//
+// Three error channels, as the CLI's exit codes (CONTRACT; 4 is dcad's own):
+//   io::InputError — bad input (exit 1): the message names the file, the line or JSON path, what was
+//                    expected and what was found;
+//   a result       — a case a backend cannot decide is not an error: the solution says certified
+//                    unknown and gives the evidence in `note`;
+//   UsageError     — options that do not apply (exit 2);
+//   InternalError  — a broken invariant of dcad (exit 4): never an answer; please report it.
+#pragma once
+
+#include "dcad/certified/solve.hpp"
+#include "dcad/fast/solve.hpp"
+#include "dcad/inspection.hpp"
+#include "dcad/io/problem.hpp"
+#include "dcad/io/report.hpp"
+#include "dcad/reference/solve.hpp"
+
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace dcad::api {
+
+using io::InputError;
+struct UsageError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+struct InternalError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The CLI's exit code for an exception these functions throw: 1 input, 2 usage, 4 anything else.
+int exit_code(const std::exception& e) noexcept;
+
+enum class Backend { certified, reference, fast };
+/// "certified", "reference" or "fast" (UsageError otherwise).
+Backend backend_named(const std::string& name);
+/// `--with`: "all", "none" or a comma-separated list of final, reduced, classes, adapted (UsageError otherwise).
+Parts parts_named(const std::string& list);
+
+/// A solution of one backend, typed by its numbers: exact rationals, doubles, or certified numbers.
+using Solved = std::variant<reference::Solution, fast::Solution, certified::Solution>;
+
+/// The CAD of any problem by one backend.  `certified` answers by double precision (not certified,
+/// and its note says why) only where no exact tier can run: the expression form at a point where a
+/// formula is irrational.
+Solved solve(const io::Problem& p, Backend backend, const Parts& parts = {});
+/// The solution with its numbers printed by its own twin's printer (for io::result_json, io::report_text).
+io::Printed printed(const Solved& s);
+
+/// `dcad check RESULT FILE`: another implementation's result for the problem against the reference.
+struct Checked {
+  bool agrees = false;                     ///< exit 0 (true) or 3
+  std::vector<std::string> compared;       ///< the keys compared
+  std::vector<std::string> disagreements;  ///< "key: expected …, found …"
+  std::vector<std::string> not_compared;   ///< what the reference has and the result does not say, and why
+};
+/// InputError if the result file is not a result for this problem.
+Checked check(const std::string& result_file, const io::Problem& p);
+
+/// `dcad inspect`: what the problem's Dirac structure is (a `dirac` case; InputError otherwise).
+Inspection inspect(const io::Problem& p, Backend backend);
+
+struct SimulateOptions {
+  double tstop = 0, step = 0;  ///< seconds (or the case's time unit); 0 < step, 0 ≤ tstop
+  Backend backend = Backend::certified;
+};
+struct Simulated {
+  long rows = 0;
+  double error_estimate = 0;   ///< largest |double − long double| over the run, relative to each variable's magnitude
+  std::string worst_variable;  ///< where it is largest
+};
+/// The CSV header `simulate` writes for the problem: t and every variable.
+std::vector<std::string> simulate_columns(const io::Problem& p);
+/// `dcad simulate`: the motion from the problem's initial condition on M_c, one CSV row per output step
+/// to `csv` as it is computed; warnings, notes and the run's summary to `log`.  With `energy` (systems
+/// with resistors, sources or forces only; UsageError otherwise), the energy balance per row.
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy = nullptr);
+
+/// The golden corpus: $DCAD_CASES, else the source tree's cases/.
+std::string cases_dir();
+struct CaseEntry {
+  std::string file, summary;
+};
+std::vector<CaseEntry> list_cases();
+/// The case's file contents (InputError for a name not in the corpus).
+std::string show_case(const std::string& name);
+/// Every case, NAME.expected.json (the reference's result) and result.schema.json into `dir`; the count.
+int export_cases(const std::string& dir);
+/// A case file, netlist or property log (its "dcad case: {…}" line) → cases/NAME with the reference's
+/// expectations; returns what was written.
+std::string freeze_case(const std::string& from, const std::string& name = "");
+
+}  // namespace dcad::api

@@ -1,0 +1,79 @@
+// dcad::api: each entry point dispatches once and maps what the twins throw onto the three error channels.
+#include "dcad/api.hpp"
+
+#include "dcad/fast/pointwise.hpp"
+#include "guarded.hpp"
+#include "dcad/reference/pointwise.hpp"
+
+namespace dcad::api {
+
+int exit_code(const std::exception& e) noexcept {
+  if (dynamic_cast<const UsageError*>(&e)) return 2;
+  if (dynamic_cast<const std::invalid_argument*>(&e)) return 1;  // io::InputError, a precondition on the input
+  return 4;
+}
+
+Backend backend_named(const std::string& name) {
+  if (name == "certified") return Backend::certified;
+  if (name == "reference") return Backend::reference;
+  if (name == "fast") return Backend::fast;
+  throw UsageError("backend: expected reference, fast or certified, found \"" + name + "\"");
+}
+
+Parts parts_named(const std::string& list) {
+  if (list == "all") return {};
+  Parts p = Parts::none();
+  if (list == "none") return p;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = list.find(',', start);
+    const std::string w = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (w == "final") p.final_constraints = true;
+    else if (w == "reduced") p.reduced = true;
+    else if (w == "classes") p.classes = true;
+    else if (w == "adapted") p.adapted = true;
+    else throw UsageError("--with: expected all, none or a comma-separated list of final, reduced, classes, adapted; found '" + w + "'");
+    if (comma == std::string::npos) return p;
+    start = comma + 1;
+  }
+}
+
+namespace {
+
+/// The certified tier where no exact tier can run (the expression form at an irrational point):
+/// double precision, not certified, and the note says why.
+certified::Solution not_certified(const io::Problem& p, const reference::NotExactHere& e) {
+  const fast::Solution f = fast::solve_expression(p.expression);
+  certified::Solution s = map_numbers<certified::Number>(f, [](double x) { return certified::Number{false, reference::Rational(0), x, 0}; });
+  s.backend = "certified";
+  s.exact = false;
+  s.certified = unknown;
+  s.note = std::string("the exact route cannot run here (") + e.what() + "): double precision" + (f.note.empty() ? "" : "; " + f.note);
+  return s;
+}
+
+}  // namespace
+
+Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
+  return guarded(p, [&]() -> Solved {
+    switch (backend) {
+      case Backend::reference:
+        return reference::solve(p, parts);
+      case Backend::fast:
+        return fast::solve(p, parts);
+      case Backend::certified:
+        try {
+          return certified::solve(p, parts);
+        } catch (const reference::NotExactHere& e) {
+          return not_certified(p, e);
+        }
+    }
+    throw InternalError("solve: unknown backend");
+  });
+}
+
+io::Printed printed(const Solved& s) {
+  return std::visit([](const auto& x) { return io::printed(x); }, s);
+}
+
+}  // namespace dcad::api

@@ -1,0 +1,169 @@
+// The golden corpus (cases/) for other projects, and the regression workflow (a property-test
+// counterexample → a golden case with the reference's expectations).
+#include "dcad/api.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include <unistd.h>
+
+#ifndef DCAD_CASES_DIR
+#define DCAD_CASES_DIR "cases"
+#endif
+
+namespace dcad::api {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ordered = nlohmann::ordered_json;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw io::InputError(p.string() + ": cannot read");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<fs::path> corpus() {
+  std::vector<fs::path> files;
+  if (!fs::is_directory(cases_dir())) throw io::InputError(cases_dir() + ": expected the case directory (set DCAD_CASES), found none");
+  for (const auto& e : fs::directory_iterator(cases_dir()))
+    if (e.path().extension() == ".json" || io::is_netlist_file(e.path().string())) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// The reference result JSON for a case file or netlist (what `dcad solve --backend reference --json` prints).
+json reference_result(const fs::path& file) {
+  return json::parse(io::result_json(printed(solve(io::read_problem(file.string()), Backend::reference)), -1));
+}
+
+std::string summary(const fs::path& file) {
+  if (io::is_netlist_file(file.string())) {
+    std::istringstream in(slurp(file));
+    std::string title;
+    std::getline(in, title);
+    return "netlist: " + title;
+  }
+  const json j = json::parse(slurp(file), nullptr, false);
+  if (j.is_discarded()) return "(not JSON)";
+  const std::string d = j.value("description", "");
+  return (j.contains("pontryagin")    ? "pontryagin: "
+          : j.contains("constrained") ? "constrained: "
+          : j.contains("lagrangian")  ? "lagrangian: "
+                                      : "dirac: ") +
+         d.substr(0, d.find(". "));
+}
+
+fs::path find_case(const std::string& name) {
+  for (const fs::path& p : corpus())
+    if (p.stem() == name || p.filename() == name) return p;
+  throw io::InputError("dcad cases show: expected a case name from `dcad cases list`, found \"" + name + "\"");
+}
+
+/// The keys a golden case pins (the CONTRACT's discrete keys, plus the circuit counts).
+ordered expectations(const json& result) {
+  ordered e;
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique"}) e[key] = result[key];
+  if (result.contains("circuit"))
+    e["circuit"] = {{"pc_loops", result["circuit"]["pc_loops"]}, {"empty_loops", result["circuit"]["empty_loops"]}};
+  if (result.contains("reduced")) e["reduced"] = {{"coordinates", result["reduced"]["coordinates"]}, {"F", result["reduced"]["F"]}, {"f", result["reduced"]["f"]}};
+  return e;
+}
+
+std::string freeze(const std::string& from_file, const std::string& wanted) {
+  const fs::path from = from_file;
+  std::string text = slurp(from);
+  const bool netlist = io::is_netlist_file(from.string());
+  if (!netlist) {  // a property log: the line "dcad case: {…}"
+    const std::size_t at = text.find("dcad case: ");
+    if (at != std::string::npos) text = text.substr(at + 11, text.find('\n', at) - at - 11);
+  }
+  const std::string name = !wanted.empty() ? wanted : "regression-" + from.stem().string();
+  const fs::path to = fs::path(cases_dir()) / (name + (netlist ? from.extension().string() : ".json"));
+  if (fs::exists(to)) throw io::InputError(to.string() + ": expected a new case name, found an existing case");
+  // a file of this process's own (two freezes at once must not read each other's), removed however we leave
+  const fs::path tmp = fs::temp_directory_path() /
+                       ("dcad_freeze_" + std::to_string(::getpid()) + std::string(netlist ? from.extension().string() : ".json"));
+  struct Removed {
+    fs::path path;
+    ~Removed() {
+      std::error_code ignored;
+      fs::remove(path, ignored);
+    }
+  } removed{tmp};
+  {
+    std::ofstream t(tmp);
+    t << text;
+  }
+  json result;
+  try {
+    result = reference_result(tmp);
+  } catch (const io::InputError& e) {  // bad input: the message names the user's file, not the copy
+    std::string m = e.what();
+    const std::string copy = tmp.string(), named = from.string() + (netlist ? "" : " (its \"dcad case:\" line)");
+    for (std::size_t k; (k = m.find(copy)) != std::string::npos;) m.replace(k, copy.size(), named);
+    throw io::InputError(m);
+  }
+  std::ofstream o(to);
+  if (netlist) {
+    std::istringstream in(text);
+    std::string title;
+    std::getline(in, title);
+    o << title << "\n* dcad cases freeze " << from.string() << ": expectations by the reference backend\n* expect: "
+      << expectations(result).dump() << "\n";
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("* expect:", 0) != 0) o << line << "\n";
+  } else {
+    ordered c = ordered::parse(text);
+    c["name"] = name;
+    if (!c.contains("description")) c["description"] = "regression case frozen from " + from.string() + " by `dcad cases freeze`";
+    c["expect"] = expectations(result);
+    o << c.dump(2) << "\n";
+  }
+  return "wrote " + to.string() + " (expectations by the reference backend: dims " + result["dims"].dump() + ")";
+}
+
+}  // namespace
+
+std::string cases_dir() {
+  const char* env = std::getenv("DCAD_CASES");
+  return env && *env ? env : DCAD_CASES_DIR;
+}
+
+std::vector<CaseEntry> list_cases() {
+  std::vector<CaseEntry> out;
+  for (const fs::path& p : corpus()) out.push_back({p.filename().string(), summary(p)});
+  return out;
+}
+
+std::string show_case(const std::string& name) { return slurp(find_case(name)); }
+
+int export_cases(const std::string& dir_name) {
+  const fs::path dir = dir_name;
+  fs::create_directories(dir);
+  int n = 0;
+  for (const fs::path& p : corpus()) {
+    fs::copy_file(p, dir / p.filename(), fs::copy_options::overwrite_existing);
+    std::ofstream(dir / (p.stem().string() + ".expected.json")) << reference_result(p).dump(2) << "\n";
+    ++n;
+  }
+  fs::copy_file(fs::path(cases_dir()) / "schema" / "result.schema.json", dir / "result.schema.json", fs::copy_options::overwrite_existing);
+  return n;
+}
+
+std::string freeze_case(const std::string& from, const std::string& name) {
+  if (from.empty()) throw io::InputError("dcad cases freeze: expected FILE [NAME], found nothing");
+  return freeze(from, name);
+}
+
+}  // namespace dcad::api

@@ -1,0 +1,519 @@
+// `dcad check RESULT.json FILE` (CONTRACT): another implementation's result for FILE against the
+// reference.  Discrete keys exactly; richer optional keys (`final_constraints`, `reduced`,
+// `dirac_bracket`) as subspaces or within a condition-aware tolerance (documented in the README).
+#include "dcad/api.hpp"
+#include "dcad/fast/pointwise.hpp"
+#include "guarded.hpp"
+#include "json_input.hpp"  // dcad::io's exact JSON reader (build tree)
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+namespace dcad::api {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void bad(const std::string& file, const std::string& path, const std::string& expected, const std::string& found) {
+  throw io::InputError(file + ": " + path + ": expected " + expected + ", found " + found);
+}
+
+std::string shown(const json& j) {
+  std::string s = j.dump();
+  return s.size() > 200 ? s.substr(0, 200) + "…" : s;
+}
+
+/// A number of the result: exact if an integer or fraction string ("-3/7"); a decimal string
+/// ("0.99999999999999967", as `--backend fast` prints) or a JSON number is a float.
+struct Number {
+  bool exact = false;
+  io::Rational q;
+  double d = 0;
+};
+
+Number number(const std::string& file, const std::string& path, const json& j) {
+  Number n;
+  if (j.is_number()) {
+    n.d = j.get<double>();
+    return n;
+  }
+  if (j.is_string()) {
+    try {
+      const std::string t = j.get<std::string>();
+      n.exact = t.find_first_of(".eE") == std::string::npos;
+      if (!n.exact) {
+        std::size_t used = 0;
+        n.d = std::stod(t, &used);
+        if (used != t.size()) throw std::invalid_argument(t);
+        return n;
+      }
+      n.q = reference::parse_rational(t);
+      n.d = n.q.convert_to<double>();
+      return n;
+    } catch (const std::exception&) {
+    }
+  }
+  bad(file, path, "a number or an exact string such as \"-3/7\"", shown(j));
+}
+
+/// found ≈ want: exactly if found is exact, else |found − want| ≤ tol·scale.
+bool close(const Number& found, const io::Rational& want, double tol, double scale) {
+  if (found.exact) return found.q == want;
+  return std::abs(found.d - want.convert_to<double>()) <= tol * scale;
+}
+
+struct Checker {
+  std::string file;
+  Checked out;
+  void compare(const std::string& key, const json& want, const json& found) {
+    out.compared.push_back(key);
+    if (want != found) out.disagreements.push_back(key + ": expected " + shown(want) + ", found " + shown(found));
+  }
+};
+
+/// Tolerance for floating-point entries: 1e-9 relative to the largest exact entry, times the number
+/// of entries (accumulated rounding of a backward-stable computation on well-conditioned data).
+double matrix_tolerance(std::size_t entries) { return 1e-9 * static_cast<double>(std::max<std::size_t>(entries, 1)); }
+
+void compare_matrix(Checker& k, const std::string& key, const Rows<io::Rational>& want, const json& found) {
+  k.out.compared.push_back(key);
+  if (!found.is_array() || found.size() != want.size()) {
+    k.out.disagreements.push_back(key + ": expected " + std::to_string(want.size()) + " rows, found " + shown(found));
+    return;
+  }
+  double scale = 1;
+  for (const auto& row : want)
+    for (const io::Rational& x : row) scale = std::max(scale, std::abs(x.convert_to<double>()));
+  const double tol = matrix_tolerance(want.size() * (want.empty() ? 0 : want[0].size()));
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    if (!found[i].is_array() || found[i].size() != want[i].size()) {
+      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(want[i].size()) + " entries, found " +
+                                    shown(found[i]));
+      continue;
+    }
+    for (std::size_t j = 0; j < want[i].size(); ++j) {
+      std::string path = "/" + key + "/" + std::to_string(i) + "/" + std::to_string(j);
+      std::replace(path.begin(), path.end(), '.', '/');
+      const Number f = number(k.file, path, found[i][j]);
+      if (!close(f, want[i][j], tol, scale))
+        k.out.disagreements.push_back(key + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: expected " + want[i][j].str() + ", found " +
+                                      shown(found[i][j]) + " (tolerance " + std::to_string(tol * scale) + ")");
+    }
+  }
+}
+
+io::Rational exact_value(const Number& x) { return x.exact ? x.q : io::Rational(x.d); }
+
+/// The result's matrix at `path` (rows × cols of numbers) with the exact value of every entry as
+/// given; nullopt (and a disagreement) if its shape is not rows × cols.
+std::optional<io::QMatrix> found_matrix(Checker& k, const std::string& key, const json& found, std::size_t rows, std::size_t cols,
+                                        std::vector<std::vector<Number>>& numbers) {
+  if (!found.is_array() || found.size() != rows) {
+    k.out.disagreements.push_back(key + ": expected " + std::to_string(rows) + " rows, found " + shown(found));
+    return std::nullopt;
+  }
+  io::QMatrix m(rows, cols);
+  numbers.assign(rows, {});
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (!found[i].is_array() || found[i].size() != cols) {
+      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(cols) + " entries, found " + shown(found[i]));
+      return std::nullopt;
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+      std::string path = "/" + key + "/" + std::to_string(i) + "/" + std::to_string(j);
+      std::replace(path.begin(), path.end(), '.', '/');
+      numbers[i].push_back(number(k.file, path, found[i][j]));
+      m(i, j) = exact_value(numbers[i].back());
+    }
+  }
+  return m;
+}
+
+io::QMatrix exact_matrix(const Rows<io::Rational>& m, std::size_t cols) {
+  io::QMatrix out(m.size(), cols);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = 0; j < cols; ++j) out(i, j) = m[i][j];
+  return out;
+}
+
+double max_abs(const io::QMatrix& m) {
+  double s = 0;
+  for (std::size_t i = 0; i < m.rows(); ++i)
+    for (std::size_t j = 0; j < m.cols(); ++j) s = std::max(s, std::abs(m(i, j).convert_to<double>()));
+  return s;
+}
+
+/// The equations of motion ż = F z + f + G λ are determined only as the affine family
+/// {(F + G K, f + G k)} with span(G) (CEF (5.12): λ is free), so a correct result may differ from
+/// the reference by any G K.  Compared: N F, N f against the reference's (N = rows spanning the
+/// left null space of the reference's G, exact), N G_found = 0 and rank G_found = rank G, i.e.
+/// span(G_found) = span(G).  Exact where the result's numbers are exact strings, else within
+/// 1e-9 × entries × scale.  Without free multipliers N = I: F and f entry by entry.
+void compare_reduced(Checker& k, const reference::Solution& truth, const json& red) {
+  const Motion<io::Rational>& mo = *truth.motion;
+  const std::size_t m = mo.coordinates.size(), g = mo.g.empty() ? 0 : mo.g[0].size();
+  const io::QMatrix f_ref = exact_matrix(mo.f_matrix, m), g_ref = exact_matrix(mo.g, g);
+  io::QMatrix fv_ref(m, 1);
+  for (std::size_t i = 0; i < m; ++i) fv_ref(i, 0) = mo.f[i];
+  // N: rows y with yᵀ G = 0 (the whole of (Q^m)* without multipliers)
+  const io::QMatrix n = reference::annihilator(reference::Subspace<io::Rational>::span(g_ref.transpose())).basis();
+  const std::string modulo = g ? " modulo span(G)" : "";
+  std::vector<std::vector<Number>> nf, nv, ng;
+  const json fv_json = [&] {
+    json col = json::array();
+    for (const json& x : red.value("f", json::array())) col.push_back(json::array({x}));
+    return col;
+  }();
+  const auto f_found = found_matrix(k, "reduced.F", red.value("F", json()), m, m, nf);
+  const auto v_found = found_matrix(k, "reduced.f", fv_json, m, 1, nv);
+  // G: m rows of g numbers; [] stands for no free multipliers
+  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty() ? json(std::vector<json>(m, json::array()))
+                                                                                    : red.value("G", json());
+  const std::size_t g_cols = g_json.is_array() && !g_json.empty() && g_json[0].is_array() ? g_json[0].size() : 0;
+  const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>();
+  const auto exact_all = [](const std::vector<std::vector<Number>>& x) {
+    for (const auto& row : x)
+      for (const Number& v : row)
+        if (!v.exact) return false;
+    return true;
+  };
+  const auto same_modulo = [&](const std::string& key, const io::QMatrix& want, const io::QMatrix& found, bool exact) {
+    k.out.compared.push_back(key + modulo);
+    const io::QMatrix d = n * found - n * want;
+    const double scale = std::max(1.0, max_abs(n)) * std::max({1.0, max_abs(want), max_abs(found)});
+    const double tol = exact ? 0 : matrix_tolerance(want.rows() * want.cols()) * scale;
+    for (std::size_t i = 0; i < d.rows(); ++i)
+      for (std::size_t j = 0; j < d.cols(); ++j)
+        if (std::abs(d(i, j).convert_to<double>()) > tol || (exact && d(i, j) != 0)) {
+          k.out.disagreements.push_back(key + ": differs from the reference" + modulo + " (component " + std::to_string(i) + "," +
+                                        std::to_string(j) + " of the difference, projected off span(G): " +
+                                        io::float_text(d(i, j).convert_to<double>()) + ", tolerance " + io::float_text(tol) + ")");
+          return;
+        }
+  };
+  if (f_found) same_modulo("reduced.F", f_ref, *f_found, exact_all(nf));
+  if (v_found) same_modulo("reduced.f", fv_ref, *v_found, exact_all(nv));
+  if (!mo.source_columns.empty()) {  // the forced route: the sources' terms S over the jet columns
+    const json& src = red.value("sources", json());
+    if (!src.is_object() || src.value("columns", json()) != json(mo.source_columns)) {
+      k.out.disagreements.push_back("reduced.sources: expected columns " + json(mo.source_columns).dump() + " and S, found " +
+                                    (src.is_object() ? src.value("columns", json()).dump() : std::string("none")));
+    } else {
+      std::vector<std::vector<Number>> ns;
+      const auto s_found = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, mo.source_columns.size(), ns);
+      if (s_found) same_modulo("reduced.sources.S", exact_matrix(mo.s, mo.source_columns.size()), *s_found, exact_all(ns));
+    }
+  }
+  if (!red.contains("G")) {
+    if (g) k.out.not_compared.push_back("reduced.G (absent: the result does not say which directions are free)");
+    return;
+  }
+  k.out.compared.push_back("reduced.G (span)");
+  if (!g_found) return;
+  const long rank = static_cast<long>(reference::rref(*g_found).pivots.size());
+  if (g_cols != g || rank != static_cast<long>(g)) {
+    k.out.disagreements.push_back("reduced.G: expected " + std::to_string(g) + " independent free directions (solution rank), found " +
+                                  std::to_string(rank) + " among " + std::to_string(g_cols) + " columns");
+    return;
+  }
+  const io::QMatrix ngf = n * *g_found;
+  const double tol = exact_all(ng) ? 0 : matrix_tolerance(m * g) * std::max(1.0, max_abs(n)) * std::max(1.0, max_abs(*g_found));
+  for (std::size_t i = 0; i < ngf.rows(); ++i)
+    for (std::size_t j = 0; j < ngf.cols(); ++j)
+      if (std::abs(ngf(i, j).convert_to<double>()) > tol || (tol == 0 && ngf(i, j) != 0)) {
+        k.out.disagreements.push_back("reduced.G: column " + std::to_string(j) + " is not in the reference's span(G)");
+        return;
+      }
+}
+
+/// `final_constraints`: rows [a…, b] of equations whose solution set the result claims is M_c.
+/// Compared as affine subspaces: same dimension, and every equation holds on M_c (exact point and
+/// directions) to within 1e-9·κ(A)·‖row‖ (κ = condition of the result's rows: rounding in a
+/// well-posed computation moves the subspace by about ε·κ).
+void compare_final_constraints(Checker& k, const json& found, const io::QMatrix& basis, const std::vector<io::Rational>& point, long dim) {
+  k.out.compared.push_back("final_constraints");
+  const std::size_t n = basis.cols();
+  if (!found.is_array()) bad(k.file, "/final_constraints", "an array of rows [a_1, …, a_N, b]", shown(found));
+  std::vector<std::vector<Number>> rows;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (!found[i].is_array() || found[i].size() != n + 1)
+      bad(k.file, "/final_constraints/" + std::to_string(i), "a row of " + std::to_string(n + 1) + " numbers [a…, b]", shown(found[i]));
+    rows.emplace_back();
+    for (std::size_t j = 0; j <= n; ++j) rows.back().push_back(number(k.file, "/final_constraints/" + std::to_string(i) + "/" + std::to_string(j), found[i][j]));
+  }
+  // rank of the result's rows (their dimension claim) by exact elimination on the numbers as given
+  io::QMatrix a(rows.size(), n);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < n; ++j) a(i, j) = rows[i][j].exact ? rows[i][j].q : io::Rational(rows[i][j].d);
+  const long claimed = static_cast<long>(n) - static_cast<long>(reference::rref(a).pivots.size());
+  if (claimed != dim) {
+    k.out.disagreements.push_back("final_constraints: expected equations of a " + std::to_string(dim) + "-dimensional M_c, found " +
+                                  std::to_string(claimed) + "-dimensional");
+    return;
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    double norm = 0, at_point = 0, size = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      norm = std::max(norm, std::abs(rows[i][j].d));
+      at_point += rows[i][j].d * point[j].convert_to<double>();
+      size += std::abs(rows[i][j].d * point[j].convert_to<double>());
+    }
+    const double tol = 1e-9 * static_cast<double>(n) * std::max(1.0, norm);
+    bool ok = std::abs(at_point - rows[i][n].d) <= tol * std::max(1.0, size + std::abs(rows[i][n].d));
+    for (std::size_t b = 0; ok && b < basis.rows(); ++b) {
+      double s = 0, sz = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        s += rows[i][j].d * basis(b, j).convert_to<double>();
+        sz += std::abs(rows[i][j].d * basis(b, j).convert_to<double>());
+      }
+      ok = std::abs(s) <= tol * std::max(1.0, sz);
+    }
+    if (!ok) k.out.disagreements.push_back("final_constraints[" + std::to_string(i) + "]: does not hold on the reference M_c");
+  }
+}
+
+
+/// RESULT read (exactly, depth-limited) with its required keys and their types checked: io::InputError
+/// (exit 1, naming the JSON path) otherwise.
+json read_result(const std::string& result_file) {
+  const json r = io::read_json_file(result_file);  // floats kept as their text; depth limited
+  if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
+  if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"})
+    if (!r.contains(key)) bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\"", "nothing");
+  if (!r["dims"].is_array()) bad(result_file, "/dims", "an array of integers", shown(r["dims"]));
+  for (std::size_t i = 0; i < r["dims"].size(); ++i)
+    if (!r["dims"][i].is_number_integer()) bad(result_file, "/dims/" + std::to_string(i), "an integer", shown(r["dims"][i]));
+  if (!r["steps"].is_number_integer()) bad(result_file, "/steps", "an integer", shown(r["steps"]));
+  if (!r["consistent"].is_boolean()) bad(result_file, "/consistent", "true or false", shown(r["consistent"]));
+  if (!r["solution_rank"].is_null() && !r["solution_rank"].is_number_integer())
+    bad(result_file, "/solution_rank", "an integer (null if inconsistent)", shown(r["solution_rank"]));
+  return r;
+}
+
+/// What the reference prints for its solution (the keys the result is compared with).
+template <class N>
+json printed_json(const dcad::Solution<N>& s) {
+  return json::parse(io::result_json(io::printed(s), -1));
+}
+
+/// The reference's solution of a linear case or netlist: the structured circuit route (exact), or above
+/// certified::kDenseBranches with L, C > 0 the graph route (a theorem's answer, exact too).
+reference::Solution truth_of(const io::Problem& p) {
+  if (p.form == io::Form::netlist && !p.netlist.forced && p.netlist.circuit.branches.size() > certified::kDenseBranches) {
+    const certified::Solution c = certified::solve(p);
+    return map_numbers<io::Rational>(c, [](const certified::Number& x) {
+      if (!x.exact) throw InternalError("check: the certified graph route gave an inexact number");
+      return x.q;
+    });
+  }
+  return reference::solve(p);
+}
+
+Checked check_linear(const std::string& result_file, const io::Problem& p_in) {
+  const json r = read_result(result_file);
+  const io::CaseFile& c_in = p_in.linear;
+  if (r.contains("name") && r["name"] != c_in.name)
+    bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")", shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(c_in.variables))
+    bad(result_file, "/variables", "the variables of " + c_in.file, shown(r["variables"]) + ": a result for another case");
+  io::Problem p = p_in;
+  io::CaseFile& c = p.linear;
+  if (r.contains("reduced")) {  // the reference's reduced equations in the result's coordinates
+    const json& coords = r["reduced"].value("coordinates", json());
+    if (!coords.is_array()) bad(result_file, "/reduced/coordinates", "an array of variable names", shown(coords));
+    c.coordinates.clear();
+    for (std::size_t i = 0; i < coords.size(); ++i) {
+      const auto it = std::find(c.variables.begin(), c.variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
+      if (it == c.variables.end()) bad(result_file, "/reduced/coordinates/" + std::to_string(i), "a variable of " + c.file, shown(coords[i]));
+      c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
+    }
+  }
+  const bool forced = (p.form == io::Form::netlist && p.netlist.forced) || (p.form == io::Form::linear && c.has_pontryagin && c.pontryagin.has_forces);
+  if (forced) {  // the forced route's exact tower
+    const reference::Solution fr = reference::solve(p_in);
+    const json want = printed_json(fr);
+    Checker k{result_file, {}};
+    for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+    if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+    if (r.contains("final_constraints")) k.out.not_compared.push_back("final_constraints (not yet for systems with forces or sources)");
+    if (r.contains("reduced") && fr.motion) {
+      const json coords = r["reduced"].value("coordinates", json());
+      if (coords != want["reduced"]["coordinates"])
+        k.out.not_compared.push_back("reduced (in coordinates other than the reference's " + want["reduced"]["coordinates"].dump() +
+                                     ": not yet for systems with forces or sources)");
+      else
+        compare_reduced(k, fr, r["reduced"]);
+    }
+    return k.out;
+  }
+  const reference::Solution truth = truth_of(p);
+  const json want = printed_json(truth);
+  Checker k{result_file, {}};
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (r.contains("circuit") && want.contains("circuit"))
+    for (const char* key : {"pc_loops", "empty_loops", "branches", "nodes"})
+      if (r["circuit"].contains(key)) k.compare(std::string("circuit.") + key, want["circuit"][key], r["circuit"][key]);
+  if (r.contains("constraint_classes") && want.contains("constraint_classes"))
+    for (const char* key : {"first_class", "second_class"})
+      if (r["constraint_classes"].contains(key))
+        k.compare(std::string("constraint_classes.") + key, want["constraint_classes"][key], r["constraint_classes"][key]);
+  if (r.contains("reduced")) {
+    if (!truth.motion) {
+      k.out.compared.push_back("reduced");
+      k.out.disagreements.push_back("reduced: expected none (no equations of motion: " + std::string(truth.consistent ? "too large" : "inconsistent") +
+                                    "), found some");
+    } else {
+      compare_reduced(k, truth, r["reduced"]);
+    }
+  }
+  if (r.contains("dirac_bracket")) {
+    if (!truth.classes || truth.classes->dirac_bracket.empty()) {
+      k.out.compared.push_back("dirac_bracket");
+      k.out.disagreements.push_back("dirac_bracket: expected none (only `constrained` cases have one), found one");
+    } else {
+      compare_matrix(k, "dirac_bracket", truth.classes->dirac_bracket, r["dirac_bracket"]);
+    }
+  }
+  if (r.contains("final_constraints")) {
+    if (!truth.final_exact || !truth.consistent) {
+      k.out.compared.push_back("final_constraints");
+      if (truth.consistent) k.out.disagreements.push_back("final_constraints: the reference has no exact M_c here (use a case of at most " +
+                                                          std::to_string(certified::kDenseBranches) + " branches)");
+      else if (!r["final_constraints"].is_null()) k.out.disagreements.push_back("final_constraints: expected null (M_c is empty), found some");
+    } else {
+      compare_final_constraints(k, r["final_constraints"], exact_matrix(truth.final_exact->basis, c.n), truth.final_exact->point, truth.tower.back().dim);
+    }
+  }
+  return k.out;
+}
+
+
+/// found − want ∈ span(gauge): exactly if every number is exact, else the residual of the least-
+/// squares projection (Gram–Schmidt in double) within 1e-9 × N × the largest magnitude.
+bool equal_modulo(const std::vector<Number>& found, const std::vector<std::string>& want, const std::vector<std::vector<std::string>>& gauge,
+                  bool exact) {
+  const std::size_t n = want.size();
+  if (exact) {
+    io::QMatrix g(gauge.size() + 1, n);
+    for (std::size_t i = 0; i < gauge.size(); ++i)
+      for (std::size_t j = 0; j < n; ++j) g(i, j) = reference::parse_rational(gauge[i][j]);
+    for (std::size_t j = 0; j < n; ++j) g(gauge.size(), j) = found[j].q - reference::parse_rational(want[j]);
+    return reference::rank(g) == reference::rank(g.block(0, gauge.size(), 0, n));
+  }
+  std::vector<double> d(n);
+  double scale = 1;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double w = std::stod(want[j]);
+    d[j] = found[j].d - w;
+    scale = std::max({scale, std::abs(w), std::abs(found[j].d)});
+  }
+  std::vector<std::vector<double>> basis;
+  for (const auto& gv : gauge) {
+    std::vector<double> b(n);
+    for (std::size_t j = 0; j < n; ++j) b[j] = std::stod(gv[j]);
+    for (int pass = 0; pass < 2; ++pass)
+      for (const auto& e : basis) {
+        double p = 0;
+        for (std::size_t j = 0; j < n; ++j) p += b[j] * e[j];
+        for (std::size_t j = 0; j < n; ++j) b[j] -= p * e[j];
+      }
+    double nb = 0;
+    for (double x : b) nb += x * x;
+    if (nb <= 1e-24) continue;
+    for (double& x : b) x /= std::sqrt(nb);
+    basis.push_back(b);
+  }
+  for (const auto& e : basis) {
+    double p = 0;
+    for (std::size_t j = 0; j < n; ++j) p += d[j] * e[j];
+    for (std::size_t j = 0; j < n; ++j) d[j] -= p * e[j];
+  }
+  double r = 0;
+  for (double x : d) r = std::max(r, std::abs(x));
+  return r <= 1e-9 * static_cast<double>(n) * scale;
+}
+
+Checked check_expression(const std::string& result_file, const io::Problem& p) {
+  const io::LagrangianCase& c = p.expression;
+  const json r = read_result(result_file);
+  const std::vector<std::string> st = c.system.state_names();
+  if (r.contains("name") && r["name"] != c.name)
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(st))
+    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
+  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
+  Checker k{result_file, {}};
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (!r.contains("point") || !r.contains("velocity")) {
+    if (r.contains("velocity") || r.contains("point")) k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
+    return k.out;
+  }
+  // the velocity at the result's own point: the reference there (exact if the point is), modulo the gauge
+  const json& pt = r["point"];
+  const json& vel = r["velocity"];
+  if (!pt.is_object()) bad(result_file, "/point", "an object {variable: value}", shown(pt));
+  if (!vel.is_object()) bad(result_file, "/velocity", "an object {variable: d/dt of it}", shown(vel));
+  io::LagrangianCase at = c;
+  at.has_initial = true;
+  at.initial.assign(at.initial.size(), std::nullopt);
+  at.initial_p.assign(at.initial_p.size(), std::nullopt);
+  bool exact = true;
+  const std::size_t n = c.system.n;
+  std::vector<std::string> names = c.system.variable_names();  // q, v, t
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i == c.system.t() && !c.system.has_time) continue;
+    if (!pt.contains(names[i])) bad(result_file, "/point/" + names[i], "a value for every coordinate and velocity (and the time)", "nothing");
+    const Number x = number(result_file, "/point/" + names[i], pt[names[i]]);
+    exact = exact && x.exact;
+    at.initial[i] = exact_value(x);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (pt.contains("p_" + c.system.names[i])) at.initial_p[i] = exact_value(number(result_file, "/point/p_" + c.system.names[i], pt["p_" + c.system.names[i]]));
+  std::vector<Number> found;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    if (!vel.contains(st[i])) bad(result_file, "/velocity/" + st[i], "d/dt of every variable", "nothing");
+    found.push_back(number(result_file, "/velocity/" + st[i], vel[st[i]]));
+    exact = exact && found.back().exact;
+  }
+  k.out.compared.push_back("velocity");
+  io::Printed truth_at;
+  try {
+    io::Problem there = p;
+    there.expression = at;
+    truth_at = exact ? io::printed(reference::solve(there)) : io::printed(fast::solve_expression(at));
+  } catch (const io::InputError& e) {
+    k.out.disagreements.push_back(std::string("point: expected a point of M_c, found one where ") + e.what());
+    return k.out;
+  }
+  const Pointwise<std::string>& truth = *truth_at.pointwise;
+  if (!truth.regular || !truth_at.consistent) {
+    k.out.disagreements.push_back("point: expected a regular point of M_c, found one where " + truth.why);
+    return k.out;
+  }
+  if (!equal_modulo(found, truth.velocity, truth.gauge, exact)) {
+    std::string w;
+    for (std::size_t i = 0; i < st.size(); ++i) w += (i ? ", " : "") + st[i] + "' = " + truth.velocity[i];
+    k.out.disagreements.push_back("velocity: expected (" + w + ")" + (truth.gauge.empty() ? "" : " modulo " + std::to_string(truth.gauge.size()) + " gauge directions") +
+                                  " at the result's point, found " + shown(vel));
+  }
+  return k.out;
+}
+
+}  // namespace
+
+Checked check(const std::string& result_file, const io::Problem& p) {
+  return guarded(p, [&] {
+    Checked o = p.form == io::Form::expression ? check_expression(result_file, p) : check_linear(result_file, p);
+    o.agrees = o.disagreements.empty();
+    return o;
+  });
+}
+
+}  // namespace dcad::api

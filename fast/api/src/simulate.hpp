@@ -1,0 +1,56 @@
+// `dcad simulate`'s routes (internal to dcad::api): the exact flow of a linear model (simulate.cpp),
+// the forced route with its sources' exosystem (simulate_forced.cpp), RK4 on the pointwise CAD
+// (simulate_lagrangian.cpp).
+#pragma once
+
+#include "dcad/api.hpp"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <ostream>
+
+namespace dcad::api {
+
+using Summary = Simulated;
+
+/// io::InputError unless 0 < step, 0 ≤ tstop < ∞ and tstop/step ≤ 1e9 (every simulate route).
+void require_times(const SimulateOptions& opt);
+
+/// Writes the CSV of the CONTRACT (header t, then every variable; full precision) to `out`, one
+/// row at a time as it is computed (memory independent of the number of rows).
+/// Throws io::InputError for an initial condition off M_c (naming the violated constraint).
+/// `deck`: the netlist `c` stands for (then the structured circuit route builds the model; `c` need
+/// only carry the variable names), or nullptr for a `pontryagin` case.
+Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
+                        const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+
+/// As simulate_linear, for a deck with resistors, sources or couplings; `energy` (optional) receives the
+/// energy-balance CSV t,E,P_forces,P_sources,P_constraints,W_… (YM §4: dE/dt = ⟨F x + Bσ, q̇⟩ + the work
+/// of the reactions of affine constraints; for circuits −P_forces is what the resistors dissipate).
+Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                        const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy);
+/// As simulate_forced, for a `pontryagin` case with `forces` (no sources).
+Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                             std::ostream& out, std::ostream& log, std::ostream* energy);
+
+/// The expression form: RK4 on the pointwise CAD's vector field, projected onto M_c at every
+/// evaluation, with Richardson step doubling per output step (simulate_lagrangian.cpp).
+Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+
+/// The summary of a run: rows, and the worst of err[i]/mag[i] (the long-double shadow's difference
+/// relative to each variable's largest magnitude) with the variable's name.
+Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag, const std::vector<std::string>& names);
+
+/// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
+constexpr std::size_t kSimulateBranches = 400;
+
+/// Diagonal D of powers of two such that D⁻¹ A D has off-diagonal row and column sums equal within
+/// a factor 4 (Parlett–Reinsch balancing); similarity by D is exact in floating point.
+std::vector<double> balancing(const Eigen::MatrixXd& a);
+
+/// The initial condition a netlist prescribes, as per-variable exact values (nullopt = free):
+/// IC= of an inductor fixes v (its current), of a capacitor fixes q = C · voltage.
+std::vector<std::optional<io::Rational>> netlist_initial(const io::Netlist& n);
+
+}  // namespace dcad::api

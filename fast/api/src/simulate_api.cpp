@@ -1,0 +1,39 @@
+// dcad::api::simulate: each input form dispatched once, to its integration route.
+#include "guarded.hpp"
+#include "simulate.hpp"
+
+namespace dcad::api {
+
+std::vector<std::string> simulate_columns(const io::Problem& p) {
+  std::vector<std::string> out{"t"};
+  const std::vector<std::string> vars = p.variables();
+  out.insert(out.end(), vars.begin(), vars.end());
+  return out;
+}
+
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
+  return guarded(p, [&] {
+    if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
+      if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the expression form");
+      return simulate_lagrangian(p.expression, options, csv, log);
+    }
+    const bool netlist = p.form == io::Form::netlist;
+    const io::CaseFile& c = p.linear;
+    const bool forced_deck = netlist && p.netlist.forced, forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;
+    if (energy && !forced_deck && !forced_case)
+      throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)");
+    for (const std::string& w : p.warnings()) log << "warning: " << w << "\n";
+    std::vector<std::optional<io::Rational>> init(c.n);
+    if (netlist) init = netlist_initial(p.netlist);
+    else if (!c.initial.empty())
+      for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
+    const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, csv, log, energy)
+                        : forced_case ? simulate_forced_case(c, init, options, csv, log, energy)
+                                      : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, csv, log);
+    log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate)
+        << " relative to each variable's largest magnitude (worst " << sum.worst_variable << "; difference from the same exact flow in long double)\n";
+    return sum;
+  });
+}
+
+}  // namespace dcad::api

@@ -1,0 +1,414 @@
+// `dcad simulate` on forced decks (R, sources, K): the exact forced CAD (reference/forced.hpp)
+// gives M_c(t) = {x = X0 u(t) + Bᵀ y} with u = (1, σ, σ', …) and ẏ = A_y y + A_u u_ext(t).  The
+// sources are, between breakpoints, outputs of a linear exosystem (waveform.hpp), so the whole is
+// an autonomous linear system [y; 1; w] whose flow is one balanced matrix exponential per step
+// length (issue-7 accuracy: no truncation error, only rounding).  At a corner of a PWL/PULSE
+// source σ' jumps, and σ'' carries a Dirac delta: y jumps by A_u,(2) Δσ' (deltas of higher
+// derivatives are refused).  The constrained part X0 u(t) follows the sources exactly.
+//
+// Energy balance (YM §4): along solutions dE/dt = ⟨F, q̇⟩ + (reaction work of the affine
+// constraints): −Σ R v² + Σ (−V) v_V, plus what the current sources supply.
+#include "simulate.hpp"
+
+#include "dcad/io/report.hpp"
+#include "dcad/reference/pipeline/forced.hpp"
+#include "dcad/reference/rlc.hpp"
+
+#include <Eigen/Core>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <charconv>
+#include <complex>
+#include <cmath>
+#include <map>
+
+namespace dcad::api {
+
+namespace ref = dcad::reference;
+using Q = ref::Rational;
+using QM = ref::Matrix<Q>;
+
+namespace {
+
+/// What the integration needs: the forced system, its sources' waveforms, the file for messages.
+struct ForcedScene {
+  std::string file;
+  ref::ForcedSystem<Q> f;
+  std::vector<io::Waveform> waveforms;
+};
+
+template <class S>
+using Mat = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+template <class S>
+using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+
+Mat<double> to_d(const QM& m) {
+  Mat<double> d(m.rows(), m.cols());
+  for (ref::Index i = 0; i < m.rows(); ++i)
+    for (ref::Index j = 0; j < m.cols(); ++j) d(i, j) = m(i, j).convert_to<double>();
+  return d;
+}
+
+/// The exact model: x = X0 u + Bᵀ y on M_c(t), ẏ = A_y y + A_u u_ext, ẋ = V_y y + V_u u_ext.
+struct ForcedModel {
+  std::size_t n = 0, m = 0, dm = 0;
+  std::size_t free = 0;  ///< solution rank: free multipliers (the flow takes the particular solution)
+  long orders = 1;  ///< u has σ⁽⁰⁾ … σ^{(orders−1)}; u_ext one more
+  QM eq, basis, x0, ay, au, vy, vu;
+  ref::ForcedSystem<Q> f;
+};
+
+ForcedModel forced_model(const ForcedScene& deck) {
+  ForcedModel fm;
+  fm.f = deck.f;
+  const ref::ForcedResult<Q> r = ref::forced_tower(fm.f);
+  for (ref::Index i = 0; i < r.conditions.rows(); ++i) {
+    const SourceCondition v = reference::pipeline::decide_condition(r.conditions.block(i, i + 1, 0, r.conditions.cols()), deck.waveforms);
+    if (v.holds.no() || !r.consistent)
+      throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " + v.text + " violated (" +
+                           v.evidence + ")");
+  }
+  if (!r.consistent) throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found M_" + std::to_string(r.steps) + " empty");
+  fm.n = fm.f.s.d.n;
+  fm.m = fm.f.sources;
+  fm.orders = static_cast<long>(r.orders);
+  fm.eq = r.equations;
+  const ref::ForcedMotion<Q> mo = ref::forced_motion(fm.f, r);
+  fm.basis = mo.basis;
+  fm.dm = mo.basis.rows();
+  fm.x0 = mo.x0;
+  fm.vy = mo.vy;
+  fm.vu = mo.vu;
+  fm.ay = mo.ay;
+  fm.au = mo.au;
+  fm.free = ref::rank(mo.gauge.transpose());
+  return fm;
+}
+
+/// u_ext(t) (right limits): (1, σ, σ', …, σ^{(orders)}).
+Vec<double> jets(const ForcedScene& deck, double t, long orders) {
+  const std::size_t m = deck.waveforms.size();
+  Vec<double> u(1 + m * (orders + 1));
+  u(0) = 1;
+  for (long d = 0; d <= orders; ++d)
+    for (std::size_t j = 0; j < m; ++j) u(1 + d * m + j) = deck.waveforms[j].value(t, static_cast<int>(d));
+  return u;
+}
+
+/// Generator of [y; 1; w] and the map w-state → u_ext.
+Mat<double> exo_output(const ForcedScene& deck, long orders) {
+  const std::size_t m = deck.waveforms.size();
+  Mat<double> out = Mat<double>::Zero(1 + m * (orders + 1), 1 + 3 * m);
+  out(0, 0) = 1;
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = deck.waveforms[j];
+    const std::size_t c = 1 + 3 * j;
+    if (w.is_sine()) {
+      Eigen::Matrix2d mm, pw = Eigen::Matrix2d::Identity();
+      mm << w.decay(), -w.omega(), w.omega(), w.decay();
+      for (long d = 0; d <= orders; ++d) {
+        if (d == 0) out(1 + j, c) = 1;
+        out(1 + d * m + j, c + 1) = pw(1, 0);
+        out(1 + d * m + j, c + 2) = pw(1, 1);
+        pw = mm * pw;
+      }
+    } else {
+      out(1 + j, c) = 1;
+      if (orders >= 1) out(1 + m + j, c + 1) = 1;
+    }
+  }
+  return out;
+}
+
+Mat<double> exo_generator(const ForcedScene& deck) {
+  const std::size_t m = deck.waveforms.size();
+  Mat<double> s = Mat<double>::Zero(1 + 3 * m, 1 + 3 * m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = deck.waveforms[j];
+    const std::size_t c = 1 + 3 * j;
+    if (w.is_sine()) {
+      s(c + 1, c + 1) = s(c + 2, c + 2) = w.decay();
+      s(c + 1, c + 2) = -w.omega();
+      s(c + 2, c + 1) = w.omega();
+    } else {
+      s(c, c + 1) = 1;
+    }
+  }
+  return s;
+}
+
+template <class S>
+struct ForcedFlow {
+  Mat<S> g;                 ///< balanced generator D⁻¹ G D
+  std::vector<double> d;    ///< balancing
+  std::map<double, Mat<S>> cache;
+  Vec<S> s;                 ///< balanced state [y; 1; w]
+  std::size_t dm = 0;
+  const Mat<S>& step(double h) {
+    auto it = cache.find(h);
+    if (it == cache.end()) {
+      if (cache.size() > 64) cache.clear();  // substeps cut by breakpoints rarely repeat: keep memory bounded
+      it = cache.emplace(h, (g * static_cast<S>(h)).exp()).first;
+    }
+    return it->second;
+  }
+  /// The sources' exosystem state at t for the substep (t, stop): each waveform is read at the
+  /// substep's midpoint and carried back to t along its piece, so that a time that rounds onto the
+  /// wrong side of a breakpoint (k·PER computed as 0.99999…) cannot pick the neighbouring piece.
+  void set_exo(const ForcedScene& deck, double t, double stop) {
+    const std::size_t m = deck.waveforms.size();
+    const double mid = stop > t ? (t + stop) / 2 : t;
+    s(dm) = S(1) / static_cast<S>(d[dm]);
+    for (std::size_t j = 0; j < m; ++j) {
+      long double w[3];
+      const io::Waveform& wf = deck.waveforms[j];
+      if (wf.is_sine()) {
+        wf.exo_state(t >= wf.p[3].convert_to<double>() || mid < wf.p[3].convert_to<double>() ? t : mid, w);
+        if (mid >= wf.p[3].convert_to<double>() && t < wf.p[3].convert_to<double>()) {  // started within: back along the sine
+          const std::complex<long double> z = std::complex<long double>(w[1], w[2]) *
+                                              std::exp(std::complex<long double>(wf.decay(), wf.omega()) * static_cast<long double>(t - mid));
+          w[1] = z.real();
+          w[2] = z.imag();
+        }
+      } else {
+        const double slope = wf.value(mid, 1);
+        w[0] = wf.value(mid, 0) - slope * (mid - t);
+        w[1] = slope;
+        w[2] = 0;
+      }
+      for (int k = 0; k < 3; ++k) s(dm + 1 + 3 * j + k) = static_cast<S>(w[k]) / static_cast<S>(d[dm + 1 + 3 * j + k]);
+    }
+  }
+  Vec<S> y() const {
+    Vec<S> out(dm);
+    for (std::size_t i = 0; i < dm; ++i) out(i) = s(i) * static_cast<S>(d[i]);
+    return out;
+  }
+  void add_to_y(const Vec<double>& dy) {
+    for (std::size_t i = 0; i < dm; ++i) s(i) += static_cast<S>(dy(i)) / static_cast<S>(d[i]);
+  }
+};
+
+template <class S>
+ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, std::size_t dm) {
+  ForcedFlow<S> f;
+  f.d = d;
+  f.dm = dm;
+  f.g = gen.cast<S>();
+  for (Eigen::Index i = 0; i < gen.rows(); ++i)
+    for (Eigen::Index j = 0; j < gen.cols(); ++j) f.g(i, j) *= static_cast<S>(d[j] / d[i]);
+  f.s = Vec<S>::Zero(gen.rows());
+  return f;
+}
+
+}  // namespace
+
+Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                               const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  require_times(opt);
+  const ForcedModel fm = forced_model(deck);
+  if (fm.free > 0)
+    log << "note: solutions are not unique (" << fm.free << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";
+  const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
+  // initial point: the file's values, M_c(0), then 0 where M_c(0) allows
+  const Vec<double> u0 = jets(deck, 0.0, fm.orders);
+  QM given(0, n + 1), cons(0, n + 1), defaults(0, n + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    QM row(1, n + 1);
+    row(0, i) = Q(1);
+    row(0, n) = initial[i] ? *initial[i] : Q(0);
+    (initial[i] ? given : defaults) = ref::vstack(initial[i] ? given : defaults, row);
+  }
+  // the sources' jets at 0, exactly where rational: a capacitor charged to a DC source's 1 V is on
+  // M_c(0) at C = 1u too (with the jet in double, q_C = 1e-6 missed 1/1000000 and was refused)
+  std::vector<std::optional<Q>> u0q(wu);
+  u0q[0] = Q(1);
+  for (std::size_t k = 1; k < wu; ++k) u0q[k] = deck.waveforms[(k - 1) % m].exact_at_zero(static_cast<int>((k - 1) / m));
+  std::vector<bool> inexact(static_cast<std::size_t>(fm.eq.rows()), false);  // rows through an irrational jet (π)
+  for (ref::Index i = 0; i < fm.eq.rows(); ++i) {
+    QM row(1, n + 1);
+    Q exact(0);
+    double rhs = 0;
+    for (std::size_t j = 0; j < wu; ++j) {
+      if (fm.eq(i, n + j) == 0) continue;
+      rhs -= fm.eq(i, n + j).convert_to<double>() * u0(j);
+      if (u0q[j]) exact -= fm.eq(i, n + j) * *u0q[j];
+      else inexact[static_cast<std::size_t>(i)] = true;
+    }
+    for (std::size_t j = 0; j < n; ++j) row(0, j) = fm.eq(i, j);
+    row(0, n) = inexact[static_cast<std::size_t>(i)] ? Q(rhs) : exact;
+    cons = ref::vstack(cons, row);
+  }
+  const std::vector<std::string> names = [&] {
+    std::vector<std::string> v = c.variables;
+    const std::vector<std::string> j = reference::pipeline::jet_names(deck.waveforms, fm.orders);
+    v.insert(v.end(), j.begin() + 1, j.end());
+    return v;
+  }();
+  ref::AffineSubspace<Q> start = ref::affine_from_augmented(ref::vstack(given, cons));
+  if (start.empty) {
+    for (ref::Index i = 0; i < fm.eq.rows(); ++i)
+      if (ref::affine_from_augmented(ref::vstack(given, cons.block(0, i + 1, 0, n + 1))).empty) {
+        Equation<std::string> e;
+        for (std::size_t j = 0; j < fm.eq.cols(); ++j)
+          if (j != n && fm.eq(i, j) != 0) e.terms.emplace_back(j < n ? j : j - 1, fm.eq(i, j).str());
+        e.rhs = Q(-fm.eq(i, n)).str();
+        throw io::InputError(c.file + ": initial condition: expected a point of M_c(0), found one that violates " + io::equation_text(e, names) +
+                             " at t = 0" + (inexact[static_cast<std::size_t>(i)] ? " (a source's jet at 0 involves pi: checked with it rounded to double)" : ""));
+      }
+  }
+  const ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(ref::vstack(given, cons), defaults));
+  const std::vector<Q>& x0q = with_defaults.empty ? start.point : with_defaults.point;
+  Vec<double> x0(n);
+  for (std::size_t i = 0; i < n; ++i) x0(i) = x0q[i].convert_to<double>();
+  const Mat<double> X0 = to_d(fm.x0), B = to_d(fm.basis), P = to_d(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis);
+  const Mat<double> Ay = to_d(fm.ay), Au = to_d(fm.au), Vy = to_d(fm.vy), Vu = to_d(fm.vu);
+  for (const Mat<double>* mtx : {&X0, &B, &Ay, &Au, &Vy, &Vu})
+    if (!mtx->allFinite()) throw io::InputError(c.file + ": simulate: expected equations of motion within double's range, found larger coefficients");
+  const Vec<double> y0 = P * (x0 - X0 * u0.head(wu));
+  // impulses: a corner of a piecewise-linear source (σ' jumps) feeds A_u's σ'' column; deeper is refused
+  for (std::size_t j = 0; j < m; ++j) {
+    if (deck.waveforms[j].constant() || deck.waveforms[j].breakpoints(std::min(opt.tstop, deck.waveforms[j].horizon())).empty()) continue;
+    for (long d = deck.waveforms[j].is_sine() ? 2 : 3; d <= fm.orders; ++d)
+      if (Au.col(1 + d * m + j).cwiseAbs().maxCoeff() > 0)
+        throw io::InputError(c.file + ": simulate: " + deck.waveforms[j].element + " has breakpoints and the motion needs its derivative of order " +
+                             std::to_string(d) + " (a derivative of a Dirac delta): smooth it (finite TR/TF) or use SIN");
+  }
+  const Mat<double> W = exo_output(deck, fm.orders), S = exo_generator(deck);
+  Mat<double> gen = Mat<double>::Zero(dm + 1 + 3 * m, dm + 1 + 3 * m);
+  gen.topLeftCorner(dm, dm) = Ay;
+  gen.topRightCorner(dm, 1 + 3 * m) = Au * W;
+  gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
+  const std::vector<double> bal = balancing(gen * opt.step);
+  ForcedFlow<double> flow = make_flow<double>(gen, bal, dm);
+  ForcedFlow<long double> shadow = make_flow<long double>(gen, bal, dm);
+  for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0(i)) / bal[i];
+  std::vector<double> breaks;
+  for (const io::Waveform& w : deck.waveforms) try {
+      for (double b : w.breakpoints(opt.tstop)) breaks.push_back(b);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
+    }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  // energy: E(x) = ½ xᵀHx (+ gᵀx), and the power of the forces ⟨F x, q̇⟩, of the sources ⟨Bσ, q̇⟩ (the
+  // q-rows: the force one-form is horizontal, YM §4) and, from the balance, of the reactions of the
+  // affine constraints (current sources): dE/dt = ⟨F x + Bσ, q̇⟩ + P_constraints.
+  const Mat<double> H = to_d(fm.f.s.hessian), F = to_d(fm.f.force.rows() ? fm.f.force : QM(n, n)), Bs = to_d(fm.f.source_force);
+  const Vec<double> grad = to_d(QM::column(fm.f.s.gradient));
+  const std::size_t nq = n / 3;
+  bool has_i = false;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < m; ++j) has_i = has_i || fm.f.shift(i, j) != 0;
+  double wr = 0, wv = 0, wi = 0, last_pr = 0, last_pv = 0, last_pi = 0, worst_balance = 0, power_scale = 0;
+  out << "t";
+  for (const std::string& v : c.variables) out << "," << v;
+  out << "\n";
+  if (energy) *energy << "t,E,P_forces,P_sources,P_constraints,W_forces,W_sources,W_constraints\n";
+  std::string line;
+  char buf[32];
+  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
+  std::vector<long double> err(n, 0), mag(n, 0);
+  std::size_t next_break = 0;
+  double e0 = 0;
+  for (long k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) * opt.step;
+    const Vec<double> u = jets(deck, t, fm.orders);
+    const Vec<double> y = flow.y();
+    const Vec<double> x = X0 * u.head(wu) + B.transpose() * y;
+    const Vec<long double> xl = X0.cast<long double>() * u.head(wu).cast<long double>() + B.transpose().cast<long double>() * shadow.y();
+    for (std::size_t i = 0; i < n; ++i) {
+      err[i] = std::max(err[i], std::abs(xl(i) - static_cast<long double>(x(i))));
+      mag[i] = std::max(mag[i], std::abs(xl(i)));
+    }
+    line.clear();
+    put(t);
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      line += ',';
+      put(x(i));
+    }
+    line += '\n';
+    out << line;
+    // energy balance at this row
+    const Vec<double> xdot = Vy * y + Vu * u;
+    const double en = 0.5 * x.dot(H * x) + grad.dot(x);
+    const double de = (H * x + grad).dot(xdot);
+    const Vec<double> fx = F * x, bs = Bs * u.segment(1, m);
+    const double pr = fx.head(nq).dot(xdot.head(nq)), pv = bs.head(nq).dot(xdot.head(nq));
+    const double pi = de - pr - pv;  // what the reactions of the affine constraints supply
+    power_scale = std::max({power_scale, std::abs(de), std::abs(pr), std::abs(pv)});
+    if (!has_i) worst_balance = std::max(worst_balance, std::abs(pi));
+    if (k == 0) e0 = en;
+    if (k > 0) {
+      wr += opt.step * (pr + last_pr) / 2;
+      wv += opt.step * (pv + last_pv) / 2;
+      wi += opt.step * (pi + last_pi) / 2;
+    }
+    last_pr = pr, last_pv = pv, last_pi = pi;
+    if (energy) {
+      line.clear();
+      for (double v : {t, en, pr, pv, pi, wr, wv, wi}) {
+        if (!line.empty()) line += ',';
+        put(v);
+      }
+      *energy << line << "\n";
+    }
+    if (k == steps) {
+      log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t) << ") = " << io::float_text(en) << "; work of the forces "
+          << io::float_text(wr) << " (dissipated " << io::float_text(-wr) << "), of the sources " << io::float_text(wv)
+          << (has_i ? ", of the affine constraints (current sources) " + io::float_text(wi) : "") << " (trapezoid on the output rows)";
+      if (!has_i)
+        log << "; balance dE/dt = <F, qdot> holds to " << io::float_text(power_scale > 0 ? worst_balance / power_scale : 0.0)
+            << " relative at the rows";
+      log << "\n";
+      break;
+    }
+    // advance one output step, stopping at the breakpoints inside it
+    double at = t;
+    const double to = static_cast<double>(k + 1) * opt.step;
+    while (true) {
+      const double stop = next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
+      const double h = stop - at;
+      flow.set_exo(deck, at, stop);
+      shadow.set_exo(deck, at, stop);
+      if (h > 0) {
+        flow.s = flow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * flow.s;
+        shadow.s = shadow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * shadow.s;
+      }
+      at = stop;
+      // a breakpoint at `at`: σ' jumps, σ'' has a delta of that weight
+      while (next_break < breaks.size() && breaks[next_break] <= at + 1e-12 * opt.step) {
+        const double tb = breaks[next_break++];
+        const double delta = std::max(1e-9 * opt.step, std::abs(tb) * 1e-12), before = tb - delta, after = tb + delta;
+        Vec<double> dy = Vec<double>::Zero(dm);
+        for (std::size_t j = 0; j < m; ++j)
+          for (long d = 1; d <= fm.orders; ++d) {
+            const io::Waveform& wf = deck.waveforms[j];
+            // σ^{(d−1)} across the corner; σ itself is continuous for PULSE/PWL, its slope is read off the pieces
+            const double jump = wf.is_sine() || d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
+            if (jump != 0) dy += Au.col(1 + d * m + j) * jump;
+          }
+        flow.add_to_y(dy);
+        shadow.add_to_y(dy);
+      }
+      if (stop >= to) break;
+    }
+  }
+  return summarize(steps + 1, err, mag, c.variables);
+}
+
+Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
+    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
+  return simulate_scene(ForcedScene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms}, c, initial, opt, out, log, energy);
+}
+
+Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                                     std::ostream& out, std::ostream& log, std::ostream* energy) {
+  return simulate_scene(ForcedScene{c.file, reference::pipeline::forced_system(c), {}}, c, initial, opt, out, log, energy);
+}
+
+}  // namespace dcad::api

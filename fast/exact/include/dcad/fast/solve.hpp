@@ -1,0 +1,38 @@
+// fast::solve — the fast twin on any problem (issue 26): the exact input rounded once (exact.hpp,
+// with the assessment fast's certainty rests on), then fast's own routes in double —
+//   linear cases        the CAD in E_D's coordinates, one rank decision per step      fast/cad.hpp
+//   LC netlists         the graph route on the dimensionless twin (dcad/units.hpp)    fast/circuit.hpp
+//   forces and sources  YM §4 with orthonormal jet rows                              fast/forced.hpp
+//   the expression form the pointwise CAD on tracked doubles (dcad::fast_nonlinear)
+// A result rests on the separation hypothesis of fast/rank.hpp: `certified` says yes only when every
+// decision was on the right side of its threshold; otherwise unknown, and `note` names the cause.
+#pragma once
+
+#include "dcad/fast/rank.hpp"
+#include "dcad/inspection.hpp"
+#include "dcad/io/problem.hpp"
+#include "dcad/solution.hpp"
+
+namespace dcad::fast {
+
+using Solution = dcad::Solution<double>;
+
+/// Circuits up to this many branches get their equations of motion (dense) and, up to
+/// kAdaptedBranches, the §7 adapted constraints.
+constexpr std::size_t kDenseBranches = 120;
+constexpr std::size_t kAdaptedBranches = 24;
+
+/// io::InputError for bad input: a value beyond double's range, a form that is certainly not Dirac or
+/// certainly degenerate.  `opt`: the decisions' thresholds (the input assessment is made here).
+Solution solve(const io::Problem& p, const Parts& parts = {}, const Options& opt = {});
+
+/// What a `dirac` case's structure is (CEF §4): each answer with its verdict; an uncertain one is
+/// listed in `uncertain` with its evidence, and its value is the likely one.
+Inspection inspect(const io::CaseFile& c, const Options& opt = {});
+
+/// The routes, for dcad::api's fallbacks: the expression form in double (fast_nonlinear) and the LC
+/// graph route.
+Solution solve_expression(const io::LagrangianCase& c);
+Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& opt = {});
+
+}  // namespace dcad::fast

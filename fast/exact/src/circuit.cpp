@@ -1,0 +1,132 @@
+// The fast twin on an LC netlist: the graph route (fast/circuit.hpp) on the circuit's dimensionless
+// twin (dcad/units.hpp, made exactly by dcad::io), mapped back to the circuit's units; the equations of
+// motion by fast::circuit_motion up to kDenseBranches branches, the §7 constraints by the generic fast
+// pipeline up to kAdaptedBranches.
+#include "dcad/fast/circuit_motion.hpp"
+#include "dcad/fast/exact.hpp"
+#include "dcad/fast/solve.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dcad::fast {
+
+Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& options);
+
+namespace {
+
+/// The netlist for the graph route, values rounded to double (opt records whether exactly).
+CircuitGraph graph_of(const io::Netlist& n, Options& opt) {
+  std::vector<reference::Rational> values;  // of the elements (an empty branch has none)
+  for (const auto& b : n.circuit.branches)
+    if (b.kind != BranchKind::empty) values.push_back(b.value);
+  const std::vector<double> v = to_double_values(values, opt);
+  CircuitGraph g;
+  g.nodes = n.circuit.nodes;
+  std::size_t next = 0;
+  for (const auto& b : n.circuit.branches) g.branches.push_back({b.kind, b.from, b.to, b.kind == BranchKind::empty ? 0.0 : v[next++]});
+  return g;
+}
+
+/// x_j = s_j x̃_j: coefficient a_j of a row in x̃ becomes a_j / s_j in x; the row is then divided by
+/// its largest coefficient.
+void unscale(Equation<double>& e, const std::vector<double>& s) {
+  double big = 0;
+  for (auto& [var, coeff] : e.terms) {
+    coeff /= s[var];
+    big = std::max(big, std::abs(coeff));
+  }
+  if (big == 0) big = 1;
+  for (auto& term : e.terms) term.second /= big;
+  if (e.rhs != 0) e.rhs /= big;
+}
+
+/// The solution of the dimensionless twin in the circuit's units: rows x̃ → x, and the equations of
+/// motion dz/dt = (S F̃ S⁻¹ / T) z + S f̃ / T + S G̃ λ / T.
+void to_circuit_units(Solution& r, const Units& u, std::size_t branches) {
+  const std::vector<double> s = u.variable_scales(branches, false), s_nu = u.variable_scales(branches, true);
+  const double t = u.time();
+  for (Level<double>& level : r.tower)
+    for (Equation<double>& e : level.constraints) unscale(e, s);
+  if (r.adapted) {
+    for (Equation<double>& e : r.adapted->chi) unscale(e, s_nu);
+    for (Equation<double>& e : r.adapted->abridged) unscale(e, s_nu);
+  }
+  if (r.motion) {
+    Motion<double>& m = *r.motion;
+    for (std::size_t i = 0; i < m.coordinates.size(); ++i) {
+      const double si = s[m.coordinates[i]];
+      for (std::size_t j = 0; j < m.coordinates.size(); ++j) m.f_matrix[i][j] *= si / (s[m.coordinates[j]] * t);
+      m.f[i] *= si / t;
+      for (double& g : m.g[i]) g *= si / t;
+    }
+  }
+}
+
+}  // namespace
+
+Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& options) {
+  // the twin without units: double sees values near 1 whatever the circuit's units (fF … kH)
+  const Units units = io::units_of(deck);
+  const io::Netlist n = io::dimensionless(deck, units);
+  Options opt = options;
+  const CircuitTower t = circuit_tower(graph_of(n, opt), opt);
+  const std::size_t branches = n.circuit.branches.size();
+  const bool dense = branches <= kDenseBranches;
+  Solution out;
+  out.file = deck.file;
+  out.name = deck.title;
+  out.variables = names.variables;
+  if (branches <= kAdaptedBranches && parts.adapted) {  // §7 on T*TQ by the generic fast pipeline
+    io::CaseFile twin = io::netlist_case(n, true);
+    twin.variables = names.variables;
+    const Solution generic = solve_linear(twin, Parts{false, false, false, true}, options);
+    out.adapted = generic.adapted;
+    out.certified = generic.certified;
+  }
+  out.steps = t.steps;
+  out.consistent = true;  // no sources: x = 0 solves
+  out.solution_rank = t.solution_rank;
+  for (std::size_t k = 0; k < t.dims.size(); ++k) {
+    Level<double> level{t.dims[k], {}};
+    for (const SparseRow& row : t.equations[k]) {
+      Equation<double> e;
+      for (const Term& term : row) e.terms.emplace_back(term.var, term.coeff);
+      e.rhs = 0;
+      level.constraints.push_back(e);
+    }
+    out.tower.push_back(level);
+  }
+  if (dense && parts.reduced) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
+    const CircuitMotion mo = circuit_motion(graph_of(n, opt), t, std::vector<int>(names.coordinates.begin(), names.coordinates.end()), opt);
+    out.certified &= mo.certain;
+    out.decisions.float_tests += static_cast<long>(mo.decisions.size());
+    Motion<double> m;
+    m.coordinates.assign(mo.coords.begin(), mo.coords.end());
+    const double tiny = 1e-13 * (1 + (mo.f_matrix.size() ? mo.f_matrix.cwiseAbs().maxCoeff() : 0.0));  // display: rounding-level as 0
+    for (Eigen::Index i = 0; i < mo.f_matrix.rows(); ++i) {
+      m.f_matrix.emplace_back();
+      for (Eigen::Index j = 0; j < mo.f_matrix.cols(); ++j) m.f_matrix.back().push_back(std::abs(mo.f_matrix(i, j)) <= tiny ? 0.0 : mo.f_matrix(i, j));
+      m.f.push_back(0);  // no sources: f = 0
+      m.g.emplace_back();
+      for (Eigen::Index j = 0; j < mo.g.cols(); ++j) m.g.back().push_back(mo.g(i, j));
+    }
+    out.motion = m;
+  }
+  to_circuit_units(out, units, branches);
+  out.decisions.float_tests += static_cast<long>(t.decisions.size());
+  out.certified &= t.certain;
+  std::string how = t.physical ? "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision)"
+                               : "graph route (CEF §6 closed form in loop coordinates, signed values)";
+  how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" + std::to_string(units.b) + ", time unit 1e" +
+         std::to_string(units.m()) + " s)";
+  if (!dense)
+    how += "; equations of motion omitted above " + std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
+  const std::string caveat = input_caveat(opt);
+  out.note = how + (out.certified.yes() ? ""
+                    : !caveat.empty()    ? "; " + caveat
+                                         : "; a rank decision fell between the zero and nonzero thresholds");
+  return out;
+}
+
+}  // namespace dcad::fast

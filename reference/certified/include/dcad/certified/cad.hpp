@@ -1,0 +1,96 @@
+// dcad::certified::constraint_tower — the CAD with certified decisions as a library call (issue 15; the
+// route of `dcad solve --backend certified`, issue 14).  Every route runs the reference's own algorithm
+// (reference::constraint_tower, CEF Remark 5.2) on another scalar, cheapest first:
+//   1. SmallRational, then WideRational: the same exact arithmetic in 64-bit, then 128-bit words (up to
+//      kSmallFirstUpTo variables), or reference::Overflow when a number does not fit;
+//   2. Ball: floating point with every zero test proved, or certified::Uncertain (ball.hpp);
+//   3. mpq_rational: the reference itself.
+// A route that finishes took every branch the exact run takes, so the discrete answers — dims of the
+// M_k, c, consistency, solution rank — are the exact ones whichever route gave them.
+#pragma once
+
+#include "dcad/certified/cascade.hpp"
+#include "dcad/reference/cad.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dcad::certified {
+
+using reference::Index;
+using reference::Matrix;
+
+struct CertifiedTower {
+  Route route = Route::exact;
+  int word_bits = 0;  ///< machine_words: 64, or 128 when a number outgrew 64 bits
+  std::vector<long> dims;  ///< dim M_0 … M_c (−1 for an empty M_k)
+  Index steps = 0;         ///< c
+  bool consistent = true;
+  Index solution_rank = 0;  ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]
+  long float_decisions = 0, verified_decisions = 0;  ///< balls: zero tests proved in floating point, by exact comparison
+  std::string why;  ///< why the cheaper routes gave up ("" on the first)
+};
+
+namespace detail {
+
+template <class S, class Lift>
+Matrix<S> lift(const Matrix<Rational>& m, Lift f) {
+  Matrix<S> out(m.rows(), m.cols());
+  for (Index i = 0; i < m.rows(); ++i)
+    for (Index j = 0; j < m.cols(); ++j) out(i, j) = f(m(i, j));
+  return out;
+}
+
+/// The system and the initial equations over S, entry by entry (the Dirac structure by its canonical basis).
+template <class S, class Lift>
+CertifiedTower run(const reference::LinearSystem<Rational>& s, const Matrix<Rational>& initial, Route route, Lift f) {
+  reference::LinearSystem<S> t;
+  t.d.n = s.d.n;
+  t.d.d = reference::Subspace<S>::span(lift<S>(s.d.d.basis(), f));
+  t.hessian = lift<S>(s.hessian, f);
+  for (const Rational& g : s.gradient) t.gradient.push_back(f(g));
+  t.constant = f(s.constant);
+  const reference::CadResult<S> r = reference::constraint_tower(t, lift<S>(initial, f));
+  CertifiedTower out;
+  out.route = route;
+  for (const auto& st : r.tower) out.dims.push_back(st.dim());
+  out.steps = r.steps;
+  out.consistent = r.consistent;
+  out.solution_rank = r.solution_rank;
+  return out;
+}
+
+}  // namespace detail
+
+/// The constraint tower of an exact linear system (CEF §5), decided by the cheapest route that can
+/// (cascade.hpp).
+inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& s, const Matrix<Rational>& initial = Matrix<Rational>()) {
+  std::string narrow;  // why 64-bit words gave up, if they did
+  const Cascaded<CertifiedTower> c = cascade<CertifiedTower>(
+      s.d.n <= reference::kSmallFirstUpTo,
+      [&](int& bits) {
+        try {
+          bits = 64;
+          return detail::run<reference::SmallRational>(s, initial, Route::machine_words,
+                                                       [](const Rational& q) { return reference::SmallRational::from(q); });
+        } catch (const reference::Overflow& e) {
+          narrow = std::string("64-bit words: ") + e.what() + "; ";
+          bits = 128;
+          return detail::run<reference::WideRational>(s, initial, Route::machine_words,
+                                                      [](const Rational& q) { return reference::WideRational::from(q); });
+        }
+      },
+      [&] { return detail::run<Ball>(s, initial, Route::balls, [](const Rational& q) { return Ball::enclosing(q); }); },
+      [&] { return detail::run<Rational>(s, initial, Route::exact, [](const Rational& q) { return q; }); });
+  CertifiedTower out = c.result;
+  out.route = c.route;
+  out.word_bits = c.word_bits;
+  out.float_decisions = c.counts.decisions;
+  out.verified_decisions = c.counts.verifications;
+  out.why = narrow;
+  if (!c.overflow.empty()) out.why += "128-bit words: " + c.overflow + "; ";
+  if (!c.uncertain.empty()) out.why += "balls: " + c.uncertain;
+  return out;
+}
+
+}  // namespace dcad::certified

@@ -1,0 +1,286 @@
+// dcad::Solution<N> — what every backend's solve returns for every problem kind (issue 26): the
+// constraint tower with each step's constraints, M_c, the equations of motion, the constraint classes
+// and the Dirac bracket, the constraints adapted to the primary ones, and how each answer was decided.
+// N is the twin's number: reference::Rational (exact), double (fast), certified::Ball (a certified
+// enclosure).  Plain data: text and JSON are written once, by dcad::io (io/report.hpp).
+//
+// CEF: the tower M_0 ⊇ M_1 ⊇ … ⊇ M_c (§5), the solution rank dim(ker ω_D ∩ T M_c) (Thm 5.4(b)), the
+// equations of motion ż = F z + f + G λ on M_c (5.12), first/second class and J* (Lemma 3.23), the
+// adapted constraints (Thm 3.28 / 7.4); YM §4: forces and sources; V §3: moving M_k(t).
+#pragma once
+
+#include "dcad/truth.hpp"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dcad {
+
+/// What a solve computes beyond the CONTRACT's required keys and the tower (`dcad solve --with`): a
+/// CI that wants dims and the solution rank need not pay for the §7 embedding (4n variables).
+struct Parts {
+  bool final_constraints = true;  ///< "final": the equations of M_c
+  bool reduced = true;            ///< "reduced": the equations of motion (CEF (5.12))
+  bool classes = true;            ///< "classes": first/second class and the Dirac bracket (`constrained` cases)
+  bool adapted = true;            ///< "adapted": constraints adapted to the primary ones (Thm 3.28 / 7.4)
+  static Parts none() { return {false, false, false, false}; }
+};
+
+/// Σ_j a_j x_j = rhs, sparse: (column, coefficient) with the columns of Solution::columns().
+template <class N>
+struct Equation {
+  std::vector<std::pair<std::size_t, N>> terms;
+  N rhs{};
+};
+
+/// A dense matrix by rows.
+template <class N>
+using Rows = std::vector<std::vector<N>>;
+
+/// M_k: its dimension (−1: empty) and the constraints that cut it out of M_{k−1}.
+template <class N>
+struct Level {
+  long dim = 0;
+  std::vector<Equation<N>> constraints;
+};
+
+/// ż = F z + f + S u(t) + G λ on M_c in the coordinates z = x[coordinates]  [CEF (5.12); YM §4 with
+/// the sources' jets u(t) = (V1(t), V1'(t), …)]: λ is free, so (F, f, S) are fixed modulo span(G).
+template <class N>
+struct Motion {
+  std::vector<std::size_t> coordinates;  ///< variable indices
+  Rows<N> f_matrix;                      ///< F
+  std::vector<N> f;                      ///< f
+  Rows<N> g;                             ///< G: its columns span the free directions (solution rank many)
+  std::vector<std::string> source_columns;  ///< the names of u's entries (forced systems)
+  Rows<N> s;                                ///< S (rows × source_columns)
+};
+
+/// The constraints of M_c: r − 2s first class, 2s second class, and the Dirac bracket J*  [CEF Lemma 3.23].
+template <class N>
+struct Classes {
+  long first_class = 0, second_class = 0;
+  std::vector<Equation<N>> second_class_constraints;  ///< χ (exact routes)
+  Rows<N> dirac_bracket;                              ///< J* (exact routes)
+};
+
+/// CEF Thm 3.28 / 7.4: the second class constraints adapted to the primary ones and the constraints of
+/// the abridged total energy E_AT, in `variables` (N's, or T*TQ's for a `pontryagin` case, §7).
+template <class N>
+struct Adapted {
+  std::string setting;  ///< "N" (constrained) or "T*TQ" (pontryagin, §7)
+  std::vector<std::string> variables;
+  long s_prime = 0, secondary_first_class = 0;
+  std::vector<Equation<N>> chi, abridged;
+};
+
+/// M_c exactly: point + span of the rows of `basis` (what `dcad check` compares a claimed M_c with).
+template <class N>
+struct ExactSubspace {
+  Rows<N> basis;
+  std::vector<N> point;
+};
+
+/// How the answers were reached (the CONTRACT's `decisions`).
+struct Decisions {
+  long float_tests = 0;          ///< zero tests certified in floating point (balls), or fast's rank decisions
+  long exact_verifications = 0;  ///< settled by comparing exact input numbers
+  long exact_recomputation = 0;  ///< 1 if recomputed exactly
+  long machine_words = 0;        ///< 1 if the whole run was exact in 64- or 128-bit rationals
+  int word_bits = 0;             ///< that run's word: 64, or 128 when a number outgrew 64 bits
+};
+
+/// The circuit's graph facts (CEF §6 Thms 6.4, 6.6, 6.8; YM §4's sources), by signed branch names.
+struct CircuitFacts {
+  long branches = 0, nodes = 0;     ///< nodes with ground
+  long empty_loops = 0;             ///< dim of the cycle space of the empty branches (Thm 6.8)
+  long kvlpc_graph = 0;             ///< Thm 6.4's count of KVL equations of purely capacitive loops
+  bool physical = true;             ///< no negative L or C (Remark 6.7)
+  bool has_empty_branch = false;
+  std::vector<std::string> branch_names, branch_kinds;  ///< LC decks: each branch and "inductive", "capacitive" or "empty"
+  std::vector<std::vector<std::string>> pc_loop_branches, empty_loop_branches;
+  /// with resistors, sources or couplings (YM §4): the element counts and the loops and cutsets that
+  /// constrain the circuit — CV loops fix charges by the sources, LI cutsets currents
+  bool forced = false;
+  long inductors = 0, capacitors = 0, resistors = 0, voltage_sources = 0, current_sources = 0, wires = 0, couplings = 0;
+  std::vector<std::vector<std::string>> cv_loops, source_loops, li_cutsets, source_cutsets;
+};
+
+/// A condition on the sources alone that the tower found (KVL of a loop of voltage sources, KCL of a
+/// cutset of current sources): b + Σ c σ^(d)(t) = 0, decided against the waveforms.
+struct SourceCondition {
+  std::string text;      ///< "V1(t) - V2(t) = 0"
+  Truth holds = yes;     ///< for all t ≥ 0: yes, no, or unknown (different waveforms that agree where sampled)
+  std::string evidence;  ///< why
+};
+
+/// The pointwise CAD of the expression form (reference/nonlinear/pointwise.hpp) at its point.
+template <class N>
+struct Pointwise {
+  std::string route;  ///< "pointwise exact" or "pointwise double"
+  bool regular = true;
+  std::string why;    ///< inconsistent or singular: the reason
+  std::string time_name;  ///< the time variable, if the system has one
+  N time{};
+  std::vector<N> point, velocity;  ///< x = (q, v, p) and one ẋ at the point
+  Rows<N> gauge;                   ///< the other solutions' differences (solution rank many)
+  std::vector<std::string> first_constraints;  ///< M_1 as formulas: p = ∂L/∂v and the constraints
+  struct Tangent {
+    std::string solved_for;
+    std::vector<std::pair<std::string, N>> terms;  ///< Σ g_j s_j over the chart variables (q, v, t)
+    N rhs{};
+  };
+  struct PivotValue {
+    std::string row, column;
+    N value{};
+  };
+  struct Step {
+    long dim = 0;
+    std::vector<Tangent> constraints;  ///< the tangent equations of M_{k+1} at the point (k ≥ 1)
+    std::vector<PivotValue> pivots;    ///< of the system for (d/dt s, λ) on M_k
+  };
+  std::vector<Step> levels;  ///< levels[k] describes M_{k+1}
+  long order = 0, checked_order = 0, moves = 0;
+};
+
+template <class N>
+struct Solution {
+  std::string backend;                 ///< reference | fast | certified
+  Truth certified = yes;               ///< every decision behind the result exact or provably right: yes; else unknown
+  bool exact = false;                  ///< every number is exact (a row's absent entries are exact zeros)
+  std::string file, name;              ///< the problem's
+  std::vector<std::string> variables;  ///< x's names
+  std::vector<std::string> jets;       ///< more columns of the tower's equations after x: the sources' jets (forced)
+  std::vector<Level<N>> tower;         ///< M_0 … M_c, or M_0 … M_k with M_k = ∅
+  long steps = 0;                      ///< c (or k of the empty M_k)
+  bool consistent = true;
+  std::optional<long> solution_rank;   ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]; none when inconsistent or singular
+  std::optional<std::vector<Equation<N>>> final_constraints;  ///< M_c = {a·x = b}
+  std::optional<ExactSubspace<N>> final_exact;                ///< M_c as point + span (exact routes)
+  std::optional<Motion<N>> motion;
+  std::optional<Classes<N>> classes;
+  std::optional<Adapted<N>> adapted;
+  std::optional<CircuitFacts> circuit;
+  std::vector<std::string> source_names;  ///< σ, in order (forced netlists)
+  std::vector<SourceCondition> source_conditions;
+  std::optional<Pointwise<N>> pointwise;  ///< the expression form
+  Decisions decisions;
+  std::vector<std::string> warnings;      ///< the reader's (a netlist's ignored cards …)
+  std::string note;                       ///< how the result was reached; why it is not certified
+
+  std::vector<long> dims() const {
+    std::vector<long> d;
+    for (const Level<N>& l : tower) d.push_back(l.dim);
+    return d;
+  }
+  bool unique() const { return consistent && solution_rank && *solution_rank == 0; }
+  /// The names of the equations' columns: the variables, then the jets.
+  std::vector<std::string> columns() const {
+    std::vector<std::string> c = variables;
+    c.insert(c.end(), jets.begin(), jets.end());
+    return c;
+  }
+};
+
+/// Drops what `parts` does not ask for (routes that compute everything keep only what was asked).
+template <class N>
+void keep_parts(Solution<N>& s, const Parts& parts) {
+  if (!parts.final_constraints) {
+    s.final_constraints.reset();
+    s.final_exact.reset();
+  }
+  if (!parts.reduced) s.motion.reset();
+  if (!parts.classes) s.classes.reset();
+  if (!parts.adapted) s.adapted.reset();
+}
+
+/// The same solution with every number mapped by f (e.g. a machine-word rational to mpq).
+template <class To, class From, class F>
+Solution<To> map_numbers(const Solution<From>& s, F f) {
+  const auto eq = [&](const Equation<From>& e) {
+    Equation<To> o;
+    for (const auto& [j, a] : e.terms) o.terms.emplace_back(j, f(a));
+    o.rhs = f(e.rhs);
+    return o;
+  };
+  const auto eqs = [&](const std::vector<Equation<From>>& v) {
+    std::vector<Equation<To>> o;
+    for (const auto& e : v) o.push_back(eq(e));
+    return o;
+  };
+  const auto vec = [&](const std::vector<From>& v) {
+    std::vector<To> o;
+    for (const From& x : v) o.push_back(f(x));
+    return o;
+  };
+  const auto rows = [&](const Rows<From>& m) {
+    Rows<To> o;
+    for (const auto& r : m) o.push_back(vec(r));
+    return o;
+  };
+  Solution<To> o;
+  o.backend = s.backend;
+  o.certified = s.certified;
+  o.exact = s.exact;
+  o.file = s.file;
+  o.name = s.name;
+  o.variables = s.variables;
+  o.jets = s.jets;
+  for (const Level<From>& l : s.tower) o.tower.push_back({l.dim, eqs(l.constraints)});
+  o.steps = s.steps;
+  o.consistent = s.consistent;
+  o.solution_rank = s.solution_rank;
+  if (s.final_constraints) o.final_constraints = eqs(*s.final_constraints);
+  if (s.final_exact) o.final_exact = ExactSubspace<To>{rows(s.final_exact->basis), vec(s.final_exact->point)};
+  if (s.motion) {
+    const Motion<From>& m = *s.motion;
+    o.motion = Motion<To>{m.coordinates, rows(m.f_matrix), vec(m.f), rows(m.g), m.source_columns, rows(m.s)};
+  }
+  if (s.classes) o.classes = Classes<To>{s.classes->first_class, s.classes->second_class, eqs(s.classes->second_class_constraints),
+                                         rows(s.classes->dirac_bracket)};
+  if (s.adapted)
+    o.adapted = Adapted<To>{s.adapted->setting, s.adapted->variables, s.adapted->s_prime, s.adapted->secondary_first_class,
+                            eqs(s.adapted->chi), eqs(s.adapted->abridged)};
+  o.circuit = s.circuit;
+  o.source_names = s.source_names;
+  o.source_conditions = s.source_conditions;
+  if (s.pointwise) {
+    const Pointwise<From>& p = *s.pointwise;
+    Pointwise<To> q;
+    q.route = p.route;
+    q.regular = p.regular;
+    q.why = p.why;
+    q.time_name = p.time_name;
+    q.time = f(p.time);
+    q.point = vec(p.point);
+    q.velocity = vec(p.velocity);
+    q.gauge = rows(p.gauge);
+    q.first_constraints = p.first_constraints;
+    for (const auto& l : p.levels) {
+      typename Pointwise<To>::Step k;
+      k.dim = l.dim;
+      for (const auto& t : l.constraints) {
+        typename Pointwise<To>::Tangent u;
+        u.solved_for = t.solved_for;
+        for (const auto& [name, g] : t.terms) u.terms.emplace_back(name, f(g));
+        u.rhs = f(t.rhs);
+        k.constraints.push_back(u);
+      }
+      for (const auto& pv : l.pivots) k.pivots.push_back({pv.row, pv.column, f(pv.value)});
+      q.levels.push_back(k);
+    }
+    q.order = p.order;
+    q.checked_order = p.checked_order;
+    q.moves = p.moves;
+    o.pointwise = q;
+  }
+  o.decisions = s.decisions;
+  o.warnings = s.warnings;
+  o.note = s.note;
+  return o;
+}
+
+}  // namespace dcad

@@ -1,0 +1,415 @@
+#include "dcad/io/report.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <sstream>
+
+namespace dcad::io {
+
+using nlohmann::json;
+using Eq = Equation<std::string>;
+
+std::string float_text(double x) {
+  if (x == 0) return "0.0";  // never "-0"
+  std::ostringstream o;
+  o.precision(17);
+  o << x;
+  std::string s = o.str();
+  // a rounded value must not read as an exact integer string ("-1" for -1.000000000000000000001):
+  // `dcad check` compares integer and fraction strings exactly
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string equation_text(const Eq& e, const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& [j, coeff] : e.terms) {
+    std::string c = coeff;
+    const bool neg = c[0] == '-';
+    if (neg) c = c.substr(1);
+    s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
+    s += (c == "1" || c == "1.0" ? "" : c + "*") + names[j];
+  }
+  return (s.empty() ? "0" : s) + " = " + e.rhs;
+}
+
+namespace {
+
+bool is_zero_text(const std::string& x) { return x == "0" || x == "0.0"; }
+
+/// Σ coeff_j · name_j + constant, with empty coefficients left out (a row of the equations of motion).
+std::string row_text(const std::vector<std::string>& coeff, const std::vector<std::string>& names, const std::string& constant) {
+  Eq e;
+  for (std::size_t j = 0; j < coeff.size(); ++j)
+    if (!coeff[j].empty()) e.terms.emplace_back(j, coeff[j]);
+  std::string lhs = equation_text(e, names);
+  lhs = lhs.substr(0, lhs.size() - 3);  // drop " = "
+  if (constant == "0" || constant == "0.0" || constant.empty()) return lhs;
+  if (lhs == "0") return constant;
+  return lhs + (constant[0] == '-' ? " - " + constant.substr(1) : " + " + constant);
+}
+
+/// codim M_2 in M_1: the KVLPC equations that constrain q (CONTRACT `pc_loops`, CEF Thm 6.4).
+long pc_loops(const Printed& s) {
+  const std::vector<long> d = s.dims();
+  return s.consistent && d.size() > 2 ? d[1] - d[2] : 0;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string t;
+  for (const std::string& x : names) t += (t.empty() ? "" : " ") + x;
+  return t;
+}
+
+std::string holds_text(Truth t) { return t.yes() ? "holds" : t.no() ? "FAILS — the circuit is inconsistent" : "UNDECIDED"; }
+
+json circuit_json(const Printed& s) {
+  const CircuitFacts& f = *s.circuit;
+  if (!f.forced)
+    return {{"branches", f.branches},
+            {"nodes", f.nodes},
+            {"pc_loops", pc_loops(s)},
+            {"empty_loops", f.empty_loops},
+            {"kvlpc_graph", f.kvlpc_graph},
+            {"physical", f.physical},
+            {"pc_loop_branches", f.pc_loop_branches},
+            {"empty_loop_branches", f.empty_loop_branches}};
+  return {{"branches", f.branches},
+          {"nodes", f.nodes},
+          {"pc_loops", pc_loops(s)},
+          {"empty_loops", f.empty_loops},
+          {"inductors", f.inductors},
+          {"capacitors", f.capacitors},
+          {"resistors", f.resistors},
+          {"voltage_sources", f.voltage_sources},
+          {"current_sources", f.current_sources},
+          {"wires", f.wires},
+          {"couplings", f.couplings},
+          {"cv_loops", f.cv_loops},
+          {"source_loops", f.source_loops},
+          {"li_cutsets", f.li_cutsets},
+          {"source_cutsets", f.source_cutsets}};
+}
+
+std::string circuit_text(const Printed& s, const std::vector<std::string>& branch_names, const std::vector<std::string>& branch_kinds) {
+  const CircuitFacts& f = *s.circuit;
+  std::ostringstream o;
+  if (f.forced) {
+    o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes << " nodes (ground included); " << f.inductors << " L, "
+      << f.capacitors << " C, " << f.resistors << " R, " << f.voltage_sources << " V, " << f.current_sources << " I, " << f.couplings << " K\n";
+    for (const auto& l : f.cv_loops)
+      o << "    CV loop " << joined(l) << ": KVL fixes its capacitor charges by the sources (Σ ±q/C = Σ ±V on M_2, the currents on M_3)\n";
+    for (const auto& l : f.source_loops) o << "    loop of voltage sources " << joined(l) << ": KVL is a condition on the sources alone (Σ ±V(t) = 0)\n";
+    for (const auto& c : f.li_cutsets)
+      o << "    LI cutset " << joined(c) << ": KCL fixes its inductor currents by the current sources (Σ ±v_L = Σ ±I on M_1)\n";
+    for (const auto& c : f.source_cutsets) o << "    cutset of current sources " << joined(c) << ": KCL is a condition on the sources alone (Σ ±I(t) = 0)\n";
+    for (const SourceCondition& v : s.source_conditions)
+      o << "    source condition " << v.text << ": " << holds_text(v.holds) << " (" << v.evidence << ")\n";
+    for (const std::string& w : s.warnings) o << "    warning: " << w << "\n";
+    return o.str();
+  }
+  o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes << " nodes (ground included)\n    branches:";
+  for (std::size_t b = 0; b < branch_names.size(); ++b) o << " " << branch_names[b] << " (" << branch_kinds[b] << ")";
+  o << "\n    purely capacitive loops: " << pc_loops(s) << " independent KVLPC equation(s) on q (the M_2 constraints, CEF Thm 6.4)"
+    << "; graph count " << f.kvlpc_graph << "\n";
+  for (std::size_t i = 0; i < f.pc_loop_branches.size(); ++i)
+    o << "      KVL loop " << i + 1 << ": " << joined(f.pc_loop_branches[i]) << "  (sum of ±q/C over its capacitors = 0 on M_2, ±v/C on M_3)\n";
+  o << "    empty loops: " << f.empty_loops << (f.empty_loops ? " (their loop currents are free: non-uniqueness, CEF Thm 6.8)" : "") << "\n";
+  for (std::size_t i = 0; i < f.empty_loop_branches.size(); ++i) o << "      empty loop " << i + 1 << ": " << joined(f.empty_loop_branches[i]) << "\n";
+  if (f.physical && !f.has_empty_branch)
+    o << "    CEF Thm 6.6 (L, C > 0, no empty branch): c ∈ {1, 3}, c = 3 iff a purely capacitive loop exists — here c = " << s.steps << "\n";
+  if (f.physical)
+    o << "    CEF Thm 6.8 (L ≥ 0, C > 0): the leaves x + W_c are symplectic iff there are no empty loops — here "
+      << (f.empty_loops ? "not symplectic" : "symplectic") << "\n";
+  else
+    o << "    negative L or C: not physical (CEF Remark 6.7), no theorem bounds c\n";
+  for (const std::string& w : s.warnings) o << "    warning: " << w << "\n";
+  return o.str();
+}
+
+json cad_json(const Printed& r) {
+  const std::vector<std::string> names = r.columns();
+  json j = {{"dcad", 1},           {"backend", r.backend},       {"certified", r.certified.yes()}, {"dims", r.dims()},
+            {"steps", r.steps},    {"consistent", r.consistent}, {"variables", r.variables}};
+  j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
+  j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
+  json tower = json::array();
+  for (std::size_t k = 0; k < r.tower.size(); ++k) {
+    json eqs = json::array();
+    for (const Eq& e : r.tower[k].constraints) eqs.push_back(equation_text(e, names));
+    tower.push_back({{"k", k}, {"dim", r.tower[k].dim}, {"new_constraints", eqs}});
+  }
+  j["tower"] = tower;
+  if (r.final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
+    json rows = json::array();
+    for (const Eq& e : *r.final_constraints) {
+      // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)
+      std::vector<std::string> row(r.variables.size(), r.exact ? "0" : "0.0");
+      for (const auto& [var, coeff] : e.terms) row[var] = coeff;
+      row.push_back(e.rhs);
+      rows.push_back(row);
+    }
+    j["final_constraints"] = rows;
+  }
+  if (r.motion) {
+    std::vector<std::string> coords;
+    for (std::size_t i : r.motion->coordinates) coords.push_back(r.variables[i]);
+    j["reduced"] = {{"coordinates", coords}, {"F", r.motion->f_matrix}, {"f", r.motion->f}, {"G", r.motion->g}};
+    if (!r.motion->source_columns.empty()) j["reduced"]["sources"] = {{"columns", r.motion->source_columns}, {"S", r.motion->s}};
+  }
+  if (r.classes) {
+    json chi = json::array();
+    for (const Eq& e : r.classes->second_class_constraints) chi.push_back(equation_text(e, names));
+    j["constraint_classes"] = {{"first_class", r.classes->first_class}, {"second_class", r.classes->second_class}};
+    if (!chi.empty()) j["constraint_classes"]["second_class_constraints"] = chi;
+    if (!r.classes->dirac_bracket.empty()) j["dirac_bracket"] = r.classes->dirac_bracket;
+  }
+  if (r.adapted) {
+    json chi = json::array(), terms = json::array();
+    for (const Eq& e : r.adapted->chi) chi.push_back(equation_text(e, r.adapted->variables));
+    for (const Eq& e : r.adapted->abridged) terms.push_back(equation_text(e, r.adapted->variables));
+    j["adapted"] = {{"setting", r.adapted->setting},
+                    {"variables", r.adapted->variables},
+                    {"s_prime", r.adapted->s_prime},
+                    {"second_class", chi},
+                    {"abridged_total_energy_constraints", terms},
+                    {"secondary_first_class", r.adapted->secondary_first_class}};
+  }
+  j["decisions"] = {{"float", r.decisions.float_tests},
+                    {"exact_verification", r.decisions.exact_verifications},
+                    {"exact_recomputation", r.decisions.exact_recomputation},
+                    {"exact_machine_words", r.decisions.machine_words}};
+  if (!r.note.empty()) j["note"] = r.note;
+  if (r.circuit) j["circuit"] = circuit_json(r);
+  json conds = json::array();
+  for (const SourceCondition& v : r.source_conditions)
+    conds.push_back({{"condition", v.text},
+                     {"holds", v.holds.yes() ? json(true) : v.holds.no() ? json(false) : json(nullptr)},
+                     {"evidence", v.evidence}});
+  if (!r.source_names.empty() || !conds.empty()) j["sources"] = {{"names", r.source_names}, {"conditions", conds}};
+  return j;
+}
+
+std::string cad_text(const Printed& r) {
+  const std::vector<std::string> names = r.columns();
+  std::ostringstream o;
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": CAD (CEF §5), backend " << r.backend
+    << (r.certified.yes() ? ", certified" : ", NOT certified") << "\n";
+  for (std::size_t k = 0; k < r.tower.size(); ++k) {
+    o << "  M_" << k << ": " << (r.tower[k].dim < 0 ? std::string("empty") : "dim " + std::to_string(r.tower[k].dim)) << "\n";
+    for (const Eq& e : r.tower[k].constraints) o << "      " << equation_text(e, names) << "\n";
+  }
+  if (!r.consistent) {
+    o << "  inconsistent: M_" << r.steps << " is empty, the system has no solution\n";
+  } else {
+    const long rank = r.solution_rank.value_or(0);
+    o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << r.tower.back().dim << "\n";
+    o << "  solution rank dim(ker omega_D ∩ T M_c) = " << rank << (rank == 0 ? " (unique)" : " (not unique)") << "\n";
+  }
+  if (r.classes) {
+    o << "  constraints of M_c (CEF §2.1, Lemma 3.23): " << r.classes->first_class << " first class, " << r.classes->second_class
+      << " second class\n";
+    for (const Eq& e : r.classes->second_class_constraints) o << "      second class: " << equation_text(e, names) << "\n";
+  }
+  if (r.adapted) {
+    const Adapted<std::string>& a = *r.adapted;
+    o << "  adapted to the primary constraints (CEF Thm 3.28" << (a.setting == "T*TQ" ? ", §7 on T*TQ" : "") << "): s' = " << a.s_prime << ", "
+      << a.chi.size() << " second class\n";
+    for (const Eq& e : a.chi) o << "      chi: " << equation_text(e, a.variables) << "\n";
+    o << "    E_AT = E";
+    for (std::size_t k = 0; k < a.abridged.size(); ++k) o << " + lambda" << k + 1 << "*(" << equation_text(a.abridged[k], a.variables) << ")";
+    o << "   (E_E adds " << a.secondary_first_class << " secondary first class constraints)\n";
+  }
+  if (r.motion) {
+    const Motion<std::string>& m = *r.motion;
+    std::vector<std::string> coords;
+    for (std::size_t i : m.coordinates) coords.push_back(r.variables[i]);
+    std::vector<std::string> lambdas;
+    for (std::size_t k = 0; k < (m.g.empty() ? 0 : m.g[0].size()); ++k) lambdas.push_back("lambda" + std::to_string(k + 1));
+    o << "  equations of motion on M_c (CEF (5.12)) in coordinates (";
+    for (std::size_t i = 0; i < coords.size(); ++i) o << (i ? ", " : "") << coords[i];
+    o << "):\n";
+    for (std::size_t i = 0; i < coords.size(); ++i) {
+      std::vector<std::string> coeff = m.f_matrix[i];
+      std::vector<std::string> all = coords;
+      for (std::size_t k = 0; k < m.source_columns.size(); ++k) {
+        coeff.push_back(m.s[i][k]);
+        all.push_back(m.source_columns[k]);
+      }
+      for (std::size_t k = 0; k < lambdas.size(); ++k) {
+        coeff.push_back(is_zero_text(m.g[i][k]) ? "" : m.g[i][k]);
+        all.push_back(lambdas[k]);
+      }
+      for (std::string& x : coeff)
+        if (is_zero_text(x)) x = "";
+      o << "    d/dt " << coords[i] << " = " << row_text(coeff, all, m.f[i]) << "\n";
+    }
+  }
+  if (!r.note.empty()) o << "  note: " << r.note << "\n";
+  return o.str();
+}
+
+json pointwise_json(const Printed& r) {
+  const Pointwise<std::string>& p = *r.pointwise;
+  const std::vector<long> dims = r.dims();
+  json j;
+  j["dcad"] = 1;
+  j["backend"] = r.backend;
+  j["certified"] = r.certified.yes();
+  j["dims"] = dims;
+  j["steps"] = r.steps;
+  j["consistent"] = r.consistent;
+  j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
+  j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
+  if (!r.name.empty()) j["name"] = r.name;
+  j["variables"] = r.variables;
+  j["route"] = p.route;
+  j["regular"] = p.regular;
+  if (!p.why.empty()) j["why"] = p.why;
+  json pt = json::object();
+  if (!p.time_name.empty()) pt[p.time_name] = p.time;
+  for (std::size_t i = 0; i < p.point.size(); ++i) pt[r.variables[i]] = p.point[i];
+  j["point"] = pt;
+  json tower = json::array();
+  tower.push_back({{"k", 0}, {"dim", dims[0]}, {"new_constraints", json::array()}});
+  for (std::size_t k = 0; k < p.levels.size(); ++k) {
+    const auto& l = p.levels[k];
+    json cs = json::array(), solved = json::array(), ps = json::array();
+    if (k == 0) {
+      cs = p.first_constraints;
+    } else {
+      for (const auto& con : l.constraints) {
+        Eq e;
+        std::vector<std::string> names;
+        for (const auto& [name, g] : con.terms) {
+          e.terms.emplace_back(names.size(), g);
+          names.push_back(name);
+        }
+        e.rhs = con.rhs;
+        cs.push_back(equation_text(e, names));
+        solved.push_back(con.solved_for);
+      }
+    }
+    for (const auto& pv : l.pivots) ps.push_back({{"row", pv.row}, {"column", pv.column}, {"value", pv.value}});
+    json step = {{"k", k + 1}, {"dim", k + 1 < dims.size() ? dims[k + 1] : l.dim}, {"new_constraints", cs}};
+    step["form"] = k == 0 ? "formula" : "tangent at the point";
+    if (k > 0) step["solved_for"] = solved;
+    step["pivots"] = ps;  // of the linear system for (d/dt s, lambda) on this M_k
+    tower.push_back(step);
+  }
+  if (!r.consistent) tower.push_back({{"k", dims.size() - 1}, {"dim", -1}, {"new_constraints", json::array({p.why})}});
+  j["tower"] = tower;
+  if (!p.velocity.empty()) {
+    json v = json::object();
+    for (std::size_t i = 0; i < p.velocity.size(); ++i) v[r.variables[i]] = p.velocity[i];
+    j["velocity"] = v;
+    j["gauge"] = p.gauge;
+  }
+  j["jets"] = {{"order", p.order}, {"checked_order", p.checked_order}, {"moves", p.moves}};
+  if (!r.note.empty()) j["note"] = r.note;
+  return j;
+}
+
+std::string tangent_text(const Pointwise<std::string>::Tangent& t) {
+  Eq e;
+  std::vector<std::string> names;
+  for (const auto& [name, g] : t.terms) {
+    e.terms.emplace_back(names.size(), g);
+    names.push_back(name);
+  }
+  e.rhs = t.rhs;
+  return equation_text(e, names);
+}
+
+std::string pointwise_text(const Printed& r) {
+  const Pointwise<std::string>& p = *r.pointwise;
+  const std::vector<long> dims = r.dims();
+  const std::vector<std::string>& st = r.variables;
+  std::ostringstream o;
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": CAD (CEF §5) at a point, " << p.route << ", backend " << r.backend << ", "
+    << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
+  o << "  point" << (!p.time_name.empty() ? " at " + p.time_name + " = " + p.time : "") << ":";
+  for (std::size_t i = 0; i < p.point.size(); ++i) o << (i % 6 == 0 ? "\n     " : "") << " " << st[i] << " = " << p.point[i] << (i + 1 < p.point.size() ? "," : "");
+  o << "\n";
+  if (p.moves > 0) o << "  (the given values were completed onto M_c by " << p.moves << " Newton step" << (p.moves > 1 ? "s" : "") << ")\n";
+  o << "  M_0: dim " << dims[0] << "\n";
+  for (std::size_t k = 0; k < p.levels.size() && k + 1 < dims.size(); ++k) {
+    o << "  M_" << k + 1 << ": dim " << dims[k + 1] << "\n";
+    if (k == 0)
+      for (const std::string& f : p.first_constraints) o << "      " << f << "\n";
+    for (const auto& cs : p.levels[k].constraints) o << "      " << tangent_text(cs) << "   (tangent at the point; solved for " << cs.solved_for << ")\n";
+  }
+  if (!r.consistent) o << "  M_" << dims.size() - 1 << " is empty: " << p.why << "\n";
+  if (!p.regular) o << "  SINGULAR POINT: " << p.why << " (the tower is not decided here; try another point)\n";
+  if (r.consistent && p.regular) {
+    const long rank = r.solution_rank.value_or(0);
+    o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; the last step's "
+      << "constraints vanish on M_c to order " << p.checked_order << ")\n";
+    o << "  solution rank dim(ker omega_D ∩ T M_c) = " << rank << (rank == 0 ? " (unique)" : "") << "\n";
+    o << "  velocity at the point (one solution" << (rank ? " of a " + std::to_string(rank) + "-parameter family" : "") << "):";
+    for (std::size_t i = 0; i < p.velocity.size(); ++i) o << (i % 4 == 0 ? "\n     " : "") << " d/dt " << st[i] << " = " << p.velocity[i] << (i + 1 < p.velocity.size() ? "," : "");
+    o << "\n";
+  }
+  if (!r.note.empty()) o << "  note: " << r.note << "\n";
+  return o.str();
+}
+
+json solution_json(const Printed& s) { return s.pointwise ? pointwise_json(s) : cad_json(s); }
+
+}  // namespace
+
+std::string result_json(const Printed& s, int indent) { return solution_json(s).dump(indent); }
+
+std::string result_json_line(const Printed& s, const std::string& file) {
+  json j = {{"file", file}};
+  j.update(solution_json(s));
+  return j.dump();
+}
+
+std::string error_json_line(const std::string& file, const std::string& message, int exit_code) {
+  return json({{"file", file}, {"error", message}, {"exit", exit_code}}).dump();
+}
+
+std::string report_text(const Printed& s) {
+  if (s.pointwise) return pointwise_text(s);
+  std::string t = cad_text(s);
+  if (s.circuit) t += circuit_text(s, s.circuit->branch_names, s.circuit->branch_kinds);
+  return t;
+}
+
+std::string inspection_json(const Inspection& r) {
+  json j = {{"dcad", 1}, {"backend", r.backend}, {"certified", r.certified}, {"n", r.n}, {"form", r.form}, {"valid", r.valid}};
+  if (!r.valid) {
+    j["why"] = r.why;
+    return j.dump(2);
+  }
+  j["dim_E_D"] = r.dim_e;
+  j["rank_omega_D"] = r.rank_omega;
+  j["dim_ker_omega_D"] = r.dim_ker_omega;
+  j["presymplectic"] = r.presymplectic;
+  j["poisson"] = r.poisson;
+  if (!r.uncertain.empty()) {
+    j["uncertain"] = r.uncertain;
+    j["evidence"] = r.evidence;
+  }
+  return j.dump(2);
+}
+
+std::string inspection_text(const Inspection& r) {
+  std::ostringstream o;
+  const auto yes_no = [](bool b) { return b ? "yes" : "no"; };
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": D on R^" << r.n << " given as `" << r.form << "`, backend " << r.backend << "\n";
+  o << "  Dirac structure (CEF Lemma 4.1): " << yes_no(r.valid) << (r.valid ? "" : " -- " + r.why) << "\n";
+  if (r.valid) {
+    o << "  dim E_D          = " << r.dim_e << "\n";
+    o << "  rank omega_D     = " << r.rank_omega << "\n";
+    o << "  dim ker omega_D  = " << r.dim_ker_omega << "\n";
+    o << "  from a presymplectic form (E_D = R^" << r.n << "): " << yes_no(r.presymplectic) << "\n";
+    o << "  from a Poisson bivector (D meets V+0 in 0): " << yes_no(r.poisson) << "\n";
+  }
+  o << "  certified: " << yes_no(r.certified) << "\n";
+  for (const std::string& e : r.evidence) o << "  uncertain " << e << "\n";
+  return o.str();
+}
+
+}  // namespace dcad::io

@@ -1,0 +1,237 @@
+#include "dcad/reference/pipeline/forced.hpp"
+
+#include "dcad/io/input_error.hpp"
+#include "dcad/reference/rlc.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace dcad::reference::pipeline {
+
+using Q = Rational;
+using QM = Matrix<Q>;
+
+std::vector<std::string> jet_names(const std::vector<io::Waveform>& waveforms, long orders) {
+  std::vector<std::string> out{"1"};
+  for (long d = 0; d < orders; ++d)
+    for (const io::Waveform& w : waveforms) {
+      const std::string f = w.element;
+      out.push_back(d == 0 ? f + "(t)" : d <= 3 ? f + std::string(d, '\'') + "(t)" : "d" + std::to_string(d) + f + "/dt" + std::to_string(d) + "(t)");
+    }
+  return out;
+}
+
+namespace {
+
+std::string row_text(const QM& row, const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t j = 0; j < row.cols(); ++j) {
+    if (row(0, j) == 0) continue;
+    Q c = row(0, j);
+    const bool neg = c < 0;
+    if (neg) c = -c;
+    s += s.empty() ? (neg ? "-" : "") : (neg ? " - " : " + ");
+    const std::string& nm = names[j];
+    s += nm == "1" ? c.str() : (c == 1 ? "" : c.str() + "*") + nm;
+  }
+  return (s.empty() ? "0" : s) + " = 0";
+}
+
+/// The combination's largest deviation from 0 over sample times that show every feature of the
+/// waveforms (breakpoints, their midpoints, 97 times spread over the horizon), and its scale.
+void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders, double& worst, double& at, double& scale,
+            std::size_t& samples) {
+  const std::size_t m = waveforms.size();
+  double horizon = 0;
+  for (const io::Waveform& w : waveforms) horizon = std::max(horizon, w.horizon());
+  if (horizon == 0) horizon = 1;
+  std::vector<double> ts{0};
+  for (const io::Waveform& w : waveforms)
+    for (double b : w.breakpoints(horizon)) ts.push_back(b);
+  std::sort(ts.begin(), ts.end());
+  const std::size_t k = ts.size();
+  for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
+  for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));
+  worst = 0;
+  at = 0;
+  scale = std::abs(row(0, 0).convert_to<double>());
+  for (double t : ts) {
+    double s = row(0, 0).convert_to<double>();
+    for (std::size_t j = 0; j < m; ++j)
+      for (long d = 0; d < orders; ++d) {
+        const double c = row(0, 1 + d * m + j).convert_to<double>();
+        if (c == 0) continue;
+        const double term = c * waveforms[j].value(t, static_cast<int>(d));
+        s += term;
+        scale = std::max(scale, std::abs(term));
+      }
+    if (std::abs(s) > worst) {
+      worst = std::abs(s);
+      at = t;
+    }
+  }
+  samples = ts.size();
+}
+
+}  // namespace
+
+SourceCondition decide_condition(const QM& row, const std::vector<io::Waveform>& waveforms) {
+  const std::size_t m = waveforms.size();
+  const long orders = m ? static_cast<long>((row.cols() - 1) / m) : 0;
+  SourceCondition v;
+  v.text = row_text(row, jet_names(waveforms, orders));
+  // identical waveforms (same kind and parameters) are one function: sum their coefficients
+  std::map<std::pair<std::string, long>, Q> sums;
+  Q constant = row(0, 0);
+  bool all_constant = true;
+  for (std::size_t j = 0; j < m; ++j)
+    for (long d = 0; d < orders; ++d) {
+      const Q& c = row(0, 1 + d * m + j);
+      if (c == 0) continue;
+      const io::Waveform& w = waveforms[j];
+      if (w.kind == io::Waveform::Kind::dc) {
+        if (d == 0) constant += c * w.p[0];
+        continue;
+      }
+      all_constant = false;
+      std::string key = std::to_string(static_cast<int>(w.kind));
+      for (const Q& p : w.p) key += " " + p.str();
+      sums[{key, d}] += c;
+    }
+  bool zero = constant == 0;
+  for (const auto& [k, c] : sums) zero = zero && c == 0;
+  if (zero) {
+    v.evidence = all_constant ? "exact (DC values)" : "exact (equal waveforms cancel)";
+    return v;
+  }
+  if (all_constant) {
+    v.holds = no;
+    v.evidence = "exact: the DC values give " + constant.str() + " = 0";
+    return v;
+  }
+  double worst = 0, at = 0, scale = 0;
+  std::size_t samples = 0;
+  sample(row, waveforms, orders, worst, at, scale, samples);
+  std::ostringstream o;
+  o.precision(6);
+  if (worst > kConditionFails * std::max(scale, 1e-300)) {
+    v.holds = no;
+    o << "fails at t = " << at << " s: the left side is " << worst << " (sources evaluated in double)";
+  } else {
+    v.holds = unknown;
+    o << "different waveforms agree to " << worst << " at " << samples << " sample times: cannot decide exactly";
+  }
+  v.evidence = o.str();
+  return v;
+}
+
+namespace {
+
+Equation<Q> jet_equation(const QM& rows, std::size_t i, std::size_t nvars) {
+  Equation<Q> e;
+  for (std::size_t j = 0; j < rows.cols(); ++j) {
+    if (j == nvars || rows(i, j) == 0) continue;
+    e.terms.emplace_back(j < nvars ? j : j - 1, rows(i, j));
+  }
+  e.rhs = -rows(i, nvars);
+  return e;
+}
+
+Rows<Q> dense(const QM& m) {
+  Rows<Q> out(m.rows());
+  for (Index i = 0; i < m.rows(); ++i) out[i] = m.row(i);
+  return out;
+}
+
+/// The exact forced CAD: the tower with its jet equations, the source conditions decided against the
+/// waveforms (the first M_k whose condition fails is empty), the equations of motion with the sources'
+/// jets.
+dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::Waveform>& waveforms, const std::vector<std::string>& variables) {
+  const ForcedResult<Q> r = forced_tower(f);
+  dcad::Solution<Q> s;
+  s.variables = variables;
+  s.certified = yes;
+  s.decisions.exact_recomputation = 1;
+  s.note = "forced route (YM §4 forces and affine constraints, moving M_k(t) as in V §3), exact";
+  const std::size_t nv = f.s.d.n;
+  long empty_at = r.consistent ? -1 : static_cast<long>(r.dims.size()) - 1;
+  for (std::size_t k = 0; k < r.conditions_at.size() && (empty_at < 0 || static_cast<long>(k) < empty_at); ++k) {
+    const QM& ck = r.conditions_at[k];
+    for (std::size_t i = 0; i < ck.rows(); ++i) {
+      const SourceCondition v = decide_condition(ck.block(i, i + 1, 0, ck.cols()), waveforms);
+      const bool seen = std::any_of(s.source_conditions.begin(), s.source_conditions.end(), [&](const SourceCondition& o) { return o.text == v.text; });
+      if (!seen) s.source_conditions.push_back(v);
+      if (v.holds.no() && empty_at < 0) empty_at = static_cast<long>(k);
+      s.certified &= v.holds.known() ? yes : unknown;
+    }
+  }
+  for (std::size_t k = 0; k < r.dims.size(); ++k) {
+    Level<Q> st;
+    st.dim = empty_at >= 0 && static_cast<long>(k) >= empty_at ? -1 : r.dims[k];
+    for (std::size_t i = 0; i < r.added[k].rows(); ++i) st.constraints.push_back(jet_equation(r.added[k], i, nv));
+    s.tower.push_back(st);
+    if (st.dim < 0) break;
+  }
+  s.steps = static_cast<long>(s.tower.size()) - 1;
+  const std::vector<std::string> jets = jet_names(waveforms, static_cast<long>(r.orders) + 1);
+  s.jets.assign(jets.begin() + 1, jets.end());
+  for (const io::Waveform& w : waveforms) s.source_names.push_back(w.element);
+  s.consistent = s.tower.back().dim >= 0;
+  if (s.consistent) s.solution_rank = static_cast<long>(r.solution_rank);
+  if (s.certified.unknown()) s.note += "; a source condition could not be decided exactly (see sources.conditions)";
+  if (!s.consistent) return s;
+  // equations of motion: ż = F z + f + S u_src(t) + G λ  [CEF (5.12) with the sources' jets]
+  const ForcedReducedEquations<Q> red = forced_reduced_equations(forced_motion(f, r), f.sources);
+  Motion<Q> mo;
+  mo.coordinates.assign(red.coords.begin(), red.coords.end());
+  mo.f_matrix = dense(red.f_matrix);
+  mo.g = dense(red.g);
+  mo.f = red.f;
+  // only the jet orders that occur (the tower widens the jets by one order per step)
+  std::size_t used = 0;
+  for (std::size_t j = 0; j < red.s.cols(); ++j)
+    for (std::size_t i = 0; i < red.s.rows(); ++i)
+      if (red.s(i, j) != 0) used = j + 1;
+  if (f.sources) used = (used + f.sources - 1) / f.sources * f.sources;
+  mo.s = dense(red.s.block(0, red.s.rows(), 0, used));
+  mo.source_columns.assign(jets.begin() + 1, jets.begin() + 1 + static_cast<long>(used));
+  s.motion = mo;
+  return s;
+}
+
+}  // namespace
+
+ForcedSystem<Q> forced_system(const io::CaseFile& c) {
+  const io::PontryaginInput& in = c.pontryagin;
+  const std::size_t n = in.n;
+  ForcedSystem<Q> f{pontryagin_system(PontryaginInput<Q>{in.n, in.k, in.vv, in.qv, in.qq, in.q, in.v}), QM(3 * n, 3 * n), 0, QM(3 * n, 0),
+                    QM(3 * n, 0), QM(0, 1)};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      f.force(i, j) = in.fq(i, j);  // F(q, v)·δq: a horizontal one-form  [YM §4]
+      f.force(i, n + j) = in.fv(i, j);
+    }
+  return f;
+}
+
+dcad::Solution<Q> solve_forced(const io::CaseFile& c) {
+  dcad::Solution<Q> s = exact_forced(forced_system(c), {}, c.variables);
+  s.file = c.file;
+  s.name = c.name;
+  return s;
+}
+
+dcad::Solution<Q> solve_forced(const io::Netlist& deck, const std::vector<std::string>& variables) {
+  if (deck.rlc.branches.size() > kForcedBranches)
+    throw io::InputError(deck.file + ": expected at most " + std::to_string(kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()) +
+                         " (the forced route is dense and exact; larger ones are not supported yet)");
+  dcad::Solution<Q> s = exact_forced(rlc_system(deck.rlc), deck.waveforms, variables);
+  s.file = deck.file;
+  s.name = deck.title;
+  return s;
+}
+
+}  // namespace dcad::reference::pipeline

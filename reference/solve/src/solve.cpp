@@ -1,0 +1,69 @@
+// reference::solve: each input form dispatched once, to its exact route.
+#include "dcad/reference/solve.hpp"
+
+#include "dcad/reference/pipeline/circuit.hpp"
+#include "dcad/reference/pipeline/forced.hpp"
+#include "dcad/reference/pipeline/pointwise.hpp"
+
+namespace dcad::reference {
+
+namespace {
+
+Solution linear(const io::CaseFile& c, const Parts& parts) {
+  return io::at_input(c, [&] {
+    if (c.has_pontryagin && c.pontryagin.has_forces) return pipeline::solve_forced(c);
+    int bits = 0;
+    try {
+      return pipeline::solve_linear_words(c, parts, bits);
+    } catch (const Overflow&) {
+      return pipeline::solve_linear_mpq(c, parts);
+    }
+  });
+}
+
+Solution netlist(const io::Problem& p, const Parts& parts) {
+  const io::Netlist& deck = p.netlist;
+  if (deck.forced) {
+    Solution s = pipeline::solve_forced(deck, p.linear.variables);
+    s.circuit = io::circuit_facts(deck);
+    return s;
+  }
+  Solution s;
+  int bits = 0;
+  try {
+    s = pipeline::solve_lc_words(deck, p.linear, parts, bits);
+  } catch (const Overflow&) {
+    s = pipeline::solve_lc_mpq(deck, p.linear, parts);
+  }
+  s.circuit = io::circuit_facts(deck);
+  s.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
+           std::string(deck.circuit.branches.size() <= pipeline::kAdaptedBranches
+                           ? ""
+                           : "; the §7 adapted constraints (T*TQ, 4n variables) are given up to " + std::to_string(pipeline::kAdaptedBranches) +
+                                 " branches");
+  return s;
+}
+
+Solution expression(const io::LagrangianCase& c) {
+  return pipeline::pointwise_input_errors(c, [&] {
+    try {
+      return pipeline::solve_pointwise_exact(c);
+    } catch (const NotExactHere& e) {
+      throw io::InputError(c.file + ": /initial: expected a point where every value of the formulas is rational (the exact route), found " +
+                           e.what() + "; give such a point (e.g. angles 0) or use --backend fast or certified");
+    }
+  });
+}
+
+}  // namespace
+
+Solution solve(const io::Problem& p, const Parts& parts) {
+  Solution s = p.form == io::Form::expression ? expression(p.expression) : p.form == io::Form::netlist ? netlist(p, parts) : linear(p.linear, parts);
+  s.backend = "reference";
+  s.exact = true;
+  s.warnings = p.warnings();
+  keep_parts(s, parts);
+  return s;
+}
+
+}  // namespace dcad::reference
