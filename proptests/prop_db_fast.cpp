@@ -57,7 +57,8 @@ RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
   if (fc.certain.unknown() || fl.empty || fl.certain.unknown()) return;
   // Lemma 3.23 (e) and the motion: J* skew, G J* = 0, J*(dE + λ·a) = J(dE + λ·a) on M_c
   const int n = static_cast<int>(fs.omega.rows());
-  const Eigen::MatrixXd j = fast::poisson_tensor(fs.omega);
+  Truth nondegenerate = yes;
+  const Eigen::MatrixXd j = fast::poisson_tensor(fs.omega, {}, nondegenerate);
   const double scale = 1 + fast::norm2(j) * fast::norm2(j) * (1 + fast::norm2(fs.hessian) + fs.gradient.norm()) * (1 + fl.point.norm() + to_double(x).norm());
   const double tol = 1e-8 * scale;
   RC_ASSERT((fc.dirac_tensor + fc.dirac_tensor.transpose()).norm() <= tol);

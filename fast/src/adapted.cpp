@@ -12,12 +12,12 @@ AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constr
   if (static_cast<Eigen::Index>(primary.size()) != constraints.rows())
     throw std::invalid_argument("adapted_constraints: expected one primary flag per constraint, found " +
                                 std::to_string(primary.size()) + " for " + std::to_string(constraints.rows()));
-  const MatrixXd j = poisson_tensor(w, opt), a = constraints.leftCols(n);
+  AdaptedConstraints out;
+  const MatrixXd j = poisson_tensor(w, opt, out.certain), a = constraints.leftCols(n);
   const MatrixXd phi = a * j * a.transpose();
   const double scale = norm2(j) * std::max(1.0, norm2(a) * norm2(a));
-  AdaptedConstraints out;
   const RankDecision full = decide_rank(phi, scale, opt);
-  out.certain = full.certain;
+  out.certain &= full.certain;
   out.s = full.rank / 2;
   MatrixXd chosen(0, phi.cols());
   const auto take = [&](bool want_primary) {
@@ -52,8 +52,8 @@ VectorXd abridged_field(const AdaptedConstraints& ad, const MatrixXd& constraint
   return ad.dirac_tensor * d;
 }
 
-FoliatedEmbedding tangent_cotangent_embedding(const PontryaginInput& in, const Options& opt) {
-  const LinearSystem s = pontryagin_system(in, opt);  // as the reference: E on TQ ⊕ T*Q
+FoliatedEmbedding tangent_cotangent_embedding(const PontryaginInput& in, const Options& /*opt: nothing is decided*/) {
+  const LinearSystem s = pontryagin_energy(in);  // as the reference: E on TQ ⊕ T*Q (Δ is not needed: K gives the leaves)
   const MatrixXd& k = in.k;
   const int n = static_cast<int>(s.hessian.rows() / 3), m = 4 * n;
   FoliatedEmbedding f;

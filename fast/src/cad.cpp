@@ -7,7 +7,7 @@
 
 namespace dcad::fast {
 
-LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
+LinearSystem pontryagin_energy(const PontryaginInput& in) {
   const MatrixXd &k = in.k, &vv = in.vv, &qv = in.qv, &qq = in.qq;
   const VectorXd &q = in.q, &v = in.v;
   const int n = static_cast<int>(vv.rows());
@@ -16,13 +16,7 @@ LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
   for (const MatrixXd* m : {&k, &vv, &qv, &qq}) require_finite(*m, "pontryagin_system");
   if (vv != vv.transpose() || qq != qq.transpose())
     throw std::invalid_argument("pontryagin_system: expected symmetric vv and qq, found an asymmetric one");
-  const Subspace delta = k.rows() ? kernel(k, opt) : Subspace::whole(n);
-  MatrixXd e = MatrixXd::Zero(3 * n, delta.dim() + 2 * n);
-  e.topLeftCorner(n, delta.dim()) = delta.columns();
-  e.bottomRightCorner(2 * n, 2 * n).setIdentity();
-  MatrixXd w = MatrixXd::Zero(3 * n, 3 * n), h = MatrixXd::Zero(3 * n, 3 * n);
-  w.block(0, 2 * n, n, n).setIdentity();
-  w.block(2 * n, 0, n, n) = -MatrixXd::Identity(n, n);
+  MatrixXd h = MatrixXd::Zero(3 * n, 3 * n);
   h.block(0, 0, n, n) = -qq;
   h.block(0, n, n, n) = -qv;
   h.block(n, 0, n, n) = -qv.transpose();
@@ -32,8 +26,26 @@ LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
   VectorXd g = VectorXd::Zero(3 * n);
   g.head(n) = -q;
   g.segment(n, n) = -v;
+  LinearSystem s;
+  s.d.n = 3 * n;
+  s.hessian = h;
+  s.gradient = g;
+  return s;
+}
+
+LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
+  LinearSystem s = pontryagin_energy(in);  // E = p·v − L, and the input's checks
+  const int n = static_cast<int>(in.vv.rows());
+  const Subspace delta = in.k.rows() ? kernel(in.k, opt) : Subspace::whole(n);
+  MatrixXd e = MatrixXd::Zero(3 * n, delta.dim() + 2 * n);
+  e.topLeftCorner(n, delta.dim()) = delta.columns();
+  e.bottomRightCorner(2 * n, 2 * n).setIdentity();
+  MatrixXd w = MatrixXd::Zero(3 * n, 3 * n);
+  w.block(0, 2 * n, n, n).setIdentity();
+  w.block(2 * n, 0, n, n) = -MatrixXd::Identity(n, n);
   // the columns of e are orthonormal already: Δ's basis in the q-block, the identity below
-  return {dirac_from_distribution(Subspace::from_orthonormal_columns(e, delta.certain()), w), h, g, 0.0};
+  s.d = dirac_from_distribution(Subspace::from_orthonormal_columns(e, delta.certain()), w);
+  return s;
 }
 
 namespace {

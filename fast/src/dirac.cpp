@@ -29,9 +29,10 @@ DiracCheck dirac_defect(const DiracStructure& d, const Options& opt) {
   return {Truth::decided(true, r.certain & d.d.certain()), ""};
 }
 
-void require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt) {
+Truth require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt) {
   const DiracCheck c = dirac_defect(d, opt);
   if (c.valid.no()) throw std::invalid_argument(fn + ": expected a Dirac structure (Lemma 4.1), found " + c.why);
+  return c.valid;
 }
 
 DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
@@ -39,8 +40,7 @@ DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
     throw std::invalid_argument("dirac_from_basis: expected rows (v, α) of even length 2n, found length " +
                                 std::to_string(rows.cols()));
   DiracStructure d{static_cast<int>(rows.cols() / 2), Subspace::span_columns(rows.transpose(), -1, opt)};
-  require_dirac(d, "dirac_from_basis", opt);
-  d.d.and_certain(dirac_defect(d, opt).valid);  // not no: require_dirac threw
+  d.d.and_certain(require_dirac(d, "dirac_from_basis", opt));
   return d;
 }
 
@@ -99,11 +99,12 @@ Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& o
 }
 
 PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
-  const Subspace e = dirac_distribution(d, opt);
+  Subspace e = dirac_distribution(d, opt);
   const MatrixXd q = e.columns();
   // α_i with (q_i, α_i) ∈ D: c_i = V⁺ q_i (q_i ∈ im V), α_i = A c_i;  G_ij = α_i(q_j).
   // c_i: the minimum-norm solution of V c = q_i, on the rank decided for E (V = (Vᵀ)ᵀ)
   const RankRevealing f(d.v_part().transpose(), 1.0, opt);
+  e.and_certain(f.decision().certain);  // the α_i rest on this decision as much as E does on its own
   const MatrixXd alphas = d.alpha_part() * f.min_norm_transposed(q);  // columns α_i
   MatrixXd g = alphas.transpose() * q;
   g = (g - g.transpose()) / 2;  // skew up to rounding; keep it exactly skew

@@ -7,8 +7,8 @@
 
 namespace dcad::fast {
 
-MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt) {
-  require_symplectic(w, "poisson_tensor", opt);
+MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt, Truth& certain) {
+  certain &= require_symplectic(w, "poisson_tensor", opt);
   return w.transpose().fullPivLu().inverse();
 }
 
@@ -18,10 +18,10 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
   if (s.primary.cols() != n + 1)
     throw std::invalid_argument("dirac_bergmann: expected primary constraint rows [a | b] of width " + std::to_string(n + 1) +
                                 ", found width " + std::to_string(s.primary.cols()));
-  const MatrixXd j = poisson_tensor(s.omega, opt);
+  DiracBergmannResult out;
+  const MatrixXd j = poisson_tensor(s.omega, opt, out.certain);
   const MatrixXd p = s.primary.leftCols(n);
   const double jn = norm2(j);
-  DiracBergmannResult out;
   MatrixXd a(0, n);
   VectorXd b(0);
   std::vector<RankDecision> trace;
@@ -59,23 +59,26 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
 
 AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt) {
   const int n = static_cast<int>(s.omega.rows());
-  const MatrixXd j = poisson_tensor(s.omega, opt), a = r.constraints.leftCols(n), p = s.primary.leftCols(n);
+  Truth nondegenerate = yes;
+  const MatrixXd j = poisson_tensor(s.omega, opt, nondegenerate), a = r.constraints.leftCols(n), p = s.primary.leftCols(n);
   const MatrixXd c = a * j * p.transpose();
   // each side at the scale of its factors: −A J (H x + g) is exactly 0 off im C on M_c, and its rounding
   // grows with ‖H‖‖x‖ (at ‖x‖ = 10^7 the residue was decided a certain inconsistency against ‖J‖ alone)
   const double aj = norm2(a) * norm2(j);
-  return solve(c, -(a * j * (s.hessian * x + s.gradient)), opt, aj * std::max(1.0, norm2(p)),
-               aj * (norm2(s.hessian) * x.norm() + s.gradient.norm()));
+  AffineSubspace out = solve(c, -(a * j * (s.hessian * x + s.gradient)), opt, aj * std::max(1.0, norm2(p)),
+                             aj * (norm2(s.hessian) * x.norm() + s.gradient.norm()));
+  out.certain &= nondegenerate & r.certain;
+  return out;
 }
 
 ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt) {
   const int n = static_cast<int>(w.rows());
-  const MatrixXd j = poisson_tensor(w, opt);
+  ConstraintClasses out;
+  const MatrixXd j = poisson_tensor(w, opt, out.certain);
   // orthonormal basis of the constraint gradients, carrying the right-hand sides along
   const Svd sv = full_svd(constraints.leftCols(n));
   const RankDecision dr = decide_rank(constraints.leftCols(n), sv.sigma, -1, opt);
-  ConstraintClasses out;
-  out.certain = dr.certain;
+  out.certain &= dr.certain;
   const MatrixXd t = (sv.u.leftCols(dr.rank) * sv.sigma.head(dr.rank).cwiseInverse().asDiagonal()).transpose();
   const MatrixXd basis = t * constraints;  // rows [q_i | β_i], q orthonormal
   const MatrixXd q = basis.leftCols(n);

@@ -81,16 +81,17 @@ RankDecision decide_rank(const MatrixXd& a, double scale, const Options& opt) {
   return RankRevealing(a, scale, opt).decision();
 }
 
+double zero_threshold(int rows, int cols, double scale, const Options& opt) {
+  return opt.zero_factor * std::max(rows, cols) * std::numeric_limits<double>::epsilon() * scale;
+}
+
+
 namespace {
 
 /// Every decision leaves through here once (DecisionProbe: testing).
 RankDecision& counted(RankDecision& d, const Options& opt) {
   if (opt.probe && opt.probe->made++ == opt.probe->uncertain_at) d.certain = unknown;
   return d;
-}
-
-double zero_threshold(int rows, int cols, double scale, const Options& opt) {
-  return opt.zero_factor * std::max(rows, cols) * std::numeric_limits<double>::epsilon() * scale;
 }
 
 /// ‖B‖₂ estimated by 30 steps of the power method from a fixed start with no special structure:

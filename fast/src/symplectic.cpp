@@ -22,16 +22,17 @@ Truth is_symplectic(const MatrixXd& w, const Options& opt) {
   return Truth::decided(d.rank == w.rows(), d.certain);
 }
 
-void require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt) {
-  if (!is_symplectic(w, opt).yes())
-    throw std::invalid_argument(fn + ": expected a nondegenerate form, found " +
-                                decide_rank(w, -1, opt).describe());
+Truth require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt) {
+  const Truth nondegenerate = is_symplectic(w, opt);
+  if (nondegenerate.no()) throw std::invalid_argument(fn + ": expected a nondegenerate form, found " + decide_rank(w, -1, Options()).describe());
+  return nondegenerate;
 }
 
 VectorXd flat(const MatrixXd& w, const VectorXd& x) { return w.transpose() * x; }
 
 VectorXd sharp(const MatrixXd& w, const VectorXd& alpha) {
-  require_symplectic(w, "sharp");
+  if (!require_symplectic(w, "sharp").yes())
+    throw std::invalid_argument("sharp: expected a certainly nondegenerate form, found " + decide_rank(w, -1, Options()).describe());
   return w.transpose().fullPivLu().solve(alpha);
 }
 
@@ -79,19 +80,19 @@ Subspace flat(const PresymplecticForm& f, const Subspace& w, const Options& opt)
 }
 
 NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Options& opt) {
-  require_symplectic(w, "normal_form_basis", opt);
+  const Truth nondegenerate = require_symplectic(w, "normal_form_basis", opt);
   const Subspace comp = symplectic_complement(w, v, opt);
   MatrixXd rest = comp.columns();  // columns
   const double scale = norm2(w), tol = opt.nonzero_factor * scale;  // pairs below τ1 are not split off
   NormalFormBasis out;
-  out.certain = comp.certain();
+  out.certain = comp.certain() & nondegenerate;
   std::vector<VectorXd> es, fs;
   while (rest.cols() >= 2) {
     const MatrixXd g = rest.transpose() * w * rest;
     Eigen::Index i = 0, j = 0;
     const double big = g.cwiseAbs().maxCoeff(&i, &j);
     if (big <= tol) {
-      if (big > decide_rank(g, scale, opt).zero_threshold) out.certain = unknown;  // neither zero nor clearly not
+      if (big > zero_threshold(static_cast<int>(g.rows()), static_cast<int>(g.cols()), scale, opt)) out.certain = unknown;  // neither zero nor clearly not
       break;
     }
     const VectorXd e = rest.col(i), f = rest.col(j) / g(i, j);
@@ -117,18 +118,18 @@ NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Op
 }
 
 RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const VectorXd& beta, const Options& opt) {
-  require_symplectic(w, "solve_restricted", opt);
+  const Truth nondegenerate = require_symplectic(w, "solve_restricted", opt);
   require_finite(beta, "solve_restricted");
   const MatrixXd gamma = annihilator(v).columns();                // columns γ_i
   const MatrixXd y = w.transpose().fullPivLu().solve(gamma);    // columns Y_i = γ_i^♯
   const MatrixXd coeff = (gamma.transpose() * y).transpose();   // (i, j) = γ_j(Y_i)
   RestrictedSolution out;
   out.lambda = solve(coeff, -(y.transpose() * beta), opt, norm2(y));  // coeff may vanish exactly
-  out.lambda.certain &= v.certain();
+  out.lambda.certain &= v.certain() & nondegenerate;
   out.x.empty = out.lambda.empty;
   out.x.certain = out.lambda.certain;
   out.x.direction = map(y, out.lambda.direction, opt);
-  if (!out.x.empty) out.x.point = sharp(w, beta) + y * out.lambda.point;
+  if (!out.x.empty) out.x.point = w.transpose().fullPivLu().solve(beta) + y * out.lambda.point;  // β^♯ + λ^j Y_j
   return out;
 }
 

@@ -28,8 +28,7 @@ LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_unc
   if (c.has_pontryagin) return pontryagin_system(to_fast(c.pontryagin, opt), opt);
   DiracStructure d = to_fast(c.dirac, opt);
   if (c.dirac.form == "basis") {  // certainly not Dirac: bad input; uncertain: the result says so
-    require_dirac(d, "solve", opt);
-    d.d.and_certain(dirac_defect(d, opt).valid);  // not no: require_dirac threw
+    d.d.and_certain(require_dirac(d, "solve", opt));
   }
   return {d, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
 }

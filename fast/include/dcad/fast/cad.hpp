@@ -27,6 +27,8 @@ using PontryaginInput = PontryaginData<MatrixXd, VectorXd>;
 
 /// Same formulas as dcad::reference::pontryagin_system (CEF §6), Δ = ker K decided here.
 LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt = {});
+/// Its energy alone, E = p·v − L (hessian and gradient; no Dirac structure, nothing decided).
+LinearSystem pontryagin_energy(const PontryaginInput& in);
 
 /// One level of the tower.  Unlike the reference's, it does not hold W_k = T M_k ∩ E_D: the fast CAD
 /// never forms it (intersection(m.direction, dirac_distribution(d)) does, at the cost of a decision).

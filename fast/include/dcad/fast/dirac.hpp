@@ -22,8 +22,9 @@ struct DiracCheck {
   std::string why;  ///< why D is not Dirac (also when that is only likely: valid unknown)
 };
 DiracCheck dirac_defect(const DiracStructure& d, const Options& opt = {});
-/// Throws if D is certainly not Dirac; an uncertain verdict is left to the caller (D.d.certain()).
-void require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt = {});
+/// Throws std::invalid_argument naming `fn` if D is certainly not Dirac; else the verdict, yes or
+/// unknown (the caller's result is then not certain).
+Truth require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt = {});
 
 DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt = {});
 DiracStructure dirac_from_presymplectic(const MatrixXd& w);

@@ -14,7 +14,9 @@ struct ConstrainedSystem {
   MatrixXd primary;  ///< rows [a_i | b_i]
 };
 
-MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt = {});
+/// J = (Wᵀ)⁻¹ ({f, g} = dfᵀ J dg); std::invalid_argument if W is certainly degenerate, and `certain` &=
+/// the verdict of its nondegeneracy.
+MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt, Truth& certain);
 
 struct DiracBergmannResult {
   std::vector<AffineSubspace> tower;

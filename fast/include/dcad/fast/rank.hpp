@@ -64,6 +64,9 @@ struct Options {
   DecisionProbe* probe = nullptr;  ///< testing: see DecisionProbe (shared by copies of these options)
 };
 
+/// τ0 of a decision on a rows × cols matrix at `scale` (no decision is made).
+double zero_threshold(int rows, int cols, double scale, const Options& opt);
+
 /// Clears opt.input_well_scaled if the binary digits of the nonzero entries of `a` (each entry's
 /// largest and its lowest nonzero digit), together with 1, span more than 1/nonzero_factor in magnitude.
 void assess_input(const MatrixXd& a, Options& opt);

@@ -10,9 +10,12 @@ namespace dcad::fast {
 void require_skew(const MatrixXd& w, const std::string& fn);
 /// Skew and nondegenerate; a nondegeneracy that is uncertain is reported by `is_symplectic`.
 Truth is_symplectic(const MatrixXd& w, const Options& opt = {});
-void require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt = {});
+/// Skew, and not certainly degenerate (std::invalid_argument naming `fn` otherwise): the verdict of its
+/// nondegeneracy, yes or unknown — a result computed with W⁻¹ is certain only if it is yes.
+Truth require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt = {});
 
 VectorXd flat(const MatrixXd& w, const VectorXd& x);
+/// α^♯ for a certainly nondegenerate W (std::invalid_argument otherwise).
 VectorXd sharp(const MatrixXd& w, const VectorXd& alpha);
 Subspace symplectic_complement(const MatrixXd& w, const Subspace& v, const Options& opt = {});
 
