@@ -2,8 +2,8 @@
 // constrained Lagrangian, and YM Thm 5.6: the implicit Lagrange–d'Alembert equations (5.6) hold along
 // the motion the CAD computes (CEF §5, reference/pointwise.hpp) — two routes to the same dynamics.
 // Goldens: YM §6's rolling disk (exactly, at rational points of the circle) and L-C circuit.
-#include "dcad/reference/ehresmann.hpp"
-#include "dcad/reference/pointwise.hpp"
+#include "dcad/reference/nonlinear/ehresmann.hpp"
+#include "dcad/reference/nonlinear/pointwise.hpp"
 #include "expr_gen.hpp"
 
 #include <gtest/gtest.h>

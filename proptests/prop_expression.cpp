@@ -5,8 +5,8 @@
 //  - a jet composed with a substitution (Jet::compose) equals the formula evaluated on the
 //    substituted jets;
 //  - exact values of sin, cos, exp at 0 and sqrt of squares, and the NotExactHere refusal elsewhere.
-#include "dcad/reference/expression.hpp"
-#include "dcad/reference/jet.hpp"
+#include "dcad/reference/nonlinear/expression.hpp"
+#include "dcad/reference/nonlinear/jet.hpp"
 #include "gen.hpp"
 
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 // the motion is the linear one in the new coordinates.
 #pragma once
 
-#include "dcad/reference/lagrangian_system.hpp"
+#include "dcad/reference/nonlinear/lagrangian_system.hpp"
 #include "dcad/reference/system.hpp"
 #include "gen.hpp"
 

@@ -3,7 +3,7 @@
 
 #include "dcad/fast/pointwise.hpp"
 #include "guarded.hpp"
-#include "dcad/reference/pointwise.hpp"
+#include "dcad/reference/nonlinear/pointwise.hpp"
 
 namespace dcad::api {
 

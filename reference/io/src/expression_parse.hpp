@@ -5,7 +5,7 @@
 #pragma once
 
 #include "json_input.hpp"
-#include "dcad/reference/expression.hpp"
+#include "dcad/reference/nonlinear/expression.hpp"
 
 #include <map>
 #include <string>

@@ -7,7 +7,7 @@
 #include "dcad/io/lagrangian_case.hpp"
 #include "dcad/solution.hpp"
 #include "dcad/truth.hpp"
-#include "dcad/reference/pointwise.hpp"
+#include "dcad/reference/nonlinear/pointwise.hpp"
 
 #include <string>
 #include <vector>

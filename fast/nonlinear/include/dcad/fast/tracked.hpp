@@ -12,7 +12,7 @@
 // Newton's iterations on jets.)
 #pragma once
 
-#include "dcad/reference/jet.hpp"
+#include "dcad/reference/nonlinear/jet.hpp"
 
 #include <cmath>
 #include <string>

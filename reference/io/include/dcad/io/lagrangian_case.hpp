@@ -4,7 +4,7 @@
 #pragma once
 
 #include "dcad/io/case_file.hpp"
-#include "dcad/reference/lagrangian_system.hpp"
+#include "dcad/reference/nonlinear/lagrangian_system.hpp"
 
 #include <map>
 #include <optional>

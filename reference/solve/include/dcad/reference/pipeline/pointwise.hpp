@@ -4,7 +4,7 @@
 #pragma once
 
 #include "dcad/io/lagrangian_case.hpp"
-#include "dcad/reference/pointwise.hpp"
+#include "dcad/reference/nonlinear/pointwise.hpp"
 #include "dcad/solution.hpp"
 
 #include <functional>

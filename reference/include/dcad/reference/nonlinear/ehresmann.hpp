@@ -4,8 +4,8 @@
 // (expression.hpp); nothing is decided here but the choice of the fibre coordinates at a point.
 #pragma once
 
-#include "dcad/reference/jet.hpp"
-#include "dcad/reference/lagrangian_system.hpp"
+#include "dcad/reference/nonlinear/jet.hpp"
+#include "dcad/reference/nonlinear/lagrangian_system.hpp"
 
 #include <stdexcept>
 #include <vector>

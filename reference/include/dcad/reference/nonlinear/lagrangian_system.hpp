@@ -7,7 +7,7 @@
 // time t (if the system has one) is 2n.
 #pragma once
 
-#include "dcad/reference/expression.hpp"
+#include "dcad/reference/nonlinear/expression.hpp"
 
 #include <string>
 #include <vector>

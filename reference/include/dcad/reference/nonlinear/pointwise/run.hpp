@@ -1,0 +1,596 @@
+// The pointwise CAD's run at one point with jets of one order (pointwise.hpp is the algorithm's entry
+// and its description): M_1 from the constraints (first_level), then M_k → M_{k+1} (next_level) —
+// the system for (ṡ, λ) eliminated at the point, its Fredholm candidates, the point moved onto them
+// (move) or the new constraints' graph found by Newton's method on jets (graph).
+#pragma once
+
+#include "dcad/reference/nonlinear/pointwise/eliminate.hpp"
+#include "dcad/reference/nonlinear/pointwise/system.hpp"
+
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+
+namespace dcad::reference::pointwise_detail {
+
+template <class T, class Decide>
+class Run {
+ public:
+  using J = Jet<T>;
+  Run(const LagrangianSystem& sys, const LagrangianDerivatives& der, const std::vector<bool>& fixed, Decide& decide,
+      const std::function<T(const Rational&)>& constant, const std::vector<std::vector<std::size_t>>* plan, std::size_t& polished)
+      : polished_(polished), s_(sys), d_(der), fixed_(fixed), decide_(decide), constant_(constant), names_(sys.variable_names()), plan_(plan) {}
+
+  enum class Outcome { Done, Moved, MoreOrder };
+
+  /// One pass at `point` with jets to order K: the tower (Done), or a better point (Moved), or
+  /// the jets ran out of order before the tower ended (MoreOrder).
+  Outcome pass(std::vector<T>& point, long K, PointwiseResult<T>& out) {
+    for (T& x : point) x = JetFunctions<T>::as_input(x);
+    out = PointwiseResult<T>();
+    out.order = K;
+    out.dims.push_back(static_cast<long>(3 * s_.n));
+    State st;
+    if (!first_level(point, K, out, st)) return Outcome::Done;
+    for (std::size_t k = 1;; ++k)
+      if (const std::optional<Outcome> o = next_level(k, point, K, out, st)) return *o;
+  }
+
+ private:
+  /// M_k in its chart: the chart's coordinates (variable indices, time first if any), x = (q, v, t)
+  /// as jets over them, and the level's record.
+  struct State {
+    std::vector<std::size_t> chart;
+    std::vector<J> x;
+    PointwiseLevel<T> level;
+  };
+
+  /// M_1 = {p = ∂L/∂v, a(t, q)·v + b = 0}: the dependent velocities (pivots nonzero at the point) and
+  /// the graph over (t, q, free velocities).  False if the constraints' rank drops at the point.
+  bool first_level(std::vector<T>& point, long K, PointwiseResult<T>& out, State& st) {
+    const std::vector<std::pair<std::size_t, std::size_t>> vp = velocity_pivots(point, out);
+    if (vp.size() < s_.m()) {
+      out.regular = false;
+      out.why = "the constraints' velocity coefficients have rank " + std::to_string(vp.size()) + " < " + std::to_string(s_.m()) +
+                " at the point (dependent constraints, or a point where Delta changes dimension)";
+      const std::size_t n = s_.n;
+      out.point.assign(3 * n, T(0));  // the point as given: (q, v, p = ∂L/∂v)
+      for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
+      for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = value(d_.dl_dv[i], point);
+      out.time = point[s_.t()];
+      return false;
+    }
+    std::vector<char> dependent(2 * s_.n + 1, 0);
+    for (const auto& pc : vp) dependent[pc.second] = 1;
+    if (s_.has_time) st.chart.push_back(s_.t());
+    for (std::size_t i = 0; i < s_.n; ++i) st.chart.push_back(s_.q(i));
+    for (std::size_t i = 0; i < s_.n; ++i)
+      if (!dependent[s_.v(i)]) st.chart.push_back(s_.v(i));
+    auto space = std::make_shared<const JetSpace>(st.chart.size(), static_cast<std::size_t>(K));
+    st.x.assign(2 * s_.n + 1, J());
+    for (std::size_t j = 0; j < st.chart.size(); ++j) st.x[st.chart[j]] = J::variable(space, j, point[st.chart[j]]);
+    if (!s_.has_time) st.x[s_.t()] = J(space, point[s_.t()]);
+    for (std::size_t i = 0; i < s_.n; ++i)
+      if (dependent[s_.v(i)]) st.x[s_.v(i)] = J(space, T(0));
+    solve_dependent_velocities(vp, dependent, st.x, point);
+    st.level.dim = static_cast<long>(st.chart.size() - (s_.has_time ? 1 : 0));
+    st.level.chart = st.chart;
+    out.dims.push_back(st.level.dim);
+    return true;
+  }
+
+  /// The pivots (constraint, velocity) of a(t, q) at the point: the preferred dependent velocities, or
+  /// the plan's where they carry the same rank.
+  std::vector<std::pair<std::size_t, std::size_t>> velocity_pivots(const std::vector<T>& point, PointwiseResult<T>& out) {
+    std::vector<std::vector<T>> a0(s_.m(), std::vector<T>(2 * s_.n + 1, T(0)));
+    std::vector<T> b0(s_.m());
+    for (std::size_t a = 0; a < s_.m(); ++a)
+      for (std::size_t i = 0; i < s_.n; ++i) a0[a][s_.v(i)] = value(d_.a[a][i], point);
+    std::vector<std::vector<T>> a0r = a0;
+    auto vp = eliminate_constants(a0r, b0, preference(true, false), decide_);
+    if (planned(0)) {
+      std::vector<std::vector<T>> a0p = a0;
+      std::vector<T> b0p = b0;
+      const auto alt = eliminate_constants(a0p, b0p, (*plan_)[0], decide_);
+      if (alt.size() == vp.size()) vp = alt;
+    }
+    out.plan.emplace_back();
+    for (const auto& pc : vp) out.plan.back().push_back(pc.second);
+    return vp;
+  }
+
+  /// Σ_{dep} a_ai v_i = −b_a − Σ_{free} a_ai v_i, as series, with the pivots chosen.
+  void solve_dependent_velocities(const std::vector<std::pair<std::size_t, std::size_t>>& vp, const std::vector<char>& dependent,
+                                  std::vector<J>& x, std::vector<T>& point) {
+    std::vector<std::vector<J>> r(s_.m());
+    std::vector<J> h(s_.m());
+    std::vector<std::size_t> dep_cols;
+    for (const auto& pc : vp) dep_cols.push_back(pc.second);
+    for (std::size_t a = 0; a < s_.m(); ++a) {
+      h[a] = -eval(d_.b[a], x);
+      for (std::size_t i = 0; i < s_.n; ++i) {
+        const J c = eval(d_.a[a][i], x);
+        if (dependent[s_.v(i)]) continue;
+        h[a] -= c * x[s_.v(i)];
+      }
+      for (std::size_t col : dep_cols) r[a].push_back(eval(d_.a[a][col - s_.n], x));
+    }
+    const std::vector<J> sol = solve_square(r, h);
+    for (std::size_t k = 0; k < dep_cols.size(); ++k) {
+      x[dep_cols[k]] = sol[k];
+      point[dep_cols[k]] = sol[k].value();
+    }
+  }
+
+  /// M_k → M_{k+1}: nothing while the tower goes on; else how the pass ends.
+  std::optional<Outcome> next_level(std::size_t k, std::vector<T>& point, long K, PointwiseResult<T>& out, State& st) {
+    const MotionSystem<T> sys = motion_system<T>(s_, d_, st.x, st.chart, names_, [&](const expr::Expr& e, const std::vector<J>& x) { return eval(e, x); });
+    step_data(sys);
+    JetElimination<T> e = eliminate_jets(sys.r, sys.h, decide_, sys.row_names, sys.col_names);
+    for (const auto& pc : e.pivots) st.level.pivots.push_back({sys.row_names[pc.first], sys.col_names[pc.second], sys.r[pc.first][pc.second].value()});
+    if (!e.singular.empty()) return singular(out, st, point, "on M_" + std::to_string(k) + ": " + e.singular);
+    long ord = std::numeric_limits<long>::max();  // to which order the candidates are known
+    for (const J& c : e.candidates) ord = std::min(ord, c.order());
+    if (e.candidates.empty()) ord = K;
+    if (!on_next_level(e)) {  // values at the point not all zero: move the point onto M_{k+1}
+      if (ord < 1) return Outcome::MoreOrder;
+      if (move(e.candidates, st.chart, st.x, point, k, out)) return Outcome::Moved;
+      out.levels.push_back(st.level);
+      finish(out, point, st.x);
+      return Outcome::Done;  // inconsistent (out says so)
+    }
+    if (ord < 1) return Outcome::MoreOrder;
+    return new_level(k, point, K, out, st, sys, e, ord);
+  }
+
+  /// The decision object sees the step's data (the constant terms of its linear system) first.
+  void step_data(const MotionSystem<T>& sys) {
+    std::vector<T> data;
+    for (const auto& row : sys.r)
+      for (const J& v : row) data.push_back(v.value());
+    for (const J& v : sys.h) data.push_back(v.value());
+    decide_.step_data(data);
+  }
+
+  /// Every candidate vanishes at the point (unless one more Newton step could still improve a value
+  /// taken as zero: rounding routes, a bounded number of times per call).
+  bool on_next_level(const JetElimination<T>& e) {
+    bool on = true, polish = false;
+    for (const J& c : e.candidates) {
+      on = on && decide_.zero(c.value());
+      polish = polish || decide_.polish(c.value());
+    }
+    if (on && polish && e.candidates.size() && polished_ < 4) {
+      ++polished_;
+      return false;
+    }
+    return on;
+  }
+
+  std::optional<Outcome> singular(PointwiseResult<T>& out, const State& st, const std::vector<T>& point, const std::string& why) {
+    out.levels.push_back(st.level);
+    out.regular = false;
+    out.why = why;
+    out.steps = out.dims.size() - 1;
+    finish(out, point, st.x);
+    return Outcome::Done;
+  }
+
+  /// The candidates' independent differentials (over the non-time chart coordinates, the plan's if
+  /// they carry the same rank): none — M_c = M_k, the tower ends (last_level) — or the graph of
+  /// M_{k+1} over the remaining coordinates (graph).
+  std::optional<Outcome> new_level(std::size_t k, std::vector<T>& point, long K, PointwiseResult<T>& out, State& st, const MotionSystem<T>& sys,
+                                   JetElimination<T>& e, long ord) {
+    const std::vector<std::size_t>& chart = st.chart;
+    std::vector<std::vector<T>> g(e.candidates.size(), std::vector<T>(chart.size(), T(0)));
+    for (std::size_t i = 0; i < e.candidates.size(); ++i)
+      for (std::size_t j = 0; j < chart.size(); ++j) g[i][j] = e.candidates[i].gradient(j);
+    std::vector<std::vector<T>> gr = g;
+    std::vector<T> zero_rhs(g.size(), T(0));
+    auto gp = eliminate_constants(gr, zero_rhs, chart_preference(chart), decide_);
+    if (planned(k) && !gp.empty()) {  // the plan's coordinates, if they carry the same rank
+      std::vector<std::vector<T>> gq = g;
+      std::vector<T> zq(g.size(), T(0));
+      const auto alt = eliminate_constants(gq, zq, positions_in(chart, (*plan_)[k]), decide_);
+      if (alt.size() == gp.size()) {
+        gp = alt;
+        gr = gq;
+      }
+    }
+    if (gp.empty()) return last_level(k, point, out, st, sys, e, g, ord);
+    return graph(k, point, K, out, st, e, g, gr, gp, ord);
+  }
+
+  /// M_{k+1} = M_k: every candidate must vanish on M_k (else inconsistent, or the point is singular);
+  /// the solutions at the point.
+  std::optional<Outcome> last_level(std::size_t k, const std::vector<T>& point, PointwiseResult<T>& out, State& st, const MotionSystem<T>& sys,
+                                    const JetElimination<T>& e, const std::vector<std::vector<T>>& g, long ord) {
+    out.levels.push_back(st.level);
+    for (std::size_t i = 0; i < e.candidates.size(); ++i) {
+      if (decide_.zero(e.candidates[i])) continue;
+      if (time_only(g[i], st.chart)) {
+        if (out.consistent) out.dims.push_back(-1);
+        out.consistent = false;
+        out.why = "step " + std::to_string(k) + " gives a condition on the time alone: M_" + std::to_string(k + 1) + "(t) is empty at generic times";
+      } else {
+        out.regular = false;
+        out.why = "on M_" + std::to_string(k) + ": a constraint vanishes with its differential at the point but not identically";
+      }
+    }
+    out.steps = out.dims.size() - 1;
+    out.checked_order = ord;
+    if (out.consistent && out.regular) solutions(sys, st.x, st.chart, out);
+    finish(out, point, st.x);
+    return Outcome::Done;
+  }
+
+  /// M_{k+1}: the graph of the pivot coordinates over the others, by Newton's method on jets; the
+  /// constraints it adds (their tangent equations at the point, each solved for its pivot).
+  std::optional<Outcome> graph(std::size_t k, const std::vector<T>& point, long K, PointwiseResult<T>& out, State& st, JetElimination<T>& e,
+                               const std::vector<std::vector<T>>& g, const std::vector<std::vector<T>>& gr,
+                               const std::vector<std::pair<std::size_t, std::size_t>>& gp, long ord) {
+    const std::vector<std::size_t>& chart = st.chart;
+    std::vector<std::size_t> sel_rows, dep_idx;
+    for (const auto& pc : gp) {
+      sel_rows.push_back(pc.first);
+      dep_idx.push_back(pc.second);
+    }
+    PointwiseLevel<T> next;
+    // reduced rows (Gauss–Jordan): each has 1 pivot among the solved coordinates, so it names the one it is solved for
+    for (std::size_t r = 0; r < gp.size(); ++r) next.added.push_back(tangent(gr[sel_rows[r]], chart, dep_idx[r], point));
+    out.plan.emplace_back();
+    for (std::size_t j : dep_idx) out.plan.back().push_back(chart[j]);
+    std::vector<std::size_t> new_chart;
+    std::vector<char> is_dep(chart.size(), 0);
+    for (std::size_t j : dep_idx) is_dep[j] = 1;
+    for (std::size_t j = 0; j < chart.size(); ++j)
+      if (!is_dep[j]) new_chart.push_back(chart[j]);
+    auto nspace = std::make_shared<const JetSpace>(new_chart.size(), static_cast<std::size_t>(K));
+    std::vector<J> subs(chart.size());
+    for (std::size_t j = 0, u = 0; j < chart.size(); ++j)
+      subs[j] = is_dep[j] ? J(nspace, point[chart[j]]) : J::variable(nspace, u++, point[chart[j]]);
+    newton_graph(e.candidates, sel_rows, dep_idx, g, subs, ord);
+    for (const J& c : e.candidates)
+      if (!decide_.zero(c.compose(subs)))
+        return singular(out, st, point, "on M_" + std::to_string(k + 1) + ": a constraint of step " + std::to_string(k) +
+                                            " vanishes with its differential at the point but not identically on M_" + std::to_string(k + 1));
+    for (J& xi : st.x) xi = xi.compose(subs);
+    out.levels.push_back(st.level);
+    st.chart = new_chart;
+    next.chart = new_chart;
+    next.dim = static_cast<long>(new_chart.size() - (s_.has_time ? 1 : 0));
+    out.dims.push_back(next.dim);
+    st.level = next;
+    if (st.level.dim < 0) throw std::logic_error("pointwise_cad: negative dimension");
+    return std::nullopt;
+  }
+
+  /// e at the point (constant jets: the scalar functions of JetFunctions, exact or not at all).
+  T value(const expr::Expr& e, const std::vector<T>& point) {
+    static const auto none = std::make_shared<const JetSpace>(0, 0);
+    std::vector<J> c;
+    for (const T& v : point) c.push_back(J(none, v));
+    return eval(e, c).value();
+  }
+  J eval(const expr::Expr& e, const std::vector<J>& x) {
+    const auto& sp = x[0].space();
+    return expr::evaluate<J>(e, x, [&](const Rational& q) { return J(sp, constant_(q)); });
+  }
+
+  /// Variable indices in groups, in the order to prefer them as *dependent* coordinates: free
+  /// velocities, given velocities, free positions, given positions (later before earlier inside).
+  std::vector<std::vector<std::size_t>> preference(bool velocities, bool positions) const {
+    std::vector<std::vector<std::size_t>> out;
+    for (int kind = 0; kind < 2; ++kind) {
+      if ((kind == 0 && !velocities) || (kind == 1 && !positions)) continue;
+      for (int pass = 0; pass < 2; ++pass) {
+        out.emplace_back();
+        for (std::size_t i = s_.n; i-- > 0;) {
+          const std::size_t var = kind == 0 ? s_.v(i) : s_.q(i);
+          if (fixed_[var] == (pass == 1)) out.back().push_back(var);
+        }
+      }
+    }
+    return out;
+  }
+  /// The same groups as chart positions (never the time); `movable`: only coordinates not given.
+  std::vector<std::vector<std::size_t>> chart_preference(const std::vector<std::size_t>& chart, bool movable = false) const {
+    std::vector<std::vector<std::size_t>> out;
+    for (const auto& group : preference(true, true)) {
+      out.emplace_back();
+      for (std::size_t var : group)
+        for (std::size_t j = 0; j < chart.size(); ++j)
+          if (chart[j] == var && !(movable && fixed_[var])) out.back().push_back(j);
+    }
+    return out;
+  }
+  bool time_only(const std::vector<T>& grad, const std::vector<std::size_t>& chart) {
+    bool t_nonzero = false;
+    for (std::size_t j = 0; j < chart.size(); ++j) {
+      if (chart[j] == s_.t()) t_nonzero = !decide_.zero(grad[j]);
+      else if (!decide_.zero(grad[j])) return false;
+    }
+    return t_nonzero;
+  }
+
+  /// Σ_j g_j s_j = Σ_j g_j s_j(point), scaled so that the solved coordinate has coefficient 1.
+  PointwiseConstraint<T> tangent(const std::vector<T>& g, const std::vector<std::size_t>& chart, std::size_t solved,
+                                 const std::vector<T>& point) {
+    PointwiseConstraint<T> c;
+    c.solved_for = chart[solved];
+    const T scale = g[solved];
+    for (std::size_t j = 0; j < chart.size(); ++j)
+      if (!decide_.zero(g[j])) {
+        c.gradient.emplace_back(chart[j], g[j] / scale);
+        c.rhs += g[j] / scale * point[chart[j]];
+      }
+    return c;
+  }
+
+  /// subs[dep] as series over the new chart with ψ_sel(subs) = 0: Newton's method with the
+  /// Jacobian at the point (each iteration gains at least one order).
+  void newton_graph(const std::vector<J>& cand, const std::vector<std::size_t>& rows, const std::vector<std::size_t>& dep,
+                    const std::vector<std::vector<T>>& g, std::vector<J>& subs, long ord) {
+    const std::size_t r = rows.size();
+    std::vector<std::vector<T>> jac(r, std::vector<T>(r));
+    for (std::size_t i = 0; i < r; ++i)
+      for (std::size_t k = 0; k < r; ++k) jac[i][k] = g[rows[i]][dep[k]];
+    const std::vector<std::vector<T>> inv = inverse(jac);
+    for (long it = 0; it <= ord + 1; ++it) {
+      std::vector<J> res;
+      for (std::size_t i = 0; i < r; ++i) res.push_back(cand[rows[i]].compose(subs));
+      for (std::size_t k = 0; k < r; ++k)
+        for (std::size_t i = 0; i < r; ++i)
+          if (!decide_.zero(inv[k][i])) subs[dep[k]] -= res[i] * J(res[i].space(), inv[k][i]);
+    }
+    for (std::size_t k = 0; k < r; ++k) subs[dep[k]].set_order(ord);
+    if constexpr (JetFunctions<T>::tracks_error) {
+      // Newton corrects its own errors, which a running bound cannot see (it would compound them
+      // over the iterations): the solution's error is that of its last residual through J⁻¹.
+      const std::size_t known = subs[0].space()->count_up_to(static_cast<std::size_t>(std::max(ord, 0L)));
+      for (std::size_t k = 0; k < r; ++k)
+        for (std::size_t c = 0; c < known; ++c)
+          subs[dep[k]].set_coefficient(c, JetFunctions<T>::with_error(subs[dep[k]].coefficient(c), T(0)));
+      std::vector<J> res;
+      for (std::size_t i = 0; i < r; ++i) res.push_back(cand[rows[i]].compose(subs));
+      for (std::size_t k = 0; k < r; ++k)
+        for (std::size_t c = 0; c < known; ++c)
+          subs[dep[k]].set_coefficient(c, JetFunctions<T>::with_error(subs[dep[k]].coefficient(c), absolute_sum(inv[k], res, c)));
+    }
+  }
+
+  /// Σ_i |inv_i| (|res_i[c]| + err): a bound of J⁻¹·res at coefficient c (for tracked scalars).
+  T absolute_sum(const std::vector<T>& inv_row, const std::vector<J>& res, std::size_t c) {
+    T s(0);
+    for (std::size_t i = 0; i < inv_row.size(); ++i) {
+      const T x = inv_row[i] * res[i].coefficient(c);
+      s = s + JetFunctions<T>::with_error(T(0), x);
+    }
+    return s;
+  }
+
+  /// The point is not on M_{k+1}: one Newton step on the candidates in the coordinates that may
+  /// move.  False (and `out` says why) if no move can satisfy them: M_{k+1} is empty near here.
+  bool move(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<J>& x, std::vector<T>& point,
+            std::size_t k, PointwiseResult<T>& out) {
+    Step st = newton_step(cand, chart, k);
+    if (!reachable(cand, chart, point, k, st, out)) return false;
+    std::vector<T> delta = step_of(st, chart);
+    std::vector<T> next = point;
+    for (std::size_t v = 0; v < x.size(); ++v) next[v] = x[v].at(delta);
+    for (std::size_t v = 0; v < x.size(); ++v)
+      if (fixed_[v]) next[v] = point[v];
+    point = next;
+    return true;
+  }
+
+  /// The linearized candidates g·δ = −ψ at the point, reduced on the coordinates that may move.
+  struct Step {
+    std::vector<std::vector<T>> g, gr;  ///< gradients over the chart, and reduced
+    std::vector<T> rhs;                  ///< −ψ, reduced
+    std::vector<std::size_t> movable;    ///< chart positions the step may change
+    std::vector<std::pair<std::size_t, std::size_t>> piv;  ///< (candidate, coordinate) pivots
+    std::size_t rank_all = 0;            ///< rank of the gradients over every coordinate but the time
+  };
+
+  Step newton_step(const std::vector<J>& cand, const std::vector<std::size_t>& chart, std::size_t k) {
+    Step st;
+    std::vector<std::vector<T>>& g = st.g;
+    std::vector<T>& rhs = st.rhs;
+    g.assign(cand.size(), std::vector<T>(chart.size(), T(0)));
+    rhs.resize(cand.size());
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+      rhs[i] = -cand[i].value();
+      for (std::size_t j = 0; j < chart.size(); ++j) g[i][j] = cand[i].gradient(j);
+    }
+    // a Newton step changes, for each constraint, the movable coordinate it depends on most (complete
+    // pivoting by magnitude, in both routes): preferring velocities, as charts do, would fix the
+    // pendulum's multiplier constraint mu = m (v² − g y)/|q|² by changing v instead of mu
+    std::vector<std::size_t>& movable = st.movable;
+    if (planned(k)) {  // the plan's solved coordinates: the projection is the graph map of its chart
+      for (std::size_t j : positions_in(chart, (*plan_)[k]))
+        if (!fixed_[chart[j]]) movable.push_back(j);
+    } else {
+      for (const auto& group : chart_preference(chart, true)) movable.insert(movable.end(), group.begin(), group.end());
+    }
+    st.gr = g;
+    Largest<T, Decide> largest{decide_};
+    st.piv = eliminate_constants(st.gr, rhs, movable, largest);
+    std::vector<std::vector<T>> ga = g;
+    std::vector<T> za(g.size(), T(0));
+    std::vector<std::size_t> all;
+    for (const auto& group : chart_preference(chart)) all.insert(all.end(), group.begin(), group.end());
+    st.rank_all = eliminate_constants(ga, za, all, decide_).size();
+    return st;
+  }
+
+  /// Whether the step can bring the point onto M_{k+1}: a candidate without a pivot must vanish there
+  /// or be redundant; a nonzero constant, or a condition on the time alone, makes M_{k+1} empty (false,
+  /// `out` says why); given values that no other coordinate can meet are bad input (PointwiseNoPoint).
+  bool reachable(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<T>& point, std::size_t k, const Step& st,
+                 PointwiseResult<T>& out) {
+    const std::vector<std::vector<T>>& g = st.g;
+    std::vector<char> prow(cand.size(), 0);
+    for (const auto& pc : st.piv) prow[pc.first] = 1;
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+      if (prow[i] || decide_.zero(st.rhs[i])) continue;
+      bool constant = true;  // the candidate is a nonzero constant near the point: M_{k+1} = ∅
+      for (const auto& [idx, c] : cand[i].entries()) constant = constant && (idx == 0 || decide_.zero(c));
+      std::vector<T> gi = g[i];
+      if (constant) {
+        out.consistent = false;
+        out.dims.push_back(-1);
+        out.steps = out.dims.size() - 1;
+        out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(cand[i].value()) + ": M_" + std::to_string(k + 1) +
+                  " is empty";
+        return false;
+      }
+      if (time_only(gi, chart)) {
+        out.consistent = false;
+        out.dims.push_back(-1);
+        out.steps = out.dims.size() - 1;
+        out.why = "step " + std::to_string(k) + " gives a condition on the time alone, violated at t = " + JetFunctions<T>::text(point[s_.t()]) +
+                  ": M_" + std::to_string(k + 1) + "(t) is empty there";
+        return false;
+      }
+      if (st.piv.size() < st.rank_all) {  // the constraints need more freedom than the movable coordinates give
+        std::string given;
+        for (std::size_t j = 0; j < chart.size(); ++j)
+          if (fixed_[chart[j]] && !decide_.zero(g[i][j])) given += (given.empty() ? "" : ", ") + names_[chart[j]];
+        throw PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) + " (residual " +
+                               JetFunctions<T>::text(cand[i].value()) + ") that no other coordinate can satisfy");
+      }
+      // otherwise a redundant candidate: it vanishes on M_{k+1}, where the independent ones bring the point
+    }
+    return true;
+  }
+
+  /// δ: each constraint moves its pivot coordinate (exactly, a constraint affine in it lands in one
+  /// step); on rounding routes the minimum-norm step instead.
+  std::vector<T> step_of(const Step& st, const std::vector<std::size_t>& chart) {
+    const auto& piv = st.piv;
+    const auto& gr = st.gr;
+    const auto& rhs = st.rhs;
+    std::vector<T> delta(chart.size(), T(0));
+    // each constraint moves its pivot coordinate: exactly, a constraint affine in it lands in one step
+    for (const auto& pc : piv) delta[pc.second] = rhs[pc.first] / gr[pc.first][pc.second];
+    if constexpr (JetFunctions<T>::tracks_error) {
+      // rounding routes: the minimum-norm step instead (δ minus its part in ker A, A the independent
+      // constraints' gradients over the movable coordinates), a smooth projection — the pivot
+      // coordinates flip between nearby points, and so would the projected vector field
+      std::vector<std::vector<T>> nulls;  // ker A from the reduced rows: one vector per free column
+      for (std::size_t f : st.movable) {
+        if (std::any_of(piv.begin(), piv.end(), [&](const auto& pc) { return pc.second == f; })) continue;
+        std::vector<T> v(chart.size(), T(0));
+        v[f] = T(1);
+        for (const auto& pc : piv) v[pc.second] = -gr[pc.first][f] / gr[pc.first][pc.second];
+        nulls.push_back(v);
+      }
+      if (!nulls.empty()) {
+        std::vector<std::vector<T>> ntn(nulls.size(), std::vector<T>(nulls.size(), T(0)));
+        std::vector<T> ntd(nulls.size(), T(0));
+        for (std::size_t i = 0; i < nulls.size(); ++i)
+          for (std::size_t j = 0; j < chart.size(); ++j) {
+            ntd[i] += nulls[i][j] * delta[j];
+            for (std::size_t l = 0; l < nulls.size(); ++l) ntn[i][l] += nulls[i][j] * nulls[l][j];
+          }
+        const std::vector<std::vector<T>> inv = inverse(ntn);
+        for (std::size_t i = 0; i < nulls.size(); ++i) {
+          T w(0);
+          for (std::size_t l = 0; l < nulls.size(); ++l) w += inv[i][l] * ntd[l];
+          for (std::size_t j = 0; j < chart.size(); ++j) delta[j] -= nulls[i][j] * w;
+        }
+      }
+    }
+    return delta;
+  }
+
+  /// The solution rank and the velocities at the point, from the final system's constant terms:
+  /// z = (ṡ, λ) solves R z = h; ẋ = Σ_j ∂x/∂s_j ṡ_j + ∂x/∂t for every coordinate of x = (q, v, p).
+  void solutions(const MotionSystem<T>& sys, const std::vector<J>& x, const std::vector<std::size_t>& chart, PointwiseResult<T>& out) {
+    const std::size_t n = s_.n, rows = sys.r.size(), w = rows ? sys.r[0].size() : s_.m(), ms = w - s_.m();
+    std::vector<std::vector<T>> r(rows, std::vector<T>(w));
+    std::vector<T> h(rows);
+    for (std::size_t i = 0; i < rows; ++i) {
+      h[i] = sys.h[i].value();
+      for (std::size_t j = 0; j < w; ++j) r[i][j] = sys.r[i][j].value();
+    }
+    std::vector<std::size_t> cols(w);
+    for (std::size_t j = 0; j < w; ++j) cols[j] = j;
+    const auto piv = eliminate_constants(r, h, cols, decide_);
+    std::vector<char> is_piv(w, 0);
+    std::vector<T> z(w, T(0));
+    for (const auto& pc : piv) {
+      z[pc.second] = h[pc.first] / r[pc.first][pc.second];
+      is_piv[pc.second] = 1;
+    }
+    const auto full = [&](const std::vector<T>& zz, bool with_time) {
+      std::vector<T> v(3 * n, T(0));
+      for (std::size_t var = 0; var < 3 * n; ++var) {
+        const J& f = var < 2 * n ? x[var] : sys.p[var - 2 * n];
+        std::size_t jj = 0;
+        for (std::size_t j = 0; j < chart.size(); ++j) {
+          if (chart[j] == s_.t()) {
+            if (with_time) v[var] += f.derivative(j).value();
+          } else {
+            v[var] += f.derivative(j).value() * zz[jj++];
+          }
+        }
+      }
+      return v;
+    };
+    out.velocity = full(z, true);
+    out.tangent.clear();
+    for (std::size_t j = 0; j < ms; ++j) {
+      std::vector<T> e(ms + s_.m(), T(0));
+      e[j] = T(1);
+      out.tangent.push_back(full(e, false));
+    }
+    std::vector<std::vector<T>> dirs;
+    for (std::size_t f = 0; f < w; ++f) {  // the kernel of R, one vector per free column
+      if (is_piv[f]) continue;
+      std::vector<T> k(w, T(0));
+      k[f] = T(1);
+      for (const auto& pc : piv) k[pc.second] = -r[pc.first][f] / r[pc.first][pc.second];
+      dirs.push_back(full(k, false));
+    }
+    std::vector<std::vector<T>> rr = dirs;  // the ẋ-directions they span
+    std::vector<T> zr(rr.size(), T(0));
+    std::vector<std::size_t> xcols(3 * n);
+    for (std::size_t j = 0; j < 3 * n; ++j) xcols[j] = j;
+    out.gauge.clear();
+    for (const auto& pc : eliminate_constants(rr, zr, xcols, decide_)) out.gauge.push_back(dirs[pc.first]);
+    out.solution_rank = out.gauge.size();
+  }
+
+  /// The point (q, v, p = ∂L/∂v) and the time.
+  void finish(PointwiseResult<T>& out, const std::vector<T>& point, const std::vector<J>& x) {
+    const std::size_t n = s_.n;
+    out.point.assign(3 * n, T(0));
+    for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
+    for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = eval(d_.dl_dv[i], x).value();
+    out.time = point[s_.t()];
+  }
+
+  bool planned(std::size_t k) const { return plan_ && k < plan_->size() && !(*plan_)[k].empty(); }
+  /// The chart positions of the variables `vars` (those in the chart).
+  static std::vector<std::size_t> positions_in(const std::vector<std::size_t>& chart, const std::vector<std::size_t>& vars) {
+    std::vector<std::size_t> out;
+    for (std::size_t v : vars)
+      for (std::size_t j = 0; j < chart.size(); ++j)
+        if (chart[j] == v) out.push_back(j);
+    return out;
+  }
+
+  std::size_t& polished_;  ///< Newton steps taken only to polish, over the whole call (bounded)
+  const LagrangianSystem& s_;
+  const LagrangianDerivatives& d_;
+  const std::vector<bool>& fixed_;
+  Decide& decide_;
+  std::function<T(const Rational&)> constant_;
+  std::vector<std::string> names_;
+  const std::vector<std::vector<std::size_t>>* plan_ = nullptr;
+};
+
+}  // namespace dcad::reference::pointwise_detail
