@@ -4,13 +4,13 @@
 namespace dcad::bench {
 
 /// What `dcad solve --backend reference` does: the CAD on SmallRational, on WideRational if a number
-/// outgrows 64 bits, on mpq_rational if it outgrows 128 (small_rational.hpp: the same exact
-/// arithmetic either way).
+/// outgrows 64 bits, on FLINT's fmpq if it outgrows 128 (small_rational.hpp, fmpq.hpp: the same
+/// exact arithmetic either way).
 Outcome run_reference(const families::Instance& in) {
   try {
     return run_small(in);
   } catch (const reference::Overflow&) {
-    return run_mpq(in);
+    return run_fmpq(in);
   }
 }
 

@@ -1,10 +1,13 @@
 // The methods compared by the sweep (issue 6), one translation unit each (heavy templates):
-//   reference  the exact CAD (64-, then 128-bit words, mpq_rational on Overflow) method_reference.cpp
+//   reference  the exact CAD (64-, then 128-bit words, FLINT's fmpq on Overflow)  method_reference.cpp
 //   bf100/bf50 the same algorithm in cpp_bin_float_100/_50, |x| ≤ 1e-85/1e-40 × scale is zero
 //   naive      the same algorithm in double, |x| ≤ 1e-9 × scale is zero   method_approx_*.cpp
 //   fast       dcad::fast (orthogonal decompositions, SVD rank decisions)  method_fast.cpp
-//   certified  machine words first (N ≤ 64), else or on Overflow the algorithm in ball arithmetic,
-//              exact (mpq) on an uncertain test                        method_certified.cpp
+//   certified  machine words first, on Overflow the algorithm in ball arithmetic, exact (fmpq) on an
+//              uncertain test                                          method_certified.cpp
+//   tier_*     one tier alone (issue 26): tier_mpq mpq_rational, tier_fmpq FLINT's fmpq (the reference's
+//              Gauss–Jordan), tier_flint fmpq with fmpq_mat_rref, tier_ball certified::Ball and
+//              tier_arb Arb's arb_t (each recomputed in fmpq on an uncertain test)   method_*.cpp
 #pragma once
 
 #include "families.hpp"
@@ -41,6 +44,13 @@ Outcome run_bf50(const families::Instance&);
 Outcome run_naive(const families::Instance&);
 Outcome run_fast(const families::Instance&);
 Outcome run_certified(const families::Instance&);
+/// The exact tiers measured against the machine words (issue 26): the reference's Gauss–Jordan on FLINT's
+/// fmpq (method_fmpq.cpp), and with every RREF by FLINT's fmpq_mat_rref (method_flint.cpp).
+Outcome run_fmpq(const families::Instance&);
+Outcome run_flint(const families::Instance&);
+/// The ball tier alone, on an Uncertain recomputed in fmpq: certified::Ball, and Arb's arb_t (method_arb.cpp).
+Outcome run_ball(const families::Instance&);
+Outcome run_arb(const families::Instance&);
 
 /// Largest principal angle between two subspaces (columns); π/2 if the dimensions differ.
 double largest_angle(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);

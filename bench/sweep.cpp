@@ -94,7 +94,7 @@ struct Plan {
 
 std::vector<Plan> plans(bool quick, int reps) {
   const int r = reps > 0 ? reps : (quick ? 6 : 40);
-  std::vector<double> sizes = quick ? std::vector<double>{2, 4, 6, 8, 10} : std::vector<double>{2, 4, 6, 8, 10, 12, 16, 20};
+  std::vector<double> sizes = quick ? std::vector<double>{2, 4, 6, 8, 10} : std::vector<double>{2, 4, 6, 8, 10, 12, 16, 20, 32};
   return {
       {"graded", {1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e14, 1e16}, r, [](double k, std::mt19937_64& g) { return fam::graded(k, g); }},
       {"perturbed", {10, 20, 30, 40, 50, 60}, r, [](double k, std::mt19937_64& g) { return fam::perturbed(static_cast<int>(k), g); }},
@@ -188,7 +188,10 @@ int main(int argc, char** argv) {
 
   const std::vector<std::pair<std::string, dcad::bench::Method>> methods = {
       {"reference", dcad::bench::run_reference}, {"bf100", dcad::bench::run_bf100}, {"bf50", dcad::bench::run_bf50},
-      {"naive", dcad::bench::run_naive},         {"fast", dcad::bench::run_fast},   {"certified", dcad::bench::run_certified}};
+      {"naive", dcad::bench::run_naive},         {"fast", dcad::bench::run_fast},   {"certified", dcad::bench::run_certified},
+      // the exact tiers, each alone (issue 26): machine words are `certified`'s first tier above
+      {"tier_fmpq", dcad::bench::run_fmpq},      {"tier_flint", dcad::bench::run_flint}, {"tier_mpq", dcad::bench::run_mpq},
+      {"tier_ball", dcad::bench::run_ball},      {"tier_arb", dcad::bench::run_arb}};
   std::ofstream csv(out + "/sweep.csv"), jsonl(out + "/instances.jsonl");
   if (!csv || !jsonl) {
     std::fprintf(stderr, "dcad_sweep: cannot write to %s\n", out.c_str());

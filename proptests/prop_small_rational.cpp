@@ -1,11 +1,13 @@
-// SmallRational and WideRational (issue 14) are mpq_rational while the numbers fit in 64 / 128 bits:
-// the arithmetic operation by operation, and the whole reference CAD on random systems (CEF §5) and on
-// the sweep's perturbed family (numbers beyond 64 bits), compared exactly with the mpq_rational run.
-// A wrong reduction, sign, gcd or overflow bound fails here.
+// SmallRational and WideRational (issue 14) are mpq_rational while the numbers fit in 64 / 128 bits,
+// and FLINT's fmpq (issue 26: the exact tier behind them) is mpq_rational at every size: the arithmetic
+// operation by operation, and the whole reference CAD on random systems (CEF §5) and on the sweep's
+// perturbed family (numbers beyond 64 bits), compared exactly with the mpq_rational run.  A wrong
+// reduction, sign, gcd, overflow bound or conversion fails here.
 #include "support/families.hpp"
 #include "support/gen.hpp"
 
 #include "dcad/reference/cad.hpp"
+#include "dcad/reference/fmpq.hpp"
 #include "dcad/reference/small_rational.hpp"
 
 #include <gtest/gtest.h>
@@ -19,6 +21,7 @@ using namespace dcad::test;
 namespace ref = dcad::reference;
 using S = ref::SmallRational;
 using W = ref::WideRational;
+using F = ref::Fmpq;
 
 namespace {
 
@@ -140,6 +143,15 @@ bool cad_is_the_mpq_cad(const ref::LinearSystem<Q>& s) {
   }
 }
 
+/// op on Fmpq is op on mpq, number and printed text, whatever the size (no overflow to recover from).
+template <class Op>
+void fmpq_same_as_mpq(const ref::Rational& a, const ref::Rational& b, Op op) {
+  const ref::Rational exact = op(a, b);
+  const F r = op(F::from(a), F::from(b));
+  RC_ASSERT(r.value() == exact);
+  RC_ASSERT(r.str() == exact.str());
+}
+
 }  // namespace
 
 RC_GTEST_PROP(SmallRational, ArithmeticIsMpqOrOverflow, ()) { arithmetic_is_mpq_or_overflow<S>(64, 64); }
@@ -188,4 +200,35 @@ RC_GTEST_PROP(WideRational, ReferenceCadIsTheMpqCad, ()) {
   const ref::LinearSystem<Q> s = families::system_over<Q>(in, [](const Q& q) { return q; });
   RC_CLASSIFY(!cad_is_the_mpq_cad<S>(s), "perturbed beyond 64 bits");
   RC_CLASSIFY(cad_is_the_mpq_cad<W>(s), "perturbed, fits in 128 bits");
+}
+
+// Fmpq on operands of up to 200 bits (FLINT keeps up to 62 bits in the word, beyond in GMP: both sides
+// of that line and the moves between them).
+RC_GTEST_PROP(Fmpq, ArithmeticIsMpq, ()) {
+  const ref::Rational a = any_fraction(*rc::gen::element(8, 62, 64, 200)), b = any_fraction(*rc::gen::element(8, 62, 64, 200));
+  fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x + y; });
+  fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x - y; });
+  fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x * y; });
+  if (b != 0) fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x / y; });
+  RC_ASSERT((F::from(a) == F::from(b)) == (a == b));
+  RC_ASSERT((-F::from(a)).value() == -a);
+  RC_ASSERT(known_zero(F::from(a)) == (a == 0));
+  F acc = F::from(a);
+  acc += F::from(b), acc *= F::from(b), acc -= F::from(a);
+  RC_ASSERT(acc.value() == (a + b) * b - a);
+  RC_CLASSIFY(!fits(a, 64) || !fits(b, 64), "an operand beyond 64 bits (in GMP)");
+}
+
+// The CAD of CEF §5 on Fmpq is the mpq_rational CAD, on random systems and on the perturbed family
+// beyond 128 bits (where the reference and the certified cascade reach it).
+RC_GTEST_PROP(Fmpq, ReferenceCadIsTheMpqCad, ()) {
+  if (*rc::gen::arbitrary<bool>()) {
+    RC_ASSERT(cad_is_the_mpq_cad<F>(any_system()));
+    return;
+  }
+  std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+  const families::Instance in = families::perturbed(*rc::gen::inRange(30, 61), rng);
+  const ref::LinearSystem<Q> s = families::system_over<Q>(in, [](const Q& q) { return q; });
+  RC_CLASSIFY(!cad_is_the_mpq_cad<W>(s), "perturbed beyond 128 bits");
+  RC_ASSERT(cad_is_the_mpq_cad<F>(s));
 }

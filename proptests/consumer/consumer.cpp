@@ -1,6 +1,6 @@
 // A project outside dcad's tree that uses the installed package (README "dcad from C++"): the CAD on its
-// own matrices, a netlist given as a string, the typed Solution read and printed — on in-memory data,
-// no file written or read — and a property written with dcad's generators (dcad::testing).
+// own matrices, a netlist given as a string, the typed Solution read and printed, a result checked —
+// all on in-memory data, no file written or read — and a property written with dcad's generators (dcad::testing).
 #include "dcad/api.hpp"              // every backend's solve, check, simulate
 #include "dcad/certified/solve.hpp"  // certified::solve: a Problem in, a typed Solution out
 #include "dcad/fast/cad.hpp"         // the double twin on your own matrices
@@ -13,7 +13,6 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
-#include <fstream>
 #include <sstream>
 
 namespace ref = dcad::reference;
@@ -73,9 +72,11 @@ TEST(MyTool, ResultAgreesWithTheReference) {
   const dcad::io::Problem p = dcad::io::parse_netlist("tank\nL1 1 0 1m\nC1 1 0 1u\n.end\n", "tank.cir");
   const dcad::io::Printed mine = dcad::api::printed(dcad::api::solve(p, dcad::api::Backend::fast, dcad::Parts::none()));
   EXPECT_EQ(mine.dims(), (std::vector<long>{6, 3}));  // CEF Thm 6.6: no capacitive loop, c = 1
-  const std::string result = "mine.result.json";
-  std::ofstream(result) << dcad::io::result_json(mine);  // or your tool's JSON
-  EXPECT_TRUE(dcad::api::check(result, p).agrees);
+  EXPECT_TRUE(dcad::api::check_text(dcad::io::result_json(mine), p).agrees);  // or your tool's JSON text
+  const dcad::api::Checked wrong = dcad::api::check_text(R"({"dims": [6, 2], "steps": 1, "consistent": true, "solution_rank": 0})", p);
+  EXPECT_FALSE(wrong.agrees);  // dim M_1 is 3, not 2: the disagreement is named
+  ASSERT_FALSE(wrong.disagreements.empty());
+  EXPECT_NE(wrong.disagreements[0].find("dims"), std::string::npos);
   EXPECT_THROW(dcad::io::parse_netlist("bad\nQ1 1 0 npn\n", "bad.cir"), dcad::io::InputError);
 }
 

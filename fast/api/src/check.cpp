@@ -279,8 +279,8 @@ void compare_final_constraints(Checker& k, const json& found, const io::QMatrix&
 
 /// RESULT read (exactly, depth-limited) with its required keys and their types checked: io::InputError
 /// (exit 1, naming the JSON path) otherwise.
-json read_result(const std::string& result_file) {
-  const json r = io::read_json_file(result_file);  // floats kept as their text; depth limited
+json read_result(const std::string& result_file, const std::string* text) {
+  const json r = text ? io::parse_json_exact(*text, result_file) : io::read_json_file(result_file);  // floats kept as text; depth limited
   if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
   if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
   for (const char* key : {"dims", "steps", "consistent", "solution_rank"})
@@ -314,8 +314,7 @@ reference::Solution truth_of(const io::Problem& p) {
   return reference::solve(p);
 }
 
-Checked check_linear(const std::string& result_file, const io::Problem& p_in) {
-  const json r = read_result(result_file);
+Checked check_linear(const std::string& result_file, const json& r, const io::Problem& p_in) {
   const io::CaseFile& c_in = p_in.linear;
   if (r.contains("name") && r["name"] != c_in.name)
     bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")", shown(r["name"]) + ": a result for another case");
@@ -439,9 +438,8 @@ bool equal_modulo(const std::vector<Number>& found, const std::vector<std::strin
   return r <= 1e-9 * static_cast<double>(n) * scale;
 }
 
-Checked check_expression(const std::string& result_file, const io::Problem& p) {
+Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p) {
   const io::LagrangianCase& c = p.expression;
-  const json r = read_result(result_file);
   const std::vector<std::string> st = c.system.state_names();
   if (r.contains("name") && r["name"] != c.name)
     bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
@@ -506,14 +504,19 @@ Checked check_expression(const std::string& result_file, const io::Problem& p) {
   return k.out;
 }
 
-}  // namespace
-
-Checked check(const std::string& result_file, const io::Problem& p) {
+Checked checked(const std::string& result_file, const std::string* text, const io::Problem& p) {
   return guarded(p, [&] {
-    Checked o = p.form == io::Form::expression ? check_expression(result_file, p) : check_linear(result_file, p);
+    const json r = read_result(result_file, text);
+    Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p) : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     return o;
   });
 }
+
+}  // namespace
+
+Checked check(const std::string& result_file, const io::Problem& p) { return checked(result_file, nullptr, p); }
+
+Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name) { return checked(name, &result_json, p); }
 
 }  // namespace dcad::api

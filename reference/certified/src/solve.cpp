@@ -85,8 +85,8 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
   return io::at_input(c, [&] {
     if (c.has_pontryagin && c.pontryagin.has_forces) return exact_solution(pl::solve_forced(c));
     return from_cascade(cascade<Solution>(
-        c.n <= reference::kSmallFirstUpTo, [&](int& bits) { return exact_solution(pl::solve_linear_words(c, parts, bits)); },
-        [&] { return balls(solve_linear_balls(c, parts)); }, [&] { return exact_solution(pl::solve_linear_mpq(c, parts)); }));
+        [&](int& bits) { return exact_solution(pl::solve_linear_words(c, parts, bits)); },
+        [&] { return balls(solve_linear_balls(c, parts)); }, [&] { return exact_solution(pl::solve_linear_fmpq(c, parts)); }));
   });
 }
 
@@ -127,9 +127,8 @@ Solution lc_circuit(const io::Problem& p, const Parts& parts) {
   const bool physical = lc::physical(graph);
   if (deck.circuit.branches.size() > kDenseBranches && physical) return graph_route(deck, p.linear.variables);
   Solution s = from_cascade(cascade<Solution>(
-      3 * deck.circuit.branches.size() <= reference::kSmallFirstUpTo,
       [&](int& bits) { return exact_solution(pl::solve_lc_words(deck, p.linear, parts, bits)); },
-      [&] { return balls(solve_lc_balls(deck, p.linear, parts)); }, [&] { return exact_solution(pl::solve_lc_mpq(deck, p.linear, parts)); }));
+      [&] { return balls(solve_lc_balls(deck, p.linear, parts)); }, [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear, parts)); }));
   if (physical && lc::physical_tower(deck.circuit.nodes, graph).dims != s.dims())  // a theorem disagrees with a certified computation
     throw std::logic_error("graph route and certified CAD disagree on " + deck.file + "; please report it");
   return s;

@@ -16,7 +16,7 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
     try {
       return pipeline::solve_linear_words(c, parts, bits);
     } catch (const Overflow&) {
-      return pipeline::solve_linear_mpq(c, parts);
+      return pipeline::solve_linear_fmpq(c, parts);
     }
   });
 }
@@ -33,7 +33,7 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
   try {
     s = pipeline::solve_lc_words(deck, p.linear, parts, bits);
   } catch (const Overflow&) {
-    s = pipeline::solve_lc_mpq(deck, p.linear, parts);
+    s = pipeline::solve_lc_fmpq(deck, p.linear, parts);
   }
   s.circuit = io::circuit_facts(deck);
   s.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +

@@ -65,6 +65,8 @@ struct Checked {
 };
 /// InputError if the result file is not a result for this problem.
 Checked check(const std::string& result_file, const io::Problem& p);
+/// The same for a result given as JSON text (`name` stands for it in messages): no file needed.
+Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name = "<result>");
 
 /// `dcad inspect`: what the problem's Dirac structure is (a `dirac` case; InputError otherwise).
 Inspection inspect(const io::Problem& p, Backend backend);

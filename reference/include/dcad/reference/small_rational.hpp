@@ -30,10 +30,6 @@
 
 namespace dcad::reference {
 
-/// The certified backend runs the reference on SmallRational first up to this many variables (an
-/// exact answer at about the cost of floating point there), and ball arithmetic first above it.
-constexpr std::size_t kSmallFirstUpTo = 64;
-
 /// A result that does not fit in the word: the caller recomputes on a wider type.
 struct Overflow : std::runtime_error {
   using std::runtime_error::runtime_error;

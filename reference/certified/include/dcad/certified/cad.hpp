@@ -1,16 +1,17 @@
 // dcad::certified::constraint_tower — the CAD with certified decisions as a library call (issue 15; the
 // route of `dcad solve --backend certified`, issue 14).  Every route runs the reference's own algorithm
 // (reference::constraint_tower, CEF Remark 5.2) on another scalar, cheapest first:
-//   1. SmallRational, then WideRational: the same exact arithmetic in 64-bit, then 128-bit words (up to
-//      kSmallFirstUpTo variables), or reference::Overflow when a number does not fit;
+//   1. SmallRational, then WideRational: the same exact arithmetic in 64-bit, then 128-bit words, or
+//      reference::Overflow when a number does not fit;
 //   2. Ball: floating point with every zero test proved, or certified::Uncertain (ball.hpp);
-//   3. mpq_rational: the reference itself.
+//   3. Fmpq: the same exact arithmetic in FLINT's rationals (fmpq.hpp).
 // A route that finishes took every branch the exact run takes, so the discrete answers — dims of the
 // M_k, c, consistency, solution rank — are the exact ones whichever route gave them.
 #pragma once
 
 #include "dcad/certified/cascade.hpp"
 #include "dcad/reference/cad.hpp"
+#include "dcad/reference/fmpq.hpp"
 
 #include <string>
 #include <vector>
@@ -67,7 +68,6 @@ CertifiedTower run(const reference::LinearSystem<Rational>& s, const Matrix<Rati
 inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& s, const Matrix<Rational>& initial = Matrix<Rational>()) {
   std::string narrow;  // why 64-bit words gave up, if they did
   const Cascaded<CertifiedTower> c = cascade<CertifiedTower>(
-      s.d.n <= reference::kSmallFirstUpTo,
       [&](int& bits) {
         try {
           bits = 64;
@@ -81,7 +81,7 @@ inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& 
         }
       },
       [&] { return detail::run<Ball>(s, initial, Route::balls, [](const Rational& q) { return Ball::enclosing(q); }); },
-      [&] { return detail::run<Rational>(s, initial, Route::exact, [](const Rational& q) { return q; }); });
+      [&] { return detail::run<reference::Fmpq>(s, initial, Route::exact, [](const Rational& q) { return reference::Fmpq::from(q); }); });
   CertifiedTower out = c.result;
   out.route = c.route;
   out.word_bits = c.word_bits;

@@ -2,7 +2,11 @@
 // cheapest first —
 //   1. exact machine words (64-bit, then 128-bit rationals): the exact run, or reference::Overflow;
 //   2. balls (ball.hpp): every zero test proved, or certified::Uncertain;
-//   3. mpq_rational: the reference itself.
+//   3. FLINT's fmpq (fmpq.hpp): the exact run, as the reference's own last tier.
+// The tiers are what the sweep measured best (bench/results/summary.md, "exact tier alone", issue 26):
+// words 1.9–2.6× faster than fmpq on every family (so they go first at every size: above 64 variables
+// they beat the balls too), fmpq 5.7–6.1× faster than mpq_rational and 1.4–4.6× faster than FLINT's
+// fraction-free fmpq_mat_rref, the hand-written balls 1.1–1.9× faster than Arb's arb_t.
 // A tier that finishes took every branch the exact run takes, so its discrete answers are the exact
 // ones whichever tier gave them (small_rational.hpp, ball.hpp give the proofs).  Used by
 // certified::constraint_tower (cad.hpp) and certified::solve (solve.hpp).
@@ -19,7 +23,7 @@ namespace dcad::certified {
 enum class Route { machine_words, balls, exact };
 
 inline const char* route_name(Route r) {
-  return r == Route::machine_words ? "exact in machine words" : r == Route::balls ? "ball arithmetic" : "exact (mpq)";
+  return r == Route::machine_words ? "exact in machine words" : r == Route::balls ? "ball arithmetic" : "exact (fmpq)";
 }
 
 template <class R>
@@ -32,19 +36,17 @@ struct Cascaded {
   std::string uncertain;    ///< why the balls gave up
 };
 
-/// `words(bits)`: the run in 64-, then 128-bit words (sets bits; throws reference::Overflow), tried only
-/// if `try_words`; `balls()`: the run in ball arithmetic (throws Uncertain); `exact()`: the run in mpq.
+/// `words(bits)`: the run in 64-, then 128-bit words (sets bits; throws reference::Overflow);
+/// `balls()`: the run in ball arithmetic (throws Uncertain); `exact()`: the run in fmpq.
 template <class R, class Words, class Balls, class Exact>
-Cascaded<R> cascade(bool try_words, Words words, Balls balls, Exact exact) {
+Cascaded<R> cascade(Words words, Balls balls, Exact exact) {
   Cascaded<R> out;
-  if (try_words) {
-    try {
-      out.result = words(out.word_bits);
-      out.route = Route::machine_words;
-      return out;
-    } catch (const reference::Overflow& e) {
-      out.overflow = e.what();
-    }
+  try {
+    out.result = words(out.word_bits);
+    out.route = Route::machine_words;
+    return out;
+  } catch (const reference::Overflow& e) {
+    out.overflow = e.what();
   }
   try {
     Ball::Counting counting(out.counts);

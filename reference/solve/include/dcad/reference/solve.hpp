@@ -1,7 +1,8 @@
 // reference::solve — the exact reference on any problem (issue 26: a typed solve in each twin).  Every
 // route is the literal reference in exact rational arithmetic: numbers are held in 64-bit, then
 // 128-bit words while they fit (SmallRational, WideRational: the same exact arithmetic, see
-// small_rational.hpp) and in mpq_rational once a number outgrows them.
+// small_rational.hpp) and in FLINT's fmpq once a number outgrows them (fmpq.hpp; the forced and
+// expression routes in mpq_rational).
 //   linear cases        CEF §5 tower, Lemma 3.23 classes, Thm 3.28 / 7.4, (5.12)   pipeline/linear.hpp
 //   LC netlists         CEF §6 closed form, D̄_Δ on M_c                            pipeline/circuit.hpp
 //   forces and sources  YM §4, moving M_k(t) as in V §3                            pipeline/forced.hpp
@@ -30,11 +31,11 @@ namespace pipeline {
 /// The linear pipeline in 64-bit, then 128-bit words (`bits` says which); reference::Overflow when a
 /// number outgrows 128 bits.
 Solution solve_linear_words(const io::CaseFile& c, const Parts& parts, int& bits);
-/// The linear pipeline in mpq_rational.
-Solution solve_linear_mpq(const io::CaseFile& c, const Parts& parts);
+/// The linear pipeline in FLINT's fmpq (exact, no overflow).
+Solution solve_linear_fmpq(const io::CaseFile& c, const Parts& parts);
 /// The LC structured route, likewise.  `c`: the netlist's variables and coordinates.
 Solution solve_lc_words(const io::Netlist& deck, const io::CaseFile& c, const Parts& parts, int& bits);
-Solution solve_lc_mpq(const io::Netlist& deck, const io::CaseFile& c, const Parts& parts);
+Solution solve_lc_fmpq(const io::Netlist& deck, const io::CaseFile& c, const Parts& parts);
 
 }  // namespace pipeline
 

@@ -1,6 +1,6 @@
 // The reference pipeline on a linear case (CEF §5 tower, §2.1/Lemma 3.23 classes, Thm 3.28 / 7.4,
 // (5.12)), written once over the scalar T: the reference runs it on SmallRational, WideRational and
-// mpq_rational (reference/solve), the certified route on certified::Ball (dcad::certified) — every
+// FLINT's fmpq (reference/solve), the certified route on certified::Ball (dcad::certified) — every
 // branch a Ball run takes is the exact one or it throws certified::Uncertain, so its discrete
 // outputs are the reference's by construction.
 #pragma once

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "dcad/io/case_file.hpp"
+#include "dcad/reference/fmpq.hpp"
 #include "dcad/reference/small_rational.hpp"
 #include "dcad/solution.hpp"
 
@@ -25,6 +26,13 @@ struct Numbers<BasicSmallRational<W>> {
   static constexpr bool exact = true;
   static BasicSmallRational<W> lift(const Rational& q) { return BasicSmallRational<W>::from(q); }
   static bool shown(const BasicSmallRational<W>& q) { return q != 0; }
+};
+
+template <>
+struct Numbers<Fmpq> {
+  static constexpr bool exact = true;
+  static Fmpq lift(const Rational& q) { return Fmpq::from(q); }
+  static bool shown(const Fmpq& q) { return q != 0; }
 };
 
 template <class T>
