@@ -1,10 +1,11 @@
-// Benchmark (not a test): the CAD by reference (exact), fast (double) and certified (the reference
-// algorithm in ball arithmetic, exact recomputation when a zero test is undecidable) on random linear systems of growing N, timed side by side in one
+// Benchmark (not a test): the CAD by reference (exact, mpq_rational: the library call on your own
+// matrices), fast (double) and certified (certified::constraint_tower: the reference in machine words,
+// in FLINT's fmpq past 128 bits) on random linear systems of growing N, timed side by side in one
 // run.  Data: D from (E, ω_E) with dim E = N − N/4 and small-integer skew ω of rank ≤ N/2, E = ½ xᵀ H x + gᵀ x with
 // H symmetric of rank N/2 and g in the range of H (so systems are consistent with c ≥ 1).
 //   build/bench_cad [max_N_reference=120] [max_N=200]
 #include "dcad/fast/cad.hpp"
-#include "dcad/certified/ball.hpp"
+#include "dcad/certified/cad.hpp"
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/rational.hpp"
 
@@ -55,13 +56,6 @@ Problem make(std::size_t n, unsigned seed) {
   return p;
 }
 
-ref::Matrix<dcad::certified::Ball> lift(const QM& m) {
-  ref::Matrix<dcad::certified::Ball> b(m.rows(), m.cols());
-  for (std::size_t i = 0; i < m.rows(); ++i)
-    for (std::size_t j = 0; j < m.cols(); ++j) b(i, j) = dcad::certified::Ball::enclosing(m(i, j));
-  return b;
-}
-
 template <class F>
 double seconds(F&& f, int repeat) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -84,25 +78,17 @@ int main(int argc, char** argv) {
     const double tf = seconds([&] { fr = fa::constraint_tower(p.dbl); }, rep);
     double tr = -1, tc = -1;
     long c = fr.steps;
-    bool in_float = false;
+    const char* route = "";
     if (n <= max_ref) {
       ref::CadResult<Q> rr;
       tr = seconds([&] { rr = ref::constraint_tower(p.exact); }, 1);
       c = static_cast<long>(rr.steps);
-      const auto t0 = std::chrono::steady_clock::now();
-      try {  // certified: balls first, the exact run only if a zero test is undecidable
-        const ref::LinearSystem<dcad::certified::Ball> b{
-            {p.exact.d.n, ref::Subspace<dcad::certified::Ball>::span(lift(p.exact.d.d.basis()))}, lift(p.exact.hessian),
-            lift(ref::Matrix<Q>::column(p.exact.gradient)).col(0), dcad::certified::Ball(0)};
-        ref::constraint_tower(b);
-        in_float = true;
-      } catch (const dcad::certified::Uncertain&) {
-        ref::constraint_tower(p.exact);
-      }
-      tc = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      dcad::certified::CertifiedTower ct;
+      tc = seconds([&] { ct = dcad::certified::constraint_tower(p.exact); }, 1);
+      route = dcad::certified::route_name(ct.route);
     }
     std::printf("%6zu %4ld %12.4g %12.4g %12.4g %10.3g %10.3g %s %s\n", n, c, tr, tf, tc, tr > 0 ? tr / tf : 0.0, tc / tf,
-                fr.certain.yes() ? "yes" : "no", n <= max_ref ? (in_float ? "in float" : "exact") : "");
+                fr.certain.yes() ? "yes" : "no", route);
     std::fflush(stdout);
   }
 }

@@ -1,8 +1,8 @@
-// Arb's balls (libflint-arb-dev 2.23, LGPL) in place of certified::Ball, measured on the sweep (issue 26).
+// Arb's balls (libflint-arb-dev 2.23, LGPL) in place of Ball, measured on the sweep (issue 26).
 // The same contract as Ball: a zero test answers only when every number of the ball agrees, and input
 // numbers keep an exact shadow (fmpq) for the tests intervals cannot settle (ω_ij == −ω_ji at 1/3);
-// otherwise certified::Uncertain, and the run is recomputed exactly (fmpq).  Precision 53 bits, as Ball.
-#include "dcad/certified/ball.hpp"
+// otherwise Uncertain, and the run is recomputed exactly (fmpq).  Precision 53 bits, as Ball.
+#include "ball.hpp"
 #include "dcad/reference/fmpq.hpp"
 #include "method_generic.hpp"
 
@@ -53,7 +53,7 @@ class ArbBall {
   friend ArbBall operator-(const ArbBall& a, const ArbBall& b) { return a.op(b, arb_sub); }
   friend ArbBall operator*(const ArbBall& a, const ArbBall& b) { return a.op(b, arb_mul); }
   friend ArbBall operator/(const ArbBall& a, const ArbBall& b) {
-    if (arb_contains_zero(b.v_)) throw certified::Uncertain("division by an Arb ball that contains 0");
+    if (arb_contains_zero(b.v_)) throw Uncertain("division by an Arb ball that contains 0");
     return a.op(b, arb_div);
   }
   ArbBall& operator+=(const ArbBall& o) { return *this = *this + o; }
@@ -66,7 +66,7 @@ class ArbBall {
     if (arb_is_zero(d.v_)) return true;
     if (!arb_contains_zero(d.v_)) return false;
     if ((a.shadow_ || arb_is_exact(a.v_)) && (b.shadow_ || arb_is_exact(b.v_))) return a.exact() == b.exact();
-    throw certified::Uncertain("the Arb ball of a difference contains 0");
+    throw Uncertain("the Arb ball of a difference contains 0");
   }
   friend bool operator!=(const ArbBall& a, const ArbBall& b) { return !(a == b); }
   friend bool known_zero(const ArbBall& a) { return arb_is_zero(a.v_); }
@@ -93,7 +93,7 @@ template <class B>
 Outcome run_balls(const families::Instance& in) {
   try {
     return run_generic<B>(in, [](const families::Q& q) { return B::enclosing(q); }, [](const B& b) { return b.mid(); });
-  } catch (const certified::Uncertain&) {
+  } catch (const Uncertain&) {
     Outcome o = run_fmpq(in);
     o.recomputed = true;
     return o;
@@ -103,6 +103,6 @@ Outcome run_balls(const families::Instance& in) {
 }  // namespace
 
 Outcome run_arb(const families::Instance& in) { return run_balls<ArbBall>(in); }
-Outcome run_ball(const families::Instance& in) { return run_balls<certified::Ball>(in); }
+Outcome run_ball(const families::Instance& in) { return run_balls<Ball>(in); }
 
 }  // namespace dcad::bench

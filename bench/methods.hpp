@@ -3,10 +3,9 @@
 //   bf100/bf50 the same algorithm in cpp_bin_float_100/_50, |x| ≤ 1e-85/1e-40 × scale is zero
 //   naive      the same algorithm in double, |x| ≤ 1e-9 × scale is zero   method_approx_*.cpp
 //   fast       dcad::fast (orthogonal decompositions, SVD rank decisions)  method_fast.cpp
-//   certified  machine words first, on Overflow the algorithm in ball arithmetic, exact (fmpq) on an
-//              uncertain test                                          method_certified.cpp
+//   certified  machine words first, FLINT's fmpq on Overflow (dcad/certified/cascade.hpp)  method_certified.cpp
 //   tier_*     one tier alone (issue 26): tier_mpq mpq_rational, tier_fmpq FLINT's fmpq (the reference's
-//              Gauss–Jordan), tier_flint fmpq with fmpq_mat_rref, tier_ball certified::Ball and
+//              Gauss–Jordan), tier_flint fmpq with fmpq_mat_rref, tier_ball bench/ball.hpp (the cascade's ball tier until issue 26) and
 //              tier_arb Arb's arb_t (each recomputed in fmpq on an uncertain test)   method_*.cpp
 #pragma once
 
@@ -48,7 +47,7 @@ Outcome run_certified(const families::Instance&);
 /// fmpq (method_fmpq.cpp), and with every RREF by FLINT's fmpq_mat_rref (method_flint.cpp).
 Outcome run_fmpq(const families::Instance&);
 Outcome run_flint(const families::Instance&);
-/// The ball tier alone, on an Uncertain recomputed in fmpq: certified::Ball, and Arb's arb_t (method_arb.cpp).
+/// The ball tier alone, on an Uncertain recomputed in fmpq: bench/ball.hpp, and Arb's arb_t (method_arb.cpp).
 Outcome run_ball(const families::Instance&);
 Outcome run_arb(const families::Instance&);
 

@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
                     "case files (.json) or LC netlists (.cir, .sp, .net); several are solved in one process, in order")
       ->required();
   solve->add_option("--backend", solve_backend,
-                    "certified (default: fast, recomputed exactly if any decision is uncertain), reference, fast")
+                    "certified (default: the reference in machine words, in FLINT's fmpq past 128 bits), reference, fast")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   solve->add_flag("--json", solve_json, "print the result JSON of the CONTRACT (several files: JSON lines, as --jsonl)");
   solve->add_flag("--jsonl", solve_lines,

@@ -1,6 +1,6 @@
-// YM §5–§6 on formulas (reference/ehresmann.hpp): the Ehresmann connection, its curvature, the
+// YM §5–§6 on formulas (reference/nonlinear/ehresmann.hpp): the Ehresmann connection, its curvature, the
 // constrained Lagrangian, and YM Thm 5.6: the implicit Lagrange–d'Alembert equations (5.6) hold along
-// the motion the CAD computes (CEF §5, reference/pointwise.hpp) — two routes to the same dynamics.
+// the motion the CAD computes (CEF §5, reference/nonlinear/pointwise.hpp) — two routes to the same dynamics.
 // Goldens: YM §6's rolling disk (exactly, at rational points of the circle) and L-C circuit.
 #include "dcad/reference/nonlinear/ehresmann.hpp"
 #include "dcad/reference/nonlinear/pointwise.hpp"

@@ -89,7 +89,7 @@ struct Fast {
                                                         to_double(p.qq, &opt), to_double(p.q), to_double(p.v)},
                                   opt);
     } else {
-      s = {fast::dirac_from_presymplectic(to_double(in.omega, &opt)), to_double(in.hessian, &opt), to_double(in.gradient), 0.0};
+      s = {fast::dirac_from_presymplectic(to_double(in.omega, &opt)), to_double(in.hessian, &opt), to_double(in.gradient, &opt), 0.0};
     }
     const fast::CadResult r = fast::constraint_tower(s, opt);
     Answer a;

@@ -1,4 +1,4 @@
-// The pointwise CAD of systems given by formulas (reference/pointwise.hpp; issue 13), held against
+// The pointwise CAD of systems given by formulas (reference/nonlinear/pointwise.hpp; issue 13), held against
 // answers it did not compute:
 //  - linear Pontryagin systems written as formulas: the linear reference's tower (CEF (5.5)–(5.6),
 //    Lemma 5.1 (vii): another algorithm) and its velocities (Thm 5.4);

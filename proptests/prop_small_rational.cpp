@@ -202,6 +202,15 @@ RC_GTEST_PROP(WideRational, ReferenceCadIsTheMpqCad, ()) {
   RC_CLASSIFY(cad_is_the_mpq_cad<W>(s), "perturbed, fits in 128 bits");
 }
 
+// FLINT aborts on a division by zero; Fmpq throws instead, as SmallRational and mpq_rational do (a
+// process that aborts is a crash, not a clear error).
+TEST(Fmpq, DivisionByZeroThrows) {
+  EXPECT_THROW(F(1) / F(0), std::domain_error);
+  F x(3);
+  EXPECT_THROW(x /= F(0), std::domain_error);
+  EXPECT_EQ((F(6) / F(-4)).str(), "-3/2");
+}
+
 // Fmpq on operands of up to 200 bits (FLINT keeps up to 62 bits in the word, beyond in GMP: both sides
 // of that line and the moves between them).
 RC_GTEST_PROP(Fmpq, ArithmeticIsMpq, ()) {

@@ -4,6 +4,7 @@
 #include "gen.hpp"
 
 #include "dcad/fast/circuit.hpp"
+#include "dcad/fast/exact.hpp"
 #include "dcad/reference/circuit.hpp"
 
 namespace dcad::test {
@@ -46,12 +47,16 @@ inline reference::Circuit<Q> random_circuit(bool empty, bool signed_values) {
   return c;
 }
 
-/// The same circuit for dcad::fast (values rounded to double).
-inline fast::CircuitGraph fast_graph(const Circuit<Q>& c) {
+/// The same circuit for dcad::fast, its values rounded by fast::to_double_values (exact.hpp); with
+/// `opt`, what their heights and spread leave certain is recorded there, as the CLI does.
+inline fast::CircuitGraph fast_graph(const Circuit<Q>& c, fast::Options* opt = nullptr) {
+  std::vector<Q> values;
+  for (const Branch<Q>& b : c.branches) values.push_back(b.value);
+  fast::Options ignored;
+  const std::vector<double> d = fast::to_double_values(values, opt ? *opt : ignored);
   fast::CircuitGraph g;
   g.nodes = c.nodes;
-  for (const Branch<Q>& b : c.branches)
-    g.branches.push_back({b.kind, b.from, b.to, b.value.convert_to<double>()});
+  for (std::size_t i = 0; i < c.branches.size(); ++i) g.branches.push_back({c.branches[i].kind, c.branches[i].from, c.branches[i].to, d[i]});
   return g;
 }
 

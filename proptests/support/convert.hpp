@@ -14,10 +14,9 @@ inline Eigen::MatrixXd to_double(const QM& m, fast::Options* opt = nullptr) {
   return fast::to_double(m, opt ? *opt : ignored);
 }
 
-inline Eigen::VectorXd to_double(const std::vector<Q>& v) {
-  Eigen::VectorXd d(v.size());
-  for (Index i = 0; i < v.size(); ++i) d(i) = v[i].convert_to<double>();
-  return d;
+inline Eigen::VectorXd to_double(const std::vector<Q>& v, fast::Options* opt = nullptr) {
+  fast::Options ignored;
+  return fast::to_double(v, opt ? *opt : ignored);
 }
 
 /// The exact subspace as a fast one (for angles; small exact bases are well conditioned).

@@ -1,9 +1,11 @@
 // dcad::api: each entry point dispatches once and maps what the twins throw onto the three error channels.
 #include "dcad/api.hpp"
 
-#include "dcad/fast/pointwise.hpp"
-#include "guarded.hpp"
+#include "dcad/fast/solve.hpp"
 #include "dcad/reference/nonlinear/pointwise.hpp"
+#include "guarded.hpp"
+
+#include <cmath>
 
 namespace dcad::api {
 
@@ -44,7 +46,8 @@ namespace {
 /// double precision, not certified, and the note says why.
 certified::Solution not_certified(const io::Problem& p, const reference::NotExactHere& e) {
   const fast::Solution f = fast::solve_expression(p.expression);
-  certified::Solution s = map_numbers<certified::Number>(f, [](double x) { return certified::Number{false, reference::Rational(0), x, 0}; });
+  certified::Solution s =
+      map_numbers<certified::Number>(f, [](double x) { return certified::Number{false, reference::Rational(0), x, HUGE_VAL}; });  // no enclosure
   s.backend = "certified";
   s.exact = false;
   s.certified = unknown;

@@ -2,7 +2,7 @@
 // reference.  Discrete keys exactly; richer optional keys (`final_constraints`, `reduced`,
 // `dirac_bracket`) as subspaces or within a condition-aware tolerance (documented in the README).
 #include "dcad/api.hpp"
-#include "dcad/fast/pointwise.hpp"
+#include "dcad/fast/solve.hpp"
 #include "guarded.hpp"
 #include "json_input.hpp"  // dcad::io's exact JSON reader (build tree)
 
@@ -292,6 +292,8 @@ json read_result(const std::string& result_file, const std::string* text) {
   if (!r["consistent"].is_boolean()) bad(result_file, "/consistent", "true or false", shown(r["consistent"]));
   if (!r["solution_rank"].is_null() && !r["solution_rank"].is_number_integer())
     bad(result_file, "/solution_rank", "an integer (null if inconsistent)", shown(r["solution_rank"]));
+  if (r.contains("reduced") && !r["reduced"].is_object())
+    bad(result_file, "/reduced", "an object (CONTRACT: coordinates, F, f, G)", shown(r["reduced"]));
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include "simulate.hpp"
 
 #include "dcad/fast/pointwise.hpp"
+#include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
 
 #include <charconv>

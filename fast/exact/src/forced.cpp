@@ -14,10 +14,13 @@ namespace {
 
 using Q = reference::Rational;
 
+/// A matrix derived exactly from the assessed element values (circuit_options), rounded by exact.hpp's
+/// conversion for its range check only: its heights are the values', already read.
 MatrixXd rounded(const reference::Matrix<Q>& m) {
+  Options range;
   MatrixXd d(m.rows(), m.cols());
   for (reference::Index i = 0; i < m.rows(); ++i)
-    for (reference::Index j = 0; j < m.cols(); ++j) d(i, j) = m(i, j).convert_to<double>();
+    for (reference::Index j = 0; j < m.cols(); ++j) d(i, j) = to_double(m(i, j), range);
   return d;
 }
 

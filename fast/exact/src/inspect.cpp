@@ -9,7 +9,7 @@ namespace {
 
 void note(Inspection& r, const std::string& what, Truth certain, const std::string& evidence) {
   if (certain.yes()) return;
-  r.certified = false;
+  r.certified = unknown;
   r.uncertain.push_back(what);
   if (!evidence.empty()) r.evidence.push_back(what + ": " + evidence);
 }
@@ -20,6 +20,7 @@ Inspection inspect(const io::CaseFile& c, const Options& options) {
   namespace fa = dcad::fast;
   Inspection r;
   r.backend = "fast";
+  r.certified = yes;  // until a decision below is not certain (note)
   r.file = c.file;
   r.name = c.name;
   r.n = c.n;

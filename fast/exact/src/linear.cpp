@@ -13,6 +13,12 @@ namespace dcad::fast {
 
 namespace {
 
+/// E's constant term: no decision reads it, so only exact.hpp's range check applies.
+double energy_constant(const io::CaseFile& c) {
+  Options range;
+  return to_double(c.energy.constant, range);
+}
+
 /// `why_uncertain`: set when an input property could not be decided (a result, not bad input).
 LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_uncertain) {
   if (c.has_constrained) {
@@ -22,7 +28,7 @@ LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_unc
     if (symplectic.unknown())
       why_uncertain = "whether the symplectic form is nondegenerate is uncertain (" + decide_rank(w, -1, opt).describe() + ")";
     LinearSystem s = gotay_nester_system({w, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), prim}, opt);
-    s.constant = c.energy.constant.convert_to<double>();
+    s.constant = energy_constant(c);
     return s;
   }
   if (c.has_pontryagin) return pontryagin_system(to_fast(c.pontryagin, opt), opt);
@@ -30,7 +36,7 @@ LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_unc
   if (c.dirac.form == "basis") {  // certainly not Dirac: bad input; uncertain: the result says so
     d.d.and_certain(require_dirac(d, "solve", opt));
   }
-  return {d, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), c.energy.constant.convert_to<double>()};
+  return {d, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), energy_constant(c)};
 }
 
 /// A row of [a | b] (a unit row) as an equation; coefficients at rounding level are shown as absent.

@@ -16,12 +16,21 @@ void ToleranceDecisions::step_data(const std::vector<Tracked>& data) {
   scale = hi;
 }
 
+bool ToleranceDecisions::probed(bool answer) {
+  if (probe && probe->made++ == probe->uncertain_at) {
+    if (certain.yes()) evidence = "decision " + std::to_string(probe->uncertain_at) + " reported uncertain (DecisionProbe)";
+    certain = unknown;
+  }
+  return answer;
+}
+
 bool ToleranceDecisions::zero(const Tracked& x) {
   ++decisions;
   const double a = std::abs(x.v), tiny = 1e-300;
-  if (a > nonzero_factor * x.e + tiny) return false;
-  if (x.v == 0 && x.e == 0) return true;  // nothing was ever added to it
-  if (a <= zero_factor * x.e + tiny && well_scaled && x.e <= 0x1p-26 * scale) return true;
+  if (a > nonzero_factor * x.e + tiny) return probed(false);
+  if (x.v == 0 && x.e == 0) return probed(true);  // nothing was ever added to it
+  if (a <= zero_factor * x.e + tiny && well_scaled && x.e <= 0x1p-26 * scale) return probed(true);
+  if (probe) ++probe->made;  // an uncertain decision, counted as one
   if (certain.yes()) {
     std::ostringstream s;
     s << "a value " << x.v << " with a rounding-error bound " << x.e
@@ -47,7 +56,10 @@ std::size_t ToleranceDecisions::pivot(const std::vector<Tracked>& values) {
   // threshold pivoting (as in sparse LU): the first certainly nonzero value, in the caller's order of
   // preference, that is at least 1/8 of the largest — stable, and the preferred chart where it can be
   for (std::size_t i = 0; i < values.size(); ++i)
-    if (largest > 0 && std::abs(values[i].v) > nonzero_factor * values[i].e && std::abs(values[i].v) >= largest / 8) return i;
+    if (largest > 0 && std::abs(values[i].v) > nonzero_factor * values[i].e && std::abs(values[i].v) >= largest / 8) {
+      probed(true);  // one decision: values[i] ≠ 0
+      return i;
+    }
   for (const Tracked& x : values)  // none is certainly nonzero: a value in the band makes this uncertain
     if (!zero(x)) return static_cast<std::size_t>(&x - values.data());
   return values.size();

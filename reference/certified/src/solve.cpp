@@ -8,15 +8,9 @@
 #include "dcad/reference/pipeline/pointwise.hpp"
 #include "dcad/reference/solve.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace dcad::certified {
-
-dcad::Solution<Ball> solve_linear_balls(const io::CaseFile& c, const Parts& parts);
-dcad::Solution<Ball> solve_lc_balls(const io::Netlist& deck, const io::CaseFile& c, const Parts& parts);
 
 std::string number_text(const Number& x) { return x.exact ? x.q.str() : io::float_text(x.mid); }
 
@@ -24,61 +18,30 @@ namespace {
 
 Number exact_number(const Rational& q) { return {true, q, 0, 0}; }
 
-/// A point ball is its exact value (ball.hpp); any other is kept as an enclosure.
-Number ball_number(const Ball& b) {
-  if (b.rad() == 0 && std::isfinite(b.mid())) return exact_number(Rational(b.mid()));
-  return {false, Rational(0), b.mid(), b.rad()};
-}
-
 Solution exact_solution(const reference::Solution& s) {
   Solution out = map_numbers<Number>(s, exact_number);
   out.exact = true;
   return out;
 }
 
-/// The widest ball among the numbers of a solution.
-double widest(const Solution& s) {
-  double w = 0;
-  map_numbers<int>(s, [&](const Number& x) {
-    w = std::max(w, x.rad);
-    return 0;
-  });
-  return w;
-}
-
 std::string joined(const std::string& note, const std::string& more) { return note.empty() ? more : note + "; " + more; }
 
-/// The result of the cascade with its route in `decisions` and `note` (what the CLI has always printed).
+/// The result of the cascade with its route in `decisions` and `note`.
 Solution from_cascade(const Cascaded<Solution>& c) {
   Solution r = c.result;
-  const std::string overflow = c.overflow.empty() ? "" : "exact 128-bit rationals gave up (" + c.overflow + "); ";
   if (c.route == Route::machine_words) {
     r.decisions.machine_words = 1;
     r.decisions.word_bits = c.word_bits;
     r.note = joined(r.note, "the reference algorithm in exact " + std::to_string(c.word_bits) + "-bit rationals (every number fitted in machine words" +
                                 (c.word_bits > 64 ? ", once 64 bits gave up)" : ")"));
-  } else if (c.route == Route::balls) {
-    r.decisions.float_tests = c.counts.decisions;
-    r.decisions.exact_verifications = c.counts.verifications;
-    std::ostringstream o;
-    o.precision(2);
-    o << (r.note.empty() ? "" : r.note + "; ") << overflow << "the reference algorithm in ball arithmetic: " << c.counts.decisions
-      << " zero tests certified in floating point, " << c.counts.verifications
-      << " by exact comparison of input numbers; numbers are ball midpoints, exact values within " << widest(r);
-    r.note = o.str();
   } else {
-    r.decisions.float_tests = c.counts.decisions;
-    r.decisions.exact_verifications = c.counts.verifications;
     r.decisions.exact_recomputation = 1;
-    r.note = (r.note.empty() ? "" : r.note + "; ") + overflow + "zero test " + std::to_string(c.counts.decisions + 1) +
-             " undecidable in floating point (" + c.uncertain + "): recomputed exactly from the exact input";
+    r.note = joined(r.note, "exact 128-bit rationals gave up (" + c.overflow + "): recomputed in FLINT's exact rationals (fmpq)");
   }
-  r.exact = c.route != Route::balls;
+  r.exact = true;
   r.certified = yes;
   return r;
 }
-
-Solution balls(const dcad::Solution<Ball>& s) { return map_numbers<Number>(s, ball_number); }
 
 Solution linear(const io::CaseFile& c, const Parts& parts) {
   namespace pl = reference::pipeline;
@@ -86,7 +49,7 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
     if (c.has_pontryagin && c.pontryagin.has_forces) return exact_solution(pl::solve_forced(c));
     return from_cascade(cascade<Solution>(
         [&](int& bits) { return exact_solution(pl::solve_linear_words(c, parts, bits)); },
-        [&] { return balls(solve_linear_balls(c, parts)); }, [&] { return exact_solution(pl::solve_linear_fmpq(c, parts)); }));
+        [&] { return exact_solution(pl::solve_linear_fmpq(c, parts)); }));
   });
 }
 
@@ -128,7 +91,7 @@ Solution lc_circuit(const io::Problem& p, const Parts& parts) {
   if (deck.circuit.branches.size() > kDenseBranches && physical) return graph_route(deck, p.linear.variables);
   Solution s = from_cascade(cascade<Solution>(
       [&](int& bits) { return exact_solution(pl::solve_lc_words(deck, p.linear, parts, bits)); },
-      [&] { return balls(solve_lc_balls(deck, p.linear, parts)); }, [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear, parts)); }));
+      [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear, parts)); }));
   if (physical && lc::physical_tower(deck.circuit.nodes, graph).dims != s.dims())  // a theorem disagrees with a certified computation
     throw std::logic_error("graph route and certified CAD disagree on " + deck.file + "; please report it");
   return s;

@@ -378,7 +378,7 @@ std::string report_text(const Printed& s) {
 }
 
 std::string inspection_json(const Inspection& r) {
-  json j = {{"dcad", 1}, {"backend", r.backend}, {"certified", r.certified}, {"n", r.n}, {"form", r.form}, {"valid", r.valid}};
+  json j = {{"dcad", 1}, {"backend", r.backend}, {"certified", r.certified.yes()}, {"n", r.n}, {"form", r.form}, {"valid", r.valid}};
   if (!r.valid) {
     j["why"] = r.why;
     return j.dump(2);
@@ -407,7 +407,7 @@ std::string inspection_text(const Inspection& r) {
     o << "  from a presymplectic form (E_D = R^" << r.n << "): " << yes_no(r.presymplectic) << "\n";
     o << "  from a Poisson bivector (D meets V+0 in 0): " << yes_no(r.poisson) << "\n";
   }
-  o << "  certified: " << yes_no(r.certified) << "\n";
+  o << "  certified: " << yes_no(r.certified.yes()) << "\n";
   for (const std::string& e : r.evidence) o << "  uncertain " << e << "\n";
   return o.str();
 }

@@ -1,5 +1,5 @@
 // The expression form by the exact pointwise CAD (the one translation unit that instantiates
-// reference/pointwise.hpp on mpq_rational).
+// reference/nonlinear/pointwise.hpp on mpq_rational).
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 namespace dcad::reference::pipeline {

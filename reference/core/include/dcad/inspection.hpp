@@ -1,6 +1,8 @@
 // What a linear Dirac structure is (CEF §4): `dcad inspect` by either twin.
 #pragma once
 
+#include "dcad/truth.hpp"
+
 #include <string>
 #include <vector>
 
@@ -8,7 +10,9 @@ namespace dcad {
 
 struct Inspection {
   std::string backend;
-  bool certified = true;  ///< every rank decision exact, or certain in the fast sense
+  Truth certified = unknown;  ///< yes: every decision exact, or certain in the fast sense (each route sets it)
+  /// The answers.  Where fast could not decide one, it is the likely answer, named in `uncertain` with
+  /// its evidence, and `certified` is unknown.
   bool valid = false;     ///< a Dirac structure (CEF Lemma 4.1)
   std::string why;        ///< why D is not a Dirac structure
   std::string file, name;

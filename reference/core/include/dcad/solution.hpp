@@ -1,8 +1,8 @@
 // dcad::Solution<N> — what every backend's solve returns for every problem kind (issue 26): the
 // constraint tower with each step's constraints, M_c, the equations of motion, the constraint classes
 // and the Dirac bracket, the constraints adapted to the primary ones, and how each answer was decided.
-// N is the twin's number: reference::Rational (exact), double (fast), certified::Ball (a certified
-// enclosure).  Plain data: text and JSON are written once, by dcad::io (io/report.hpp).
+// N is the twin's number: reference::Rational (exact), double (fast), certified::Number (exact, or a
+// double where no exact tier can run).  Plain data: text and JSON are written once, by dcad::io (io/report.hpp).
 //
 // CEF: the tower M_0 ⊇ M_1 ⊇ … ⊇ M_c (§5), the solution rank dim(ker ω_D ∩ T M_c) (Thm 5.4(b)), the
 // equations of motion ż = F z + f + G λ on M_c (5.12), first/second class and J* (Lemma 3.23), the

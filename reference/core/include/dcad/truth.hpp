@@ -61,4 +61,15 @@ inline constexpr Truth yes{Truth::Value::yes};
 inline constexpr Truth no{Truth::Value::no};
 inline constexpr Truth unknown{Truth::Value::unknown};
 
+// Kleene's strong tables, checked where they are written (every pair; an unknown on either side of &
+// under a yes, or of | under a no, is unknown).
+static_assert((yes & yes) == yes && (yes & no) == no && (no & yes) == no && (no & no) == no, "&: known");
+static_assert((yes & unknown) == unknown && (unknown & yes) == unknown && (unknown & unknown) == unknown, "&: unknown");
+static_assert((no & unknown) == no && (unknown & no) == no, "&: no decides");
+static_assert((no | no) == no && (yes | no) == yes && (no | yes) == yes && (yes | yes) == yes, "|: known");
+static_assert((no | unknown) == unknown && (unknown | no) == unknown && (unknown | unknown) == unknown, "|: unknown");
+static_assert((yes | unknown) == yes && (unknown | yes) == yes, "|: yes decides");
+static_assert(!yes == no && !no == yes && !unknown == unknown, "!");
+static_assert(Truth::decided(true, unknown) == unknown && Truth::decided(false, yes) == no, "decided");
+
 }  // namespace dcad

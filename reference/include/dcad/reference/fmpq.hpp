@@ -10,6 +10,7 @@
 
 #include <flint/fmpq.h>
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -79,7 +80,7 @@ class BasicFmpq {
   }
   friend BasicFmpq operator/(const BasicFmpq& a, const BasicFmpq& b) {
     BasicFmpq r;
-    fmpq_div(r.v_, a.v_, b.v_);  // b ≠ 0: the algorithms divide by pivots only
+    fmpq_div(r.v_, a.v_, nonzero(b).v_);  // the algorithms divide by pivots only
     return r;
   }
   BasicFmpq& operator+=(const BasicFmpq& o) {
@@ -95,7 +96,7 @@ class BasicFmpq {
     return *this;
   }
   BasicFmpq& operator/=(const BasicFmpq& o) {
-    fmpq_div(v_, v_, o.v_);
+    fmpq_div(v_, v_, nonzero(o).v_);
     return *this;
   }
   friend bool operator==(const BasicFmpq& a, const BasicFmpq& b) { return fmpq_equal(a.v_, b.v_); }
@@ -108,6 +109,11 @@ class BasicFmpq {
   const fmpq* data() const { return v_; }
 
  private:
+  /// FLINT aborts the process on a division by zero; this throws, as SmallRational and mpq_rational do.
+  static const BasicFmpq& nonzero(const BasicFmpq& b) {
+    if (fmpq_is_zero(b.v_)) throw std::domain_error("Fmpq: division by zero");
+    return b;
+  }
   fmpq_t v_;
 };
 

@@ -1,10 +1,10 @@
 // Dense matrices over an exact field and exact row reduction.
 // Everything here is a literal textbook algorithm: no pivoting strategy, no tolerance;
 // a zero test is `x == 0`.  The scalar must be an exact field (std::numeric_limits<T>::is_exact,
-// e.g. mpq_rational, SmallRational) or declare what its zero test is (`T::zero_test`): the certified
-// route's dcad::certified::Ball (dcad/certified/ball.hpp) answers it with a proof or throws, and the
-// benchmark's tolerance scalars (bench/approx.hpp) say they answer it approximately (a comparison
-// method there, never part of the product).
+// e.g. mpq_rational, SmallRational, Fmpq) or declare what its zero test is (`T::zero_test`): the
+// benchmark's ball scalars (bench/ball.hpp, bench/method_arb.cpp) answer it with a proof or throw, and
+// its tolerance scalars (bench/approx.hpp) answer it approximately (comparison methods there, never
+// part of the product).
 #pragma once
 
 #include <cstddef>
@@ -34,7 +34,7 @@ struct admissible_scalar {
   static constexpr bool value = is_exact_field<T>::value || declares_zero_test<T>::value;
 };
 
-/// x == 0 where skipping a zero is only an optimization (no decision is needed; Ball overloads it).
+/// x == 0 where skipping a zero is only an optimization (no decision is needed; a ball overloads it).
 template <class T>
 bool known_zero(const T& x) {
   return x == 0;
@@ -193,7 +193,7 @@ struct has_pivot_weight<T, std::void_t<decltype(pivot_weight(std::declval<const 
 
 /// The row p ≥ row holding the pivot of column `col`, or m.rows() if the column is zero there.
 /// Exact scalars: the first nonzero entry.  Any nonzero entry gives the same RREF (the RREF of a
-/// matrix is unique), so a scalar with a `pivot_weight` (Ball) first takes its largest entry that
+/// matrix is unique), so a scalar with a `pivot_weight` (a ball) first takes its largest entry that
 /// is certainly nonzero, and tests entries for zero only when there is none.
 template <class T>
 Index pivot_row(const Matrix<T>& m, Index row, Index col) {

@@ -1,7 +1,7 @@
 // SmallRational and WideRational: an exact rational p/q held in two machine words (64-bit, 128-bit),
 // for running the reference's own algorithms without a heap allocation per number (issue 14:
 // mpq_rational spends most of a small case in malloc).  The reference runs on SmallRational first,
-// on WideRational when a number outgrows 64 bits, and on mpq_rational when it outgrows 128.
+// on WideRational when a number outgrows 64 bits, and on FLINT's fmpq when it outgrows 128.
 //
 // Why the answers are the reference's.  Every value is the exact rational, in lowest terms with
 // q > 0 — the representation mpq_rational keeps.  Each operation computes its exact result already in
@@ -10,7 +10,7 @@
 // the result fits in the word (|p| ≤ 2^(w−1) − 1, 0 < q ≤ 2^(w−1) − 1) or the operation throws
 // `Overflow`.  So a run that finishes performed, number for number, the same exact arithmetic as the
 // mpq_rational run, took the same branches (zero tests are exact: p == 0) and printed the same
-// numbers; a run that throws is recomputed on the next type by the caller (solve_reference).
+// numbers; a run that throws is recomputed on the next type by the caller (reference::solve, certified::solve).
 // Nothing is approximated.
 //   * 64-bit words: operands below 2^63 make products below 2^126 and sums of two below 2^127, so no
 //     intermediate overflows and Overflow is thrown exactly when the exact result does not fit.

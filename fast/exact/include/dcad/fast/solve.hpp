@@ -30,9 +30,10 @@ Solution solve(const io::Problem& p, const Parts& parts = {}, const Options& opt
 /// listed in `uncertain` with its evidence, and its value is the likely one.
 Inspection inspect(const io::CaseFile& c, const Options& opt = {});
 
-/// The routes, for dcad::api's fallbacks: the expression form in double (fast_nonlinear) and the LC
-/// graph route.
-Solution solve_expression(const io::LagrangianCase& c);
+/// The routes, for dcad::api's fallbacks: the expression form in double (the pointwise CAD of
+/// fast_nonlinear at the case's point; certified when every zero test was; io::InputError for given
+/// values off M_c, as the exact route) and the LC graph route.
+Solution solve_expression(const io::LagrangianCase& c, const Options& opt = {});
 Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& opt = {});
 
 }  // namespace dcad::fast

@@ -1,8 +1,9 @@
 // The pointwise CAD of a Lagrangian system given by formulas, in floating point: the reference's
-// own algorithm (reference/pointwise.hpp, written once over the scalar) on jets of Tracked doubles
+// own algorithm (reference/nonlinear/pointwise.hpp, written once over the scalar) on jets of Tracked doubles
 // (tracked.hpp), every zero test decided relative to the magnitude the number was computed from.
 #pragma once
 
+#include "dcad/fast/rank.hpp"
 #include "dcad/fast/tracked.hpp"
 #include "dcad/io/lagrangian_case.hpp"
 #include "dcad/solution.hpp"
@@ -32,6 +33,7 @@ struct ToleranceDecisions {
   Truth certain = yes;
   std::size_t decisions = 0;
   std::string evidence;  ///< the first uncertain decision
+  DecisionProbe* probe = nullptr;  ///< testing (fast/rank.hpp): each decision above counts once
 
   void step_data(const std::vector<Tracked>& data);
   bool zero(const Tracked& x);
@@ -42,16 +44,15 @@ struct ToleranceDecisions {
   /// The first value (in the caller's order of preference) that is certainly nonzero and at least 1/8
   /// of the largest such value (threshold pivoting); values.size() if there is none.
   std::size_t pivot(const std::vector<Tracked>& values);
+
+ private:
+  /// `answer`, after counting the decision with the probe (which may report it uncertain).
+  bool probed(bool answer);
 };
 
 /// reference::pointwise_cad in double (inputs rounded to nearest), its values as doubles.
 reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
                                                  const std::vector<bool>& fixed, ToleranceDecisions& decide,
                                                  const std::vector<std::vector<std::size_t>>* plan = nullptr);
-
-/// The expression form in double at the case's point (or a generic one): the pointwise CAD above, its
-/// result as a Solution (backend "fast"; certified when every zero test was).  io::InputError for given
-/// values off M_c, as the exact route.
-dcad::Solution<double> solve_expression(const io::LagrangianCase& c);
 
 }  // namespace dcad::fast

@@ -3,15 +3,15 @@
 // (reference::constraint_tower, CEF Remark 5.2) on another scalar, cheapest first:
 //   1. SmallRational, then WideRational: the same exact arithmetic in 64-bit, then 128-bit words, or
 //      reference::Overflow when a number does not fit;
-//   2. Ball: floating point with every zero test proved, or certified::Uncertain (ball.hpp);
-//   3. Fmpq: the same exact arithmetic in FLINT's rationals (fmpq.hpp).
-// A route that finishes took every branch the exact run takes, so the discrete answers — dims of the
-// M_k, c, consistency, solution rank — are the exact ones whichever route gave them.
+//   2. Fmpq: the same exact arithmetic in FLINT's rationals (fmpq.hpp).
+// Every route is the exact arithmetic of mpq_rational, so the discrete answers — dims of the M_k, c,
+// consistency, solution rank — are the exact ones whichever route gave them (cascade.hpp).
 #pragma once
 
 #include "dcad/certified/cascade.hpp"
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/fmpq.hpp"
+#include "dcad/reference/small_rational.hpp"
 
 #include <string>
 #include <vector>
@@ -19,6 +19,7 @@
 namespace dcad::certified {
 
 using reference::Index;
+using reference::Rational;
 using reference::Matrix;
 
 struct CertifiedTower {
@@ -28,7 +29,6 @@ struct CertifiedTower {
   Index steps = 0;         ///< c
   bool consistent = true;
   Index solution_rank = 0;  ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]
-  long float_decisions = 0, verified_decisions = 0;  ///< balls: zero tests proved in floating point, by exact comparison
   std::string why;  ///< why the cheaper routes gave up ("" on the first)
 };
 
@@ -80,16 +80,12 @@ inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& 
                                                       [](const Rational& q) { return reference::WideRational::from(q); });
         }
       },
-      [&] { return detail::run<Ball>(s, initial, Route::balls, [](const Rational& q) { return Ball::enclosing(q); }); },
       [&] { return detail::run<reference::Fmpq>(s, initial, Route::exact, [](const Rational& q) { return reference::Fmpq::from(q); }); });
   CertifiedTower out = c.result;
   out.route = c.route;
   out.word_bits = c.word_bits;
-  out.float_decisions = c.counts.decisions;
-  out.verified_decisions = c.counts.verifications;
   out.why = narrow;
-  if (!c.overflow.empty()) out.why += "128-bit words: " + c.overflow + "; ";
-  if (!c.uncertain.empty()) out.why += "balls: " + c.uncertain;
+  if (!c.overflow.empty()) out.why += "128-bit words: " + c.overflow;
   return out;
 }
 

@@ -1,5 +1,5 @@
 // certified::solve — the certified tier on any problem (issue 26): one cascade (cascade.hpp) of the
-// reference's own pipelines — exact machine words, then balls, then mpq — and the graph route where
+// reference's own pipelines — exact machine words, then balls, then FLINT's fmpq — and the graph route where
 // a theorem decides everything (physical LC circuits above kDenseBranches).  `certified: true` is
 // never wrong: every discrete answer is the exact one, by the tier's proof.
 #pragma once
@@ -14,8 +14,9 @@ namespace dcad::certified {
 
 using reference::Rational;
 
-/// A number of a certified result: exact (the machine-word and mpq tiers, and a ball that is a point),
-/// or the enclosure mid ± rad of the exact value (the ball tier).
+/// A number of a certified result: exact (the machine-word and fmpq tiers, and a ball that is a point),
+/// or the enclosure mid ± rad of the exact value (the ball tier); rad = +inf where there is no
+/// enclosure (a double-precision answer where no exact tier can run: `certified` is then unknown).
 struct Number {
   bool exact = true;
   Rational q;               ///< exact: the value

@@ -1,8 +1,6 @@
 // The reference pipeline on a linear case (CEF §5 tower, §2.1/Lemma 3.23 classes, Thm 3.28 / 7.4,
 // (5.12)), written once over the scalar T: the reference runs it on SmallRational, WideRational and
-// FLINT's fmpq (reference/solve), the certified route on certified::Ball (dcad::certified) — every
-// branch a Ball run takes is the exact one or it throws certified::Uncertain, so its discrete
-// outputs are the reference's by construction.
+// FLINT's fmpq (reference/solve), and the certified cascade takes the same runs (dcad::certified).
 #pragma once
 
 #include "dcad/reference/adapted.hpp"

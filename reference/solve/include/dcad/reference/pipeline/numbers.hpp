@@ -1,7 +1,6 @@
 // How the reference pipeline (pipeline/*.hpp, written once over the scalar) meets its scalar: exact
 // input numbers lifted into T, whether a computed T is shown as a term, and whether T is exact (then
-// the solution also carries M_c exactly, for `dcad check`).  Specialized for the exact scalars here
-// and for certified::Ball in dcad/certified/numbers.hpp.
+// the solution also carries M_c exactly, for `dcad check`).  Specialized for the exact scalars here.
 #pragma once
 
 #include "dcad/io/case_file.hpp"

@@ -1,4 +1,4 @@
-// The expression form's pipeline around the pointwise CAD (reference/pointwise.hpp): where it starts,
+// The expression form's pipeline around the pointwise CAD (reference/nonlinear/pointwise.hpp): where it starts,
 // the check that given values lie on M_c, and its result as a Solution — written once over the number
 // (the exact route here; the double route, dcad::fast_nonlinear, uses the same).
 #pragma once

@@ -1,5 +1,8 @@
-// dcad::certified::Ball (the certified route, issue 15: its own namespace; the reference admits it
-// through the generic zero-test hook of matrix.hpp, `T::zero_test`).
+// Ball: the certified cascade's tier of ball arithmetic from issue 15 to issue 26, kept here as the
+// benchmark's `tier_ball` (bench/results/summary.md): measured against FLINT's fmpq and Arb's balls, it
+// decided none of the instances where the machine words overflow, so the product no longer has it
+// (dcad/certified/cascade.hpp says why).  The reference admits it through the generic zero-test hook
+// of matrix.hpp, `T::zero_test`.
 //
 // Ball: a double-precision enclosure ⟨mid, rad⟩ = [mid − rad, mid + rad] of one exact rational,
 // so that the reference's *own* algorithms can run in floating point with certified decisions.
@@ -39,7 +42,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace dcad::certified {
+namespace dcad::bench {
 
 using reference::Rational;
 
@@ -187,4 +190,4 @@ class Ball {
   std::shared_ptr<const Rational> exact_;  ///< the exact value, for input numbers and their negations
 };
 
-}  // namespace dcad::certified
+}  // namespace dcad::bench
