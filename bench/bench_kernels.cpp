@@ -2,11 +2,15 @@
 //   build/bench_kernels [--benchmark_filter=...] [--benchmark_format=csv]
 // FastCad/N against ColPivQR/N is the "fast CAD at N = 500 against one pivoted QR" ratio;
 // RrefExact/N (mpq_rational), RrefFmpq/N (FLINT's fmpq) and RrefWords/N (64-bit words) are the exact
-// kernel on each scalar the reference and the certified cascade can run on.
+// kernel on each scalar the reference and the certified cascade can run on; CadBeyondWords/{Mpq,Fmpq}/N
+// the whole CAD where the words overflow (the regime of the exact tier: the perturbed family scaled
+// by 3^90/7, every entry beyond 128 bits).
 #include "dcad/fast/cad.hpp"
 #include "dcad/reference/fmpq.hpp"
 #include "dcad/reference/matrix.hpp"
+#include "dcad/reference/cad.hpp"
 #include "dcad/reference/small_rational.hpp"
+#include "families.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -97,6 +101,27 @@ void RrefWords(benchmark::State& st) {
   st.SetLabel(fits ? "every number fitted in 64 bits" : "overflowed 64 bits");
 }
 BENCHMARK(RrefWords)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
+
+/// The perturbed family (ω = Sᵀ (J ⊕ 2^-60 e_a∧e_b ⊕ 0) S, E = 0) scaled by 3^90/7: beyond 128 bits.
+dcad::families::Instance beyond_words(int n) {
+  std::mt19937_64 rng(11);
+  dcad::families::Instance in = dcad::families::perturbed(60, rng, n);
+  const ref::Rational scale = ref::Rational(boost::multiprecision::pow(boost::multiprecision::mpz_int(3), 90)) / 7;
+  for (ref::Index i = 0; i < in.omega.rows(); ++i)
+    for (ref::Index j = 0; j < in.omega.cols(); ++j) in.omega(i, j) *= scale;
+  return in;
+}
+
+template <class T>
+void CadBeyondWords(benchmark::State& st) {
+  const auto s = dcad::families::system_over<T>(beyond_words(static_cast<int>(st.range(0))), [](const ref::Rational& q) {
+    if constexpr (std::is_same<T, ref::Rational>::value) return q;
+    else return T::from(q);
+  });
+  for (auto _ : st) benchmark::DoNotOptimize(ref::constraint_tower(s).steps);
+}
+BENCHMARK_TEMPLATE(CadBeyondWords, ref::Rational)->Name("CadBeyondWords/Mpq")->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(CadBeyondWords, ref::Fmpq)->Name("CadBeyondWords/Fmpq")->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

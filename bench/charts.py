@@ -210,6 +210,15 @@ plot {", ".join(plot6)}
                          f"ratio {k[f'FastCad/{n}'] / k[f'ColPivQR/{n}']:.1f}× (goal ≤ 4×)\n")
     if kexp:
         lines.append("- fitted exponents over N: " + ", ".join(f"{m} N^{e:.2f}" for m, e in sorted(kexp.items())) + "\n")
+    beyond = [(n, k[f"CadBeyondWords/Mpq/{n}"] / k[f"CadBeyondWords/Fmpq/{n}"]) for n in (8, 16, 24)
+              if f"CadBeyondWords/Mpq/{n}" in k and f"CadBeyondWords/Fmpq/{n}" in k]
+    if beyond:
+        lines.append("- the exact tier where the words overflow (bench_kernels CadBeyondWords, every entry beyond 128 bits): "
+                     "mpq_rational takes " + ", ".join(f"{r:.1f}× (N = {n})" for n, r in beyond) + " as long as fmpq\n")
+    grown = [(n, k[f"RrefExact/{n}"] / k[f"RrefFmpq/{n}"]) for n in (20, 50, 100) if f"RrefExact/{n}" in k and f"RrefFmpq/{n}" in k]
+    if grown:
+        lines.append("- RREF of a dense rank-deficient integer matrix (numbers grow to hundreds of digits: GMP's gcds either "
+                     "way): mpq_rational takes " + ", ".join(f"{r:.2f}× (N = {n})" for n, r in grown) + " as long as fmpq\n")
     ref_t = {(r["family"], r["param"]): r["mean_seconds"] for r in rows if r["method"] == "reference"}
     ratios = [(fam, p, t / ref_t[(fam, p)]) for (fam, p, t) in
               ((r["family"], r["param"], r["mean_seconds"]) for r in rows if r["method"] == "sympy") if (fam, p) in ref_t]

@@ -1,6 +1,6 @@
 // The reference pipelines on FLINT's fmpq (fmpq.hpp): when a number outgrows 128-bit words.  The same
 // exact rationals as mpq_rational in lowest terms, so the same branches and the same printed numbers;
-// measured 5.7–6.1× faster than mpq_rational on the sweep's families (issue 26, bench/results/summary.md).
+// measured 3.4–5.9× faster than mpq_rational where the words overflow (issue 26, bench/results/summary.md).
 #include "dcad/reference/fmpq.hpp"
 #include "dcad/reference/pipeline/circuit.hpp"
 #include "dcad/reference/solve.hpp"

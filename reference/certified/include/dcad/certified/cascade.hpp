@@ -6,7 +6,9 @@
 // every discrete answer and every printed number is the reference's, whichever tier gave it.  The tiers
 // are what the sweep measured best (bench/results/summary.md, "exact tier alone", issue 26): words
 // 1.9–2.6× faster than fmpq on every family (first at every size); fmpq 5.7–6.1× faster than
-// mpq_rational and 1.4–4.6× faster than FLINT's fraction-free fmpq_mat_rref.  A tier of ball
+// mpq_rational there and 3.4–5.9× where the words overflow (bench_kernels CadBeyondWords; even with
+// numbers of hundreds of digits, where GMP's gcds dominate, 0.87–0.98×), and 1.4–4.6× faster than
+// FLINT's fraction-free fmpq_mat_rref.  A tier of ball
 // arithmetic between them (hand-written, or Arb's, 1.1–1.9× slower) lost: where the words overflow,
 // the balls decided none of 10^5 adversarial instances and none of the dense cases tried — a rank
 // deficiency reached through inexact numbers is never provable in intervals — and only cost a run.
