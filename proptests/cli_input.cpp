@@ -59,7 +59,13 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" (no such file)"},
                     BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
                     BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
-                    BadCase{"icnode", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(7)=1\n", "v(7)"}),
+                    BadCase{"icnode", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(7)=1\n", "v(7)"},
+                    // values other SPICEs read otherwise (issue 27): never guessed
+                    BadCase{"atto", "title\nL1 1 0 1u\nC1 1 0 1a\n", "atto"},
+                    BadCase{"hspicemega", "title\nL1 1 0 1u\nR1 1 0 10x\n", "mega"},
+                    BadCase{"zeror", "title\nL1 1 0 1u\nR1 1 0 0\n", "nonzero resistance"},
+                    // the refusal of a card names every supported element
+                    BadCase{"modelnames", "title\n.model d1 D\nL1 1 0 1\n", "an R, L, C, V, I, K or X element"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 // A deck written the way ngspice users write it — a library section with a parametrised .subckt,
@@ -251,6 +257,27 @@ TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
 // The 4-port (L = 2, C = 3, 5, 7; IC: V_C1 = V_C3 = 1, V_C2 = 2, I_L = 0) against its analytic
 // solution: u = V13 + V2 obeys u'' = −ω² u with ω² = (C1+C2+C3)/(L C2 (C1+C3)) (CEF (6.44)), so
 // i(t) = −u0 sin(ωt)/(Lω) and V2(t) = V2(0) − u0 (1 − cos ωt)/(L ω² C2); and the energy
+
+// Letters after a value that are neither a scale factor nor a unit are ignored as ngspice ignores them,
+// with a warning naming FILE:LINE and the value read; `mil` is ngspice's 25.4e-6, not milli (issue 27).
+TEST(Cli, ValueLettersAsNgspiceReadsThem) {
+  const std::string file = write_temp("dcad_letters.cir", "title\nV1 1 0 1\nR1 1 2 2.2kOhm\nR2 2 0 4pz\nC1 2 0 10uF\nL1 2 3 2mil\nC2 3 0 1n\n.end\n");
+  const Outcome r = run("solve " + file + " --json --backend reference");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find(file + ":4: R2: \"4pz\" read as 4e-12"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(":3:"), std::string::npos) << r.err;  // kOhm and uF are units: no warning
+  EXPECT_EQ(r.err.find(":5:"), std::string::npos) << r.err;
+  // mil: L1 = 2 × 25.4e-6 H = 127/2500000 (ngspice's `show l`); with milli it would be 1/500
+  EXPECT_NE(r.out.find("127/2500000"), std::string::npos) << r.out;
+}
+
+// A coefficient the fast backend cannot hold is exit 1 with its cause, never a silent 0 (issue 27: a
+// 1e400 F tank printed d/dt v_L1 = 0, certified); the exact backends print it.
+TEST(Cli, FastCoefficientBeyondDoubleIsAnError) {
+  const std::string deck = write_temp("dcad_1e400.cir", "huge\nL1 1 0 1u\nC1 1 0 1e400\n.end\n");
+  expect_input_error(run("solve " + deck + " --backend fast"), deck, "double's range", "fast 1e400 F");
+  EXPECT_EQ(run("solve " + deck + " --backend certified --json").rc, 0);
+}
 
 TEST(Cli, HelpVersionUsage) {
   EXPECT_EQ(run("--help").rc, 0);

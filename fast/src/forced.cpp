@@ -86,12 +86,16 @@ ForcedResult forced_tower(const ForcedSystem& f, const Options& opt) {
   const double scale = std::max({norm2(a), f.s.gradient.norm(), f.source_force.size() ? norm2(f.source_force) : 0.0,
                                  f.shift.size() ? norm2(f.shift) : 0.0, 1e-300});
   MatrixXd eq(0, n + 1 + m), cond(0, 1 + m);
+  r.dims.push_back(n);  // M_0 = M
+  // the given conditions (KCL through current sources) are primary: they bound M_1, never M_0
   if (f.given_conditions.rows()) {
     MatrixXd c(f.given_conditions.rows(), n + 1 + m);
     c << MatrixXd::Zero(f.given_conditions.rows(), n), f.given_conditions;
-    r.consistent = absorb(eq, cond, c, n, 1.0, opt, r).consistent;
+    if (!absorb(eq, cond, c, n, 1.0, opt, r).consistent) {
+      r.consistent = false;
+      r.dims.push_back(-1);
+    }
   }
-  r.dims.push_back(r.consistent ? n : -1);
   while (r.consistent) {
     const int w = static_cast<int>(eq.cols()), rows = static_cast<int>(eq.rows());
     MatrixXd lhs(n + rows, gv.cols());

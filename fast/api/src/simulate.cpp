@@ -10,8 +10,9 @@
 // loses every digit (the capacitor charge stayed 0).
 //
 // A-posteriori error: the same flow is run in long double (64-bit significand, its own rounding
-// of F, its own exponential and products) and the largest difference, relative to each variable's
-// largest magnitude, is reported: it estimates the double run's error to within about 2^-11.
+// of F, its own exponential and products) and the largest difference, relative to the scale of each
+// variable's kind over the run (the largest charge, current or flux linkage), is reported: it
+// estimates the double run's error to within about 2^-11.
 #include "simulate.hpp"
 
 #include "dcad/io/report.hpp"
@@ -25,6 +26,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
+#include <map>
 
 #include <unistd.h>
 
@@ -309,13 +311,26 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
   return summarize(sum.rows, err, mag, c.variables);
 }
 
+/// A variable's kind: its name up to the first '_' for circuits (q_, v_, p_: charges, currents, flux
+/// linkages), else every variable is of one kind.
+std::string kind_of(const std::string& name) {
+  const std::size_t u = name.find('_');
+  return u == 1 && (name[0] == 'q' || name[0] == 'v' || name[0] == 'p') ? name.substr(0, 1) : std::string();
+}
+
 Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
                           const std::vector<std::string>& names) {
   Summary sum;
   sum.rows = rows;
+  // the scale of a variable: the largest magnitude over the run among the variables of its kind (a
+  // current that is 1e-30 at the far end of a ladder is measured against the currents, not against
+  // itself: relative to itself its rounding reads as an error of 100 %)
+  std::map<std::string, long double> scale;
+  for (std::size_t i = 0; i < mag.size(); ++i) scale[kind_of(names[i])] = std::max(scale[kind_of(names[i])], mag[i]);
   for (std::size_t i = 0; i < err.size(); ++i) {
-    if (mag[i] == 0) continue;
-    const double e = static_cast<double>(err[i] / mag[i]);
+    const long double s = scale[kind_of(names[i])];
+    if (s == 0) continue;
+    const double e = static_cast<double>(err[i] / s);
     if (e >= sum.error_estimate) {
       sum.error_estimate = e;
       sum.worst_variable = names[i];

@@ -38,8 +38,9 @@ Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optio
 /// evaluation, with Richardson step doubling per output step (simulate_lagrangian.cpp).
 Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 
-/// The summary of a run: rows, and the worst of err[i]/mag[i] (the long-double shadow's difference
-/// relative to each variable's largest magnitude) with the variable's name.
+/// The summary of a run: rows, and the worst of err[i]/scale[i] (the long-double shadow's difference
+/// relative to the largest magnitude over the run among the variables of i's kind: q_, v_, p_ for
+/// circuits, all variables otherwise) with the variable's name.
 Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag, const std::vector<std::string>& names);
 
 /// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.

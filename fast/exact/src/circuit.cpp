@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace dcad::fast {
 
@@ -28,24 +29,37 @@ CircuitGraph graph_of(const io::Netlist& n, Options& opt) {
   return g;
 }
 
+/// A coefficient of the twin in the circuit's units, computed in long double (range 1e±4932) and
+/// returned in double; std::invalid_argument (exit 1) when a nonzero coefficient leaves double's range
+/// there (a 1e400 F capacitor: 1 / (L C) underflows), never a silent 0 or inf.
+double in_units(long double x, const char* what) {
+  const double r = static_cast<double>(x);
+  if (x != 0 && (r == 0 || !std::isfinite(r)))
+    throw std::invalid_argument(std::string("expected the circuit's ") + what +
+                                " within double's range for the fast backend, found one beyond it (the circuit's scales reach "
+                                "past 1e±308): the exact backends (--backend reference or certified) take any value");
+  return r;
+}
+
 /// x_j = s_j x̃_j: coefficient a_j of a row in x̃ becomes a_j / s_j in x; the row is then divided by
-/// its largest coefficient.
-void unscale(Equation<double>& e, const std::vector<double>& s) {
-  double big = 0;
-  for (auto& [var, coeff] : e.terms) {
-    coeff /= s[var];
-    big = std::max(big, std::abs(coeff));
+/// its largest coefficient (in long double, so that a row p = 1e309 v is 1e-309 p − v, in range).
+void unscale(Equation<double>& e, const std::vector<long double>& s) {
+  std::vector<long double> c;
+  long double big = 0;
+  for (const auto& [var, coeff] : e.terms) {
+    c.push_back(static_cast<long double>(coeff) / s[var]);
+    big = std::max(big, std::abs(c.back()));
   }
   if (big == 0) big = 1;
-  for (auto& term : e.terms) term.second /= big;
-  if (e.rhs != 0) e.rhs /= big;
+  for (std::size_t k = 0; k < c.size(); ++k) e.terms[k].second = in_units(c[k] / big, "constraint coefficients");
+  if (e.rhs != 0) e.rhs = in_units(e.rhs / big, "constraint coefficients");
 }
 
 /// The solution of the dimensionless twin in the circuit's units: rows x̃ → x, and the equations of
 /// motion dz/dt = (S F̃ S⁻¹ / T) z + S f̃ / T + S G̃ λ / T.
 void to_circuit_units(Solution& r, const Units& u, std::size_t branches) {
-  const std::vector<double> s = u.variable_scales(branches, false), s_nu = u.variable_scales(branches, true);
-  const double t = u.time();
+  const std::vector<long double> s = u.variable_scales(branches, false), s_nu = u.variable_scales(branches, true);
+  const long double t = u.time();
   for (Level<double>& level : r.tower)
     for (Equation<double>& e : level.constraints) unscale(e, s);
   if (r.adapted) {
@@ -55,10 +69,11 @@ void to_circuit_units(Solution& r, const Units& u, std::size_t branches) {
   if (r.motion) {
     Motion<double>& m = *r.motion;
     for (std::size_t i = 0; i < m.coordinates.size(); ++i) {
-      const double si = s[m.coordinates[i]];
-      for (std::size_t j = 0; j < m.coordinates.size(); ++j) m.f_matrix[i][j] *= si / (s[m.coordinates[j]] * t);
-      m.f[i] *= si / t;
-      for (double& g : m.g[i]) g *= si / t;
+      const long double per_time = s[m.coordinates[i]] / t;
+      for (std::size_t j = 0; j < m.coordinates.size(); ++j)
+        m.f_matrix[i][j] = in_units(m.f_matrix[i][j] * per_time / s[m.coordinates[j]], "equations of motion");
+      m.f[i] = in_units(m.f[i] * per_time, "equations of motion");
+      for (double& g : m.g[i]) g = in_units(g * per_time, "equations of motion");
     }
   }
 }

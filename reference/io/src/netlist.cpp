@@ -26,7 +26,16 @@ bool is_netlist_file(const std::string& file) {
   return false;
 }
 
-Rational parse_spice_value(const std::string& text) {
+namespace {
+/// A value for a message: %g of its double.
+std::string shown(const Rational& v) {
+  std::ostringstream o;
+  o << v.convert_to<double>();
+  return o.str();
+}
+}  // namespace
+
+Rational parse_spice_value(const std::string& text, std::string* ignored) {
   const std::string t = lower(text);
   std::size_t i = 0;
   if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
@@ -38,20 +47,31 @@ Rational parse_spice_value(const std::string& text) {
     while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i]))) ++i;
   }
   Rational v = reference::parse_rational(t.substr(0, i));
-  const std::string rest = t.substr(i);
-  static const std::vector<std::pair<std::string, int>> suffixes = {{"meg", 6}, {"f", -15}, {"p", -12}, {"n", -9}, {"u", -6},
-                                                                    {"m", -3},  {"k", 3},   {"g", 9},   {"t", 12}};
-  for (const auto& [s, e] : suffixes)
-    if (rest.compare(0, s.size(), s) == 0) {
-      const Rational ten(10);
-      for (int k = 0; k < std::abs(e); ++k) {
-        if (e > 0) v *= ten; else v /= ten;
-      }
-      return v;
-    }
+  std::string rest = t.substr(i);
   for (char ch : rest)
     if (!std::isalpha(static_cast<unsigned char>(ch))) throw std::invalid_argument("expected a SPICE value such as 10u or 4.7nF, found \"" + text + "\"");
-  return v;  // plain number, possibly with unit letters ("2H")
+  // ngspice's scale factors (mil before m); `a` and `x` differ between SPICEs: refused, never guessed
+  if (!rest.empty() && (rest[0] == 'a' || rest[0] == 'x'))
+    throw std::invalid_argument(std::string("'") + rest[0] + "' is a scale factor in some SPICEs (" +
+                                (rest[0] == 'a' ? "atto, 1e-18, in HSPICE and LTspice" : "mega, 1e6, in HSPICE") +
+                                ") and none in ngspice (which reads \"" + text + "\" as " + t.substr(0, i) +
+                                "): write the value without it, e.g. " + t.substr(0, i) + (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i));
+  static const std::vector<std::pair<std::string, Rational>> scales = {
+      {"meg", Rational(1000000)},     {"mil", Rational(254, 10000000)}, {"f", Rational(1, 1000000000000000LL)},
+      {"p", Rational(1, 1000000000000LL)}, {"n", Rational(1, 1000000000)},   {"u", Rational(1, 1000000)},
+      {"m", Rational(1, 1000)},       {"k", Rational(1000)},            {"g", Rational(1000000000)},
+      {"t", Rational(1000000000000LL)}};
+  for (const auto& [s, factor] : scales)
+    if (rest.compare(0, s.size(), s) == 0) {
+      v *= factor;
+      rest = rest.substr(s.size());
+      break;
+    }
+  // what follows is a unit, which SPICE ignores; other letters are ignored too, and said so
+  static const std::vector<std::string> units = {"",     "f",   "farad", "farads", "h",   "henry", "henries", "ohm", "ohms",
+                                                 "v",    "volt", "volts", "a",     "amp", "amps",  "s",       "sec", "hz"};
+  if (std::find(units.begin(), units.end(), rest) == units.end() && ignored) *ignored = rest;
+  return v;
 }
 
 namespace {
@@ -424,7 +444,7 @@ class Flattener {
       out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged)");
       return;
     }
-    fail(l, "an L, C, zero-volt V or X element, or a supported dot-card (.param, .subckt, .include, .lib, .ic, analysis cards)",
+    fail(l, "an R, L, C, V, I, K or X element, or a supported dot-card (.param, .subckt, .include, .lib, .ic, analysis cards)",
          "unsupported " + tok[0] + " (it would change the circuit)");
   }
 
@@ -470,7 +490,12 @@ class Flattener {
           if (text.back() != '}') throw std::invalid_argument("no closing '}'");
           return Expression(text.substr(1, text.size() - 2), params).value();
         }
-        return parse_spice_value(text);
+        std::string ignored;
+        const Rational v = parse_spice_value(text, &ignored);
+        if (!ignored.empty())
+          out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as " + shown(v) + " (the letters \"" + ignored +
+                                 "\" are neither a scale factor nor a unit; ngspice ignores them too)");
+        return v;
       } catch (const std::invalid_argument& e) {
         fail(l, what, "\"" + text + "\" (" + e.what() + ")");
       }
@@ -535,12 +560,11 @@ class Flattener {
     rb.value = value;
     if (kind == 'r') {
       if (value < 0) out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
-      if (value == 0) {
-        rb.kind = reference::RlcKind::wire;  // R = 0: a wire
-      } else {
-        rb.kind = reference::RlcKind::resistor;
-        out.forced = true;
-      }
+      if (value == 0)  // a wire has another index class than a resistor: neither is guessed
+        fail(l, "a nonzero resistance (ngspice replaces R = 0 by 1 mOhm, a resistor; a wire is a 0-volt V source)",
+             "R = 0 for " + name);
+      rb.kind = reference::RlcKind::resistor;
+      out.forced = true;
       b.kind = reference::BranchKind::empty;
     } else if (kind == 'l') {
       b.kind = reference::BranchKind::inductor;

@@ -77,7 +77,7 @@ struct SimulateOptions {
 };
 struct Simulated {
   long rows = 0;
-  double error_estimate = 0;   ///< largest |double − long double| over the run, relative to each variable's magnitude
+  double error_estimate = 0;   ///< largest |double − long double| over the run, relative to the scale of each variable's kind
   std::string worst_variable;  ///< where it is largest
 };
 /// The CSV header `simulate` writes for the problem: t and every variable.

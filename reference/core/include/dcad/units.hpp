@@ -28,13 +28,14 @@ struct Units {
     if ((u.a + u.b) % 2 != 0) ++u.b;  // C0 one decade up: 1/C̃ = 10 stays exact in double
     return u;
   }
-  double time() const { return std::pow(10.0, m()); }
-  double inductance() const { return std::pow(10.0, a); }
+  // long double (range 1e±4932): a deck's scales may leave double's range while its twin is in it
+  long double time() const { return std::pow(10.0L, m()); }
+  long double inductance() const { return std::pow(10.0L, a); }
 
   /// S with x = S x̃ for x = (q, v, p[, ν]) of a circuit of `branches` branches: 1, 1/T, L0/T[, L0].
-  std::vector<double> variable_scales(std::size_t branches, bool with_nu) const {
-    const double t = time(), l0 = inductance();
-    std::vector<double> s(3 * branches, 1.0);
+  std::vector<long double> variable_scales(std::size_t branches, bool with_nu) const {
+    const long double t = time(), l0 = inductance();
+    std::vector<long double> s(3 * branches, 1.0L);
     for (std::size_t i = 0; i < branches; ++i) {
       s[branches + i] = 1 / t;
       s[2 * branches + i] = l0 / t;

@@ -147,11 +147,14 @@ ForcedResult<T> forced_tower(const ForcedSystem<T>& f, const Matrix<T>& initial 
   ForcedResult<T> out;
   Matrix<T> eq = initial.rows() ? initial : Matrix<T>(0, n + 1 + m);
   require(eq.cols() == n + 1 + m, "forced_tower", "initial jet rows of width N+1+m", shape(eq));
-  Matrix<T> cond = f.given_conditions.rows() ? f.given_conditions : Matrix<T>(0, 1 + m);
-  out.consistent = split_rows(vstack(eq, hstack(Matrix<T>(cond.rows(), n), cond)), n, eq, cond);
+  Matrix<T> cond(0, 1 + m);
+  out.consistent = split_rows(eq, n, eq, cond);
   out.dims.push_back(out.consistent ? long(n - eq.rows()) : -1L);
   out.added.push_back(eq);
   out.conditions_at.push_back(cond);
+  // The given conditions (KCL through current sources: the affine part of D) are primary: they bound
+  // M_1, never M_0 = M — two current sources in series that disagree leave M_1 empty.
+  if (f.given_conditions.rows()) cond = vstack(cond, f.given_conditions);
   while (out.consistent) {
     const LambdaSystem<T> ls = lambda_system(f, eq, out.orders);
     const Matrix<T> cand = nullspace(ls.lhs.transpose()) * ls.rhs;  // y·rhs for y in the left kernel
@@ -166,7 +169,8 @@ ForcedResult<T> forced_tower(const ForcedSystem<T>& f, const Matrix<T>& initial 
       out.conditions_at.push_back(cond);
       break;
     }
-    if (eq.rows() == before) {  // M_{k+1} = M_k (a condition found here belongs to M_k)
+    // M_{k+1} = M_k (a condition found here belongs to M_k; the given ones belong to M_1, see above)
+    if (eq.rows() == before && (out.dims.size() > 1 || f.given_conditions.rows() == 0)) {
       out.conditions_at.back() = cond;
       break;
     }

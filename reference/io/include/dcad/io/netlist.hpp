@@ -35,9 +35,11 @@ CircuitFacts circuit_facts(const Netlist& n);
 Netlist read_netlist(const std::string& file);
 /// A deck given as text, named `name` in messages; `.include`/`.lib` files are read from `directory`.
 Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory);
-/// SPICE value: number with optional suffix f p n u m k meg g t (case-insensitive), trailing unit
-/// letters ignored ("10uF"); exact.  Throws std::invalid_argument.
-Rational parse_spice_value(const std::string& text);
+/// SPICE value, exact: a number with an optional scale factor as ngspice reads it (f p n u m mil k meg g
+/// t, case-insensitive) and an optional unit ("10uF", "2.2kOhm").  Other trailing letters are ignored, as
+/// ngspice does, and put in `*ignored` (the caller warns).  A leading `a` or `x` is refused: atto and
+/// mega in other SPICEs, nothing in ngspice.  Throws std::invalid_argument.
+Rational parse_spice_value(const std::string& text, std::string* ignored = nullptr);
 /// The case the circuit stands for: `pontryagin` with variables q_*, v_*, p_* (CONTRACT).  Without
 /// `dense`, only the names (no n×n and 3n×3n matrices: for the graph route on large circuits).
 CaseFile netlist_case(const Netlist& n, bool dense = true);
