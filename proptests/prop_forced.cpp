@@ -4,6 +4,8 @@
 //  - fast = reference (dims, steps, consistency, solution rank, number of source conditions);
 //  - the CAD's velocities solve the Lagrange–d'Alembert–Pontryagin equations (YM Prop. 4.1, (4.3))
 //    and are partial vector fields of the implicit Lagrangian system (YM (4.7), Thm 4.5);
+//  - the graph route (dcad/rlc_graph.hpp: cycle ranks of subgraphs) is the dense route's tower, with
+//    its conditions on the sources, for positive values and no coupling;
 //  - the restriction of a Dirac structure to a subspace is a Dirac structure (YM Prop. 5.2), and
 //    restricting to the whole space changes nothing.
 #include "support/convert.hpp"
@@ -13,6 +15,7 @@
 #include "dcad/fast/forced.hpp"
 #include "dcad/reference/implicit_lagrangian.hpp"
 #include "dcad/reference/rlc.hpp"
+#include "dcad/rlc_graph.hpp"
 
 #include <Eigen/QR>
 #include <gtest/gtest.h>
@@ -381,4 +384,29 @@ RC_GTEST_PROP(ForcedTower, EquationsOfMotionAreThePointwiseVelocities, ()) {
   }
   RC_ASSERT(ref::contains(QSub::span(dirs), d));
   RC_ASSERT(static_cast<Index>(red.g.cols()) == r.solution_rank);
+}
+
+// Two routes to one tower (dcad/rlc_graph.hpp against the literal dense CAD of reference/forced.hpp):
+// for L, C, R > 0 without coupling, the dims, steps and solution rank counted from cycle ranks of
+// subgraphs are the exact CAD's, and its conditions on the sources are as many as the cutsets of
+// current sources and the loops of voltage sources (and wires) the graph route names — at the step it
+// names them (cutsets bound M_1, loops M_2).
+RC_GTEST_PROP(ForcedTower, GraphRouteIsTheDenseRoute, ()) {
+  Kinds kinds;
+  kinds.couplings = false;
+  const ref::RlcCircuit<Q> c = random_rlc(kinds);  // values are positive
+  RC_LOG() << deck(c);
+  std::vector<rlc::Branch> branches;
+  for (const auto& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+  const rlc::Tower t = rlc::tower(c.nodes, branches);
+  const ref::ForcedResult<Q> r = ref::forced_tower(ref::rlc_system(c));
+  RC_ASSERT(r.consistent);  // symbolic sources: never 1 = 0
+  RC_ASSERT(r.dims == t.dims);
+  RC_ASSERT(static_cast<long>(r.steps) == t.steps);
+  RC_ASSERT(static_cast<long>(r.solution_rank) == t.solution_rank);
+  RC_ASSERT(static_cast<std::size_t>(ref::rank(r.conditions)) == t.current_cutsets.size() + t.voltage_loops.size());
+  std::size_t at1 = r.conditions_at.size() > 1 ? static_cast<std::size_t>(ref::rank(r.conditions_at[1])) : 0;
+  RC_ASSERT(at1 == t.current_cutsets.size());
+  RC_TAG(t.voltage_loops.empty() ? (t.current_cutsets.empty() ? "no condition" : "cutsets") : "loops");
+  RC_TAG("steps " + std::to_string(t.steps));
 }

@@ -1,7 +1,10 @@
-// The fast twin of the forced route (YM §4): fast::forced_tower on the forced system, built exactly (on
-// the circuit's dimensionless twin, dcad/units.hpp) and rounded once — the tower's dims, consistency and
-// solution rank with every rank decision's verdict.  Source conditions are not decided against the
-// waveforms here: a result that finds one says so and defers to the exact backends.
+// The fast twin of the forced route (YM §4).  Positive L, C, R without couplings: the graph route
+// (dcad/rlc_graph.hpp), any size, deciding nothing, with the conditions on the sources (±1 rows) decided
+// exactly against the waveforms.  Otherwise (couplings, signed values; at most kForcedBranches
+// branches): fast::forced_tower on the forced system, built exactly (on the circuit's dimensionless
+// twin, dcad/units.hpp) and rounded once — the tower's dims, consistency and solution rank with every
+// rank decision's verdict; a source condition found there is not decided against the waveforms: the
+// result says so and defers to the exact backends.
 #include "dcad/fast/exact.hpp"
 #include "dcad/fast/forced.hpp"
 #include "dcad/fast/solve.hpp"
@@ -81,10 +84,14 @@ Solution forced_tower_of(const reference::ForcedSystem<Q>& f, const Options& opt
 }  // namespace
 
 Solution solve_forced_netlist(const io::Netlist& deck, const std::vector<std::string>& variables, const Options& options) {
+  if (reference::pipeline::graph_route_holds(deck.rlc))  // any size, deciding nothing: certified by construction
+    return reference::pipeline::graph_solution<double>(
+        deck, variables, "forced graph route (cycle ranks of subgraphs: L, C, R > 0 and no coupling decide nothing), certified by construction");
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
     throw io::InputError(deck.file + ": expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
-                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()) +
-                         " (the forced route is dense and exact; larger ones are not supported yet)");
+                         " branches for a circuit with couplings or with a non-positive R, L or C, found " +
+                         std::to_string(deck.rlc.branches.size()) +
+                         " (the fast route for those is dense; positive values without couplings take the graph route at any size)");
   const io::Netlist twin = io::dimensionless(deck, io::units_of(deck));  // the dimensionless twin: same tower
   Solution s = forced_tower_of(reference::rlc_system(twin.rlc), circuit_options(twin.rlc, options));
   s.file = deck.file;

@@ -2,6 +2,7 @@
 
 #include "dcad/io/input_error.hpp"
 #include "dcad/reference/rlc.hpp"
+#include "dcad/rlc_graph.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -174,6 +175,7 @@ dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::W
     s.tower.push_back(st);
     if (st.dim < 0) break;
   }
+  if (empty_at == static_cast<long>(r.dims.size())) s.tower.push_back(Level<Q>{-1, {}});  // M_{c+1}: conditions only
   s.steps = static_cast<long>(s.tower.size()) - 1;
   const std::vector<std::string> jets = jet_names(waveforms, static_cast<long>(r.orders) + 1);
   s.jets.assign(jets.begin() + 1, jets.end());
@@ -223,11 +225,74 @@ dcad::Solution<Q> solve_forced(const io::CaseFile& c) {
   return s;
 }
 
+bool graph_route_holds(const RlcCircuit<Q>& c) {
+  if (!c.mutuals.empty()) return false;
+  for (const RlcBranch<Q>& b : c.branches)
+    if ((b.kind == RlcKind::inductor || b.kind == RlcKind::capacitor || b.kind == RlcKind::resistor) && b.value <= 0) return false;
+  return true;
+}
+
+namespace {
+
+/// The condition Σ sign·σ_source(b)(t) = 0 over the sources of `path` (a loop or a cutset) as a jet row
+/// [0 | σ⁽⁰⁾], its first coefficient made positive.
+QM condition_row(const std::vector<graph::LoopBranch>& path, const RlcCircuit<Q>& c) {
+  QM row(1, 1 + c.sources);
+  for (const graph::LoopBranch& lb : path) {
+    const RlcBranch<Q>& b = c.branches[lb.branch];
+    if (b.kind == RlcKind::voltage || b.kind == RlcKind::current) row(0, 1 + b.source) += Q(lb.sign);
+  }
+  for (Index j = 1; j < row.cols(); ++j)
+    if (row(0, j) != 0) {
+      if (row(0, j) < 0)
+        for (Index k = 1; k < row.cols(); ++k) row(0, k) = -row(0, k);
+      break;
+    }
+  return row;
+}
+
+}  // namespace
+
+GraphForced graph_forced(const io::Netlist& deck) {
+  const RlcCircuit<Q>& c = deck.rlc;
+  std::vector<rlc::Branch> branches;
+  branches.reserve(c.branches.size());
+  for (const RlcBranch<Q>& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+  const rlc::Tower t = rlc::tower(c.nodes, branches);
+  GraphForced g;
+  g.dims = t.dims;
+  g.solution_rank = t.solution_rank;
+  long empty_at = -1;  // cutsets bound M_1, loops of voltage sources M_2
+  const auto decide = [&](const std::vector<graph::LoopBranch>& path, long level) {
+    const SourceCondition v = decide_condition(condition_row(path, c), deck.waveforms);
+    if (std::none_of(g.conditions.begin(), g.conditions.end(), [&](const SourceCondition& o) { return o.text == v.text; })) g.conditions.push_back(v);
+    g.certified &= v.holds.known() ? yes : unknown;
+    if (v.holds.no() && (empty_at < 0 || level < empty_at)) empty_at = level;
+  };
+  for (const graph::Cutset& cut : t.current_cutsets) decide(cut, 1);
+  for (const graph::Loop& loop : t.voltage_loops) decide(loop, 2);
+  if (empty_at >= 0) {
+    g.dims.resize(std::min<std::size_t>(g.dims.size(), static_cast<std::size_t>(empty_at)));
+    g.dims.push_back(-1);
+    g.consistent = false;
+    g.solution_rank = 0;
+  }
+  g.steps = static_cast<long>(g.dims.size()) - 1;
+  return g;
+}
+
 dcad::Solution<Q> solve_forced(const io::Netlist& deck, const std::vector<std::string>& variables) {
-  if (deck.rlc.branches.size() > kForcedBranches)
-    throw io::InputError(deck.file + ": expected at most " + std::to_string(kForcedBranches) +
-                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()) +
-                         " (the forced route is dense and exact; larger ones are not supported yet)");
+  if (deck.rlc.branches.size() > kForcedBranches) {
+    if (!graph_route_holds(deck.rlc))
+      throw io::InputError(deck.file + ": expected at most " + std::to_string(kForcedBranches) +
+                           " branches for a circuit with couplings or with a non-positive R, L or C, found " +
+                           std::to_string(deck.rlc.branches.size()) +
+                           " (the exact route for those is dense; positive values without couplings take the graph route at any size)");
+    return graph_solution<Q>(deck, variables,
+                             "forced graph route (dcad/rlc_graph.hpp: cycle ranks of subgraphs; CEF Thms 6.4, 6.6, 6.8 with YM §4's sources), "
+                             "exact: the tower and the conditions on the sources; the tower's equations and the equations of motion come "
+                             "from the dense exact route, up to " + std::to_string(kForcedBranches) + " branches");
+  }
   dcad::Solution<Q> s = exact_forced(rlc_system(deck.rlc), deck.waveforms, variables);
   s.file = deck.file;
   s.name = deck.title;

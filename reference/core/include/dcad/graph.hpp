@@ -157,19 +157,21 @@ inline std::vector<Cutset> cutsets(std::size_t nodes, const std::vector<Edge>& e
   UnionFind piece(v);
   for (std::size_t b = 0; b < edges.size(); ++b)
     if (in[b]) piece.join(contracted.find(vertex(edges[b].from)), contracted.find(vertex(edges[b].to)));
+  // one pass over the edges: each crossing edge goes to the cuts of its two super-nodes (O(edges))
+  std::vector<Cutset> around(v);
+  std::vector<bool> needed(v, false);
+  for (std::size_t b = 0; b < edges.size(); ++b) {
+    if (!in[b]) continue;
+    const std::size_t f = contracted.find(vertex(edges[b].from)), t = contracted.find(vertex(edges[b].to));
+    if (f == t) continue;
+    around[f].push_back({b, 1});
+    around[t].push_back({b, -1});
+    if (must[b]) needed[f] = needed[t] = true;
+  }
   std::vector<Cutset> out;
   for (std::size_t s = 0; s < v; ++s) {
     if (contracted.find(s) != s || piece.find(s) == s) continue;  // not a super-node, or the dropped representative
-    Cutset cut;
-    bool ok = false;
-    for (std::size_t b = 0; b < edges.size(); ++b) {
-      if (!in[b]) continue;
-      const bool from = contracted.find(vertex(edges[b].from)) == s, to = contracted.find(vertex(edges[b].to)) == s;
-      if (from == to) continue;
-      cut.push_back({b, from ? 1 : -1});
-      ok = ok || must[b];
-    }
-    if (ok && !cut.empty()) out.push_back(std::move(cut));
+    if (needed[s] && !around[s].empty()) out.push_back(std::move(around[s]));
   }
   return out;
 }

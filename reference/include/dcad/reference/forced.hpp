@@ -40,7 +40,9 @@ struct ForcedResult {
   Index solution_rank = 0;   ///< dim{ẋ : (ẋ, 0) ∈ D, ẋ ∈ T M_c}  [CEF Thm 5.4(b)]
   /// per step k, the equations that raised the rank (jet rows of that step's width): for reports
   std::vector<Matrix<T>> added;
-  /// per step k, the source conditions known at M_k (columns [1 | σ⁽⁰⁾ | …] of that step's width)
+  /// per step k, the source conditions known at M_k (columns [1 | σ⁽⁰⁾ | …] of that step's width);
+  /// one entry past the dims when the step that found M_{c+1} = M_c found new conditions: where the
+  /// sources fail them, M_{c+1} is empty
   std::vector<Matrix<T>> conditions_at;
 };
 
@@ -169,9 +171,10 @@ ForcedResult<T> forced_tower(const ForcedSystem<T>& f, const Matrix<T>& initial 
       out.conditions_at.push_back(cond);
       break;
     }
-    // M_{k+1} = M_k (a condition found here belongs to M_k; the given ones belong to M_1, see above)
+    // M_{k+1} = M_k where the sources meet the conditions found here, empty where they do not: the new
+    // conditions get an entry of their own, one past the dims (the given ones belong to M_1, see above)
     if (eq.rows() == before && (out.dims.size() > 1 || f.given_conditions.rows() == 0)) {
-      out.conditions_at.back() = cond;
+      if (cond.rows() > out.conditions_at.back().rows()) out.conditions_at.push_back(cond);
       break;
     }
     out.dims.push_back(long(n - eq.rows()));

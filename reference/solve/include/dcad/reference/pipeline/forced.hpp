@@ -29,7 +29,42 @@ std::vector<std::string> jet_names(const std::vector<io::Waveform>& w, long orde
 SourceCondition decide_condition(const Matrix<Rational>& row, const std::vector<io::Waveform>& w);
 constexpr double kConditionFails = 1e-9;
 
-/// The exact forced CAD of a netlist with R, V, I or K (at most kForcedBranches branches: InputError).
+/// The graph route's answer (dcad/rlc_graph.hpp) with its conditions on the sources decided against the
+/// waveforms: the first M_k whose condition fails is empty (dims end in −1 there).  No equations.
+struct GraphForced {
+  std::vector<long> dims;
+  long steps = 0, solution_rank = 0;
+  bool consistent = true;
+  std::vector<SourceCondition> conditions;
+  Truth certified = yes;  ///< unknown where a condition could not be decided exactly
+};
+/// Whether the graph route holds: every L, C and R positive, no mutual inductance.
+bool graph_route_holds(const RlcCircuit<Rational>& c);
+/// The graph route on a deck where graph_route_holds; exact at any size (topology and ±1 rows).
+GraphForced graph_forced(const io::Netlist& deck);
+
+/// The graph route's answer as a Solution of either twin (no numbers in it: dims, conditions, verdict).
+template <class N>
+dcad::Solution<N> graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables, const std::string& note) {
+  const GraphForced g = graph_forced(deck);
+  dcad::Solution<N> s;
+  for (long d : g.dims) s.tower.push_back({d, {}});
+  s.steps = g.steps;
+  s.consistent = g.consistent;
+  if (g.consistent) s.solution_rank = g.solution_rank;
+  s.source_conditions = g.conditions;
+  for (const io::Waveform& w : deck.waveforms) s.source_names.push_back(w.element);
+  s.certified = g.certified;
+  s.variables = variables;
+  s.file = deck.file;
+  s.name = deck.title;
+  s.note = note;
+  if (s.certified.unknown()) s.note += "; a source condition could not be decided exactly (see sources.conditions)";
+  return s;
+}
+
+/// The exact forced CAD of a netlist with R, V, I or K: the dense route up to kForcedBranches branches,
+/// the graph route beyond where it holds (tower and source conditions; no equations), else InputError.
 dcad::Solution<Rational> solve_forced(const io::Netlist& deck, const std::vector<std::string>& variables);
 /// The same for a `pontryagin` case with `forces` (no sources).
 dcad::Solution<Rational> solve_forced(const io::CaseFile& c);
