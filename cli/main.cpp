@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
   std::string sim_file, sim_csv, sim_backend = "certified";
   dcad::api::SimulateOptions sim_opt;
   CLI::App* sim = app.add_subcommand(
-      "simulate", "Integrate the equations of motion on M_c from the file's initial condition (IC= in netlists); "
+      "simulate", "Integrate the equations of motion on M_c from the file's initial condition (netlists: SPICE's, see --initial; "
+                  "a state off M_c jumps onto it at t = 0); "
                   "exact flow of the linear reduced system (matrix exponential). CSV: t, then every variable.");
   sim->add_option("FILE", sim_file, "LC/RLC netlist (.cir, .sp, .net), `pontryagin` case or expression-form case (.json)")->required();
   std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
@@ -129,6 +130,10 @@ int main(int argc, char** argv) {
   sim->add_option("--backend", sim_backend, "certified|reference|fast (the model is built exactly in this version)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
+  std::string sim_initial = "deck";
+  sim->add_option("--initial", sim_initial,
+                  "netlists: op (the DC operating point) or uic (IC= and .ic values, the rest 0); default: as the deck's .tran says")
+      ->check(CLI::IsMember({"deck", "op", "uic"}));
   std::string sim_png, sim_vars, sim_energy;
   sim->add_option("--energy", sim_energy, "circuits with R or sources: write the energy balance (E, dissipated and supplied power and work) as CSV here");
   sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");
@@ -208,6 +213,7 @@ int main(int argc, char** argv) {
         }
       }
       sim_opt.backend = dcad::api::backend_named(sim_backend);
+      sim_opt.initial = sim_initial == "op" ? dcad::api::Initial::op : sim_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
       const dcad::io::Problem problem = dcad::io::read_problem(sim_file);
       const std::vector<std::string> header = dcad::api::simulate_columns(problem);
       const std::string title = problem.name().empty() ? sim_file : problem.name();

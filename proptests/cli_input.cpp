@@ -80,7 +80,7 @@ TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   std::ofstream(dir / "extra.inc") << "C9 n2 0 1n $ the load\n";
   std::ofstream(dir / "deck.spice") << "two tanks\n.param lval={1e+1*0.2e-6} cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
                                        "X1 n1 0 tank params: l={lval} c={cval}\nX2 n1 n2 tank\n.include extra.inc\n"
-                                       ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u\n.end\n";
+                                       ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u uic\n.end\n";
   std::ofstream(dir / "flat.cir") << "two tanks, flat\nL.x1.l1 n1 0 2u\nC.x1.c1 n1 0 1n IC=1\nL.x2.l1 n1 n2 1u\n"
                                      "C.x2.c1 n1 n2 1n IC=0.5\nC9 n2 0 1n IC=0.5\n.end\n";
   const std::string deck = (dir / "deck.spice").string(), flat = (dir / "flat.cir").string();

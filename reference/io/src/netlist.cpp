@@ -440,8 +440,15 @@ class Flattener {
       }
       return;
     }
+    if (head == ".tran") {  // read for its uic (the initial state of simulate and check), the rest ignored
+      bool uic = false;
+      for (std::size_t k = 1; k < tok.size(); ++k) uic = uic || lower(tok[k]) == "uic";
+      out.tran = uic ? Netlist::Transient::uic : Netlist::Transient::op;
+      out.tran_where = l.where();
+    }
     if (std::find(analysis.begin(), analysis.end(), head) != analysis.end()) {
-      out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged)");
+      out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged" +
+                             (head == ".tran" ? "; simulate reads its uic for the initial state)" : ")"));
       return;
     }
     fail(l, "an R, L, C, V, I, K or X element, or a supported dot-card (.param, .subckt, .include, .lib, .ic, analysis cards)",
@@ -684,9 +691,11 @@ Netlist flatten(const std::string& file, Reader& reader) {
     const auto a = volt(b.from), c = volt(b.to);
     if (a && c && !f.node_ic.empty()) out.initial[i] = *a - *c;
   }
-  for (const auto& [node, v] : f.node_ic)
-    if (node != "0" && std::find(out.node_names.begin(), out.node_names.end(), node) == out.node_names.end())
-      throw InputError(file + ": .ic: expected a node of the circuit, found v(" + node + ")");
+  for (const auto& [node, v] : f.node_ic) {
+    const auto at = std::find(out.node_names.begin(), out.node_names.end(), node);
+    if (node != "0" && at == out.node_names.end()) throw InputError(file + ": .ic: expected a node of the circuit, found v(" + node + ")");
+    if (node != "0") out.node_ic.emplace_back(static_cast<long>(at - out.node_names.begin()), v);
+  }
   return out;
 }
 

@@ -71,9 +71,13 @@ Checked check_text(const std::string& result_json, const io::Problem& p, const s
 /// `dcad inspect`: what the problem's Dirac structure is (a `dirac` case; InputError otherwise).
 Inspection inspect(const io::Problem& p, Backend backend);
 
+/// Where a netlist starts (CONTRACT "Circuit initial state"): as its `.tran` says (uic, or the DC
+/// operating point without it; no `.tran`: uic), or forced by `--initial op|uic`.
+enum class Initial { deck, op, uic };
 struct SimulateOptions {
   double tstop = 0, step = 0;  ///< seconds (or the case's time unit); 0 < step, 0 ≤ tstop
   Backend backend = Backend::certified;
+  Initial initial = Initial::deck;
 };
 struct Simulated {
   long rows = 0;

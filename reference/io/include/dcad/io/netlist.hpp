@@ -25,6 +25,14 @@ struct Netlist {
   std::vector<Waveform> waveforms;  ///< per source (σ index), in netlist order
   std::vector<std::string> where;   ///< file:line of each branch
   bool forced = false;              ///< some R, I, K or nonzero V: the YM §4 route
+  /// The deck's `.tran` (CONTRACT "Circuit initial state"): none, with `uic`, or without (the DC
+  /// operating point); where it is, for messages.
+  enum class Transient { none, uic, op };
+  Transient tran = Transient::none;
+  std::string tran_where;
+  /// `.ic v(node)=value` by node index (ground excluded): with uic capacitor voltages, without it the
+  /// voltages the operating point holds.
+  std::vector<std::pair<long, Rational>> node_ic;
 };
 
 bool is_netlist_file(const std::string& file);
