@@ -231,3 +231,31 @@ TEST(NoCliff, LadderOf116BranchesOnEveryBackend) {
     std::cout << "116-branch ladder, " << backend << ": " << seconds << " s (process, JSON, equations of motion)\n";
   }
 }
+
+// Issue 27: `--backend reference` on pure LC took 31 s and 1.1 GB at 1,000 branches and grew past 4 GB
+// within seconds at 20,000 (dense exact elimination, O(n³)).  Beyond kStructuredBranches (400) a
+// physical circuit takes the graph route on every backend — the same tower by CEF Thms 6.4, 6.6 and 6.8,
+// here an independently counted one: a ladder of 301 µH/nF sections with a bridging capacitor in each
+// (602 + 300 = 902 branches, 301 nodes besides ground) has 3n = 2706, M_1 = 2n − 301 = 1503, and the 300 capacitor loops
+// Cb_i C_{i-1} C_i cost 300 on q (M_2) and 300 on v (M_3): [2706, 1503, 1203, 903].  A negative C beyond
+// the limit is refused (exit 1) rather than run out of memory.
+TEST(NoCliff, ReferenceBeyondTheDenseSizeTakesTheGraphRoute) {
+  std::ostringstream deck, neg;
+  deck << "bridged ladder, 902 branches\n";
+  for (int i = 1; i <= 301; ++i) {
+    deck << "L" << i << " " << (i == 1 ? "0" : "n" + std::to_string(i - 1)) << " n" << i << " 1u\nC" << i << " n" << i << " 0 1n\n";
+    if (i > 1) deck << "CB" << i << " n" << i - 1 << " n" << i << " 1n\n";
+  }
+  neg << deck.str() << "CN n1 0 -1n\n.end\n";
+  deck << ".end\n";
+  const std::string file = write_temp("dcad_ladder902.cir", deck.str());
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    const Outcome r = run("solve " + file + " --json --backend " + backend);
+    ASSERT_EQ(r.rc, 0) << backend << ": " << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["dims"], nlohmann::json::parse("[2706, 1503, 1203, 903]")) << backend;
+    EXPECT_TRUE(j["certified"].get<bool>()) << backend;
+  }
+  const std::string bad = write_temp("dcad_ladder903_negative.cir", neg.str());
+  expect_input_error(run("solve " + bad + " --backend reference"), bad, "branches for an LC circuit with a negative L or C", "negative C at 903 branches");
+}

@@ -4,6 +4,7 @@
 #include "dcad/certified/cascade.hpp"
 #include "dcad/io/report.hpp"
 #include "dcad/lc_graph.hpp"
+#include "dcad/reference/pipeline/circuit.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 #include "dcad/reference/solve.hpp"
@@ -53,40 +54,18 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
   });
 }
 
-std::vector<lc::Branch<Rational>> graph_of(const io::Netlist& deck) {
-  std::vector<lc::Branch<Rational>> out;
-  for (const auto& b : deck.circuit.branches) out.push_back({b.kind, b.from, b.to, b.value});
-  return out;
-}
-
 /// A physical LC circuit by the graph route, exactly: CEF Thms 6.4, 6.6, 6.8 decide every step.
 Solution graph_route(const io::Netlist& deck, const std::vector<std::string>& variables) {
-  const lc::Tower<Rational> t = lc::physical_tower(deck.circuit.nodes, graph_of(deck));
-  Solution s;
-  s.variables = variables;
-  for (std::size_t k = 0; k < t.dims.size(); ++k) {
-    Level<Number> level{t.dims[k], {}};
-    for (const lc::Row<Rational>& row : t.equations[k]) {
-      Equation<Number> e;
-      for (const lc::Term<Rational>& term : row) e.terms.emplace_back(term.var, exact_number(term.coeff));
-      e.rhs = exact_number(Rational(0));
-      level.constraints.push_back(e);
-    }
-    s.tower.push_back(level);
-  }
-  s.steps = t.steps;
-  s.consistent = true;  // no sources: x = 0 solves
-  s.solution_rank = t.solution_rank;
-  s.exact = true;
+  Solution s = reference::pipeline::lc_graph_solution<Number>(deck, variables, [](const Rational& q) { return exact_number(q); });
   s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision), exact; equations of motion omitted above " +
-           std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
+           std::to_string(kDenseBranches) + " branches (dense)";
   return s;
 }
 
 Solution lc_circuit(const io::Problem& p, const Parts& parts) {
   namespace pl = reference::pipeline;
   const io::Netlist& deck = p.netlist;
-  const std::vector<lc::Branch<Rational>> graph = graph_of(deck);
+  const std::vector<lc::Branch<Rational>> graph = reference::pipeline::lc_graph_of(deck);
   const bool physical = lc::physical(graph);
   if (deck.circuit.branches.size() > kDenseBranches && physical) return graph_route(deck, p.linear.variables);
   Solution s = from_cascade(cascade<Solution>(

@@ -29,6 +29,17 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
     return s;
   }
   Solution s;
+  if (deck.circuit.branches.size() > pipeline::kStructuredBranches) {  // beyond the dense exact elimination
+    const std::string n = std::to_string(deck.circuit.branches.size()), limit = std::to_string(pipeline::kStructuredBranches);
+    if (!lc::physical(pipeline::lc_graph_of(deck)))
+      throw io::InputError(deck.file + ": expected at most " + limit + " branches for an LC circuit with a negative L or C (dense exact " +
+                           "elimination, O(n^3)), found " + n + " (physical circuits take the graph route at any size)");
+    s = pipeline::lc_graph_solution<Rational>(deck, p.linear.variables, [](const Rational& q) { return q; });
+    s.circuit = io::circuit_facts(deck);
+    s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8: L, C > 0 decide nothing), exact: the tower and its "
+             "equations; the equations of motion come from the structured route (dense exact elimination), up to " + limit + " branches";
+    return s;
+  }
   int bits = 0;
   try {
     s = pipeline::solve_lc_words(deck, p.linear, parts, bits);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "dcad/io/netlist.hpp"
+#include "dcad/lc_graph.hpp"
 #include "dcad/reference/circuit_motion.hpp"
 #include "dcad/reference/pipeline/linear.hpp"
 
@@ -13,6 +14,41 @@ namespace dcad::reference::pipeline {
 
 /// The §7 constraints adapted to the primary ones (T*TQ: 4n variables) are computed up to this many branches.
 constexpr std::size_t kAdaptedBranches = 24;
+
+/// The structured route (dense in n: O(n³) exact elimination) takes LC circuits up to this many
+/// branches; physical ones beyond it take the graph route (tower and its equations, no motion).
+constexpr std::size_t kStructuredBranches = 400;
+
+/// The LC deck as the graph route's branches, exactly.
+inline std::vector<lc::Branch<Rational>> lc_graph_of(const io::Netlist& deck) {
+  std::vector<lc::Branch<Rational>> out;
+  for (const auto& b : deck.circuit.branches) out.push_back({b.kind, b.from, b.to, b.value});
+  return out;
+}
+
+/// A physical LC circuit by the graph route, exactly (CEF Thms 6.4, 6.6, 6.8 decide every step):
+/// the tower with its equations, each coefficient through `number`; no equations of motion.
+template <class N, class Convert>
+dcad::Solution<N> lc_graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables, Convert number) {
+  const lc::Tower<Rational> t = lc::physical_tower(deck.circuit.nodes, lc_graph_of(deck));
+  dcad::Solution<N> s;
+  s.variables = variables;
+  for (std::size_t k = 0; k < t.dims.size(); ++k) {
+    Level<N> level{t.dims[k], {}};
+    for (const lc::Row<Rational>& row : t.equations[k]) {
+      Equation<N> e;
+      for (const lc::Term<Rational>& term : row) e.terms.emplace_back(term.var, number(term.coeff));
+      e.rhs = number(Rational(0));
+      level.constraints.push_back(e);
+    }
+    s.tower.push_back(level);
+  }
+  s.steps = t.steps;
+  s.consistent = true;  // no sources: x = 0 solves
+  s.solution_rank = t.solution_rank;
+  s.exact = true;
+  return s;
+}
 
 template <class T>
 Circuit<T> circuit_of(const io::Netlist& deck) {
