@@ -14,6 +14,7 @@
 
 #include "dcad/fast/forced.hpp"
 #include "dcad/reference/implicit_lagrangian.hpp"
+#include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/rlc.hpp"
 #include "dcad/rlc_graph.hpp"
 
@@ -387,14 +388,15 @@ RC_GTEST_PROP(ForcedTower, EquationsOfMotionAreThePointwiseVelocities, ()) {
 }
 
 // Two routes to one tower (dcad/rlc_graph.hpp against the literal dense CAD of reference/forced.hpp):
-// for L, C, R > 0 without coupling, the dims, steps and solution rank counted from cycle ranks of
-// subgraphs are the exact CAD's, and its conditions on the sources are as many as the cutsets of
-// current sources and the loops of voltage sources (and wires) the graph route names — at the step it
-// names them (cutsets bound M_1, loops M_2).
+// for C, R > 0 and a positive definite inductance matrix (graph_route_holds: couplings of 1/3 between
+// inductors of 1/1000 … 3 make it indefinite in some draws, which are skipped), the dims, steps and
+// solution rank counted from cycle ranks of subgraphs are the exact CAD's, and its conditions on the
+// sources are as many as the cutsets of current sources and the loops of voltage sources (and wires)
+// the graph route names — at the step it names them (cutsets bound M_1, loops M_2).
 RC_GTEST_PROP(ForcedTower, GraphRouteIsTheDenseRoute, ()) {
-  Kinds kinds;
-  kinds.couplings = false;
-  const ref::RlcCircuit<Q> c = random_rlc(kinds);  // values are positive
+  const ref::RlcCircuit<Q> c = random_rlc({});  // values are positive
+  RC_PRE(ref::pipeline::graph_route_holds(c));
+  RC_TAG(c.mutuals.empty() ? "no coupling" : "coupled");
   RC_LOG() << deck(c);
   std::vector<rlc::Branch> branches;
   for (const auto& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
@@ -409,4 +411,60 @@ RC_GTEST_PROP(ForcedTower, GraphRouteIsTheDenseRoute, ()) {
   RC_ASSERT(at1 == t.current_cutsets.size());
   RC_TAG(t.voltage_loops.empty() ? (t.current_cutsets.empty() ? "no condition" : "cutsets") : "loops");
   RC_TAG("steps " + std::to_string(t.steps));
+}
+
+// The same with couplings on purpose: 1 to 3 mutual inductances M = f·min(L_a, L_b) between random
+// pairs of inductors, f ∈ {−9/10, −1/2, 1/3, 9/10, 1}: positive definite Φ (graph_route_holds) gives the
+// uncoupled graph count, which is the dense CAD's; f = 1 on equal inductors (k = 1) and some sums of
+// couplings make Φ singular or indefinite, and graph_route_holds must refuse them (the perfectly
+// coupled transformer's tower, cases/transformer-perfect-coupling.cir, is not the graph count).
+RC_GTEST_PROP(ForcedTower, GraphRouteHoldsThroughPositiveDefiniteCouplings, ()) {
+  Kinds kinds;
+  kinds.couplings = false;
+  ref::RlcCircuit<Q> c = random_rlc(kinds);
+  std::vector<Index> l;
+  for (Index i = 0; i < c.branches.size(); ++i)
+    if (c.branches[i].kind == RlcKind::inductor) l.push_back(i);
+  while (l.size() < 2) {  // two inductors at least: add them between random nodes
+    ref::RlcBranch<Q> br;
+    br.name = "b" + std::to_string(c.branches.size());
+    br.kind = RlcKind::inductor;
+    br.from = *rc::gen::inRange<long>(-1, static_cast<long>(c.nodes));
+    br.to = *rc::gen::inRange<long>(-1, static_cast<long>(c.nodes));
+    br.value = *rc::gen::elementOf(std::vector<Q>{Q(1), Q(2), Q(1, 2), Q(1, 1000)});
+    l.push_back(c.branches.size());
+    c.branches.push_back(br);
+  }
+  const int couplings = *rc::gen::inRange(1, 4);
+  for (int k = 0; k < couplings; ++k) {
+    const Index a = *rc::gen::elementOf(l), b = *rc::gen::elementOf(l);
+    if (a == b) continue;
+    const Q f = *rc::gen::elementOf(std::vector<Q>{Q(-9, 10), Q(-1, 2), Q(1, 3), Q(9, 10), Q(1)});
+    c.mutuals.push_back({a, b, f * std::min(c.branches[a].value, c.branches[b].value)});
+  }
+  RC_LOG() << deck(c);
+  const ref::ForcedResult<Q> r = ref::forced_tower(ref::rlc_system(c));
+  // graph_route_holds decides Φ > 0 by pivots per coupled group; cross-checked here on the dense Φ of
+  // all inductors by another route: nonsingular, and vᵀΦv > 0 on random rational vectors
+  const bool holds = ref::pipeline::graph_route_holds(c);
+  const QM phi = ref::rlc_inductance(c);
+  std::vector<Index> ind = l;
+  QM block(ind.size(), ind.size());
+  for (Index i = 0; i < ind.size(); ++i)
+    for (Index j = 0; j < ind.size(); ++j) block(i, j) = phi(ind[i], ind[j]);
+  if (holds) {  // positive definite: nonsingular and vᵀΦv > 0 on random rational v
+    RC_ASSERT(ref::rank(block) == static_cast<Index>(ind.size()));
+    for (int t = 0; t < 8; ++t) {
+      QM v(ind.size(), 1);
+      for (Index i = 0; i < ind.size(); ++i) v(i, 0) = Q(*rc::gen::inRange(-5, 6));
+      if (v.is_zero()) continue;
+      RC_ASSERT((v.transpose() * block * v)(0, 0) > 0);
+    }
+    std::vector<rlc::Branch> branches;
+    for (const auto& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+    const rlc::Tower t = rlc::tower(c.nodes, branches);
+    RC_ASSERT(r.dims == t.dims);
+    RC_ASSERT(static_cast<long>(r.solution_rank) == t.solution_rank);
+  }
+  RC_TAG(holds ? "positive definite" : "refused");
 }

@@ -86,12 +86,12 @@ Solution forced_tower_of(const reference::ForcedSystem<Q>& f, const Options& opt
 Solution solve_forced_netlist(const io::Netlist& deck, const std::vector<std::string>& variables, const Options& options) {
   if (reference::pipeline::graph_route_holds(deck.rlc))  // any size, deciding nothing: certified by construction
     return reference::pipeline::graph_solution<double>(
-        deck, variables, "forced graph route (cycle ranks of subgraphs: L, C, R > 0 and no coupling decide nothing), certified by construction");
+        deck, variables, "forced graph route (cycle ranks of subgraphs: C, R > 0 and a positive definite inductance matrix decide nothing), certified by construction");
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
     throw io::InputError(deck.file + ": expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
-                         " branches for a circuit with couplings or with a non-positive R, L or C, found " +
+                         " branches for a circuit with a non-positive R or C or an inductance matrix that is not positive definite (k = 1, negative L), found " +
                          std::to_string(deck.rlc.branches.size()) +
-                         " (the fast route for those is dense; positive values without couplings take the graph route at any size)");
+                         " (the fast route for those is dense; the others take the graph route at any size)");
   const io::Netlist twin = io::dimensionless(deck, io::units_of(deck));  // the dimensionless twin: same tower
   Solution s = forced_tower_of(reference::rlc_system(twin.rlc), circuit_options(twin.rlc, options));
   s.file = deck.file;

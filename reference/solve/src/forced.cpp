@@ -225,11 +225,49 @@ dcad::Solution<Q> solve_forced(const io::CaseFile& c) {
   return s;
 }
 
-bool graph_route_holds(const RlcCircuit<Q>& c) {
-  if (!c.mutuals.empty()) return false;
-  for (const RlcBranch<Q>& b : c.branches)
-    if ((b.kind == RlcKind::inductor || b.kind == RlcKind::capacitor || b.kind == RlcKind::resistor) && b.value <= 0) return false;
+namespace {
+
+/// Φ positive definite, exactly: per group of inductors joined by couplings (a transformer's windings),
+/// every pivot of Gaussian elimination on its symmetric block positive (Sylvester).  Groups above
+/// kCoupledGroup inductors are not examined (false).
+constexpr std::size_t kCoupledGroup = 200;
+bool inductance_positive_definite(const RlcCircuit<Q>& c) {
+  const std::size_t n = c.branches.size();
+  graph::UnionFind uf(n);
+  for (const Mutual<Q>& mu : c.mutuals) uf.join(mu.a, mu.b);
+  std::map<std::size_t, std::vector<std::size_t>> groups;
+  for (std::size_t b = 0; b < n; ++b)
+    if (c.branches[b].kind == RlcKind::inductor) groups[uf.find(b)].push_back(b);
+  for (const auto& [root, members] : groups) {
+    if (members.size() > kCoupledGroup) return false;
+    std::map<std::size_t, std::size_t> at;
+    for (std::size_t i = 0; i < members.size(); ++i) at[members[i]] = i;
+    const std::size_t g = members.size();
+    std::vector<std::vector<Q>> m(g, std::vector<Q>(g, Q(0)));
+    for (std::size_t i = 0; i < g; ++i) m[i][i] = c.branches[members[i]].value;
+    for (const Mutual<Q>& mu : c.mutuals)
+      if (uf.find(mu.a) == root) {
+        m[at[mu.a]][at[mu.b]] += mu.m;
+        m[at[mu.b]][at[mu.a]] += mu.m;
+      }
+    for (std::size_t k = 0; k < g; ++k) {
+      if (m[k][k] <= 0) return false;
+      for (std::size_t i = k + 1; i < g; ++i) {
+        if (m[i][k] == 0) continue;
+        const Q f = m[i][k] / m[k][k];
+        for (std::size_t j = k; j < g; ++j) m[i][j] -= f * m[k][j];
+      }
+    }
+  }
   return true;
+}
+
+}  // namespace
+
+bool graph_route_holds(const RlcCircuit<Q>& c) {
+  for (const RlcBranch<Q>& b : c.branches)
+    if ((b.kind == RlcKind::capacitor || b.kind == RlcKind::resistor) && b.value <= 0) return false;
+  return inductance_positive_definite(c);  // (L > 0 without couplings)
 }
 
 namespace {
@@ -285,9 +323,9 @@ dcad::Solution<Q> solve_forced(const io::Netlist& deck, const std::vector<std::s
   if (deck.rlc.branches.size() > kForcedBranches) {
     if (!graph_route_holds(deck.rlc))
       throw io::InputError(deck.file + ": expected at most " + std::to_string(kForcedBranches) +
-                           " branches for a circuit with couplings or with a non-positive R, L or C, found " +
+                           " branches for a circuit with a non-positive R or C or an inductance matrix that is not positive definite (k = 1, negative L), found " +
                            std::to_string(deck.rlc.branches.size()) +
-                           " (the exact route for those is dense; positive values without couplings take the graph route at any size)");
+                           " (the exact route for those is dense; the others take the graph route at any size)");
     return graph_solution<Q>(deck, variables,
                              "forced graph route (dcad/rlc_graph.hpp: cycle ranks of subgraphs; CEF Thms 6.4, 6.6, 6.8 with YM §4's sources), "
                              "exact: the tower and the conditions on the sources; the tower's equations and the equations of motion come "

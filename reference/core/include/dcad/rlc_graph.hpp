@@ -1,7 +1,9 @@
 // The graph route for RLC circuits with sources (CEF §6 extended by YM §4's forces and affine
 // constraints): the tower of the circuit's forced system (dcad/reference/rlc.hpp) from cycle ranks of
 // subgraphs, without forming the 3n-dimensional system.  Topology only (dcad::core: no arithmetic);
-// it holds when every L, C and R is positive and there is no mutual inductance — then it decides
+// it holds when every C and R is positive and the inductance matrix Φ is positive definite (every L
+// positive, couplings with |k| < 1): the inductors enter only through the currents an LI cutset
+// leaves to them, a system in Φ⁻¹-weighted node potentials that is solvable for Φ > 0 — then it decides
 // nothing, and the callers (fast, and the exact backends beyond the dense route's size) use it at any
 // size.  The conditions on the sources it names are decided against the waveforms by the caller.
 //

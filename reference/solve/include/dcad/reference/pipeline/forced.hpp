@@ -38,7 +38,8 @@ struct GraphForced {
   std::vector<SourceCondition> conditions;
   Truth certified = yes;  ///< unknown where a condition could not be decided exactly
 };
-/// Whether the graph route holds: every L, C and R positive, no mutual inductance.
+/// Whether the graph route holds: every C and R positive and the inductance matrix Φ positive
+/// definite (every L positive; couplings with |k| < 1 on a pair, decided exactly per coupled group).
 bool graph_route_holds(const RlcCircuit<Rational>& c);
 /// The graph route on a deck where graph_route_holds; exact at any size (topology and ±1 rows).
 GraphForced graph_forced(const io::Netlist& deck);
