@@ -308,7 +308,7 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
     flow.advance();
     progress.at(k);
   }
-  return summarize(sum.rows, err, mag, c.variables);
+  return summarize(sum.rows, err, mag, c.variables, deck ? io::units_of(*deck).variable_scales(deck->circuit.branches.size(), false) : std::vector<long double>());
 }
 
 /// A variable's kind: its name up to the first '_' for circuits (q_, v_, p_: charges, currents, flux
@@ -319,7 +319,7 @@ std::string kind_of(const std::string& name) {
 }
 
 Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
-                          const std::vector<std::string>& names) {
+                          const std::vector<std::string>& names, const std::vector<long double>& natural) {
   Summary sum;
   sum.rows = rows;
   // the scale of a variable: the largest magnitude over the run among the variables of its kind (a
@@ -327,8 +327,10 @@ Summary summarize(long rows, const std::vector<long double>& err, const std::vec
   // itself: relative to itself its rounding reads as an error of 100 %)
   std::map<std::string, long double> scale;
   for (std::size_t i = 0; i < mag.size(); ++i) scale[kind_of(names[i])] = std::max(scale[kind_of(names[i])], mag[i]);
+  long double state = 0;  // the whole state's size in natural units
+  for (std::size_t i = 0; i < natural.size(); ++i) state = std::max(state, mag[i] / natural[i]);
   for (std::size_t i = 0; i < err.size(); ++i) {
-    const long double s = scale[kind_of(names[i])];
+    const long double s = std::max(scale[kind_of(names[i])], natural.empty() ? 0.0L : state * natural[i]);
     if (s == 0) continue;
     const double e = static_cast<double>(err[i] / s);
     if (e >= sum.error_estimate) {

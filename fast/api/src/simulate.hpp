@@ -40,8 +40,12 @@ Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& 
 
 /// The summary of a run: rows, and the worst of err[i]/scale[i] (the long-double shadow's difference
 /// relative to the largest magnitude over the run among the variables of i's kind: q_, v_, p_ for
-/// circuits, all variables otherwise) with the variable's name.
-Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag, const std::vector<std::string>& names);
+/// circuits, all variables otherwise) with the variable's name.  `natural` (circuits: the scales S of
+/// the dimensionless twin, x = S x̃, dcad/units.hpp) floors each scale at the size of the whole state
+/// in those units, so a kind that is zero in exact arithmetic (no current at an operating point) is
+/// measured against the state, not against its own rounding.
+Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag, const std::vector<std::string>& names,
+                  const std::vector<long double>& natural = {});
 
 /// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
 constexpr std::size_t kSimulateBranches = 400;

@@ -61,7 +61,7 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
                         : forced_case ? simulate_forced_case(c, init, options, csv, log, energy)
                                       : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, csv, log);
     log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate)
-        << " relative to the largest magnitude of each variable's kind (worst " << sum.worst_variable << "; difference from the same exact flow in long double)\n";
+        << " relative to the largest magnitude of each variable's kind, at least the state's size in the circuit's natural units (worst " << sum.worst_variable << "; difference from the same exact flow in long double)\n";
     return sum;
   });
 }

@@ -35,6 +35,7 @@ struct ForcedScene {
   std::string file;
   ref::ForcedSystem<Q> f;
   std::vector<io::Waveform> waveforms;
+  std::vector<long double> natural;  ///< circuits: the dimensionless twin's scales (summarize)
 };
 
 template <class S>
@@ -395,7 +396,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
       if (stop >= to) break;
     }
   }
-  return summarize(steps + 1, err, mag, c.variables);
+  return summarize(steps + 1, err, mag, c.variables, deck.natural);
 }
 
 Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
@@ -403,7 +404,9 @@ Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const st
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
     throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
                          " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
-  return simulate_scene(ForcedScene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms}, c, initial, opt, out, log, energy);
+  return simulate_scene(ForcedScene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms,
+                                    io::units_of(deck).variable_scales(deck.rlc.branches.size(), false)},
+                        c, initial, opt, out, log, energy);
 }
 
 Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
