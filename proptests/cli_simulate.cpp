@@ -259,6 +259,13 @@ TEST(Simulate, OperatingPointAsSpiceComputesIt) {
   ASSERT_EQ(rest.size(), 11u) << err;
   EXPECT_EQ(rest[0].at("q_C1"), 0);
   EXPECT_GT(rest[10].at("v_L1"), 1e-4);  // i(t) = V/(L wd) e^(-at) sin(wd t) > 0 on (0, pi/wd)
+  // `.ic` holds its node through the operating point as ngspice does (a source there: KCL at the node
+  // is the source's): a 2 V divider of 1k/1k with .ic v(2)=0.5 starts its capacitor at 0.5 V, not 1 V
+  const std::string held = write_temp("dcad_op_ic.cir", "divider with .ic\nV1 1 0 DC 2\nR1 1 2 1k\nR2 2 0 1k\nC1 2 0 1n\n.ic v(2)=0.5\n.tran 1n 1u\n.end\n");
+  const auto ic = simulate_rows(held, "--tstop 1n --step 1n", &err);
+  ASSERT_EQ(ic.size(), 2u) << err;
+  EXPECT_NEAR(ic[0].at("q_C1"), 0.5e-9, 1e-24) << err;
+  EXPECT_NEAR(ic[0].at("v_R1"), 1.5e-3, 1e-18) << err;  // (2 − 0.5)/1k once released
   const std::string none = write_temp("dcad_no_op.cir", "no DC path\nI1 0 a DC 1m\nC1 a 0 1n\n.tran 1n 1u\n.end\n");
   const Outcome r = run("simulate " + none + " --tstop 1u --step 1n");
   expect_input_error(r, none, "expected a DC operating point at t = 0", "a current source charging a capacitor");
@@ -671,4 +678,30 @@ TEST(Forced, CapacitorChargedToItsSourceIsOnMc) {
   EXPECT_NEAR(jumped[0].at("q_C1"), 1e-6, 1e-21);
   EXPECT_NE(err.find("jump at t = 0: q_C1 from 1.9999999999999999e-06 to 9.9999999999999995e-07, forced by q_C1 - 1/1000000*V1(t) = 0"),
             std::string::npos) << err;
+}
+
+// An irrational mutual inductance (k·√(Lx·Ly) with L = 1u, 2u, 3u) is rounded to 80 digits, and three
+// couplings of −1/2 make the inductance matrix singular whatever the L are (the coupling matrix has the
+// kernel (1, 1, 1)): rounded, it reads as regular and the dense route's tower is the rounded circuit's.
+// No backend may certify it.  With L = 1u each the same deck is exact, and its tower is derived by hand
+// as the perfect transformer's: n = 6, 3 nodes: M_1 = 2n − 3 = 9, Φ's kernel gives the KVL combination
+// Σ q_C/C = 0 (M_2: 8) and its derivative on the currents (M_3: 7) — certified on every backend.
+TEST(Forced, IrrationalCouplingIsNotCertifiedWhereItDecides) {
+  const auto deck = [](const std::string& l2, const std::string& l3) {
+    return "three windings\nL1 1 0 1u\nC1 1 0 1n\nL2 2 0 " + l2 + "\nC2 2 0 1n\nL3 3 0 " + l3 +
+           "\nC3 3 0 1n\nK12 L1 L2 -0.5\nK13 L1 L3 -0.5\nK23 L2 L3 -0.5\n.end\n";
+  };
+  const std::string rounded = write_temp("dcad_k3_rounded.cir", deck("2u", "3u")), exact = write_temp("dcad_k3_exact.cir", deck("1u", "1u"));
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    const Outcome r = run("solve " + rounded + " --json --backend " + backend);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(j["certified"].get<bool>()) << backend << " " << j["dims"];
+    EXPECT_NE(j["note"].get<std::string>().find("rounded to 80 digits"), std::string::npos) << backend << " " << j["note"];
+    const Outcome e = run("solve " + exact + " --json --backend " + backend);
+    ASSERT_EQ(e.rc, 0) << e.err;
+    const nlohmann::json k = nlohmann::json::parse(e.out);
+    EXPECT_TRUE(k["certified"].get<bool>()) << backend << " " << k["note"];
+    EXPECT_EQ(k["dims"], nlohmann::json::parse("[18, 9, 8, 7]")) << backend;
+  }
 }

@@ -16,6 +16,7 @@
 #include "simulate.hpp"
 
 #include "dcad/io/report.hpp"
+#include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/pipeline/numbers.hpp"
 
 #include "dcad/reference/cad.hpp"
@@ -121,12 +122,16 @@ ExactModel circuit_model(const io::Netlist& deck, const io::CaseFile& c) {
   return m;
 }
 
-std::vector<Q> initial_point(const ExactModel& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c) {
+std::vector<Q> initial_point(const ExactModel& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c, bool netlist) {
   const ref::InitialPoint<Q> p = ref::consistent_initial_point(r.levels, initial);
   if (!p.consistent)
     throw io::InputError(c.file + ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
                          io::equation_text(io::printed_equation(reference::pipeline::row_equation(p.violated, 0)), c.variables) +
-                         " (a constraint of M_" + std::to_string(p.level) + ")");
+                         " (a constraint of M_" + std::to_string(p.level) + ")" +
+                         (netlist && c.n / 3 > reference::pipeline::kForcedBranches
+                              ? "; a netlist's jump onto M_c at t = 0 is computed up to " + std::to_string(reference::pipeline::kForcedBranches) +
+                                    " branches only: give IC= values on M_c"
+                              : std::string()));
   return p.point;
 }
 
@@ -240,7 +245,7 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
                          std::to_string(deck->circuit.branches.size()) +
                          " (the flow is integrated with a dense matrix exponential; sparse integration is not supported yet)");
   const ExactModel model = deck ? circuit_model(*deck, c) : generic_model(c);
-  const std::vector<Q> x0q = initial_point(model, initial, c);
+  const std::vector<Q> x0q = initial_point(model, initial, c, deck != nullptr);
   const ref::ReducedEquations<Q>& red = model.red;
   if (red.g.cols() > 0) log << "note: solutions are not unique (" << red.g.cols() << " free multipliers); simulating lambda = 0\n";
   // coordinates z = S x; x = x0 + Bᵀ T⁻¹ (z − S x0) with T = S Bᵀ (= I for default coordinates)

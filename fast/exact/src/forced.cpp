@@ -94,6 +94,10 @@ Solution solve_forced_netlist(const io::Netlist& deck, const std::vector<std::st
                          " (the fast route for those is dense; the others take the graph route at any size)");
   const io::Netlist twin = io::dimensionless(deck, io::units_of(deck));  // the dimensionless twin: same tower
   Solution s = forced_tower_of(reference::rlc_system(twin.rlc), circuit_options(twin.rlc, options));
+  if (reference::pipeline::rounded_coupling(deck.rlc)) {
+    s.certified = unknown;
+    s.note += "; " + std::string(reference::pipeline::kRoundedCoupling);
+  }
   s.file = deck.file;
   s.name = deck.title;
   s.variables = variables;

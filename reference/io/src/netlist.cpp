@@ -621,19 +621,21 @@ static void resolve_couplings(Netlist& out, const Flattener& f) {
     const mpz_int num = boost::multiprecision::numerator(sq), den = boost::multiprecision::denominator(sq);
     const mpz_int rn = boost::multiprecision::sqrt(num), rd = boost::multiprecision::sqrt(den);
     Rational m;
+    bool rounded = false;
     if (rn * rn == num && rd * rd == den) {
       m = Rational(rn, rd);
     } else {
       const mpz_int scale = boost::multiprecision::pow(mpz_int(10), 80);
       m = Rational(boost::multiprecision::sqrt(mpz_int(num * scale * scale / den)), scale);  // 80 digits after the point, truncated
       out.warnings.push_back(c.line.where() + ": " + c.name + ": M = k*sqrt(Lx*Ly) is irrational; used it to 80 decimal places");
+      rounded = true;
     }
     if (c.k < 0) m = -m;
     bool dup = false;
     for (auto& mu : out.rlc.mutuals)
       if ((mu.a == a && mu.b == b) || (mu.a == b && mu.b == a)) dup = true;
     if (dup) throw InputError(c.line.where() + ": expected one coupling per pair of inductors, found a second one (" + c.name + ")");
-    out.rlc.mutuals.push_back({a, b, m});
+    out.rlc.mutuals.push_back({a, b, m, c.k, rounded});
     out.forced = true;
   }
 }

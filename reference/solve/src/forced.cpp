@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace dcad::reference::pipeline {
@@ -45,12 +46,17 @@ std::string row_text(const QM& row, const std::vector<std::string>& names) {
 void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders, double& worst, double& at, double& scale,
             std::size_t& samples) {
   const std::size_t m = waveforms.size();
+  std::vector<bool> in_row(m, false);  // only the row's own sources set the sample times
+  for (std::size_t j = 0; j < m; ++j)
+    for (long d = 0; d < orders; ++d) in_row[j] = in_row[j] || row(0, 1 + d * m + j) != 0;
   double horizon = 0;
-  for (const io::Waveform& w : waveforms) horizon = std::max(horizon, w.horizon());
+  for (std::size_t j = 0; j < m; ++j)
+    if (in_row[j]) horizon = std::max(horizon, waveforms[j].horizon());
   if (horizon == 0) horizon = 1;
   std::vector<double> ts{0};
-  for (const io::Waveform& w : waveforms)
-    for (double b : w.breakpoints(horizon)) ts.push_back(b);
+  for (std::size_t j = 0; j < m; ++j)
+    if (in_row[j])
+      for (double b : waveforms[j].breakpoints(horizon)) ts.push_back(b);
   std::sort(ts.begin(), ts.end());
   const std::size_t k = ts.size();
   for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
@@ -61,7 +67,7 @@ void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orde
   for (double t : ts) {
     double s = row(0, 0).convert_to<double>();
     for (std::size_t j = 0; j < m; ++j)
-      for (long d = 0; d < orders; ++d) {
+      for (long d = 0; d < orders && in_row[j]; ++d) {
         const double c = row(0, 1 + d * m + j).convert_to<double>();
         if (c == 0) continue;
         const double term = c * waveforms[j].value(t, static_cast<int>(d));
@@ -228,8 +234,11 @@ dcad::Solution<Q> solve_forced(const io::CaseFile& c) {
 namespace {
 
 /// Φ positive definite, exactly: per group of inductors joined by couplings (a transformer's windings),
-/// every pivot of Gaussian elimination on its symmetric block positive (Sylvester).  Groups above
-/// kCoupledGroup inductors are not examined (false).
+/// every pivot of Gaussian elimination on its symmetric block positive (Sylvester).  A group whose
+/// couplings all come from K cards is decided on its coupling coefficients (1 on the diagonal, k off
+/// it): Φ = D^½ K D^½ with D = diag(L) > 0 has the inertia of K, which is exact where M = k√(L_a L_b)
+/// is irrational and was rounded (three couplings of −1/2 make Φ singular; rounded, it looked positive
+/// definite).  Groups above kCoupledGroup inductors are not examined (false).
 constexpr std::size_t kCoupledGroup = 200;
 bool inductance_positive_definite(const RlcCircuit<Q>& c) {
   const std::size_t n = c.branches.size();
@@ -244,11 +253,17 @@ bool inductance_positive_definite(const RlcCircuit<Q>& c) {
     for (std::size_t i = 0; i < members.size(); ++i) at[members[i]] = i;
     const std::size_t g = members.size();
     std::vector<std::vector<Q>> m(g, std::vector<Q>(g, Q(0)));
-    for (std::size_t i = 0; i < g; ++i) m[i][i] = c.branches[members[i]].value;
+    bool by_k = true;
+    for (const Mutual<Q>& mu : c.mutuals)
+      if (uf.find(mu.a) == root) by_k = by_k && mu.k.has_value();
+    for (std::size_t i = 0; i < g; ++i) {
+      if (c.branches[members[i]].value <= 0) return false;
+      m[i][i] = by_k ? Q(1) : c.branches[members[i]].value;
+    }
     for (const Mutual<Q>& mu : c.mutuals)
       if (uf.find(mu.a) == root) {
-        m[at[mu.a]][at[mu.b]] += mu.m;
-        m[at[mu.b]][at[mu.a]] += mu.m;
+        m[at[mu.a]][at[mu.b]] += by_k ? *mu.k : mu.m;
+        m[at[mu.b]][at[mu.a]] += by_k ? *mu.k : mu.m;
       }
     for (std::size_t k = 0; k < g; ++k) {
       if (m[k][k] <= 0) return false;
@@ -264,6 +279,10 @@ bool inductance_positive_definite(const RlcCircuit<Q>& c) {
 
 }  // namespace
 
+bool rounded_coupling(const RlcCircuit<Q>& c) {
+  return std::any_of(c.mutuals.begin(), c.mutuals.end(), [](const Mutual<Q>& mu) { return mu.rounded; });
+}
+
 bool graph_route_holds(const RlcCircuit<Q>& c) {
   for (const RlcBranch<Q>& b : c.branches)
     if ((b.kind == RlcKind::capacitor || b.kind == RlcKind::resistor) && b.value <= 0) return false;
@@ -272,13 +291,20 @@ bool graph_route_holds(const RlcCircuit<Q>& c) {
 
 namespace {
 
-/// The condition Σ sign·σ_source(b)(t) = 0 over the sources of `path` (a loop or a cutset) as a jet row
-/// [0 | σ⁽⁰⁾], its first coefficient made positive.
-QM condition_row(const std::vector<graph::LoopBranch>& path, const RlcCircuit<Q>& c) {
-  QM row(1, 1 + c.sources);
+/// The condition Σ sign·σ_source(b)(t) = 0 over the sources of `path` (a loop or a cutset), decided on
+/// those sources alone (a row [0 | σ⁽⁰⁾] over them, its first coefficient made positive): the cost is
+/// the path's, not the deck's (N parallel sources took O(N³)).
+SourceCondition decide_path(const std::vector<graph::LoopBranch>& path, const RlcCircuit<Q>& c, const std::vector<io::Waveform>& all) {
+  std::map<Index, int> coeff;  // source index → Σ signs
   for (const graph::LoopBranch& lb : path) {
     const RlcBranch<Q>& b = c.branches[lb.branch];
-    if (b.kind == RlcKind::voltage || b.kind == RlcKind::current) row(0, 1 + b.source) += Q(lb.sign);
+    if (b.kind == RlcKind::voltage || b.kind == RlcKind::current) coeff[b.source] += lb.sign;
+  }
+  std::vector<io::Waveform> own;
+  QM row(1, 1 + coeff.size());
+  for (const auto& [j, k] : coeff) {
+    own.push_back(all[j]);
+    row(0, own.size()) = Q(k);
   }
   for (Index j = 1; j < row.cols(); ++j)
     if (row(0, j) != 0) {
@@ -286,7 +312,7 @@ QM condition_row(const std::vector<graph::LoopBranch>& path, const RlcCircuit<Q>
         for (Index k = 1; k < row.cols(); ++k) row(0, k) = -row(0, k);
       break;
     }
-  return row;
+  return decide_condition(row, own);
 }
 
 }  // namespace
@@ -301,9 +327,11 @@ GraphForced graph_forced(const io::Netlist& deck) {
   g.dims = t.dims;
   g.solution_rank = t.solution_rank;
   long empty_at = -1;  // cutsets bound M_1, loops of voltage sources M_2
+  std::set<std::string> seen;
   const auto decide = [&](const std::vector<graph::LoopBranch>& path, long level) {
-    const SourceCondition v = decide_condition(condition_row(path, c), deck.waveforms);
-    if (std::none_of(g.conditions.begin(), g.conditions.end(), [&](const SourceCondition& o) { return o.text == v.text; })) g.conditions.push_back(v);
+    if (empty_at >= 0 && level > empty_at) return;  // beyond the first empty M_k nothing is asked
+    const SourceCondition v = decide_path(path, c, deck.waveforms);
+    if (seen.insert(v.text).second) g.conditions.push_back(v);
     g.certified &= v.holds.known() ? yes : unknown;
     if (v.holds.no() && (empty_at < 0 || level < empty_at)) empty_at = level;
   };
@@ -332,6 +360,10 @@ dcad::Solution<Q> solve_forced(const io::Netlist& deck, const std::vector<std::s
                              "from the dense exact route, up to " + std::to_string(kForcedBranches) + " branches");
   }
   dcad::Solution<Q> s = exact_forced(rlc_system(deck.rlc), deck.waveforms, variables);
+  if (rounded_coupling(deck.rlc)) {
+    s.certified = unknown;
+    s.note += "; " + std::string(kRoundedCoupling);
+  }
   s.file = deck.file;
   s.name = deck.title;
   return s;

@@ -21,8 +21,9 @@
 //                                                        d3 = d2 − (Z(H1[C,V,W]) − Z(H1[V,W]));
 //   M_4 = M_3.  The currents around loops of voltage sources and wires are free: the solution rank
 //   is Z(H1[V, W]) (CEF Thm 6.8's empty loops, with sources).
-// For LC circuits (no R, V, I) this is CEF Thms 6.4, 6.6 and 6.8.  proptests/prop_rlc_graph.cpp checks
-// every count against the exact dense route (reference::forced_tower) on random circuits.
+// For LC circuits (no R, V, I) this is CEF Thms 6.4, 6.6 and 6.8.  proptests/prop_forced.cpp checks
+// every count against the exact dense route (reference::forced_tower) on random circuits
+// (GraphRouteIsTheDenseRoute, GraphRouteHoldsThroughPositiveDefiniteCouplings).
 #pragma once
 
 #include "dcad/graph.hpp"

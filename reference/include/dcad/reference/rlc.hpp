@@ -14,6 +14,8 @@
 #include "dcad/reference/circuit.hpp"
 #include "dcad/reference/forced.hpp"
 
+#include <optional>
+
 namespace dcad::reference {
 
 enum class RlcKind { inductor, capacitor, resistor, voltage, current, wire };
@@ -31,6 +33,8 @@ template <class T>
 struct Mutual {
   Index a = 0, b = 0;  ///< inductor branches
   T m = T(0);          ///< mutual inductance (Φ_ab = Φ_ba = m)
+  std::optional<T> k;  ///< the coupling coefficient of the K card it came from (exact), if any
+  bool rounded = false;  ///< m = k√(L_a L_b) is irrational: m is it truncated (80 digits)
 };
 
 template <class T>

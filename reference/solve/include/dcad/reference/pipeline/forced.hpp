@@ -41,6 +41,12 @@ struct GraphForced {
 /// Whether the graph route holds: every C and R positive and the inductance matrix Φ positive
 /// definite (every L positive; couplings with |k| < 1 on a pair, decided exactly per coupled group).
 bool graph_route_holds(const RlcCircuit<Rational>& c);
+/// Some mutual inductance k√(L_a L_b) is irrational and was rounded (80 digits): the dense route is
+/// then exact for the rounded circuit only — not certified (kRoundedCoupling says why).
+bool rounded_coupling(const RlcCircuit<Rational>& c);
+constexpr const char* kRoundedCoupling =
+    "a mutual inductance k*sqrt(Lx*Ly) is irrational and was rounded to 80 digits: the dense route is exact for the rounded circuit, "
+    "whose tower may differ from the deck's (a singular coupling matrix reads as regular)";
 /// The graph route on a deck where graph_route_holds; exact at any size (topology and ±1 rows).
 GraphForced graph_forced(const io::Netlist& deck);
 
