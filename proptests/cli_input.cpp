@@ -468,3 +468,17 @@ TEST(Cli, TextReportNamesTheMultipliers) {
     EXPECT_NE(r.out.find("d/dt v_V1 = -lambda1\n"), std::string::npos) << backend << "\n" << r.out;
   }
 }
+
+// ngspice reads `NAME = VALUE` with spaces around '=' as NAME=VALUE: `ic = 0.5`, `IC= 0.5` and
+// `.IC V(b) = 0.5` are the deck without the spaces (dcad refused them: "expected IC=value").
+TEST(Cli, SpacesAroundEqualsReadAsNgspiceReadsThem) {
+  const std::string spaced = write_temp("dcad_eq_spaced.cir", "eq\nV1 a 0 DC 1\nR1 a b 1k\nC2 b 0 1u ic = 0.25\nC3 b c 1u IC= 0.5\n"
+                                                               "L1 c 0 1m\n.IC V(b) = 0.75\n.param r2 = 2k\nR2 b 0 {r2}\n.tran 1u 1m uic\n.end\n");
+  const std::string tight = write_temp("dcad_eq_tight.cir", "eq\nV1 a 0 DC 1\nR1 a b 1k\nC2 b 0 1u ic=0.25\nC3 b c 1u IC=0.5\n"
+                                                             "L1 c 0 1m\n.IC V(b)=0.75\n.param r2=2k\nR2 b 0 {r2}\n.tran 1u 1m uic\n.end\n");
+  const Outcome a = run("simulate " + spaced + " --tstop 2u --step 1u"), b = run("simulate " + tight + " --tstop 2u --step 1u");
+  ASSERT_EQ(a.rc, 0) << a.err;
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_EQ(a.out, b.out);
+  EXPECT_NE(a.out.find("\n0,0,0,2.5e-07,"), std::string::npos) << a.out;  // q_C2 = 1u · 0.25 V (IC= before .ic)
+}

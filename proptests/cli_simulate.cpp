@@ -705,3 +705,17 @@ TEST(Forced, IrrationalCouplingIsNotCertifiedWhereItDecides) {
     EXPECT_EQ(k["dims"], nlohmann::json::parse("[18, 9, 8, 7]")) << backend;
   }
 }
+
+// SIN(VO VA FREQ TD THETA PHASE) holds VO + VA sin(PHASE) before TD, as ngspice does (dcad held VO: a
+// current source SIN(1m 2m 200k 1u 0 90) into 1k || 1n started at 1 V where ngspice starts at 3 V).
+// Before TD the source is 3 mA, and the operating point charges C1 to 3 mA · 1k = 3 V: q = 3 nC.
+TEST(Forced, SineHoldsItsPhaseBeforeItsDelay) {
+  const std::string deck = write_temp("dcad_sin_td.cir", "isin\nI1 0 a SIN(1m 2m 200k 1u 0 90)\nR1 a 0 1k\nC1 a 0 1n\n.tran 10n 3u\n.end\n");
+  std::string err;
+  const auto rows = simulate_rows(deck, "--tstop 1u --step 0.25u", &err);
+  ASSERT_EQ(rows.size(), 5u) << err;
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    EXPECT_NEAR(rows[k].at("v_I1"), 3e-3, 1e-15) << rows[k].at("t");
+    EXPECT_NEAR(rows[k].at("q_C1"), 3e-9, 1e-20) << rows[k].at("t");
+  }
+}

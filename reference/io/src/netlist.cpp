@@ -88,10 +88,18 @@ struct Line {
   throw InputError(l.where() + ": expected " + expected + ", found " + found);
 }
 
+/// The words of a line, `NAME = VALUE` glued into `NAME=VALUE` (ngspice reads `IC = 0.5`, `IC= 0.5`
+/// and `.ic V(a) = 2` as their unspaced forms).
 std::vector<std::string> tokens(const std::string& text) {
   std::istringstream ss(text);
   std::vector<std::string> tok;
-  for (std::string t; ss >> t;) tok.push_back(t);
+  for (std::string t; ss >> t;) {
+    if (!tok.empty() && (t.front() == '=' || tok.back().back() == '=')) {
+      tok.back() += t;
+      continue;
+    }
+    tok.push_back(t);
+  }
   return tok;
 }
 

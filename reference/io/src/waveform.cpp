@@ -180,7 +180,7 @@ double Waveform::value(double t, int order) const {
       return order == 0 ? d(p[0]) : 0.0;
     case Kind::sin: {
       const double vo = d(p[0]), va = d(p[1]), td = d(p[3]), phi = d(p[5]) * kPi / 180;
-      if (t < td) return order == 0 ? vo : 0.0;
+      if (t < td) return order == 0 ? vo + va * std::sin(phi) : 0.0;  // ngspice: VO + VA sin(PHASE) before TD
       // Im(VA s^order e^{s τ + iφ}) with s = −θ + iω
       const std::complex<double> s(decay(), omega());
       const std::complex<double> z = va * std::pow(s, order) * std::exp(s * (t - td) + std::complex<double>(0, phi));
@@ -199,9 +199,13 @@ std::optional<Rational> Waveform::exact_at_zero(int order) const {
     case Kind::dc:
       return order == 0 ? p[0] : Rational(0);
     case Kind::sin: {
-      if (p[3] > 0 || p[1] == 0) return order == 0 ? p[0] : Rational(0);  // before TD, or no sine: VO
-      if (order > 0) return std::nullopt;                                  // VA (−θ + iω)^order …: ω = 2π FREQ
+      if (p[1] == 0) return order == 0 ? p[0] : Rational(0);  // no sine: VO
+      if (order > 0) {
+        if (p[3] > 0) return Rational(0);  // before TD the value is constant
+        return std::nullopt;               // VA (−θ + iω)^order …: ω = 2π FREQ
+      }
       const Rational phase = p[5] - 360 * floor_of(Rational(p[5] / 360));         // VO + VA sin φ, rational at quarter turns
+      // VO + VA sin φ, at t = 0 whether or not TD > 0 (ngspice holds it before TD)
       if (phase == 0 || phase == 180) return p[0];
       if (phase == 90) return p[0] + p[1];
       if (phase == 270) return p[0] - p[1];
@@ -245,7 +249,10 @@ void Waveform::exo_state(double t, long double* w) const {
   if (kind == Kind::sin) {
     const double td = d(p[3]), phi = d(p[5]) * kPi / 180;
     w[0] = d(p[0]);
-    if (t < td) return;
+    if (t < td) {  // ngspice holds VO + VA sin(PHASE) before TD
+      w[0] += static_cast<long double>(d(p[1])) * std::sin(static_cast<long double>(phi));
+      return;
+    }
     const std::complex<long double> s(decay(), omega());
     const std::complex<long double> z =
         static_cast<long double>(d(p[1])) * std::exp(s * static_cast<long double>(t - td) + std::complex<long double>(0, phi));
