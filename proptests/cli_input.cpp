@@ -123,6 +123,18 @@ TEST(Cli, NetlistLinesOfOtherWhiteSpace) {
   expect_input_error(run("solve " + copy), copy, ":2:", "the fuzzer's input");
 }
 
+// Found by fuzz_netlist (proptests/fuzz/regressions/netlist/glued-equals-first-word): with `NAME = VALUE`
+// glued into one word, a line starting "= phi v" had a first word ("=phi") that its text does not
+// contain, and the reader took a substring at npos (an uncaught std::out_of_range: a crash).
+TEST(Cli, NetlistLineStartingWithEquals) {
+  const std::string file = write_temp("dcad_equals_first.cir", "title\nL1 1 0 1\n = phi v\nC1 1 0 1\n");
+  expect_input_error(run("solve " + file), file, ":3:", "a line starting with '='");
+  const std::string found = fs::path(DCAD_SOURCE_DIR) / "proptests/fuzz/regressions/netlist/glued-equals-first-word";
+  const std::string copy = write_temp("dcad_equals_found.cir", slurp(found));
+  const Outcome r = run("solve " + copy);
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+}
+
 // Found by fuzz_netlist: "0.010" read as 1/125 (octal digits), exit 0 — a silently wrong circuit.
 TEST(Cli, LeadingZerosAreDecimal) {
   const std::string file = write_temp("dcad_leading_zeros.cir", "title\nL1 1 0 0.010\nC1 1 0 010m\n");

@@ -164,7 +164,7 @@ class Reader {
       std::string text = strip_inline_comment(raw.substr(start));
       const std::vector<std::string> tok = tokens(text);
       if (tok.empty()) continue;  // white space of any kind (\f, \v too), or only a comment
-      text = text.substr(text.find(tok[0]));
+      text = text.substr(text.find_first_not_of(" \t\n\v\f\r"));  // tok is not empty: the line has a word
       const Line here{file, number, text};
       const std::string head = lower(tok[0]);
       if (!in_section) {  // .lib FILE SECTION: only `.lib SECTION` … `.endl`
