@@ -8,6 +8,7 @@
 //
 // Energy balance (YM §4): along solutions dE/dt = ⟨F, q̇⟩ + (reaction work of the affine
 // constraints): −Σ R v² + Σ (−V) v_V, plus what the current sources supply.
+#include "exosystem.hpp"
 #include "simulate.hpp"
 
 #include "dcad/io/report.hpp"
@@ -158,25 +159,10 @@ struct ForcedFlow {
   /// wrong side of a breakpoint (k·PER computed as 0.99999…) cannot pick the neighbouring piece.
   void set_exo(const ForcedScene& deck, double t, double stop) {
     const std::size_t m = deck.waveforms.size();
-    const double mid = stop > t ? (t + stop) / 2 : t;
     s(dm) = S(1) / static_cast<S>(d[dm]);
     for (std::size_t j = 0; j < m; ++j) {
       long double w[3];
-      const io::Waveform& wf = deck.waveforms[j];
-      if (wf.is_sine()) {
-        wf.exo_state(t >= wf.p[3].convert_to<double>() || mid < wf.p[3].convert_to<double>() ? t : mid, w);
-        if (mid >= wf.p[3].convert_to<double>() && t < wf.p[3].convert_to<double>()) {  // started within: back along the sine
-          const std::complex<long double> z = std::complex<long double>(w[1], w[2]) *
-                                              std::exp(std::complex<long double>(wf.decay(), wf.omega()) * static_cast<long double>(t - mid));
-          w[1] = z.real();
-          w[2] = z.imag();
-        }
-      } else {
-        const double slope = wf.value(mid, 1);
-        w[0] = wf.value(mid, 0) - slope * (mid - t);
-        w[1] = slope;
-        w[2] = 0;
-      }
+      exo_state_for(deck.waveforms[j], t, stop, w);
       for (int k = 0; k < 3; ++k) s(dm + 1 + 3 * j + k) = static_cast<S>(w[k]) / static_cast<S>(d[dm + 1 + 3 * j + k]);
     }
   }
@@ -285,8 +271,10 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   ForcedFlow<long double> shadow = make_flow<long double>(gen, bal, dm);
   for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0(i)) / bal[i];
   std::vector<double> breaks;
-  for (const io::Waveform& w : deck.waveforms) try {
-      for (double b : w.breakpoints(opt.tstop)) breaks.push_back(b);
+  std::vector<std::vector<double>> own(m);  // each source's own corners: only they jump there
+  for (std::size_t j = 0; j < m; ++j) try {
+      own[j] = deck.waveforms[j].breakpoints(opt.tstop);
+      for (double b : own[j]) breaks.push_back(b);
     } catch (const std::invalid_argument& e) {
       throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
     }
@@ -384,7 +372,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
         const double delta = std::max(1e-9 * opt.step, std::abs(tb) * 1e-12), before = tb - delta, after = tb + delta;
         Vec<double> dy = Vec<double>::Zero(dm);
         for (std::size_t j = 0; j < m; ++j)
-          for (long d = 1; d <= fm.orders; ++d) {
+          for (long d = 1; d <= fm.orders && std::binary_search(own[j].begin(), own[j].end(), tb); ++d) {
             const io::Waveform& wf = deck.waveforms[j];
             // σ^{(d−1)} across the corner; σ itself is continuous for PULSE/PWL, its slope is read off the pieces
             const double jump = wf.is_sine() || d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;

@@ -1,0 +1,59 @@
+// The sources' exosystem, shared by simulate's routes (internal to dcad::api): between breakpoints every
+// SPICE source is an output of a linear system of 3 states — a ramp (σ, σ', 0) or a sine (VO, Re z, Im z)
+// with z = VA e^{(−θ+iω)(t−TD) + iφ} — so sources and circuit together are one autonomous linear system.
+#pragma once
+
+#include "dcad/io/waveform.hpp"
+
+#include <complex>
+#include <vector>
+
+namespace dcad::api {
+
+/// The 3 exosystem states of `wf` for the substep (t, stop), read at the substep's midpoint and carried
+/// back to t along its piece, so that a time that rounds onto the wrong side of a breakpoint (k·PER
+/// computed as 0.99999…) cannot pick the neighbouring piece.
+inline void exo_state_for(const io::Waveform& wf, double t, double stop, long double* w) {
+  const double mid = stop > t ? (t + stop) / 2 : t;
+  if (wf.is_sine()) {
+    const double td = wf.p[3].convert_to<double>();
+    wf.exo_state(t >= td || mid < td ? t : mid, w);
+    if (mid >= td && t < td) {  // started within: back along the sine
+      const std::complex<long double> z =
+          std::complex<long double>(w[1], w[2]) * std::exp(std::complex<long double>(wf.decay(), wf.omega()) * static_cast<long double>(t - mid));
+      w[1] = z.real();
+      w[2] = z.imag();
+    }
+  } else {
+    const double slope = wf.value(mid, 1);
+    w[0] = wf.value(mid, 0) - slope * (mid - t);
+    w[1] = slope;
+    w[2] = 0;
+  }
+}
+
+/// σ and σ' from the 3 exosystem states of a source.
+inline void exo_output(const io::Waveform& wf, const double* w, double& sigma, double& dsigma) {
+  if (wf.is_sine()) {
+    sigma = w[0] + w[2];
+    dsigma = wf.omega() * w[1] + wf.decay() * w[2];
+  } else {
+    sigma = w[0];
+    dsigma = w[1];
+  }
+}
+
+/// d/dt of the 3 exosystem states of a source.
+inline void exo_rate(const io::Waveform& wf, const double* w, double* dw) {
+  if (wf.is_sine()) {
+    dw[0] = 0;
+    dw[1] = wf.decay() * w[1] - wf.omega() * w[2];
+    dw[2] = wf.omega() * w[1] + wf.decay() * w[2];
+  } else {
+    dw[0] = w[1];
+    dw[1] = 0;
+    dw[2] = 0;
+  }
+}
+
+}  // namespace dcad::api
