@@ -134,6 +134,12 @@ int main(int argc, char** argv) {
   sim->add_option("--initial", sim_initial,
                   "netlists: op (the DC operating point) or uic (IC= and .ic values, the rest 0); default: as the deck's .tran says")
       ->check(CLI::IsMember({"deck", "op", "uic"}));
+  std::string sim_route = "auto", sim_columns;
+  sim->add_option("--route", sim_route,
+                  "netlists: dense (the exact model's matrix exponential; <= 60 branches with R, sources or K, <= 400 LC) or sparse (any size with "
+                  "every R, L, C > 0 and |k| < 1: Krylov exponential action on the sparse equations of motion); default auto: dense where it fits")
+      ->check(CLI::IsMember({"auto", "dense", "sparse"}));
+  sim->add_option("--vars", sim_columns, "comma-separated variables for the CSV after t (default: every variable)");
   std::string sim_png, sim_vars, sim_energy;
   sim->add_option("--energy", sim_energy, "circuits with R or sources: write the energy balance (E, dissipated and supplied power and work) as CSV here");
   sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");
@@ -214,8 +220,19 @@ int main(int argc, char** argv) {
       }
       sim_opt.backend = dcad::api::backend_named(sim_backend);
       sim_opt.initial = sim_initial == "op" ? dcad::api::Initial::op : sim_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
+      sim_opt.route = sim_route == "dense" ? dcad::api::Route::dense : sim_route == "sparse" ? dcad::api::Route::sparse : dcad::api::Route::automatic;
+      for (std::size_t start = 0; !sim_columns.empty();) {
+        const std::size_t comma = sim_columns.find(',', start);
+        sim_opt.columns.push_back(sim_columns.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
       const dcad::io::Problem problem = dcad::io::read_problem(sim_file);
-      const std::vector<std::string> header = dcad::api::simulate_columns(problem);
+      std::vector<std::string> header = dcad::api::simulate_columns(problem);
+      if (!sim_opt.columns.empty()) {
+        header.assign(1, "t");
+        header.insert(header.end(), sim_opt.columns.begin(), sim_opt.columns.end());
+      }
       const std::string title = problem.name().empty() ? sim_file : problem.name();
       std::vector<std::size_t> plot_cols;
       if (!sim_png.empty()) {

@@ -30,6 +30,15 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
 /// of the reactions of affine constraints; for circuits −P_forces is what the resistors dissipate).
 Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
                         const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy);
+/// The sparse route for netlists at any size (simulate_sparse.cpp): its own initial state (opt.initial),
+/// opt.columns honoured; every R, L, C > 0 and |k| < 1 (InputError otherwise).
+Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log,
+                        std::ostream* energy);
+/// Whether the sparse route takes the deck (every R, L, C positive, Φ positive definite).
+bool sparse_route_takes(const io::Netlist& deck);
+/// The Krylov integrator's local error per output step, relative to the state's norm in energy units.
+constexpr double kSparseStepTolerance = 1e-13;
+
 /// As simulate_forced, for a `pontryagin` case with `forces` (no sources).
 Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
                              std::ostream& out, std::ostream& log, std::ostream* energy);

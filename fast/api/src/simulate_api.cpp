@@ -2,7 +2,11 @@
 #include "guarded.hpp"
 #include "simulate.hpp"
 
+#include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/pipeline/initial_state.hpp"
+
+#include <map>
+#include <streambuf>
 
 namespace dcad::api {
 
@@ -39,27 +43,100 @@ std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, 
   return x;
 }
 
+/// Keeps the CSV columns t and `names` of every line written through it (the dense routes write every
+/// variable; --vars picks some).  The header line maps the names; UsageError for one not in it.
+class ColumnFilter : public std::streambuf {
+ public:
+  ColumnFilter(std::ostream& out, std::vector<std::string> names, std::string file) : out_(out), names_(std::move(names)), file_(std::move(file)) {}
+
+ protected:
+  int overflow(int ch) override {
+    if (ch == traits_type::eof()) return 0;
+    if (ch != '\n') {
+      line_ += static_cast<char>(ch);
+      return ch;
+    }
+    fields_.clear();
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t comma = line_.find(',', start);
+      fields_.push_back(line_.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    if (keep_.empty()) {
+      std::map<std::string, std::size_t> at;
+      for (std::size_t i = 0; i < fields_.size(); ++i) at[fields_[i]] = i;
+      keep_.push_back(0);
+      for (const std::string& n : names_) {
+        const auto it = at.find(n);
+        if (it == at.end()) throw UsageError("--vars: expected variables of " + file_ + ", found " + n);
+        keep_.push_back(it->second);
+      }
+    }
+    std::string o;
+    for (std::size_t i = 0; i < keep_.size(); ++i) {
+      if (i) o += ',';
+      if (keep_[i] < fields_.size()) o += fields_[keep_[i]];
+    }
+    o += '\n';
+    out_ << o;
+    line_.clear();
+    return ch;
+  }
+
+ private:
+  std::ostream& out_;
+  std::vector<std::string> names_;
+  std::string file_, line_;
+  std::vector<std::string> fields_;
+  std::vector<std::size_t> keep_;
+};
+
+/// Whether a netlist goes to the sparse route: asked for, or beyond the dense route's size where the
+/// sparse route holds.
+bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
+  if (opt.route == Route::sparse) return true;
+  if (opt.route == Route::dense) return false;
+  const std::size_t n = d.rlc.branches.size();
+  const bool beyond = d.forced ? n > reference::pipeline::kForcedBranches : n > kSimulateBranches;
+  return beyond && sparse_route_takes(d);
+}
+
 }  // namespace
 
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
   return guarded(p, [&] {
+    ColumnFilter filter(csv, options.columns, p.file);
+    std::ostream filtered(&filter);
+    std::ostream& rows = options.columns.empty() ? csv : filtered;
     if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
       if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the expression form");
-      return simulate_lagrangian(p.expression, options, csv, log);
+      if (options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
+      const Summary sum = simulate_lagrangian(p.expression, options, rows, log);
+      rows.flush();
+      return sum;
     }
     const bool netlist = p.form == io::Form::netlist;
     const io::CaseFile& c = p.linear;
     const bool forced_deck = netlist && p.netlist.forced, forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;
-    if (energy && !forced_deck && !forced_case)
+    if (energy && !forced_deck && !forced_case && !(netlist && sparse_netlist(p.netlist, options)))
       throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)");
     for (const std::string& w : p.warnings()) log << "warning: " << w << "\n";
+    if (!netlist && options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
+    if (netlist && sparse_netlist(p.netlist, options)) {
+      const Summary sum = simulate_sparse(p.netlist, c, options, csv, log, energy);
+      log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " (" << sum.estimate_kind << ")\n";
+      return sum;
+    }
     std::vector<std::optional<io::Rational>> init(c.n);
     if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
     else if (!c.initial.empty())
       for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
-    const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, csv, log, energy)
-                        : forced_case ? simulate_forced_case(c, init, options, csv, log, energy)
-                                      : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, csv, log);
+    const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, rows, log, energy)
+                        : forced_case ? simulate_forced_case(c, init, options, rows, log, energy)
+                                      : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, rows, log);
+    rows.flush();
     log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate)
         << " relative to the largest magnitude of each variable's kind, at least the state's size in the circuit's natural units (worst " << sum.worst_variable << "; difference from the same exact flow in long double)\n";
     return sum;

@@ -74,15 +74,22 @@ Inspection inspect(const io::Problem& p, Backend backend);
 /// Where a netlist starts (CONTRACT "Circuit initial state"): as its `.tran` says (uic, or the DC
 /// operating point without it; no `.tran`: uic), or forced by `--initial op|uic`.
 enum class Initial { deck, op, uic };
+/// Netlists: the dense route (the exact model's matrix exponential: ≤ 60 branches with R, sources or
+/// couplings, ≤ 400 LC) or the sparse one (any size where every R, L, C > 0 and |k| < 1: Krylov on the
+/// sparse equations of motion); automatic takes the dense route where it fits.
+enum class Route { automatic, dense, sparse };
 struct SimulateOptions {
   double tstop = 0, step = 0;  ///< seconds (or the case's time unit); 0 < step, 0 ≤ tstop
   Backend backend = Backend::certified;
   Initial initial = Initial::deck;
+  Route route = Route::automatic;
+  std::vector<std::string> columns;  ///< the CSV's variables after t (empty: every variable); UsageError for a name not in the problem
 };
 struct Simulated {
   long rows = 0;
   double error_estimate = 0;   ///< largest |double − long double| over the run, relative to the scale of each variable's kind
   std::string worst_variable;  ///< where it is largest
+  std::string estimate_kind;   ///< what error_estimate measures (empty: the long-double shadow's difference)
 };
 /// The CSV header `simulate` writes for the problem: t and every variable.
 std::vector<std::string> simulate_columns(const io::Problem& p);
