@@ -122,12 +122,13 @@ int main(int argc, char** argv) {
   CLI::App* sim = app.add_subcommand(
       "simulate", "Integrate the equations of motion on M_c from the file's initial condition (netlists: SPICE's, see --initial; "
                   "a state off M_c jumps onto it at t = 0); "
-                  "exact flow of the linear reduced system (matrix exponential). CSV: t, then every variable.");
+                  "exact flow of the linear reduced system (matrix exponential); netlists beyond the dense sizes take the sparse route "
+                  "(Krylov exponential action on sparse equations of motion, error-controlled, see --route). CSV: t, then every variable (or --vars).");
   sim->add_option("FILE", sim_file, "LC/RLC netlist (.cir, .sp, .net), `pontryagin` case or expression-form case (.json)")->required();
   std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
   sim->add_option("--tstop", sim_tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
   sim->add_option("--step", sim_step, "output step (seconds; SPICE suffixes)")->required();
-  sim->add_option("--backend", sim_backend, "certified|reference|fast (the model is built exactly in this version)")
+  sim->add_option("--backend", sim_backend, "certified|reference|fast (the dense route's model is built exactly in this version; the sparse route is double throughout)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
   sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
   std::string sim_initial = "deck";

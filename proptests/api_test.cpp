@@ -10,6 +10,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -179,5 +180,35 @@ TEST(Api, ASourceJumpsOnlyAtItsOwnCorners) {
     const double pi = 3.14159265358979323846;
     for (const auto& r : rows)  // C1 sits from ground to n2 = −V2: q_C1 = C·V2 … and q_V2 carries −C·V2'
       EXPECT_NEAR(r[1], -40e-9 * std::sin(2 * pi * 2e9 * r[0]), 1e-12 * 40e-9) << "t = " << r[0] << (route == dcad::api::Route::dense ? " dense" : " sparse");
+  }
+}
+
+// --vars (SimulateOptions::columns): the chosen columns are those of the full CSV, on either route; a
+// name the problem does not have is a usage error before anything is written.
+TEST(Api, SimulateColumnsAreTheFullCsvsColumns) {
+  const dcad::io::Problem p = dcad::io::read_problem(case_path("rlc-series.cir"));
+  for (dcad::api::Route route : {dcad::api::Route::dense, dcad::api::Route::sparse}) {
+    dcad::api::SimulateOptions opt;
+    opt.tstop = 2e-6;
+    opt.step = 1e-7;
+    opt.route = route;
+    std::ostringstream all, some, log;
+    dcad::api::simulate(p, opt, all, log);
+    opt.columns = {"v_L1", "q_C1"};
+    dcad::api::simulate(p, opt, some, log);
+    const auto full = sim_rows(all.str()), part = sim_rows(some.str());
+    const std::vector<std::string> names = dcad::api::simulate_columns(p);
+    const auto at = [&](const std::string& n) { return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin()); };
+    ASSERT_EQ(full.size(), part.size());
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      ASSERT_EQ(part[i].size(), 3u);
+      EXPECT_EQ(part[i][0], full[i][0]);
+      EXPECT_EQ(part[i][1], full[i][at("v_L1")]);
+      EXPECT_EQ(part[i][2], full[i][at("q_C1")]);
+    }
+    opt.columns = {"q_C1", "q_C9"};
+    std::ostringstream none;
+    EXPECT_THROW(dcad::api::simulate(p, opt, none, log), dcad::api::UsageError);
+    EXPECT_EQ(none.str(), "");
   }
 }

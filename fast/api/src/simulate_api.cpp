@@ -5,6 +5,7 @@
 #include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/pipeline/initial_state.hpp"
 
+#include <algorithm>
 #include <map>
 #include <streambuf>
 
@@ -107,6 +108,12 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
   return guarded(p, [&] {
+    if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
+      const std::vector<std::string> all = simulate_columns(p);
+      for (const std::string& n : options.columns)
+        if (n == "t" || std::find(all.begin(), all.end(), n) == all.end())
+          throw UsageError("--vars: expected variables of " + p.file + ", found " + n);
+    }
     ColumnFilter filter(csv, options.columns, p.file);
     std::ostream filtered(&filter);
     std::ostream& rows = options.columns.empty() ? csv : filtered;
