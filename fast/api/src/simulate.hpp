@@ -38,6 +38,10 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
 bool sparse_route_takes(const io::Netlist& deck);
 /// The Krylov integrator's local error per output step, relative to the state's norm in energy units.
 constexpr double kSparseStepTolerance = 1e-13;
+/// Above this estimate (relative to the state) the sparse route warns that the circuit is stiff against the step.
+constexpr double kSparseWarn = 1e-9;
+/// Above this estimate the run stops with exit 1: its rows would not be the circuit's motion.
+constexpr double kSparseRefuse = 1e-3;
 
 /// As simulate_forced, for a `pontryagin` case with `forces` (no sources).
 Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,

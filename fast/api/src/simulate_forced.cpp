@@ -306,6 +306,8 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
     const Vec<double> u = jets(deck, t, fm.orders);
     const Vec<double> y = flow.y();
     const Vec<double> x = X0 * u.head(wu) + B.transpose() * y;
+    if (!x.allFinite())
+      throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(t) + " s (a growing source or values beyond double's range)");
     const Vec<long double> xl = X0.cast<long double>() * u.head(wu).cast<long double>() + B.transpose().cast<long double>() * shadow.y();
     for (std::size_t i = 0; i < n; ++i) {
       err[i] = std::max(err[i], std::abs(xl(i) - static_cast<long double>(x(i))));

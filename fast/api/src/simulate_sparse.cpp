@@ -67,7 +67,8 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
   require_times(opt);
   namespace pl = reference::pipeline;
   if (!pl::graph_route_holds(deck.rlc))
-    throw io::InputError(c.file + ": simulate: expected every R, L and C positive and the couplings |k| < 1 for the sparse route, found another circuit"
+    throw io::InputError(c.file + ": simulate: expected every R, L and C positive, the couplings |k| < 1 and at most 200 inductors per coupled group "
+                         "for the sparse route, found another circuit"
                          " (the dense route takes it up to " + std::to_string(pl::kForcedBranches) + " branches)");
   const pl::GraphForced g = pl::graph_forced(deck);
   for (const SourceCondition& v : g.conditions)
@@ -145,11 +146,11 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
   const double ls = ltyp > 0 ? ltyp : cs * (rtyp > 0 ? rtyp * rtyp : 1.0);
   Vec d(static_cast<Eigen::Index>(ny));
   d.head(static_cast<Eigen::Index>(nx)) = model->energy_scale();
+  std::vector<bool> current(m, false);
+  for (const sr::Element& b : circ.branches)
+    if (b.kind == rlc::Kind::current) current[static_cast<std::size_t>(b.source)] = true;
   for (std::size_t j = 0; j < m; ++j) {
-    bool current = false;
-    for (const sr::Element& b : circ.branches)
-      if (b.kind == rlc::Kind::current && static_cast<std::size_t>(b.source) == j) current = true;
-    const double sc = std::sqrt(current ? ls : cs);
+    const double sc = std::sqrt(current[j] ? ls : cs);
     d(static_cast<Eigen::Index>(nx + 3 * j)) = sc;
     d(static_cast<Eigen::Index>(nx + 3 * j + 1)) = deck.waveforms[j].is_sine() ? sc : sc * opt.step;
     d(static_cast<Eigen::Index>(nx + 3 * j + 2)) = sc;
@@ -273,13 +274,25 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
       try {
         krylov.advance(stop - at, ys, qx);
       } catch (const std::runtime_error& e) {
-        throw io::InputError(c.file + ": simulate: expected a circuit the sparse route integrates in reasonable time, found a stiff one at t = " +
-                             io::float_text(at) + " s: " + e.what() + " (its fastest time scales are far below --step; the dense route takes up to " +
+        throw io::InputError(c.file + ": simulate: expected a circuit the sparse route integrates in double, found none at t = " +
+                             io::float_text(at) + " s: " + e.what() + " (time scales far below --step, or values beyond double's range; the dense route takes up to " +
                              std::to_string(reference::pipeline::kForcedBranches) + " branches)");
       }
+      if (krylov.error_estimate() > kSparseRefuse * max_norm)
+        throw io::InputError(c.file + ": simulate: expected an error estimate below " + io::float_text(kSparseRefuse) + " of the state, found " +
+                             io::float_text(krylov.error_estimate() / max_norm) + " at t = " + io::float_text(at) +
+                             " s: the circuit is stiff against --step (eps*|A|*step per step); the dense route takes up to " +
+                             std::to_string(reference::pipeline::kForcedBranches) + " branches");
+      if (!ys.allFinite() || !qx.allFinite())
+        throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(at) + " s (a growing source or values beyond double's range)");
       at = stop;
     }
   }
+  if (max_norm > 0 && krylov.error_estimate() / max_norm > kSparseWarn)
+    log << "warning: the sparse route's error estimate is " << io::float_text(krylov.error_estimate() / max_norm)
+        << " of the state: the circuit is stiff against --step (the Krylov matrix's rounding, eps*|A|*step, dominates); "
+           "small variables may be far off — compare with --route dense (up to "
+        << reference::pipeline::kForcedBranches << " branches)\n";
   Summary s;
   s.rows = steps + 1;
   s.error_estimate = max_norm > 0 ? krylov.error_estimate() / max_norm : 0.0;
