@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <algorithm>
 #include <cmath>
@@ -231,4 +232,62 @@ TEST(Api, TheSparseRouteSaysWhenStiffnessCostsItsAccuracy) {
   EXPECT_NE(log.str().find("warning: the sparse route's error estimate"), std::string::npos) << log.str();
   std::ostringstream csv2, log2;
   EXPECT_THROW(dcad::api::simulate(dcad::io::parse_netlist(deck("1e-20"), "stiffer.cir"), opt, csv2, log2), dcad::io::InputError);
+}
+
+namespace {
+
+/// The state equations of a deck (reference backend) as {block: {(row, col): exact value text}}.
+std::map<std::string, std::map<std::pair<long, long>, std::string>> state_blocks(const std::string& deck, dcad::StateEquations<std::string>& q) {
+  const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::parse_netlist(deck, "deck.cir"), Backend::reference));
+  EXPECT_TRUE(s.state);
+  if (!s.state) return {};
+  q = *s.state;
+  std::map<std::string, std::map<std::pair<long, long>, std::string>> out;
+  for (const auto& [name, b] : q.blocks)
+    for (const auto& [i, j, v] : b.entries) out[name][{i, j}] = v;
+  return out;
+}
+
+}  // namespace
+
+// The state equations against Kirchhoff's laws written out by hand (dcad/reference/rlc_state.hpp).
+// V1 in–0 1 V, R1 in–a 1k, L1 a–b 1m, C1 b–0 1n, C2 b–c 2n, R2 c–0 3k: "in" is ground's supernode
+// offset by V1; b and c hold ground through capacitors (w = e(b), e(c)); a has no capacitor and a
+// resistor to ground (ρ = e(a)).  KCL at b: C1 ė_b + C2 (ė_b − ė_c) − i_L = 0; at c: C2 (ė_c − ė_b) +
+// e_c/R2 = 0; at a: (e_a − V1)/R1 + i_L = 0; the inductor: L1 i̇_L = e_a − e_b.
+TEST(Api, StateEquationsAreKirchhoffsLaws) {
+  dcad::StateEquations<std::string> q;
+  const auto b = state_blocks("rlc\nV1 in 0 DC 1\nR1 in a 1k\nL1 a b 1m\nC1 b 0 1n\nC2 b c 2n\nR2 c 0 3k\n.end\n", q);
+  EXPECT_EQ(q.w, (std::vector<std::string>{"e(b)", "e(c)"}));
+  EXPECT_EQ(q.r, (std::vector<std::string>{"e(a)"}));
+  EXPECT_EQ(q.i, (std::vector<std::string>{"v_L1"}));
+  EXPECT_TRUE(q.e.empty());
+  using E = std::map<std::pair<long, long>, std::string>;
+  EXPECT_EQ(b.at("C_ww"), (E{{{0, 0}, "3/1000000000"}, {{0, 1}, "-1/500000000"}, {{1, 0}, "-1/500000000"}, {{1, 1}, "1/500000000"}}));
+  EXPECT_EQ(b.at("G_ww"), (E{{{1, 1}, "1/3000"}}));
+  EXPECT_EQ(b.at("L_w"), (E{{{0, 0}, "-1"}}));      // −i_L in b's row
+  EXPECT_EQ(b.at("G_rr"), (E{{{0, 0}, "1/1000"}}));  // e_a/R1
+  EXPECT_EQ(b.at("L_r"), (E{{{0, 0}, "1"}}));
+  EXPECT_EQ(b.at("H_r"), (E{{{0, 0}, "-1/1000"}}));  // −V1/R1
+  EXPECT_EQ(b.at("Phi"), (E{{{0, 0}, "1/1000"}}));
+  for (const char* empty : {"G_wr", "L_e", "H_w", "H_wd", "I_e", "O_L"}) EXPECT_EQ(b.count(empty), 0u) << empty;
+}
+
+// An island (an LI cutset): x and y joined by C1, tied to ground only by L1 and the current source
+// I1.  y is the component's root (its first node), so w = e(x) − e(y) and the island's level e = e(y).
+// KCL at x: C1 ẇ + i_L = 0; over the island: i_L − I1 = 0 (the constraint whose derivative fixes e);
+// the inductor: L1 i̇_L = e_x = w + e.
+TEST(Api, StateEquationsOfAnIsland) {
+  dcad::StateEquations<std::string> q;
+  const auto b = state_blocks("island\nI1 0 y 1m\nC1 x y 1n\nL1 x 0 1u\n.end\n", q);
+  EXPECT_EQ(q.w, (std::vector<std::string>{"e(x)-e(y)"}));
+  EXPECT_EQ(q.e, (std::vector<std::string>{"e(y)"}));
+  EXPECT_TRUE(q.r.empty());
+  using E = std::map<std::pair<long, long>, std::string>;
+  EXPECT_EQ(b.at("C_ww"), (E{{{0, 0}, "1/1000000000"}}));
+  EXPECT_EQ(b.at("L_w"), (E{{{0, 0}, "1"}}));
+  EXPECT_EQ(b.at("L_e"), (E{{{0, 0}, "1"}}));
+  EXPECT_EQ(b.at("I_e"), (E{{{0, 0}, "-1"}}));
+  EXPECT_EQ(b.at("Phi"), (E{{{0, 0}, "1/1000000"}}));
+  for (const char* empty : {"G_ww", "H_w", "H_wd", "O_L"}) EXPECT_EQ(b.count(empty), 0u) << empty;
 }

@@ -23,47 +23,6 @@ SpMat build(Eigen::Index rows, Eigen::Index cols, const Triplets& t) {
   return m;
 }
 
-/// Spanning forest of the edges `use` over vertices 0 … nv−1 by breadth-first search from each
-/// component's smallest vertex (0 = ground first): the tree edges in visiting order, and for each
-/// vertex its root.  An edge to a vertex already reached closes a loop and is not in the forest.
-struct Forest {
-  struct Edge {
-    std::size_t child, parent, edge;
-  };
-  std::vector<Edge> tree;
-  std::vector<bool> in_tree;
-  std::vector<std::size_t> root;
-};
-Forest forest(std::size_t nv, const std::vector<std::pair<std::size_t, std::size_t>>& ends, const std::vector<bool>& use) {
-  std::vector<std::vector<std::size_t>> adj(nv);
-  for (std::size_t e = 0; e < ends.size(); ++e)
-    if (use[e] && ends[e].first != ends[e].second) {
-      adj[ends[e].first].push_back(e);
-      adj[ends[e].second].push_back(e);
-    }
-  Forest f;
-  f.in_tree.assign(ends.size(), false);
-  f.root.assign(nv, nv);
-  std::vector<std::size_t> queue;
-  for (std::size_t s = 0; s < nv; ++s) {
-    if (f.root[s] != nv) continue;
-    f.root[s] = s;
-    queue.assign(1, s);
-    for (std::size_t h = 0; h < queue.size(); ++h) {
-      const std::size_t v = queue[h];
-      for (std::size_t e : adj[v]) {
-        const std::size_t u = ends[e].first == v ? ends[e].second : ends[e].first;
-        if (f.root[u] != nv) continue;
-        f.root[u] = s;
-        f.in_tree[e] = true;
-        f.tree.push_back({u, v, e});
-        queue.push_back(u);
-      }
-    }
-  }
-  return f;
-}
-
 }  // namespace
 
 std::string Model::name(long node) const {
@@ -80,36 +39,27 @@ Model::Model(const Network& c) : c_(c) {
     if ((br.kind == Kind::voltage || br.kind == Kind::current) && (br.source < 0 || static_cast<std::size_t>(br.source) >= ms))
       throw std::invalid_argument("branch " + std::to_string(b) + ": source index out of range");
   }
-  const auto vx = [](long node) { return static_cast<std::size_t>(node + 1); };
-  // 1. supernodes: the forest of voltage sources and wires, offsets s along it
-  std::vector<std::pair<std::size_t, std::size_t>> ends(n);
-  std::vector<bool> vw(n);
+  // 1.–3. the contractions (dcad/rlc_state.hpp)
+  std::vector<rlc::Branch> topo(n);
+  std::vector<long> src(n, -1);
   for (std::size_t b = 0; b < n; ++b) {
-    ends[b] = {vx(c.branches[b].from), vx(c.branches[b].to)};
-    vw[b] = joins(c.branches[b].kind);
+    topo[b] = {c.branches[b].kind, c.branches[b].from, c.branches[b].to};
+    src[b] = c.branches[b].source;
   }
-  const Forest fv = forest(nv, ends, vw);
-  std::vector<std::vector<std::pair<long, double>>> off(nv);
-  for (const Forest::Edge& e : fv.tree) {
-    const Element& br = c.branches[e.edge];
-    off[e.child] = off[e.parent];
-    if (br.kind == Kind::voltage) off[e.child].emplace_back(br.source, e.child == ends[e.edge].first ? 1.0 : -1.0);  // e_from − e_to = V
-    vtree_.push_back({static_cast<long>(e.child) - 1, static_cast<long>(e.parent) - 1, e.edge});
-  }
-  std::vector<long> sup_of_root(nv, -2);
-  sup_of_root[fv.root[0]] = -1;
-  sup_.assign(c.nodes, -1);
-  for (std::size_t v = 1; v < nv; ++v) {
-    long& s = sup_of_root[fv.root[v]];
-    if (s == -2) s = static_cast<long>(nsup_++);
-    sup_[v - 1] = s;
-  }
-  const auto sup_v = [&](long node) { return node < 0 ? -1 : sup_[static_cast<std::size_t>(node)]; };  // −1 ground
+  const rlc::StateStructure st = rlc::state_structure(c.nodes, topo, src);
+  nsup_ = st.supernodes;
+  nw_ = st.nw;
+  nr_ = st.nr;
+  ne_ = st.ne;
+  sup_ = st.supernode;
+  croot_ = st.croot;
+  for (const rlc::StateStructure::TreeEdge& e : st.vtree) vtree_.push_back({e.node, e.parent, e.branch});
+  const auto sup_v = [&](long node) { return st.super(node); };  // −1 ground
   {
     Triplets t;
     for (std::size_t b = 0; b < n; ++b) {
-      for (const auto& [j, s] : off[ends[b].first]) t.emplace_back(b, j, s);
-      for (const auto& [j, s] : off[ends[b].second]) t.emplace_back(b, j, -s);
+      for (const auto& [j, s] : st.offset[static_cast<std::size_t>(c.branches[b].from + 1)]) t.emplace_back(b, j, s);
+      for (const auto& [j, s] : st.offset[static_cast<std::size_t>(c.branches[b].to + 1)]) t.emplace_back(b, j, -s);
     }
     ob_ = build(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(ms), t);
   }
@@ -144,63 +94,15 @@ Model::Model(const Network& c) : c_(c) {
   rdiag_g_.resize(static_cast<Eigen::Index>(ridx_.size()));
   for (std::size_t k = 0; k < ridx_.size(); ++k) rdiag_g_(static_cast<Eigen::Index>(k)) = 1.0 / c.branches[ridx_[k]].value;
 
-  // 2./3. C-components and R-components of supernodes (vertex 0 ground, k + 1 supernode k)
-  std::vector<std::pair<std::size_t, std::size_t>> sends(n);
-  std::vector<bool> isc(n), iscr(n);
-  for (std::size_t b = 0; b < n; ++b) {
-    sends[b] = {static_cast<std::size_t>(sup_v(c.branches[b].from) + 1), static_cast<std::size_t>(sup_v(c.branches[b].to) + 1)};
-    isc[b] = c.branches[b].kind == Kind::capacitor;
-    iscr[b] = isc[b] || c.branches[b].kind == Kind::resistor;
-  }
-  const Forest fc = forest(nsup_ + 1, sends, isc), fr = forest(nsup_ + 1, sends, iscr);
-  // variables: w per supernode unless it is the root of a floating C-component; ρ per floating
-  // C-component unless it is the first of its island; e per island (dropped below where a gauge)
-  std::vector<long> wv(nsup_, -1), rv(nsup_ + 1, -1), island_of(nsup_ + 1, -1), island_root_comp;
-  std::vector<long> isl_id(nsup_ + 1, -1);
-  for (std::size_t s = 1; s <= nsup_; ++s) {
-    const std::size_t cc = fc.root[s], rc = fr.root[s];
-    if (cc == fc.root[0] || s != cc) wv[s - 1] = static_cast<long>(nw_++);
-    if (rc != fr.root[0]) {
-      if (isl_id[rc] < 0) {
-        isl_id[rc] = static_cast<long>(island_root_comp.size());
-        island_root_comp.push_back(static_cast<long>(cc));
-      }
-      island_of[s] = isl_id[rc];
-    }
-  }
-  // islands whose levels are a gauge: components of (islands + the rest, inductors) without the rest
-  const std::size_t nis = island_root_comp.size();
-  std::vector<long> ev(nis, -1);
-  {
-    std::vector<std::pair<std::size_t, std::size_t>> iends;
-    std::vector<bool> all;
-    for (std::size_t k = 0; k < nl_; ++k) {
-      const auto [a, z] = sends[lidx_[k]];
-      iends.emplace_back(static_cast<std::size_t>(island_of[a] + 1), static_cast<std::size_t>(island_of[z] + 1));
-      all.push_back(true);
-    }
-    const Forest fi = forest(nis + 1, iends, all);
-    for (std::size_t i = 0; i < nis; ++i)
-      if (fi.root[i + 1] == fi.root[0] || fi.root[i + 1] != i + 1) ev[i] = static_cast<long>(ne_++);  // the component's first island is its gauge
-  }
-  wv_ = wv;
-  croot_.assign(nsup_, -1);
-  for (std::size_t s = 1; s <= nsup_; ++s)
-    if (fc.root[s] != fc.root[0]) croot_[s - 1] = static_cast<long>(fc.root[s]) - 1;
-  for (std::size_t s = 1; s <= nsup_; ++s) {
-    const std::size_t cc = fc.root[s];
-    if (cc == fc.root[0] || rv[cc] >= 0) continue;
-    if (island_of[s] >= 0 && island_root_comp[static_cast<std::size_t>(island_of[s])] == static_cast<long>(cc)) continue;
-    rv[cc] = static_cast<long>(nr_++);
-  }
+  wv_.assign(nsup_, -1);
   {
     Triplets t;
-    for (std::size_t s = 1; s <= nsup_; ++s) {
-      const long k = static_cast<long>(s) - 1;
-      if (wv[s - 1] >= 0) t.emplace_back(k, wv[s - 1], 1.0);
-      if (rv[fc.root[s]] >= 0) t.emplace_back(k, static_cast<long>(nw_) + rv[fc.root[s]], 1.0);
-      if (island_of[s] >= 0 && ev[static_cast<std::size_t>(island_of[s])] >= 0)
-        t.emplace_back(k, static_cast<long>(nw_ + nr_) + ev[static_cast<std::size_t>(island_of[s])], 1.0);
+    for (std::size_t s = 0; s < nsup_; ++s) {
+      const rlc::StateStructure::Levels& l = st.levels[s];
+      wv_[s] = l.w;
+      if (l.w >= 0) t.emplace_back(s, l.w, 1.0);
+      if (l.r >= 0) t.emplace_back(s, static_cast<long>(nw_) + l.r, 1.0);
+      if (l.e >= 0) t.emplace_back(s, static_cast<long>(nw_ + nr_) + l.e, 1.0);
     }
     m_.T = build(ns, static_cast<Eigen::Index>(nw_ + nr_ + ne_), t);
   }
@@ -244,7 +146,7 @@ Model::Model(const Network& c) : c_(c) {
       all.push_back(true);
     }
     m_.phi = build(static_cast<Eigen::Index>(nl_), static_cast<Eigen::Index>(nl_), t);
-    const Forest fg = forest(nl_, mends, all);
+    const rlc::Forest fg = rlc::forest(nl_, mends, all);
     std::vector<std::vector<std::size_t>> groups(nl_);
     for (std::size_t k = 0; k < nl_; ++k) groups[fg.root[k]].push_back(k);
     const Eigen::MatrixXd phid = nl_ <= 64 ? Eigen::MatrixXd(m_.phi) : Eigen::MatrixXd();
@@ -399,14 +301,14 @@ Vec Model::operating_point(const double* sigma) const {
     if (rep[static_cast<std::size_t>(sup_[k] + 1)] < 0) rep[static_cast<std::size_t>(sup_[k] + 1)] = static_cast<long>(k);
   const auto sv = [&](long node) { return static_cast<std::size_t>((node < 0 ? -1 : sup_[static_cast<std::size_t>(node)]) + 1); };
   for (std::size_t k = 0; k < nl_; ++k) ends[k] = {sv(c_.branches[lidx_[k]].from), sv(c_.branches[lidx_[k]].to)};
-  const Forest fl = forest(nv, ends, all);
+  const rlc::Forest fl = rlc::forest(nv, ends, all);
   const Vec ol = m_.Ol * s, obs = ob_ * s;
   for (std::size_t k = 0; k < nl_; ++k)
     if (!fl.in_tree[k])
       throw std::domain_error("the DC operating point is not unique: " + c_.branch_names.at(lidx_[k]) +
                               " closes a loop of inductors, voltage sources and wires, whose current DC leaves free (ngspice: singular matrix)");
   std::vector<double> t(nv, 0.0);
-  for (const Forest::Edge& e : fl.tree) {  // E_child = E_parent ± (−o_L σ)
+  for (const rlc::Forest::Edge& e : fl.tree) {  // E_child = E_parent ± (−o_L σ)
     const double d = -ol(static_cast<Eigen::Index>(e.edge));
     t[e.child] = t[e.parent] + (e.child == ends[e.edge].first ? d : -d);
   }
@@ -446,7 +348,7 @@ Vec Model::operating_point(const double* sigma) const {
     if (da >= 0) rhs(da) -= cur;
     if (dz >= 0) rhs(dz) += cur;
   }
-  const Forest fr = forest(nv, rends, rall);
+  const rlc::Forest fr = rlc::forest(nv, rends, rall);
   for (std::size_t v = 1; v < nv; ++v)
     if (fr.root[fl.root[v]] != fr.root[fl.root[0]])
       throw std::domain_error("the DC operating point is not unique: node " + name(rep[v]) +

@@ -5,6 +5,7 @@
 #include "dcad/fast/circuit_motion.hpp"
 #include "dcad/fast/exact.hpp"
 #include "dcad/fast/solve.hpp"
+#include "dcad/reference/pipeline/forced.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -129,6 +130,7 @@ Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Part
     out.motion = m;
   }
   to_circuit_units(out, units, branches);
+  if (parts.reduced && reference::pipeline::graph_route_holds(deck.rlc)) out.state = reference::pipeline::deck_state_equations<double>(deck);
   out.decisions.float_tests += static_cast<long>(t.decisions.size());
   out.certified &= t.certain;
   std::string how = t.physical ? "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision)"
@@ -136,7 +138,7 @@ Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Part
   how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" + std::to_string(units.b) + ", time unit 1e" +
          std::to_string(units.m()) + " s)";
   if (!dense)
-    how += "; equations of motion omitted above " + std::to_string(kDenseBranches) + " branches (dense), see `dcad solve --backend reference`";
+    how += "; the motion in (q, v, p) omitted above " + std::to_string(kDenseBranches) + " branches (dense): the state equations hold it at any size";
   const std::string caveat = input_caveat(opt);
   out.note = how + (out.certified.yes() ? ""
                     : !caveat.empty()    ? "; " + caveat

@@ -57,8 +57,8 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
 /// A physical LC circuit by the graph route, exactly: CEF Thms 6.4, 6.6, 6.8 decide every step.
 Solution graph_route(const io::Netlist& deck, const std::vector<std::string>& variables) {
   Solution s = reference::pipeline::lc_graph_solution<Number>(deck, variables, [](const Rational& q) { return exact_number(q); });
-  s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision), exact; equations of motion omitted above " +
-           std::to_string(kDenseBranches) + " branches (dense)";
+  s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision), exact; the state equations at any size "
+           "(dcad/reference/rlc_state.hpp), the motion in (q, v, p) up to " + std::to_string(kDenseBranches) + " branches (dense)";
   return s;
 }
 
@@ -76,6 +76,12 @@ Solution lc_circuit(const io::Problem& p, const Parts& parts) {
   return s;
 }
 
+/// An LC circuit's state equations where the graph route holds (L, C > 0), exact.
+void add_state(Solution& s, const io::Netlist& deck, const Parts& parts) {
+  if (parts.reduced && reference::pipeline::graph_route_holds(deck.rlc))
+    s.state = map_state<Number>(reference::pipeline::deck_state_equations<Rational>(deck), [](const Rational& q) { return exact_number(q); });
+}
+
 }  // namespace
 
 Solution solve(const io::Problem& p, const Parts& parts) {
@@ -83,7 +89,12 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   if (p.form == io::Form::expression) {
     s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact(p.expression); }));
   } else if (p.form == io::Form::netlist) {
-    s = p.netlist.forced ? exact_solution(reference::pipeline::solve_forced(p.netlist, p.linear.variables)) : lc_circuit(p, parts);
+    if (p.netlist.forced) {
+      s = exact_solution(reference::pipeline::solve_forced(p.netlist, p.linear.variables));
+    } else {
+      s = lc_circuit(p, parts);
+      add_state(s, p.netlist, parts);
+    }
     s.file = p.netlist.file;
     s.name = p.netlist.title;
     s.circuit = io::circuit_facts(p.netlist);

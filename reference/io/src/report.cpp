@@ -2,7 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <initializer_list>
 #include <sstream>
+#include <stdexcept>
 
 namespace dcad::io {
 
@@ -47,6 +49,88 @@ std::string row_text(const std::vector<std::string>& coeff, const std::vector<st
   if (constant == "0" || constant == "0.0" || constant.empty()) return lhs;
   if (lhs == "0") return constant;
   return lhs + (constant[0] == '-' ? " - " + constant.substr(1) : " + " + constant);
+}
+
+std::string negated(const std::string& c) { return c.empty() ? c : c[0] == '-' ? c.substr(1) : "-" + c; }
+
+/// The state equations (dcad/solution.hpp) as JSON: names, the four equations' form, and each block's
+/// nonzero entries [row, column, value].
+json state_json(const StateEquations<std::string>& q) {
+  json blocks = json::object();
+  for (const auto& [name, b] : q.blocks) {
+    json entries = json::array();
+    for (const auto& [i, j, v] : b.entries) entries.push_back({i, j, v});
+    blocks[name] = {{"rows", b.rows}, {"cols", b.cols}, {"entries", entries}};
+  }
+  std::vector<std::string> ds;
+  for (const std::string& x : q.sources) ds.push_back(x.substr(0, x.size() - 3) + "'(t)");
+  return {{"form", "circuit state equations on M_c (dcad/reference/rlc_state.hpp): x = (w, i) differential, r and e algebraic; the charges of the branches that are not capacitors are the integrals of their currents"},
+          {"equations",
+           {"C_ww d/dt w = -(G_ww w + G_wr r + L_w i + H_w s + H_wd ds)", "0 = G_wr^T w + G_rr r + L_r i + H_r s", "0 = L_e i + I_e s",
+            "Phi d/dt i = L_w^T w + L_r^T r + L_e^T e + O_L s"}},
+          {"w", q.w},
+          {"i", q.i},
+          {"r", q.r},
+          {"e", q.e},
+          {"s", q.sources},
+          {"ds", ds},
+          {"blocks", blocks}};
+}
+
+/// Largest number of state-equation rows the text report prints (beyond: where the JSON has them).
+constexpr std::size_t kStateRowsPrinted = 40;
+
+void state_text(const StateEquations<std::string>& q, std::ostream& o) {
+  const std::size_t rows = q.w.size() + q.i.size() + q.r.size() + q.e.size();
+  o << "  state equations on M_c (dcad/reference/rlc_state.hpp): " << q.w.size() << " potential(s) and " << q.i.size()
+    << " inductor current(s) differential, " << q.r.size() + q.e.size() << " level(s) algebraic";
+  if (rows > kStateRowsPrinted) {
+    o << "; " << rows << " rows: see --json, key state_equations\n";
+    return;
+  }
+  o << ":\n";
+  std::vector<std::string> ds;
+  for (const std::string& x : q.sources) ds.push_back("d/dt " + x);
+  std::vector<std::string> dw, di;
+  for (const std::string& x : q.w) dw.push_back("d/dt " + (x.find('-') == std::string::npos ? x : "(" + x + ")"));
+  for (const std::string& x : q.i) di.push_back("d/dt " + x);
+  const auto find = [&](const char* name) -> const SparseBlock<std::string>& {
+    for (const auto& [n, b] : q.blocks)
+      if (n == name) return b;
+    throw std::logic_error(std::string("state equations without block ") + name);
+  };
+  // one row: Σ coefficient·name over (block, row or column k, names, transposed, negated)
+  struct Use {
+    const char* block;
+    const std::vector<std::string>* names;
+    bool transposed, negative;
+  };
+  const auto row = [&](long k, std::initializer_list<Use> uses) {
+    Eq e;
+    std::vector<std::string> names;
+    for (const Use& u : uses)
+      for (const auto& [i, j, v] : find(u.block).entries) {
+        if ((u.transposed ? j : i) != k) continue;
+        names.push_back((*u.names)[static_cast<std::size_t>(u.transposed ? i : j)]);
+        e.terms.emplace_back(names.size() - 1, u.negative ? negated(v) : v);
+      }
+    e.rhs = "0";
+    return equation_text(e, names);
+  };
+  for (std::size_t k = 0; k < q.w.size(); ++k)
+    o << "    " << row(static_cast<long>(k), {{"C_ww", &dw, false, false}, {"G_ww", &q.w, false, false}, {"G_wr", &q.r, false, false},
+                                          {"L_w", &q.i, false, false}, {"H_w", &q.sources, false, false}, {"H_wd", &ds, false, false}})
+      << "\n";
+  for (std::size_t k = 0; k < q.r.size(); ++k)
+    o << "    " << row(static_cast<long>(k), {{"G_wr", &q.w, true, false}, {"G_rr", &q.r, false, false}, {"L_r", &q.i, false, false},
+                                          {"H_r", &q.sources, false, false}})
+      << "\n";
+  for (std::size_t k = 0; k < q.e.size(); ++k)
+    o << "    " << row(static_cast<long>(k), {{"L_e", &q.i, false, false}, {"I_e", &q.sources, false, false}}) << "\n";
+  for (std::size_t k = 0; k < q.i.size(); ++k)
+    o << "    " << row(static_cast<long>(k), {{"Phi", &di, false, false}, {"L_w", &q.w, true, true}, {"L_r", &q.r, true, true},
+                                          {"L_e", &q.e, true, true}, {"O_L", &q.sources, false, true}})
+      << "\n";
 }
 
 /// codim M_2 in M_1: the KVLPC equations that constrain q (CONTRACT `pc_loops`, CEF Thm 6.4).
@@ -157,6 +241,7 @@ json cad_json(const Printed& r) {
     j["reduced"] = {{"coordinates", coords}, {"F", r.motion->f_matrix}, {"f", r.motion->f}, {"G", r.motion->g}};
     if (!r.motion->source_columns.empty()) j["reduced"]["sources"] = {{"columns", r.motion->source_columns}, {"S", r.motion->s}};
   }
+  if (r.state) j["state_equations"] = state_json(*r.state);
   if (r.classes) {
     json chi = json::array();
     for (const Eq& e : r.classes->second_class_constraints) chi.push_back(equation_text(e, names));
@@ -245,6 +330,7 @@ std::string cad_text(const Printed& r) {
       o << "    d/dt " << coords[i] << " = " << row_text(coeff, all, m.f[i]) << "\n";
     }
   }
+  if (r.state) state_text(*r.state, o);
   if (!r.note.empty()) o << "  note: " << r.note << "\n";
   return o.str();
 }

@@ -356,10 +356,11 @@ dcad::Solution<Q> solve_forced(const io::Netlist& deck, const std::vector<std::s
                            " (the exact route for those is dense; the others take the graph route at any size)");
     return graph_solution<Q>(deck, variables,
                              "forced graph route (dcad/rlc_graph.hpp: cycle ranks of subgraphs; CEF Thms 6.4, 6.6, 6.8 with YM §4's sources), "
-                             "exact: the tower and the conditions on the sources; the tower's equations and the equations of motion come "
-                             "from the dense exact route, up to " + std::to_string(kForcedBranches) + " branches");
+                             "exact: the tower, the conditions on the sources and the state equations (dcad/reference/rlc_state.hpp); the tower's "
+                             "equations and the motion in (q, v, p) come from the dense exact route, up to " + std::to_string(kForcedBranches) + " branches");
   }
   dcad::Solution<Q> s = exact_forced(rlc_system(deck.rlc), deck.waveforms, variables);
+  if (s.consistent && graph_route_holds(deck.rlc)) s.state = deck_state_equations<Q>(deck);
   if (rounded_coupling(deck.rlc)) {
     s.certified = unknown;
     s.note += "; " + std::string(kRoundedCoupling);

@@ -36,8 +36,10 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
                            "elimination, O(n^3)), found " + n + " (physical circuits take the graph route at any size)");
     s = pipeline::lc_graph_solution<Rational>(deck, p.linear.variables, [](const Rational& q) { return q; });
     s.circuit = io::circuit_facts(deck);
-    s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8: L, C > 0 decide nothing), exact: the tower and its "
-             "equations; the equations of motion come from the structured route (dense exact elimination), up to " + limit + " branches";
+    s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8: L, C > 0 decide nothing), exact: the tower, its "
+             "equations and the state equations (dcad/reference/rlc_state.hpp); the motion in (q, v, p) comes from the structured route "
+             "(dense exact elimination), up to " + limit + " branches";
+    if (parts.reduced && pipeline::graph_route_holds(deck.rlc)) s.state = pipeline::deck_state_equations<Rational>(deck);
     return s;
   }
   int bits = 0;
@@ -47,6 +49,7 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
     s = pipeline::solve_lc_fmpq(deck, p.linear, parts);
   }
   s.circuit = io::circuit_facts(deck);
+  if (parts.reduced && pipeline::graph_route_holds(deck.rlc)) s.state = pipeline::deck_state_equations<Rational>(deck);
   s.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
            std::string(deck.circuit.branches.size() <= pipeline::kAdaptedBranches
                            ? ""

@@ -24,7 +24,7 @@
 // derivatives enter: the motion has no impulses at a corner of a PULSE or PWL source.
 #pragma once
 
-#include "dcad/rlc_graph.hpp"
+#include "dcad/rlc_state.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>

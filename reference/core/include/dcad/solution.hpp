@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -57,6 +58,27 @@ struct Motion {
   Rows<N> g;                             ///< G: its columns span the free directions (solution rank many)
   std::vector<std::string> source_columns;  ///< the names of u's entries (forced systems)
   Rows<N> s;                                ///< S (rows × source_columns)
+};
+
+/// A sparse matrix as its nonzero entries (row, column, value).
+template <class N>
+struct SparseBlock {
+  long rows = 0, cols = 0;
+  std::vector<std::tuple<long, long, N>> entries;
+};
+
+/// The state equations of an RLC circuit with sources at any size (dcad/reference/rlc_state.hpp):
+/// the motion on M_c in node potentials and inductor currents, never on the 3n-dimensional bundle,
+///   C_ww ẇ = −(G_ww w + G_wr ρ + L_w i + H_w σ + H_wd σ̇)
+///   0      =  G_wrᵀ w + G_rr ρ + L_r i + H_r σ
+///   0      =  L_e i + I_e σ
+///   Φ i̇   =  L_wᵀ w + L_rᵀ ρ + L_eᵀ e + O_L σ
+/// with C_ww, G_rr, Φ and L_e Φ⁻¹ L_eᵀ positive definite, so (ẇ, ρ, i̇, e) is unique at every state.
+template <class N>
+struct StateEquations {
+  std::vector<std::string> w, i, r, e;  ///< names: potentials (differential), inductor currents, levels ρ, island levels e
+  std::vector<std::string> sources;     ///< σ's names ("V1(t)"); σ̇ is the same list differentiated
+  std::vector<std::pair<std::string, SparseBlock<N>>> blocks;  ///< C_ww, G_ww, G_wr, G_rr, L_w, L_r, L_e, Phi, H_w, H_wd, H_r, I_e, O_L
 };
 
 /// The constraints of M_c: r − 2s first class, 2s second class, and the Dirac bracket J*  [CEF Lemma 3.23].
@@ -161,6 +183,7 @@ struct Solution {
   std::optional<std::vector<Equation<N>>> final_constraints;  ///< M_c = {a·x = b}
   std::optional<ExactSubspace<N>> final_exact;                ///< M_c as point + span (exact routes)
   std::optional<Motion<N>> motion;
+  std::optional<StateEquations<N>> state;  ///< circuits on the graph route: the sparse state equations
   std::optional<Classes<N>> classes;
   std::optional<Adapted<N>> adapted;
   std::optional<CircuitFacts> circuit;
@@ -185,6 +208,18 @@ struct Solution {
   }
 };
 
+/// The same state equations with every number mapped by f.
+template <class To, class From, class F>
+StateEquations<To> map_state(const StateEquations<From>& s, F f) {
+  StateEquations<To> q{s.w, s.i, s.r, s.e, s.sources, {}};
+  for (const auto& [name, b] : s.blocks) {
+    SparseBlock<To> t{b.rows, b.cols, {}};
+    for (const auto& [i, j, v] : b.entries) t.entries.emplace_back(i, j, f(v));
+    q.blocks.emplace_back(name, std::move(t));
+  }
+  return q;
+}
+
 /// Drops what `parts` does not ask for (routes that compute everything keep only what was asked).
 template <class N>
 void keep_parts(Solution<N>& s, const Parts& parts) {
@@ -192,7 +227,10 @@ void keep_parts(Solution<N>& s, const Parts& parts) {
     s.final_constraints.reset();
     s.final_exact.reset();
   }
-  if (!parts.reduced) s.motion.reset();
+  if (!parts.reduced) {
+    s.motion.reset();
+    s.state.reset();
+  }
   if (!parts.classes) s.classes.reset();
   if (!parts.adapted) s.adapted.reset();
 }
@@ -239,6 +277,7 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
     const Motion<From>& m = *s.motion;
     o.motion = Motion<To>{m.coordinates, rows(m.f_matrix), vec(m.f), rows(m.g), m.source_columns, rows(m.s)};
   }
+  if (s.state) o.state = map_state<To>(*s.state, f);
   if (s.classes) o.classes = Classes<To>{s.classes->first_class, s.classes->second_class, eqs(s.classes->second_class_constraints),
                                          rows(s.classes->dirac_bracket)};
   if (s.adapted)

@@ -6,6 +6,7 @@
 #include "dcad/io/netlist.hpp"
 #include "dcad/reference/forced.hpp"
 #include "dcad/reference/rational.hpp"
+#include "dcad/reference/rlc_state.hpp"
 #include "dcad/solution.hpp"
 
 #include <string>
@@ -50,7 +51,22 @@ constexpr const char* kRoundedCoupling =
 /// The graph route on a deck where graph_route_holds; exact at any size (topology and ±1 rows).
 GraphForced graph_forced(const io::Netlist& deck);
 
-/// The graph route's answer as a Solution of either twin (no numbers in it: dims, conditions, verdict).
+/// The deck's state equations (dcad/reference/rlc_state.hpp) in N (exact for Rational), where the
+/// graph route holds.
+template <class N>
+StateEquations<N> deck_state_equations(const io::Netlist& deck) {
+  RlcCircuit<N> c;
+  c.nodes = deck.rlc.nodes;
+  c.sources = deck.rlc.sources;
+  for (const RlcBranch<Rational>& b : deck.rlc.branches) c.branches.push_back({b.name, b.kind, b.from, b.to, static_cast<N>(b.value), b.source});
+  for (const Mutual<Rational>& mu : deck.rlc.mutuals) c.mutuals.push_back({mu.a, mu.b, static_cast<N>(mu.m), {}, mu.rounded});
+  std::vector<std::string> sources;
+  for (const io::Waveform& w : deck.waveforms) sources.push_back(w.element + "(t)");
+  return state_equations<N>(c, deck.node_names, sources);
+}
+
+/// The graph route's answer as a Solution of either twin: dims, conditions, verdict, and the state
+/// equations at any size (the tower's own equations come from the dense route only).
 template <class N>
 dcad::Solution<N> graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables, const std::string& note) {
   const GraphForced g = graph_forced(deck);
@@ -66,6 +82,7 @@ dcad::Solution<N> graph_solution(const io::Netlist& deck, const std::vector<std:
   s.file = deck.file;
   s.name = deck.title;
   s.note = note;
+  if (g.consistent) s.state = deck_state_equations<N>(deck);
   if (s.certified.unknown()) s.note += "; a source condition could not be decided exactly (see sources.conditions)";
   return s;
 }
