@@ -149,9 +149,20 @@ int main(int argc, char** argv) {
   std::string check_result_file, check_file;
   CLI::App* check = app.add_subcommand(
       "check", "Compare another implementation's result (JSON, the keys of `dcad solve --json`) for FILE against the "
-               "reference: exit 0 if it agrees, 3 with the list of disagreements, 1 if RESULT is not a result for FILE.");
-  check->add_option("RESULT", check_result_file, "the other implementation's result (.json)")->required();
+               "reference, or a simulator's transient output (ngspice raw or wrdata, gnucap .print, CSV) against the exact flow "
+               "of the netlist FILE at the file's own time points: exit 0 if it agrees, 3 with the list of disagreements, 1 if "
+               "RESULT is not a result or waveform for FILE.");
+  check->add_option("RESULT", check_result_file, "the other implementation's result (.json), or a simulator's transient output "
+                                                  "(ngspice raw or wrdata, gnucap .print, CSV)")->required();
   check->add_option("FILE", check_file, "the case file or netlist it was computed for")->required();
+  dcad::api::WaveformOptions wave_opt;
+  bool check_json = false;
+  std::string check_initial = "deck";
+  check->add_option("--rtol", wave_opt.rtol, "waveforms: relative tolerance, of each vector's largest |exact| over the run (default 1e-3)");
+  check->add_option("--atol", wave_opt.atol, "waveforms: absolute tolerance (default 0)");
+  check->add_option("--initial", check_initial, "waveforms: the simulator's initial state: deck (its .tran), op or uic")
+      ->check(CLI::IsMember({"deck", "op", "uic"}));
+  check->add_flag("--json", check_json, "waveforms: the report as JSON");
 
   std::string cases_action;
   std::vector<std::string> cases_args;
@@ -196,6 +207,13 @@ int main(int argc, char** argv) {
       return solve_files(solve_files_list, dcad::api::backend_named(solve_backend), parts, solve_json, solve_lines, std::cout, std::cerr);
     }
     if (cases->parsed()) return cases_command(cases_action, cases_args);
+    if (check->parsed() && !dcad::io::looks_like_json(check_result_file)) {
+      wave_opt.initial = check_initial == "op" ? dcad::api::Initial::op : check_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
+      const dcad::io::Traces traces = dcad::io::read_traces(check_result_file);
+      const dcad::api::WaveformChecked w = dcad::api::check_waveform(traces, dcad::io::read_problem(check_file), wave_opt, std::cerr);
+      std::cout << (check_json ? dcad::api::waveform_json(w, wave_opt) + "\n" : dcad::api::waveform_text(w, check_result_file, check_file, wave_opt));
+      return w.agree ? 0 : 3;
+    }
     if (check->parsed()) {
       const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file));
       std::string keys;

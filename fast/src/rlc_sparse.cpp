@@ -62,6 +62,10 @@ Model::Model(const Network& c) : c_(c) {
       for (const auto& [j, s] : st.offset[static_cast<std::size_t>(c.branches[b].to + 1)]) t.emplace_back(b, j, -s);
     }
     ob_ = build(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(ms), t);
+    Triplets tn;
+    for (std::size_t v = 0; v < c.nodes; ++v)
+      for (const auto& [j, s] : st.offset[v + 1]) tn.emplace_back(v, j, s);
+    on_ = build(static_cast<Eigen::Index>(c.nodes), static_cast<Eigen::Index>(ms), tn);
   }
   // per-kind incidences on supernodes (self-loops drop out), branch lists
   lof_.assign(n, -1);
@@ -263,6 +267,16 @@ Vec Model::impulse_charges(const Vec& q_before, const Vec& q_after) const {
   Vec out(static_cast<Eigen::Index>(qx_.size()));
   for (std::size_t k = 0; k < qx_.size(); ++k) out(static_cast<Eigen::Index>(k)) = dq[qx_[k]];
   return out;
+}
+
+Vec Model::node_potentials(const double* x, const double* sigma, const double* dsigma) const {
+  std::vector<double> xdot(nw_ + nl_);
+  Vec E;
+  rate(x, sigma, dsigma, xdot.data(), nullptr, &E);
+  Vec e = on_ * Eigen::Map<const Vec>(sigma, static_cast<Eigen::Index>(c_.sources));
+  for (std::size_t v = 0; v < c_.nodes; ++v)
+    if (sup_[v] >= 0) e(static_cast<Eigen::Index>(v)) += E(sup_[v]);
+  return e;
 }
 
 Vec Model::energy_scale() const {

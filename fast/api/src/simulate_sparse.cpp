@@ -8,6 +8,7 @@
 // outside the LI cutsets.
 #include "exosystem.hpp"
 #include "simulate.hpp"
+#include "sparse_flow.hpp"
 
 #include "dcad/fast/expv.hpp"
 #include "dcad/fast/rlc_sparse.hpp"
@@ -19,9 +20,6 @@
 #include <map>
 
 namespace dcad::api {
-
-namespace sr = dcad::fast::sparse_rlc;
-using Vec = Eigen::VectorXd;
 
 namespace {
 
@@ -36,6 +34,17 @@ rlc::Kind kind_of(reference::RlcKind k) {
   }
 }
 
+/// Geometric mean of the values of a kind (0: none).
+double typical(const sr::Network& c, rlc::Kind k) {
+  double s = 0;
+  int n = 0;
+  for (const sr::Element& b : c.branches)
+    if (b.kind == k) s += std::log(b.value), ++n;
+  return n ? std::exp(s / n) : 0.0;
+}
+
+}  // namespace
+
 sr::Network circuit_of(const io::Netlist& d) {
   sr::Network c;
   c.nodes = d.rlc.nodes;
@@ -49,25 +58,13 @@ sr::Network circuit_of(const io::Netlist& d) {
   return c;
 }
 
-/// Geometric mean of the values of a kind (0: none).
-double typical(const sr::Network& c, rlc::Kind k) {
-  double s = 0;
-  int n = 0;
-  for (const sr::Element& b : c.branches)
-    if (b.kind == k) s += std::log(b.value), ++n;
-  return n ? std::exp(s / n) : 0.0;
-}
-
-}  // namespace
-
 bool sparse_route_takes(const io::Netlist& deck) { return reference::pipeline::graph_route_holds(deck.rlc); }
 
-Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log,
-                        std::ostream* energy) {
-  require_times(opt);
+SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial initial, double step, double horizon, std::ostream& log)
+    : deck_(deck), file_(file), step_(step) {
   namespace pl = reference::pipeline;
   if (!pl::graph_route_holds(deck.rlc))
-    throw io::InputError(c.file + ": simulate: expected every R, L and C positive, the couplings |k| < 1 and at most 200 inductors per coupled group "
+    throw io::InputError(file + ": simulate: expected every R, L and C positive, the couplings |k| < 1 and at most 200 inductors per coupled group "
                          "for the sparse route, found another circuit"
                          " (the dense route takes it up to " + std::to_string(pl::kForcedBranches) + " branches)");
   const pl::GraphForced g = pl::graph_forced(deck);
@@ -78,31 +75,32 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
   if (g.solution_rank > 0)
     log << "note: solutions are not unique (" << g.solution_rank
         << " free currents around loops of voltage sources and wires); simulating the one with no current around them\n";
-  const sr::Network circ = circuit_of(deck);
-  std::unique_ptr<sr::Model> model;
+  circ_ = circuit_of(deck);
   try {
-    model = std::make_unique<sr::Model>(circ);
+    model_ = std::make_unique<sr::Model>(circ_);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(c.file + ": simulate: expected values within double's range for the sparse route, found " + e.what());
+    throw io::InputError(file + ": simulate: expected values within double's range for the sparse route, found " + e.what());
   }
-  const std::size_t n = circ.branches.size(), m = circ.sources, nx = model->state_size(), nq = model->charge_size();
-  const std::size_t ny = nx + 3 * m;
-  log << "simulate: sparse route (" << nx << " states, " << model->islands() << " LI cutsets; Krylov exponential action, Expokit's error control)\n";
+  const std::size_t n = circ_.branches.size(), m = circ_.sources;
+  nx_ = model_->state_size();
+  const std::size_t nq = model_->charge_size(), ny = nx_ + 3 * m;
+  log << "simulate: sparse route (" << nx_ << " states, " << model_->islands() << " LI cutsets; Krylov exponential action, Expokit's error control)\n";
   // sources at 0 (right limits)
   std::vector<double> s0(m), ds0(m);
   for (std::size_t j = 0; j < m; ++j) s0[j] = deck.waveforms[j].value(0, 0), ds0[j] = deck.waveforms[j].value(0, 1);
   // initial state
-  const bool op = opt.initial == Initial::op || (opt.initial == Initial::deck && deck.tran == io::Netlist::Transient::op);
-  Vec x, q_start = Vec::Zero(static_cast<Eigen::Index>(nq));
+  const bool op = initial == Initial::op || (initial == Initial::deck && deck.tran == io::Netlist::Transient::op);
+  Vec x;
+  q_ = Vec::Zero(static_cast<Eigen::Index>(nq));
   if (op) {
     if (!deck.node_ic.empty())
-      throw io::InputError(c.file + ": initial state: expected no .ic node voltages for an operating point on the sparse route, found " +
+      throw io::InputError(file + ": initial state: expected no .ic node voltages for an operating point on the sparse route, found " +
                            std::to_string(deck.node_ic.size()) + " (use --initial uic, or .tran … uic)");
     log << "initial state: op: the DC operating point at t = 0 (capacitors open, inductors shorted), by contraction on the sparse route\n";
     try {
-      x = model->operating_point(s0.data());
+      x = model_->operating_point(s0.data());
     } catch (const std::domain_error& e) {
-      throw io::InputError(c.file + ": initial state: expected a unique DC operating point, found " + e.what() + "; use --initial uic");
+      throw io::InputError(file + ": initial state: expected a unique DC operating point, found " + e.what() + "; use --initial uic");
     }
   } else {
     log << "initial state: uic: IC= values, everything else 0; moved onto M_c(0+) keeping every supernode's charge and the flux linkages "
@@ -110,67 +108,160 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
     Vec qb = Vec::Zero(static_cast<Eigen::Index>(n)), ib = Vec::Zero(static_cast<Eigen::Index>(n));
     for (std::size_t b = 0; b < n; ++b) {
       if (!deck.initial[b]) continue;
-      if (circ.branches[b].kind == rlc::Kind::capacitor) qb(static_cast<Eigen::Index>(b)) = (deck.rlc.branches[b].value * *deck.initial[b]).convert_to<double>();
-      if (circ.branches[b].kind == rlc::Kind::inductor) ib(static_cast<Eigen::Index>(b)) = deck.initial[b]->convert_to<double>();
+      if (circ_.branches[b].kind == rlc::Kind::capacitor) qb(static_cast<Eigen::Index>(b)) = (deck.rlc.branches[b].value * *deck.initial[b]).convert_to<double>();
+      if (circ_.branches[b].kind == rlc::Kind::inductor) ib(static_cast<Eigen::Index>(b)) = deck.initial[b]->convert_to<double>();
     }
-    x = model->from_charges(qb, ib, s0.data());
+    x = model_->from_charges(qb, ib, s0.data());
     // the jumps, each named with the kind of constraint that forced it
     const Vec zero = Vec::Zero(static_cast<Eigen::Index>(nq));
-    const sr::BranchValues after = model->values(x.data(), zero.data(), s0.data(), ds0.data());
+    const sr::BranchValues after = model_->values(x.data(), zero.data(), s0.data(), ds0.data());
     double qscale = 0, iscale = 0;
     for (std::size_t b = 0; b < n; ++b) {
       const auto bb = static_cast<Eigen::Index>(b);
-      if (circ.branches[b].kind == rlc::Kind::capacitor) qscale = std::max({qscale, std::abs(qb(bb)), std::abs(after.q(bb))});
-      if (circ.branches[b].kind == rlc::Kind::inductor) iscale = std::max({iscale, std::abs(ib(bb)), std::abs(after.i(bb))});
+      if (circ_.branches[b].kind == rlc::Kind::capacitor) qscale = std::max({qscale, std::abs(qb(bb)), std::abs(after.q(bb))});
+      if (circ_.branches[b].kind == rlc::Kind::inductor) iscale = std::max({iscale, std::abs(ib(bb)), std::abs(after.i(bb))});
     }
-    long told = 0, total = 0;
+    long told = 0;
     for (std::size_t b = 0; b < n; ++b) {
       const auto bb = static_cast<Eigen::Index>(b);
-      const bool cap = circ.branches[b].kind == rlc::Kind::capacitor, ind = circ.branches[b].kind == rlc::Kind::inductor;
+      const bool cap = circ_.branches[b].kind == rlc::Kind::capacitor, ind = circ_.branches[b].kind == rlc::Kind::inductor;
       if (!cap && !ind) continue;
       const double from = cap ? qb(bb) : ib(bb), to = cap ? after.q(bb) : after.i(bb), scale = cap ? qscale : iscale;
       if (std::abs(to - from) <= 1e-12 * scale) continue;
-      ++total;
+      ++jumps_;
       if (told++ < 20)
-        log << "jump at t = 0: " << (cap ? "q_" : "v_") << circ.branch_names[b] << " from " << io::float_text(from) << " to " << io::float_text(to)
+        log << "jump at t = 0: " << (cap ? "q_" : "v_") << circ_.branch_names[b] << " from " << io::float_text(from) << " to " << io::float_text(to)
             << ", forced by " << (cap ? "KVL around a loop of capacitors and voltage sources (the charge of each node is kept)"
                                       : "KCL over a cutset of inductors and current sources (the flux linkages move only by impulses at its level)")
             << "\n";
     }
-    if (total > told) log << "jump at t = 0: … and " << (total - told) << " more values\n";
-    q_start = model->impulse_charges(qb, after.q);  // what the impulsive currents carried through the sources
+    if (jumps_ > told) log << "jump at t = 0: … and " << (jumps_ - told) << " more values\n";
+    q_ = model_->impulse_charges(qb, after.q);  // what the impulsive currents carried through the sources
   }
   // scales of the Krylov state: √energy for the circuit, the sources' values in the same units
-  const double ctyp = typical(circ, rlc::Kind::capacitor), ltyp = typical(circ, rlc::Kind::inductor), rtyp = typical(circ, rlc::Kind::resistor);
+  const double ctyp = typical(circ_, rlc::Kind::capacitor), ltyp = typical(circ_, rlc::Kind::inductor), rtyp = typical(circ_, rlc::Kind::resistor);
   const double cs = ctyp > 0 ? ctyp : ltyp > 0 && rtyp > 0 ? ltyp / (rtyp * rtyp) : 1.0;
   const double ls = ltyp > 0 ? ltyp : cs * (rtyp > 0 ? rtyp * rtyp : 1.0);
-  Vec d(static_cast<Eigen::Index>(ny));
-  d.head(static_cast<Eigen::Index>(nx)) = model->energy_scale();
+  d_.resize(static_cast<Eigen::Index>(ny));
+  d_.head(static_cast<Eigen::Index>(nx_)) = model_->energy_scale();
   std::vector<bool> current(m, false);
-  for (const sr::Element& b : circ.branches)
+  for (const sr::Element& b : circ_.branches)
     if (b.kind == rlc::Kind::current) current[static_cast<std::size_t>(b.source)] = true;
   for (std::size_t j = 0; j < m; ++j) {
     const double sc = std::sqrt(current[j] ? ls : cs);
-    d(static_cast<Eigen::Index>(nx + 3 * j)) = sc;
-    d(static_cast<Eigen::Index>(nx + 3 * j + 1)) = deck.waveforms[j].is_sine() ? sc : sc * opt.step;
-    d(static_cast<Eigen::Index>(nx + 3 * j + 2)) = sc;
+    d_(static_cast<Eigen::Index>(nx_ + 3 * j)) = sc;
+    d_(static_cast<Eigen::Index>(nx_ + 3 * j + 1)) = deck.waveforms[j].is_sine() ? sc : sc * step;
+    d_(static_cast<Eigen::Index>(nx_ + 3 * j + 2)) = sc;
   }
-  for (Eigen::Index i = 0; i < d.size(); ++i)
-    if (!(d(i) > 0) || !std::isfinite(d(i))) d(i) = 1;
-  const Vec dinv = d.cwiseInverse();
+  for (Eigen::Index i = 0; i < d_.size(); ++i)
+    if (!(d_(i) > 0) || !std::isfinite(d_(i))) d_(i) = 1;
+  dinv_ = d_.cwiseInverse();
   // the operator on the scaled state [x; exosystem]: the circuit's rate and the sources' generator
-  const auto op_fn = [&](const Vec& v, Vec& y, Vec* side) {
-    Vec u = v.cwiseProduct(dinv);
+  const auto op_fn = [this, m](const Vec& v, Vec& y, Vec* side) {
+    Vec u = v.cwiseProduct(dinv_);
     std::vector<double> sig(m), dsig(m);
     y.resize(v.size());
     for (std::size_t j = 0; j < m; ++j) {
-      exo_output(deck.waveforms[j], u.data() + nx + 3 * j, sig[j], dsig[j]);
-      exo_rate(deck.waveforms[j], u.data() + nx + 3 * j, y.data() + nx + 3 * j);
+      exo_output(deck_.waveforms[j], u.data() + nx_ + 3 * j, sig[j], dsig[j]);
+      exo_rate(deck_.waveforms[j], u.data() + nx_ + 3 * j, y.data() + nx_ + 3 * j);
     }
-    model->rate(u.data(), sig.data(), dsig.data(), y.data(), side ? side->data() : nullptr);
-    y = y.cwiseProduct(d);
+    model_->rate(u.data(), sig.data(), dsig.data(), y.data(), side ? side->data() : nullptr);
+    y = y.cwiseProduct(d_);
   };
-  fast::KrylovExp krylov(op_fn, nq);
+  krylov_ = std::make_unique<fast::KrylovExp>(op_fn, nq);
+  for (const io::Waveform& w : deck.waveforms) try {
+      for (double b : w.breakpoints(horizon)) breaks_.push_back(b);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
+    }
+  std::sort(breaks_.begin(), breaks_.end());
+  breaks_.erase(std::unique(breaks_.begin(), breaks_.end()), breaks_.end());
+  y_ = Vec::Zero(static_cast<Eigen::Index>(ny));
+  y_.head(static_cast<Eigen::Index>(nx_)) = x.cwiseProduct(d_.head(static_cast<Eigen::Index>(nx_)));
+}
+
+SparseFlow::~SparseFlow() = default;
+
+void SparseFlow::sources(double t, bool left, std::vector<double>& sig, std::vector<double>& dsig) const {
+  const std::size_t m = circ_.sources;
+  sig.resize(m);
+  dsig.resize(m);
+  // a left derivative: the slope just before t on the piece that ends there (sources are smooth between breakpoints)
+  double before = t;
+  if (left && t > 0) {
+    const auto it = std::lower_bound(breaks_.begin(), breaks_.end(), t * (1 - 1e-12));
+    const double prev = it == breaks_.begin() ? 0.0 : *(it - 1);
+    before = t - std::min(1e-9 * (t - prev), 1e-9 * t);
+  }
+  for (std::size_t j = 0; j < m; ++j) sig[j] = deck_.waveforms[j].value(t, 0), dsig[j] = deck_.waveforms[j].value(left ? before : t, 1);
+  if (left && t <= 0) std::fill(dsig.begin(), dsig.end(), 0.0);  // before t = 0 the circuit rests at the sources' values at 0
+}
+
+sr::BranchValues SparseFlow::values(bool left) const {
+  std::vector<double> sig, dsig;
+  sources(t_, left, sig, dsig);
+  const Vec xs = state();
+  return model_->values(xs.data(), q_.data(), sig.data(), dsig.data());
+}
+
+Vec SparseFlow::node_potentials(bool left) const {
+  std::vector<double> sig, dsig;
+  sources(t_, left, sig, dsig);
+  const Vec xs = state();
+  return model_->node_potentials(xs.data(), sig.data(), dsig.data());
+}
+
+Vec SparseFlow::state() const { return y_.head(static_cast<Eigen::Index>(nx_)).cwiseProduct(dinv_.head(static_cast<Eigen::Index>(nx_))); }
+
+bool SparseFlow::corner(double t) const {
+  const auto it = std::lower_bound(breaks_.begin(), breaks_.end(), t - 1e-12 * std::max(step_, std::abs(t)));
+  return it != breaks_.end() && std::abs(*it - t) <= 1e-12 * std::max(step_, std::abs(t));
+}
+
+void SparseFlow::advance_to(double to) {
+  const std::size_t m = circ_.sources;
+  double at = t_;
+  while (at < to) {
+    while (next_break_ < breaks_.size() && breaks_[next_break_] <= at + 1e-12 * step_) ++next_break_;
+    const double stop = next_break_ < breaks_.size() && breaks_[next_break_] < to - 1e-12 * step_ ? breaks_[next_break_] : to;
+    for (std::size_t j = 0; j < m; ++j) {
+      long double w[3];
+      exo_state_for(deck_.waveforms[j], at, stop, w);
+      for (int q = 0; q < 3; ++q) y_(static_cast<Eigen::Index>(nx_ + 3 * j + q)) = static_cast<double>(w[q]) * d_(static_cast<Eigen::Index>(nx_ + 3 * j + q));
+    }
+    const double norm = y_.norm();
+    max_norm_ = std::max(max_norm_, norm);
+    krylov_->set_tolerance(kSparseStepTolerance * std::max(norm, 1e-300) / step_);
+    try {
+      krylov_->advance(stop - at, y_, q_);
+    } catch (const std::runtime_error& e) {
+      throw io::InputError(file_ + ": simulate: expected a circuit the sparse route integrates in double, found none at t = " + io::float_text(at) +
+                           " s: " + e.what() + " (time scales far below --step, or values beyond double's range; the dense route takes up to " +
+                           std::to_string(reference::pipeline::kForcedBranches) + " branches)");
+    }
+    if (krylov_->error_estimate() > kSparseRefuse * max_norm_)
+      throw io::InputError(file_ + ": simulate: expected an error estimate below " + io::float_text(kSparseRefuse) + " of the state, found " +
+                           io::float_text(krylov_->error_estimate() / max_norm_) + " at t = " + io::float_text(at) +
+                           " s: the circuit is stiff against --step (eps*|A|*step per step); the dense route takes up to " +
+                           std::to_string(reference::pipeline::kForcedBranches) + " branches");
+    if (!y_.allFinite() || !q_.allFinite())
+      throw io::InputError(file_ + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(at) +
+                           " s (a growing source or values beyond double's range)");
+    at = stop;
+  }
+  t_ = std::max(t_, to);
+}
+
+double SparseFlow::error_estimate() const { return max_norm_ > 0 ? krylov_->error_estimate() / max_norm_ : 0.0; }
+long SparseFlow::products() const { return krylov_->products(); }
+long SparseFlow::substeps() const { return krylov_->substeps(); }
+
+Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log,
+                        std::ostream* energy) {
+  require_times(opt);
+  SparseFlow flow(deck, c.file, opt.initial, opt.step, opt.tstop, log);
+  const sr::Network& circ = flow.network();
+  const std::size_t n = circ.branches.size();
   // columns
   std::vector<std::size_t> cols;
   if (opt.columns.empty())
@@ -188,29 +279,15 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
   for (std::size_t i : cols) out << "," << c.variables[i];
   out << "\n";
   if (energy) *energy << "t,E,P_forces,P_sources,P_constraints,W_forces,W_sources,W_constraints\n";
-  std::vector<double> breaks;
-  for (const io::Waveform& w : deck.waveforms) try {
-      for (double b : w.breakpoints(opt.tstop)) breaks.push_back(b);
-    } catch (const std::invalid_argument& e) {
-      throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
-    }
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  Vec ys = Vec::Zero(static_cast<Eigen::Index>(ny));
-  ys.head(static_cast<Eigen::Index>(nx)) = x.cwiseProduct(d.head(static_cast<Eigen::Index>(nx)));
-  Vec qx = q_start;
   std::string line;
   char buf[32];
   const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
   const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
-  std::size_t next_break = 0;
-  double max_norm = 0, wr = 0, wv = 0, wi = 0, lr = 0, lv = 0, li = 0, worst_balance = 0, power_scale = 0, e0 = 0;
-  std::vector<double> sig(m), dsig(m);
+  double wr = 0, wv = 0, wi = 0, lr = 0, lv = 0, li = 0, worst_balance = 0, power_scale = 0, e0 = 0;
   for (long k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * opt.step;
-    for (std::size_t j = 0; j < m; ++j) sig[j] = deck.waveforms[j].value(t, 0), dsig[j] = deck.waveforms[j].value(t, 1);
-    const Vec xs = ys.head(static_cast<Eigen::Index>(nx)).cwiseProduct(dinv.head(static_cast<Eigen::Index>(nx)));
-    const sr::BranchValues bv = model->values(xs.data(), qx.data(), sig.data(), dsig.data());
+    flow.advance_to(t);
+    const sr::BranchValues bv = flow.values();
     line.clear();
     put(t);
     for (std::size_t i : cols) {
@@ -220,16 +297,16 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
     }
     line += '\n';
     out << line;
-    // energy: E = ½ Σ q_C²/C + ½ i_Lᵀ Φ i_L; dE/dt = Σ_C,L u i; the forces', sources' and constraints' powers
-    double en = 0, de = 0, pr = 0, pv = 0, pi = 0, tell = 0, mag = 0;
+    // energy: E = ½ Σ q_C²/C + ½ i_Lᵀ Φ i_L; the forces', sources' and constraints' powers
+    double en = 0, pr = 0, pv = 0, pi = 0, tell = 0, mag = 0;
     for (std::size_t b = 0; b < n; ++b) {
       const auto bb = static_cast<Eigen::Index>(b);
       const double ui = bv.u(bb) * bv.i(bb);
       tell += ui;
       mag = std::max(mag, std::abs(ui));
       switch (circ.branches[b].kind) {
-        case rlc::Kind::capacitor: en += 0.5 * bv.q(bb) * bv.u(bb); de += ui; break;
-        case rlc::Kind::inductor: en += 0.5 * bv.p(bb) * bv.i(bb); de += ui; break;
+        case rlc::Kind::capacitor: en += 0.5 * bv.q(bb) * bv.u(bb); break;
+        case rlc::Kind::inductor: en += 0.5 * bv.p(bb) * bv.i(bb); break;
         case rlc::Kind::resistor: pr -= ui; break;
         case rlc::Kind::voltage: pv -= ui; break;
         case rlc::Kind::current: pi -= ui; break;
@@ -249,56 +326,23 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
       }
       *energy << line << "\n";
     }
-    (void)de;
-    if (k == steps) {
+    if (k == steps)
       log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t) << ") = " << io::float_text(en) << "; work of the forces "
           << io::float_text(wr) << " (dissipated " << io::float_text(-wr) << "), of the sources " << io::float_text(wv)
           << ", of the current sources " << io::float_text(wi) << " (trapezoid on the output rows); Tellegen's sum of u·i over the branches is "
           << io::float_text(power_scale > 0 ? worst_balance / power_scale : 0.0) << " of the largest branch power at the rows\n";
-      break;
-    }
-    // one output step, cut at the breakpoints inside it; the exosystem is set from the waveforms on each piece
-    double at = t;
-    const double to = static_cast<double>(k + 1) * opt.step;
-    while (at < to) {
-      while (next_break < breaks.size() && breaks[next_break] <= at + 1e-12 * opt.step) ++next_break;
-      const double stop = next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
-      for (std::size_t j = 0; j < m; ++j) {
-        long double w[3];
-        exo_state_for(deck.waveforms[j], at, stop, w);
-        for (int q = 0; q < 3; ++q) ys(static_cast<Eigen::Index>(nx + 3 * j + q)) = static_cast<double>(w[q]) * d(static_cast<Eigen::Index>(nx + 3 * j + q));
-      }
-      const double norm = ys.norm();
-      max_norm = std::max(max_norm, norm);
-      krylov.set_tolerance(kSparseStepTolerance * std::max(norm, 1e-300) / opt.step);
-      try {
-        krylov.advance(stop - at, ys, qx);
-      } catch (const std::runtime_error& e) {
-        throw io::InputError(c.file + ": simulate: expected a circuit the sparse route integrates in double, found none at t = " +
-                             io::float_text(at) + " s: " + e.what() + " (time scales far below --step, or values beyond double's range; the dense route takes up to " +
-                             std::to_string(reference::pipeline::kForcedBranches) + " branches)");
-      }
-      if (krylov.error_estimate() > kSparseRefuse * max_norm)
-        throw io::InputError(c.file + ": simulate: expected an error estimate below " + io::float_text(kSparseRefuse) + " of the state, found " +
-                             io::float_text(krylov.error_estimate() / max_norm) + " at t = " + io::float_text(at) +
-                             " s: the circuit is stiff against --step (eps*|A|*step per step); the dense route takes up to " +
-                             std::to_string(reference::pipeline::kForcedBranches) + " branches");
-      if (!ys.allFinite() || !qx.allFinite())
-        throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(at) + " s (a growing source or values beyond double's range)");
-      at = stop;
-    }
   }
-  if (max_norm > 0 && krylov.error_estimate() / max_norm > kSparseWarn)
-    log << "warning: the sparse route's error estimate is " << io::float_text(krylov.error_estimate() / max_norm)
+  if (flow.error_estimate() > kSparseWarn)
+    log << "warning: the sparse route's error estimate is " << io::float_text(flow.error_estimate())
         << " of the state: the circuit is stiff against --step (the Krylov matrix's rounding, eps*|A|*step, dominates); "
            "small variables may be far off — compare with --route dense (up to "
         << reference::pipeline::kForcedBranches << " branches)\n";
   Summary s;
   s.rows = steps + 1;
-  s.error_estimate = max_norm > 0 ? krylov.error_estimate() / max_norm : 0.0;
+  s.error_estimate = flow.error_estimate();
   s.worst_variable = "the state";
   s.estimate_kind = "the Krylov integrator's local error estimates summed over the run (Expokit), relative to the largest norm of the state in "
-                    "energy units; " + std::to_string(krylov.products()) + " operator products in " + std::to_string(krylov.substeps()) + " substeps";
+                    "energy units; " + std::to_string(flow.products()) + " operator products in " + std::to_string(flow.substeps()) + " substeps";
   return s;
 }
 

@@ -19,6 +19,7 @@
 #include "dcad/inspection.hpp"
 #include "dcad/io/problem.hpp"
 #include "dcad/io/report.hpp"
+#include "dcad/io/traces.hpp"
 #include "dcad/reference/solve.hpp"
 
 #include <iosfwd>
@@ -97,6 +98,41 @@ std::vector<std::string> simulate_columns(const io::Problem& p);
 /// to `csv` as it is computed; warnings, notes and the run's summary to `log`.  With `energy` (systems
 /// with resistors, sources or forces only; UsageError otherwise), the energy balance per row.
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy = nullptr);
+
+/// `dcad check WAVEFORM DECK` (CONTRACT "Checking a simulator's waveform"): another simulator's
+/// transient output against DECK's exact flow from the state the simulator started from, at the file's
+/// own time points.
+struct WaveformOptions {
+  double rtol = 1e-3, atol = 0;  ///< a vector agrees where |found − exact| ≤ atol + rtol · max |exact| over the run
+  Initial initial = Initial::deck;
+};
+struct WaveformVector {
+  std::string name;      ///< as the file names it
+  std::string meaning;   ///< what dcad computes for it: "e(n1) - e(n2)", "current of L1 (n+ to n-)", …
+  double max_error = 0;  ///< largest |found − exact| over the compared points
+  double at = 0;         ///< its time
+  double exact = 0, found = 0;
+  double scale = 0;      ///< max |exact| over the run
+  bool agree = true;
+  bool at_corner = false;         ///< the worst point is a source corner (either one-sided value was allowed)
+  long skipped_at_jump = 0;       ///< points at t = 0 after a jump onto M_c, not compared
+};
+struct WaveformChecked {
+  bool agree = true;              ///< exit 0 (true) or 3
+  bool certified = false;         ///< every exact value a rigorous enclosure
+  std::string certified_reason;   ///< why not
+  std::string format;             ///< the file's format
+  long points = 0;                ///< time points in the file
+  double error_estimate = 0;      ///< the exact flow's own error estimate (relative to the state)
+  std::vector<WaveformVector> vectors;
+};
+/// InputError for an unreadable file, a vector name that DECK cannot map, or a circuit outside the
+/// route that evaluates its flow.
+WaveformChecked check_waveform(const io::Traces& traces, const io::Problem& p, const WaveformOptions& options, std::ostream& log);
+/// Its report: for people, or the CONTRACT's JSON ({"agree", "certified", "vectors": [{"name", "max_error",
+/// "at", "exact", "found", "scale", "agree"}]} and more keys).
+std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file, const WaveformOptions& options);
+std::string waveform_json(const WaveformChecked& c, const WaveformOptions& options);
 
 /// The golden corpus: $DCAD_CASES, else the source tree's cases/.
 std::string cases_dir();

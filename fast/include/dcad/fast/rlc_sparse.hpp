@@ -84,6 +84,9 @@ class Model {
   /// All branch quantities at a state, with the integrated charges `qx` (charge_size()).
   BranchValues values(const double* x, const double* qx, const double* sigma, const double* dsigma) const;
 
+  /// Every node's potential (ground 0) at a state: the supernode's level plus its sources' offset.
+  Vec node_potentials(const double* x, const double* sigma, const double* dsigma) const;
+
   /// A scale per state entry for the Krylov norm: √(C_ww)ᵢᵢ for potentials, √Φᵢᵢ for currents (√energy).
   Vec energy_scale() const;
 
@@ -124,7 +127,7 @@ class Model {
   };
   std::vector<TreeEdge> vtree_;
   Matrices m_;
-  SpMat phi_inv_, ob_;  ///< Φ⁻¹ (block inverse); o_b for every branch (branches × sources)
+  SpMat phi_inv_, ob_, on_;  ///< …; o per node (nodes × sources)  ///< Φ⁻¹ (block inverse); o_b for every branch (branches × sources)
   SpMat AC_, AR_, AL_, AI_;  ///< supernode incidences (rows supernodes) per kind
   SpMat Crow_;               ///< i_C = C (A_Cᵀ T_w ẇ + o_C σ̇): the map ẇ → capacitor currents (C-branches × w)
   std::vector<std::size_t> cidx_, ridx_, iidx_;

@@ -1,0 +1,242 @@
+// `dcad check WAVEFORM DECK` (CONTRACT "Checking a simulator's waveform"): each vector of another
+// simulator's output, named as ngspice or gnucap name it (or as dcad names variables), against the
+// exact flow of DECK from the state the simulator started from, evaluated at the file's own times.
+#include "dcad/api.hpp"
+#include "guarded.hpp"
+#include "sparse_flow.hpp"
+
+#include "dcad/reference/pipeline/forced.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace dcad::api {
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::string without_spaces(const std::string& s) {
+  std::string t;
+  for (char ch : s)
+    if (!std::isspace(static_cast<unsigned char>(ch))) t += ch;
+  return t;
+}
+
+/// A vector as a function of the circuit's values: e_a − e_b (nodes, −1 ground), or a branch's q, i or p.
+struct Functional {
+  enum Kind { potential, charge, current, flux } kind = potential;
+  long a = -1, b = -1;    ///< nodes (potential)
+  std::size_t branch = 0;  ///< (the others)
+  std::string meaning;
+};
+
+struct Names {
+  std::map<std::string, long> nodes;           ///< lower-case name → index (ground −1)
+  std::map<std::string, std::size_t> branches;  ///< lower-case name → branch
+  std::vector<std::string> node_list, branch_list;
+};
+
+Names names_of(const io::Netlist& deck) {
+  Names n;
+  n.nodes["0"] = -1;
+  n.nodes["gnd"] = -1;
+  for (std::size_t k = 0; k < deck.node_names.size(); ++k) {
+    n.nodes[lower(deck.node_names[k])] = static_cast<long>(k);
+    n.node_list.push_back(deck.node_names[k]);
+  }
+  for (std::size_t b = 0; b < deck.rlc.branches.size(); ++b) {
+    n.branches[lower(deck.rlc.branches[b].name)] = b;
+    n.branch_list.push_back(deck.rlc.branches[b].name);
+  }
+  return n;
+}
+
+std::string listed(const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t k = 0; k < v.size() && k < 12; ++k) s += (k ? ", " : "") + v[k];
+  if (v.size() > 12) s += ", … (" + std::to_string(v.size()) + ")";
+  return s;
+}
+
+/// The vector `name` of the file as a Functional of the deck; InputError naming what it could be.
+Functional functional(const std::string& name, const Names& n, const io::Netlist& deck, const std::string& file) {
+  const std::string s = lower(without_spaces(name));
+  const auto node = [&](const std::string& x, long& out) {
+    const auto it = n.nodes.find(x);
+    if (it == n.nodes.end()) return false;
+    out = it->second;
+    return true;
+  };
+  const auto branch = [&](const std::string& x, std::size_t& out) {
+    const auto it = n.branches.find(x);
+    if (it == n.branches.end()) return false;
+    out = it->second;
+    return true;
+  };
+  Functional f;
+  // dcad's own variable names: q_X, v_X (the current), p_X
+  if (s.size() > 2 && s[1] == '_' && (s[0] == 'q' || s[0] == 'v' || s[0] == 'p') && branch(s.substr(2), f.branch)) {
+    f.kind = s[0] == 'q' ? Functional::charge : s[0] == 'v' ? Functional::current : Functional::flux;
+    f.meaning = std::string(s[0] == 'q' ? "charge" : s[0] == 'v' ? "current" : "flux linkage") + " of " + deck.rlc.branches[f.branch].name;
+    return f;
+  }
+  // v(a) and v(a,b): node voltages; a bare node name as older raw files write it
+  if (s.size() > 3 && s.rfind("v(", 0) == 0 && s.back() == ')') {
+    const std::string in = s.substr(2, s.size() - 3);
+    const std::size_t comma = in.find(',');
+    const std::string a = in.substr(0, comma), b = comma == std::string::npos ? "0" : in.substr(comma + 1);
+    if (node(a, f.a) && node(b, f.b)) {
+      f.kind = Functional::potential;
+      f.meaning = comma == std::string::npos ? "potential of node " + a : "potential of node " + a + " minus node " + b;
+      return f;
+    }
+  } else if (node(s, f.a)) {
+    f.kind = Functional::potential;
+    f.meaning = "potential of node " + s;
+    return f;
+  }
+  // i(x), x#branch: the current through element x from its n+ to its n− (ngspice's and dcad's sign)
+  std::string el;
+  if (s.size() > 3 && s.rfind("i(", 0) == 0 && s.back() == ')') el = s.substr(2, s.size() - 3);
+  else if (s.size() > 7 && s.compare(s.size() - 7, 7, "#branch") == 0) el = s.substr(0, s.size() - 7);
+  if (!el.empty() && branch(el, f.branch)) {
+    f.kind = Functional::current;
+    f.meaning = "current of " + deck.rlc.branches[f.branch].name + " (n+ to n- through it)";
+    return f;
+  }
+  throw io::InputError(file + ": vector '" + name + "': expected v(node), v(node,node), i(element), element#branch or q_/v_/p_ names of " +
+                       deck.file + " (nodes: " + listed(n.node_list) + "; elements: " + listed(n.branch_list) + "), found none that names them");
+}
+
+double value(const Functional& f, const sr::BranchValues& bv, const Vec& e) {
+  const auto pot = [&](long node) { return node < 0 ? 0.0 : e(node); };
+  const auto b = static_cast<Eigen::Index>(f.branch);
+  switch (f.kind) {
+    case Functional::potential: return pot(f.a) - pot(f.b);
+    case Functional::charge: return bv.q(b);
+    case Functional::current: return bv.i(b);
+    case Functional::flux: return bv.p(b);
+  }
+  return 0;
+}
+
+}  // namespace
+
+WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+  if (p.form != io::Form::netlist)
+    throw io::InputError(p.netlist.file.empty() ? tr.file + ": check: expected a netlist as DECK for a waveform, found a case file"
+                                                : p.netlist.file + ": check: expected a netlist for a waveform");
+  const io::Netlist& deck = p.netlist;
+  if (!(opt.rtol >= 0) || !(opt.atol >= 0)) throw UsageError("--rtol and --atol: expected numbers >= 0");
+  if (tr.names.empty())
+    throw io::InputError(tr.file + ": expected at least one vector besides time (" + tr.format + "), found none: nothing to check" +
+                         (tr.format == "gnucap" ? " (gnucap runs .tran as it reads it: put .print before .tran)" : ""));
+  const Names names = names_of(deck);
+  std::vector<Functional> fs;
+  for (const std::string& name : tr.names) fs.push_back(functional(name, names, deck, tr.file));
+  if (!reference::pipeline::graph_route_holds(deck.rlc))
+    throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1), "
+                         "found another (negative or zero values, or k = 1): its waveform check is not implemented yet");
+  WaveformChecked out;
+  out.format = tr.format;
+  out.points = static_cast<long>(tr.time.size());
+  const double horizon = tr.time.back();
+  const double step = tr.time.size() > 1 && horizon > 0 ? horizon / static_cast<double>(tr.time.size() - 1) : 1.0;
+  SparseFlow flow(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
+  // exact values at every time point: right values, and left ones where they may differ (corners, t = 0)
+  const std::size_t nv = fs.size(), np = tr.time.size();
+  std::vector<std::vector<double>> right(nv, std::vector<double>(np)), left(nv, std::vector<double>(np));
+  std::vector<bool> two_sided(np, false);
+  for (std::size_t i = 0; i < np; ++i) {
+    const double t = tr.time[i];
+    flow.advance_to(t);
+    const sr::BranchValues bv = flow.values();
+    const Vec e = flow.node_potentials();
+    for (std::size_t k = 0; k < nv; ++k) right[k][i] = left[k][i] = value(fs[k], bv, e);
+    if (t == 0 || flow.corner(t)) {
+      two_sided[i] = true;
+      const sr::BranchValues bl = flow.values(true);
+      const Vec el = flow.node_potentials(true);
+      for (std::size_t k = 0; k < nv; ++k) left[k][i] = value(fs[k], bl, el);
+    }
+  }
+  out.error_estimate = flow.error_estimate();
+  out.certified = false;
+  out.certified_reason = "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " +
+                         io::float_text(out.error_estimate) + " of the state): values, not enclosures";
+  for (std::size_t k = 0; k < nv; ++k) {
+    WaveformVector v;
+    v.name = tr.names[k];
+    v.meaning = fs[k].meaning;
+    for (std::size_t i = 0; i < np; ++i) v.scale = std::max({v.scale, std::abs(right[k][i]), std::abs(left[k][i])});
+    const double tol = opt.atol + opt.rtol * v.scale;
+    bool first = true;
+    for (std::size_t i = 0; i < np; ++i) {
+      const double found = tr.values[k][i];
+      if (!std::isfinite(found)) {
+        v.agree = false;
+        v.max_error = HUGE_VAL, v.at = tr.time[i], v.exact = right[k][i], v.found = found;
+        break;
+      }
+      if (tr.time[i] == 0 && flow.jumps() > 0) {  // the simulator may show the state before the jump onto M_c
+        ++v.skipped_at_jump;
+        continue;
+      }
+      const double er = std::abs(found - right[k][i]), el = std::abs(found - left[k][i]);
+      const double err = two_sided[i] ? std::min(er, el) : er;
+      if (first || err > v.max_error) {
+        first = false;
+        v.max_error = err;
+        v.at = tr.time[i];
+        v.exact = two_sided[i] && el < er ? left[k][i] : right[k][i];
+        v.found = found;
+        v.at_corner = two_sided[i];
+      }
+    }
+    v.agree = v.agree && v.max_error <= tol;
+    out.agree = out.agree && v.agree;
+    out.vectors.push_back(v);
+  }
+  return out;
+}
+
+std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file, const WaveformOptions& o) {
+  std::ostringstream s;
+  s << "dcad check: " << waveform_file << " (" << c.format << ", " << c.points << " time points) against the exact flow of " << deck_file
+    << (c.agree ? ": agrees" : ": DISAGREES") << " (--rtol " << io::float_text(o.rtol) << " --atol " << io::float_text(o.atol)
+    << " of each vector's largest |exact|)\n";
+  std::size_t wide = 6;
+  for (const WaveformVector& v : c.vectors) wide = std::max(wide, v.name.size());
+  for (const WaveformVector& v : c.vectors) {
+    s << "  " << (v.agree ? "agrees    " : "DISAGREES ") << v.name << std::string(wide - v.name.size() + 1, ' ') << "largest error "
+      << io::float_text(v.max_error) << " (" << io::float_text(v.scale > 0 ? v.max_error / v.scale : 0.0) << " of " << io::float_text(v.scale)
+      << ") at t = " << io::float_text(v.at) << ": exact " << io::float_text(v.exact) << ", found " << io::float_text(v.found)
+      << (v.at_corner ? " (a source corner or t = 0: either one-sided value allowed)" : "") << "\n";
+    if (v.skipped_at_jump) s << "    t = 0 not compared: the state jumps onto M_c there (the simulator may show either side)\n";
+  }
+  s << "  certified: " << (c.certified ? "yes" : "no, " + c.certified_reason) << "\n";
+  return s.str();
+}
+
+std::string waveform_json(const WaveformChecked& c, const WaveformOptions& o) {
+  nlohmann::json vs = nlohmann::json::array();
+  for (const WaveformVector& v : c.vectors)
+    vs.push_back({{"name", v.name},   {"meaning", v.meaning}, {"max_error", v.max_error}, {"at", v.at},
+                  {"exact", v.exact}, {"found", v.found},     {"scale", v.scale},         {"agree", v.agree},
+                  {"at_corner", v.at_corner}, {"not_compared_at_jump", v.skipped_at_jump}});
+  nlohmann::json j = {{"agree", c.agree},   {"certified", c.certified}, {"certified_reason", c.certified_reason},
+                      {"format", c.format}, {"points", c.points},       {"rtol", o.rtol},
+                      {"atol", o.atol},     {"error_estimate", c.error_estimate}, {"vectors", vs}};
+  return j.dump(2);
+}
+
+}  // namespace dcad::api

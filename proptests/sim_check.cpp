@@ -1,0 +1,170 @@
+// `dcad check WAVEFORM DECK` on real simulators' output (issue 28): ngspice and gnucap run the decks of
+// cases/waveforms/, and dcad's verdict must be the independent derivation's (cases/waveforms/oracle.py:
+// each deck's ODE written by hand from Kirchhoff's laws, solved in closed form with mpmath — no dcad
+// code).  Also: one perturbed sample is caught, a truncated raw file and an unknown vector are bad input.
+#include "cli_run.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <regex>
+
+namespace {
+
+const std::string kDecks = std::string(DCAD_SOURCE_DIR) + "/cases/waveforms/";
+
+bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+int shell(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// The deck with `text` inserted before its .tran card (ngspice options; gnucap's .print, which must
+/// come before the .tran that gnucap runs as it reads it), the .tran card replaced by `tran` if given,
+/// and `control` (an ngspice .control block) before .end.
+std::string edited(const std::string& deck, const std::string& text, const std::string& tran = "", const std::string& control = "") {
+  std::istringstream in(slurp(kDecks + deck + ".cir"));
+  std::string out, line;
+  while (std::getline(in, line)) {
+    if (line.rfind(".tran", 0) == 0) {
+      if (!text.empty()) out += text + "\n";
+      if (!tran.empty()) line = tran;
+    }
+    if (line.rfind(".end", 0) == 0 && line.rfind(".ends", 0) != 0 && !control.empty()) out += control + "\n";
+    out += line + "\n";
+  }
+  return out;
+}
+
+struct SimRun {
+  std::string deck, simulator, settings;
+  std::string before_tran, tran;  ///< cards before .tran; a replacement .tran card
+  bool control = false;           ///< ngspice: `run` and `write` in a .control block instead of `-b -r`
+};
+
+/// Runs the simulator on the deck; the output file.
+std::string simulate(const SimRun& r) {
+  std::string tag = r.deck + "_" + r.simulator + "_" + r.settings;
+  for (char& ch : tag)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-') ch = '_';
+  const std::string out = temp_path(tag + ".out");
+  const std::string deck = write_temp(tag + ".cir", edited(r.deck, r.before_tran, r.tran, r.control ? ".control\nrun\nwrite " + out + "\n.endc" : ""));
+  if (r.simulator == "ngspice") shell("ngspice -b " + (r.control ? std::string() : "-r " + out + " ") + deck + " >" + temp_path(tag + ".log") + " 2>&1");
+  else shell("gnucap -b " + deck + " >" + out + " 2>&1");
+  return out;
+}
+
+}  // namespace
+
+// The corpus: each run's verdict from the independent derivation, and dcad's must be the same.  On
+// Debian 12 (ngspice-39, gnucap 2017.10.03) the derivation finds ngspice right on the RC pulse and on the
+// capacitor triangle at its defaults; with reltol=1e-7 it stops at the triangle's first pulse corner
+// ("timestep too small"): in batch (-r) its raw file has no point (bad input: exit 1 for both), from a
+// .control `run` it has the points up to the corner, the last one 5e4 V (wrong); wrong on the LC tank
+// after 1000 periods (trapezoidal phase drift: 52 %).  gnucap is right on the RC pulse and wrong on the
+// triangle's node voltages (the island's potential rings after each corner).
+TEST(SimulatorCheck, VerdictIsTheIndependentDerivations) {
+  if (!have("ngspice") || !have("gnucap")) GTEST_SKIP() << "ngspice and gnucap are installed by .ci/setup";
+  const std::string tight = ".options reltol=1e-7 abstol=1e-15 vntol=1e-12 chgtol=1e-20";
+  const std::vector<SimRun> runs{
+      {"rc-pulse", "ngspice", "default", "", "", false},
+      {"rc-pulse", "gnucap", "default", ".print tran v(in) v(out) i(R1)", "", false},
+      {"cap-triangle-inductor-cutset", "ngspice", "default", "", "", false},
+      {"cap-triangle-inductor-cutset", "ngspice", "reltol=1e-7 (batch)", tight, "", false},
+      {"cap-triangle-inductor-cutset", "ngspice", "reltol=1e-7 (.control run)", tight, "", true},
+      {"cap-triangle-inductor-cutset", "gnucap", "default", ".print tran v(a) v(b) v(c) i(L1) i(L2) i(L3)", "", false},
+      {"lc-tank-1000-periods", "ngspice", "default", "", "", false},
+  };
+  int wrong = 0, right = 0;
+  for (const SimRun& r : runs) {
+    const std::string out = simulate(r);
+    const int oracle = shell("/usr/bin/python3 " + kDecks + "oracle.py " + kDecks + r.deck + ".cir " + out + " >" + temp_path("oracle.txt") + " 2>&1");
+    ASSERT_TRUE(oracle == 0 || oracle == 1 || oracle == 3) << r.deck << " " << r.simulator << ": the oracle failed\n" << slurp(temp_path("oracle.txt"));
+    const Outcome c = run("check " + out + " " + kDecks + r.deck + ".cir");
+    EXPECT_EQ(c.rc, oracle) << r.deck << " on " << r.simulator << " (" << r.settings << ")\ndcad:\n" << c.out << c.err << "oracle:\n"
+                            << slurp(temp_path("oracle.txt"));
+    (oracle == 0 ? right : wrong) += oracle != 1;
+    std::printf("%-30s %-8s %-28s simulator %s\n", r.deck.c_str(), r.simulator.c_str(), r.settings.c_str(),
+                oracle == 0 ? "right" : oracle == 3 ? "WRONG" : "wrote no time point");
+  }
+  EXPECT_GT(wrong, 0);  // the corpus has runs to catch, and runs not to flag
+  EXPECT_GT(right, 0);
+}
+
+// One sample off by 1e-3 of its vector's scale is a disagreement at --rtol 1e-4 (the unperturbed run
+// agrees to 1e-5), named with its vector and time; the JSON has the CONTRACT's keys.
+TEST(SimulatorCheck, OnePerturbedSampleIsCaught) {
+  if (!have("gnucap")) GTEST_SKIP() << "gnucap is installed by .ci/setup";
+  const std::string out = simulate({"rc-pulse", "gnucap", "default", ".print tran v(in) v(out)", "", false});
+  const Outcome good = run("check " + out + " " + kDecks + "rc-pulse.cir --rtol 1e-4 --json");
+  ASSERT_EQ(good.rc, 0) << good.out << good.err;
+  const nlohmann::json j = nlohmann::json::parse(good.out);
+  for (const char* key : {"agree", "certified", "vectors"}) EXPECT_TRUE(j.contains(key)) << key;
+  ASSERT_EQ(j["vectors"].size(), 2u);
+  for (const auto& v : j["vectors"])
+    for (const char* key : {"name", "max_error", "at", "exact", "found", "scale", "agree"}) EXPECT_TRUE(v.contains(key)) << key;
+  // the row at t = 3u: v(out) times (1 + 1e-3/v(out)·scale) — one sample, 1e-3 of the scale off
+  std::istringstream in(slurp(out));
+  std::string text, line;
+  bool done = false;
+  while (std::getline(in, line)) {
+    std::istringstream w(line);
+    std::string t, vin, vout;
+    if (!done && (w >> t >> vin >> vout) && t == "3.u") {
+      const double scale = j["vectors"][1]["scale"].get<double>();
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.9g", std::stod(vout) + 1e-3 * scale);
+      line = " " + t + " " + vin + " " + buf;
+      done = true;
+    }
+    text += line + "\n";
+  }
+  ASSERT_TRUE(done) << "no row at t = 3u in gnucap's table";
+  const Outcome bad = run("check " + write_temp("perturbed.out", text) + " " + kDecks + "rc-pulse.cir --rtol 1e-4");
+  EXPECT_EQ(bad.rc, 3) << bad.out << bad.err;
+  EXPECT_NE(bad.out.find("DISAGREES v(out)"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("t = 3.0000000000000001e-06"), std::string::npos) << bad.out;
+}
+
+// Bad input is exit 1 with the file and what was expected: a raw file cut short, a vector the deck does
+// not have, a table without vectors.
+TEST(SimulatorCheck, BadWaveformsAreBadInput) {
+  if (!have("ngspice")) GTEST_SKIP() << "ngspice is installed by .ci/setup";
+  const std::string raw = simulate({"rc-pulse", "ngspice", "default", "", "", false});
+  const std::string all = slurp(raw);
+  const Outcome cut = run("check " + write_temp("cut.raw", all.substr(0, all.size() - 100)) + " " + kDecks + "rc-pulse.cir");
+  EXPECT_EQ(cut.rc, 1);
+  EXPECT_NE(cut.err.find("truncated"), std::string::npos) << cut.err;
+  const Outcome unknown = run("check " + write_temp("unknown.csv", "time,v(out),v(nowhere)\n0,0,0\n1e-6,0,0\n") + " " + kDecks + "rc-pulse.cir");
+  EXPECT_EQ(unknown.rc, 1);
+  EXPECT_NE(unknown.err.find("v(nowhere)"), std::string::npos) << unknown.err;
+  const Outcome none = run("check " + write_temp("none.csv", "time\n0\n1e-6\n") + " " + kDecks + "rc-pulse.cir");
+  EXPECT_EQ(none.rc, 1);
+  EXPECT_NE(none.err.find("at least one vector"), std::string::npos) << none.err;
+  const Outcome late = run("check " + write_temp("late.csv", "t,v(out)\n1e-6,0\n0,0\n") + " " + kDecks + "rc-pulse.cir");
+  EXPECT_EQ(late.rc, 1);
+  EXPECT_NE(late.err.find("nondecreasing"), std::string::npos) << late.err;
+}
+
+// The same waveform in every format the CONTRACT names reads to the same verdict and worst point:
+// ngspice's binary and ASCII raw, wrdata with and without a single scale, CSV with dcad's names.
+TEST(SimulatorCheck, EveryFormatReadsTheSameWaveform) {
+  if (!have("ngspice")) GTEST_SKIP() << "ngspice is installed by .ci/setup";
+  const std::string dir = temp_path("");
+  const std::string control = ".control\nrun\nwrite " + dir + "b.raw\nset filetype=ascii\nwrite " + dir + "a.raw\nset wr_vecnames\nwrdata " + dir +
+                              "w.txt v(out) i(v1)\nset wr_singlescale\nwrdata " + dir + "s.txt v(out) i(v1)\n.endc";
+  shell("ngspice -b " + write_temp("formats.cir", edited("rc-pulse", "", "", control)) + " >" + temp_path("formats.log") + " 2>&1");
+  std::vector<double> worst;
+  for (const char* f : {"b.raw", "a.raw", "w.txt", "s.txt"}) {
+    const Outcome c = run("check " + dir + f + " " + kDecks + "rc-pulse.cir --json");
+    ASSERT_EQ(c.rc, 0) << f << c.out << c.err;
+    const nlohmann::json j = nlohmann::json::parse(c.out);
+    for (const auto& v : j["vectors"])
+      if (v["name"] == "v(out)") worst.push_back(v["max_error"].get<double>() / v["scale"].get<double>());
+  }
+  ASSERT_EQ(worst.size(), 4u);
+  for (double w : worst) EXPECT_NEAR(w, worst[0], 1e-6) << "wrdata prints 8 digits: its worst error differs by its rounding only";
+}

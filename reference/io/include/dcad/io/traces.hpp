@@ -1,0 +1,34 @@
+// Another simulator's transient output (CONTRACT "Checking a simulator's waveform"): ngspice raw files
+// (binary and ASCII, from `-r` or `write`), ngspice `wrdata` tables (with `set wr_vecnames`), gnucap's
+// `.print tran` tables, and CSV whose first column is time.  Read as written — the file's own time
+// points and vector names; nothing is interpolated or renamed here.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace dcad::io {
+
+struct Traces {
+  std::string file;
+  std::string format;                       ///< "ngspice raw (binary)", "ngspice raw (ascii)", "ngspice wrdata", "gnucap", "csv"
+  std::vector<std::string> names;           ///< the vectors after time, as the file names them
+  std::vector<double> time;                 ///< the file's time points (nondecreasing)
+  std::vector<std::vector<double>> values;  ///< values[k][i]: vector k at time[i]
+};
+
+/// Reads FILE, recognising its format from its content.  Bad input (an unknown format, a truncated
+/// file, a non-numeric value, times that decrease, an AC or complex plot) is InputError naming the
+/// file, the line or byte offset, what was expected and what was found.
+Traces read_traces(const std::string& file);
+/// The same from text already read (`name` in messages).
+Traces parse_traces(const std::string& text, const std::string& name);
+
+/// Whether the file's content is JSON (a result for `dcad check RESULT FILE`) rather than traces.
+bool looks_like_json(const std::string& file);
+
+/// A number as gnucap prints it: a decimal with an optional scale letter (a f p n u m K Meg G T),
+/// e.g. "10.n", "-3.4567m", "1.2K".  False when `text` is not one.
+bool parse_scaled(const std::string& text, double& value);
+
+}  // namespace dcad::io

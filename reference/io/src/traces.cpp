@@ -1,0 +1,328 @@
+// Simulator output readers (dcad/io/traces.hpp).
+#include "dcad/io/traces.hpp"
+
+#include "dcad/io/input_error.hpp"
+#include "dcad/io/report.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace dcad::io {
+
+namespace {
+
+[[noreturn]] void bad(const std::string& where, const std::string& expected, const std::string& found) {
+  throw InputError(where + ": expected " + expected + ", found " + found);
+}
+
+std::string at_line(const std::string& file, std::size_t line) { return file + ":" + std::to_string(line); }
+
+std::string shown(const std::string& s) {
+  std::string t = s.size() > 60 ? s.substr(0, 60) + "…" : s;
+  return "'" + t + "'";
+}
+
+std::string trim(const std::string& s) {
+  std::size_t a = 0, b = s.size();
+  while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
+  while (b > a && std::isspace(static_cast<unsigned char>(s[b - 1]))) --b;
+  return s.substr(a, b - a);
+}
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> w;
+  std::string x;
+  while (in >> x) w.push_back(x);
+  return w;
+}
+
+/// The trimmed fields of a comma-separated line.
+std::vector<std::string> comma_fields(const std::string& l) {
+  std::vector<std::string> w;
+  std::size_t s = 0;
+  while (true) {
+    const std::size_t c = l.find(',', s);
+    w.push_back(trim(l.substr(s, c == std::string::npos ? std::string::npos : c - s)));
+    if (c == std::string::npos) return w;
+    s = c + 1;
+  }
+}
+
+/// A plain floating-point number (all of `text`), finite.
+bool plain(const std::string& text, double& v) {
+  if (text.empty()) return false;
+  const char* s = text.c_str();
+  char* end = nullptr;
+  v = std::strtod(s, &end);
+  return end == s + text.size() && std::isfinite(v);
+}
+
+/// Lines with their numbers (1-based), text split at '\n' (a trailing '\r' dropped).
+struct Lines {
+  std::vector<std::string> text;
+  explicit Lines(const std::string& all, std::size_t limit = std::string::npos) {
+    std::size_t s = 0;
+    const std::size_t end = std::min(limit, all.size());
+    while (s < end) {
+      std::size_t e = all.find('\n', s);
+      if (e == std::string::npos || e > end) e = end;
+      std::string l = all.substr(s, e - s);
+      if (!l.empty() && l.back() == '\r') l.pop_back();
+      text.push_back(l);
+      s = e + 1;
+    }
+  }
+};
+
+void check_times(const Traces& t, const std::string& where_first) {
+  if (t.time.empty()) bad(t.file, "at least one time point", "none");
+  for (std::size_t i = 0; i < t.time.size(); ++i) {
+    if (t.time[i] < 0) bad(where_first, "times t >= 0 (the flow starts at 0)", "t = " + float_text(t.time[i]) + " at point " + std::to_string(i + 1));
+    if (i && t.time[i] < t.time[i - 1])
+      bad(where_first, "nondecreasing times", "t = " + float_text(t.time[i]) + " after " + float_text(t.time[i - 1]) + " at point " + std::to_string(i + 1) + " (the data's line or row " + std::to_string(i + 1) + ")");
+  }
+}
+
+// ---------------------------------------------------------------- ngspice raw
+Traces raw(const std::string& text, const std::string& file) {
+  // plots follow one another; take the first transient one
+  std::size_t pos = 0;
+  std::size_t line_no = 0;
+  while (pos < text.size()) {
+    Traces t;
+    t.file = file;
+    std::string plotname, flags;
+    long nvars = -1, npoints = -1;
+    std::vector<std::string> names;
+    // header lines up to "Values:" or "Binary:"
+    bool binary = false, found_data = false;
+    while (pos < text.size()) {
+      std::size_t e = text.find('\n', pos);
+      if (e == std::string::npos) e = text.size();
+      std::string l = text.substr(pos, e - pos);
+      if (!l.empty() && l.back() == '\r') l.pop_back();
+      pos = e + 1;
+      ++line_no;
+      const std::string key = lower(trim(l.substr(0, l.find(':') == std::string::npos ? 0 : l.find(':') + 1)));
+      const std::string val = l.find(':') == std::string::npos ? "" : trim(l.substr(l.find(':') + 1));
+      if (key == "plotname:") plotname = val;
+      else if (key == "flags:") flags = lower(val);
+      else if (key == "no. variables:") {
+        double count = 0;
+        if (!plain(val, count) || (nvars = std::atol(val.c_str())) < 1) bad(at_line(file, line_no), "a positive number of variables", shown(val));
+      } else if (key == "no. points:") {
+        npoints = std::atol(val.c_str());
+        if (npoints < 0) bad(at_line(file, line_no), "a number of points", shown(val));
+      } else if (key == "variables:") {
+        if (nvars < 1) bad(at_line(file, line_no), "'No. Variables:' before 'Variables:'", "none");
+        for (long k = 0; k < nvars; ++k) {
+          std::size_t e2 = text.find('\n', pos);
+          if (e2 == std::string::npos) bad(at_line(file, line_no + 1), std::to_string(nvars) + " variable lines", "the end of the file");
+          const std::vector<std::string> w = words(text.substr(pos, e2 - pos));
+          pos = e2 + 1;
+          ++line_no;
+          if (w.size() < 3) bad(at_line(file, line_no), "'index name type'", shown(w.empty() ? "" : w[0]));
+          names.push_back(w[1]);
+        }
+      } else if (key == "values:" || key == "binary:") {
+        binary = key == "binary:";
+        found_data = true;
+        break;
+      }
+    }
+    if (!found_data) bad(file, "an ngspice raw file with 'Values:' or 'Binary:' after its header", "no data section");
+    if (npoints < 0 || names.empty()) bad(at_line(file, line_no), "'No. Points:' and 'Variables:' before the data", "neither");
+    const bool complex = flags.find("complex") != std::string::npos;
+    const bool transient = lower(plotname).find("transient") != std::string::npos;
+    const std::size_t per = static_cast<std::size_t>(names.size()) * (complex ? 2 : 1);
+    std::vector<double> data;
+    data.reserve(per * static_cast<std::size_t>(npoints));
+    if (binary) {
+      const std::size_t need = per * static_cast<std::size_t>(npoints) * sizeof(double);
+      if (text.size() - std::min(pos, text.size()) < need)
+        bad(file, std::to_string(npoints) + " points of " + std::to_string(per) + " doubles (" + std::to_string(need) + " bytes) after 'Binary:'",
+            std::to_string(text.size() - std::min(pos, text.size())) + " bytes: the file is truncated");
+      data.resize(per * static_cast<std::size_t>(npoints));
+      std::memcpy(data.data(), text.data() + pos, need);
+      pos += need;
+    } else {
+      for (long p = 0; p < npoints; ++p) {
+        for (std::size_t k = 0; k < names.size(); ++k) {
+          std::vector<std::string> w;
+          while (w.empty()) {  // ngspice separates points by a blank line
+            if (pos >= text.size()) bad(file, std::to_string(npoints) + " points", std::to_string(p) + ": the file is truncated");
+            std::size_t e = text.find('\n', pos);
+            if (e == std::string::npos) e = text.size();
+            w = words(text.substr(pos, e - pos));
+            pos = e + 1;
+            ++line_no;
+          }
+          if (k == 0) w.erase(w.begin());  // the point's index
+          if (complex) bad(at_line(file, line_no), "a real (transient) plot", "a complex one");
+          if (w.size() != 1)
+            bad(at_line(file, line_no), "one value of " + names[k], w.empty() ? "none" : shown(w[0]) + (w.size() > 1 ? " and more" : ""));
+          double v = 0;
+          if (!plain(w[0], v)) bad(at_line(file, line_no), "a number for " + names[k], shown(w[0]));
+          data.push_back(v);
+        }
+      }
+    }
+    if (!transient) continue;  // an operating point or another analysis before the transient plot
+    if (complex) bad(file, "a real transient plot", "complex values (flags: " + flags + ")");
+    if (lower(names[0]) != "time") bad(file, "time as the raw file's first variable", shown(names[0]));
+    t.format = binary ? "ngspice raw (binary)" : "ngspice raw (ascii)";
+    t.names.assign(names.begin() + 1, names.end());
+    t.values.assign(t.names.size(), std::vector<double>(static_cast<std::size_t>(npoints)));
+    for (long p = 0; p < npoints; ++p) {
+      const double* row = data.data() + static_cast<std::size_t>(p) * per;
+      if (!std::isfinite(row[0])) bad(file, "finite times", "a non-finite time at point " + std::to_string(p + 1));
+      t.time.push_back(std::abs(row[0]));  // ngspice marks a breakpoint's time negative in some versions
+      for (std::size_t k = 1; k < names.size(); ++k) t.values[k - 1][static_cast<std::size_t>(p)] = row[k];
+    }
+    check_times(t, file);
+    return t;
+  }
+  bad(file, "a transient plot in the ngspice raw file", "none (only other analyses)");
+}
+
+// ---------------------------------------------------------------- tables: wrdata, gnucap, CSV
+using Parse = bool (*)(const std::string&, double&);
+
+/// Rows of numbers after a header line `head` (1-based line `first`), split by `split`.
+Traces table(const Lines& lines, std::size_t head, const std::vector<std::string>& header, const std::string& file, const std::string& format,
+             Parse number, bool commas, bool stop_at_text) {
+  Traces t;
+  t.file = file;
+  t.format = format;
+  std::vector<std::vector<double>> cols(header.size());
+  for (std::size_t i = head + 1; i < lines.text.size(); ++i) {
+    const std::string l = trim(lines.text[i]);
+    if (l.empty()) continue;
+    const std::vector<std::string> w = commas ? comma_fields(l) : words(l);
+    double first = 0;
+    if (stop_at_text && !number(w[0], first)) break;  // gnucap: the next analysis or a message
+    if (w.size() != header.size())
+      bad(at_line(file, i + 1), std::to_string(header.size()) + " columns as in the header", std::to_string(w.size()));
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      double v = 0;
+      if (!number(w[k], v)) bad(at_line(file, i + 1), "a number in column " + std::to_string(k + 1) + " (" + header[k] + ")", shown(w[k]));
+      cols[k].push_back(v);
+    }
+  }
+  t.time = cols[0];
+  for (std::size_t k = 1; k < header.size(); ++k) {
+    t.names.push_back(header[k]);
+    t.values.push_back(cols[k]);
+  }
+  check_times(t, at_line(file, head + 2));
+  return t;
+}
+
+Traces wrdata(const Lines& lines, std::size_t head, const std::string& file) {
+  const std::vector<std::string> h = words(lines.text[head]);
+  // `set wr_singlescale`: time, then the vectors; otherwise (time, vector) pairs
+  bool pairs = h.size() >= 2 && h.size() % 2 == 0;
+  for (std::size_t k = 0; pairs && k < h.size(); k += 2) pairs = lower(h[k]) == "time";
+  Traces all = table(lines, head, h, file, "ngspice wrdata", plain, false, false);
+  if (!pairs) return all;
+  Traces t;
+  t.file = file;
+  t.format = all.format;
+  t.time = all.time;
+  for (std::size_t k = 1; k < h.size(); k += 2) {
+    if (k > 1) {  // the repeated time column must be the first one
+      const std::vector<double>& again = all.values[k - 2];
+      for (std::size_t i = 0; i < again.size(); ++i)
+        if (again[i] != t.time[i]) bad(at_line(file, head + 2 + i), "the same time in every (time, vector) pair", "t = " + std::to_string(again[i]) + " beside " + std::to_string(t.time[i]));
+    }
+    t.names.push_back(h[k]);
+    t.values.push_back(all.values[k - 1]);
+  }
+  return t;
+}
+
+}  // namespace
+
+bool parse_scaled(const std::string& text, double& value) {
+  std::size_t n = 0;
+  const char* s = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(s, &end);
+  if (end == s) return false;
+  n = static_cast<std::size_t>(end - s);
+  const std::string rest = text.substr(n);
+  double scale = 1;
+  if (rest.empty()) scale = 1;
+  else if (rest == "a") scale = 1e-18;
+  else if (rest == "f") scale = 1e-15;
+  else if (rest == "p") scale = 1e-12;
+  else if (rest == "n") scale = 1e-9;
+  else if (rest == "u") scale = 1e-6;
+  else if (rest == "m") scale = 1e-3;
+  else if (rest == "K" || rest == "k") scale = 1e3;
+  else if (rest == "Meg" || rest == "MEG" || rest == "meg") scale = 1e6;
+  else if (rest == "G") scale = 1e9;
+  else if (rest == "T") scale = 1e12;
+  else return false;
+  value = v * scale;
+  return std::isfinite(value);
+}
+
+Traces parse_traces(const std::string& text, const std::string& file) {
+  // raw files begin with "Title:" (binary data follows a text header: look at the header only)
+  const std::size_t lead = text.find_first_not_of(" \t\r\n");
+  if (lead == std::string::npos) bad(file, "a simulator's output (ngspice raw or wrdata, gnucap .print, CSV)", "an empty file");
+  if (lower(text.substr(lead, 6)) == "title:") return raw(text, file);
+  const std::size_t binary_at = text.find("\nBinary:");
+  const Lines lines(text, binary_at == std::string::npos ? std::string::npos : binary_at);
+  for (std::size_t i = 0; i < lines.text.size(); ++i) {
+    const std::string l = trim(lines.text[i]);
+    if (l.empty()) continue;
+    if (lower(l.substr(0, 5)) == "#time") {  // gnucap: "#Time  v(out) ...", after its banner
+      std::vector<std::string> h = words(l);
+      h[0] = "time";
+      return table(lines, i, h, file, "gnucap", parse_scaled, false, true);
+    }
+    const std::vector<std::string> w = words(l);
+    double v = 0;
+    const std::string first = l.find(',') == std::string::npos ? "" : lower(trim(l.substr(0, l.find(','))));
+    if (first == "time" || first == "t") {  // CSV: the first column is time
+      return table(lines, i, comma_fields(l), file, "csv", plain, true, false);
+    }
+    if (lower(w[0]) == "time") return wrdata(lines, i, file);
+    if (plain(w[0], v))
+      bad(at_line(file, i + 1), "a header line naming the vectors (ngspice: `set wr_vecnames` before `wrdata`; CSV: a header row whose first column is time)",
+          "numbers");
+    // gnucap's banner and the deck's title come before its table
+    if (i > 40) break;
+  }
+  bad(file, "a simulator's output: an ngspice raw file (Title: …), a wrdata table with `set wr_vecnames`, gnucap's .print table (#Time …) or CSV with a time column",
+      "none of these");
+}
+
+Traces read_traces(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file + ": expected a readable file, found none");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return parse_traces(s.str(), file);
+}
+
+bool looks_like_json(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  char ch = 0;
+  while (in.get(ch))
+    if (!std::isspace(static_cast<unsigned char>(ch))) return ch == '{' || ch == '[';
+  return false;
+}
+
+}  // namespace dcad::io
