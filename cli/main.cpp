@@ -58,7 +58,7 @@ int solve_files(const std::vector<std::string>& files, dcad::api::Backend backen
 }
 
 /// `dcad cases list|show|export|freeze`: the corpus functions of dcad::api, printed.
-int cases_command(const std::string& action, const std::vector<std::string>& args) {
+int cases_command(const std::string& action, const std::vector<std::string>& args, bool waveforms) {
   if (action == "list") {
     for (const dcad::api::CaseEntry& e : dcad::api::list_cases()) std::cout << e.file << "\t" << e.summary << "\n";
     return 0;
@@ -66,6 +66,12 @@ int cases_command(const std::string& action, const std::vector<std::string>& arg
   if (action == "show") {
     if (args.empty()) throw dcad::io::InputError("dcad cases show: expected a case name, found nothing");
     std::cout << dcad::api::show_case(args[0]);
+    return 0;
+  }
+  if (action == "export" && waveforms) {
+    if (args.empty()) throw dcad::io::InputError("dcad cases export --waveforms: expected a directory, found nothing");
+    const int n = dcad::api::export_waveforms(args[0], std::cerr);
+    std::cout << "exported " << n << " decks of cases/waveforms with their exact waveforms (NAME.csv, ngspice's vector names) to " << args[0] << "\n";
     return 0;
   }
   if (action == "export") {
@@ -163,6 +169,9 @@ int main(int argc, char** argv) {
   check->add_option("--initial", check_initial, "waveforms: the simulator's initial state: deck (its .tran), op or uic")
       ->check(CLI::IsMember({"deck", "op", "uic"}));
   check->add_flag("--json", check_json, "waveforms: the report as JSON");
+  std::string check_png, check_vars;
+  check->add_option("--plot", check_png, "waveforms: also draw the simulator's and the exact waveforms, the worst point marked, as a PNG (gnuplot)");
+  check->add_option("--plot-vars", check_vars, "waveforms: comma-separated vectors to plot (default: the one with the largest relative error)");
 
   std::string cases_action;
   std::vector<std::string> cases_args;
@@ -172,6 +181,8 @@ int main(int argc, char** argv) {
                "reference's expectations; DCAD_CASES overrides the directory).");
   cases->add_option("ACTION", cases_action, "list, show, export or freeze")->required()->check(CLI::IsMember({"list", "show", "export", "freeze"}));
   cases->add_option("ARGS", cases_args, "NAME, DIR or FILE [NAME]");
+  bool cases_waveforms = false;
+  cases->add_flag("--waveforms", cases_waveforms, "export: the waveform corpus (cases/waveforms) with each deck's exact waveforms as CSV under ngspice's vector names");
 
   try {
     app.parse(argc, argv);
@@ -206,12 +217,59 @@ int main(int argc, char** argv) {
       }
       return solve_files(solve_files_list, dcad::api::backend_named(solve_backend), parts, solve_json, solve_lines, std::cout, std::cerr);
     }
-    if (cases->parsed()) return cases_command(cases_action, cases_args);
+    if (cases->parsed()) return cases_command(cases_action, cases_args, cases_waveforms);
     if (check->parsed() && !dcad::io::looks_like_json(check_result_file)) {
       wave_opt.initial = check_initial == "op" ? dcad::api::Initial::op : check_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
       const dcad::io::Traces traces = dcad::io::read_traces(check_result_file);
+      wave_opt.keep_exact = !check_png.empty();
+      std::vector<std::size_t> plotted;  // vectors to plot, by index
+      if (!check_vars.empty()) {
+        std::istringstream in(check_vars);
+        for (std::string name; std::getline(in, name, ',');) {
+          std::size_t k = 0;
+          while (k < traces.names.size() && traces.names[k] != name) ++k;
+          if (k == traces.names.size()) {
+            std::cerr << "dcad check: --plot-vars: expected vectors of " << check_result_file << ", found \"" << name << "\"\n";
+            return 2;
+          }
+          plotted.push_back(k);
+        }
+      }
       const dcad::api::WaveformChecked w = dcad::api::check_waveform(traces, dcad::io::read_problem(check_file), wave_opt, std::cerr);
       std::cout << (check_json ? dcad::api::waveform_json(w, wave_opt) + "\n" : dcad::api::waveform_text(w, check_result_file, check_file, wave_opt));
+      if (!check_png.empty() && !w.vectors.empty()) {
+        if (plotted.empty()) {  // the worst vector, relative to its scale
+          std::size_t worst = 0;
+          const auto rel = [&](std::size_t k) { return w.vectors[k].scale > 0 ? w.vectors[k].max_error / w.vectors[k].scale : w.vectors[k].max_error; };
+          for (std::size_t k = 1; k < w.vectors.size(); ++k)
+            if (rel(k) > rel(worst)) worst = k;
+          plotted.push_back(worst);
+        }
+        const std::string csv = check_png + ".csv";
+        {
+          std::ofstream f(csv);
+          f.precision(17);
+          f << "t";
+          for (std::size_t k : plotted) f << "," << traces.names[k] << "," << traces.names[k] << " (exact)";
+          f << "\n";
+          for (std::size_t i = 0; i < traces.time.size(); ++i) {
+            f << traces.time[i];
+            for (std::size_t k : plotted) f << "," << traces.values[k][i] << "," << w.exact[k][i];
+            f << "\n";
+          }
+        }
+        std::vector<std::string> names;
+        std::vector<double> wt, wf;
+        for (std::size_t k : plotted) {
+          names.push_back(traces.names[k] + (w.vectors[k].agree ? " (agrees)" : " (DISAGREES)"));
+          wt.push_back(w.vectors[k].at);
+          wf.push_back(w.vectors[k].found);
+        }
+        const std::string why = dcad::cli::plot_check_png(csv, names, wt, wf, check_png, check_result_file + " against the exact flow of " + check_file);
+        std::remove(csv.c_str());
+        if (!why.empty()) std::cerr << "dcad check: --plot: " << why << "\n";
+        else std::cerr << "dcad check: plot written to " << check_png << "\n";
+      }
       return w.agree ? 0 : 3;
     }
     if (check->parsed()) {

@@ -168,3 +168,19 @@ TEST(SimulatorCheck, EveryFormatReadsTheSameWaveform) {
   ASSERT_EQ(worst.size(), 4u);
   for (double w : worst) EXPECT_NEAR(w, worst[0], 1e-6) << "wrdata prints 8 digits: its worst error differs by its rounding only";
 }
+
+// `dcad cases export --waveforms DIR`: the corpus's exact waveforms, under ngspice's names, are the
+// independent derivation's to 1e-9 of each vector's scale at every row (far below any simulator's
+// error, far above either's rounding) — and `dcad check` of them agrees.
+TEST(SimulatorCheck, ExportedWaveformsAreTheOracles) {
+  const std::string dir = temp_path("exported");
+  const Outcome e = run("cases export --waveforms " + dir);
+  ASSERT_EQ(e.rc, 0) << e.err;
+  for (const char* deck : {"rc-pulse", "cap-triangle-inductor-cutset", "lc-tank-1000-periods"}) {
+    const std::string csv = dir + "/" + deck + ".csv";
+    const int oracle = shell("/usr/bin/python3 " + kDecks + "oracle.py " + kDecks + deck + ".cir " + csv + " --rtol 1e-9 >" + temp_path("oracle.txt") + " 2>&1");
+    EXPECT_EQ(oracle, 0) << deck << "\n" << slurp(temp_path("oracle.txt"));
+    const Outcome c = run("check " + csv + " " + kDecks + deck + ".cir --rtol 1e-12");
+    EXPECT_EQ(c.rc, 0) << deck << c.out << c.err;
+  }
+}

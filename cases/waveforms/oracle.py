@@ -10,7 +10,7 @@ either side is accepted there, as the CONTRACT says.
     /usr/bin/python3 cases/waveforms/oracle.py DECK.cir RAW [--rtol 1e-3]
 prints the verdict per vector and exits 0 (every vector agrees) or 3 (one does not), like `dcad check`;
 1 when the file has no time point.
-RAW is an ngspice raw file (binary or ASCII) or gnucap's `.print tran` output.
+RAW is an ngspice raw file (binary or ASCII), gnucap's `.print tran` output, or CSV with a time column.
 """
 import bisect
 import math
@@ -85,6 +85,13 @@ def read_gnucap(path):
     return names, rows
 
 
+def read_csv(path):
+    """CSV whose first column is time (`dcad cases export --waveforms`)."""
+    lines = open(path).read().split()
+    names = [x.lower() for x in lines[0].split(",")]
+    return names, [[float(x) for x in line.split(",")] for line in lines[1:]]
+
+
 # ------------------------------------------------------------------ piecewise-linear sources
 def pulse(v1, v2, td, tr, tf, pw, per):
     """(breakpoints, value(t), slope(t, left)) of SPICE's PULSE over its first periods."""
@@ -101,8 +108,8 @@ def pulse(v1, v2, td, tr, tf, pw, per):
         return mpf(v1)
 
     def slope(t, left=False):
-        if left:  # the slope on the piece that ends at t
-            t = t - mpf("1e-25")
+        # the slope on the piece that ends at t (left) or starts there: a corner's own value is ambiguous
+        t = t - mpf("1e-25") if left else t + mpf("1e-25")
         if t < td:
             return mpf(0)
         s = (t - td) % per
@@ -241,7 +248,8 @@ def main():
     deck, raw = args
     name = deck.rsplit("/", 1)[-1].rsplit(".", 1)[0]
     system, outputs = DECKS[name]()
-    names, rows = read_raw(raw) if open(raw, "rb").read(6).lower() == b"title:" else read_gnucap(raw)
+    head = open(raw, "rb").read(6).lower()
+    names, rows = read_raw(raw) if head == b"title:" else read_csv(raw) if head.startswith(b"time,") else read_gnucap(raw)
     if not rows or not names:
         print("no time point in " + raw)
         sys.exit(1)

@@ -202,6 +202,11 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
         v.at_corner = two_sided[i];
       }
     }
+    if (opt.keep_exact) {
+      out.exact.emplace_back(np);
+      for (std::size_t i = 0; i < np; ++i)  // the side the simulator is nearer at a corner
+        out.exact.back()[i] = std::abs(tr.values[k][i] - left[k][i]) < std::abs(tr.values[k][i] - right[k][i]) ? left[k][i] : right[k][i];
+    }
     v.agree = v.agree && v.max_error <= tol;
     out.agree = out.agree && v.agree;
     out.vectors.push_back(v);

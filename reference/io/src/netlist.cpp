@@ -453,6 +453,16 @@ class Flattener {
       for (std::size_t k = 1; k < tok.size(); ++k) uic = uic || lower(tok[k]) == "uic";
       out.tran = uic ? Netlist::Transient::uic : Netlist::Transient::op;
       out.tran_where = l.where();
+      std::vector<std::string> times;  // .tran TSTEP TSTOP [TSTART [TMAX]] [UIC]
+      for (std::size_t k = 1; k < tok.size(); ++k)
+        if (lower(tok[k]) != "uic") times.push_back(tok[k]);
+      try {
+        if (times.size() >= 2) {
+          out.tran_step = parse_spice_value(times[0]);
+          out.tran_stop = parse_spice_value(times[1]);
+        }
+      } catch (const std::invalid_argument&) {  // a parameter expression: not needed by the circuit
+      }
     }
     if (std::find(analysis.begin(), analysis.end(), head) != analysis.end()) {
       out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged" +

@@ -105,6 +105,7 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
 struct WaveformOptions {
   double rtol = 1e-3, atol = 0;  ///< a vector agrees where |found − exact| ≤ atol + rtol · max |exact| over the run
   Initial initial = Initial::deck;
+  bool keep_exact = false;       ///< also return the exact values at every time point (for a plot)
 };
 struct WaveformVector {
   std::string name;      ///< as the file names it
@@ -125,6 +126,7 @@ struct WaveformChecked {
   long points = 0;                ///< time points in the file
   double error_estimate = 0;      ///< the exact flow's own error estimate (relative to the state)
   std::vector<WaveformVector> vectors;
+  std::vector<std::vector<double>> exact;  ///< with keep_exact: exact[k][i], vector k at the file's time i (the value compared)
 };
 /// InputError for an unreadable file, a vector name that DECK cannot map, or a circuit outside the
 /// route that evaluates its flow.
@@ -144,6 +146,10 @@ std::vector<CaseEntry> list_cases();
 std::string show_case(const std::string& name);
 /// Every case, NAME.expected.json (the reference's result) and result.schema.json into `dir`; the count.
 int export_cases(const std::string& dir);
+/// The waveform corpus (cases/waveforms/*.cir) into `dir`: per deck NAME.cir and NAME.csv — the exact
+/// waveforms on the deck's .tran grid (TSTEP to TSTOP) under ngspice's vector names (v(node) for every
+/// node, i(x) for inductors and voltage sources) — for other simulators' CI; the count.
+int export_waveforms(const std::string& dir, std::ostream& log);
 /// A case file, netlist or property log (its "dcad case: {…}" line) → cases/NAME with the reference's
 /// expectations; returns what was written.
 std::string freeze_case(const std::string& from, const std::string& name = "");

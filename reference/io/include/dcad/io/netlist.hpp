@@ -30,6 +30,7 @@ struct Netlist {
   enum class Transient { none, uic, op };
   Transient tran = Transient::none;
   std::string tran_where;
+  std::optional<Rational> tran_step, tran_stop;  ///< the .tran card's TSTEP and TSTOP where they are numbers
   /// `.ic v(node)=value` by node index (ground excluded): with uic capacitor voltages, without it the
   /// voltages the operating point holds.
   std::vector<std::pair<long, Rational>> node_ic;
