@@ -117,6 +117,10 @@ struct WaveformVector {
   bool agree = true;
   bool at_corner = false;         ///< the worst point is a source corner (either one-sided value was allowed)
   long skipped_at_jump = 0;       ///< points at t = 0 after a jump onto M_c, not compared
+  /// how far dcad's own value may be off: the flow's error estimate times the largest value of the
+  /// vector's kind over the run (every node potential for a voltage, every branch current for a
+  /// current …); a difference within it is never called a disagreement
+  double exact_uncertainty = 0;
 };
 struct WaveformChecked {
   bool agree = true;              ///< exit 0 (true) or 3
