@@ -5,14 +5,14 @@
 # about 10^4 rows) saves 20 vectors (10 node voltages, 10 inductor currents) to a binary raw file; dcad
 # checks it.  One process per run, the same run for every size.
 #   cmake -S . -B build && cmake --build build -j2 --target dcad
-#   bash bench/check_waveform.sh [build]
+#   bash bench/check_waveform.sh [build]          (SIZES="5 15" for a subset)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 work=$(mktemp -d)
 csv=bench/results/check_waveform.csv
-echo "K,branches,rows,vectors,ngspice_seconds,check_seconds,check_peak_mb,verdict" > "$csv"
-for K in 5 15 30 60; do
+[ -n "${SIZES:-}" ] || echo "K,branches,rows,vectors,ngspice_seconds,check_seconds,check_peak_mb,verdict" > "$csv"
+for K in ${SIZES:-5 15 30 60}; do
   deck=$work/grid$K.cir
   awk -v k="$K" 'BEGIN { print "RLC power grid " k "x" k " with a 1 A load"; print "Vdd vdd 0 DC 1.2"; print "Rs vdd g_1_1 10m";
     for (i = 1; i <= k; i++) for (j = 1; j <= k; j++) {
@@ -32,8 +32,11 @@ for K in 5 15 30 60; do
   set -e
   read -r secs kb < <(tail -1 "$work/time$K")
   rows=$(grep -o '[0-9]* time points' "$work/check$K.txt" | cut -d' ' -f1)
-  vectors=$(grep -cE '^  (agrees|DISAGREES)' "$work/check$K.txt" || true)
-  verdict=$([ $rc -eq 0 ] && echo agrees || ([ $rc -eq 3 ] && echo disagrees || echo "exit $rc"))
+  vectors=$(grep -cE '^  (agrees|DISAGREES|UNDECIDED)' "$work/check$K.txt" || true)
+  nd=$(grep -cE '^  DISAGREES' "$work/check$K.txt" || true)
+  nu=$(grep -cE '^  UNDECIDED' "$work/check$K.txt" || true)
+  verdict=$([ $rc -eq 0 ] && echo agrees || ([ $rc -eq 3 ] && echo "exit 3: $nd disagree $nu undecided" || echo "exit $rc"))
   echo "$K,$branches,$rows,$vectors,$(echo "$t1 - $t0" | bc),$secs,$((kb / 1024)),$verdict" | tee -a "$csv"
+  [ $rc -eq 0 ] || grep -A1 -E "DISAGREES|UNDECIDED" "$work/check$K.txt" | head -12  # what disagrees, and by how much
 done
 rm -rf "$work"

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -45,16 +46,21 @@ std::vector<std::string> words(const std::string& line) {
   return w;
 }
 
-/// The trimmed fields of a comma-separated line.
+/// The trimmed fields of a comma-separated line; commas inside parentheses or double quotes do not
+/// split (a header's "v(in,out)"), and the quotes are removed.
 std::vector<std::string> comma_fields(const std::string& l) {
-  std::vector<std::string> w;
-  std::size_t s = 0;
-  while (true) {
-    const std::size_t c = l.find(',', s);
-    w.push_back(trim(l.substr(s, c == std::string::npos ? std::string::npos : c - s)));
-    if (c == std::string::npos) return w;
-    s = c + 1;
+  std::vector<std::string> w(1);
+  int depth = 0;
+  bool quoted = false;
+  for (char ch : l) {
+    if (ch == '"') quoted = !quoted;
+    else if (!quoted && ch == '(') ++depth, w.back() += ch;
+    else if (!quoted && ch == ')') --depth, w.back() += ch;
+    else if (!quoted && depth <= 0 && ch == ',') w.emplace_back();
+    else w.back() += ch;
   }
+  for (std::string& f : w) f = trim(f);
+  return w;
 }
 
 /// A plain floating-point number (all of `text`), finite.
@@ -83,12 +89,13 @@ struct Lines {
   }
 };
 
-void check_times(const Traces& t, const std::string& where_first) {
+/// Times t ≥ 0, nondecreasing; `line_of[i]` is point i's line in the file (tables), else the point's number is named.
+void check_times(const Traces& t, const std::vector<std::size_t>& line_of = {}) {
   if (t.time.empty()) bad(t.file, "at least one time point", "none");
+  const auto where = [&](std::size_t i) { return line_of.empty() ? t.file + ": point " + std::to_string(i + 1) : at_line(t.file, line_of[i]); };
   for (std::size_t i = 0; i < t.time.size(); ++i) {
-    if (t.time[i] < 0) bad(where_first, "times t >= 0 (the flow starts at 0)", "t = " + float_text(t.time[i]) + " at point " + std::to_string(i + 1));
-    if (i && t.time[i] < t.time[i - 1])
-      bad(where_first, "nondecreasing times", "t = " + float_text(t.time[i]) + " after " + float_text(t.time[i - 1]) + " at point " + std::to_string(i + 1) + " (the data's line or row " + std::to_string(i + 1) + ")");
+    if (t.time[i] < 0) bad(where(i), "times t >= 0 (the flow starts at 0)", "t = " + float_text(t.time[i]));
+    if (i && t.time[i] < t.time[i - 1]) bad(where(i), "nondecreasing times", "t = " + float_text(t.time[i]) + " after " + float_text(t.time[i - 1]));
   }
 }
 
@@ -144,11 +151,16 @@ Traces raw(const std::string& text, const std::string& file) {
     const bool complex = flags.find("complex") != std::string::npos;
     const bool transient = lower(plotname).find("transient") != std::string::npos;
     const std::size_t per = static_cast<std::size_t>(names.size()) * (complex ? 2 : 1);
+    if (complex && transient) bad(file, "a real transient plot", "complex values (flags: " + flags + ")");
     std::vector<double> data;
+    const std::size_t left = text.size() - std::min(pos, text.size());
+    if (static_cast<double>(npoints) * static_cast<double>(per) * (binary ? 8.0 : 2.0) > static_cast<double>(left))  // 2 bytes: a digit and a separator
+      bad(file, std::to_string(npoints) + " points of " + std::to_string(per) + " values after '" + (binary ? "Binary:" : "Values:") + "' (the header's count)",
+          std::to_string(left) + " bytes: the file is truncated");
     data.reserve(per * static_cast<std::size_t>(npoints));
     if (binary) {
       const std::size_t need = per * static_cast<std::size_t>(npoints) * sizeof(double);
-      if (text.size() - std::min(pos, text.size()) < need)
+      if (left < need)
         bad(file, std::to_string(npoints) + " points of " + std::to_string(per) + " doubles (" + std::to_string(need) + " bytes) after 'Binary:'",
             std::to_string(text.size() - std::min(pos, text.size())) + " bytes: the file is truncated");
       data.resize(per * static_cast<std::size_t>(npoints));
@@ -176,8 +188,14 @@ Traces raw(const std::string& text, const std::string& file) {
         }
       }
     }
+    // after the points: nothing, or the next plot's header (the header's count is the truth of the data)
+    const std::size_t next = text.find_first_not_of(" \t\r\n", std::min(pos, text.size()));
+    if (next != std::string::npos && lower(text.substr(next, 6)) != "title:" && lower(text.substr(next, 9)) != "plotname:")
+      bad(file, std::to_string(npoints) + " points as 'No. Points:' says, then the end of the file or another plot",
+          "more data after them (" + std::to_string(text.size() - next) + " bytes)");
     if (!transient) continue;  // an operating point or another analysis before the transient plot
-    if (complex) bad(file, "a real transient plot", "complex values (flags: " + flags + ")");
+    if (next != std::string::npos && lower(text.substr(std::min(pos, text.size()))).find("transient") != std::string::npos)
+      bad(file, "one transient plot (dcad checks one run against its deck)", "another transient plot after '" + plotname + "': write one plot per file");
     if (lower(names[0]) != "time") bad(file, "time as the raw file's first variable", shown(names[0]));
     t.format = binary ? "ngspice raw (binary)" : "ngspice raw (ascii)";
     t.names.assign(names.begin() + 1, names.end());
@@ -188,7 +206,7 @@ Traces raw(const std::string& text, const std::string& file) {
       t.time.push_back(std::abs(row[0]));  // ngspice marks a breakpoint's time negative in some versions
       for (std::size_t k = 1; k < names.size(); ++k) t.values[k - 1][static_cast<std::size_t>(p)] = row[k];
     }
-    check_times(t, file);
+    check_times(t);
     return t;
   }
   bad(file, "a transient plot in the ngspice raw file", "none (only other analyses)");
@@ -204,6 +222,7 @@ Traces table(const Lines& lines, std::size_t head, const std::vector<std::string
   t.file = file;
   t.format = format;
   std::vector<std::vector<double>> cols(header.size());
+  std::vector<std::size_t> line_of;
   for (std::size_t i = head + 1; i < lines.text.size(); ++i) {
     const std::string l = trim(lines.text[i]);
     if (l.empty()) continue;
@@ -217,13 +236,14 @@ Traces table(const Lines& lines, std::size_t head, const std::vector<std::string
       if (!number(w[k], v)) bad(at_line(file, i + 1), "a number in column " + std::to_string(k + 1) + " (" + header[k] + ")", shown(w[k]));
       cols[k].push_back(v);
     }
+    line_of.push_back(i + 1);
   }
   t.time = cols[0];
   for (std::size_t k = 1; k < header.size(); ++k) {
     t.names.push_back(header[k]);
     t.values.push_back(cols[k]);
   }
-  check_times(t, at_line(file, head + 2));
+  check_times(t, line_of);
   return t;
 }
 
@@ -282,11 +302,14 @@ Traces parse_traces(const std::string& text, const std::string& file) {
   const std::size_t lead = text.find_first_not_of(" \t\r\n");
   if (lead == std::string::npos) bad(file, "a simulator's output (ngspice raw or wrdata, gnucap .print, CSV)", "an empty file");
   if (lower(text.substr(lead, 6)) == "title:") return raw(text, file);
+  const bool complete = text.back() == '\n';  // ngspice's and gnucap's tables end every line
   const std::size_t binary_at = text.find("\nBinary:");
   const Lines lines(text, binary_at == std::string::npos ? std::string::npos : binary_at);
   for (std::size_t i = 0; i < lines.text.size(); ++i) {
     const std::string l = trim(lines.text[i]);
     if (l.empty()) continue;
+    if (!complete && (lower(l.substr(0, 5)) == "#time" || lower(words(l)[0]) == "time") && l.find(',') == std::string::npos)
+      bad(file, "a table whose last line ends with a newline, as ngspice and gnucap write them", "a last line without one: the file is truncated");
     if (lower(l.substr(0, 5)) == "#time") {  // gnucap: "#Time  v(out) ...", after its banner
       std::vector<std::string> h = words(l);
       h[0] = "time";
@@ -294,7 +317,7 @@ Traces parse_traces(const std::string& text, const std::string& file) {
     }
     const std::vector<std::string> w = words(l);
     double v = 0;
-    const std::string first = l.find(',') == std::string::npos ? "" : lower(trim(l.substr(0, l.find(','))));
+    const std::string first = l.find(',') == std::string::npos ? "" : lower(comma_fields(l)[0]);
     if (first == "time" || first == "t") {  // CSV: the first column is time
       return table(lines, i, comma_fields(l), file, "csv", plain, true, false);
     }
@@ -310,6 +333,8 @@ Traces parse_traces(const std::string& text, const std::string& file) {
 }
 
 Traces read_traces(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw InputError(file + ": expected a simulator's output file, found a directory");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file + ": expected a readable file, found none");
   std::ostringstream s;

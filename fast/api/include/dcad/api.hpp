@@ -119,8 +119,11 @@ struct WaveformVector {
   long skipped_at_jump = 0;       ///< points at t = 0 after a jump onto M_c, not compared
   /// how far dcad's own value may be off: the flow's error estimate times the largest value of the
   /// vector's kind over the run (every node potential for a voltage, every branch current for a
-  /// current …); a difference within it is never called a disagreement
+  /// current …)
   double exact_uncertainty = 0;
+  /// false when the difference lies within exact_uncertainty of the tolerance: dcad cannot tell (then
+  /// agree is false too — an exit 0 is never a guess — and the report says to raise --atol)
+  bool decided = true;
 };
 struct WaveformChecked {
   bool agree = true;              ///< exit 0 (true) or 3
