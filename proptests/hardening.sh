@@ -15,17 +15,17 @@ ctest --test-dir build-asan -j2 --output-on-failure
 
 # seed corpora: case files, netlists, and dcad's own results as results to check
 work=build-asan/fuzz
-rm -rf "$work" && mkdir -p "$work"/{case,netlist,result}
+rm -rf "$work" && mkdir -p "$work"/{case,netlist,result,waveform}
 cp cases/*.json "$work/case/"
 cp cases/*.cir "$work/netlist/"
-for t in case netlist result; do  # inputs that once crashed a reader (kept as seeds, and as tests)
+for t in case netlist result waveform; do  # inputs that once crashed a reader, and seeds (kept as seeds, and as tests)
   [ -d "proptests/fuzz/regressions/$t" ] && cp proptests/fuzz/regressions/$t/* "$work/$t/"
 done
 for f in cases/harmonic-oscillator.json cases/gauge-free-particle.json cases/rounded-minus-one.json; do
   for b in reference fast certified; do build-asan/dcad solve "$f" --json --backend "$b" > "$work/result/$(basename "$f" .json)-$b.json" || true; done
 done
 status=0
-for t in case netlist result; do
+for t in case netlist result waveform; do
   log="$work/fuzz_$t.log"
   echo "== fuzz_$t: ${seconds} s"
   if ! build-asan/proptests/fuzz/fuzz_$t -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=65536 \
