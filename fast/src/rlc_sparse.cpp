@@ -304,7 +304,7 @@ Vec Model::from_charges(const Vec& q_before, const Vec& i_before, const double* 
   return x;
 }
 
-Vec Model::operating_point(const double* sigma) const {
+Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long, double>>& held) const {
   // inductors are shorts: they join supernodes into DC nodes, with offsets E_from − E_to = −o_L σ
   const Eigen::Map<const Vec> s(sigma, static_cast<Eigen::Index>(c_.sources));
   const std::size_t nv = nsup_ + 1;
@@ -327,10 +327,29 @@ Vec Model::operating_point(const double* sigma) const {
     t[e.child] = t[e.parent] + (e.child == ends[e.edge].first ? d : -d);
   }
   // resistors on the DC nodes: a Laplacian grounded at ground's DC node
+  // `.ic` holds: a held node fixes its DC node's potential (root level P with e_node = P + t + o_node σ)
+  const Vec on = on_ * s;
+  std::vector<double> fixed(nv, 0.0);
+  std::vector<bool> is_fixed(nv, false);
+  std::vector<long> hold_at(nv, -1);  // the vertex whose hold source feeds the DC node
+  for (const auto& [node, value] : held) {
+    const std::size_t v = sv(node), r = fl.root[v];
+    const double p = value - t[v] - on(node);
+    const bool ground = r == fl.root[0];
+    const double known = ground ? 0.0 : fixed[r];
+    if ((ground || is_fixed[r]) && std::abs(known - p) > 1e-12 * std::max({1.0, std::abs(p), std::abs(known)}))
+      throw std::domain_error(".ic v(" + name(node) + ") = " + std::to_string(value) +
+                              " contradicts ground or another .ic through voltage sources, wires and inductors (shorts at DC)");
+    if (ground) continue;  // already what ground's sources make it
+    is_fixed[r] = true;
+    fixed[r] = p;
+    if (hold_at[r] < 0) hold_at[r] = static_cast<long>(v);
+  }
   std::vector<long> dc(nv, -1);
   std::size_t ndc = 0;
   for (std::size_t v = 0; v < nv; ++v)
-    if (fl.root[v] != fl.root[0] && dc[fl.root[v]] < 0) dc[fl.root[v]] = static_cast<long>(ndc++);
+    if (fl.root[v] != fl.root[0] && !is_fixed[fl.root[v]] && dc[fl.root[v]] < 0) dc[fl.root[v]] = static_cast<long>(ndc++);
+  const auto level = [&](std::size_t root) { return is_fixed[root] ? fixed[root] : 0.0; };  // a known root level (0: ground's)
   std::vector<std::pair<std::size_t, std::size_t>> rends;
   std::vector<bool> rall;
   Triplets tg;
@@ -341,8 +360,10 @@ Vec Model::operating_point(const double* sigma) const {
     const std::size_t a = sv(br.from), z = sv(br.to);
     rends.emplace_back(fl.root[a], fl.root[z]);
     rall.push_back(true);
-    const double g = rdiag_g_(static_cast<Eigen::Index>(k)), o = obs(static_cast<Eigen::Index>(ridx_[k])) + t[a] - t[z];
+    const double g = rdiag_g_(static_cast<Eigen::Index>(k));
     const long da = dc[fl.root[a]], dz = dc[fl.root[z]];
+    // known levels (held or ground) move to the right-hand side with the offsets
+    const double o = obs(static_cast<Eigen::Index>(ridx_[k])) + t[a] - t[z] + (da < 0 ? level(fl.root[a]) : 0.0) - (dz < 0 ? level(fl.root[z]) : 0.0);
     // i = g (P_a − P_z + o)
     if (da >= 0) {
       tg.emplace_back(da, da, g);
@@ -362,6 +383,11 @@ Vec Model::operating_point(const double* sigma) const {
     if (da >= 0) rhs(da) -= cur;
     if (dz >= 0) rhs(dz) += cur;
   }
+  for (std::size_t v = 0; v < nv; ++v)  // a held DC node reaches ground through its hold source
+    if (is_fixed[v]) {
+      rends.emplace_back(v, fl.root[0]);
+      rall.push_back(true);
+    }
   const rlc::Forest fr = rlc::forest(nv, rends, rall);
   for (std::size_t v = 1; v < nv; ++v)
     if (fr.root[fl.root[v]] != fr.root[fl.root[0]])
@@ -374,7 +400,7 @@ Vec Model::operating_point(const double* sigma) const {
     pot = llt.solve(rhs);
   }
   Vec E(static_cast<Eigen::Index>(nsup_));
-  for (std::size_t v = 1; v < nv; ++v) E(static_cast<Eigen::Index>(v - 1)) = (dc[fl.root[v]] >= 0 ? pot(dc[fl.root[v]]) : 0.0) + t[v];
+  for (std::size_t v = 1; v < nv; ++v) E(static_cast<Eigen::Index>(v - 1)) = (dc[fl.root[v]] >= 0 ? pot(dc[fl.root[v]]) : level(fl.root[v])) + t[v];
   // inductor currents: KCL along the inductor forest, leaves first
   for (std::size_t k = 0; k < ridx_.size(); ++k) {
     const Element& br = c_.branches[ridx_[k]];
@@ -389,6 +415,11 @@ Vec Model::operating_point(const double* sigma) const {
     net[sv(br.from)] += s(br.source);
     net[sv(br.to)] -= s(br.source);
   }
+  // a hold source delivers what its DC node's KCL lacks, at its own node
+  std::vector<double> total(nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v) total[fl.root[v]] += net[v];
+  for (std::size_t r = 0; r < nv; ++r)
+    if (is_fixed[r]) net[static_cast<std::size_t>(hold_at[r])] -= total[r];
   Vec il = Vec::Zero(static_cast<Eigen::Index>(nl_));
   for (auto it = fl.tree.rbegin(); it != fl.tree.rend(); ++it) {
     const double cur = ends[it->edge].first == it->child ? -net[it->child] : net[it->child];

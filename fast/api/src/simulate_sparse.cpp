@@ -93,12 +93,18 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
   Vec x;
   q_ = Vec::Zero(static_cast<Eigen::Index>(nq));
   if (op) {
-    if (!deck.node_ic.empty())
-      throw io::InputError(file + ": initial state: expected no .ic node voltages for an operating point on the sparse route, found " +
-                           std::to_string(deck.node_ic.size()) + " (use --initial uic, or .tran … uic)");
-    log << "initial state: op: the DC operating point at t = 0 (capacitors open, inductors shorted), by contraction on the sparse route\n";
+    std::vector<std::pair<long, double>> held;
+    for (const auto& [node, value] : deck.node_ic) held.emplace_back(node, value.convert_to<double>());
+    log << "initial state: op: the DC operating point at t = 0 (capacitors open, inductors shorted), by contraction on the sparse route"
+        << (held.empty() ? "" : ", the .ic node voltages held as ngspice holds them") << "\n";
     try {
-      x = model_->operating_point(s0.data());
+      try {
+        x = model_->operating_point(s0.data(), held);
+      } catch (const std::domain_error& e) {
+        if (held.empty() || std::string(e.what()).rfind(".ic", 0) != 0) throw;
+        log << "note: " << e.what() << ": the operating point does not hold the .ic node voltages (as the dense route)\n";
+        x = model_->operating_point(s0.data());
+      }
     } catch (const std::domain_error& e) {
       throw io::InputError(file + ": initial state: expected a unique DC operating point, found " + e.what() + "; use --initial uic");
     }

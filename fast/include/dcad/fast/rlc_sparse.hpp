@@ -102,7 +102,10 @@ class Model {
 
   /// The DC operating point at σ (capacitors open, inductors shorted) as the state x.  Throws
   /// std::domain_error naming a node or inductor where it is not unique (ngspice: singular matrix).
-  Vec operating_point(const double* sigma) const;
+  /// `held`: `.ic` node voltages (node index, volts), held as ngspice holds them at DC — through an
+  /// ideal source at the node, whose current the node's KCL then absorbs (std::domain_error when two
+  /// holds contradict each other or ground).
+  Vec operating_point(const double* sigma, const std::vector<std::pair<long, double>>& held = {}) const;
 
   /// The equations of motion as sparse matrices (the library's route to them at any size).
   struct Matrices {
