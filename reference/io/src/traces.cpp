@@ -164,7 +164,7 @@ Traces raw(const std::string& text, const std::string& file) {
         bad(file, std::to_string(npoints) + " points of " + std::to_string(per) + " doubles (" + std::to_string(need) + " bytes) after 'Binary:'",
             std::to_string(text.size() - std::min(pos, text.size())) + " bytes: the file is truncated");
       data.resize(per * static_cast<std::size_t>(npoints));
-      std::memcpy(data.data(), text.data() + pos, need);
+      if (need > 0) std::memcpy(data.data(), text.data() + pos, need);  // (no points: data() may be null)
       pos += need;
     } else {
       for (long p = 0; p < npoints; ++p) {
