@@ -263,6 +263,8 @@ std::string waveform_text(const WaveformChecked& c, const std::string& waveform_
       s << "    t = 0 and the first step not compared (" << v.skipped_at_jump << (v.skipped_at_jump == 1 ? " point" : " points")
         << "): the state jumps onto M_c at t = 0, and a simulator shows the state before it, then its impulse smeared over one step\n";
   }
+  if (c.format == "gnucap" && o.rtol < 1e-4)
+    s << "  note: gnucap prints 5 significant digits unless told otherwise (.options numdgt=12): below --rtol 1e-4 its rounding alone may disagree\n";
   s << "  certified: " << (c.certified ? "yes" : "no, " + c.certified_reason) << "\n";
   return s.str();
 }
