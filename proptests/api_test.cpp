@@ -328,3 +328,18 @@ TEST(Api, HeldNodesStartBothRoutesAlike) {
     EXPECT_NEAR(runs[1][0][col("q_C3")], -0.25 * 1e-9, 1e-21);
   }
 }
+
+// Issue 28: a result key that `check` does not compare is named, never ignored in silence (a result
+// with an extra `trajectory` passed with exit 0 and no word about it).
+TEST(Api, CheckNamesTheKeysItDoesNotCompare) {
+  const dcad::io::Problem p = dcad::io::read_problem(case_path("rlc-series.cir"));
+  nlohmann::json r = nlohmann::json::parse(dcad::io::result_json(dcad::api::printed(dcad::api::solve(p, Backend::reference))));
+  r["trajectory"] = {1, 2, 3};
+  const dcad::api::Checked c = dcad::api::check_text(r.dump(), p);
+  EXPECT_TRUE(c.agrees);
+  std::string all;
+  for (const std::string& n : c.not_compared) all += n + "\n";
+  EXPECT_NE(all.find("trajectory"), std::string::npos) << all;
+  EXPECT_NE(all.find("state_equations"), std::string::npos) << all;  // dcad's own informational keys too
+  EXPECT_EQ(all.find("dims"), std::string::npos) << all;             // compared keys are not listed
+}

@@ -511,6 +511,16 @@ Checked checked(const std::string& result_file, const std::string* text, const i
     const json r = read_result(result_file, text);
     Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p) : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
+    // every top-level key of the result that nothing above compared is named, never ignored in silence
+    std::string quiet;
+    if (r.is_object())
+      for (const auto& item : r.items()) {
+        const std::string& key = item.key();
+        const auto covers = [&](const std::string& c) { return c == key || c.rfind(key + ".", 0) == 0 || c.rfind(key + " ", 0) == 0; };
+        if (std::any_of(o.compared.begin(), o.compared.end(), covers) || std::any_of(o.not_compared.begin(), o.not_compared.end(), covers)) continue;
+        quiet += (quiet.empty() ? "" : ", ") + key;
+      }
+    if (!quiet.empty()) o.not_compared.push_back(quiet + " (keys dcad check does not compare)");
     return o;
   });
 }
