@@ -1,6 +1,7 @@
 // The golden corpus (cases/) for other projects, and the regression workflow (a property-test
 // counterexample → a golden case with the reference's expectations).
 #include "dcad/api.hpp"
+#include "simulate.hpp"
 #include "sparse_flow.hpp"
 
 #include <nlohmann/json.hpp>
@@ -175,35 +176,55 @@ int export_waveforms(const std::string& dir_name, std::ostream& log) {
     if (!deck.tran_step || !deck.tran_stop || !(*deck.tran_step > 0) || *deck.tran_stop < 0)
       throw io::InputError(p.string() + ": expected a .tran TSTEP TSTOP card with numbers for its waveforms, found none");
     const double step = deck.tran_step->convert_to<double>(), stop = deck.tran_stop->convert_to<double>();
-    std::ostringstream quiet;
-    SparseFlow flow(deck, p.string(), Initial::deck, step, stop, quiet);
-    fs::copy_file(p, dir / p.filename(), fs::copy_options::overwrite_existing);
-    std::ofstream csv(dir / (p.stem().string() + ".csv"));
-    csv.precision(17);
-    csv << "time";
-    for (const std::string& n : deck.node_names) csv << ",v(" << n << ")";
-    std::vector<std::size_t> branches;
+    std::vector<std::string> names;
+    for (const std::string& n : deck.node_names) names.push_back("v(" + n + ")");
     for (std::size_t b = 0; b < deck.rlc.branches.size(); ++b)
       if (deck.rlc.branches[b].kind == reference::RlcKind::inductor || deck.rlc.branches[b].kind == reference::RlcKind::voltage) {
-        branches.push_back(b);
         std::string name = deck.rlc.branches[b].name;
         for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        csv << ",i(" << name << ")";
+        names.push_back("i(" + name + ")");
       }
-    csv << "\n";
     const long rows = static_cast<long>(std::floor(stop / step + 1e-9));
-    for (long k = 0; k <= rows; ++k) {
-      const double t = static_cast<double>(k) * step;
-      flow.advance_to(t);
-      const Eigen::VectorXd e = flow.node_potentials();
-      const sr::BranchValues v = flow.values();
-      csv << t;
-      for (Eigen::Index j = 0; j < e.size(); ++j) csv << "," << e(j) + 0.0;  // never "-0"
-      for (std::size_t b : branches) csv << "," << v.i(static_cast<Eigen::Index>(b)) + 0.0;
-      csv << "\n";
+    std::vector<double> times(static_cast<std::size_t>(rows + 1));
+    for (long k = 0; k <= rows; ++k) times[static_cast<std::size_t>(k)] = static_cast<double>(k) * step;
+    // the enclosures' midpoints and radii (NAME.bounds.csv) where dcad builds them, else the double flow
+    const WaveformEnclosures enc = enclose_waveforms(prob, names, times, Initial::deck, step);
+    std::vector<std::vector<double>> value(names.size(), std::vector<double>(times.size())), radius = value;
+    std::string how;
+    if (enc.ok) {
+      for (std::size_t k = 0; k < names.size(); ++k)
+        for (std::size_t i = 0; i < times.size(); ++i) value[k][i] = enc.right[k][i].mid, radius[k][i] = enc.right[k][i].rad;
+      how = "enclosures (certified), radii in " + p.stem().string() + ".bounds.csv";
+    } else {
+      std::ostringstream quiet;
+      SparseFlow flow(deck, p.string(), Initial::deck, step, stop, quiet);
+      for (std::size_t i = 0; i < times.size(); ++i) {
+        flow.advance_to(times[i]);
+        const Eigen::VectorXd e = flow.node_potentials();
+        const sr::BranchValues v = flow.values();
+        std::size_t k = 0;
+        for (; k < deck.node_names.size(); ++k) value[k][i] = e(static_cast<Eigen::Index>(k));
+        for (std::size_t b = 0; b < deck.rlc.branches.size(); ++b)
+          if (deck.rlc.branches[b].kind == reference::RlcKind::inductor || deck.rlc.branches[b].kind == reference::RlcKind::voltage)
+            value[k++][i] = v.i(static_cast<Eigen::Index>(b));
+      }
+      how = "the double flow, error estimate " + io::float_text(flow.error_estimate()) + " of the state (no enclosure: " + enc.why + ")";
     }
-    log << p.filename().string() << ": " << rows + 1 << " rows, the exact flow's error estimate " << io::float_text(flow.error_estimate())
-        << " of the state (double; no enclosure)\n";
+    fs::copy_file(p, dir / p.filename(), fs::copy_options::overwrite_existing);
+    for (int file = 0; file < (enc.ok ? 2 : 1); ++file) {
+      std::ofstream csv(dir / (p.stem().string() + (file ? ".bounds.csv" : ".csv")));
+      csv.precision(17);
+      csv << "time";
+      for (const std::string& n : names) csv << "," << n;
+      csv << "\n";
+      const auto& table = file ? radius : value;
+      for (std::size_t i = 0; i < times.size(); ++i) {
+        csv << times[i];
+        for (std::size_t k = 0; k < names.size(); ++k) csv << "," << table[k][i] + 0.0;  // never "-0"
+        csv << "\n";
+      }
+    }
+    log << p.filename().string() << ": " << rows + 1 << " rows, " << how << "\n";
   }
   return static_cast<int>(decks.size());
 }

@@ -3,6 +3,7 @@
 // exact flow of DECK from the state the simulator started from, evaluated at the file's own times.
 #include "dcad/api.hpp"
 #include "guarded.hpp"
+#include "simulate.hpp"
 #include "sparse_flow.hpp"
 
 #include "dcad/reference/pipeline/forced.hpp"
@@ -137,7 +138,131 @@ double value(const Functional& f, const sr::BranchValues& bv, const Vec& e) {
   return 0;
 }
 
+/// Enclosures of every vector at the file's times (the certified tier), or why there are none.
+struct Enclosed {
+  bool ok = false;
+  std::string why;
+  std::vector<std::vector<certified::Enclosure>> right, left;  ///< [vector][point]
+  long restarts = 0;
+};
+
+/// The voltage e_from − e_to of branch b as a functional of the motion (x = (q, v, p), ẋ, u_ext).
+std::vector<certified::Functional::Term> branch_voltage(const io::Netlist& deck, std::size_t b) {
+  using T = certified::Functional::Term;
+  using Of = certified::Functional::Of;
+  const auto& br = deck.rlc.branches[b];
+  const std::size_t nb = deck.rlc.branches.size();
+  switch (br.kind) {
+    case reference::RlcKind::capacitor: return {T{Of::x, b, io::Rational(1) / br.value}};           // q / C
+    case reference::RlcKind::resistor: return {T{Of::x, nb + b, br.value}};                         // R i
+    case reference::RlcKind::inductor: return {T{Of::xdot, 2 * nb + b, io::Rational(1)}};           // dp/dt
+    case reference::RlcKind::voltage: return {T{Of::u, 1 + static_cast<std::size_t>(br.source), io::Rational(1)}};  // V(t)
+    default: return {};                                                                             // a wire
+  }
+}
+
+Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step) {
+  Enclosed out;
+  const io::Netlist& deck = p.netlist;
+  const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
+  std::ostringstream quiet;
+  CertifiedMotion cm;
+  try {
+    cm = certified_motion(deck, p.linear, netlist_start(deck, p.linear.variables, opt.initial, quiet), step);
+  } catch (const std::exception& e) {
+    out.why = e.what();
+    return out;
+  }
+  if (!cm.flow) {
+    out.why = cm.why;
+    return out;
+  }
+  // node potentials along a spanning tree of the branches whose voltage is known (all but current sources)
+  std::vector<std::optional<std::vector<certified::Functional::Term>>> pot(nodes + 1);  // index node + 1; 0 = ground
+  pot[0] = std::vector<certified::Functional::Term>{};
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t b = 0; b < nb; ++b) {
+      const auto& br = deck.rlc.branches[b];
+      if (br.kind == reference::RlcKind::current) continue;
+      const std::size_t f = static_cast<std::size_t>(br.from + 1), t = static_cast<std::size_t>(br.to + 1);
+      if (pot[f].has_value() == pot[t].has_value()) continue;
+      const bool forward = pot[f].has_value();  // e_to = e_from − v_b, or e_from = e_to + v_b
+      std::vector<certified::Functional::Term> terms = forward ? *pot[f] : *pot[t];
+      for (auto term : branch_voltage(deck, b)) {
+        if (forward) term.coef = -term.coef;
+        terms.push_back(term);
+      }
+      pot[forward ? t : f] = std::move(terms);
+      grew = true;
+    }
+  }
+  std::vector<certified::Functional> cf(fs.size());
+  for (std::size_t k = 0; k < fs.size(); ++k) {
+    const Functional& f = fs[k];
+    using Of = certified::Functional::Of;
+    if (f.kind == Functional::potential) {
+      for (long node : {f.a, f.b}) {
+        const auto& path = pot[static_cast<std::size_t>(node + 1)];
+        if (!path) {
+          out.why = "node " + deck.node_names[static_cast<std::size_t>(node)] + " reaches ground only through current sources: its potential is not enclosed";
+          return out;
+        }
+        for (auto term : *path) {
+          if (node == f.b) term.coef = -term.coef;
+          cf[k].terms.push_back(term);
+        }
+      }
+    } else {
+      const std::size_t base = f.kind == Functional::charge ? 0 : f.kind == Functional::current ? nb : 2 * nb;
+      cf[k].terms.push_back({Of::x, base + f.branch, io::Rational(1)});
+    }
+  }
+  const std::size_t np = tr.time.size();
+  // the exact corners: a file time within 1e-13 of the run of one (a simulator's breakpoint, TD + k·PER
+  // summed in double) is read as that corner and compared with its two one-sided values
+  const double near = 1e-13 * std::max(std::abs(tr.time.back()), std::abs(tr.time.front()));
+  std::map<double, io::Rational> corners;
+  for (const io::Rational& c : cm.flow->corners(certified::rational_of(tr.time.back() + 2 * near))) corners.emplace(c.convert_to<double>(), c);
+  const auto corner_of = [&](double t) -> const io::Rational* {
+    auto it = corners.lower_bound(t - near);
+    return it != corners.end() && it->first <= t + near ? &it->second : nullptr;
+  };
+  out.right.assign(fs.size(), std::vector<certified::Enclosure>(np));
+  out.left = out.right;
+  try {
+    for (std::size_t i = 0; i < np; ++i) {
+      const io::Rational* c = corner_of(tr.time[i]);
+      const io::Rational t = c ? *c : certified::rational_of(tr.time[i]);
+      if (t > cm.flow->time()) cm.flow->advance_to(t);
+      const std::vector<certified::Enclosure> r = cm.flow->evaluate(cf), l = cm.flow->at_corner() ? cm.flow->evaluate(cf, true) : r;
+      for (std::size_t k = 0; k < fs.size(); ++k) out.right[k][i] = r[k], out.left[k][i] = l[k];
+    }
+  } catch (const std::exception& e) {
+    out.why = e.what();
+    return out;
+  }
+  out.restarts = cm.flow->restarts();
+  out.ok = true;
+  return out;
+}
+
 }  // namespace
+
+WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names, const std::vector<double>& times, Initial initial,
+                                     double step) {
+  io::Traces tr;
+  tr.file = p.netlist.file;
+  tr.names = names;
+  tr.time = times;
+  const Names nm = names_of(p.netlist);
+  std::vector<Functional> fs;
+  for (const std::string& name : names) fs.push_back(functional(name, nm, p.netlist, p.netlist.file));
+  WaveformOptions opt;
+  opt.initial = initial;
+  Enclosed e = enclose(tr, p, fs, opt, step);
+  return WaveformEnclosures{e.ok, e.why, std::move(e.right), std::move(e.left)};
+}
 
 WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
   if (p.form != io::Form::netlist)
@@ -151,73 +276,112 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
   const Names names = names_of(deck);
   std::vector<Functional> fs;
   for (const std::string& name : tr.names) fs.push_back(functional(name, names, deck, tr.file));
-  if (!reference::pipeline::graph_route_holds(deck.rlc))
-    throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1), "
-                         "found another (negative or zero values, or k = 1): its waveform check is not implemented yet");
   WaveformChecked out;
   out.format = tr.format;
   out.points = static_cast<long>(tr.time.size());
   const double horizon = tr.time.back();
   const double step = tr.time.size() > 1 && horizon > 0 ? horizon / static_cast<double>(tr.time.size() - 1) : 1.0;
-  SparseFlow flow(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
-  // exact values at every time point: right values, and left ones where they may differ (corners, t = 0)
   const std::size_t nv = fs.size(), np = tr.time.size();
-  std::vector<std::vector<double>> right(nv, std::vector<double>(np)), left(nv, std::vector<double>(np));
+  // the certified tier first: enclosures of the exact values (rigorous), where dcad builds them
+  const Enclosed enc = opt.enclose ? enclose(tr, p, fs, opt, step) : Enclosed{false, "not asked for (--no-enclosure)", {}, {}, 0};
+  const bool graph = reference::pipeline::graph_route_holds(deck.rlc);
+  if (!graph && !enc.ok)
+    throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1, "
+                         "or up to " + std::to_string(kCertifiedBranches) + " branches for the enclosures), found another: " + enc.why);
+  // exact values at every time point: right values, and left ones where they may differ (corners, t = 0),
+  // each with how far the exact value may be from it (an enclosure's radius, or the double flow's estimate)
+  std::vector<std::vector<double>> right(nv, std::vector<double>(np)), left(nv, std::vector<double>(np)), rad_r(nv, std::vector<double>(np)),
+      rad_l(nv, std::vector<double>(np));
   std::vector<bool> two_sided(np, false);
-  double kind_scale[4] = {0, 0, 0, 0};  // the largest potential, charge, current, flux linkage over the run
-  for (std::size_t i = 0; i < np; ++i) {
-    const double t = tr.time[i];
-    flow.advance_to(t);
-    const sr::BranchValues bv = flow.values();
-    const Vec e = flow.node_potentials();
-    kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
-    kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
-    kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
-    kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
-    for (std::size_t k = 0; k < nv; ++k) right[k][i] = left[k][i] = value(fs[k], bv, e);
-    if (t == 0 || flow.corner(t)) {
-      two_sided[i] = true;
-      const sr::BranchValues bl = flow.values(true);
-      const Vec el = flow.node_potentials(true);
-      for (std::size_t k = 0; k < nv; ++k) left[k][i] = value(fs[k], bl, el);
+  long jumps = 0;
+  std::vector<double> uncertainty(nv, 0.0);
+  if (graph) {
+    SparseFlow flow(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
+    double kind_scale[4] = {0, 0, 0, 0};  // the largest potential, charge, current, flux linkage over the run
+    for (std::size_t i = 0; i < np; ++i) {
+      const double t = tr.time[i];
+      flow.advance_to(t);
+      const sr::BranchValues bv = flow.values();
+      const Vec e = flow.node_potentials();
+      kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
+      kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
+      kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
+      kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
+      for (std::size_t k = 0; k < nv; ++k) right[k][i] = left[k][i] = value(fs[k], bv, e);
+      if (t == 0 || flow.corner(t)) {
+        two_sided[i] = true;
+        const sr::BranchValues bl = flow.values(true);
+        const Vec el = flow.node_potentials(true);
+        for (std::size_t k = 0; k < nv; ++k) left[k][i] = value(fs[k], bl, el);
+      }
     }
+    out.error_estimate = flow.error_estimate();
+    jumps = flow.jumps();
+    // dcad's own uncertainty: the Krylov estimate (at least 64 ε for the rounding of the outputs) of
+    // the largest value of the vector's kind; a potential difference v(a,b) counts both ends
+    for (std::size_t k = 0; k < nv; ++k)
+      uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
+                       (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
+  } else {
+    netlist_start(deck, p.linear.variables, opt.initial, log, &jumps);
   }
-  out.error_estimate = flow.error_estimate();
+  for (std::size_t k = 0; k < nv; ++k)
+    for (std::size_t i = 0; i < np; ++i) {
+      if (enc.ok) {
+        right[k][i] = enc.right[k][i].mid, rad_r[k][i] = enc.right[k][i].rad;
+        left[k][i] = enc.left[k][i].mid, rad_l[k][i] = enc.left[k][i].rad;
+        two_sided[i] = two_sided[i] || left[k][i] != right[k][i] || rad_l[k][i] != rad_r[k][i];
+      } else {
+        rad_r[k][i] = rad_l[k][i] = uncertainty[k];
+      }
+    }
   double first_step = 0;  // the file's first time after 0
   for (double t : tr.time)
     if (t > 0) {
       first_step = t;
       break;
     }
-  out.certified = false;
-  out.certified_reason = "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " +
-                         io::float_text(out.error_estimate) + " of the state): values, not enclosures";
+  out.certified = enc.ok;
+  out.certified_reason =
+      enc.ok ? std::string()
+             : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
+                   " of the state): values, not enclosures; no enclosure because " + enc.why;
+  constexpr double u = std::numeric_limits<double>::epsilon();
   for (std::size_t k = 0; k < nv; ++k) {
     WaveformVector v;
     v.name = tr.names[k];
     v.meaning = fs[k].meaning;
-    for (std::size_t i = 0; i < np; ++i) v.scale = std::max({v.scale, std::abs(right[k][i]), std::abs(left[k][i])});
-    // dcad's own uncertainty: the Krylov estimate (at least 64 ε for the rounding of the outputs) of
-    // the largest value of the vector's kind; a potential difference v(a,b) counts both ends
-    v.exact_uncertainty = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
-                          (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
-    const double tol = opt.atol + opt.rtol * v.scale;
-    bool first = true;
+    // the CONTRACT's scale (the largest |exact|) lies in [lo, hi]; so does each point's error
+    double scale_lo = 0, scale_hi = 0;
+    for (std::size_t i = 0; i < np; ++i) {
+      v.scale = std::max({v.scale, std::abs(right[k][i]), std::abs(left[k][i])});
+      scale_hi = std::max({scale_hi, std::abs(right[k][i]) + rad_r[k][i], std::abs(left[k][i]) + rad_l[k][i]});
+      scale_lo = std::max({scale_lo, std::abs(right[k][i]) - rad_r[k][i], std::abs(left[k][i]) - rad_l[k][i]});
+      v.exact_uncertainty = std::max({v.exact_uncertainty, rad_r[k][i], two_sided[i] ? rad_l[k][i] : 0.0});
+    }
+    const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u), tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
+    bool first = true, within = true, beyond = false;
     for (std::size_t i = 0; i < np; ++i) {
       const double found = tr.values[k][i];
       if (!std::isfinite(found)) {
-        v.agree = false;
+        within = false, beyond = true;
         v.max_error = HUGE_VAL, v.at = tr.time[i], v.exact = right[k][i], v.found = found;
         break;
       }
       // after a jump onto M_c at t = 0 the simulator shows the state before it at t = 0 and smears its
       // impulse over its first step: neither is compared
-      if (flow.jumps() > 0 && tr.time[i] <= first_step) {
+      if (jumps > 0 && tr.time[i] <= first_step) {
         ++v.skipped_at_jump;
         continue;
       }
       const double er = std::abs(found - right[k][i]), el = std::abs(found - left[k][i]);
       const double err = two_sided[i] ? std::min(er, el) : er;
+      // bounds on the true error |found − exact| at this point: either side may be taken at a corner
+      const double hi_r = er * (1 + 2 * u) + rad_r[k][i], lo_r = er * (1 - 2 * u) - rad_r[k][i];
+      const double hi_l = el * (1 + 2 * u) + rad_l[k][i], lo_l = el * (1 - 2 * u) - rad_l[k][i];
+      const double hi = two_sided[i] ? std::min(hi_r, hi_l) : hi_r, lo = two_sided[i] ? std::min(lo_r, lo_l) : lo_r;
+      within = within && hi <= tol_lo;
+      beyond = beyond || lo > tol_hi;
       if (first || err > v.max_error) {
         first = false;
         v.max_error = err;
@@ -232,10 +396,10 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
       for (std::size_t i = 0; i < np; ++i)  // the side the simulator is nearer at a corner
         out.exact.back()[i] = std::abs(tr.values[k][i] - left[k][i]) < std::abs(tr.values[k][i] - right[k][i]) ? left[k][i] : right[k][i];
     }
-    // agreement needs the error plus dcad's own uncertainty within the tolerance, a disagreement the
-    // error minus it beyond; between the two dcad cannot tell
-    v.agree = v.agree && v.max_error + v.exact_uncertainty <= tol;
-    v.decided = v.agree || v.max_error - v.exact_uncertainty > tol;
+    // agreement needs every point within the tolerance with dcad's own uncertainty, a disagreement one
+    // point beyond it with the uncertainty; between the two dcad cannot tell
+    v.agree = within && !beyond;
+    v.decided = v.agree || beyond;
     out.agree = out.agree && v.agree;
     out.vectors.push_back(v);
   }

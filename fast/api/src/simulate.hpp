@@ -4,9 +4,12 @@
 #pragma once
 
 #include "dcad/api.hpp"
+#include "dcad/certified/enclosure.hpp"
+#include "dcad/reference/pipeline/forced.hpp"
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <ostream>
 
@@ -70,5 +73,32 @@ std::vector<double> balancing(const Eigen::MatrixXd& a);
 /// The initial condition a netlist prescribes, as per-variable exact values (nullopt = free):
 /// IC= of an inductor fixes v (its current), of a capacitor fixes q = C · voltage.
 std::vector<std::optional<io::Rational>> netlist_initial(const io::Netlist& n);
+
+/// The certified tier: the exact dense model's motion from `initial` (per-variable values, as
+/// simulate_forced takes them) enclosed in balls (certified/enclosure.hpp).  `flow` null and `why` set
+/// when it cannot be (too large, solutions not unique, a start through π, a PULSE with a jump).
+struct CertifiedMotion {
+  std::unique_ptr<certified::MotionEnclosure> flow;
+  std::string why;
+};
+constexpr std::size_t kCertifiedBranches = reference::pipeline::kForcedBranches;
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step);
+/// `simulate --certified`: the rows are the midpoints of the enclosures, with the largest radius of each
+/// kind (rad_q, rad_v, rad_p) per row.
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                          std::ostream& out, std::ostream& log);
+/// Enclosures of the vectors `names` (ngspice's or dcad's names) of a netlist at `times` (ascending),
+/// from the start `initial` (check's and the waveform export's certified tier); ok false and `why` when
+/// dcad cannot build them.  InputError for a name the deck does not have.
+struct WaveformEnclosures {
+  bool ok = false;
+  std::string why;
+  std::vector<std::vector<certified::Enclosure>> right, left;  ///< [vector][time]
+};
+WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names, const std::vector<double>& times, Initial initial,
+                                     double step);
+
+/// The state a netlist starts from (SPICE's rule, the jump onto M_c), told on `log`, as per-variable values.
+std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule, std::ostream& log, long* jumps = nullptr);
 
 }  // namespace dcad::api

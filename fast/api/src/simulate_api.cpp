@@ -18,16 +18,15 @@ std::vector<std::string> simulate_columns(const io::Problem& p) {
   return out;
 }
 
-namespace {
-
 /// The state a netlist starts from (SPICE's rule, the jump onto M_c), told on `log`; as per-variable
 /// values: charges, flux linkages and inductor currents fixed, the other currents left to M_c.
 std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule,
-                                                       std::ostream& log) {
+                                                       std::ostream& log, long* jumps) {
   namespace pl = reference::pipeline;
   const pl::InitialState st =
       pl::initial_state(deck, rule == Initial::op ? pl::InitialRule::op : rule == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck, variables);
   log << "initial state: " << st.rule << "\n";
+  if (jumps) *jumps = static_cast<long>(st.jumps.size());
   for (const std::string& note : st.notes) log << "note: " << note << "\n";
   for (const pl::Jump& j : st.jumps)
     log << "jump at t = 0: " << j.variable << " from " << io::float_text(j.from.convert_to<double>()) << " to "
@@ -43,6 +42,8 @@ std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, 
     if (i < n || i >= 2 * n || deck.rlc.branches[i - n].kind == reference::RlcKind::inductor) x[i] = st.after[i];
   return x;
 }
+
+namespace {
 
 /// Keeps the CSV columns t and `names` of every line written through it (the dense routes write every
 /// variable; --vars picks some).  The header line maps the names; UsageError for one not in it.
@@ -131,13 +132,20 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)");
     for (const std::string& w : p.warnings()) log << "warning: " << w << "\n";
     if (!netlist && options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
-    if (netlist && sparse_netlist(p.netlist, options)) {
+    if (netlist && sparse_netlist(p.netlist, options) && !options.enclose) {
       const Summary sum = simulate_sparse(p.netlist, c, options, csv, log, energy);
       log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " (" << sum.estimate_kind << ")\n";
       return sum;
     }
     std::vector<std::optional<io::Rational>> init(c.n);
     if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
+    if (options.enclose) {
+      if (!netlist) throw UsageError(p.file + ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
+      if (energy) throw UsageError(p.file + ": --certified and --energy: expected one of them");
+      const Summary sum = simulate_enclosed(p.netlist, c, init, options, rows, log);
+      rows.flush();
+      return sum;
+    }
     else if (!c.initial.empty())
       for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
     const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, rows, log, energy)

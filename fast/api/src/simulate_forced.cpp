@@ -188,15 +188,15 @@ ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, st
   return f;
 }
 
-}  // namespace
+/// The start: the given values, M_c(0), then 0 where M_c(0) allows (exact).  `exact` is false when a
+/// constraint at 0 went through a source's jet that involves π (then rounded to double).
+struct ForcedStart {
+  std::vector<Q> x0q;
+  bool exact = true;
+};
 
-Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
-                               const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
-  require_times(opt);
-  const ForcedModel fm = forced_model(deck);
-  if (fm.free > 0)
-    log << "note: solutions are not unique (" << fm.free << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";
-  const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
+ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial) {
+  const std::size_t n = fm.n, m = fm.m, wu = 1 + m * fm.orders;
   // initial point: the file's values, M_c(0), then 0 where M_c(0) allows
   const Vec<double> u0 = jets(deck, 0.0, fm.orders);
   QM given(0, n + 1), cons(0, n + 1), defaults(0, n + 1);
@@ -245,7 +245,23 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
       }
   }
   const ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(ref::vstack(given, cons), defaults));
-  const std::vector<Q>& x0q = with_defaults.empty ? start.point : with_defaults.point;
+  ForcedStart out;
+  out.x0q = with_defaults.empty ? start.point : with_defaults.point;
+  out.exact = std::none_of(inexact.begin(), inexact.end(), [](bool b) { return b; });
+  return out;
+}
+
+}  // namespace
+
+Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                               const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  require_times(opt);
+  const ForcedModel fm = forced_model(deck);
+  if (fm.free > 0)
+    log << "note: solutions are not unique (" << fm.free << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";
+  const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
+  const std::vector<Q> x0q = forced_start(deck, fm, c, initial).x0q;
+  const Vec<double> u0 = jets(deck, 0.0, fm.orders);
   Vec<double> x0(n);
   for (std::size_t i = 0; i < n; ++i) x0(i) = x0q[i].convert_to<double>();
   const Mat<double> X0 = to_d(fm.x0), B = to_d(fm.basis), P = to_d(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis);
@@ -402,6 +418,119 @@ Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const st
 Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
                                      std::ostream& out, std::ostream& log, std::ostream* energy) {
   return simulate_scene(ForcedScene{c.file, reference::pipeline::forced_system(c), {}}, c, initial, opt, out, log, energy);
+}
+
+}  // namespace dcad::api
+
+// ---- the certified tier: rigorous enclosures of the same exact motion (certified/enclosure.hpp) ----
+
+namespace dcad::api {
+
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step) {
+  CertifiedMotion out;
+  if (deck.rlc.branches.size() > kCertifiedBranches) {
+    out.why = "the enclosure is built on the exact dense model, up to " + std::to_string(kCertifiedBranches) + " branches (this circuit has " +
+              std::to_string(deck.rlc.branches.size()) + ")";
+    return out;
+  }
+  const ForcedScene scene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms, {}};
+  const ForcedModel fm = forced_model(scene);
+  if (fm.free > 0) {
+    out.why = "the circuit's solutions are not unique (" + std::to_string(fm.free) + " free multipliers): the flow takes one particular solution";
+    return out;
+  }
+  const ForcedStart st = forced_start(scene, fm, c, initial);
+  const std::size_t m = fm.m, wu = 1 + m * static_cast<std::size_t>(fm.orders);
+  std::vector<Q> u0(wu, Q(0));
+  u0[0] = Q(1);
+  for (std::size_t k = 1; k < wu; ++k) {
+    bool used = false;
+    for (ref::Index i = 0; i < fm.x0.rows(); ++i) used = used || fm.x0(i, static_cast<ref::Index>(k)) != 0;
+    if (!used) continue;
+    const std::optional<Q> v = deck.waveforms[(k - 1) % m].exact_at_zero(static_cast<int>((k - 1) / m));
+    if (!v) {
+      out.why = "the state at t = 0 depends on " + deck.waveforms[(k - 1) % m].element + "'s derivative of order " + std::to_string((k - 1) / m) +
+                " at 0, which involves pi (the start is not an exact rational)";
+      return out;
+    }
+    u0[k] = *v;
+  }
+  if (!st.exact) {
+    out.why = "the state at t = 0 is constrained through a source's jet that involves pi (rounded to double)";
+    return out;
+  }
+  const QM p = ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis;
+  QM dx = QM::column(st.x0q) - fm.x0 * QM::column(u0);
+  const QM y0 = p * dx;
+  certified::ForcedMotionData data;
+  data.x0 = fm.x0, data.basis = fm.basis, data.ay = fm.ay, data.au = fm.au, data.vy = fm.vy, data.vu = fm.vu;
+  data.orders = fm.orders;
+  data.waveforms = deck.waveforms;
+  const Mat<double> W = exo_output(scene, fm.orders), S = exo_generator(scene);
+  Mat<double> gen = Mat<double>::Zero(static_cast<Eigen::Index>(fm.dm + 1 + 3 * m), static_cast<Eigen::Index>(fm.dm + 1 + 3 * m));
+  gen.topLeftCorner(fm.dm, fm.dm) = to_d(fm.ay);
+  gen.topRightCorner(fm.dm, 1 + 3 * m) = to_d(fm.au) * W;
+  gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
+  if (gen.allFinite()) data.balance = balancing(gen * step);
+  std::vector<Q> y(fm.dm);
+  for (std::size_t i = 0; i < fm.dm; ++i) y[i] = y0(static_cast<ref::Index>(i), 0);
+  try {
+    out.flow = std::make_unique<certified::MotionEnclosure>(data, y);
+  } catch (const std::invalid_argument& e) {
+    out.why = e.what();
+  }
+  return out;
+}
+
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                          std::ostream& out, std::ostream& log) {
+  require_times(opt);
+  CertifiedMotion cm = certified_motion(deck, c, initial, opt.step);
+  if (!cm.flow) throw io::InputError(deck.file + ": simulate --certified: expected a circuit whose motion dcad encloses, found: " + cm.why);
+  const std::size_t nb = deck.rlc.branches.size(), n = 3 * nb;
+  out << "t";
+  for (const std::string& v : c.variables) out << "," << v;
+  out << ",rad_q,rad_v,rad_p\n";
+  const Q h = certified::rational_of(opt.step);
+  const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
+  double worst[3] = {0, 0, 0}, scale[3] = {0, 0, 0};
+  std::string line;
+  char buf[32];
+  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  for (long k = 0; k <= steps; ++k) {
+    try {
+      cm.flow->advance_to(h * k);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(deck.file + ": simulate --certified: " + e.what());
+    }
+    const std::vector<certified::Enclosure> x = cm.flow->state();
+    double rad[3] = {0, 0, 0};
+    line.clear();
+    put(static_cast<double>(k) * opt.step);
+    for (std::size_t i = 0; i < n; ++i) {
+      line += ',';
+      put(x[i].mid);
+      rad[i / nb] = std::max(rad[i / nb], x[i].rad);
+      scale[i / nb] = std::max(scale[i / nb], std::abs(x[i].mid));
+    }
+    for (int kind = 0; kind < 3; ++kind) {
+      line += ',';
+      put(rad[kind]);
+      worst[kind] = std::max(worst[kind], rad[kind]);
+    }
+    line += '\n';
+    out << line;
+  }
+  Summary sum;
+  sum.rows = steps + 1;
+  sum.estimate_kind = "rigorous: the largest enclosure radius relative to the largest value of its kind (charges, currents, flux linkages)";
+  for (int kind = 0; kind < 3; ++kind) {
+    const double r = scale[kind] > 0 ? worst[kind] / scale[kind] : worst[kind];
+    if (r >= sum.error_estimate) sum.error_estimate = r, sum.worst_variable = kind == 0 ? "q_" : kind == 1 ? "v_" : "p_";
+  }
+  log << "simulate --certified: every value is the midpoint of a rigorous enclosure (Arb balls on the exact model); radii rad_q, rad_v, rad_p per row; "
+      << cm.flow->exponentials() << " matrix exponentials, " << cm.flow->restarts() << " restarts against wrapping\n";
+  return sum;
 }
 
 }  // namespace dcad::api

@@ -265,3 +265,39 @@ void Waveform::exo_state(double t, long double* w) const {
 }
 
 }  // namespace dcad::io
+
+namespace dcad::io {
+
+void Waveform::exact_piece(const Rational& t, Rational& v, Rational& slope) const {
+  if (kind == Kind::sin) throw std::invalid_argument(element + ": exact_piece of a SIN source");
+  if (kind == Kind::dc) {
+    v = p[0];
+    slope = 0;
+    return;
+  }
+  linear_at(*this, t, v, slope);
+}
+
+std::optional<Rational> Waveform::next_corner(const Rational& t) const {
+  std::optional<Rational> best;
+  const auto consider = [&](const Rational& c) {
+    if (c > t && c > 0 && (!best || c < *best)) best = c;
+  };
+  if (kind == Kind::sin) {
+    consider(p[3]);
+  } else if (kind == Kind::pwl) {
+    for (std::size_t i = 0; i < p.size(); i += 2) consider(p[i]);
+  } else if (kind == Kind::pulse) {
+    const Rational &td = p[2], &tr = p[3], &tf = p[4], &pw = p[5], &per = p[6];
+    Rational k0 = 0;
+    if (per > 0 && t > td) k0 = floor_of(Rational((t - td) / per));
+    for (Rational k = k0; k <= k0 + 1; k += 1) {
+      const Rational base = td + (per > 0 ? per * k : Rational(0));
+      for (const Rational& c : {base, Rational(base + tr), Rational(base + tr + pw), Rational(base + tr + pw + tf)}) consider(c);
+      if (per <= 0) break;
+    }
+  }
+  return best;
+}
+
+}  // namespace dcad::io

@@ -85,6 +85,7 @@ struct SimulateOptions {
   Initial initial = Initial::deck;
   Route route = Route::automatic;
   std::vector<std::string> columns;  ///< the CSV's variables after t (empty: every variable); UsageError for a name not in the problem
+  bool enclose = false;  ///< netlists: rigorous enclosures (Arb balls on the exact model); columns rad_q, rad_v, rad_p added
 };
 struct Simulated {
   long rows = 0;
@@ -106,6 +107,7 @@ struct WaveformOptions {
   double rtol = 1e-3, atol = 0;  ///< a vector agrees where |found − exact| ≤ atol + rtol · max |exact| over the run
   Initial initial = Initial::deck;
   bool keep_exact = false;       ///< also return the exact values at every time point (for a plot)
+  bool enclose = true;           ///< build rigorous enclosures where dcad can (certified: true); false: the double flow only
 };
 struct WaveformVector {
   std::string name;      ///< as the file names it

@@ -35,6 +35,11 @@ struct Waveform {
   /// The exosystem state (3 numbers) at t (right limit): ramp (σ, σ', 0); SIN (VO, Re z, Im z) with
   /// z = VA e^{(−θ+iω)(t−TD) + iφ} (0 before TD).
   void exo_state(double t, long double* w) const;
+  /// DC, PULSE, PWL: the exact value and slope at the exact time t (right limit).  SIN: invalid_argument.
+  void exact_piece(const Rational& t, Rational& v, Rational& slope) const;
+  /// The first corner after t, exact (TD + k·PER + {0, TR, TR+PW, TR+PW+TF}, PWL's times, SIN's TD > 0);
+  /// nullopt when there is none.  The exact counterpart of breakpoints().
+  std::optional<Rational> next_corner(const Rational& t) const;
   bool is_sine() const { return kind == Kind::sin; }
   /// A time by which the waveform has shown every feature (delay, two periods, last PWL point).
   double horizon() const;
