@@ -148,8 +148,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "dense", "sparse"}));
   sim->add_option("--vars", sim_columns, "comma-separated variables for the CSV after t (default: every variable)");
   sim->add_flag("--certified", sim_opt.enclose,
-                "netlists up to 200 branches: every value the midpoint of a rigorous enclosure (Arb balls on the exact model), with the "
-                "largest radius of the row's charges, currents and flux linkages in columns rad_q, rad_v, rad_p");
+                "netlists up to 60 branches: every value the midpoint of a rigorous enclosure (Arb balls on the exact model) of the motion at "
+                "the exact time k*step (printed rounded to double), with the largest radius of the row's charges, currents and flux "
+                "linkages in columns rad_q, rad_v, rad_p");
   std::string sim_png, sim_vars, sim_energy;
   sim->add_option("--energy", sim_energy, "circuits with R or sources: write the energy balance (E, dissipated and supplied power and work) as CSV here");
   sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");

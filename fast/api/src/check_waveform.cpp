@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -138,6 +139,15 @@ double value(const Functional& f, const sr::BranchValues& bv, const Vec& e) {
   return 0;
 }
 
+/// The smallest enclosure (rounded outward) of two.
+certified::Enclosure hull(const certified::Enclosure& a, const certified::Enclosure& b) {
+  const double lo = std::nextafter(std::min(a.mid - a.rad, b.mid - b.rad), -HUGE_VAL), hi = std::nextafter(std::max(a.mid + a.rad, b.mid + b.rad), HUGE_VAL);
+  certified::Enclosure h;
+  h.mid = lo / 2 + hi / 2;
+  h.rad = std::nextafter(std::max(h.mid - lo, hi - h.mid), HUGE_VAL);
+  return h;
+}
+
 /// Enclosures of every vector at the file's times (the certified tier), or why there are none.
 struct Enclosed {
   bool ok = false;
@@ -161,14 +171,42 @@ std::vector<certified::Functional::Term> branch_voltage(const io::Netlist& deck,
   }
 }
 
+Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision);
+
+/// Enclosures at 256 bits, then at twice the precision while some radius exceeds 2^-60 of its vector's
+/// largest value (wrapping through many corners: each doubling of the bits buys about twice the corners),
+/// up to 2048 bits.
 Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step) {
+  Enclosed e;
+  for (long precision = 256; precision <= 2048; precision *= 2) {
+    const auto start = std::chrono::steady_clock::now();
+    e = enclose_at(tr, p, fs, opt, step, precision);
+    if (!e.ok) return e;
+    bool narrow = true, finite = true;
+    for (const auto& v : e.right)
+      for (const certified::Enclosure& x : v) finite = finite && std::isfinite(x.rad);
+    // an infinite radius (a stiff circuit's exponential) does not narrow with more bits; nor is a run
+    // that took 10 s repeated at twice the cost
+    if (!finite || std::chrono::steady_clock::now() - start > std::chrono::seconds(10)) return e;
+    for (std::size_t k = 0; k < e.right.size() && narrow; ++k) {
+      double scale = 0, rad = 0;
+      for (std::size_t i = 0; i < e.right[k].size(); ++i)
+        scale = std::max({scale, std::abs(e.right[k][i].mid), std::abs(e.left[k][i].mid)}), rad = std::max({rad, e.right[k][i].rad, e.left[k][i].rad});
+      narrow = rad <= std::ldexp(scale, -60) || rad <= std::ldexp(1.0, -1000);
+    }
+    if (narrow) return e;
+  }
+  return e;
+}
+
+Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision) {
   Enclosed out;
   const io::Netlist& deck = p.netlist;
   const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
   std::ostringstream quiet;
   CertifiedMotion cm;
   try {
-    cm = certified_motion(deck, p.linear, netlist_start(deck, p.linear.variables, opt.initial, quiet), step);
+    cm = certified_motion(deck, p.linear, netlist_start(deck, p.linear.variables, opt.initial, quiet), step, precision);
   } catch (const std::exception& e) {
     out.why = e.what();
     return out;
@@ -223,7 +261,12 @@ Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<F
   // summed in double) is read as that corner and compared with its two one-sided values
   const double near = 1e-13 * std::max(std::abs(tr.time.back()), std::abs(tr.time.front()));
   std::map<double, io::Rational> corners;
-  for (const io::Rational& c : cm.flow->corners(certified::rational_of(tr.time.back() + 2 * near))) corners.emplace(c.convert_to<double>(), c);
+  const std::vector<io::Rational> all = cm.flow->corners(certified::rational_of(tr.time.back() + 2 * near), kEnclosedCorners + 1);
+  if (all.size() > kEnclosedCorners) {
+    out.why = "the sources have more than " + std::to_string(kEnclosedCorners) + " corners in the run (each is crossed exactly)";
+    return out;
+  }
+  for (const io::Rational& c : all) corners.emplace(c.convert_to<double>(), c);
   const auto corner_of = [&](double t) -> const io::Rational* {
     auto it = corners.lower_bound(t - near);
     return it != corners.end() && it->first <= t + near ? &it->second : nullptr;
@@ -232,10 +275,28 @@ Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<F
   out.left = out.right;
   try {
     for (std::size_t i = 0; i < np; ++i) {
+      const io::Rational at = certified::rational_of(tr.time[i]);
       const io::Rational* c = corner_of(tr.time[i]);
-      const io::Rational t = c ? *c : certified::rational_of(tr.time[i]);
-      if (t > cm.flow->time()) cm.flow->advance_to(t);
-      const std::vector<certified::Enclosure> r = cm.flow->evaluate(cf), l = cm.flow->at_corner() ? cm.flow->evaluate(cf, true) : r;
+      if (at < cm.flow->time() || (c && *c < cm.flow->time())) {
+        out.why = "two of the file's times lie within 1e-13 of the run of one source corner";
+        return out;
+      }
+      std::vector<certified::Enclosure> before;  // at the file's own time, when it is just before the corner
+      if (c && at < *c) {
+        cm.flow->advance_to(at);
+        before = cm.flow->evaluate(cf);
+      }
+      cm.flow->advance_to(c ? *c : at);
+      std::vector<certified::Enclosure> r = cm.flow->evaluate(cf), l = cm.flow->at_corner() ? cm.flow->evaluate(cf, true) : r;
+      // a time near a corner: the side it lies on holds the exact value at the file's own time (the hull
+      // of that side's value at the corner and the value at the time), the other side the corner's
+      // other one-sided value (the CONTRACT's allowance at a jump)
+      if (c && at > *c) {
+        cm.flow->advance_to(at);
+        const std::vector<certified::Enclosure> after = cm.flow->evaluate(cf);
+        for (std::size_t k = 0; k < fs.size(); ++k) r[k] = hull(r[k], after[k]);
+      }
+      for (std::size_t k = 0; k < before.size(); ++k) l[k] = hull(l[k], before[k]);
       for (std::size_t k = 0; k < fs.size(); ++k) out.right[k][i] = r[k], out.left[k][i] = l[k];
     }
   } catch (const std::exception& e) {
@@ -283,7 +344,7 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
   const double step = tr.time.size() > 1 && horizon > 0 ? horizon / static_cast<double>(tr.time.size() - 1) : 1.0;
   const std::size_t nv = fs.size(), np = tr.time.size();
   // the certified tier first: enclosures of the exact values (rigorous), where dcad builds them
-  const Enclosed enc = opt.enclose ? enclose(tr, p, fs, opt, step) : Enclosed{false, "not asked for (--no-enclosure)", {}, {}, 0};
+  const Enclosed enc = opt.enclose ? enclose(tr, p, fs, opt, step) : Enclosed{false, "not asked for (WaveformOptions::enclose false)", {}, {}, 0};
   const bool graph = reference::pipeline::graph_route_holds(deck.rlc);
   if (!graph && !enc.ok)
     throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1, "
@@ -325,9 +386,21 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
   } else {
     netlist_start(deck, p.linear.variables, opt.initial, log, &jumps);
   }
+  // an enclosure wider than the double flow's own uncertainty (a stiff circuit, wrapping) does not
+  // decide its vector: the double flow does, and the run is not certified
+  std::vector<bool> enclosed(nv, enc.ok);
+  std::string wide;
+  for (std::size_t k = 0; k < nv && enc.ok && graph; ++k) {
+    double worst = 0;
+    for (std::size_t i = 0; i < np; ++i) worst = std::max({worst, enc.right[k][i].rad, enc.left[k][i].rad});
+    if (!(worst <= uncertainty[k])) {
+      enclosed[k] = false;
+      wide += std::string(wide.empty() ? "" : ", ") + tr.names[k] + " (radius " + io::float_text(worst) + ")";
+    }
+  }
   for (std::size_t k = 0; k < nv; ++k)
     for (std::size_t i = 0; i < np; ++i) {
-      if (enc.ok) {
+      if (enclosed[k]) {
         right[k][i] = enc.right[k][i].mid, rad_r[k][i] = enc.right[k][i].rad;
         left[k][i] = enc.left[k][i].mid, rad_l[k][i] = enc.left[k][i].rad;
         two_sided[i] = two_sided[i] || left[k][i] != right[k][i] || rad_l[k][i] != rad_r[k][i];
@@ -341,11 +414,13 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
       first_step = t;
       break;
     }
-  out.certified = enc.ok;
+  out.certified = enc.ok && wide.empty();
   out.certified_reason =
-      enc.ok ? std::string()
-             : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
-                   " of the state): values, not enclosures; no enclosure because " + enc.why;
+      out.certified ? std::string()
+      : enc.ok      ? "the enclosures of " + wide + " are wider than the double flow's own uncertainty: those vectors are decided by the double flow (estimated error " +
+                     io::float_text(out.error_estimate) + " of the state), not proved"
+                    : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
+                          " of the state): values, not enclosures; no enclosure because " + enc.why;
   constexpr double u = std::numeric_limits<double>::epsilon();
   for (std::size_t k = 0; k < nv; ++k) {
     WaveformVector v;
@@ -421,8 +496,8 @@ std::string waveform_text(const WaveformChecked& c, const std::string& waveform_
       << (v.at_corner ? " (a source corner or t = 0: either one-sided value allowed)" : "") << "\n";
     if (!v.decided)
       s << "    dcad's own value is uncertain by " << io::float_text(v.exact_uncertainty)
-        << " (its error estimate times the largest value of this kind): it cannot tell this difference from the tolerance; "
-           "not a proof either way (--atol above the uncertainty decides it)\n";
+        << (c.certified ? " (the largest radius of its enclosures)" : " (its error estimate times the largest value of this kind)")
+        << ": it cannot tell this difference from the tolerance; not a proof either way (--atol above the uncertainty decides it)\n";
     if (v.skipped_at_jump)
       s << "    t = 0 and the first step not compared (" << v.skipped_at_jump << (v.skipped_at_jump == 1 ? " point" : " points")
         << "): the state jumps onto M_c at t = 0, and a simulator shows the state before it, then its impulse smeared over one step\n";

@@ -82,7 +82,10 @@ struct CertifiedMotion {
   std::string why;
 };
 constexpr std::size_t kCertifiedBranches = reference::pipeline::kForcedBranches;
-CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step);
+/// check encloses runs through at most this many source corners (each is crossed exactly).
+constexpr std::size_t kEnclosedCorners = 100000;
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step,
+                                 long precision = 256);
 /// `simulate --certified`: the rows are the midpoints of the enclosures, with the largest radius of each
 /// kind (rad_q, rad_v, rad_p) per row.
 Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,

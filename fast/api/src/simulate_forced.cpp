@@ -426,7 +426,8 @@ Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optio
 
 namespace dcad::api {
 
-CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step) {
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step,
+                                 long precision) {
   CertifiedMotion out;
   if (deck.rlc.branches.size() > kCertifiedBranches) {
     out.why = "the enclosure is built on the exact dense model, up to " + std::to_string(kCertifiedBranches) + " branches (this circuit has " +
@@ -439,6 +440,13 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
     out.why = "the circuit's solutions are not unique (" + std::to_string(fm.free) + " free multipliers): the flow takes one particular solution";
     return out;
   }
+  // the start (the operating point, the jump at 0) is computed from the sources' values at 0 in double
+  // where they involve π: exact only when every one is rational
+  for (const io::Waveform& w : deck.waveforms)
+    if (!w.exact_at_zero(0)) {
+      out.why = "the state at t = 0 depends on " + w.element + "'s value at 0, which involves pi (the start is not an exact rational)";
+      return out;
+    }
   const ForcedStart st = forced_start(scene, fm, c, initial);
   const std::size_t m = fm.m, wu = 1 + m * static_cast<std::size_t>(fm.orders);
   std::vector<Q> u0(wu, Q(0));
@@ -475,7 +483,7 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
   std::vector<Q> y(fm.dm);
   for (std::size_t i = 0; i < fm.dm; ++i) y[i] = y0(static_cast<ref::Index>(i), 0);
   try {
-    out.flow = std::make_unique<certified::MotionEnclosure>(data, y);
+    out.flow = std::make_unique<certified::MotionEnclosure>(data, y, precision);
   } catch (const std::invalid_argument& e) {
     out.why = e.what();
   }

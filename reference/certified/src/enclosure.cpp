@@ -147,16 +147,19 @@ struct MotionEnclosure::Impl {
     for (std::size_t i = dm; i < nz; ++i) arb_set(z.at(static_cast<slong>(i), 0), full.at(static_cast<slong>(i), 0));
   }
 
-  double relative_width(const BallMat& col) const {
-    double r = 0, s = 0;
+  /// The largest radius of the (balanced) state, and the largest |midpoint| so far in the run (`scale`):
+  /// wrapping is measured against the state's size over the run, not against a state decaying to 0
+  /// (whose relative width grows however it is computed, and would restart at every step).
+  double width(const BallMat& col) {
+    double r = 0;
     for (slong i = 0; i < static_cast<slong>(nz); ++i) {
       const arb_srcptr e = arb_mat_entry(col.m, i, 0);
       r = std::max(r, mag_get_d(arb_radref(e)));
-      s = std::max(s, std::abs(arf_get_d(arb_midref(e), ARF_RND_NEAR)));
+      scale = std::max(scale, std::abs(arf_get_d(arb_midref(e), ARF_RND_NEAR)));
     }
-    if (!std::isfinite(r)) return HUGE_VAL;
-    return s > 0 ? r / s : (r > 0 ? HUGE_VAL : 0.0);
+    return std::isfinite(r) ? r : HUGE_VAL;
   }
+  double scale = 0, floor = 0;
 
   void exp_of(BallMat& out, const Q& delta) {
     Ball d;
@@ -239,14 +242,68 @@ struct MotionEnclosure::Impl {
       cache.emplace(delta, std::move(e));
     }
     t = to;
-    if (relative_width(z) > std::ldexp(1.0, -static_cast<int>(prec / 2))) {  // wrapping: once from the piece's start
-      BallMat e(static_cast<slong>(nz), static_cast<slong>(nz));
-      exp_of(e, t - piece);
-      arb_mat_mul(z.m, e.m, z_piece.m, prec);
+    // wrapping: once from the piece's start, when the width has grown beyond 2^(−prec/2) of the state's
+    // scale and well beyond what the last restart left (a restart that cannot narrow it is not repeated)
+    const double w = width(z);
+    if (w > std::ldexp(scale, -static_cast<int>(prec / 2)) && w > 1024 * floor) {
+      restart();
       ++restarts;
+      floor = width(z);
+    }
+    if (!anchored) {  // the first point of the piece: later restarts start from here (one step from its start)
+      arb_mat_set(z_piece.m, z.m);
+      piece = t;
+      anchored = true;
+      anchor_width = width(z);
     }
   }
   std::map<Q, int> seen;
+  bool anchored = false;
+  double anchor_width = 0;
+  /// Before a corner: the state recomputed from the anchor when it has widened 2^16-fold since, so that
+  /// the next piece does not start from a wrapped state (widths would ratchet up piece after piece).
+  void refresh() {
+    if (anchored && t > piece && width(z) > 65536 * anchor_width) {
+      restart();
+      ++restarts;
+    }
+  }
+  /// exp(G δ·2^k) of a cached step δ, each by its own exponential
+  std::map<Q, std::vector<std::unique_ptr<BallMat>>> powers;
+
+  /// z from the anchor (z_piece at `piece`) in one go: by binary powers of a repeated step δ when t − piece
+  /// is a multiple j of it (at most log2 j products: a uniform grid restarts for the cost of a few
+  /// products), else by one exponential exp(G (t − piece)).
+  void restart() {
+    const Q d = t - piece;
+    for (const auto& [delta, e] : cache) {
+      const Q j = d / delta;
+      if (j <= 0 || boost::multiprecision::denominator(j) != 1 || j > Q(1L << 40)) continue;
+      boost::multiprecision::mpz_int left = boost::multiprecision::numerator(j);
+      auto& pw = powers[delta];
+      if (pw.empty()) {
+        pw.push_back(std::make_unique<BallMat>(static_cast<slong>(nz), static_cast<slong>(nz)));
+        arb_mat_set(pw[0]->m, e->m);
+      }
+      BallMat acc(static_cast<slong>(nz), 1), next(static_cast<slong>(nz), 1);
+      arb_mat_set(acc.m, z_piece.m);
+      for (std::size_t k = 0; left != 0; ++k, left >>= 1) {
+        if (k == pw.size()) {
+          pw.push_back(std::make_unique<BallMat>(static_cast<slong>(nz), static_cast<slong>(nz)));
+          exp_of(*pw[k], delta * Q(boost::multiprecision::mpz_int(1) << k));  // not by squaring: that widens geometrically too
+        }
+        if ((left & 1) != 0) {
+          arb_mat_mul(next.m, pw[k]->m, acc.m, prec);
+          arb_mat_swap(acc.m, next.m);
+        }
+      }
+      arb_mat_swap(z.m, acc.m);
+      return;
+    }
+    BallMat e(static_cast<slong>(nz), static_cast<slong>(nz));
+    exp_of(e, d);
+    arb_mat_mul(z.m, e.m, z_piece.m, prec);
+  }
 
   std::optional<Q> next_corner(const Q& after) const {
     std::optional<Q> best;
@@ -299,6 +356,7 @@ struct MotionEnclosure::Impl {
     }
     arb_mat_set(z_piece.m, z.m);
     piece = t;
+    anchored = false;
     corner = true;
   }
 };
@@ -315,9 +373,12 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
   if (y0.size() != s.dm || static_cast<std::size_t>(data.ay.rows()) != s.dm || static_cast<std::size_t>(data.au.cols()) != s.nu ||
       static_cast<std::size_t>(data.vu.cols()) != s.nu || (!data.balance.empty() && data.balance.size() != s.nz))
     throw std::invalid_argument("MotionEnclosure: inconsistent shapes");
-  for (const io::Waveform& w : data.waveforms)
+  for (const io::Waveform& w : data.waveforms) {
     if (w.kind == io::Waveform::Kind::pulse && (w.p[3] <= 0 || w.p[4] <= 0))
       throw std::invalid_argument(w.element + ": a PULSE with TR or TF = 0 jumps; its enclosure is not built");
+    if (w.is_sine() && w.p[2] == 0)
+      throw std::invalid_argument(w.element + ": a SIN with FREQ = 0 (ngspice reads it as 1/TSTOP, dcad as a constant); its enclosure is not built");
+  }
   s.dual.resize(s.nz, Q(1));
   for (std::size_t i = 0; i < data.balance.size(); ++i) s.dual[i] = rational_of(data.balance[i]);
   const slong p = s.prec, nz = static_cast<slong>(s.nz), dm = static_cast<slong>(s.dm), nu = static_cast<slong>(s.nu);
@@ -418,6 +479,7 @@ void MotionEnclosure::advance_to(const Q& to) {
     if (!c || *c > to) break;
     const Q before = s.t;
     s.flow_to(*c);
+    s.refresh();
     s.cross_corner(before);
   }
   if (to > s.t) {
@@ -432,10 +494,10 @@ bool MotionEnclosure::at_corner() const { return impl_->corner; }
 long MotionEnclosure::restarts() const { return impl_->restarts; }
 long MotionEnclosure::exponentials() const { return impl_->exps; }
 
-std::vector<Q> MotionEnclosure::corners(const Q& until) const {
+std::vector<Q> MotionEnclosure::corners(const Q& until, std::size_t limit) const {
   std::vector<Q> out;
   Q at = 0;
-  while (true) {
+  while (out.size() < limit) {
     const std::optional<Q> c = impl_->next_corner(at);
     if (!c || *c > until) break;
     out.push_back(*c);

@@ -70,8 +70,8 @@ class MotionEnclosure {
   /// Whether time() is a corner of some source, or 0 (then left values may differ; at 0 the left limit
   /// has the sources held at their values at 0, as before a transient).
   bool at_corner() const;
-  /// The sources' corners in (0, until], exact, sorted.
-  std::vector<Q> corners(const Q& until) const;
+  /// The sources' corners in (0, until], exact, sorted; at most `limit` of them.
+  std::vector<Q> corners(const Q& until, std::size_t limit = static_cast<std::size_t>(-1)) const;
 
   /// The functionals at time(): right values, or limits from the left (`left`; equal away from corners).
   std::vector<Enclosure> evaluate(const std::vector<Functional>& f, bool left = false) const;
