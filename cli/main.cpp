@@ -242,13 +242,7 @@ int main(int argc, char** argv) {
       const dcad::api::WaveformChecked w = dcad::api::check_waveform(traces, dcad::io::read_problem(check_file), wave_opt, std::cerr);
       std::cout << (check_json ? dcad::api::waveform_json(w, wave_opt) + "\n" : dcad::api::waveform_text(w, check_result_file, check_file, wave_opt));
       if (!check_png.empty() && !w.vectors.empty()) {
-        if (plotted.empty()) {  // the worst vector, relative to its scale
-          std::size_t worst = 0;
-          const auto rel = [&](std::size_t k) { return w.vectors[k].scale > 0 ? w.vectors[k].max_error / w.vectors[k].scale : w.vectors[k].max_error; };
-          for (std::size_t k = 1; k < w.vectors.size(); ++k)
-            if (rel(k) > rel(worst)) worst = k;
-          plotted.push_back(worst);
-        }
+        if (plotted.empty()) plotted.push_back(w.worst);
         const std::string csv = check_png + ".csv";
         {
           std::ofstream f(csv);

@@ -67,8 +67,8 @@ std::string simulate(const SimRun& r) {
 // after 1000 periods (trapezoidal phase drift: 52 %); right on the mixed-scale RLC (mOhm…MOhm, pH…mH,
 // fF…uF) and on the k = 1 transformer (it keeps the flux, as the CONTRACT's jump does).  gnucap is right
 // on the RC pulse and wrong on the triangle's node voltages (the island's potential rings after each
-// corner) and on the mixed-scale RLC (0.5 % on v(in): its voltage source is not ideal); on k = 1 it does
-// not finish.
+// corner), on the mixed-scale RLC (0.5 % on v(in): its voltage source is not ideal) and on the source
+// current of the PWL deck after its corners (ngspice is right there); on k = 1 it does not finish.
 TEST(SimulatorCheck, VerdictIsTheIndependentDerivations) {
   if (!have("ngspice") || !have("gnucap")) GTEST_SKIP() << "ngspice and gnucap are installed by .ci/setup";
   const std::string tight = ".options reltol=1e-7 abstol=1e-15 vntol=1e-12 chgtol=1e-20";
@@ -85,6 +85,9 @@ TEST(SimulatorCheck, VerdictIsTheIndependentDerivations) {
       {"mixed-scale-rlc", "gnucap", "default", ".print tran v(in) v(x) v(a) v(b) i(L1) i(L2)", "", false},
       {"transformer-k1", "ngspice", "default", "", "", false},
       {"transformer-k1", "ngspice", "reltol=1e-7", tight, "", false},
+      {"pwl-rlc", "ngspice", "default", "", "", false},
+      {"pwl-rlc", "ngspice", "reltol=1e-7", tight, "", false},
+      {"pwl-rlc", "gnucap", "default", ".print tran v(in) v(a) v(b) i(L1) i(V1)", "", false},
   };
   int wrong = 0, right = 0;
   for (const SimRun& r : runs) {
@@ -197,7 +200,7 @@ TEST(SimulatorCheck, ExportedWaveformsAreTheOracles) {
   const std::string dir = temp_path("exported");
   const Outcome e = run("cases export --waveforms " + dir);
   ASSERT_EQ(e.rc, 0) << e.err;
-  for (const char* deck : {"rc-pulse", "cap-triangle-inductor-cutset", "lc-tank-1000-periods", "mixed-scale-rlc", "transformer-k1"}) {
+  for (const char* deck : {"rc-pulse", "cap-triangle-inductor-cutset", "lc-tank-1000-periods", "mixed-scale-rlc", "transformer-k1", "pwl-rlc"}) {
     const std::string csv = dir + "/" + deck + ".csv";
     const int oracle = shell("/usr/bin/python3 " + kDecks + "oracle.py " + kDecks + deck + ".cir " + csv + " --rtol 1e-9 >" + temp_path("oracle.txt") + " 2>&1");
     EXPECT_EQ(oracle, 0) << deck << "\n" << slurp(temp_path("oracle.txt"));
@@ -236,7 +239,7 @@ TEST(SimulatorCheck, IdiomsOfUsers) {
 TEST(SimulatorCheck, EnclosuresHoldTheOraclesValues) {
   const std::string dir = temp_path("enclosed");
   ASSERT_EQ(run("cases export --waveforms " + dir).rc, 0);
-  for (const char* deck : {"rc-pulse", "cap-triangle-inductor-cutset", "lc-tank-1000-periods", "mixed-scale-rlc", "transformer-k1"}) {
+  for (const char* deck : {"rc-pulse", "cap-triangle-inductor-cutset", "lc-tank-1000-periods", "mixed-scale-rlc", "transformer-k1", "pwl-rlc"}) {
     // every 7th row of the export's grid (corners, t = 0 and the tank's last periods among them)
     std::istringstream in(slurp(dir + "/" + deck + ".csv"));
     std::string line, text;

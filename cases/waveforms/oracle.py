@@ -127,6 +127,31 @@ def pulse(v1, v2, td, tr, tf, pw, per):
     return sorted(set(breaks)), value, slope
 
 
+def pwl(points):
+    """(breakpoints, value(t), slope(t, left)) of SPICE's PWL: linear between the points, constant outside."""
+    ts, vs = [mpf(t) for t, _ in points], [mpf(v) for _, v in points]
+
+    def piece(t):
+        for k in range(len(ts) - 1):
+            if ts[k] <= t < ts[k + 1]:
+                return k
+        return None
+
+    def value(t):
+        if t <= ts[0]:
+            return vs[0]
+        k = piece(t)
+        if k is None:
+            return vs[-1]
+        return vs[k] + (vs[k + 1] - vs[k]) * (t - ts[k]) / (ts[k + 1] - ts[k])
+
+    def slope(t, left=False):
+        t = t - mpf("1e-25") if left else t + mpf("1e-25")
+        k = piece(t)
+        return mpf(0) if k is None else (vs[k + 1] - vs[k]) / (ts[k + 1] - ts[k])
+    return sorted(t for t in ts if t >= 0), value, slope  # 0 too: the source is held before it (a corner at 0)
+
+
 # ------------------------------------------------------------------ x' = A x + B0 u + B1 u', exactly
 class Linear:
     def __init__(self, A, B0, B1, source, x0):
@@ -253,6 +278,19 @@ def transformer_k1():
     return Closed(), outputs
 
 
+def pwl_rlc():
+    R, L, C1, C2 = mpf(50), mpf("1e-7"), mpf("2e-11"), mpf("5e-12")
+    src = pwl([(0, 0), ("1e-9", 1), ("3e-9", 1), ("3.5e-9", "-0.5"), ("6e-9", 0)])
+    # x = (i, v_b): L i' = V - R i - v_b, C1 v_b' = i
+    sys_ = Linear(matrix([[-R / L, -1 / L], [1 / C1, 0]]), matrix([[1 / L], [0]]), matrix(2, 1), src, matrix([0, 0]))
+    u, du = src[1], src[2]
+
+    def outputs(t, x, left):
+        V = u(t)
+        return {"v(in)": V, "v(a)": V - R * x[0], "v(b)": x[1], "i(l1)": x[0], "i(v1)": -(x[0] + C2 * du(t, left))}
+    return sys_, outputs
+
+
 def lc_tank():
     L, C = mpf("1e-6"), mpf("1e-9")
     w = 1 / sqrt(L * C)
@@ -278,7 +316,7 @@ def lc_tank():
 
 EMIT = None  # --emit OUT.csv: write the exact values at the file's times instead of a verdict
 
-DECKS = {"rc-pulse": rc_pulse, "cap-triangle-inductor-cutset": cap_triangle, "lc-tank-1000-periods": lc_tank, "mixed-scale-rlc": mixed_scale, "transformer-k1": transformer_k1}
+DECKS = {"rc-pulse": rc_pulse, "cap-triangle-inductor-cutset": cap_triangle, "lc-tank-1000-periods": lc_tank, "mixed-scale-rlc": mixed_scale, "transformer-k1": transformer_k1, "pwl-rlc": pwl_rlc}
 
 
 def main():

@@ -478,6 +478,9 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
     out.agree = out.agree && v.agree;
     out.vectors.push_back(v);
   }
+  const auto rel = [&](std::size_t k) { return out.vectors[k].scale > 0 ? out.vectors[k].max_error / out.vectors[k].scale : out.vectors[k].max_error; };
+  for (std::size_t k = 1; k < out.vectors.size(); ++k)
+    if (rel(k) > rel(out.worst)) out.worst = k;
   return out;
 }
 

@@ -110,7 +110,8 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
   return guarded(p, [&] {
     if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
-      const std::vector<std::string> all = simulate_columns(p);
+      std::vector<std::string> all = simulate_columns(p);
+      if (options.enclose) all.insert(all.end(), {"rad_q", "rad_v", "rad_p"});
       for (const std::string& n : options.columns)
         if (n == "t" || std::find(all.begin(), all.end(), n) == all.end())
           throw UsageError("--vars: expected variables of " + p.file + ", found " + n);

@@ -135,6 +135,7 @@ struct WaveformChecked {
   long points = 0;                ///< time points in the file
   double error_estimate = 0;      ///< the exact flow's own error estimate (relative to the state)
   std::vector<WaveformVector> vectors;
+  std::size_t worst = 0;          ///< the vector with the largest error relative to its scale (what --plot draws by default)
   std::vector<std::vector<double>> exact;  ///< with keep_exact: exact[k][i], vector k at the file's time i (the value compared)
 };
 /// InputError for an unreadable file, a vector name that DECK cannot map, or a circuit outside the
