@@ -316,7 +316,7 @@ def lc_tank():
 
 EMIT = None  # --emit OUT.csv: write the exact values at the file's times instead of a verdict
 
-DECKS = {"rc-pulse": rc_pulse, "cap-triangle-inductor-cutset": cap_triangle, "lc-tank-1000-periods": lc_tank, "mixed-scale-rlc": mixed_scale, "transformer-k1": transformer_k1, "pwl-rlc": pwl_rlc}
+DECKS = {"rc-pulse": rc_pulse, "cap-triangle-inductor-cutset": cap_triangle, "lc-tank-1000-periods": lc_tank, "lc-tank-10000-periods": lc_tank, "mixed-scale-rlc": mixed_scale, "transformer-k1": transformer_k1, "pwl-rlc": pwl_rlc}
 
 
 def main():
