@@ -86,7 +86,7 @@ class MotionEnclosure {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The nearest double to an exact rational's value, and the rational value of a double (exact).
+/// The exact rational value of a double (every double is a dyadic rational).
 Q rational_of(double t);
 
 }  // namespace dcad::certified
