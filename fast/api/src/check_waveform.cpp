@@ -203,6 +203,11 @@ Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vecto
   Enclosed out;
   const io::Netlist& deck = p.netlist;
   const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
+  if (nb > kCertifiedBranches) {  // before the exact start, which costs gigabytes at 10^4 branches
+    out.why = "the enclosure is built on the exact dense model, up to " + std::to_string(kCertifiedBranches) + " branches (this circuit has " +
+              std::to_string(nb) + ")";
+    return out;
+  }
   std::ostringstream quiet;
   CertifiedMotion cm;
   try {

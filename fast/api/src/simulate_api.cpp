@@ -138,6 +138,9 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " (" << sum.estimate_kind << ")\n";
       return sum;
     }
+    if (options.enclose && netlist && p.netlist.rlc.branches.size() > kCertifiedBranches)  // before the exact start (gigabytes at 10^4 branches)
+      throw io::InputError(p.file + ": simulate --certified: expected a circuit whose motion dcad encloses, found: the enclosure is built on the exact dense model, up to " +
+                           std::to_string(kCertifiedBranches) + " branches (this circuit has " + std::to_string(p.netlist.rlc.branches.size()) + ")");
     std::vector<std::optional<io::Rational>> init(c.n);
     if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
     if (options.enclose) {
