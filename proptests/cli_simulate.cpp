@@ -724,13 +724,23 @@ TEST(Forced, SineHoldsItsPhaseBeforeItsDelay) {
 // passed off as enclosed), a case file is a usage error; --vars may name the radius columns; the
 // series RLC's enclosed current holds its closed form i(t) = V/(L wd) e^(−αt) sin(wd t) (cases/rlc-series.cir).
 TEST(Simulate, CertifiedEnclosesOrSaysWhyNot) {
-  std::string ladder = "61 branches\nV1 n0 0 DC 1\n";
-  for (int k = 0; k < 20; ++k)
+  std::string ladder = "201 branches\nV1 n0 0 DC 1\n";
+  for (int k = 0; k < 66; ++k)
     ladder += "R" + std::to_string(k) + " n" + std::to_string(k) + " m" + std::to_string(k) + " 1\nL" + std::to_string(k) + " m" + std::to_string(k) + " n" +
               std::to_string(k + 1) + " 1u\nC" + std::to_string(k) + " n" + std::to_string(k + 1) + " 0 1n\n";
-  const Outcome big = run("simulate " + write_temp("ladder61.cir", ladder + ".end\n") + " --tstop 1u --step 1n --certified --initial uic");
+  ladder += "R66 n66 0 1\nR67 n66 0 1\n";
+  const Outcome big = run("simulate " + write_temp("ladder201.cir", ladder + ".end\n") + " --tstop 1u --step 1n --certified --initial uic");
   EXPECT_EQ(big.rc, 1) << big.err;
-  EXPECT_NE(big.err.find("up to 60 branches"), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find("up to 200 branches"), std::string::npos) << big.err;
+  // the dense model asked for beyond its 60 branches; and a k = 1 coupling beyond them (outside the state equations)
+  std::string k1 = "62 branches\nV1 a 0 DC 1\nR0 a b 1\nL1 b 0 10u\nL2 c 0 40u\nK1 L1 L2 1\nR1 c 0 1\n";
+  for (int k = 0; k < 56; ++k) k1 += "R" + std::to_string(k + 2) + " c n" + std::to_string(k) + " 1\n";
+  const Outcome dense = run("simulate " + write_temp("ladder201d.cir", ladder + ".end\n") + " --tstop 1u --step 1n --certified --route dense --initial uic");
+  EXPECT_EQ(dense.rc, 1) << dense.err;
+  EXPECT_NE(dense.err.find("the dense model up to 60"), std::string::npos) << dense.err;
+  const Outcome coupled = run("simulate " + write_temp("k1-62.cir", k1 + ".end\n") + " --tstop 1u --step 1n --certified --initial uic");
+  EXPECT_EQ(coupled.rc, 1) << coupled.err;
+  EXPECT_NE(coupled.err.find("couplings |k| < 1"), std::string::npos) << coupled.err;
   const Outcome pi = run("simulate " + write_temp("sin30.cir", "phase 30\nV1 a 0 SIN(0 1 1k 0 0 30)\nR1 a b 1k\nC1 b 0 1u\n.end\n") +
                          " --tstop 1m --step 1u --certified");
   EXPECT_EQ(pi.rc, 1) << pi.err;

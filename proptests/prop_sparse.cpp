@@ -271,9 +271,9 @@ RC_GTEST_PROP(Enclosures, HoldTheDenseRoute, ()) {
     dcad::api::simulate(p, opt, enc_csv, enc_log);
   } catch (const dcad::io::InputError& e) {
     const std::string why = e.what();
-    // what the enclosure refuses and the dense route takes: a start through π (a SIN's derivative at 0)
-    // or non-unique solutions (a loop of sources)
-    RC_ASSERT(why.find("involves pi") != std::string::npos || why.find("not unique") != std::string::npos);
+    // what the enclosure refuses and the dense route takes: a start through π (a SIN's derivative at 0),
+    // non-unique solutions (a loop of sources), or a coupling k√(L_a L_b) that is irrational (rounded)
+    RC_ASSERT(why.find("involves pi") != std::string::npos || why.find("not unique") != std::string::npos || why.find("irrational") != std::string::npos);
     RC_DISCARD("not enclosed: " + why);
   }
   const Table a = read_csv(dense_csv.str()), b = read_csv(enc_csv.str());
@@ -303,4 +303,99 @@ RC_GTEST_PROP(Enclosures, HoldTheDenseRoute, ()) {
     }
   }
   RC_TAG(uic ? "uic" : "operating point");
+}
+
+// Two exact models under one certified engine: `simulate --certified --route dense` encloses the motion
+// of the dense forced tower (reference/forced.hpp, its start from reference/pipeline/initial_state.hpp),
+// `--route sparse` that of the state equations reduced exactly (reference/pipeline/rlc_motion.hpp, its
+// start from the same equations) — the model beyond 60 branches.  Both are rigorous enclosures of one
+// motion, so at every row and for every variable the two balls intersect: |mid_a − mid_b| ≤ rad_a +
+// rad_b, with each row's largest radius of the variable's kind (a bound on every radius of that kind).
+// No tolerance: a wrong sign, a missed σ̇ term or a different jump at t = 0 separates them by far more.
+RC_GTEST_PROP(Enclosures, StateEquationModelIsTheDenseModel, ()) {
+  DenseRun d;
+  d.text = random_deck(d.step, d.uic, d.r0, d.t0);
+  RC_LOG() << d.text;
+  d.p = dcad::io::parse_netlist(d.text, "random.cir");
+  if (!dcad::reference::pipeline::graph_route_holds(d.p.netlist.rlc)) RC_DISCARD("outside the graph route");
+  dcad::api::SimulateOptions opt;
+  opt.step = d.step;
+  opt.tstop = 20 * d.step;
+  opt.enclose = true;
+  std::ostringstream dense_csv, dense_log, state_csv, state_log;
+  opt.route = dcad::api::Route::dense;
+  try {
+    dcad::api::simulate(d.p, opt, dense_csv, dense_log);
+  } catch (const dcad::io::InputError& e) {
+    RC_DISCARD(std::string("the dense model is not enclosed: ") + e.what());
+  }
+  opt.route = dcad::api::Route::sparse;
+  try {
+    dcad::api::simulate(d.p, opt, state_csv, state_log);
+  } catch (const dcad::io::InputError& e) {
+    // what the state-equation model refuses and the dense one takes: an operating point that is not
+    // unique (the dense route takes its smallest; ngspice reports a singular matrix)
+    const std::string why = e.what();
+    RC_ASSERT(!d.uic);
+    RC_ASSERT(why.find("not unique") != std::string::npos || why.find("no DC operating point") != std::string::npos);
+    RC_DISCARD("operating point not unique");
+  }
+  RC_ASSERT(state_log.str().find("state equations model") != std::string::npos);
+  const Table a = read_csv(dense_csv.str()), b = read_csv(state_csv.str());
+  RC_ASSERT(a.header == b.header);
+  RC_ASSERT(a.rows.size() == b.rows.size());
+  const std::size_t n = a.header.size() - 4;  // t, the variables, rad_q, rad_v, rad_p
+  const std::map<std::string, std::size_t> rad_col{{"q_", n + 1}, {"v_", n + 2}, {"p_", n + 3}};
+  for (std::size_t i = 0; i < a.rows.size(); ++i)
+    for (std::size_t j = 1; j <= n; ++j) {
+      const std::size_t r = rad_col.at(a.header[j].substr(0, 2));
+      const double e = std::abs(a.rows[i][j] - b.rows[i][j]), rad = a.rows[i][r] + b.rows[i][r];
+      if (!(e <= rad)) RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", state equations " << b.rows[i][j] << " (radii " << rad << ")\n";
+      RC_ASSERT(e <= rad);
+    }
+  RC_TAG(d.uic ? "uic" : "operating point");
+}
+
+// Beyond the dense model's 60 branches the enclosures are built on the state equations: a 76-branch
+// RLC ladder driven by a PULSE, `simulate --certified` against the double sparse route (the Krylov
+// action on the double state equations, fast/rlc_sparse.hpp) — every double value within the
+// enclosure widened by 1e-9 of its kind's scale, every radius below 1e-12 of it (issue 28's goal is
+// 1e-10 up to 200 branches; bench/enclosure.sh measures 199).
+TEST(Enclosures, BeyondTheDenseSizeHoldTheSparseRoute) {
+  std::ostringstream deck;
+  deck << "RLC ladder, 25 sections\nV1 n0 0 PULSE(0 1 1n 1n 1n 20n 50n)\n";
+  for (int k = 0; k < 25; ++k)
+    deck << "R" << k << " n" << k << " m" << k << " 1\nL" << k << " m" << k << " n" << k + 1 << " 10n\nC" << k << " n" << k + 1 << " 0 1p\n";
+  deck << ".end\n";
+  const dcad::io::Problem p = dcad::io::parse_netlist(deck.str(), "ladder76.cir");
+  ASSERT_EQ(p.netlist.rlc.branches.size(), 76u);
+  dcad::api::SimulateOptions opt;
+  opt.step = 0.5e-9;
+  opt.tstop = 60e-9;
+  opt.initial = dcad::api::Initial::op;
+  std::ostringstream a_csv, a_log, b_csv, b_log;
+  opt.route = dcad::api::Route::sparse;
+  dcad::api::simulate(p, opt, a_csv, a_log);
+  opt.route = dcad::api::Route::automatic;
+  opt.enclose = true;
+  dcad::api::simulate(p, opt, b_csv, b_log);
+  EXPECT_NE(b_log.str().find("state equations model"), std::string::npos) << b_log.str();
+  const Table a = read_csv(a_csv.str()), b = read_csv(b_csv.str());
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  ASSERT_EQ(b.header.size(), a.header.size() + 3);
+  std::map<std::string, double> scale;
+  for (std::size_t j = 1; j < a.header.size(); ++j)
+    for (const auto& r : a.rows) scale[a.header[j].substr(0, 2)] = std::max(scale[a.header[j].substr(0, 2)], std::abs(r[j]));
+  const std::map<std::string, std::size_t> rad_col{{"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
+  // rows on a PULSE corner (1, 2, 21, 22, 51, 52 ns) are one-sided for the capacitor currents: skipped
+  const auto corner = [](std::size_t i) { return i == 2 || i == 4 || i == 42 || i == 44 || i == 102 || i == 104; };
+  for (std::size_t j = 1; j < a.header.size(); ++j) {
+    const std::string kind = a.header[j].substr(0, 2);
+    for (std::size_t i = 0; i < a.rows.size(); ++i) {
+      if (kind == "v_" && corner(i)) continue;
+      const double rad = b.rows[i][rad_col.at(kind)], e = std::abs(a.rows[i][j] - b.rows[i][j]);
+      EXPECT_LE(rad, 1e-12 * scale.at(kind)) << a.header[j] << " at row " << i;
+      EXPECT_LE(e, rad + 1e-9 * scale.at(kind)) << a.header[j] << " at row " << i << ": sparse " << a.rows[i][j] << ", enclosure " << b.rows[i][j];
+    }
+  }
 }

@@ -203,15 +203,9 @@ Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vecto
   Enclosed out;
   const io::Netlist& deck = p.netlist;
   const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
-  if (nb > kCertifiedBranches) {  // before the exact start, which costs gigabytes at 10^4 branches
-    out.why = "the enclosure is built on the exact dense model, up to " + std::to_string(kCertifiedBranches) + " branches (this circuit has " +
-              std::to_string(nb) + ")";
-    return out;
-  }
-  std::ostringstream quiet;
   CertifiedMotion cm;
   try {
-    cm = certified_motion(deck, p.linear, netlist_start(deck, p.linear.variables, opt.initial, quiet), step, precision);
+    cm = certified_motion(deck, p.linear, opt.initial, step, precision);
   } catch (const std::exception& e) {
     out.why = e.what();
     return out;
@@ -353,7 +347,7 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
   const bool graph = reference::pipeline::graph_route_holds(deck.rlc);
   if (!graph && !enc.ok)
     throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1, "
-                         "or up to " + std::to_string(kCertifiedBranches) + " branches for the enclosures), found another: " + enc.why);
+                         "or up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches for the enclosures on the dense model), found another: " + enc.why);
   // exact values at every time point: right values, and left ones where they may differ (corners, t = 0),
   // each with how far the exact value may be from it (an enclosure's radius, or the double flow's estimate)
   std::vector<std::vector<double>> right(nv, std::vector<double>(np)), left(nv, std::vector<double>(np)), rad_r(nv, std::vector<double>(np)),

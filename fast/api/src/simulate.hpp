@@ -74,22 +74,26 @@ std::vector<double> balancing(const Eigen::MatrixXd& a);
 /// IC= of an inductor fixes v (its current), of a capacitor fixes q = C · voltage.
 std::vector<std::optional<io::Rational>> netlist_initial(const io::Netlist& n);
 
-/// The certified tier: the exact dense model's motion from `initial` (per-variable values, as
-/// simulate_forced takes them) enclosed in balls (certified/enclosure.hpp).  `flow` null and `why` set
-/// when it cannot be (too large, solutions not unique, a start through π, a PULSE with a jump).
+/// The certified tier: the circuit's exact motion from the start SPICE's `rule` gives, enclosed in
+/// balls (certified/enclosure.hpp).  Two exact models: the dense forced tower (reference/forced.hpp) up
+/// to kForcedBranches branches, its start from netlist_start; the state equations reduced exactly
+/// (pipeline/rlc_motion.hpp) up to kCertifiedBranches where the graph route holds, its start from
+/// state_start.  `flow` null and `why` set when it cannot be (too large, solutions not unique, a
+/// start through π, a PULSE with a jump).
 struct CertifiedMotion {
   std::unique_ptr<certified::MotionEnclosure> flow;
   std::string why;
+  std::string model;  ///< "dense" or "state equations"
 };
-constexpr std::size_t kCertifiedBranches = reference::pipeline::kForcedBranches;
+constexpr std::size_t kCertifiedBranches = 200;
 /// check encloses runs through at most this many source corners (each is crossed exactly).
 constexpr std::size_t kEnclosedCorners = 100000;
-CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step,
-                                 long precision = 256);
+enum class EnclosureModel { automatic, dense, state };
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision = 256,
+                                 EnclosureModel model = EnclosureModel::automatic, std::ostream* log = nullptr);
 /// `simulate --certified`: the rows are the midpoints of the enclosures, with the largest radius of each
 /// kind (rad_q, rad_v, rad_p) per row.
-Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                          std::ostream& out, std::ostream& log);
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 /// Enclosures of the vectors `names` (ngspice's or dcad's names) of a netlist at `times` (ascending),
 /// from the start `initial` (check's and the waveform export's certified tier); ok false and `why` when
 /// dcad cannot build them.  InputError for a name the deck does not have.

@@ -138,19 +138,16 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " (" << sum.estimate_kind << ")\n";
       return sum;
     }
-    if (options.enclose && netlist && p.netlist.rlc.branches.size() > kCertifiedBranches)  // before the exact start (gigabytes at 10^4 branches)
-      throw io::InputError(p.file + ": simulate --certified: expected a circuit whose motion dcad encloses, found: the enclosure is built on the exact dense model, up to " +
-                           std::to_string(kCertifiedBranches) + " branches (this circuit has " + std::to_string(p.netlist.rlc.branches.size()) + ")");
-    std::vector<std::optional<io::Rational>> init(c.n);
-    if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
     if (options.enclose) {
       if (!netlist) throw UsageError(p.file + ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
       if (energy) throw UsageError(p.file + ": --certified and --energy: expected one of them");
-      const Summary sum = simulate_enclosed(p.netlist, c, init, options, rows, log);
+      const Summary sum = simulate_enclosed(p.netlist, c, options, rows, log);
       rows.flush();
       return sum;
     }
-    else if (!c.initial.empty())
+    std::vector<std::optional<io::Rational>> init(c.n);
+    if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
+    if (!c.initial.empty())
       for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
     const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, rows, log, energy)
                         : forced_case ? simulate_forced_case(c, init, options, rows, log, energy)

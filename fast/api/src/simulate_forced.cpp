@@ -13,6 +13,7 @@
 
 #include "dcad/io/report.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
+#include "dcad/reference/pipeline/rlc_motion.hpp"
 #include "dcad/reference/rlc.hpp"
 
 #include <Eigen/Core>
@@ -22,6 +23,7 @@
 #include <complex>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace dcad::api {
 
@@ -426,12 +428,32 @@ Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optio
 
 namespace dcad::api {
 
-CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, double step,
-                                 long precision) {
+namespace {
+
+/// The engine's data and start on the model both routes end in: balanced by the double generator.
+CertifiedMotion enclose(certified::ForcedMotionData data, const std::vector<Q>& y, const ForcedScene& scene, double step, long precision) {
   CertifiedMotion out;
-  if (deck.rlc.branches.size() > kCertifiedBranches) {
-    out.why = "the enclosure is built on the exact dense model, up to " + std::to_string(kCertifiedBranches) + " branches (this circuit has " +
-              std::to_string(deck.rlc.branches.size()) + ")";
+  const std::size_t m = data.waveforms.size(), dm = static_cast<std::size_t>(data.ay.rows());
+  const long orders = data.orders;
+  const Mat<double> W = exo_output(scene, orders), S = exo_generator(scene);
+  Mat<double> gen = Mat<double>::Zero(static_cast<Eigen::Index>(dm + 1 + 3 * m), static_cast<Eigen::Index>(dm + 1 + 3 * m));
+  gen.topLeftCorner(dm, dm) = to_d(data.ay);
+  gen.topRightCorner(dm, 1 + 3 * m) = to_d(data.au) * W;
+  gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
+  if (gen.allFinite()) data.balance = balancing(gen * step);
+  try {
+    out.flow = std::make_unique<certified::MotionEnclosure>(data, y, precision);
+  } catch (const std::invalid_argument& e) {
+    out.why = e.what();
+  }
+  return out;
+}
+
+/// The dense route: the forced tower's model, from netlist_start's exact start.
+CertifiedMotion dense_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision, std::ostream& log) {
+  CertifiedMotion out;
+  if (reference::pipeline::rounded_coupling(deck.rlc)) {  // the model is the rounded circuit's: its balls need not hold the deck's motion
+    out.why = reference::pipeline::kRoundedCoupling;
     return out;
   }
   const ForcedScene scene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms, {}};
@@ -440,13 +462,7 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
     out.why = "the circuit's solutions are not unique (" + std::to_string(fm.free) + " free multipliers): the flow takes one particular solution";
     return out;
   }
-  // the start (the operating point, the jump at 0) is computed from the sources' values at 0 in double
-  // where they involve π: exact only when every one is rational
-  for (const io::Waveform& w : deck.waveforms)
-    if (!w.exact_at_zero(0)) {
-      out.why = "the state at t = 0 depends on " + w.element + "'s value at 0, which involves pi (the start is not an exact rational)";
-      return out;
-    }
+  const std::vector<std::optional<io::Rational>> initial = netlist_start(deck, c.variables, rule, log);
   const ForcedStart st = forced_start(scene, fm, c, initial);
   const std::size_t m = fm.m, wu = 1 + m * static_cast<std::size_t>(fm.orders);
   std::vector<Q> u0(wu, Q(0));
@@ -474,26 +490,71 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
   data.x0 = fm.x0, data.basis = fm.basis, data.ay = fm.ay, data.au = fm.au, data.vy = fm.vy, data.vu = fm.vu;
   data.orders = fm.orders;
   data.waveforms = deck.waveforms;
-  const Mat<double> W = exo_output(scene, fm.orders), S = exo_generator(scene);
-  Mat<double> gen = Mat<double>::Zero(static_cast<Eigen::Index>(fm.dm + 1 + 3 * m), static_cast<Eigen::Index>(fm.dm + 1 + 3 * m));
-  gen.topLeftCorner(fm.dm, fm.dm) = to_d(fm.ay);
-  gen.topRightCorner(fm.dm, 1 + 3 * m) = to_d(fm.au) * W;
-  gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
-  if (gen.allFinite()) data.balance = balancing(gen * step);
   std::vector<Q> y(fm.dm);
   for (std::size_t i = 0; i < fm.dm; ++i) y[i] = y0(static_cast<ref::Index>(i), 0);
+  return enclose(std::move(data), y, scene, step, precision);
+}
+
+/// The state-equation route (pipeline/rlc_motion.hpp): its model and its exact start.
+CertifiedMotion state_motion(const io::Netlist& deck, Initial rule, double step, long precision, std::ostream& log) {
+  CertifiedMotion out;
+  std::vector<Q> sigma0;
+  for (const io::Waveform& w : deck.waveforms) sigma0.push_back(*w.exact_at_zero(0));  // checked by the caller
+  const bool op = rule == Initial::op || (rule == Initial::deck && deck.tran == io::Netlist::Transient::op);
+  reference::pipeline::StateMotion sm;
+  std::vector<Q> y;
   try {
-    out.flow = std::make_unique<certified::MotionEnclosure>(data, y, precision);
+    sm = reference::pipeline::state_motion(deck);
+    y = reference::pipeline::state_start(deck, sm, op, sigma0);
   } catch (const std::invalid_argument& e) {
     out.why = e.what();
+    return out;
   }
+  log << "initial state: " << (op ? "the DC operating point at t = 0, exact on the state equations"
+                                  : "uic: IC= values, everything else 0, moved onto M_c(0+) keeping every C-component's charge (exact, on the state equations)")
+      << "\n";
+  certified::ForcedMotionData data;
+  data.x0 = sm.x0, data.basis = sm.bt.transpose(), data.ay = sm.ay, data.au = sm.au, data.vy = sm.vy, data.vu = sm.vu;
+  data.orders = 2;
+  data.waveforms = deck.waveforms;
+  const ForcedScene scene{deck.file, {}, deck.waveforms, {}};
+  out = enclose(std::move(data), y, scene, step, precision);
   return out;
 }
 
-Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                          std::ostream& out, std::ostream& log) {
+}  // namespace
+
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision, EnclosureModel model,
+                                 std::ostream* log) {
+  CertifiedMotion out;
+  const std::size_t nb = deck.rlc.branches.size();
+  if (model == EnclosureModel::automatic) model = nb <= reference::pipeline::kForcedBranches ? EnclosureModel::dense : EnclosureModel::state;
+  out.model = model == EnclosureModel::dense ? "dense" : "state equations";
+  const std::size_t limit = model == EnclosureModel::dense ? reference::pipeline::kForcedBranches : kCertifiedBranches;
+  if (nb > limit) {  // before the exact start (gigabytes at 10^4 branches)
+    out.why = "enclosures are built up to " + std::to_string(kCertifiedBranches) + " branches (the dense model up to " +
+              std::to_string(reference::pipeline::kForcedBranches) + ", the state equations beyond); this circuit has " + std::to_string(nb);
+    return out;
+  }
+  // the start (the operating point, the jump at 0) is computed from the sources' values at 0 in double
+  // where they involve π: exact only when every one is rational
+  for (const io::Waveform& w : deck.waveforms)
+    if (!w.exact_at_zero(0)) {
+      out.why = "the state at t = 0 depends on " + w.element + "'s value at 0, which involves pi (the start is not an exact rational)";
+      return out;
+    }
+  std::ostringstream quiet;
+  std::ostream& to = log ? *log : quiet;
+  CertifiedMotion r = model == EnclosureModel::dense ? dense_motion(deck, c, rule, step, precision, to) : state_motion(deck, rule, step, precision, to);
+  r.model = out.model;
+  return r;
+}
+
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
   require_times(opt);
-  CertifiedMotion cm = certified_motion(deck, c, initial, opt.step);
+  // --route picks the exact model: dense (the forced tower) or sparse (the state equations)
+  const EnclosureModel model = opt.route == Route::dense ? EnclosureModel::dense : opt.route == Route::sparse ? EnclosureModel::state : EnclosureModel::automatic;
+  CertifiedMotion cm = certified_motion(deck, c, opt.initial, opt.step, 256, model, &log);
   if (!cm.flow) throw io::InputError(deck.file + ": simulate --certified: expected a circuit whose motion dcad encloses, found: " + cm.why);
   const std::size_t nb = deck.rlc.branches.size(), n = 3 * nb;
   out << "t";
@@ -536,7 +597,7 @@ Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const 
     const double r = scale[kind] > 0 ? worst[kind] / scale[kind] : worst[kind];
     if (r >= sum.error_estimate) sum.error_estimate = r, sum.worst_variable = kind == 0 ? "q_" : kind == 1 ? "v_" : "p_";
   }
-  log << "simulate --certified: every value is the midpoint of a rigorous enclosure (Arb balls on the exact model); radii rad_q, rad_v, rad_p per row; "
+  log << "simulate --certified: every value is the midpoint of a rigorous enclosure (Arb balls on the exact " << cm.model << " model); radii rad_q, rad_v, rad_p per row; "
       << cm.flow->exponentials() << " matrix exponentials, " << cm.flow->restarts() << " restarts against wrapping\n";
   return sum;
 }

@@ -53,6 +53,29 @@ rlc::StateStructure state_structure(const RlcCircuit<T>& c) {
   return rlc::state_structure(c.nodes, topo, src);
 }
 
+/// A branch's voltage u_b = e_from − e_to = d_bᵀ (w, ρ, e) + o_bᵀ σ: d_b split into its w, ρ and e
+/// parts and o_b, each a list of (index, ±1) (an index may appear twice with opposite signs: both
+/// ends on one level, which cancels).
+struct BranchPotential {
+  std::vector<std::pair<long, int>> w, r, e, o;
+};
+inline BranchPotential branch_potential(const rlc::StateStructure& st, long from, long to) {
+  BranchPotential p;
+  const auto levels = [&](long node, int sign) {
+    const long s = st.super(node);
+    if (s < 0) return;
+    const rlc::StateStructure::Levels& l = st.levels[static_cast<std::size_t>(s)];
+    if (l.w >= 0) p.w.emplace_back(l.w, sign);
+    if (l.r >= 0) p.r.emplace_back(l.r, sign);
+    if (l.e >= 0) p.e.emplace_back(l.e, sign);
+  };
+  levels(from, 1);
+  levels(to, -1);
+  p.o = st.offset[static_cast<std::size_t>(from + 1)];
+  for (const auto& [j, sg] : st.offset[static_cast<std::size_t>(to + 1)]) p.o.emplace_back(j, -sg);
+  return p;
+}
+
 /// The state equations of `c` (dcad/solution.hpp's StateEquations), with every R, C positive and Φ
 /// positive definite (the caller's precondition: graph_route_holds).  `node_names` name the non-ground
 /// nodes, `source_names` σ's entries.
@@ -90,23 +113,6 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
     auto [it, fresh] = a.emplace(std::make_pair(i, j), v);
     if (!fresh) it->second += v;
   };
-  // d_b split into its w, ρ and e parts (each a list of (index, ±1)); o_b as (source, ±1)
-  struct Part {
-    std::vector<std::pair<long, int>> w, r, e;
-  };
-  const auto levels = [&](long node, int sign, Part& p) {
-    const long s = st.super(node);
-    if (s < 0) return;
-    const rlc::StateStructure::Levels& l = st.levels[static_cast<std::size_t>(s)];
-    if (l.w >= 0) p.w.emplace_back(l.w, sign);
-    if (l.r >= 0) p.r.emplace_back(l.r, sign);
-    if (l.e >= 0) p.e.emplace_back(l.e, sign);
-  };
-  const auto offset = [&](const RlcBranch<N>& b) {
-    std::vector<std::pair<long, int>> o = st.offset[static_cast<std::size_t>(b.from + 1)];
-    for (const auto& [j, sg] : st.offset[static_cast<std::size_t>(b.to + 1)]) o.emplace_back(j, -sg);
-    return o;
-  };
   const auto outer = [&](Acc& a, const std::vector<std::pair<long, int>>& x, const std::vector<std::pair<long, int>>& y, const N& v) {
     for (const auto& [i, si] : x)
       for (const auto& [j, sj] : y) add(a, i, j, si * sj > 0 ? v : N(-v));
@@ -115,10 +121,8 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
   long nl = 0;
   for (std::size_t k = 0; k < c.branches.size(); ++k) {
     const RlcBranch<N>& b = c.branches[k];
-    Part d;
-    levels(b.from, 1, d);
-    levels(b.to, -1, d);
-    const std::vector<std::pair<long, int>> o = offset(b);
+    const BranchPotential d = branch_potential(st, b.from, b.to);
+    const std::vector<std::pair<long, int>>& o = d.o;
     switch (b.kind) {
       case RlcKind::capacitor:
         outer(Cww, d.w, d.w, b.value);
