@@ -5,6 +5,7 @@
 //  * the input assessment of the fast backend (dcad/fast/exact.hpp): what may be certain in double.
 #include "dcad/fast/exact.hpp"
 #include "simulate.hpp"
+#include "dcad/io/traces.hpp"
 #include "dcad/io/waveform.hpp"
 
 #include <gtest/gtest.h>
@@ -209,4 +210,20 @@ TEST(Simulate, ErrorEstimateIsTheWorstRelativeError) {
   const dcad::api::Simulated z = dcad::api::summarize(2, {0.0L, 3e-17L}, {0.0L, 2.0L}, {"at_rest", "moving"});
   EXPECT_EQ(z.worst_variable, "moving");
   EXPECT_DOUBLE_EQ(z.error_estimate, 1.5e-17);
+}
+
+// gnucap writes step-control messages ("zero time step", "newtime=… rejectedtime=…") between the rows of
+// its .print table; the rows after them belong to the same run.  Reading stopped at the first message
+// (47 of 2001 rows of a corpus run, which then passed); now every row is read, the messages are named,
+// and a second analysis's header still ends the table.
+TEST(Traces, GnucapMessagesInsideTheTableAreSkippedNotTheEnd) {
+  const std::string text =
+      "Gnucap banner\n#Time       v(a)\n 0.          1.\n 1.n         2.\nzero time step\nnewtime=4.66e-10  rejectedtime=4.65e-10\n"
+      " 2.n         3.\n 3.n         4.\n#Time       v(a)\n 0.          9.\n";
+  const dcad::io::Traces t = dcad::io::parse_traces(text, "run.txt");
+  ASSERT_EQ(t.time.size(), 4u);
+  EXPECT_DOUBLE_EQ(t.time[3], 3e-9);
+  EXPECT_DOUBLE_EQ(t.values[0][3], 4.0);
+  ASSERT_EQ(t.skipped.size(), 2u);
+  EXPECT_EQ(t.skipped[0], "run.txt:5: \"zero time step\"");
 }

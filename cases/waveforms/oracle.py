@@ -79,10 +79,14 @@ def read_gnucap(path):
             if w and w[0].lower() == "#time":
                 names = ["time"] + [x.lower() for x in w[1:]]
             continue
+        if not w:
+            continue
+        if w[0].startswith("#"):  # the next analysis's header
+            break
         try:
             rows.append([scaled(x) for x in w])
         except (ValueError, IndexError):
-            break
+            continue  # a message between rows ("zero time step", "newtime=..."): the table goes on
     return names, rows
 
 

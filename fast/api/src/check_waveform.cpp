@@ -325,6 +325,8 @@ WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std
 }
 
 WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+  for (std::size_t k = 0; k < tr.skipped.size() && k < 5; ++k) log << "note: skipped a simulator's message inside the table at " << tr.skipped[k] << "\n";
+  if (tr.skipped.size() > 5) log << "note: … and " << tr.skipped.size() - 5 << " more messages skipped\n";
   if (p.form != io::Form::netlist)
     throw io::InputError(p.netlist.file.empty() ? tr.file + ": check: expected a netlist as DECK for a waveform, found a case file"
                                                 : p.netlist.file + ": check: expected a netlist for a waveform");

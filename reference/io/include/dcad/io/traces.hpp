@@ -15,6 +15,9 @@ struct Traces {
   std::vector<std::string> names;           ///< the vectors after time, as the file names them
   std::vector<double> time;                 ///< the file's time points (nondecreasing)
   std::vector<std::vector<double>> values;  ///< values[k][i]: vector k at time[i]
+  /// Lines skipped inside the table, each "FILE:LINE: \"text\"" (gnucap writes step-control messages such
+  /// as "zero time step" between its rows; the rows after them are read, and the check says so).
+  std::vector<std::string> skipped;
 };
 
 /// Reads FILE, recognising its format from its content.  Bad input (an unknown format, a truncated
