@@ -131,6 +131,9 @@ TEST(Expression, BadInputNamesPathAndColumn) {
       {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/x"}, "initial": {"x": "0"}})J", "/initial: expected a point where the formulas are defined"},
       {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "y"], "L": "1/2*v_x^2", "constraints": ["v_x - 1"]}, "initial": {"v_x": "2"}})J",
        "/initial/v_x: expected a value on M_c"},
+      // issue 29: 0^0 is refused, not read as 1; a square that does not cancel is still not affine
+      {R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/2*v_x^2 - 0^0*x"}})J", "/lagrangian/L: column 16: expected a nonzero base for the power 0"},
+      {base + R"J("constraints": ["(v_x + v_y)^2 - v_y^2"]}})J", "not affine in v (after expanding and collecting terms)"},
   };
   int k = 0;
   for (const auto& [text, needle] : bad) {
@@ -389,4 +392,39 @@ TEST(Expression, ExponentNotationIsExact) {
   const json want = reduced("2500");
   EXPECT_EQ(want["v_x"], "-2500");
   for (const char* k : {"2.5e3", "2.5E+3", "25e2", "250000e-2"}) EXPECT_EQ(reduced(k), want) << k;
+}
+
+// Issue 29: a value beyond double's range is never a regular-looking answer.  exp(1000) at x = 1
+// overflows: the double routes (fast, and certified, which falls back to double where the exact route
+// cannot run) exit 1 naming the formula's JSON path, the subexpression that overflowed and the point;
+// simulate writes no row of NaN.
+TEST(Expression, OverflowNamesTheFormulaAndThePoint) {
+  const std::string file =
+      write_temp("dcad_exp1000.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/2*v_x^2 - exp(1000*x)"}, "initial": {"x": "1", "v_x": "0"}})J");
+  for (const std::string backend : {"fast", "certified"}) {
+    const Outcome r = run("solve " + file + " --backend " + backend + " --json");
+    EXPECT_EQ(r.rc, 1) << backend << "\n" << r.out;
+    EXPECT_NE(r.err.find("/lagrangian/L: expected formulas whose values at the point are within double's range"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("exp(1000*x) = inf at x = 1, v_x = 0"), std::string::npos) << r.err;
+  }
+  const Outcome s = run("simulate " + file + " --backend fast --tstop 0.1 --step 0.05");
+  EXPECT_EQ(s.rc, 1) << s.out;
+  EXPECT_EQ(s.out.find("nan"), std::string::npos) << s.out;
+}
+
+// Issue 29: at a singular point the user gave (the constraint x v_x + y v_y = 0 at x = y = 0, where its
+// velocity coefficients vanish) the tower is not decided: `regular` false with the reason, `consistent`
+// null — never true as if the partial tower were the answer — and not certified.
+TEST(Expression, SingularPointIsNotReportedConsistent) {
+  const std::string file = write_temp("dcad_singular.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["x", "y", "z"], "L": "1/2*(v_x^2 + v_y^2 + v_z^2)",
+      "constraints": ["x*v_x + y*v_y"]}, "initial": {"x": "0", "y": "0", "z": "1"}})J");
+  for (const std::string backend : {"reference", "fast", "certified"}) {
+    const Outcome r = run("solve " + file + " --backend " + backend + " --json");
+    ASSERT_EQ(r.rc, 0) << backend << "\n" << r.err;
+    const json got = json::parse(r.out);
+    EXPECT_FALSE(got["regular"].get<bool>()) << backend;
+    EXPECT_TRUE(got["consistent"].is_null()) << backend << " " << got["consistent"];
+    EXPECT_FALSE(got["certified"].get<bool>()) << backend;
+    EXPECT_NE(got["why"].get<std::string>().find("rank 0 < 1"), std::string::npos) << got["why"];
+  }
 }

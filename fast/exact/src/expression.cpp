@@ -14,13 +14,17 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
   namespace pl = reference::pipeline;
   return pl::pointwise_input_errors(c, [&] {
     std::vector<bool> fixed;
-    const std::vector<reference::Rational> start = pl::start_point(c, fixed);
     Options opt = options;
-    std::vector<double> x;
-    for (const reference::Rational& q : start) x.push_back(to_double(q, opt));
     ToleranceDecisions decide;
-    decide.probe = opt.probe;
-    const reference::PointwiseResult<double> r = pointwise_cad(c.system, x, fixed, decide);
+    reference::PointwiseResult<double> r;
+    for (int seed = 0; seed < pl::kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
+      const std::vector<reference::Rational> start = pl::start_point(c, fixed, seed);
+      std::vector<double> x;
+      for (const reference::Rational& q : start) x.push_back(to_double(q, opt));
+      decide.probe = opt.probe;  // one decision object over the attempts: an uncertain one before a retry stays on record
+      r = pointwise_cad(c.system, x, fixed, decide);
+      if (r.regular || c.has_initial) break;
+    }
     pl::check_given<double>(
         r, c,
         [](const double& a, const reference::Rational& b) {  // a tolerance for given values, not a decision

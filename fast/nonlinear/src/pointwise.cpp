@@ -1,6 +1,9 @@
 #include "dcad/fast/pointwise.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <unordered_map>
 #include <sstream>
 
 namespace dcad::fast {
@@ -106,15 +109,101 @@ reference::PointwiseResult<double> to_double(const reference::PointwiseResult<Tr
   return o;
 }
 
+/// Every number of the result is finite.
+bool finite(const reference::PointwiseResult<double>& r) {
+  const auto all = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+  bool ok = all(r.point) && all(r.velocity) && std::isfinite(r.time);
+  for (const auto& g : r.gauge) ok = ok && all(g);
+  for (const auto& g : r.tangent) ok = ok && all(g);
+  for (const auto& l : r.levels) {
+    for (const auto& c : l.added) {
+      ok = ok && std::isfinite(c.rhs);
+      for (const auto& [j, g] : c.gradient) ok = ok && std::isfinite(g);
+    }
+    for (const auto& p : l.pivots) ok = ok && std::isfinite(p.value);
+  }
+  return ok;
+}
+
+/// The value of e at `at` in double; `bad` gets the first subexpression (post-order) that is not
+/// finite while its operands are.
+double value_of(const reference::expr::Expr& e, const std::vector<double>& at, const std::vector<std::string>& names, std::string& bad,
+                std::unordered_map<const reference::expr::ExprNode*, double>& memo) {
+  using reference::expr::ExprOp;
+  if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
+  const auto sub = [&](const reference::expr::Expr& x) { return value_of(x, at, names, bad, memo); };
+  double a = e->a ? sub(e->a) : 0, b = e->b ? sub(e->b) : 0, r = 0;
+  switch (e->op) {
+    case ExprOp::Number: r = e->value.convert_to<double>(); break;
+    case ExprOp::Variable: r = at.at(e->var); break;
+    case ExprOp::Add: r = a + b; break;
+    case ExprOp::Sub: r = a - b; break;
+    case ExprOp::Neg: r = -a; break;
+    case ExprOp::Mul: r = a * b; break;
+    case ExprOp::Div: r = a / b; break;
+    case ExprOp::Pow: r = std::pow(a, static_cast<double>(e->exponent)); break;
+    case ExprOp::Sin: r = std::sin(a); break;
+    case ExprOp::Cos: r = std::cos(a); break;
+    case ExprOp::Exp: r = std::exp(a); break;
+    case ExprOp::Sqrt: r = std::sqrt(a); break;
+  }
+  if (!std::isfinite(r) && std::isfinite(a) && std::isfinite(b) && bad.empty())
+    bad = reference::expr::to_text(e, names) + " = " + (std::isnan(r) ? std::string("NaN") : r > 0 ? std::string("inf") : std::string("-inf"));
+  memo.emplace(e.get(), r);
+  return r;
+}
+
 }  // namespace
+
+std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys, const std::vector<double>& at) {
+  const std::vector<std::string> names = sys.variable_names();
+  std::vector<double> x(at);
+  x.resize(2 * sys.n + 1, 0.0);
+  using Found = std::pair<std::string, std::string>;
+  const auto check = [&](const reference::expr::Expr& e, const std::string& path) -> Found {
+    std::string bad;
+    std::unordered_map<const reference::expr::ExprNode*, double> memo;
+    const double v = value_of(e, x, names, bad, memo);
+    if (std::isfinite(v)) return {};
+    return {path, bad.empty() ? reference::expr::to_text(e, names) + " not finite" : bad};
+  };
+  Found found = check(sys.lagrangian, "/lagrangian/L");
+  const reference::LagrangianDerivatives d = reference::derivatives(sys);
+  for (std::size_t i = 0; i < sys.n && found.first.empty(); ++i) {
+    found = check(d.dl_dq[i], "/lagrangian/L (its derivative in " + names[i] + ")");
+    if (found.first.empty()) found = check(d.dl_dv[i], "/lagrangian/L (its derivative in " + names[sys.v(i)] + ")");
+  }
+  for (std::size_t a = 0; a < sys.m() && found.first.empty(); ++a) found = check(sys.constraints[a], "/lagrangian/constraints/" + std::to_string(a));
+  for (std::size_t i = 0; i < sys.forces.size() && found.first.empty(); ++i) found = check(sys.forces[i], "/lagrangian/forces/" + std::to_string(i));
+  return found;
+}
 
 reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
                                                  const std::vector<bool>& fixed, ToleranceDecisions& decide,
                                                  const std::vector<std::vector<std::size_t>>* plan) {
   std::vector<Tracked> x;
   for (double v : start) x.push_back(Tracked::input(v));
-  return to_double(reference::pointwise_cad<Tracked>(sys, x, fixed, decide,
-                                                     [](const reference::Rational& q) { return Tracked::input(q.convert_to<double>()); }, 3, 60, plan));
+  reference::PointwiseResult<double> r = to_double(reference::pointwise_cad<Tracked>(
+      sys, x, fixed, decide, [](const reference::Rational& q) { return Tracked::input(q.convert_to<double>()); }, 3, 60, plan));
+  if (finite(r)) return r;
+  // name the overflow: at the point reached (the given one if the CAD stopped before moving it)
+  std::vector<double> at(r.point.begin(), r.point.begin() + static_cast<std::ptrdiff_t>(std::min(r.point.size(), 2 * sys.n)));
+  at.resize(2 * sys.n, 0.0);
+  at.push_back(r.time);
+  std::string where;
+  const std::vector<std::string> names = sys.variable_names();
+  for (std::size_t i = 0; i < 2 * sys.n + (sys.has_time ? 1 : 0); ++i) {
+    std::ostringstream v;
+    v.precision(17);
+    v << at[i];
+    where += (i ? ", " : "") + names[i] + " = " + v.str();
+  }
+  const auto [path, text] = nonfinite_formula(sys, at);
+  if (!path.empty())
+    throw std::range_error(path + ": expected formulas whose values at the point are within double's range (the fast route computes in double), found " +
+                           text + " at " + where);
+  throw std::range_error("/lagrangian: expected a pointwise CAD within double's range at " + where +
+                         ", found a value that overflowed in the elimination (every formula is finite there): rescale the case");
 }
 
 }  // namespace dcad::fast

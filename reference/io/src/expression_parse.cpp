@@ -127,6 +127,7 @@ class Parser {
     skip();
     if (i_ < t_.size() && t_[i_] == '^') fail("an operator other than a second ^ (write (a^b)^c)", quote_here());
     if (ex::is_number(base, 0) && k < 0) fail("a nonzero base for a negative power", "0^(" + std::to_string(k) + ")");
+    if (ex::is_number(base, 0) && k == 0) fail("a nonzero base for the power 0 (0^0 is undefined: dcad does not read it as 1)", "0^0");
     return ex::pow(base, k);
   }
   ex::Expr atom() {

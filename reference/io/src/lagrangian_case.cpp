@@ -1,4 +1,5 @@
 #include "dcad/io/lagrangian_case.hpp"
+#include "dcad/reference/nonlinear/polynomial.hpp"
 
 #include "expression_parse.hpp"
 #include "json_input.hpp"
@@ -98,10 +99,19 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
     const json& k = lag["constraints"];
     if (!k.is_array()) (l / "constraints").fail("an array of expressions affine in the velocities", describe(k));
     for (std::size_t a = 0; a < k.size(); ++a) s.constraints.push_back(parse(k[a], l / "constraints" / a, "a constraint as a string expression"));
-    const std::size_t bad = reference::first_non_affine_constraint(s);
-    if (bad < s.m())
-      (l / "constraints" / bad).fail("a constraint affine in the velocities, a(t, q)·v + b(t, q) (CONTRACT)",
-                                     "\"" + k[bad].get<std::string>() + "\", not affine in v");
+    // affinity is decided after expanding and collecting terms ((v+1)^2 - v^2 - 2v is the constant 1):
+    // a constraint that is affine only so is replaced by its form a(t, q)·v + b(t, q)
+    std::vector<std::size_t> vs;
+    for (std::size_t i = 0; i < s.n; ++i) vs.push_back(s.v(i));
+    for (std::size_t bad; (bad = reference::first_non_affine_constraint(s)) < s.m();) {
+      const auto form = reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
+      if (!form)
+        (l / "constraints" / bad).fail("a constraint affine in the velocities, a(t, q)·v + b(t, q) (CONTRACT)",
+                                       "\"" + k[bad].get<std::string>() + "\", not affine in v (after expanding and collecting terms)");
+      reference::expr::Expr e = form->second;
+      for (std::size_t i = 0; i < s.n; ++i) e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
+      s.constraints[bad] = e;
+    }
     if (s.m() > s.n) (l / "constraints").fail("at most as many constraints as coordinates (" + std::to_string(s.n) + ")", std::to_string(s.m()));
   }
   if (lag.contains("forces")) {

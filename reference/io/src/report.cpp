@@ -344,7 +344,8 @@ json pointwise_json(const Printed& r) {
   j["certified"] = r.certified.yes();
   j["dims"] = dims;
   j["steps"] = r.steps;
-  j["consistent"] = r.consistent;
+  // at a singular point the tower is not decided: consistency is unknown (null), never a regular-looking true
+  j["consistent"] = p.regular || !r.consistent ? json(r.consistent) : json(nullptr);
   j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   if (!r.name.empty()) j["name"] = r.name;

@@ -11,6 +11,7 @@
 #include "dcad/reference/nonlinear/pointwise.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dcad::fast {
@@ -50,9 +51,17 @@ struct ToleranceDecisions {
   bool probed(bool answer);
 };
 
-/// reference::pointwise_cad in double (inputs rounded to nearest), its values as doubles.
+/// reference::pointwise_cad in double (inputs rounded to nearest), its values as doubles.  A result
+/// with a value beyond double's range (inf, NaN) is never returned: std::range_error whose message names
+/// the case's formula (a JSON path: /lagrangian/L, /lagrangian/constraints/k, /lagrangian/forces/i), its
+/// smallest subexpression that overflowed and the point (nonfinite_formula), or says the elimination overflowed.
 reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
                                                  const std::vector<bool>& fixed, ToleranceDecisions& decide,
                                                  const std::vector<std::vector<std::size_t>>* plan = nullptr);
+
+/// The first of the case's formulas (L and its first derivatives, the constraints, the forces) whose value
+/// at (q, v, t) = `at` is not finite in double: its JSON path and "SUBEXPRESSION = VALUE" (the smallest
+/// subexpression whose operands are finite), or two empty strings if every one is finite.
+std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys, const std::vector<double>& at);
 
 }  // namespace dcad::fast

@@ -98,7 +98,8 @@ inline Expr div(const Expr& a, const Expr& b) {
   if (is_number(b, 1)) return a;
   return make(ExprOp::Div, a, b);
 }
-/// a^k, k an integer; 0^k with k < 0 is std::invalid_argument.
+/// a^k, k an integer; 0^k with k < 0 is std::invalid_argument.  (a^0 is 1: the parser refuses 0^0 in
+/// the user's formulas, expression_parse.cpp.)
 inline Expr pow(const Expr& a, long k) {
   if (k == 0) return number(1);
   if (k == 1) return a;

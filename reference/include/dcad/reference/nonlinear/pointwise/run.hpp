@@ -49,16 +49,21 @@ class Run {
   /// M_1 = {p = ∂L/∂v, a(t, q)·v + b = 0}: the dependent velocities (pivots nonzero at the point) and
   /// the graph over (t, q, free velocities).  False if the constraints' rank drops at the point.
   bool first_level(std::vector<T>& point, long K, PointwiseResult<T>& out, State& st) {
+    for (std::size_t a = 0; a < s_.m(); ++a)  // a constraint that simplified to a nonzero number: M_1 = ∅
+      if (expr::is_number(s_.constraints[a]) && s_.constraints[a]->value != 0) {
+        out.consistent = false;
+        out.dims.push_back(-1);
+        out.steps = 1;
+        out.why = "constraint " + std::to_string(a) + " is identically " + s_.constraints[a]->value.str() + " (after expanding): M_1 is empty";
+        finish_given(out, point);
+        return false;
+      }
     const std::vector<std::pair<std::size_t, std::size_t>> vp = velocity_pivots(point, out);
     if (vp.size() < s_.m()) {
       out.regular = false;
       out.why = "the constraints' velocity coefficients have rank " + std::to_string(vp.size()) + " < " + std::to_string(s_.m()) +
                 " at the point (dependent constraints, or a point where Delta changes dimension)";
-      const std::size_t n = s_.n;
-      out.point.assign(3 * n, T(0));  // the point as given: (q, v, p = ∂L/∂v)
-      for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
-      for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = value(d_.dl_dv[i], point);
-      out.time = point[s_.t()];
+      finish_given(out, point);
       return false;
     }
     std::vector<char> dependent(2 * s_.n + 1, 0);
@@ -78,6 +83,15 @@ class Run {
     st.level.chart = st.chart;
     out.dims.push_back(st.level.dim);
     return true;
+  }
+
+  /// The point as given: (q, v, p = ∂L/∂v) and the time.
+  void finish_given(PointwiseResult<T>& out, const std::vector<T>& point) {
+    const std::size_t n = s_.n;
+    out.point.assign(3 * n, T(0));
+    for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
+    for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = value(d_.dl_dv[i], point);
+    out.time = point[s_.t()];
   }
 
   /// The pivots (constraint, velocity) of a(t, q) at the point: the preferred dependent velocities, or
@@ -375,8 +389,11 @@ class Run {
   bool move(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<J>& x, std::vector<T>& point,
             std::size_t k, PointwiseResult<T>& out) {
     Step st = newton_step(cand, chart, k);
-    if (!reachable(cand, chart, point, k, st, out)) return false;
+    const Reach reach = reachable(cand, chart, point, k, st, out);
+    if (reach == Reach::empty) return false;
     std::vector<T> delta = step_of(st, chart);
+    if (reach == Reach::critical)  // Newton cannot leave a critical point of a combination: start from a nearby point
+      for (std::size_t j : st.movable) delta[j] += constant_(Rational(1, 3));
     std::vector<T> next = point;
     for (std::size_t v = 0; v < x.size(); ++v) next[v] = x[v].at(delta);
     for (std::size_t v = 0; v < x.size(); ++v)
@@ -388,6 +405,7 @@ class Run {
   /// The linearized candidates g·δ = −ψ at the point, reduced on the coordinates that may move.
   struct Step {
     std::vector<std::vector<T>> g, gr;  ///< gradients over the chart, and reduced
+    std::vector<std::vector<T>> comb;    ///< row i of gr (and rhs) is Σ_j comb[i][j] · (candidate j)
     std::vector<T> rhs;                  ///< −ψ, reduced
     std::vector<std::size_t> movable;    ///< chart positions the step may change
     std::vector<std::pair<std::size_t, std::size_t>> piv;  ///< (candidate, coordinate) pivots
@@ -414,9 +432,20 @@ class Run {
     } else {
       for (const auto& group : chart_preference(chart, true)) movable.insert(movable.end(), group.begin(), group.end());
     }
-    st.gr = g;
+    // the reduction carries the identity along, so that each reduced row names its combination of candidates
+    std::vector<std::vector<T>> aug = g;
+    for (std::size_t i = 0; i < aug.size(); ++i) {
+      aug[i].resize(chart.size() + cand.size(), T(0));
+      aug[i][chart.size() + i] = T(1);
+    }
     Largest<T, Decide> largest{decide_};
-    st.piv = eliminate_constants(st.gr, rhs, movable, largest);
+    st.piv = eliminate_constants(aug, rhs, movable, largest);
+    st.gr.assign(cand.size(), {});
+    st.comb.assign(cand.size(), {});
+    for (std::size_t i = 0; i < aug.size(); ++i) {
+      st.gr[i].assign(aug[i].begin(), aug[i].begin() + static_cast<std::ptrdiff_t>(chart.size()));
+      st.comb[i].assign(aug[i].begin() + static_cast<std::ptrdiff_t>(chart.size()), aug[i].end());
+    }
     std::vector<std::vector<T>> ga = g;
     std::vector<T> za(g.size(), T(0));
     std::vector<std::size_t> all;
@@ -428,23 +457,35 @@ class Run {
   /// Whether the step can bring the point onto M_{k+1}: a candidate without a pivot must vanish there
   /// or be redundant; a nonzero constant, or a condition on the time alone, makes M_{k+1} empty (false,
   /// `out` says why); given values that no other coordinate can meet are bad input (PointwiseNoPoint).
-  bool reachable(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<T>& point, std::size_t k, const Step& st,
-                 PointwiseResult<T>& out) {
+  enum class Reach { go, empty, critical };
+  Reach reachable(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<T>& point, std::size_t k, const Step& st,
+                  PointwiseResult<T>& out) {
     const std::vector<std::vector<T>>& g = st.g;
     std::vector<char> prow(cand.size(), 0);
     for (const auto& pc : st.piv) prow[pc.first] = 1;
+    bool critical = false;
     for (std::size_t i = 0; i < cand.size(); ++i) {
       if (prow[i] || decide_.zero(st.rhs[i])) continue;
-      bool constant = true;  // the candidate is a nonzero constant near the point: M_{k+1} = ∅
-      for (const auto& [idx, c] : cand[i].entries()) constant = constant && (idx == 0 || decide_.zero(c));
+      // the combination of candidates this reduced row is (ψ₂ − ψ₁ for x² + y² = 1 and x² + y² = 4):
+      // a nonzero constant near the point makes M_{k+1} empty
+      J comb = cand[i] * J(cand[i].space(), T(0));
+      for (std::size_t j = 0; j < cand.size(); ++j)
+        if (!decide_.zero(st.comb[i][j])) comb += cand[j] * J(cand[j].space(), st.comb[i][j]);
+      bool constant = true, flat = true;
+      for (const auto& [idx, c] : comb.entries()) constant = constant && (idx == 0 || decide_.zero(c));
+      for (std::size_t j = 0; j < chart.size(); ++j) flat = flat && (chart[j] == s_.t() || decide_.zero(comb.gradient(j)));
       std::vector<T> gi = g[i];
       if (constant) {
         out.consistent = false;
         out.dims.push_back(-1);
         out.steps = out.dims.size() - 1;
-        out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(cand[i].value()) + ": M_" + std::to_string(k + 1) +
-                  " is empty";
-        return false;
+        out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(comb.value()) + " (its constraints combined): M_" +
+                  std::to_string(k + 1) + " is empty";
+        return Reach::empty;
+      }
+      if (flat && st.piv.empty()) {  // every candidate's differential vanishes here: a critical point, not a verdict
+        critical = true;
+        continue;
       }
       if (time_only(gi, chart)) {
         out.consistent = false;
@@ -452,7 +493,7 @@ class Run {
         out.steps = out.dims.size() - 1;
         out.why = "step " + std::to_string(k) + " gives a condition on the time alone, violated at t = " + JetFunctions<T>::text(point[s_.t()]) +
                   ": M_" + std::to_string(k + 1) + "(t) is empty there";
-        return false;
+        return Reach::empty;
       }
       if (st.piv.size() < st.rank_all) {  // the constraints need more freedom than the movable coordinates give
         std::string given;
@@ -463,7 +504,7 @@ class Run {
       }
       // otherwise a redundant candidate: it vanishes on M_{k+1}, where the independent ones bring the point
     }
-    return true;
+    return critical && !st.movable.empty() ? Reach::critical : Reach::go;
   }
 
   /// δ: each constraint moves its pivot coordinate (exactly, a constraint affine in it lands in one

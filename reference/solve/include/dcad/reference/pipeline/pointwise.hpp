@@ -15,8 +15,9 @@ namespace dcad::reference::pipeline {
 
 /// The starting values of (q, v, t) (LagrangianSystem's indices): the given ones (`fixed`), the others
 /// 0; without `initial`, a fixed pseudo-random point of small rationals (a generic point, the same on
-/// every run), t = 0.
-inline std::vector<Rational> start_point(const io::LagrangianCase& c, std::vector<bool>& fixed) {
+/// every run; `seed` picks another where that one is singular), t = 0.
+constexpr int kStartSeeds = 4;
+inline std::vector<Rational> start_point(const io::LagrangianCase& c, std::vector<bool>& fixed, int seed = 0) {
   const std::size_t w = 2 * c.system.n + 1;
   std::vector<Rational> x(w, 0);
   fixed.assign(w, false);
@@ -25,7 +26,7 @@ inline std::vector<Rational> start_point(const io::LagrangianCase& c, std::vecto
       x[i] = *c.initial[i];
       fixed[i] = true;
     } else if (!c.has_initial && i < 2 * c.system.n) {
-      x[i] = Rational(static_cast<long>((i * 7 + 3) % 11) - 5, static_cast<long>(3 + i % 4));
+      x[i] = Rational(static_cast<long>((i * 7 + 3 + 5 * static_cast<std::size_t>(seed)) % 11) - 5, static_cast<long>(3 + (i + static_cast<std::size_t>(seed)) % 4));
     }
   }
   return x;
@@ -106,7 +107,12 @@ auto pointwise_input_errors(const io::LagrangianCase& c, F f) {
   } catch (const NotExactHere&) {  // the caller's (reference: bad input; certified: no exact tier here)
     throw;
   } catch (const PointwiseNoPoint& e) {
+    if (!c.has_initial)  // the file gave no point: dcad's default start is not the user's input
+      throw io::InputError(c.file + ": /lagrangian: expected a system whose M_c dcad reaches from its default point (no `initial` given), found " +
+                           e.what() + "; give `initial` values near M_c");
     throw io::InputError(c.file + ": /initial: expected values that extend to a point of M_c, found " + e.what());
+  } catch (const std::range_error& e) {  // the double route's values overflowed (its message names the formula and the point)
+    throw io::InputError(c.file + ": " + e.what());
   } catch (const std::domain_error& e) {
     throw io::InputError(c.file + ": /initial: expected a point where the formulas are defined and differentiable, found " + e.what());
   } catch (const std::length_error& e) {
