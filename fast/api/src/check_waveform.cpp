@@ -394,7 +394,8 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
   for (std::size_t k = 0; k < nv && enc.ok && graph; ++k) {
     double worst = 0;
     for (std::size_t i = 0; i < np; ++i) worst = std::max({worst, enc.right[k][i].rad, enc.left[k][i].rad});
-    if (!(worst <= uncertainty[k])) {
+    // (a vector that is 0 over the whole run has uncertainty 0: radii of 1e-308 are not wider than it)
+    if (!(worst <= std::max(uncertainty[k], 1e-300))) {
       enclosed[k] = false;
       wide += std::string(wide.empty() ? "" : ", ") + tr.names[k] + " (radius " + io::float_text(worst) + ")";
     }
