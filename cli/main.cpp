@@ -144,11 +144,13 @@ int main(int argc, char** argv) {
   std::string sim_route = "auto", sim_columns;
   sim->add_option("--route", sim_route,
                   "netlists: dense (the exact model's matrix exponential; <= 60 branches with R, sources or K, <= 400 LC) or sparse (any size with "
-                  "every R, L, C > 0 and |k| < 1: Krylov exponential action on the sparse equations of motion); default auto: dense where it fits")
+                  "every R, L, C > 0 and |k| < 1: Krylov exponential action on the sparse equations of motion); default auto: dense where it fits. "
+                  "With --certified: the exact model the enclosure is built on")
       ->check(CLI::IsMember({"auto", "dense", "sparse"}));
   sim->add_option("--vars", sim_columns, "comma-separated variables for the CSV after t (default: every variable)");
   sim->add_flag("--certified", sim_opt.enclose,
-                "netlists up to 60 branches: every value the midpoint of a rigorous enclosure (Arb balls on the exact model) of the motion at "
+                "netlists up to 200 branches (--route picks the exact model: dense up to 60, sparse = the state equations with every R, L, C > 0): "
+                "every value the midpoint of a rigorous enclosure (Arb balls on the exact model) of the motion at "
                 "the exact time k*step (printed rounded to double), with the largest radius of the row's charges, currents and flux "
                 "linkages in columns rad_q, rad_v, rad_p");
   std::string sim_png, sim_vars, sim_energy;

@@ -528,12 +528,16 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
                                  std::ostream* log) {
   CertifiedMotion out;
   const std::size_t nb = deck.rlc.branches.size();
-  if (model == EnclosureModel::automatic) model = nb <= reference::pipeline::kForcedBranches ? EnclosureModel::dense : EnclosureModel::state;
+  const bool automatic = model == EnclosureModel::automatic;
+  if (automatic) model = nb <= reference::pipeline::kForcedBranches ? EnclosureModel::dense : EnclosureModel::state;
   out.model = model == EnclosureModel::dense ? "dense" : "state equations";
   const std::size_t limit = model == EnclosureModel::dense ? reference::pipeline::kForcedBranches : kCertifiedBranches;
   if (nb > limit) {  // before the exact start (gigabytes at 10^4 branches)
-    out.why = "enclosures are built up to " + std::to_string(kCertifiedBranches) + " branches (the dense model up to " +
-              std::to_string(reference::pipeline::kForcedBranches) + ", the state equations beyond); this circuit has " + std::to_string(nb);
+    out.why = model == EnclosureModel::dense
+                  ? "the dense model is built up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches; this circuit has " +
+                        std::to_string(nb)
+                  : "enclosures are built up to " + std::to_string(kCertifiedBranches) + " branches (the dense model up to " +
+                        std::to_string(reference::pipeline::kForcedBranches) + ", the state equations beyond); this circuit has " + std::to_string(nb);
     return out;
   }
   // the start (the operating point, the jump at 0) is computed from the sources' values at 0 in double
@@ -547,6 +551,17 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
   std::ostream& to = log ? *log : quiet;
   CertifiedMotion r = model == EnclosureModel::dense ? dense_motion(deck, c, rule, step, precision, to) : state_motion(deck, rule, step, precision, to);
   r.model = out.model;
+  // automatic: where the dense model refuses (a start through a source's derivative that involves π) the
+  // state equations, which need only σ(0), may not
+  if (!r.flow && automatic && model == EnclosureModel::dense && reference::pipeline::graph_route_holds(deck.rlc)) {
+    std::ostringstream second;
+    CertifiedMotion s = state_motion(deck, rule, step, precision, second);
+    if (s.flow) {
+      to << second.str();
+      s.model = "state equations";
+      return s;
+    }
+  }
   return r;
 }
 

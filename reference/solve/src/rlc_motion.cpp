@@ -68,8 +68,8 @@ void add_row(QM& to, Index i, const QM& from, Index k, const Q& c) {
 StateMotion state_motion(const io::Netlist& deck) {
   const RlcCircuit<Q>& c = deck.rlc;
   if (!graph_route_holds(c))
-    throw std::invalid_argument("beyond the dense route's " + std::to_string(kForcedBranches) +
-                                " branches the enclosure is built on the state equations, which need every R, L, C > 0 and couplings |k| < 1");
+    throw std::invalid_argument("the state-equation model (the enclosures' model beyond the dense one's " + std::to_string(kForcedBranches) +
+                                " branches) needs every R, L, C > 0 and couplings |k| < 1");
   if (rounded_coupling(c)) throw std::invalid_argument(kRoundedCoupling);
   const GraphForced g = graph_forced(deck);
   for (const SourceCondition& v : g.conditions)
@@ -200,8 +200,8 @@ std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m,
   std::vector<Q> y(nw + nl + m.nq, Q(0));
   if (op) {
     if (!deck.node_ic.empty())
-      throw std::invalid_argument(".ic node voltages held at the DC operating point are not enclosed beyond the dense route's " +
-                                  std::to_string(kForcedBranches) + " branches");
+      throw std::invalid_argument(".ic node voltages held at the DC operating point are not enclosed on the state-equation model "
+                                  "(the dense model takes them, up to " + std::to_string(kForcedBranches) + " branches)");
     // unknowns (w, ρ, e, i): KCL on w, ρ and island rows at ẇ = 0, and Φ i̇ = 0 on the inductors
     const std::size_t n = nw + nr + ne + nl;
     QM a(n, n + 1);
