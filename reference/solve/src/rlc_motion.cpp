@@ -128,7 +128,6 @@ StateMotion state_motion(const io::Netlist& deck) {
     if (br.kind != RlcKind::capacitor) out.charges.push_back(b);
   }
   // voltage sources and wires: KCL at the child of each forest edge, leaves first
-  std::vector<std::size_t> vertex_row;
   QM net(c.nodes + 1, k.nx());
   for (std::size_t b = 0; b < nb; ++b) {
     const RlcKind kind = c.branches[b].kind;
@@ -262,7 +261,6 @@ std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m,
     net(pa, 0) += br.from == it->parent ? dq[it->branch] : Q(-dq[it->branch]);
   }
   for (std::size_t q = 0; q < m.nq; ++q) y[nw + nl + q] = dq[m.charges[q]];
-  (void)Gww, (void)Gwr, (void)Lw, (void)Lr, (void)Hw, (void)Hr, (void)Ol;
   return y;
 }
 
