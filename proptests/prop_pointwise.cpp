@@ -8,6 +8,7 @@
 //  - the double twin (fast/pointwise.hpp) = the exact one where it says certain;
 //  - genuinely nonholonomic families with known answers: the rolling disk with random parameters
 //    (YM §6) and a Heisenberg-type constraint; the time-dependent family of V §3.5.
+#include "dcad/fast/chart.hpp"
 #include "dcad/fast/pointwise.hpp"
 #include "dcad/reference/cad.hpp"
 #include "expr_gen.hpp"
@@ -88,6 +89,20 @@ std::vector<Q> pulled_back_point(const PointMap& phi, const std::vector<Q>& x) {
   out.insert(out.end(), big_v.begin(), big_v.end());
   out.push_back(0);
   return out;
+}
+
+/// The rolling disk (YM §6): L = ½ m (v_x² + v_y²) + ½ I v_θ² + ½ J v_φ², v_x = R cos φ v_θ, v_y = R sin φ v_θ.
+reference::LagrangianSystem rolling_disk(const Q& m, const Q& inertia, const Q& jj, const Q& rr) {
+  reference::LagrangianSystem s;
+  s.n = 4;
+  s.names = {"x", "y", "theta", "phi"};
+  const auto v = [](Index i) { return ex::variable(4 + i); };
+  const auto half = [](const Q& c) { return ex::number(c / 2); };
+  s.lagrangian = ex::add(ex::add(ex::mul(half(m), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(half(inertia), ex::pow(v(2), 2))),
+                         ex::mul(half(jj), ex::pow(v(3), 2)));
+  s.constraints = {ex::sub(v(0), ex::mul(ex::mul(ex::number(rr), ex::cos(ex::variable(3))), v(2))),
+                   ex::sub(v(1), ex::mul(ex::mul(ex::number(rr), ex::sin(ex::variable(3))), v(2)))};
+  return s;
 }
 
 struct Planted {
@@ -227,15 +242,7 @@ RC_GTEST_PROP(Pointwise, FastEqualsReferenceOnPulledBackSystems, ()) {
 RC_GTEST_PROP(Pointwise, RollingDiskWithRandomParameters, ()) {
   const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
   const Q m = pos(), inertia = pos(), jj = pos(), rr = pos();
-  reference::LagrangianSystem s;
-  s.n = 4;
-  s.names = {"x", "y", "theta", "phi"};
-  const auto v = [](Index i) { return ex::variable(4 + i); };
-  const auto half = [](const Q& c) { return ex::number(c / 2); };
-  s.lagrangian = ex::add(ex::add(ex::mul(half(m), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(half(inertia), ex::pow(v(2), 2))),
-                         ex::mul(half(jj), ex::pow(v(3), 2)));
-  s.constraints = {ex::sub(v(0), ex::mul(ex::mul(ex::number(rr), ex::cos(ex::variable(3))), v(2))),
-                   ex::sub(v(1), ex::mul(ex::mul(ex::number(rr), ex::sin(ex::variable(3))), v(2)))};
+  const reference::LagrangianSystem s = rolling_disk(m, inertia, jj, rr);
   const Q x = *rc::gen::inRange(-5, 6), y = *rc::gen::inRange(-5, 6), th = *rc::gen::inRange(-5, 6), vth = *rc::gen::inRange(-5, 6),
           vph = *rc::gen::inRange(-5, 6);
   reference::ExactDecisions<Q> d;
@@ -295,4 +302,125 @@ RC_GTEST_PROP(Pointwise, VignoloFamily, ()) {
   RC_ASSERT(r.point[7] == a);        // v_w = a
   RC_ASSERT(r.velocity[4] == -a);    // x'' = −a
   RC_ASSERT(r.velocity[6] == a);     // z'' = w' = a
+}
+
+// ---- The CAD as formulas on a chart (fast/chart.hpp; issue 29) -------------------------------
+
+namespace {
+
+/// e at the point (q, v, t) exactly (jets of order 0 over no variable: the reference's own arithmetic).
+Q exact_value(const ex::Expr& e, const std::vector<Q>& qvt) {
+  auto sp = std::make_shared<const reference::JetSpace>(0, 0);
+  std::vector<reference::Jet<Q>> args;
+  for (const Q& x : qvt) args.emplace_back(sp, x);
+  return ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).value();
+}
+
+std::vector<double> doubles(const std::vector<Q>& x) {
+  std::vector<double> out;
+  for (const Q& v : x) out.push_back(v.convert_to<double>());
+  return out;
+}
+
+}  // namespace
+
+// Two routes to the equations of motion of a nonlinear system: the exact pointwise CAD (jets at the
+// point, the reference) and the formulas of the chart (Gaussian elimination on the expression DAG, its
+// pivots decided in double at another, generic point of M_c).  On pulled-back linear systems (the tower
+// is the linear one, CEF §5 is intrinsic), at the exact point x0 of M_c: the chart's tower is the
+// reference's, every constraint formula vanishes exactly at x0, and where the chart's conditions hold
+// there, its rates (free ones 0) are a solution — equal to the reference's velocity when unique, in
+// velocity + span(gauge) otherwise (Thm 5.4) — exactly, in rationals.
+// Killed by: the back substitution skipping a pivoted column's term (v̇ off by that product), and by
+// the candidate test without the rounding bound (tracked values): identically zero rows then read as
+// new constraints (cases/regression-pointwise-skipped-column's system got dims [9, 5, 3, 1]).
+RC_GTEST_PROP(Chart, FormulasEqualTheExactPointwiseCad, ()) {
+  const Planted p = planted(3);
+  const Index n = p.in.n;
+  const PointMap phi = random_map(n);
+  const std::vector<Q> start = pulled_back_point(phi, p.x0);
+  const reference::LagrangianSystem s = pulled_back(p.in, phi);
+  const PR r = exact_at(s, start);
+  RC_PRE(r.consistent && r.regular);
+  std::vector<Q> at(r.point.begin(), r.point.begin() + static_cast<long>(2 * n));
+  at.push_back(r.time);
+  fast::Chart ch;
+  try {
+    ch = fast::chart_near(s, doubles(at), r.dims);
+  } catch (const fast::ChartFailure& e) {  // no formulas is not wrong formulas (the result says why); the tag shows how often
+    RC_TAG("no chart");
+    RC_LOG() << e.what() << "\n";
+    return;
+  }
+  RC_ASSERT(ch.dims == r.dims);
+  for (const ex::Expr& c : ch.constraints) RC_ASSERT(exact_value(c, at) == 0);
+  for (const auto& v : ch.valid_where)
+    if (exact_value(v.formula, at) == 0) {
+      RC_TAG("x0 outside the chart");
+      return;
+    }
+  std::vector<Q> u(2 * n);
+  for (Index i = 0; i < 2 * n; ++i) u[i] = exact_value(ch.rates[i], at);
+  RC_TAG(r.solution_rank ? "not unique" : "unique");
+  if (r.gauge.empty()) {
+    for (Index i = 0; i < 2 * n; ++i) RC_ASSERT(u[i] == r.velocity[i]);
+  } else {  // u − velocity ∈ span(gauge) on the (q, v) coordinates
+    reference::AffineSubspace<Q> a;
+    a.point = r.velocity;
+    QM g(r.gauge.size(), 3 * n);
+    for (Index i = 0; i < r.gauge.size(); ++i)
+      for (Index j = 0; j < 3 * n; ++j) g(i, j) = r.gauge[i][j];
+    a.direction = reference::Subspace<Q>::span(g);
+    RC_ASSERT(in_affine(u, a, 2 * n));
+  }
+}
+
+// The rolling disk (YM §6) at generic angles — never φ = 0, where sin φ = 0 hides a wrong sign of a
+// sin φ term: its motion is known in closed form (the constraints differentiated, the reactions
+// eliminated by hand): v̇_θ = v̇_φ = 0, v̇_x = −R sin φ v_φ v_θ, v̇_y = R cos φ v_φ v_θ.  The chart's
+// rates at random points of M_c (random φ ∈ (−3, 3), random velocities, R, masses) are these values.
+RC_GTEST_PROP(Chart, RollingDiskAtGenericAnglesIsTheClosedForm, ()) {
+  const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
+  const Q m = pos(), inertia = pos(), jj = pos(), rr = pos();
+  const reference::LagrangianSystem s = rolling_disk(m, inertia, jj, rr);
+  const double R = rr.convert_to<double>(), ph = *rc::gen::inRange(-300, 301) / 100.0, vth = *rc::gen::inRange(-50, 51) / 10.0,
+               vph = *rc::gen::inRange(-50, 51) / 10.0;
+  const std::vector<double> x0{0.5, -1.25, 0.75, ph, R * std::cos(ph) * vth, R * std::sin(ph) * vth, vth, vph, 0};
+  const fast::Chart ch = fast::chart_near(s, x0, {12, 6});
+  const fast::ChartField f(ch);
+  std::vector<double> u(8);
+  f.rates(x0.data(), 0, u.data());
+  RC_LOG() << "phi " << ph << " v_theta " << vth << " v_phi " << vph << " rates " << u[4] << " " << u[5] << " " << u[6] << " " << u[7] << "\n";
+  const double scale = std::max(1.0, R * std::abs(vph * vth));
+  RC_ASSERT(std::abs(u[4] + R * std::sin(ph) * vph * vth) <= 1e-12 * scale);
+  RC_ASSERT(std::abs(u[5] - R * std::cos(ph) * vph * vth) <= 1e-12 * scale);
+  RC_ASSERT(std::abs(u[6]) <= 1e-12 * scale);
+  RC_ASSERT(std::abs(u[7]) <= 1e-12 * scale);
+}
+
+// The Cartesian pendulum (Hairer–Wanner VII.1; cases/cartesian-pendulum.json) with the multiplier as a
+// coordinate, at random rational points of M_c: x = (3/5, −4/5) l, v = s (4/5, 3/5) l (tangent), and by
+// hand μ = m(|v|² − g y)/l² (M_4), μ̇ = m(2 v·a − g v_y)/l² with a = (−μx, −g m − μy)/m (M_5),
+// μ̈ = m(2|a|² + 2 v·ȧ − g a_y)/l² with ȧ = −(μ̇ x + μ v)/m: the chart's five-level tower and rates,
+// exactly.  (The index-3 reduction every DAE tool performs; derived here without the CAD.)
+RC_GTEST_PROP(Chart, CartesianPendulumIsTheHandReduction, ()) {
+  const Q m(*rc::gen::inRange(1, 10), *rc::gen::inRange(1, 4)), g(*rc::gen::inRange(1, 1000), 100), l(*rc::gen::inRange(1, 5), *rc::gen::inRange(1, 3)),
+      sp(*rc::gen::inRange(-20, 21), 4);
+  reference::LagrangianSystem s;
+  s.n = 3;
+  s.names = {"x", "y", "mu"};
+  const ex::Expr x = ex::variable(0), y = ex::variable(1), mu = ex::variable(2), vx = ex::variable(3), vy = ex::variable(4);
+  s.lagrangian = ex::sub(ex::sub(ex::mul(ex::number(m / 2), ex::add(ex::pow(vx, 2), ex::pow(vy, 2))), ex::mul(ex::number(m * g), y)),
+                         ex::mul(ex::mul(ex::number(Q(1, 2)), mu), ex::sub(ex::add(ex::pow(x, 2), ex::pow(y, 2)), ex::number(l * l))));
+  const Q px = Q(3, 5) * l, py = Q(-4, 5) * l, vxx = sp * Q(4, 5) * l, vyy = sp * Q(3, 5) * l;
+  const Q muv = m * (vxx * vxx + vyy * vyy - g * py) / (l * l);
+  const Q ax = -muv * px / m, ay = -g - muv * py / m;
+  const Q mud = m * (2 * (vxx * ax + vyy * ay) - g * vyy) / (l * l);
+  const Q adx = -(mud * px + muv * vxx) / m, ady = -(mud * py + muv * vyy) / m;
+  const Q mudd = m * (2 * (ax * ax + ay * ay) + 2 * (vxx * adx + vyy * ady) - g * ay) / (l * l);
+  const std::vector<Q> at{px, py, muv, vxx, vyy, mud, 0};
+  const fast::Chart ch = fast::chart_near(s, doubles(at), {9, 6, 5, 4, 3, 2});
+  for (const ex::Expr& c : ch.constraints) RC_ASSERT(exact_value(c, at) == 0);
+  const std::vector<Q> want{vxx, vyy, mud, ax, ay, mudd};
+  for (Index i = 0; i < 6; ++i) RC_ASSERT(exact_value(ch.rates[i], at) == want[i]);
 }

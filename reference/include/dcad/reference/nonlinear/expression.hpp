@@ -54,6 +54,9 @@ inline Expr make(ExprOp op, Expr a, Expr b = nullptr, long exponent = 0) {
 inline Expr neg(const Expr& a) {
   if (is_number(a)) return number(-a->value);
   if (a->op == ExprOp::Neg) return a->a;
+  if (a->op == ExprOp::Mul && is_number(a->a))  // −(c·x) = (−c)·x
+    return a->a->value == -1 ? a->b : make(ExprOp::Mul, number(-a->a->value), a->b);
+  if (a->op == ExprOp::Sub) return make(ExprOp::Sub, a->b, a->a);  // −(x − y) = y − x
   return make(ExprOp::Neg, a);
 }
 /// −b as a "positive" expression if b is visibly negative (−x, a negative number, c·x with c < 0), else
@@ -65,16 +68,19 @@ inline Expr negated(const Expr& b) {
     return b->a->value == -1 ? b->b : make(ExprOp::Mul, number(-b->a->value), b->b);
   return nullptr;
 }
+Expr mul(const Expr& a, const Expr& b);
 inline Expr add(const Expr& a, const Expr& b) {
   if (is_number(a) && is_number(b)) return number(a->value + b->value);
   if (is_number(a, 0)) return b;
   if (is_number(b, 0)) return a;
+  if (a.get() == b.get()) return mul(number(2), a);  // x + x (one node: derivatives of products make these)
   if (const Expr nb = negated(b)) return make(ExprOp::Sub, a, nb);
   return make(ExprOp::Add, a, b);
 }
 inline Expr sub(const Expr& a, const Expr& b) {
   if (is_number(a) && is_number(b)) return number(a->value - b->value);
   if (is_number(b, 0)) return a;
+  if (a.get() == b.get()) return number(0);  // x − x, one node
   if (is_number(a, 0)) return neg(b);
   if (const Expr nb = negated(b)) return make(ExprOp::Add, a, nb);
   return make(ExprOp::Sub, a, b);
@@ -88,6 +94,10 @@ inline Expr mul(const Expr& a, const Expr& b) {
   if (is_number(b, 1)) return a;
   if (is_number(a, -1)) return neg(b);
   if (is_number(b, -1)) return neg(a);
+  if (a->op == ExprOp::Neg) return neg(mul(a->a, b));  // signs and numbers move to the front
+  if (b->op == ExprOp::Neg) return neg(mul(a, b->a));
+  if (!is_number(a) && a->op == ExprOp::Mul && is_number(a->a)) return mul(a->a, mul(a->b, b));
+  if (!is_number(a) && b->op == ExprOp::Mul && is_number(b->a)) return mul(b->a, mul(a, b->b));
   return make(ExprOp::Mul, a, b);
 }
 /// a / b; a division by the number 0 is std::invalid_argument.
@@ -96,6 +106,9 @@ inline Expr div(const Expr& a, const Expr& b) {
   if (is_number(a) && is_number(b)) return number(a->value / b->value);
   if (is_number(a, 0)) return number(0);
   if (is_number(b, 1)) return a;
+  if (is_number(b)) return mul(number(1 / b->value), a);
+  if (a->op == ExprOp::Neg) return neg(div(a->a, b));
+  if (b->op == ExprOp::Neg) return neg(div(a, b->a));
   return make(ExprOp::Div, a, b);
 }
 /// a^k, k an integer; 0^k with k < 0 is std::invalid_argument.  (a^0 is 1: the parser refuses 0^0 in
