@@ -3,6 +3,7 @@
 
 #include "dcad/fast/solve.hpp"
 #include "dcad/reference/nonlinear/pointwise.hpp"
+#include "formulas.hpp"
 #include "guarded.hpp"
 
 #include <cmath>
@@ -57,7 +58,21 @@ certified::Solution not_certified(const io::Problem& p, const reference::NotExac
 
 }  // namespace
 
-Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
+namespace {
+
+/// The expression form's formulas on a chart, where the result is consistent and regular.
+void attach_formulas(const io::Problem& p, Solved& s) {
+  std::visit(
+      [&](auto& r) {
+        if (!r.pointwise || !r.consistent || !r.pointwise->regular) return;
+        auto f = formulas(p.expression, r.dims());
+        if (auto* ok = std::get_if<Formulas>(&f)) r.pointwise->formulas = std::move(*ok);
+        else r.pointwise->formulas_why = std::get<std::string>(f);
+      },
+      s);
+}
+
+Solved solve_form(const io::Problem& p, Backend backend, const Parts& parts) {
   return guarded(p, [&]() -> Solved {
     switch (backend) {
       case Backend::reference:
@@ -73,6 +88,14 @@ Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
     }
     throw InternalError("solve: unknown backend");
   });
+}
+
+}  // namespace
+
+Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
+  Solved s = solve_form(p, backend, parts);
+  if (p.form == io::Form::expression) guarded(p, [&]() { attach_formulas(p, s); return 0; });
+  return s;
 }
 
 io::Printed printed(const Solved& s) {

@@ -7,11 +7,16 @@
 // the difference is the a-posteriori error estimate that is printed.
 #include "simulate.hpp"
 
+#include "dcad/fast/chart.hpp"
 #include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
 
+#include <boost/numeric/odeint.hpp>
+
 #include <charconv>
+#include <memory>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -113,16 +118,31 @@ void put(std::ostream& out, double x) {
   out.write(buf, r.ptr - buf);
 }
 
+/// One CSV row, flushed (rows are streamed: a user watching the file, or a pipe, sees them as they
+/// come), and a progress line on the log every 2 s.
+void write_row(std::ostream& out, std::ostream& log, double time, const std::vector<double>& x, double tstop,
+               std::chrono::steady_clock::time_point& last) {
+  put(out, time);
+  for (double v : x) {
+    out << ",";
+    put(out, v);
+  }
+  out << "\n";
+  out.flush();
+  if (std::chrono::steady_clock::now() - last > std::chrono::seconds(2)) {
+    last = std::chrono::steady_clock::now();
+    log << "simulate: t = " << io::float_text(time) << " of " << io::float_text(tstop) << "\n";
+  }
+}
+
 }  // namespace
 
-Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
-  require_times(opt);
+namespace {
+
+/// The pointwise route (the CAD at every evaluation): where no chart of formulas could be built.
+Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& opt, const fast::Solution& first, std::ostream& out, std::ostream& log) {
   const std::size_t n = c.system.n;
-  const fast::Solution first = fast::solve_expression(c);  // the initial point on M_c (given values checked)
   const Pointwise<double>& at = *first.pointwise;
-  if (!first.consistent || !at.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
-  if (first.solution_rank.value_or(0) > 0)
-    log << "note: solutions are not unique (solution rank " << *first.solution_rank << "); simulating the one with the free directions set to 0\n";
   Field f{c, n, 0, {}};
   std::vector<double> y(2 * n);
   for (std::size_t i = 0; i < 2 * n; ++i) y[i] = at.point[i];
@@ -135,19 +155,7 @@ Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& 
   // or a pipe, sees them as they come — before, a redirected run showed 0 bytes for minutes), with a
   // progress line on the log every 2 s
   auto last = std::chrono::steady_clock::now();
-  const auto row = [&](double time, const std::vector<double>& x) {
-    put(out, time);
-    for (double v : x) {
-      out << ",";
-      put(out, v);
-    }
-    out << "\n";
-    out.flush();
-    if (std::chrono::steady_clock::now() - last > std::chrono::seconds(2)) {
-      last = std::chrono::steady_clock::now();
-      log << "simulate: t = " << io::float_text(time) << " of " << io::float_text(opt.tstop) << "\n";
-    }
-  };
+  const auto row = [&](double time, const std::vector<double>& x) { write_row(out, log, time, x, opt.tstop, last); };
   Field::At now = f(t, y);
   row(t, now.x);
   const auto energy = [&](const std::vector<double>& x) {  // E = p·v − L
@@ -164,10 +172,12 @@ Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& 
   const double e0 = energy(now.x);
   double emax = 0, estimate = 0, drift = 0;
   long substeps = 0;
-  const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
+  const double t0 = t;  // rows at t0 + k·step up to the final time --tstop
+  if (opt.tstop < t0) throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) + ", found " + io::float_text(opt.tstop));
+  const long steps = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
   long m = 1;
   for (long k = 1; k <= steps; ++k) {
-    const double t1 = static_cast<double>(k) * opt.step;
+    const double t1 = t0 + static_cast<double>(k) * opt.step;
     f.plan_at(t, y);
     for (;;) {  // m and 2m substeps must agree
       std::vector<double> a = y, b = y;
@@ -200,6 +210,172 @@ Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& 
       << io::float_text(drift) << " (relative: the drift RK4 made and the projection removed); energy p·v − L varied by " << io::float_text(emax)
       << " from " << io::float_text(e0) << (conservative(c.system) ? " (conserved by the exact motion)" : "") << "\n";
   return sum;
+}
+
+/// The chart's equations of motion (chart.hpp), compiled, integrated by Dormand–Prince 5(4) with step
+/// control and dense output (Boost.Odeint) at two tolerances side by side: the rows are the tighter run's, the
+/// estimated error is the largest difference between the two at the rows (relative to each variable's
+/// scale), an upper estimate of the tighter run's error.  After each row both runs are projected onto
+/// M_c when their drift exceeds 1e-10 (relative); the chart is rebuilt where a valid_where formula
+/// fell below 1e-3 of its value where the chart was built.
+Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& opt, const std::vector<double>& start, fast::Chart chart, std::ostream& out,
+                          std::ostream& log) {
+  namespace odeint = boost::numeric::odeint;
+  using State = std::vector<double>;
+  const std::size_t n = c.system.n;
+  auto field = std::make_unique<fast::ChartField>(chart);
+  const fast::Tape lagrangian({c.system.lagrangian});
+  const double tight = 1e-12, loose = 1e-10;
+  auto fine = odeint::make_dense_output(tight, tight, odeint::runge_kutta_dopri5<State>());
+  auto coarse = odeint::make_dense_output(loose, loose, odeint::runge_kutta_dopri5<State>());
+  long evaluations = 0;
+  const auto sys = [&](const State& y, State& dy, double t) {
+    ++evaluations;
+    field->rates(y.data(), t, dy.data());
+  };
+  State y(start.begin(), start.end() - 1), z = y;
+  double t = start.back();
+  const std::vector<std::string> st = c.system.state_names();
+  out << "t";
+  for (const std::string& s : st) out << "," << s;
+  out << "\n";
+  auto last = std::chrono::steady_clock::now();
+  const auto full = [&](const State& q, double time) {  // x = (q, v, p)
+    std::vector<double> x(q);
+    const std::vector<double> p = field->momenta(q, time);
+    x.insert(x.end(), p.begin(), p.end());
+    return x;
+  };
+  const auto check_finite = [&](const State& q, double time) {
+    for (double v : q)
+      if (!std::isfinite(v)) {
+        std::vector<double> at(q);
+        at.push_back(time);
+        const auto [path, what] = fast::nonfinite_formula(c.system, at);
+        throw io::InputError(c.file + ": simulate: at t = " + io::float_text(time) + ": the motion left double's range" +
+                             (path.empty() ? std::string() : " (" + path + ": " + what + ")"));
+      }
+  };
+  const auto row = [&](double time, const std::vector<double>& x) { write_row(out, log, time, x, opt.tstop, last); };
+  const auto energy = [&](const std::vector<double>& x, double time) {  // E = p·v − L
+    std::vector<double> at(x.begin(), x.begin() + static_cast<long>(2 * n));
+    at.push_back(time);
+    double e = 0, l = 0;
+    for (std::size_t i = 0; i < n; ++i) e += x[2 * n + i] * x[n + i];
+    lagrangian.evaluate(at.data(), &l);
+    return e - l;
+  };
+  std::vector<double> x = full(y, t);
+  row(t, x);
+  const double e0 = energy(x, t);
+  double emax = 0, estimate = 0, drift = 0;
+  long steps_taken = 0, projections = 0, charts = 1;
+  std::vector<double> scale(2 * n, 0);
+  const double t0 = t;
+  if (opt.tstop < t0) throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) + ", found " + io::float_text(opt.tstop));
+  const long rows = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
+  fine.initialize(y, t, opt.step / 16);
+  coarse.initialize(z, t, opt.step / 16);
+  const auto advance = [&](auto& stepper, State& s, double t1) {
+    try {
+      while (stepper.current_time() < t1) {
+        stepper.do_step(sys);
+        ++steps_taken;
+        check_finite(stepper.current_state(), stepper.current_time());
+      }
+    } catch (const io::InputError&) {
+      throw;
+    } catch (const std::exception& e) {  // odeint's step-size control gave up
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(stepper.current_time()) + ": the integrator failed (" + e.what() +
+                           "): the motion is too stiff or leaves the chart");
+    }
+    stepper.calc_state(t1, s);
+  };
+  for (long k = 1; k <= rows; ++k) {
+    const double t1 = t0 + static_cast<double>(k) * opt.step;
+    advance(fine, y, t1);
+    advance(coarse, z, t1);
+    t = t1;
+    for (std::size_t i = 0; i < 2 * n; ++i) scale[i] = std::max(scale[i], std::abs(y[i]));
+    double err = 0;
+    for (std::size_t i = 0; i < 2 * n; ++i) err = std::max(err, std::abs(y[i] - z[i]) / std::max(scale[i], 1.0));
+    estimate = std::max(estimate, err);
+    bool restart = false;
+    for (State* s : {&y, &z}) {
+      const double d = field->drift(*s, t);
+      drift = std::max(drift, d);
+      if (d > 1e-10) {
+        ++projections;
+        restart = true;
+        if (!field->project(*s, t, 1e-14)) throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": the motion could not be projected back onto M_c (drift " + io::float_text(d) + ")");
+      }
+    }
+    if (field->margin(y, t) < 1e-3) {  // a pivot or the chart's Jacobian nears zero: a new chart here
+      std::vector<double> here(y);
+      here.push_back(t);
+      // a singular point of the tower (a rank drops: every chart's conditions vanish) is reported, never crossed
+      const auto singular = [&](const std::string& otherwise) {
+        fast::ToleranceDecisions d;
+        const reference::PointwiseResult<double> r = fast::pointwise_cad(c.system, here, std::vector<bool>(here.size(), false), d);
+        throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " +
+                             (!r.consistent || !r.regular ? r.why : otherwise));
+      };
+      try {
+        chart = fast::chart_near(c.system, here, chart.dims);
+      } catch (const fast::ChartFailure& e) {
+        singular(std::string("no chart of M_c holds here (") + e.what() + ")");
+      }
+      field = std::make_unique<fast::ChartField>(chart);
+      std::size_t weakest = 0;
+      if (field->margin(y, t, &weakest) < 1e-8) {
+        const fast::Chart::Condition& w = chart.valid_where[weakest];
+        throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " +
+                             reference::expr::to_text(w.formula, c.system.variable_names()) + " vanishes here in every chart found (" + w.what +
+                             "): a rank of the tower drops");
+      }
+      ++charts;
+      restart = true;
+      log << "simulate: new chart at t = " << io::float_text(t) << "\n";
+    }
+    if (restart) {
+      fine.initialize(y, t, fine.current_time_step());
+      coarse.initialize(z, t, coarse.current_time_step());
+    }
+    x = full(y, t);
+    row(t, x);
+    emax = std::max(emax, std::abs(energy(x, t) - e0));
+  }
+  Summary sum;
+  sum.rows = rows + 1;
+  sum.error_estimate = estimate;
+  sum.worst_variable = "(two runs: tolerance 1e-12 and 1e-10)";
+  log << "simulate: " << sum.rows << " rows on a chart of formulas (" << charts << (charts == 1 ? " chart" : " charts") << "), Dormand–Prince 5(4) with dense output at tolerances "
+      << io::float_text(tight) << " and " << io::float_text(loose) << ": " << steps_taken << " steps, " << evaluations
+      << " evaluations of the field; estimated error " << io::float_text(estimate) << " (relative, the looser run's difference from the rows'); largest drift from M_c "
+      << io::float_text(drift) << " (relative; " << projections << " projections); energy p·v − L varied by " << io::float_text(emax) << " from "
+      << io::float_text(e0) << (conservative(c.system) ? " (conserved by the exact motion)" : "") << "\n";
+  return sum;
+}
+
+}  // namespace
+
+Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+  require_times(opt);
+  const fast::Solution first = fast::solve_expression(c);  // the initial point on M_c (given values checked)
+  const Pointwise<double>& at = *first.pointwise;
+  if (!first.consistent || !at.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
+  if (first.solution_rank.value_or(0) > 0)
+    log << "note: solutions are not unique (solution rank " << *first.solution_rank << "); simulating the one with the free directions set to 0\n";
+  std::vector<double> start(at.point.begin(), at.point.begin() + static_cast<long>(2 * c.system.n));
+  start.push_back(at.time);
+  std::optional<fast::Chart> chart;
+  try {
+    chart = fast::chart_near(c.system, start, first.dims());
+  } catch (const fast::ChartFailure& e) {
+    log << "note: no chart of formulas (" << e.what() << "): the pointwise CAD at every evaluation (slow)\n";
+    return simulate_pointwise(c, opt, first, out, log);
+  }
+  return simulate_on_chart(c, opt, start, *chart, out, log);
 }
 
 }  // namespace dcad::api

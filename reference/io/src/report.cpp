@@ -393,6 +393,18 @@ json pointwise_json(const Printed& r) {
     j["gauge"] = p.gauge;
   }
   j["jets"] = {{"order", p.order}, {"checked_order", p.checked_order}, {"moves", p.moves}};
+  if (p.formulas) {
+    const Formulas& f = *p.formulas;
+    json eq = json::object(), mo = json::object();
+    for (const auto& [name, e] : f.equations) eq[name] = e;
+    for (const auto& [name, e] : f.momenta) mo[name] = e;
+    j["formulas"] = {{"constraints", f.constraints}, {"levels", f.levels}, {"equations", eq}, {"momenta", mo}, {"free", f.free},
+                     {"chart", {{"kept", f.kept}, {"solved", f.solved}}}, {"valid_where", f.valid_where}, {"valid_where_why", f.valid_where_why},
+                     {"decided", f.decided}};
+  } else if (!p.formulas_why.empty()) {
+    j["formulas"] = nullptr;
+    j["formulas_why"] = p.formulas_why;
+  }
   if (!r.note.empty()) j["note"] = r.note;
   return j;
 }
@@ -436,6 +448,18 @@ std::string pointwise_text(const Printed& r) {
     o << "  velocity at the point (one solution" << (rank ? " of a " + std::to_string(rank) + "-parameter family" : "") << "):";
     for (std::size_t i = 0; i < p.velocity.size(); ++i) o << (i % 4 == 0 ? "\n     " : "") << " d/dt " << st[i] << " = " << p.velocity[i] << (i + 1 < p.velocity.size() ? "," : "");
     o << "\n";
+  }
+  if (p.formulas) {
+    const Formulas& f = *p.formulas;
+    const auto shown = [](const std::string& e) { return e.size() <= 400 ? e : "(a formula of " + std::to_string(e.size()) + " characters: see --json)"; };
+    o << "  formulas on a chart (kept:";
+    for (const std::string& k : f.kept) o << " " << k;
+    o << "):\n";
+    for (std::size_t i = 0; i < f.constraints.size(); ++i) o << "      M_" << f.levels[i] << ": " << shown(f.constraints[i]) << " = 0\n";
+    for (const auto& [name, e] : f.equations) o << "      d/dt " << name << " = " << shown(e) << "\n";
+    for (std::size_t i = 0; i < f.valid_where.size(); ++i) o << "      valid where " << shown(f.valid_where[i]) << " != 0   (" << f.valid_where_why[i] << ")\n";
+  } else if (!p.formulas_why.empty()) {
+    o << "  no formulas: " << p.formulas_why << "\n";
   }
   if (!r.note.empty()) o << "  note: " << r.note << "\n";
   return o.str();

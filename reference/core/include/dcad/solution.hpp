@@ -139,6 +139,19 @@ struct SourceCondition {
   std::string evidence;  ///< why
 };
 
+/// The CAD of the expression form as formulas on a chart (CONTRACT "Formulas for nonlinear results";
+/// built by fast/chart.hpp, its tower checked against the backend's).  Text in the case's names.
+struct Formulas {
+  std::vector<std::string> constraints;  ///< every M_k's constraints (formula = 0), with p = ∂L/∂v
+  std::vector<long> levels;              ///< for each constraint, the k of the M_k it cuts out (1: the given ones)
+  std::vector<std::pair<std::string, std::string>> equations;  ///< d/dt NAME = formula, for q and v
+  std::vector<std::pair<std::string, std::string>> momenta;    ///< p_NAME = ∂L/∂v
+  std::vector<std::string> free;         ///< velocities whose rate is free on M_c (0 in `equations`)
+  std::vector<std::string> kept, solved;  ///< M_c's chart: coordinates kept, coordinates the constraints solve for
+  std::vector<std::string> valid_where, valid_where_why;  ///< must not vanish; why each
+  std::string decided;                   ///< where the chart's decisions were made
+};
+
 /// The pointwise CAD of the expression form (reference/nonlinear/pointwise.hpp) at its point.
 template <class N>
 struct Pointwise {
@@ -166,6 +179,8 @@ struct Pointwise {
   };
   std::vector<Step> levels;  ///< levels[k] describes M_{k+1}
   long order = 0, checked_order = 0, moves = 0;
+  std::optional<Formulas> formulas;  ///< where a chart was found (consistent, regular results)
+  std::string formulas_why;          ///< else why not
 };
 
 template <class N>
@@ -314,6 +329,8 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
     q.order = p.order;
     q.checked_order = p.checked_order;
     q.moves = p.moves;
+    q.formulas = p.formulas;
+    q.formulas_why = p.formulas_why;
     o.pointwise = q;
   }
   o.decisions = s.decisions;
