@@ -175,6 +175,8 @@ int main(int argc, char** argv) {
   check->add_option("--initial", check_initial, "waveforms: the simulator's initial state: deck (its .tran), op or uic")
       ->check(CLI::IsMember({"deck", "op", "uic"}));
   check->add_flag("--json", check_json, "waveforms: the report as JSON");
+  std::size_t check_points = 20;
+  check->add_option("--points", check_points, "formulas: compare another tool's constraints and equations of motion at this many points of M_c (default 20)");
   std::string check_png, check_vars;
   check->add_option("--plot", check_png, "waveforms: also draw the simulator's and the exact waveforms, the worst point marked, as a PNG (gnuplot)");
   check->add_option("--plot-vars", check_vars, "waveforms: comma-separated vectors to plot (default: the one with the largest relative error)");
@@ -273,7 +275,7 @@ int main(int argc, char** argv) {
       return w.agree ? 0 : 3;
     }
     if (check->parsed()) {
-      const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file));
+      const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file), check_points);
       std::string keys;
       for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
       for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";

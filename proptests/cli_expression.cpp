@@ -429,3 +429,53 @@ TEST(Expression, SingularPointIsNotReportedConsistent) {
     EXPECT_NE(got["why"].get<std::string>().find("rank 0 < 1"), std::string::npos) << got["why"];
   }
 }
+
+// `dcad check EQUATIONS DECK` (CONTRACT "Formulas for nonlinear results"): another tool's formulas for
+// the index-3 pendulum (cases/cartesian-pendulum.json, m = l = 1, g = 981/100), derived here by hand:
+// x² + y² = 1, x v_x + y v_y = 0, μ = |v|² − g y, v_μ = μ̇ = −2μ(x v_x + y v_y) − 3 g v_y; ẍ = −μx,
+// ÿ = −g − μy, μ̈ = 2|a|² + 2 v·ȧ − g a_y with a = (−μx, −g − μy), ȧ = −(v_μ x + μ v_x, v_μ y + μ v_y).
+// They agree at 20 points of M_c (exit 0); a sign error in ÿ, a missing hidden constraint (the one
+// that fixes μ, M_4) and an unknown name are each found and named.
+TEST(Expression, CheckFormulasOfAnotherTool) {
+  const std::string good = R"J({"dcad": 1, "formulas": {
+      "constraints": ["x^2 + y^2 - 1", "x*v_x + y*v_y", "mu - (v_x^2 + v_y^2 - 981/100*y)", "v_mu + 2*mu*(x*v_x + y*v_y) + 3*981/100*v_y"],
+      "equations": {"x": "v_x", "y": "v_y", "mu": "v_mu", "v_x": "-mu*x", "v_y": "-981/100 - mu*y",
+                    "v_mu": "2*((mu*x)^2 + (981/100 + mu*y)^2) - 2*(v_x*(v_mu*x + mu*v_x) + v_y*(v_mu*y + mu*v_y)) + 981/100*(981/100 + mu*y)"}}})J";
+  const std::string pendulum = case_path("cartesian-pendulum");
+  const Outcome ok = run("check " + write_temp("dcad_formulas_good.json", good) + " " + pendulum);
+  EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
+  EXPECT_NE(ok.out.find("formulas.equations (at 20 points of M_c"), std::string::npos) << ok.out;
+  std::string sign = good;
+  sign.replace(sign.find("\"-981/100 - mu*y\""), 17, "\"-981/100 + mu*y\"");
+  const Outcome bad_sign = run("check " + write_temp("dcad_formulas_sign.json", sign) + " " + pendulum + " --points 5");
+  EXPECT_EQ(bad_sign.rc, 3) << bad_sign.out;
+  EXPECT_NE(bad_sign.out.find("formulas.equations.v_y: expected d/dt v_y = "), std::string::npos) << bad_sign.out;
+  std::string missing = good;
+  const std::string m4 = "\"mu - (v_x^2 + v_y^2 - 981/100*y)\", ";
+  missing.replace(missing.find(m4), m4.size(), "");
+  const Outcome bad_missing = run("check " + write_temp("dcad_formulas_missing.json", missing) + " " + pendulum);
+  EXPECT_EQ(bad_missing.rc, 3) << bad_missing.out;
+  EXPECT_NE(bad_missing.out.find("expected 4 independent constraints"), std::string::npos) << bad_missing.out;
+  EXPECT_NE(bad_missing.out.find("(M_4)"), std::string::npos) << bad_missing.out;
+  std::string unknown = good;
+  unknown.replace(unknown.find("\"-mu*x\""), 7, "\"-lam*x\"");
+  const std::string uf = write_temp("dcad_formulas_unknown.json", unknown);
+  const Outcome bad_name = run("check " + uf + " " + pendulum);
+  EXPECT_EQ(bad_name.rc, 1);
+  EXPECT_NE(bad_name.err.find(uf + ": /formulas/equations/v_x: column 2: expected a variable"), std::string::npos) << bad_name.err;
+}
+
+// The ball on a rotating table (cases/ball-rotating-table.json, Omega = 7/2): the centre's velocity turns
+// at (2/7) Omega = 1 (the case's hand derivation), so from (1, 0) with velocity (0, 1) the centre runs
+// the unit circle: x = cos t, y = sin t, and the spin about the vertical stays 0.  Simulated on the chart
+// (affine constraints: b != 0) for two turns.
+TEST(Expression, SimulateBallOnRotatingTableCircles) {
+  const Outcome r = run("simulate " + case_path("ball-rotating-table") + " --tstop 12.5 --step 0.125");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto rows = csv_rows(r.out);
+  ASSERT_EQ(rows.size(), 101u);
+  double err = 0;
+  for (const auto& row : rows)  // t, x, y, phi1, phi2, phi3, v_x, v_y, v_phi1, v_phi2, v_phi3, …
+    err = std::max({err, std::abs(row[1] - std::cos(row[0])), std::abs(row[2] - std::sin(row[0])), std::abs(row[10])});
+  EXPECT_LT(err, 1e-8) << r.err;
+}

@@ -3,6 +3,7 @@
 // `dirac_bracket`) as subspaces or within a condition-aware tolerance (documented in the README).
 #include "dcad/api.hpp"
 #include "dcad/fast/solve.hpp"
+#include "check_formulas.hpp"
 #include "guarded.hpp"
 #include "json_input.hpp"  // dcad::io's exact JSON reader (build tree)
 
@@ -283,6 +284,7 @@ json read_result(const std::string& result_file, const std::string* text) {
   const json r = text ? io::parse_json_exact(*text, result_file) : io::read_json_file(result_file);  // floats kept as text; depth limited
   if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
   if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
+  if (r.contains("formulas") && !r.contains("dims")) return r;  // formulas only (check_formulas reads them)
   for (const char* key : {"dims", "steps", "consistent", "solution_rank"})
     if (!r.contains(key)) bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\"", "nothing");
   if (!r["dims"].is_array()) bad(result_file, "/dims", "an array of integers", shown(r["dims"]));
@@ -440,15 +442,19 @@ bool equal_modulo(const std::vector<Number>& found, const std::vector<std::strin
   return r <= 1e-9 * static_cast<double>(n) * scale;
 }
 
-Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p) {
+Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
   const io::LagrangianCase& c = p.expression;
   const std::vector<std::string> st = c.system.state_names();
   if (r.contains("name") && r["name"] != c.name)
     bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(st))
     bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
-  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
   Checker k{result_file, {}};
+  if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
+    check_formulas(result_file, r["formulas"], p, points, k.out);
+    if (!r.contains("dims")) return k.out;
+  }
+  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
   for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
   if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
   if (!r.contains("point") || !r.contains("velocity")) {
@@ -506,16 +512,17 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   return k.out;
 }
 
-Checked checked(const std::string& result_file, const std::string* text, const io::Problem& p) {
+Checked checked(const std::string& result_file, const std::string* text, const io::Problem& p, std::size_t points) {
   return guarded(p, [&] {
     const json r = read_result(result_file, text);
-    Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p) : check_linear(result_file, r, p);
+    Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points) : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     // every top-level key of the result that nothing above compared is named, never ignored in silence
     std::string quiet;
     if (r.is_object())
       for (const auto& item : r.items()) {
         const std::string& key = item.key();
+        if (key == "dcad") continue;  // the format's version, checked by read_result
         const auto covers = [&](const std::string& c) { return c == key || c.rfind(key + ".", 0) == 0 || c.rfind(key + " ", 0) == 0; };
         if (std::any_of(o.compared.begin(), o.compared.end(), covers) || std::any_of(o.not_compared.begin(), o.not_compared.end(), covers)) continue;
         quiet += (quiet.empty() ? "" : ", ") + key;
@@ -527,8 +534,10 @@ Checked checked(const std::string& result_file, const std::string* text, const i
 
 }  // namespace
 
-Checked check(const std::string& result_file, const io::Problem& p) { return checked(result_file, nullptr, p); }
+Checked check(const std::string& result_file, const io::Problem& p, std::size_t points) { return checked(result_file, nullptr, p, points); }
 
-Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name) { return checked(name, &result_json, p); }
+Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name, std::size_t points) {
+  return checked(name, &result_json, p, points);
+}
 
 }  // namespace dcad::api

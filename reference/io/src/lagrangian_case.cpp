@@ -151,4 +151,16 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
 
 LagrangianCase read_lagrangian_case(const std::string& file) { return read_lagrangian_case(read_json_file(file), file); }
 
+reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file, const std::string& path) {
+  const reference::LagrangianSystem& s = c.system;
+  std::map<std::string, std::size_t> vars;
+  for (std::size_t i = 0; i < s.n; ++i) {
+    vars[s.names[i]] = s.q(i);
+    vars["v_" + s.names[i]] = s.v(i);
+  }
+  if (s.has_time) vars[s.time_name] = s.t();
+  const Where at{file, path};
+  return parse_expression(text, vars, c.parameters, at);
+}
+
 }  // namespace dcad::io

@@ -64,10 +64,12 @@ struct Checked {
   std::vector<std::string> disagreements;  ///< "key: expected …, found …"
   std::vector<std::string> not_compared;   ///< what the reference has and the result does not say, and why
 };
-/// InputError if the result file is not a result for this problem.
-Checked check(const std::string& result_file, const io::Problem& p);
+/// InputError if the result file is not a result for this problem.  A result with `formulas` (another
+/// tool's constraints and equations of motion for an expression-form case) is compared with dcad's
+/// chart at `points` points of M_c (CONTRACT "Formulas for nonlinear results").
+Checked check(const std::string& result_file, const io::Problem& p, std::size_t points = 20);
 /// The same for a result given as JSON text (`name` stands for it in messages): no file needed.
-Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name = "<result>");
+Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name = "<result>", std::size_t points = 20);
 
 /// `dcad inspect`: what the problem's Dirac structure is (a `dirac` case; InputError otherwise).
 Inspection inspect(const io::Problem& p, Backend backend);

@@ -28,5 +28,8 @@ struct LagrangianCase {
 /// then reports why).
 bool is_expression_file(const std::string& file);
 LagrangianCase read_lagrangian_case(const std::string& file);
+/// A formula of another tool's result (`text`, found at FILE's JSON `path`) in the case's names (q,
+/// v_*, the time) and parameters; InputError naming file, path and column.
+reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file, const std::string& path);
 
 }  // namespace dcad::io
