@@ -5,7 +5,9 @@
 #include "dcad/fast/tracked.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <random>
 #include <Eigen/Dense>
@@ -98,6 +100,20 @@ struct Elimination {
 
 constexpr double kTol = 1e-8;
 
+/// The number of distinct nodes of e (its size as a DAG).
+std::size_t nodes(const Expr& e) {
+  std::vector<const ex::ExprNode*> stack{e.get()};
+  std::unordered_map<const ex::ExprNode*, char> seen;
+  while (!stack.empty()) {
+    const ex::ExprNode* x = stack.back();
+    stack.pop_back();
+    if (!seen.emplace(x, 1).second) continue;
+    if (x->a) stack.push_back(x->a.get());
+    if (x->b) stack.push_back(x->b.get());
+  }
+  return seen.size();
+}
+
 Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Values& val) {
   Elimination e;
   const std::size_t rows = r.size(), cols = rows ? r[0].size() : 0;
@@ -107,7 +123,6 @@ Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Val
   std::vector<char> used(rows, 0), done(cols, 0);
   for (;;) {
     double best = 0;
-    std::size_t p = rows, c = cols;
     for (std::size_t i = 0; i < rows; ++i) {
       if (used[i]) continue;
       for (std::size_t j = 0; j < cols; ++j) {
@@ -115,13 +130,24 @@ Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Val
         const double v = std::abs(val.value(r[i][j]));
         if (!val.zero(r[i][j])) {
           if (!std::isfinite(v)) throw ChartFailure("a coefficient of the system is not finite at the point");
-          if (v / scale[i] > best) best = v / scale[i], p = i, c = j;
+          best = std::max(best, v / scale[i]);
         } else {
           r[i][j] = ex::number(0);  // vanishes on M_k
         }
       }
     }
-    if (p == rows) break;
+    if (best == 0) break;
+    // among the entries within 1/100 of the largest (relative to their rows: far from zero at the point),
+    // the smallest formula: a number divides nothing into the next rows, and the formulas stay short
+    std::size_t p = rows, c = cols, size = SIZE_MAX;
+    for (std::size_t i = 0; i < rows; ++i) {
+      if (used[i]) continue;
+      for (std::size_t j = 0; j < cols; ++j) {
+        if (done[j] || ex::is_number(r[i][j], 0) || std::abs(val.value(r[i][j])) / scale[i] < 1e-2 * best) continue;
+        const std::size_t z = nodes(r[i][j]);
+        if (z < size) size = z, p = i, c = j;
+      }
+    }
     used[p] = 1;
     done[c] = 1;
     e.pivots.emplace_back(p, c);
