@@ -11,7 +11,12 @@ namespace dcad::api {
 namespace ex = reference::expr;
 
 std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const std::vector<long>& dims) {
-  const fast::Solution near = fast::solve_expression(c);  // a point on (or near) M_c in double
+  fast::Solution near;
+  try {  // a point on (or near) M_c in double; its failure is no formulas, never a failed solve
+    near = fast::solve_expression(c);
+  } catch (const std::exception& e) {
+    return std::string("the double route reaches no point of M_c: ") + e.what();
+  }
   if (!near.consistent || !near.pointwise || !near.pointwise->regular) return std::string("the double route reaches no regular point of M_c");
   const std::size_t n = c.system.n;
   std::vector<double> at(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
@@ -19,7 +24,7 @@ std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const 
   fast::Chart ch;
   try {
     ch = fast::chart_near(c.system, at, dims);
-  } catch (const fast::ChartFailure& e) {
+  } catch (const std::exception& e) {
     return std::string(e.what());
   }
   const std::vector<std::string> names = c.system.variable_names();

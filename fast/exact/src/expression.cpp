@@ -1,5 +1,6 @@
 // The expression form by the pointwise CAD in double (fast::pointwise_cad, dcad::fast_nonlinear), on the
 // case's point rounded by the one exact-to-double conversion (exact.hpp).
+#include "dcad/fast/chart.hpp"
 #include "dcad/fast/exact.hpp"
 #include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/solve.hpp"
@@ -22,7 +23,15 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
       std::vector<double> x;
       for (const reference::Rational& q : start) x.push_back(to_double(q, opt));
       decide.probe = opt.probe;  // one decision object over the attempts: an uncertain one before a retry stays on record
-      r = pointwise_cad(c.system, x, fixed, decide);
+      try {
+        r = pointwise_cad(c.system, x, fixed, decide);
+      } catch (const reference::PointwiseNoPoint&) {
+        // the pointwise CAD's Newton moves did not settle from the given values (multiplier coordinates):
+        // the formulas' tower completes them (the given ones held), and the CAD runs again from there
+        const std::vector<double> z = complete_on_chart(c.system, x, fixed);
+        if (z.empty()) throw;
+        r = pointwise_cad(c.system, z, fixed, decide);
+      }
       if (r.regular || c.has_initial) break;
     }
     pl::check_given<double>(

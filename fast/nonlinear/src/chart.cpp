@@ -99,6 +99,7 @@ struct Elimination {
 };
 
 constexpr double kTol = 1e-8;
+constexpr std::size_t kMaxDerivatives = 200000;
 
 /// The number of distinct nodes of e (its size as a DAG).
 std::size_t nodes(const Expr& e) {
@@ -359,6 +360,9 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
   ch.dims.push_back(static_cast<long>(2 * n - indep.rank()));
   for (std::size_t level = 1;; ++level) {
     if (level > 2 * n + 2) throw ChartFailure("the tower did not end within 2n + 2 steps");
+    // a bound on the work (the formulas of a deep tower can grow fast): no formulas rather than no answer
+    if (d.size() > kMaxDerivatives)
+      throw ChartFailure("the formulas grow beyond " + std::to_string(kMaxDerivatives) + " derivative nodes by M_" + std::to_string(level));
     std::vector<std::vector<Expr>> r = dyn_r;
     std::vector<Expr> h = dyn_h;
     std::vector<std::string> rows;
@@ -501,7 +505,8 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
   throw ChartFailure("no generic point of M_c was reached near the given one: " + why);
 }
 
-bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::vector<Expr>>& gradients, std::vector<double>& y, double t, double tol) {
+bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::vector<Expr>>& gradients, std::vector<double>& y, double t, double tol,
+                  const std::vector<bool>* held) {
   std::vector<Expr> g;
   for (const auto& row : gradients) g.insert(g.end(), row.begin(), row.end());
   const Tape phi_tape(constraints), jac_tape(g);
@@ -529,13 +534,41 @@ bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::v
     jac_tape.evaluate(at.data(), jac.data());
     Eigen::MatrixXd J(k, w);
     for (std::size_t i = 0; i < k; ++i)
-      for (std::size_t j = 0; j < w; ++j) J(i, j) = jac[i * w + j];
+      for (std::size_t j = 0; j < w; ++j) J(i, j) = held && j < held->size() && (*held)[j] ? 0.0 : jac[i * w + j];
     const Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(phi.data(), static_cast<long>(k));
-    const Eigen::VectorXd dy = J.completeOrthogonalDecomposition().solve(r);  // least norm
+    const Eigen::VectorXd dy = J.completeOrthogonalDecomposition().solve(r);  // least norm (held columns 0: they do not move)
     if (!dy.allFinite()) return false;
     for (std::size_t j = 0; j < w; ++j) y[j] -= dy[static_cast<long>(j)];
   }
   return false;
+}
+
+std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start, const std::vector<bool>& held) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double size : {0.1, 0.01, 0.3}) {
+    std::vector<double> y(start.begin(), start.end() - 1);
+    for (double& x : y) x += size * u(rng) * std::max(1.0, std::abs(x));
+    const double t = s.has_time ? start.back() + size * u(rng) * std::max(1.0, std::abs(start.back())) : start.back();
+    for (int moves = 0; moves < 4 * static_cast<int>(s.n) + 8; ++moves) {
+      std::vector<double> at(y);
+      at.push_back(t);
+      try {
+        const Chart c = chart_at(s, at);
+        std::vector<double> z(start.begin(), start.end() - 1);
+        if (!project_onto(c.constraints, c.gradients, z, start.back(), 1e-15, &held)) break;
+        const ChartField f(c);
+        if (f.margin(z, start.back()) < 1e-6) break;  // the completed point is outside this chart
+        z.push_back(start.back());
+        return z;
+      } catch (const NotOnLevel& e) {
+        if (!project_onto(e.constraints, e.gradients, y, t, 1e-14)) break;
+      } catch (const std::exception&) {
+        break;
+      }
+    }
+  }
+  return {};
 }
 
 // ---- ChartField -------------------------------------------------------------------------------

@@ -65,7 +65,14 @@ struct NotOnLevel : ChartFailure {
 /// y (q, v) moved onto {constraints = 0} at time t by Gauss–Newton steps of least norm; false if 30
 /// steps do not bring max |constraint| below tol × max(1, |y|).
 bool project_onto(const std::vector<reference::expr::Expr>& constraints, const std::vector<std::vector<reference::expr::Expr>>& gradients,
-                  std::vector<double>& y, double t, double tol);
+                  std::vector<double>& y, double t, double tol, const std::vector<bool>* held = nullptr);
+
+/// `start` ((q, v, t)) completed onto M_c with the coordinates `held` kept (the user's given values):
+/// a chart of the formulas' tower decided at a generic point near `start` (its dims unchecked: the
+/// caller's pointwise CAD recomputes the tower at the completed point), then least-norm Gauss–Newton on
+/// its constraints over the other coordinates.  Empty where no chart or no such point is reached.  For
+/// given values the pointwise CAD's own Newton moves do not settle (multiplier coordinates, index 3).
+std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start, const std::vector<bool>& held);
 
 /// The CAD as formulas, decided at `generic` ((q, v, t), a point of M_c that is not special).
 Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& generic);
@@ -125,6 +132,7 @@ class ChartField {
 class Differentiator {
  public:
   reference::expr::Expr operator()(const reference::expr::Expr& e, std::size_t i);
+  std::size_t size() const { return d_.size(); }  ///< derivatives cached
 
  private:
   bool depends(const reference::expr::Expr& e, std::size_t i);
