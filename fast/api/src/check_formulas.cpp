@@ -100,7 +100,8 @@ void check_formulas(const std::string& file, const nlohmann::json& f, const io::
   at.push_back(near.pointwise->time);
   fast::Chart ch;
   try {
-    ch = fast::chart_near(s, at, near.dims());
+    const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
+    ch = fast::chart_near(s, at, near.dims(), near.pointwise->gauge.empty() ? &v : nullptr);
   } catch (const fast::ChartFailure& e) {
     out.not_compared.push_back(std::string("formulas (dcad has no chart of M_c here: ") + e.what() + ")");
     return;

@@ -23,7 +23,8 @@ std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const 
   at.push_back(near.pointwise->time);
   fast::Chart ch;
   try {
-    ch = fast::chart_near(c.system, at, dims);
+    const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
+    ch = fast::chart_near(c.system, at, dims, near.pointwise->gauge.empty() ? &v : nullptr);
   } catch (const std::exception& e) {
     return std::string(e.what());
   }

@@ -321,7 +321,14 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
                              (!r.consistent || !r.regular ? r.why : otherwise));
       };
       try {
-        chart = fast::chart_near(c.system, here, chart.dims);
+        std::vector<double> v;  // the pointwise CAD's velocity here: the new chart must agree with it
+        try {
+          fast::ToleranceDecisions d;
+          const reference::PointwiseResult<double> r = fast::pointwise_cad(c.system, here, std::vector<bool>(here.size(), true), d);
+          if (r.consistent && r.regular && r.gauge.empty()) v.assign(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n));
+        } catch (const std::exception&) {
+        }
+        chart = fast::chart_near(c.system, here, chart.dims, v.empty() ? nullptr : &v);
       } catch (const fast::ChartFailure& e) {
         singular(std::string("no chart of M_c holds here (") + e.what() + ")");
       }
@@ -370,7 +377,8 @@ Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& 
   start.push_back(at.time);
   std::optional<fast::Chart> chart;
   try {
-    chart = fast::chart_near(c.system, start, first.dims());
+    const std::vector<double> v(at.velocity.begin(), at.velocity.begin() + static_cast<long>(2 * c.system.n));
+    chart = fast::chart_near(c.system, start, first.dims(), at.gauge.empty() ? &v : nullptr);
   } catch (const fast::ChartFailure& e) {
     log << "note: no chart of formulas (" << e.what() << "): the pointwise CAD at every evaluation (slow)\n";
     return simulate_pointwise(c, opt, first, out, log);

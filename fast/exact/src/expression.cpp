@@ -30,7 +30,11 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
         // the formulas' tower completes them (the given ones held), and the CAD runs again from there
         const std::vector<double> z = complete_on_chart(c.system, x, fixed);
         if (z.empty()) throw;
-        r = pointwise_cad(c.system, z, fixed, decide);
+        try {
+          r = pointwise_cad(c.system, z, fixed, decide);
+        } catch (const reference::PointwiseNoPoint&) {  // its Newton still does not settle: every value held (z is on M_c to rounding)
+          r = pointwise_cad(c.system, z, std::vector<bool>(z.size(), true), decide);
+        }
       }
       if (r.regular || c.has_initial) break;
     }

@@ -115,7 +115,7 @@ std::size_t nodes(const Expr& e) {
   return seen.size();
 }
 
-Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Values& val) {
+Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Values& val, std::vector<Expr>& vanishing) {
   Elimination e;
   const std::size_t rows = r.size(), cols = rows ? r[0].size() : 0;
   std::vector<double> scale(rows, 0);
@@ -133,6 +133,7 @@ Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Val
           if (!std::isfinite(v)) throw ChartFailure("a coefficient of the system is not finite at the point");
           best = std::max(best, v / scale[i]);
         } else {
+          if (!ex::is_number(r[i][j])) vanishing.push_back(r[i][j]);
           r[i][j] = ex::number(0);  // vanishes on M_k
         }
       }
@@ -372,13 +373,14 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
       h.push_back(tan_h[k]);
       rows.push_back("d/dt of constraint " + std::to_string(k + 1));
     }
-    const Elimination e = eliminate(r, h, val);
+    const Elimination e = eliminate(r, h, val, ch.vanishing);
     std::vector<Expr> found, offs;
     for (std::size_t i : e.left)
       if (off(e.h[i])) offs.push_back(e.h[i]);
     if (!offs.empty()) throw not_on(offs, "the point is not on M_" + std::to_string(level + 1));
     for (std::size_t i : e.left)
       if (indep.add(gradient(e.h[i]))) found.push_back(e.h[i]);
+      else if (!ex::is_number(e.h[i])) ch.vanishing.push_back(e.h[i]);  // implied by the constraints so far
     if (found.empty()) {  // M_c = M_k: back substitution, free unknowns 0
       std::vector<Expr> u(w, ex::number(0));
       std::vector<char> pivoted(w, 0);
@@ -418,7 +420,7 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
       for (std::size_t j = 0; j < 2 * n; ++j) row.push_back(d(f, j));
       jac.push_back(row);
     }
-    const Elimination e = eliminate(jac, std::vector<Expr>(jac.size(), ex::number(0)), val);
+    const Elimination e = eliminate(jac, std::vector<Expr>(jac.size(), ex::number(0)), val, ch.vanishing);
     std::vector<char> solved(2 * n, 0);
     for (const auto& [p, c] : e.pivots) {
       solved[c] = 1;
@@ -435,7 +437,7 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
   return ch;
 }
 
-Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims) {
+Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims, const std::vector<double>* velocity) {
   const auto dims_text = [](const std::vector<long>& d) {
     std::string t;
     for (long x : d) t += (t.empty() ? "" : " ") + std::to_string(x);
@@ -450,6 +452,26 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
     if (f.drift(y, near.back()) > 1e-8) {
       why = "the generic points reached lie on another component of M_c";
       return false;
+    }
+    // every entry the elimination took as zero on M_k (decided at the generic point) vanishes at `near`
+    // too: else `near` lies on a component where the chart's elimination is not valid
+    Values val(near);
+    for (const Expr& z : c.vanishing)
+      if (!val.zero(z)) {
+        why = "the generic points reached lie on another component of M_c (" + ex::to_text(z, s.variable_names()) +
+              " vanishes there, not at the given point)";
+        return false;
+      }
+    if (velocity) {
+      std::vector<double> u(2 * s.n);
+      f.rates(y.data(), near.back(), u.data());
+      double scale = 1, worst = 0;
+      for (std::size_t i = 0; i < 2 * s.n; ++i) scale = std::max(scale, std::abs((*velocity)[i]));
+      for (std::size_t i = 0; i < 2 * s.n; ++i) worst = std::max(worst, std::abs(u[i] - (*velocity)[i]));
+      if (!(worst <= 1e-7 * scale)) {
+        why = "the chart's equations disagree with the pointwise CAD at the given point (by " + std::to_string(worst / scale) + " relative)";
+        return false;
+      }
     }
     std::size_t weakest = 0;
     if (f.margin(y, near.back(), &weakest) < 1e-6) {

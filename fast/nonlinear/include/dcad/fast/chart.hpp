@@ -48,6 +48,9 @@ struct Chart {
   std::vector<reference::expr::Expr> constraints;                ///< every level's, in order
   std::vector<std::vector<reference::expr::Expr>> gradients;     ///< ∂/∂(q, v) of each constraint
   std::vector<reference::expr::Expr> momenta;                    ///< p_i = ∂L/∂v_i
+  /// What the elimination took as zero on M_k (entries, implied candidates): each must vanish at any
+  /// point where the chart is used (chart_near checks the given point).
+  std::vector<reference::expr::Expr> vanishing;
 };
 
 /// The chart could not be built here (the decisions at the generic point disagree, a value is not finite).
@@ -80,7 +83,11 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
 /// The chart near `near`, decided at a generic point of M_c: `near` perturbed (by a relative 1/10, then
 /// less) and moved onto M_c level by level (NotOnLevel, project_onto); the chart's dims must be `dims`
 /// (the backend's tower).  Never decided at `near` itself, where a coefficient may vanish by accident.
-Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims);
+/// With `velocity` (d/dt of (q, v) at `near` by another route — the pointwise CAD in double — when the
+/// solution is unique), the chart's rates at `near` must equal it to 1e-7 relative: two routes to one
+/// motion, and a chart whose decisions do not hold at `near` is refused.
+Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
+                 const std::vector<double>* velocity = nullptr);
 
 /// Compiled formulas: the DAG flattened once (shared subexpressions evaluated once), evaluated in double.
 class Tape {
