@@ -479,3 +479,13 @@ TEST(Expression, SimulateBallOnRotatingTableCircles) {
     err = std::max({err, std::abs(row[1] - std::cos(row[0])), std::abs(row[2] - std::sin(row[0])), std::abs(row[10])});
   EXPECT_LT(err, 1e-8) << r.err;
 }
+
+// Formulas alone are a result for the expression form only: for a linear case the result needs its
+// keys (exit 1 naming /dims). Found by fuzz_result under AddressSanitizer: the linear check read the
+// missing key (proptests/fuzz/regressions/result/formulas-only-for-a-linear-case.json).
+TEST(Expression, CheckFormulasOnlyForALinearCaseIsBadInput) {
+  const std::string f = write_temp("dcad_formulas_linear.json", R"J({"dcad": 1, "formulas": {"equations": {"x": "v_x"}}})J");
+  const Outcome r = run("check " + f + " " + case_path("harmonic-oscillator"));
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.err.find(f + ": /dims: expected the required key \"dims\""), std::string::npos) << r.err;
+}

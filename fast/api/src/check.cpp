@@ -320,6 +320,8 @@ reference::Solution truth_of(const io::Problem& p) {
 
 Checked check_linear(const std::string& result_file, const json& r, const io::Problem& p_in) {
   const io::CaseFile& c_in = p_in.linear;
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"})  // formulas alone are for the expression form
+    if (!r.contains(key)) bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\" (formulas are compared for expression-form cases only)", "nothing");
   if (r.contains("name") && r["name"] != c_in.name)
     bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")", shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(c_in.variables))
