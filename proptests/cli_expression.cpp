@@ -4,6 +4,7 @@
 // `dcad check` catching a wrong velocity or a point off M_c.
 #include "cli_run.hpp"
 
+#include <boost/multiprecision/gmp.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -95,20 +96,21 @@ TEST(Expression, TextReportShowsFormulasAndTangents) {
 
 // At phi = 1/2 the formulas have irrational values: the exact route says so (exit 1, with what to do),
 // certified answers in double and says it is not certified, fast answers.
-TEST(Expression, IrrationalPointsAreNotExact) {
+TEST(Expression, IrrationalPointsRunAtARationalPlace) {
   json c = json::parse(slurp(case_path("rolling-disk")));
   c["initial"]["phi"] = "1/2";
   c.erase("expect");
   const std::string file = write_temp("dcad_disk_half.json", c.dump());
-  const Outcome ref = run("solve " + file + " --backend reference");
-  EXPECT_EQ(ref.rc, 1);
-  EXPECT_NE(ref.err.find("sin(1/2) is irrational"), std::string::npos) << ref.err;
-  const Outcome cert = run("solve " + file + " --json");
-  ASSERT_EQ(cert.rc, 0) << cert.err;
-  const json got = json::parse(cert.out);
-  EXPECT_FALSE(got["certified"].get<bool>());
-  EXPECT_EQ(got["dims"], json::parse("[12, 6]"));
-  EXPECT_NE(got["note"].get<std::string>().find("exact route cannot run here"), std::string::npos);
+  // issue 29: sin(1/2) is irrational, so the exact tiers run at phi = 2*atan(t) within 1e-6 and say so
+  for (const std::string backend : {"reference", "certified"}) {
+    const Outcome ref = run("solve " + file + " --backend " + backend + " --json");
+    ASSERT_EQ(ref.rc, 0) << ref.err;
+    const json got = json::parse(ref.out);
+    EXPECT_TRUE(got["certified"].get<bool>());
+    EXPECT_EQ(got["dims"], json::parse("[12, 6]"));
+    EXPECT_NE(got["note"].get<std::string>().find("exact at a rational place near the given values"), std::string::npos);
+    EXPECT_NE(got["place"][0].get<std::string>().find("(given 1/2, moved by"), std::string::npos) << got["place"];
+  }
   const Outcome fast = run("solve " + file + " --backend fast --json");
   ASSERT_EQ(fast.rc, 0) << fast.err;
   EXPECT_NEAR(number_of(json::parse(fast.out)["point"]["v_x"]), std::cos(0.5) / 3, 1e-15);
@@ -488,4 +490,100 @@ TEST(Expression, CheckFormulasOnlyForALinearCaseIsBadInput) {
   const Outcome r = run("check " + f + " " + case_path("harmonic-oscillator"));
   EXPECT_EQ(r.rc, 1) << r.out;
   EXPECT_NE(r.err.find(f + ": /dims: expected the required key \"dims\""), std::string::npos) << r.err;
+}
+
+namespace {
+
+using Q = boost::multiprecision::mpq_rational;
+Q rational_of(const json& x) { return Q(x.get<std::string>()); }
+
+}  // namespace
+
+// Issue 29: the exact reference at generic points.  Where the given values allow no exact run (an
+// angle whose sine is irrational; positions that miss M_c by their decimals), reference and certified
+// run at a rational place near them and say where (`place`); the place is checked here by hand:
+// - the rolling disk at phi = 0.7: phi = 2*atan(t), and YM §6's closed form v_x' = -R sin(phi) v_phi
+//   v_theta, v_y' = R cos(phi) v_phi v_theta holds exactly there with sin, cos from t (a wrong sign on a
+//   sin(phi) term fails here, not at phi = 0);
+// - the spherical pendulum from 16-digit decimals: the point is exactly on the sphere and its velocity
+//   exactly tangent, every value within 1e-6 of the given one, and the velocity equals the fast route's
+//   at the given values to 1e-6 (two routes, two nearby points);
+// - the Josephson LC, phi = 1.3 inside cos and outside it: refused, with the reason.
+TEST(Expression, ReferenceRunsAtARationalPlaceNearGivenValues) {
+  for (const std::string backend : {"reference", "certified"}) {
+    const Outcome r = run("solve " + case_path("rolling-disk-generic-angle") + " --backend " + backend + " --json");
+    ASSERT_EQ(r.rc, 0) << backend << r.err;
+    const json got = json::parse(r.out);
+    EXPECT_TRUE(got["certified"].get<bool>());
+    ASSERT_TRUE(got.contains("place")) << backend;
+    const std::string phi = got["point"]["phi"].get<std::string>();
+    ASSERT_EQ(phi.rfind("2*atan(", 0), 0u) << phi;
+    const Q t(phi.substr(7, phi.size() - 8));
+    const Q c = (1 - t * t) / (1 + t * t), s = 2 * t / (1 + t * t);
+    EXPECT_NEAR(2 * std::atan(t.convert_to<double>()), 0.7, 1e-6) << phi;
+    const Q R(1, 3), v_theta = rational_of(got["point"]["v_theta"]), v_phi = rational_of(got["point"]["v_phi"]);
+    EXPECT_EQ(v_theta, 1);
+    EXPECT_EQ(v_phi, Q(3, 2));
+    EXPECT_EQ(rational_of(got["velocity"]["v_x"]), -R * s * v_phi * v_theta) << backend;
+    EXPECT_EQ(rational_of(got["velocity"]["v_y"]), R * c * v_phi * v_theta) << backend;
+    EXPECT_EQ(rational_of(got["point"]["v_x"]), R * c * v_theta) << backend;  // on M_1 at the place
+    EXPECT_EQ(rational_of(got["velocity"]["v_theta"]), 0);
+    // dcad check takes the place back exactly (phi = 2*atan(t)): the result agrees, a flipped sign does not
+    const Outcome same = run("check " + write_temp("dcad_place_" + backend + ".json", r.out) + " " + case_path("rolling-disk-generic-angle"));
+    EXPECT_EQ(same.rc, 0) << same.out << same.err;
+    json flipped = got;
+    flipped["velocity"]["v_x"] = Q(-rational_of(got["velocity"]["v_x"])).str();
+    const Outcome wrong = run("check " + write_temp("dcad_place_flipped.json", flipped.dump()) + " " + case_path("rolling-disk-generic-angle"));
+    EXPECT_EQ(wrong.rc, 3) << wrong.out << wrong.err;
+  }
+  {
+    const json given = json::parse(slurp(case_path("spherical-pendulum-rounded")))["initial"];
+    const Outcome r = run("solve " + case_path("spherical-pendulum-rounded") + " --backend reference --json");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const json got = json::parse(r.out);
+    ASSERT_TRUE(got.contains("place"));
+    const json& p = got["point"];
+    const Q x = rational_of(p["x"]), y = rational_of(p["y"]), z = rational_of(p["z"]);
+    EXPECT_EQ(x * x + y * y + z * z, 1);
+    EXPECT_EQ(x * rational_of(p["v_x"]) + y * rational_of(p["v_y"]) + z * rational_of(p["v_z"]), 0);
+    for (const auto& [name, value] : given.items())
+      EXPECT_NEAR(rational_of(p[name]).convert_to<double>(), number_of(value), 1e-6) << name;
+    const Outcome f = run("solve " + case_path("spherical-pendulum-rounded") + " --backend fast --json");
+    ASSERT_EQ(f.rc, 0) << f.err;
+    const json fast = json::parse(f.out);
+    EXPECT_EQ(fast["dims"], got["dims"]);
+    for (const std::string name : {"v_x", "v_y", "v_z", "mu"})
+      EXPECT_NEAR(rational_of(got["velocity"][name]).convert_to<double>(), number_of(fast["velocity"][name]), 1e-6) << name;
+  }
+  {
+    const std::string f = write_temp("dcad_josephson.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["phi"],
+      "L": "1/2*v_phi^2 - 1/2*phi^2 + 20*cos(phi)"}, "initial": {"phi": "1.3", "v_phi": "0.4"}})J");
+    const Outcome r = run("solve " + f + " --backend reference");
+    EXPECT_EQ(r.rc, 1) << r.out;
+    EXPECT_NE(r.err.find("phi = 13/10 occurs inside sin, cos or exp and outside them too"), std::string::npos) << r.err;
+    const Outcome cert = run("solve " + f + " --json");  // certified: double precision, not certified, and why
+    ASSERT_EQ(cert.rc, 0) << cert.err;
+    const json got = json::parse(cert.out);
+    EXPECT_FALSE(got["certified"].get<bool>());
+    EXPECT_NE(got["note"].get<std::string>().find("exact route cannot run here"), std::string::npos);
+  }
+}
+
+// ModelingToolkit #1704 (cases/mtk-1704-pendulum.json, derived by hand in the case): MTK 8.18's
+// structural_simplify printed the pendulum as D(y) ~ y_t, D(y_t) ~ y*lam - g, 0 ~ x^2 + y^2 - L^2 (x and
+// lam algebraic, proptests/peers/mtk_1704_818.json).  Its equations are right where they are stated, but
+// it keeps one constraint of the four that M_c needs: dcad names the first it misses, M_3's tangency,
+// and so lam is not determined.  The hand index-reduced system with every hidden constraint agrees.
+TEST(Expression, MtkIssue1704ReductionIsJudged) {
+  const std::string pendulum = case_path("mtk-1704-pendulum");
+  const Outcome mtk = run("check " + std::string(DCAD_SOURCE_DIR) + "/proptests/peers/mtk_1704_818.json " + pendulum);
+  EXPECT_EQ(mtk.rc, 3) << mtk.out << mtk.err;
+  EXPECT_NE(mtk.out.find("expected 4 independent constraints"), std::string::npos) << mtk.out;
+  EXPECT_NE(mtk.out.find("not implied: -(x*v_x) - y*v_y = 0 (M_3)"), std::string::npos) << mtk.out;
+  EXPECT_EQ(mtk.out.find("formulas.equations.v_y: expected"), std::string::npos) << mtk.out;  // its equations hold
+  const std::string hand = write_temp("dcad_mtk_1704_hand.json", R"J({"dcad": 1, "formulas": {
+      "constraints": ["x^2 + y^2 - L^2", "x*v_x + y*v_y", "v_x^2 + v_y^2 + lam*(x^2 + y^2) - g*y", "v_lam*(x^2 + y^2) + 4*lam*(x*v_x + y*v_y) - 3*g*v_y"],
+      "equations": {"x": "v_x", "y": "v_y", "v_x": "lam*x", "v_y": "lam*y - g"}}})J");
+  const Outcome ok = run("check " + hand + " " + pendulum);
+  EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
 }

@@ -2,6 +2,7 @@
 // reference.  Discrete keys exactly; richer optional keys (`final_constraints`, `reduced`,
 // `dirac_bracket`) as subspaces or within a condition-aware tolerance (documented in the README).
 #include "dcad/api.hpp"
+#include "dcad/reference/pipeline/exact_place.hpp"
 #include "dcad/fast/solve.hpp"
 #include "check_formulas.hpp"
 #include "guarded.hpp"
@@ -475,12 +476,36 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   bool exact = true;
   const std::size_t n = c.system.n;
   std::vector<std::string> names = c.system.variable_names();  // q, v, t
+  std::vector<reference::pipeline::PlacedAngle> angles;  // "2*atan(t)": the exact tiers' rational place (issue 29)
+  const std::vector<std::size_t> angle_coordinates = reference::pipeline::angle_coordinates(c.system);
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i == c.system.t() && !c.system.has_time) continue;
     if (!pt.contains(names[i])) bad(result_file, "/point/" + names[i], "a value for every coordinate and velocity (and the time)", "nothing");
+    const std::string text = pt[names[i]].is_string() ? pt[names[i]].get<std::string>() : "";
+    if (text.rfind("2*atan(", 0) == 0 && text.back() == ')') {
+      const std::string path = "/point/" + names[i];
+      if (std::find(angle_coordinates.begin(), angle_coordinates.end(), i) == angle_coordinates.end())
+        bad(result_file, path, "2*atan(t) only for an angle (a coordinate that occurs only in sin and cos)", shown(pt[names[i]]));
+      reference::pipeline::PlacedAngle g;
+      g.q = i;
+      try {
+        g.tan_half = reference::parse_rational(text.substr(7, text.size() - 8));
+      } catch (const std::exception&) {
+        bad(result_file, path, "2*atan(t) with t an exact rational such as \"-3/7\"", shown(pt[names[i]]));
+      }
+      g.cos = (1 - g.tan_half * g.tan_half) / (1 + g.tan_half * g.tan_half);
+      g.sin = 2 * g.tan_half / (1 + g.tan_half * g.tan_half);
+      angles.push_back(g);
+      at.initial[i] = reference::Rational(0);  // the translated angle, φ = 2*atan(t) + φ'
+      continue;
+    }
     const Number x = number(result_file, "/point/" + names[i], pt[names[i]]);
     exact = exact && x.exact;
     at.initial[i] = exact_value(x);
+  }
+  if (!angles.empty()) {
+    if (!exact) bad(result_file, "/point", "exact values with an angle 2*atan(t)", "a decimal among them");
+    at.system = reference::pipeline::translate_angles(at.system, angles);  // a translation of Q: the same velocities
   }
   for (std::size_t i = 0; i < n; ++i)
     if (pt.contains("p_" + c.system.names[i])) at.initial_p[i] = exact_value(number(result_file, "/point/p_" + c.system.names[i], pt["p_" + c.system.names[i]]));

@@ -87,7 +87,7 @@ void add_state(Solution& s, const io::Netlist& deck, const Parts& parts) {
 Solution solve(const io::Problem& p, const Parts& parts) {
   Solution s;
   if (p.form == io::Form::expression) {
-    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact(p.expression); }));
+    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
   } else if (p.form == io::Form::netlist) {
     if (p.netlist.forced) {
       s = exact_solution(reference::pipeline::solve_forced(p.netlist, p.linear.variables));

@@ -356,7 +356,9 @@ json pointwise_json(const Printed& r) {
   json pt = json::object();
   if (!p.time_name.empty()) pt[p.time_name] = p.time;
   for (std::size_t i = 0; i < p.point.size(); ++i) pt[r.variables[i]] = p.point[i];
+  for (const auto& [i, text] : p.point_text) pt[r.variables[i]] = text;
   j["point"] = pt;
+  if (!p.place.empty()) j["place"] = p.place;
   json tower = json::array();
   tower.push_back({{"k", 0}, {"dim", dims[0]}, {"new_constraints", json::array()}});
   for (std::size_t k = 0; k < p.levels.size(); ++k) {
@@ -428,8 +430,14 @@ std::string pointwise_text(const Printed& r) {
   o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": CAD (CEF §5) at a point, " << p.route << ", backend " << r.backend << ", "
     << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
   o << "  point" << (!p.time_name.empty() ? " at " + p.time_name + " = " + p.time : "") << ":";
-  for (std::size_t i = 0; i < p.point.size(); ++i) o << (i % 6 == 0 ? "\n     " : "") << " " << st[i] << " = " << p.point[i] << (i + 1 < p.point.size() ? "," : "");
+  std::vector<std::string> shown = p.point;
+  for (const auto& [i, text] : p.point_text) shown[i] = text;
+  for (std::size_t i = 0; i < shown.size(); ++i) o << (i % 6 == 0 ? "\n     " : "") << " " << st[i] << " = " << shown[i] << (i + 1 < shown.size() ? "," : "");
   o << "\n";
+  if (!p.place.empty()) {
+    o << "  the exact route ran at a rational place, not at the given values:\n";
+    for (const std::string& l : p.place) o << "      " << l << "\n";
+  }
   if (p.moves > 0) o << "  (the given values were completed onto M_c by " << p.moves << " Newton step" << (p.moves > 1 ? "s" : "") << ")\n";
   o << "  M_0: dim " << dims[0] << "\n";
   for (std::size_t k = 0; k < p.levels.size() && k + 1 < dims.size(); ++k) {

@@ -1,22 +1,158 @@
 // The expression form by the exact pointwise CAD (the one translation unit that instantiates
 // reference/nonlinear/pointwise.hpp on mpq_rational).
+#include "dcad/reference/pipeline/exact_place.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
+
+#include <cmath>
+#include <exception>
+#include <sstream>
 
 namespace dcad::reference::pipeline {
 
+namespace {
+
+PointwiseResult<Rational> run(const LagrangianSystem& s, const std::vector<Rational>& start, const std::vector<bool>& fixed) {
+  ExactDecisions<Rational> decide;
+  return pointwise_cad<Rational>(s, start, fixed, decide, [](const Rational& q) { return q; });
+}
+
+/// The CAD at `start`, or, where the exact route cannot run there (an irrational value of a formula,
+/// given values that miss M_c by their rounding), at a rational place near it (exact_place.hpp).
+/// The first failure is what is thrown if no place is found; `placed` says where it ran.
+PointwiseResult<Rational> run_or_place(const io::LagrangianCase& c, const std::vector<Rational>& start, const std::vector<bool>& fixed, bool given,
+                                       std::optional<ExactPlace>& placed) {
+  std::exception_ptr first;
+  std::string first_what;
+  try {
+    return run(c.system, start, fixed);
+  } catch (const NotExactHere& e) {
+    first = std::current_exception();
+    first_what = e.what();
+  } catch (const PointwiseNoPoint& e) {
+    first = std::current_exception();
+    first_what = e.what();
+  }
+  std::string why;
+  std::optional<ExactPlace> pl = exact_place(c, start, given, why);
+  const auto fail = [&](const std::string& reason) {
+    if (reason.empty()) std::rethrow_exception(first);
+    try {
+      std::rethrow_exception(first);
+    } catch (const NotExactHere&) {
+      throw NotExactHere(first_what + "; no rational place near it: " + reason);
+    } catch (const PointwiseNoPoint&) {
+      throw PointwiseNoPoint(first_what + "; no rational place near it: " + reason);
+    }
+  };
+  if (!pl) fail(why);
+  try {
+    PointwiseResult<Rational> r;
+    try {
+      r = run(pl->system, pl->start, pl->fixed);
+    } catch (const PointwiseNoPoint&) {  // the given velocities typed short: free them too
+      if (pl->loosen.empty()) throw;
+      for (std::size_t i : pl->loosen) pl->fixed[i] = false;
+      r = run(pl->system, pl->start, pl->fixed);
+    }
+    placed = std::move(pl);
+    return r;
+  } catch (const NotExactHere& e) {
+    fail(pl->not_exact.empty() ? std::string(e.what()) : pl->not_exact);
+  } catch (const PointwiseNoPoint& e) {
+    fail(e.what());
+  }
+  throw std::logic_error("run_or_place: unreachable");
+}
+
+std::string approx(double x) {
+  std::ostringstream o;
+  o.precision(3);
+  o << x;
+  return o.str();
+}
+
+/// The place as lines of the result; given values the CAD moved further than their rounding are not
+/// near (false: the caller reports the given values as off M_c).
+bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, const io::LagrangianCase& c, Pointwise<Rational>& p) {
+  const std::vector<std::string> st = c.system.state_names();
+  const std::size_t n = c.system.n;
+  const auto near = [](const Rational& given, double found) {
+    const double g = given.convert_to<double>();
+    return std::abs(found - g) <= 1e-6 * std::max(1.0, std::abs(g));
+  };
+  bool ok = true;
+  for (const PlacedAngle& g : pl.angles) {
+    const double phi = 2 * std::atan(g.tan_half.convert_to<double>());
+    const std::string at = "2*atan(" + g.tan_half.str() + ")";
+    p.point_text.emplace_back(g.q, at);
+    std::string line = st[g.q] + " = " + at + " = " + approx(phi) + "…: cos " + st[g.q] + " = " + g.cos.str() + ", sin " + st[g.q] + " = " + g.sin.str();
+    if (c.initial[g.q]) {
+      line += " (given " + c.initial[g.q]->str() + ", moved by " + approx(std::abs(phi - c.initial[g.q]->convert_to<double>())) + ")";
+      ok = ok && near(*c.initial[g.q], phi);
+    }
+    p.place.push_back(line);
+  }
+  for (const std::string& h : pl.landed) p.place.push_back("positions on " + h);
+  const auto moved = [&](std::size_t i, const Rational& given) {
+    if (r.point[i] == given) return;
+    bool angle = false;
+    for (const PlacedAngle& g : pl.angles) angle = angle || g.q == i;
+    if (angle) return;
+    p.place.push_back(st[i] + ": given " + given.str() + ", here " + r.point[i].str() + " (moved by " + approx(std::abs((r.point[i] - given).convert_to<double>())) + ")");
+    ok = ok && near(given, r.point[i].convert_to<double>());
+  };
+  if (r.consistent && r.point.size() == 3 * n) {
+    for (std::size_t i = 0; i < 2 * n; ++i)
+      if (c.initial[i]) moved(i, *c.initial[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      if (c.initial_p[i]) moved(2 * n + i, *c.initial_p[i]);
+  }
+  return ok;
+}
+
+}  // namespace
+
 dcad::Solution<Rational> solve_pointwise_exact(const io::LagrangianCase& c) {
   std::vector<bool> fixed;
-  ExactDecisions<Rational> decide;
   PointwiseResult<Rational> r;
+  std::optional<ExactPlace> placed;
   for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
     const std::vector<Rational> start = start_point(c, fixed, seed);
-    r = pointwise_cad<Rational>(c.system, start, fixed, decide, [](const Rational& q) { return q; });
+    placed.reset();
+    // dcad's own point is its choice: where the exact route cannot run there, a rational place near it
+    r = c.has_initial ? run(c.system, start, fixed) : run_or_place(c, start, fixed, false, placed);
     if (r.regular || c.has_initial) break;
   }
   check_given<Rational>(
       r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
   dcad::Solution<Rational> out = pointwise_solution(r, c, "pointwise exact");
+  if (placed) describe_place(*placed, r, c, *out.pointwise);
   out.certified = r.regular ? yes : unknown;  // a singular point decides no tower
+  return out;
+}
+
+dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c) {
+  if (!c.has_initial) return solve_pointwise_exact(c);
+  std::vector<bool> fixed;
+  const std::vector<Rational> start = start_point(c, fixed);
+  std::optional<ExactPlace> placed;
+  const PointwiseResult<Rational> r = run_or_place(c, start, fixed, true, placed);
+  if (!placed) {
+    check_given<Rational>(
+        r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
+    dcad::Solution<Rational> out = pointwise_solution(r, c, "pointwise exact");
+    out.certified = r.regular ? yes : unknown;
+    return out;
+  }
+  dcad::Solution<Rational> out = pointwise_solution(r, c, "pointwise exact");
+  if (!describe_place(*placed, r, c, *out.pointwise)) {  // the given values are not M_c's rounded: as at them
+    std::string lines;
+    for (const std::string& l : out.pointwise->place) lines += (lines.empty() ? "" : "; ") + l;
+    throw PointwiseNoPoint("the nearest rational place of M_c moves given values by more than 1e-6 (relative): " + lines);
+  }
+  out.certified = r.regular ? yes : unknown;
+  out.note = "exact at a rational place near the given values (`place`), not at them: the tower, steps and solution rank are generic on the "
+             "component (CEF §5), the point and velocity are the place's";
   return out;
 }
 

@@ -61,7 +61,7 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
 Solution expression(const io::LagrangianCase& c) {
   return pipeline::pointwise_input_errors(c, [&] {
     try {
-      return pipeline::solve_pointwise_exact(c);
+      return pipeline::solve_pointwise_exact_near(c);
     } catch (const NotExactHere& e) {
       throw io::InputError(c.file + ": /initial: expected a point where every value of the formulas is rational (the exact route), found " +
                            e.what() + "; give such a point (e.g. angles 0) or use --backend fast or certified");

@@ -179,6 +179,11 @@ struct Pointwise {
   };
   std::vector<Step> levels;  ///< levels[k] describes M_{k+1}
   long order = 0, checked_order = 0, moves = 0;
+  /// Where the exact route ran when not at the given values (or the default point), one line each:
+  /// the angles put on rational points of the circle, the constraints the positions were put on, the
+  /// given values moved (pipeline/exact_place.hpp).  Empty: at the given values.
+  std::vector<std::string> place;
+  std::vector<std::pair<std::size_t, std::string>> point_text;  ///< values of `point` N cannot hold ("2*atan(1/3)")
   std::optional<Formulas> formulas;  ///< where a chart was found (consistent, regular results)
   std::string formulas_why;          ///< else why not
 };
@@ -329,6 +334,8 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
     q.order = p.order;
     q.checked_order = p.checked_order;
     q.moves = p.moves;
+    q.place = p.place;
+    q.point_text = p.point_text;
     q.formulas = p.formulas;
     q.formulas_why = p.formulas_why;
     o.pointwise = q;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 namespace dcad::reference::pointwise_detail {
 
@@ -296,13 +297,24 @@ class Run {
   /// velocities, given velocities, free positions, given positions (later before earlier inside).
   std::vector<std::vector<std::size_t>> preference(bool velocities, bool positions) const {
     std::vector<std::vector<std::size_t>> out;
+    // exactly, multipliers first (μ and v_μ: every candidate is affine in them, so a step along one
+    // lands, and a chart that solves for them keeps the others free to move without leaving M_k)
+    const bool exact = std::is_same_v<T, Rational>;
+    if (exact) {
+      out.emplace_back();
+      for (std::size_t i = s_.n; i-- > 0;)
+        if (multiplier(s_.q(i))) {
+          if (velocities && !fixed_[s_.v(i)]) out.back().push_back(s_.v(i));
+          if (positions && !fixed_[s_.q(i)]) out.back().push_back(s_.q(i));
+        }
+    }
     for (int kind = 0; kind < 2; ++kind) {
       if ((kind == 0 && !velocities) || (kind == 1 && !positions)) continue;
       for (int pass = 0; pass < 2; ++pass) {
         out.emplace_back();
         for (std::size_t i = s_.n; i-- > 0;) {
           const std::size_t var = kind == 0 ? s_.v(i) : s_.q(i);
-          if (fixed_[var] == (pass == 1)) out.back().push_back(var);
+          if (fixed_[var] == (pass == 1) && !(exact && !fixed_[var] && multiplier(s_.q(i)))) out.back().push_back(var);
         }
       }
     }
@@ -395,7 +407,14 @@ class Run {
     if (reach == Reach::critical)  // Newton cannot leave a critical point of a combination: start from a nearby point
       for (std::size_t j : st.movable) delta[j] += constant_(Rational(1, 3));
     std::vector<T> next = point;
-    for (std::size_t v = 0; v < x.size(); ++v) next[v] = x[v].at(delta);
+    if constexpr (std::is_same_v<T, Rational>) {
+      // exactly, only the pivot coordinates move: the chart's graphs are truncated series, whose
+      // values would take the point off the lower M_k by their remainder (the next pass checks every
+      // level again; a coordinate affine in the candidates lands in one step)
+      for (std::size_t j = 0; j < chart.size(); ++j) next[chart[j]] += delta[j];
+    } else {
+      for (std::size_t v = 0; v < x.size(); ++v) next[v] = x[v].at(delta);
+    }
     for (std::size_t v = 0; v < x.size(); ++v)
       if (fixed_[v]) next[v] = point[v];
     point = next;
@@ -439,7 +458,15 @@ class Run {
       aug[i][chart.size() + i] = T(1);
     }
     Largest<T, Decide> largest{decide_};
-    st.piv = eliminate_constants(aug, rhs, movable, largest);
+    if constexpr (std::is_same_v<T, Rational>) {
+      // exactly, a step lands only along a coordinate every candidate is affine in (no δ_j², δ_j³, …
+      // term): those first (the spherical pendulum's μ|q|² − |v|² + g z = 0 is solved for μ, not v_z)
+      std::vector<std::vector<std::size_t>> groups(2);
+      for (std::size_t j : movable) groups[affine_along(cand, j) || multiplier(chart[j]) ? 0 : 1].push_back(j);
+      st.piv = eliminate_constants(aug, rhs, groups, largest);
+    } else {
+      st.piv = eliminate_constants(aug, rhs, movable, largest);
+    }
     st.gr.assign(cand.size(), {});
     st.comb.assign(cand.size(), {});
     for (std::size_t i = 0; i < aug.size(); ++i) {
@@ -452,6 +479,37 @@ class Run {
     for (const auto& group : chart_preference(chart)) all.insert(all.end(), group.begin(), group.end());
     st.rank_all = eliminate_constants(ga, za, all, decide_).size();
     return st;
+  }
+
+  /// A multiplier coordinate (L affine in it, its velocity nowhere, no constraint or force with it):
+  /// the Euler–Lagrange equations, and the candidates they give, are affine in it.  (Jets at the last
+  /// levels are known to order 1 only, where affine_along cannot tell.)
+  bool multiplier(std::size_t var) const {
+    if (var >= s_.n && var < 2 * s_.n) return multiplier(var - s_.n);  // v_μ: the candidates are affine in it too (d/dt of affine in μ)
+    if (var >= s_.n) return false;
+    if (expr::degree_in(s_.lagrangian, [&](std::size_t i) { return i == var; }) != 1 || expr::depends_on(s_.lagrangian, s_.v(var))) return false;
+    for (const auto& c : s_.constraints)
+      if (expr::depends_on(c, var) || expr::depends_on(c, s_.v(var))) return false;
+    for (const auto& f : s_.forces)
+      if (expr::depends_on(f, var) || expr::depends_on(f, s_.v(var))) return false;
+    return true;
+  }
+
+  /// No candidate that does not vanish at the point has a term δ_j^k, k ≥ 2, in its jet (chart
+  /// position j; the ones that vanish are redundant or stay satisfied: their rows get no pivot).
+  static bool affine_along(const std::vector<J>& cand, std::size_t j) {
+    for (const J& c : cand) {
+      if (c.value() == 0) continue;
+      if (c.order() < 2) return false;  // affinity unknown (the multiplier rule may still tell)
+      for (const auto& [idx, coef] : c.entries()) {
+        const auto& e = c.space()->exponents(idx);
+        if (e[j] < 2 || coef == 0) continue;
+        bool pure = true;
+        for (std::size_t m = 0; m < e.size(); ++m) pure = pure && (m == j || e[m] == 0);
+        if (pure) return false;
+      }
+    }
+    return true;
   }
 
   /// Whether the step can bring the point onto M_{k+1}: a candidate without a pivot must vanish there

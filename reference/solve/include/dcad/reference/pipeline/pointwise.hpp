@@ -122,6 +122,14 @@ auto pointwise_input_errors(const io::LagrangianCase& c, F f) {
 }
 
 /// The exact route (Rational) at the case's point: NotExactHere where a formula is irrational there.
+/// Without `initial`, dcad's default point is its own choice: where the exact route cannot run there,
+/// it runs at a rational place near it (exact_place.hpp; `place` in the result says where).
 dcad::Solution<Rational> solve_pointwise_exact(const io::LagrangianCase& c);
+
+/// The reference backend's route: as solve_pointwise_exact, and where the given values allow no
+/// exact run (an angle whose sine is irrational; positions that miss a holonomic constraint by their
+/// rounding), at a rational place within 1e-6 (relative) of every given value, stated in `place` and
+/// the note.  Given values further from every rational place are refused as before.
+dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c);
 
 }  // namespace dcad::reference::pipeline

@@ -1,0 +1,403 @@
+// A rational place for the exact route (exact_place.hpp): angles on rational points of the circle,
+// positions on the holonomic constraints.
+#include "dcad/reference/pipeline/exact_place.hpp"
+
+#include "dcad/reference/nonlinear/jet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <unordered_map>
+
+namespace dcad::reference::pipeline {
+
+namespace {
+
+using expr::Expr;
+using expr::ExprNode;
+using expr::ExprOp;
+
+/// arg = k·x_i + (terms without x_i): k (any rational), or nullopt if x_i occurs otherwise.
+std::optional<Rational> linear_coefficient(const Expr& arg, std::size_t i) {
+  if (!expr::depends_on(arg, i)) return Rational(0);
+  switch (arg->op) {
+    case ExprOp::Variable: return Rational(1);
+    case ExprOp::Add:
+    case ExprOp::Sub: {
+      const auto a = linear_coefficient(arg->a, i), b = linear_coefficient(arg->b, i);
+      if (!a || !b) return std::nullopt;
+      return arg->op == ExprOp::Add ? Rational(*a + *b) : Rational(*a - *b);
+    }
+    case ExprOp::Neg: {
+      const auto a = linear_coefficient(arg->a, i);
+      return a ? std::optional<Rational>(-*a) : std::nullopt;
+    }
+    case ExprOp::Mul: {
+      const Expr& k = expr::is_number(arg->a) ? arg->a : arg->b;
+      const Expr& x = expr::is_number(arg->a) ? arg->b : arg->a;
+      if (!expr::is_number(k)) return std::nullopt;
+      const auto a = linear_coefficient(x, i);
+      return a ? std::optional<Rational>(k->value * *a) : std::nullopt;
+    }
+    case ExprOp::Div: {
+      if (!expr::is_number(arg->b)) return std::nullopt;
+      const auto a = linear_coefficient(arg->a, i);
+      return a ? std::optional<Rational>(*a / arg->b->value) : std::nullopt;
+    }
+    default: return std::nullopt;
+  }
+}
+
+bool is_integer(const Rational& r) { return denominator(r) == 1; }
+
+/// x_i occurs in e only as k·x_i, k an integer, inside arguments of sin and cos.
+bool only_in_trig(const Expr& e, std::size_t i, std::unordered_map<const ExprNode*, bool>& memo) {
+  if (!expr::depends_on(e, i)) return true;
+  if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
+  bool ok = false;
+  if (e->op == ExprOp::Sin || e->op == ExprOp::Cos) {
+    const auto k = linear_coefficient(e->a, i);
+    ok = k && is_integer(*k);
+  } else if (e->op != ExprOp::Variable) {
+    ok = only_in_trig(e->a, i, memo) && (!e->b || only_in_trig(e->b, i, memo));
+  }
+  memo.emplace(e.get(), ok);
+  return ok;
+}
+
+/// x_i occurs inside an argument of sin, cos or exp.
+bool inside_function(const Expr& e, std::size_t i) {
+  if (!expr::depends_on(e, i)) return false;
+  if (e->op == ExprOp::Sin || e->op == ExprOp::Cos || e->op == ExprOp::Exp) return true;
+  return e->a && (inside_function(e->a, i) || (e->b && inside_function(e->b, i)));
+}
+
+/// Every expression of the system.
+std::vector<Expr> all_expressions(const LagrangianSystem& s) {
+  std::vector<Expr> all{s.lagrangian};
+  all.insert(all.end(), s.constraints.begin(), s.constraints.end());
+  all.insert(all.end(), s.forces.begin(), s.forces.end());
+  return all;
+}
+
+/// (cos, sin) of k·φ₀ from (cos φ₀, sin φ₀): (c + i s)^k, exactly.
+std::pair<Rational, Rational> rotate(const Rational& c, const Rational& s, long k) {
+  Rational rc = 1, rs = 0;
+  const Rational sc = k < 0 ? -s : s;  // (c + i s)^{−1} = c − i s on the unit circle
+  for (long j = 0; j < std::labs(k); ++j) {
+    const Rational nc = rc * c - rs * sc, ns = rc * sc + rs * c;
+    rc = nc;
+    rs = ns;
+  }
+  return {rc, rs};
+}
+
+/// The rewrite of translate_angles, memoized on the DAG.
+struct Translator {
+  const std::vector<PlacedAngle>& angles;
+  std::unordered_map<const ExprNode*, Expr> memo;
+
+  Expr operator()(const Expr& e) {
+    if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
+    Expr r = rewrite(e);
+    memo.emplace(e.get(), r);
+    return r;
+  }
+
+  Expr rewrite(const Expr& e) {
+    switch (e->op) {
+      case ExprOp::Number:
+      case ExprOp::Variable: return e;
+      case ExprOp::Sin:
+      case ExprOp::Cos: {
+        // arg(φ₀ + φ') = Θ + arg(φ'), Θ = Σ k_j φ₀_j: sin(Θ + a) = sin Θ cos a + cos Θ sin a, cos(Θ + a) = cos Θ cos a − sin Θ sin a
+        Rational c = 1, s = 0;
+        for (const PlacedAngle& g : angles) {
+          const auto k = linear_coefficient(e->a, g.q);
+          if (!k || *k == 0) continue;
+          const auto [kc, ks] = rotate(g.cos, g.sin, static_cast<long>(numerator(*k)));
+          const Rational nc = c * kc - s * ks, ns = c * ks + s * kc;
+          c = nc;
+          s = ns;
+        }
+        const Expr a = (*this)(e->a);
+        if (c == 1 && s == 0) return e->op == ExprOp::Sin ? expr::sin(a) : expr::cos(a);
+        const Expr ca = expr::cos(a), sa = expr::sin(a);
+        if (e->op == ExprOp::Sin) return expr::add(expr::mul(expr::number(s), ca), expr::mul(expr::number(c), sa));
+        return expr::sub(expr::mul(expr::number(c), ca), expr::mul(expr::number(s), sa));
+      }
+      case ExprOp::Add: return expr::add((*this)(e->a), (*this)(e->b));
+      case ExprOp::Sub: return expr::sub((*this)(e->a), (*this)(e->b));
+      case ExprOp::Mul: return expr::mul((*this)(e->a), (*this)(e->b));
+      case ExprOp::Div: return expr::div((*this)(e->a), (*this)(e->b));
+      case ExprOp::Neg: return expr::neg((*this)(e->a));
+      case ExprOp::Pow: return expr::pow((*this)(e->a), e->exponent);
+      case ExprOp::Exp: return expr::exp((*this)(e->a));
+      case ExprOp::Sqrt: return expr::sqrt((*this)(e->a));
+    }
+    throw std::logic_error("translate_angles: unknown operation");
+  }
+};
+
+/// The exact value of e at x (NotExactHere where a function's value is irrational).
+Rational value_at(const Expr& e, const std::vector<Rational>& x) {
+  static const auto space = std::make_shared<const JetSpace>(0, 0);
+  std::vector<Jet<Rational>> vars;
+  vars.reserve(x.size());
+  for (const Rational& v : x) vars.emplace_back(space, v);
+  return expr::evaluate(e, vars, [](const Rational& q) { return Jet<Rational>(space, q); }).value();
+}
+
+/// A rational square root of r, if r is the square of a rational.
+std::optional<Rational> rational_sqrt(const Rational& r) {
+  if (r < 0) return std::nullopt;
+  try {
+    return JetFunctions<Rational>::sqrt(r);
+  } catch (const NotExactHere&) {
+    return std::nullopt;
+  }
+}
+
+/// Puts x on {h = 0} by moving the coordinates in `vars` (h affine in one of them: solved for it; h
+/// quadratic in them: the second intersection of the line from a rational point R of the quadric
+/// through x).  The result is checked exactly; false if none is found.
+bool land(const Expr& h, const std::vector<std::size_t>& vars, std::vector<Rational>& x) {
+  for (std::size_t z : vars) {  // affine in one coordinate: one exact step
+    if (expr::degree_in(h, [&](std::size_t i) { return i == z; }) != 1) continue;
+    std::vector<Rational> y = x;
+    const Rational a = value_at(expr::diff(h, z), y);
+    if (a == 0) continue;
+    y[z] -= value_at(h, y) / a;
+    if (value_at(h, y) == 0) {
+      x = y;
+      return true;
+    }
+  }
+  if (expr::degree_in(h, [&](std::size_t i) { return std::find(vars.begin(), vars.end(), i) != vars.end(); }) != 2) return false;
+  // candidate values for the coordinates not solved for: small numbers and the values at hand
+  // (the values of the coordinates that stay: a circle about (x1, y1) has the point (x1 ± r, y1))
+  std::vector<Rational> cand{0, 1, -1, 2, -2, Rational(1, 2), Rational(-1, 2), 3, -3};
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::find(vars.begin(), vars.end(), i) == vars.end() && std::find(cand.begin(), cand.end(), x[i]) == cand.end()) cand.push_back(x[i]);
+  const std::size_t nc = cand.size();
+  long budget = 20000;  // evaluations of h in the search
+  for (std::size_t z : vars) {
+    std::vector<std::size_t> others;
+    for (std::size_t w : vars)
+      if (w != z) others.push_back(w);
+    std::vector<std::size_t> pick(others.size(), 0);
+    while (budget > 0) {
+      std::vector<Rational> y = x;
+      for (std::size_t j = 0; j < others.size(); ++j) y[others[j]] = cand[pick[j]];
+      const auto at = [&](const Rational& v) {
+        y[z] = v;
+        return value_at(h, y);
+      };
+      budget -= 3;
+      const Rational f0 = at(0), f1 = at(1), fm = at(-1);
+      const Rational qa = (f1 + fm) / 2 - f0, qb = (f1 - fm) / 2;
+      std::vector<Rational> roots;
+      if (qa == 0 && qb != 0) roots.push_back(-f0 / qb);
+      if (qa != 0)
+        if (const auto r = rational_sqrt(qb * qb - 4 * qa * f0)) {
+          roots.push_back((-qb + *r) / (2 * qa));
+          roots.push_back((-qb - *r) / (2 * qa));
+        }
+      for (const Rational& root : roots) {
+        std::vector<Rational> rp = y;
+        rp[z] = root;
+        if (value_at(h, rp) != 0) continue;
+        // the line R + s·d, d ≈ x − R with its largest entry 1 and the others' best approximations of
+        // denominator ≤ 10⁴ (the slopes of a stereographic projection: the point lands within ~1e-8
+        // with small denominators): g(s) = A s² + B s (g(0) = 0), its other zero s = −B/A
+        std::size_t big = vars[0];
+        for (std::size_t w : vars)
+          if (abs(x[w] - rp[w]) > abs(x[big] - rp[big])) big = w;
+        if (x[big] == rp[big]) continue;
+        std::map<std::size_t, Rational> d;
+        for (std::size_t w : vars) d[w] = w == big ? Rational(1) : simplest_near((x[w] - rp[w]) / (x[big] - rp[big]), 10000);
+        const auto g = [&](const Rational& s) {
+          std::vector<Rational> p = x;
+          for (std::size_t w : vars) p[w] = rp[w] + s * d[w];
+          return p;
+        };
+        budget -= 3;
+        const Rational g1 = value_at(h, g(1)), gm = value_at(h, g(-1));
+        const Rational la = (g1 + gm) / 2, lb = (g1 - gm) / 2;
+        if (la == 0) continue;
+        const std::vector<Rational> p = g(-lb / la);
+        if (value_at(h, p) == 0) {
+          x = p;
+          return true;
+        }
+      }
+      std::size_t j = 0;  // the next assignment of the others
+      while (j < pick.size() && ++pick[j] == nc) pick[j++] = 0;
+      if (j == pick.size()) break;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::size_t> angle_coordinates(const LagrangianSystem& s) {
+  std::vector<std::size_t> out;
+  const std::vector<Expr> all = all_expressions(s);
+  for (std::size_t i = 0; i < s.n; ++i) {
+    std::unordered_map<const ExprNode*, bool> memo;
+    bool occurs = false, ok = true;
+    for (const Expr& e : all) {
+      occurs = occurs || expr::depends_on(e, s.q(i));
+      ok = ok && only_in_trig(e, s.q(i), memo);
+    }
+    if (occurs && ok) out.push_back(i);
+  }
+  return out;
+}
+
+LagrangianSystem translate_angles(const LagrangianSystem& s, const std::vector<PlacedAngle>& angles) {
+  LagrangianSystem t = s;
+  Translator tr{angles, {}};
+  t.lagrangian = tr(s.lagrangian);
+  for (Expr& c : t.constraints) c = tr(c);
+  for (Expr& f : t.forces) f = tr(f);
+  return t;
+}
+
+std::vector<expr::Expr> holonomic_constraints(const LagrangianSystem& s) {
+  std::vector<Expr> out;
+  const auto velocity_free = [&](const Expr& e) {
+    for (std::size_t i = 0; i < s.n; ++i)
+      if (expr::depends_on(e, s.v(i))) return false;
+    return true;
+  };
+  for (std::size_t mu = 0; mu < s.n; ++mu) {
+    bool multiplier = !expr::depends_on(s.lagrangian, s.v(mu));
+    for (const Expr& c : s.constraints) multiplier = multiplier && !expr::depends_on(c, s.v(mu));
+    if (!s.forces.empty()) multiplier = multiplier && expr::is_number(s.forces[mu], 0);
+    if (!multiplier) continue;
+    const Expr h = expr::diff(s.lagrangian, s.q(mu));
+    if (!expr::is_number(h) && velocity_free(h) && !expr::depends_on(h, s.q(mu))) out.push_back(h);
+  }
+  for (const Expr& c : s.constraints)
+    if (!expr::is_number(c) && velocity_free(c)) out.push_back(c);
+  return out;
+}
+
+Rational simplest_near(const Rational& x, long max_den) {
+  using boost::multiprecision::mpz_int;
+  // convergents h/k of the continued fraction of x, stopped before k exceeds max_den
+  mpz_int n = numerator(x), d = denominator(x);
+  mpz_int h0 = 0, h1 = 1, k0 = 1, k1 = 0;
+  while (d != 0) {
+    mpz_int a = n / d;
+    if (n < 0 && a * d != n) a -= 1;  // floor
+    const mpz_int h2 = a * h1 + h0, k2 = a * k1 + k0;
+    if (k2 > max_den) break;
+    h0 = h1;
+    h1 = h2;
+    k0 = k1;
+    k1 = k2;
+    const mpz_int r = n - a * d;
+    n = d;
+    d = r;
+  }
+  return k1 == 0 ? x : Rational(h1, k1);
+}
+
+std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given, std::string& why) {
+  const LagrangianSystem& s = c.system;
+  ExactPlace pl;
+  pl.start = start;
+  pl.fixed.assign(start.size(), false);
+  if (s.has_time) pl.fixed[s.t()] = c.initial[s.t()].has_value();
+  for (std::size_t i : angle_coordinates(s)) {
+    const Rational& v = start[s.q(i)];
+    if (v == 0) continue;  // sin 0 and cos 0 are rational already
+    PlacedAngle g;
+    g.q = s.q(i);
+    // the given angle: t ≈ tan(φ/2) (to 1e-10 or so); dcad's own default point: φ₀ = 2·atan(value)
+    g.tan_half = given ? simplest_near(Rational(std::tan(v.convert_to<double>() / 2)), 100000) : v;
+    const Rational t2 = g.tan_half * g.tan_half;
+    g.cos = (1 - t2) / (1 + t2);
+    g.sin = 2 * g.tan_half / (1 + t2);
+    pl.angles.push_back(g);
+    pl.start[g.q] = 0;
+    pl.fixed[g.q] = true;
+  }
+  pl.system = translate_angles(s, pl.angles);
+  if (given) {  // a coordinate inside sin, cos or exp that is not an angle keeps its given value
+    const std::vector<std::size_t> ang = angle_coordinates(s);
+    for (std::size_t i = 0; i < 2 * s.n; ++i) {
+      if (start[i] == 0 || std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
+      for (const Expr& e : all_expressions(s))
+        if (inside_function(e, i)) {
+          pl.not_exact = s.variable_names()[i] + " = " + start[i].str() + " occurs inside sin, cos or exp and " + (i < s.n ? "outside them too" : "is a velocity") +
+                         ": no rational value near it makes them rational (they are irrational at every nonzero rational, Lindemann)";
+          break;
+        }
+      if (!pl.not_exact.empty()) break;
+    }
+  }
+  if (!given) {  // dcad's own point: coordinates inside sin, cos, exp, sqrt at 0
+    const std::vector<std::size_t> ang = angle_coordinates(s);
+    for (std::size_t i = 0; i < s.n; ++i) {
+      if (std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
+      for (const Expr& e : all_expressions(pl.system))
+        if (inside_function(e, s.q(i)) || inside_function(e, s.v(i))) {
+          pl.start[s.q(i)] = 0;
+          pl.start[s.v(i)] = 0;
+        }
+    }
+  }
+  // positions onto the holonomic constraints, fewest coordinates first; each claims the ones it moves
+  std::vector<Expr> hs = holonomic_constraints(pl.system);
+  std::vector<std::vector<std::size_t>> vars(hs.size());
+  for (std::size_t k = 0; k < hs.size(); ++k)
+    for (std::size_t i = 0; i < s.n; ++i)
+      if (expr::depends_on(hs[k], s.q(i))) vars[k].push_back(s.q(i));
+  std::vector<std::size_t> order(hs.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return vars[a].size() < vars[b].size(); });
+  const std::vector<std::string> names = s.variable_names();
+  try {
+    for (std::size_t k : order) {
+      std::vector<std::size_t> movable;
+      for (std::size_t i : vars[k])
+        if (!pl.fixed[i]) movable.push_back(i);
+      if (value_at(hs[k], pl.start) != 0) {
+        if (movable.empty() || !land(hs[k], movable, pl.start)) {
+          why = "no rational point of " + expr::to_text(hs[k], names) + " = 0 was found near the " + (given ? "given" : "default") + " positions";
+          return std::nullopt;
+        }
+        pl.landed.push_back(expr::to_text(hs[k], names) + " = 0");
+      }
+      // it claims the coordinates it pins (nonzero partial derivative): later ones move the others
+      for (std::size_t i : vars[k])
+        if (value_at(expr::diff(hs[k], i), pl.start) != 0) pl.fixed[i] = true;
+    }
+    for (const Expr& h : hs)  // a later landing may not undo an earlier one
+      if (value_at(h, pl.start) != 0) {
+        why = "no rational point of the holonomic constraints together was found (" + expr::to_text(h, names) + " = 0 moved off)";
+        return std::nullopt;
+      }
+  } catch (const NotExactHere& e) {
+    why = std::string("a holonomic constraint is irrational there (") + e.what() + ")";
+    return std::nullopt;
+  }
+  // the given positions stay (moved only by the landing above); given velocities typed short (6
+  // decimals or fewer) stay unless M_c then has no point (`loosen`); long ones — rounded values of
+  // irrational ones, which may miss M_c at the place — are starting values, to 12 digits or so (the
+  // CAD's values then keep readable denominators)
+  for (std::size_t i = 0; i < 2 * s.n; ++i) {
+    const bool typed = c.initial[i] && denominator(*c.initial[i]) <= 1000000;
+    if (c.initial[i] && given && (i < s.n || typed)) pl.fixed[i] = true;
+    if (i >= s.n && given && typed) pl.loosen.push_back(i);
+    if (c.initial[i] && given && !pl.fixed[i]) pl.start[i] = simplest_near(pl.start[i], 1000000);
+  }
+  return pl;
+}
+
+}  // namespace dcad::reference::pipeline
