@@ -446,7 +446,7 @@ TEST(Expression, CheckFormulasOfAnotherTool) {
   const std::string pendulum = case_path("cartesian-pendulum");
   const Outcome ok = run("check " + write_temp("dcad_formulas_good.json", good) + " " + pendulum);
   EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
-  EXPECT_NE(ok.out.find("formulas.equations (at 20 points of M_c"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("formulas.equations (exactly at the reference's rational point of M_c, and at 20 points of M_c"), std::string::npos) << ok.out;
   std::string sign = good;
   sign.replace(sign.find("\"-981/100 - mu*y\""), 17, "\"-981/100 + mu*y\"");
   const Outcome bad_sign = run("check " + write_temp("dcad_formulas_sign.json", sign) + " " + pendulum + " --points 5");
@@ -586,4 +586,13 @@ TEST(Expression, MtkIssue1704ReductionIsJudged) {
       "equations": {"x": "v_x", "y": "v_y", "v_x": "lam*x", "v_y": "lam*y - g"}}})J");
   const Outcome ok = run("check " + hand + " " + pendulum);
   EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
+  EXPECT_NE(ok.out.find("exactly at the reference's rational point of M_c"), std::string::npos) << ok.out;
+  // CONTRACT: exactly where the point is rational — a sign error is shown in rationals at x = 3/5, y = -4/5
+  // (by hand: lam = -1106/125, so lam*y + g = 884.8/1000 + 9.81 = 42221/2500 against -6829/2500)
+  std::string sign = slurp(hand);
+  sign.replace(sign.find("lam*y - g"), 9, "lam*y + g");
+  const Outcome bad = run("check " + write_temp("dcad_mtk_1704_sign.json", sign) + " " + pendulum);
+  EXPECT_EQ(bad.rc, 3) << bad.out;
+  EXPECT_NE(bad.out.find("formulas.equations.v_y: expected d/dt v_y = -6829/2500, found 42221/2500 exactly at the point of M_c x = 3/5, y = -4/5"),
+            std::string::npos) << bad.out;
 }

@@ -10,6 +10,9 @@
 #include "dcad/fast/chart.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
+#include "dcad/reference/nonlinear/jet.hpp"
+#include "dcad/reference/pipeline/exact_place.hpp"
+#include "dcad/reference/solve.hpp"
 
 #include <array>
 #include <cmath>
@@ -47,6 +50,52 @@ std::string point_text(const std::vector<std::string>& names, const std::vector<
   std::string s;
   for (std::size_t i = 0; i < at.size() && i < names.size(); ++i) s += (i ? ", " : "") + names[i] + " = " + io::float_text(at[i]);
   return s;
+}
+
+}  // namespace
+
+namespace {
+
+/// CONTRACT: "exactly where the point is rational".  At the exact tiers' point of M_c (the case's, or
+/// the rational place near it; not where an angle sits at 2*atan(t)) their constraints must vanish and,
+/// for a unique motion, their equations equal the exact velocity, in rationals.  False if there is no
+/// such point (nothing compared exactly).
+bool exact_point_check(const io::LagrangianCase& c, const std::vector<ex::Expr>& theirs, const std::vector<std::pair<std::size_t, ex::Expr>>& eqs,
+                       Checked& out) {
+  const std::size_t n = c.system.n;
+  dcad::Solution<reference::Rational> r;
+  try {
+    io::Problem p;
+    p.form = io::Form::expression;
+    p.expression = c;
+    r = reference::solve(p);
+  } catch (const std::exception&) {
+    return false;  // no exact point (the double points still compare)
+  }
+  if (!r.pointwise || !r.consistent || !r.pointwise->regular || !r.pointwise->point_text.empty()) return false;
+  const auto& pw = *r.pointwise;
+  std::vector<reference::Rational> x(pw.point.begin(), pw.point.begin() + static_cast<long>(2 * n));
+  x.push_back(pw.time);
+  const std::vector<std::string> names = c.system.variable_names();
+  std::string where;
+  for (std::size_t i = 0; i < 2 * n; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
+  try {
+    for (std::size_t i = 0; i < theirs.size(); ++i) {
+      const reference::Rational v = reference::pipeline::exact_value(theirs[i], x);
+      if (v != 0)
+        out.disagreements.push_back("formulas.constraints/" + std::to_string(i) + ": expected 0 on M_c, found " + v.str() + " exactly at the point of M_c " + where);
+    }
+    if (r.solution_rank && *r.solution_rank == 0)
+      for (const auto& [k, e] : eqs) {
+        const reference::Rational v = reference::pipeline::exact_value(e, x);
+        if (v != pw.velocity[k])
+          out.disagreements.push_back("formulas.equations." + names[k] + ": expected d/dt " + names[k] + " = " + pw.velocity[k].str() + ", found " + v.str() +
+                                      " exactly at the point of M_c " + where);
+      }
+  } catch (const reference::NotExactHere&) {
+    return false;  // their formula is irrational there (sin(1/2)): the double points compare it
+  }
+  return true;
 }
 
 }  // namespace
@@ -195,7 +244,9 @@ void check_formulas(const std::string& file, const nlohmann::json& f, const io::
       }
     }
   }
-  const std::string how = " (at " + std::to_string(used) + " points of M_c, in double: 1e-8 relative)";
+  const bool exactly = exact_point_check(c, theirs, eqs, out);
+  const std::string how = std::string(exactly ? " (exactly at the reference's rational point of M_c, and" : " (") + " at " + std::to_string(used) +
+                          " points of M_c in double: 1e-8 relative)";
   if (!theirs.empty()) out.compared.push_back("formulas.constraints" + how);
   if (!eqs.empty()) out.compared.push_back("formulas.equations" + how);
   for (std::size_t i = 0; i < eqs.size(); ++i)

@@ -286,6 +286,8 @@ std::vector<expr::Expr> holonomic_constraints(const LagrangianSystem& s) {
   return out;
 }
 
+Rational exact_value(const expr::Expr& e, const std::vector<Rational>& x) { return value_at(e, x); }
+
 Rational simplest_near(const Rational& x, long max_den) {
   using boost::multiprecision::mpz_int;
   // convergents h/k of the continued fraction of x, stopped before k exceeds max_den

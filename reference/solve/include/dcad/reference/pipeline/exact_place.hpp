@@ -51,6 +51,10 @@ LagrangianSystem translate_angles(const LagrangianSystem& s, const std::vector<P
 /// forces (the Euler–Lagrange equation of μ reads 0 = ∂L/∂μ), and constraints without velocities.
 std::vector<expr::Expr> holonomic_constraints(const LagrangianSystem& s);
 
+/// The exact value of e at x (variables as in LagrangianSystem: q, v, t); NotExactHere where a
+/// function's value is irrational there.
+Rational exact_value(const expr::Expr& e, const std::vector<Rational>& x);
+
 /// The best rational approximation of x with denominator ≤ max_den (continued fractions).
 Rational simplest_near(const Rational& x, long max_den);
 
