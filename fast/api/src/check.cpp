@@ -292,7 +292,8 @@ json read_result(const std::string& result_file, const std::string* text) {
   for (std::size_t i = 0; i < r["dims"].size(); ++i)
     if (!r["dims"][i].is_number_integer()) bad(result_file, "/dims/" + std::to_string(i), "an integer", shown(r["dims"][i]));
   if (!r["steps"].is_number_integer()) bad(result_file, "/steps", "an integer", shown(r["steps"]));
-  if (!r["consistent"].is_boolean()) bad(result_file, "/consistent", "true or false", shown(r["consistent"]));
+  if (!r["consistent"].is_boolean() && !r["consistent"].is_null())  // null: undecided at a singular point (dcad's own)
+    bad(result_file, "/consistent", "true, false or null (undecided at a singular point)", shown(r["consistent"]));
   if (!r["solution_rank"].is_null() && !r["solution_rank"].is_number_integer())
     bad(result_file, "/solution_rank", "an integer (null if inconsistent)", shown(r["solution_rank"]));
   if (r.contains("reduced") && !r["reduced"].is_object())
@@ -453,7 +454,9 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   if (r.contains("variables") && r["variables"] != json(st))
     bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
   Checker k{result_file, {}};
-  if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
+  if (r.contains("formulas") && r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
+    k.out.not_compared.push_back("formulas (null in the result)");
+  } else if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
     check_formulas(result_file, r["formulas"], p, points, k.out);
     if (!r.contains("dims")) return k.out;
   }
@@ -482,16 +485,25 @@ Checked check_expression(const std::string& result_file, const json& r, const io
     if (i == c.system.t() && !c.system.has_time) continue;
     if (!pt.contains(names[i])) bad(result_file, "/point/" + names[i], "a value for every coordinate and velocity (and the time)", "nothing");
     const std::string text = pt[names[i]].is_string() ? pt[names[i]].get<std::string>() : "";
-    if (text.rfind("2*atan(", 0) == 0 && text.back() == ')') {
+    if (text.rfind("2*atan(", 0) == 0) {  // 2*atan(t), or 2*atan(t) + N*pi with N even (whole turns)
       const std::string path = "/point/" + names[i];
       if (std::find(angle_coordinates.begin(), angle_coordinates.end(), i) == angle_coordinates.end())
         bad(result_file, path, "2*atan(t) only for an angle (a coordinate that occurs only in sin and cos)", shown(pt[names[i]]));
       reference::pipeline::PlacedAngle g;
       g.q = i;
+      const std::size_t close = text.find(')');
+      const std::string rest = close == std::string::npos ? "" : text.substr(close + 1);
+      bool ok = close != std::string::npos;
+      if (ok && !rest.empty()) {  // " + N*pi" / " - N*pi", N even
+        ok = rest.size() > 6 && (rest.rfind(" + ", 0) == 0 || rest.rfind(" - ", 0) == 0) && rest.substr(rest.size() - 3) == "*pi";
+        const std::string digits = ok ? rest.substr(3, rest.size() - 6) : "";
+        ok = ok && !digits.empty() && digits.size() < 18 && digits.find_first_not_of("0123456789") == std::string::npos && (digits.back() - '0') % 2 == 0;
+      }
       try {
-        g.tan_half = reference::parse_rational(text.substr(7, text.size() - 8));
+        if (!ok) throw std::invalid_argument(text);
+        g.tan_half = reference::parse_rational(text.substr(7, close - 7));
       } catch (const std::exception&) {
-        bad(result_file, path, "2*atan(t) with t an exact rational such as \"-3/7\"", shown(pt[names[i]]));
+        bad(result_file, path, "2*atan(t), or 2*atan(t) + N*pi with N even, t an exact rational such as \"-3/7\"", shown(pt[names[i]]));
       }
       g.cos = (1 - g.tan_half * g.tan_half) / (1 + g.tan_half * g.tan_half);
       g.sin = 2 * g.tan_half / (1 + g.tan_half * g.tan_half);

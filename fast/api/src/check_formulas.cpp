@@ -245,7 +245,7 @@ void check_formulas(const std::string& file, const nlohmann::json& f, const io::
     }
   }
   const bool exactly = exact_point_check(c, theirs, eqs, out);
-  const std::string how = std::string(exactly ? " (exactly at the reference's rational point of M_c, and" : " (") + " at " + std::to_string(used) +
+  const std::string how = std::string(exactly ? " (exactly at the reference's rational point of M_c, and at " : " (at ") + std::to_string(used) +
                           " points of M_c in double: 1e-8 relative)";
   if (!theirs.empty()) out.compared.push_back("formulas.constraints" + how);
   if (!eqs.empty()) out.compared.push_back("formulas.equations" + how);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 namespace dcad::reference::pipeline {
@@ -161,8 +162,20 @@ std::optional<Rational> rational_sqrt(const Rational& r) {
 
 /// Puts x on {h = 0} by moving the coordinates in `vars` (h affine in one of them: solved for it; h
 /// quadratic in them: the second intersection of the line from a rational point R of the quadric
-/// through x).  The result is checked exactly; false if none is found.
-bool land(const Expr& h, const std::vector<std::size_t>& vars, std::vector<Rational>& x) {
+/// through x; of the points found, the nearest to x in the `anchored` coordinates — the given ones —
+/// or in all of `vars` if none is).  The result is checked exactly; false if none is found.
+bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector<char>& anchored, std::vector<Rational>& x) {
+  std::vector<std::size_t> measured;
+  for (std::size_t w : vars)
+    if (anchored[w]) measured.push_back(w);
+  if (measured.empty()) measured = vars;
+  const auto distance = [&](const std::vector<Rational>& p) {
+    double d = 0;
+    for (std::size_t w : measured) d = std::max(d, std::abs((p[w] - x[w]).convert_to<double>()) / std::max(1.0, std::abs(x[w].convert_to<double>())));
+    return d;
+  };
+  std::optional<std::vector<Rational>> best;
+  double best_distance = HUGE_VAL;
   for (std::size_t z : vars) {  // affine in one coordinate: one exact step
     if (expr::degree_in(h, [&](std::size_t i) { return i == z; }) != 1) continue;
     std::vector<Rational> y = x;
@@ -180,6 +193,11 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, std::vector<Ratio
   std::vector<Rational> cand{0, 1, -1, 2, -2, Rational(1, 2), Rational(-1, 2), 3, -3};
   for (std::size_t i = 0; i < x.size(); ++i)
     if (std::find(vars.begin(), vars.end(), i) == vars.end() && std::find(cand.begin(), cand.end(), x[i]) == cand.end()) cand.push_back(x[i]);
+  for (std::size_t w : vars)  // the moving coordinates' values, simplified (x = 0.6000000000000001: 3/5, and y = ±4/5)
+    for (long den = 10; den <= 1000000; den *= 10) {
+      const Rational r = simplest_near(x[w], den);
+      if (std::find(cand.begin(), cand.end(), r) == cand.end()) cand.push_back(r);
+    }
   const std::size_t nc = cand.size();
   long budget = 20000;  // evaluations of h in the search
   for (std::size_t z : vars) {
@@ -227,17 +245,21 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, std::vector<Ratio
         const Rational la = (g1 + gm) / 2, lb = (g1 - gm) / 2;
         if (la == 0) continue;
         const std::vector<Rational> p = g(-lb / la);
-        if (value_at(h, p) == 0) {
-          x = p;
-          return true;
+        if (value_at(h, p) == 0 && distance(p) < best_distance) {
+          best = p;
+          best_distance = distance(p);
         }
       }
+      if (best_distance <= 1e-12) break;  // as near as the given decimals
       std::size_t j = 0;  // the next assignment of the others
       while (j < pick.size() && ++pick[j] == nc) pick[j++] = 0;
       if (j == pick.size()) break;
     }
+    if (best_distance <= 1e-12) break;
   }
-  return false;
+  if (!best) return false;
+  x = *best;
+  return true;
 }
 
 }  // namespace
@@ -320,8 +342,19 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
     if (v == 0) continue;  // sin 0 and cos 0 are rational already
     PlacedAngle g;
     g.q = s.q(i);
-    // the given angle: t ≈ tan(φ/2) (to 1e-10 or so); dcad's own default point: φ₀ = 2·atan(value)
-    g.tan_half = given ? simplest_near(Rational(std::tan(v.convert_to<double>() / 2)), 100000) : v;
+    // the given angle: φ = 2·atan(t) + 2πk with t the simplest rational within 1e-9 (relative) of
+    // tan(φ/2), never 0 for φ ≠ 0 (a special point: sin φ = 0); dcad's own default point: 2·atan(value)
+    g.tan_half = v;
+    if (given) {
+      const double phi = v.convert_to<double>(), two_pi = 2 * std::acos(-1.0);
+      g.turns = static_cast<long>(std::llround(phi / two_pi));
+      const double red = phi - two_pi * static_cast<double>(g.turns);
+      for (long den = 100000;; den *= 100) {
+        g.tan_half = simplest_near(Rational(std::tan(red / 2)), den);
+        const double err = std::abs(2 * std::atan(g.tan_half.convert_to<double>()) - red);
+        if ((g.tan_half != 0 && err <= 1e-9 * std::abs(red)) || den > 100000000000000L) break;
+      }
+    }
     const Rational t2 = g.tan_half * g.tan_half;
     g.cos = (1 - t2) / (1 + t2);
     g.sin = 2 * g.tan_half / (1 + t2);
@@ -336,8 +369,9 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
       if (start[i] == 0 || std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
       for (const Expr& e : all_expressions(s))
         if (inside_function(e, i)) {
-          pl.not_exact = s.variable_names()[i] + " = " + start[i].str() + " occurs inside sin, cos or exp and " + (i < s.n ? "outside them too" : "is a velocity") +
-                         ": no rational value near it makes them rational (they are irrational at every nonzero rational, Lindemann)";
+          pl.not_exact = s.variable_names()[i] + " = " + start[i].str() + " occurs inside sin, cos or exp other than as an angle (" +
+                         (i < s.n ? "an angle occurs only as integer multiples inside sin and cos" : "a velocity") +
+                         "): no rational value near it makes them rational (they are irrational at every nonzero rational, Lindemann)";
           break;
         }
       if (!pl.not_exact.empty()) break;
@@ -356,6 +390,8 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
   }
   // positions onto the holonomic constraints, fewest coordinates first; each claims the ones it moves
   std::vector<Expr> hs = holonomic_constraints(pl.system);
+  std::vector<Expr> shown = holonomic_constraints(s);  // as the case writes them (the same order)
+  if (shown.size() != hs.size()) shown = hs;
   std::vector<std::vector<std::size_t>> vars(hs.size());
   for (std::size_t k = 0; k < hs.size(); ++k)
     for (std::size_t i = 0; i < s.n; ++i)
@@ -366,15 +402,22 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
   const std::vector<std::string> names = s.variable_names();
   try {
     for (std::size_t k : order) {
-      std::vector<std::size_t> movable;
+      std::vector<std::size_t> movable, ungiven;  // coordinates not given move first (x = 3/5 given: y = ±4/5)
       for (std::size_t i : vars[k])
-        if (!pl.fixed[i]) movable.push_back(i);
+        if (!pl.fixed[i]) {
+          movable.push_back(i);
+          if (!given || !c.initial[i]) ungiven.push_back(i);
+        }
       if (value_at(hs[k], pl.start) != 0) {
-        if (movable.empty() || !land(hs[k], movable, pl.start)) {
+        std::vector<char> anchored(pl.start.size(), 0);
+        for (std::size_t i = 0; i < 2 * s.n; ++i) anchored[i] = given && c.initial[i].has_value();
+        const bool landed = (!ungiven.empty() && ungiven.size() < movable.size() && land(hs[k], ungiven, anchored, pl.start)) ||
+                            (!movable.empty() && land(hs[k], movable, anchored, pl.start));
+        if (!landed) {
           why = "no rational point of " + expr::to_text(hs[k], names) + " = 0 was found near the " + (given ? "given" : "default") + " positions";
           return std::nullopt;
         }
-        pl.landed.push_back(expr::to_text(hs[k], names) + " = 0");
+        pl.landed.push_back(expr::to_text(shown[k], names) + " = 0");
       }
       // it claims the coordinates it pins (nonzero partial derivative): later ones move the others
       for (std::size_t i : vars[k])
@@ -389,14 +432,16 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
     why = std::string("a holonomic constraint is irrational there (") + e.what() + ")";
     return std::nullopt;
   }
-  // the given positions stay (moved only by the landing above); given velocities typed short (6
-  // decimals or fewer) stay unless M_c then has no point (`loosen`); long ones — rounded values of
-  // irrational ones, which may miss M_c at the place — are starting values, to 12 digits or so (the
-  // CAD's values then keep readable denominators)
+  // given values typed short (6 decimals or fewer) stay unless M_c then has no point (`loosen`); long
+  // ones — rounded values of irrational ones, which may miss M_c at the place — are starting values,
+  // to 12 digits or so (the CAD's values then keep readable denominators); landed positions and
+  // angles stay as placed
   for (std::size_t i = 0; i < 2 * s.n; ++i) {
     const bool typed = c.initial[i] && denominator(*c.initial[i]) <= 1000000;
-    if (c.initial[i] && given && (i < s.n || typed)) pl.fixed[i] = true;
-    if (i >= s.n && given && typed) pl.loosen.push_back(i);
+    if (c.initial[i] && given && typed && !pl.fixed[i]) {
+      pl.fixed[i] = true;
+      pl.loosen.push_back(i);
+    }
     if (c.initial[i] && given && !pl.fixed[i]) pl.start[i] = simplest_near(pl.start[i], 1000000);
   }
   return pl;

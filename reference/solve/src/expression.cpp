@@ -82,8 +82,8 @@ bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, co
   };
   bool ok = true;
   for (const PlacedAngle& g : pl.angles) {
-    const double phi = 2 * std::atan(g.tan_half.convert_to<double>());
-    const std::string at = "2*atan(" + g.tan_half.str() + ")";
+    const double phi = 2 * std::atan(g.tan_half.convert_to<double>()) + 2 * std::acos(-1.0) * static_cast<double>(g.turns);
+    const std::string at = "2*atan(" + g.tan_half.str() + ")" + (g.turns == 0 ? "" : (g.turns > 0 ? " + " : " - ") + std::to_string(2 * std::labs(g.turns)) + "*pi");
     p.point_text.emplace_back(g.q, at);
     std::string line = st[g.q] + " = " + at + " = " + approx(phi) + "…: cos " + st[g.q] + " = " + g.cos.str() + ", sin " + st[g.q] + " = " + g.sin.str();
     if (c.initial[g.q]) {
@@ -144,6 +144,8 @@ dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c)
     out.certified = r.regular ? yes : unknown;
     return out;
   }
+  if (!r.regular)  // a place that is a singular point says nothing about the given values' component
+    throw NotExactHere("the rational place near the given values is a singular point (" + r.why + ")");
   dcad::Solution<Rational> out = pointwise_solution(r, c, "pointwise exact");
   if (!describe_place(*placed, r, c, *out.pointwise)) {  // the given values are not M_c's rounded: as at them
     std::string lines;

@@ -24,10 +24,12 @@
 
 namespace dcad::reference::pipeline {
 
-/// φ_q = 2·atan(tan_half) + φ' (φ' the coordinate the exact route uses, 0 at the place).
+/// φ_q = 2·atan(tan_half) + 2π·turns + φ' (φ' the coordinate the exact route uses, 0 at the place;
+/// whole turns change no sin or cos of an angle).
 struct PlacedAngle {
   std::size_t q = 0;
   Rational tan_half, cos, sin;
+  long turns = 0;
 };
 
 /// A rational place for the exact route.
@@ -37,7 +39,7 @@ struct ExactPlace {
   std::vector<bool> fixed;          ///< values the CAD may not change (angles, landed positions, the time)
   std::vector<PlacedAngle> angles;
   std::vector<std::string> landed;  ///< the holonomic constraints the positions were put on, as text
-  std::vector<std::size_t> loosen;  ///< fixed given velocities to free if M_c has no point with them fixed
+  std::vector<std::size_t> loosen;  ///< given values typed short, fixed: freed if M_c has no point with them fixed
   std::string not_exact;            ///< a given value no rational place can move (why the exact route may still fail)
 };
 
@@ -61,8 +63,10 @@ Rational simplest_near(const Rational& x, long max_den);
 /// A place near `start` (the case's given values when `given`, else dcad's default point):
 /// angles translated to rational points of the circle near their values (2·atan(value) for a default
 /// point), other coordinates inside sin/cos/exp at a default point set to 0, positions put on the
-/// holonomic constraints.  Given velocities and momenta become starting values (the caller bounds
-/// how far the CAD moves them).  nullopt (and `why`) where no such place is found.
+/// holonomic constraints (coordinates not given move first).  Given values typed short (6 decimals
+/// or fewer) stay fixed, freed only if M_c has no point with them (`loosen`); long ones (rounded
+/// irrational values) become starting values (the caller bounds how far the CAD moves them).
+/// nullopt (and `why`) where no such place is found.
 std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given, std::string& why);
 
 }  // namespace dcad::reference::pipeline
