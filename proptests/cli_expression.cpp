@@ -596,3 +596,21 @@ TEST(Expression, MtkIssue1704ReductionIsJudged) {
   EXPECT_NE(bad.out.find("formulas.equations.v_y: expected d/dt v_y = -6829/2500, found 42221/2500 exactly at the point of M_c x = 3/5, y = -4/5"),
             std::string::npos) << bad.out;
 }
+
+// Ten seconds of the index-3 scenes of bench/scenes (multiplier coordinates: the chart changes where a
+// pivot nears zero).  A new chart must be accepted at the integrated state, which is on M_c only to the
+// projection tolerance: x v_x + y v_y = 3e-10 there (with terms of 7e-3) once made the pendulum stop at
+// t = 8.33 as "another component".  Every row stays on the sphere |q| = 1 (M_2, by hand).
+TEST(Expression, SimulateIndex3ScenesForTenSeconds) {
+  for (const std::string scene : {"pendulum-cartesian", "spherical-pendulum-cartesian"}) {
+    const Outcome r = run("simulate " + std::string(DCAD_SOURCE_DIR) + "/bench/scenes/" + scene + ".json --tstop 10 --step 0.05");
+    ASSERT_EQ(r.rc, 0) << scene << ": " << r.err;
+    const auto rows = csv_rows(r.out);
+    ASSERT_EQ(rows.size(), 201u) << scene;
+    const bool sphere = scene == "spherical-pendulum-cartesian";
+    double worst = 0;
+    for (const auto& row : rows)  // t, x, y, (z), …
+      worst = std::max(worst, std::abs(row[1] * row[1] + row[2] * row[2] + (sphere ? row[3] * row[3] : 0.0) - 1));
+    EXPECT_LE(worst, 1e-8) << scene;
+  }
+}
