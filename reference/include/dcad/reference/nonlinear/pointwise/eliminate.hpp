@@ -68,6 +68,7 @@ std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector
 template <class T>
 struct JetElimination {
   std::vector<std::pair<std::size_t, std::size_t>> pivots;
+  std::vector<T> pivot_values;  ///< each pivot's value at the point, after the eliminations before it (nonzero)
   std::vector<std::size_t> free_rows;
   std::vector<Jet<T>> candidates;
   std::string singular;  ///< empty if regular
@@ -92,6 +93,7 @@ JetElimination<T> eliminate_jets(std::vector<std::vector<Jet<T>>> r, std::vector
     const std::size_t p = cand[k];
     used[p] = 1;
     out.pivots.emplace_back(p, c);
+    out.pivot_values.push_back(vals[k]);
     const Jet<T> inv = r[p][c].reciprocal();
     for (std::size_t i = 0; i < rows; ++i) {
       if (used[i] || r[i][c].is_zero()) continue;

@@ -143,7 +143,8 @@ class Run {
     const MotionSystem<T> sys = motion_system<T>(s_, d_, st.x, st.chart, names_, [&](const expr::Expr& e, const std::vector<J>& x) { return eval(e, x); });
     step_data(sys);
     JetElimination<T> e = eliminate_jets(sys.r, sys.h, decide_, sys.row_names, sys.col_names);
-    for (const auto& pc : e.pivots) st.level.pivots.push_back({sys.row_names[pc.first], sys.col_names[pc.second], sys.r[pc.first][pc.second].value()});
+    for (std::size_t k = 0; k < e.pivots.size(); ++k)  // the pivot as used (after the eliminations before it), not the raw entry
+      st.level.pivots.push_back({sys.row_names[e.pivots[k].first], sys.col_names[e.pivots[k].second], e.pivot_values[k]});
     if (!e.singular.empty()) return singular(out, st, point, "on M_" + std::to_string(k) + ": " + e.singular);
     long ord = std::numeric_limits<long>::max();  // to which order the candidates are known
     for (const J& c : e.candidates) ord = std::min(ord, c.order());
