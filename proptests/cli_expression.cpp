@@ -565,6 +565,16 @@ TEST(Expression, ReferenceRunsAtARationalPlaceNearGivenValues) {
     const Outcome r = run("solve " + f + " --backend reference");
     EXPECT_EQ(r.rc, 1) << r.out;
     EXPECT_NE(r.err.find("phi = 13/10 occurs inside sin, cos or exp other than as an angle"), std::string::npos) << r.err;
+    // an angle inside cos(1000000000*phi) is not placed (its cosine would be a 10^9-th power): exit 1 at
+    // once, not minutes of rational powers (found by review of the change); |k| ≤ 64 is placed
+    const std::string big = write_temp("dcad_big_multiple.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["phi"],
+      "L": "1/2*v_phi^2 + cos(1000000000*phi)"}, "initial": {"phi": "0.3", "v_phi": "1"}})J");
+    const Outcome rb = run("solve " + big + " --backend reference");
+    EXPECT_EQ(rb.rc, 1) << rb.out;
+    const std::string ok64 = write_temp("dcad_multiple_64.json", R"J({"dcad": 1, "lagrangian": {"coordinates": ["phi"],
+      "L": "1/2*v_phi^2 + cos(64*phi)"}, "initial": {"phi": "0.3", "v_phi": "1"}})J");
+    const Outcome r64 = run("solve " + ok64 + " --backend reference --json");
+    EXPECT_EQ(r64.rc, 0) << r64.err;
     const Outcome cert = run("solve " + f + " --json");  // certified: double precision, not certified, and why
     ASSERT_EQ(cert.rc, 0) << cert.err;
     const json got = json::parse(cert.out);

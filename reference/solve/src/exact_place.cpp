@@ -58,8 +58,10 @@ bool only_in_trig(const Expr& e, std::size_t i, std::unordered_map<const ExprNod
   if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
   bool ok = false;
   if (e->op == ExprOp::Sin || e->op == ExprOp::Cos) {
+    // |k| ≤ 64, as the parser's exponents: cos(kφ₀) is a power (c + i s)^k, whose size grows with k
+    // (cos(1000000000*phi) ran for minutes)
     const auto k = linear_coefficient(e->a, i);
-    ok = k && is_integer(*k);
+    ok = k && is_integer(*k) && abs(*k) <= 64;
   } else if (e->op != ExprOp::Variable) {
     ok = only_in_trig(e->a, i, memo) && (!e->b || only_in_trig(e->b, i, memo));
   }
@@ -347,6 +349,10 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
     g.tan_half = v;
     if (given) {
       const double phi = v.convert_to<double>(), two_pi = 2 * std::acos(-1.0);
+      if (!(std::abs(phi) < 1e12)) {  // whole turns beyond a long, and tan(φ/2) meaningless in double
+        why = "the angle " + s.variable_names()[i] + " = " + v.str() + " is too large to place (|angle| ≥ 1e12)";
+        return std::nullopt;
+      }
       g.turns = static_cast<long>(std::llround(phi / two_pi));
       const double red = phi - two_pi * static_cast<double>(g.turns);
       for (long den = 100000;; den *= 100) {
@@ -370,7 +376,7 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
       for (const Expr& e : all_expressions(s))
         if (inside_function(e, i)) {
           pl.not_exact = s.variable_names()[i] + " = " + start[i].str() + " occurs inside sin, cos or exp other than as an angle (" +
-                         (i < s.n ? "an angle occurs only as integer multiples inside sin and cos" : "a velocity") +
+                         (i < s.n ? "an angle occurs only as integer multiples, at most 64, inside sin and cos" : "a velocity") +
                          "): no rational value near it makes them rational (they are irrational at every nonzero rational, Lindemann)";
           break;
         }
