@@ -488,6 +488,11 @@ class Run {
   bool multiplier(std::size_t var) const {
     if (var >= s_.n && var < 2 * s_.n) return multiplier(var - s_.n);  // v_μ: the candidates are affine in it too (d/dt of affine in μ)
     if (var >= s_.n) return false;
+    if (multiplier_.empty()) multiplier_.assign(s_.n, -1);  // once per coordinate: L may be a large DAG
+    if (multiplier_[var] < 0) multiplier_[var] = is_multiplier(var) ? 1 : 0;
+    return multiplier_[var] == 1;
+  }
+  bool is_multiplier(std::size_t var) const {
     if (expr::degree_in(s_.lagrangian, [&](std::size_t i) { return i == var; }) != 1 || expr::depends_on(s_.lagrangian, s_.v(var))) return false;
     for (const auto& c : s_.constraints)
       if (expr::depends_on(c, var) || expr::depends_on(c, s_.v(var))) return false;
@@ -683,6 +688,7 @@ class Run {
     return out;
   }
 
+  mutable std::vector<signed char> multiplier_;  ///< multiplier(q_i), computed once (−1: not yet)
   std::size_t& polished_;  ///< Newton steps taken only to polish, over the whole call (bounded)
   const LagrangianSystem& s_;
   const LagrangianDerivatives& d_;
