@@ -588,6 +588,57 @@ TEST(Expression, ReferenceRunsAtARationalPlaceNearGivenValues) {
 // lam algebraic, proptests/peers/mtk_1704_818.json).  Its equations are right where they are stated, but
 // it keeps one constraint of the four that M_c needs: dcad names the first it misses, M_3's tangency,
 // and so lam is not determined.  The hand index-reduced system with every hidden constraint agrees.
+// Issue 29: `certified` at the user's own irrational point gives balls (Krawczyk's test in Arb on the
+// chart's constraints, zero_enclosure.hpp).  Oracles independent of Arb: the C library's long double
+// sin and cos in YM §6's closed forms, and the double route's velocity at the given values.
+TEST(Expression, CertifiedBallsAtTheGivenIrrationalPoint) {
+  const auto holds = [](const json& ball, long double want) {
+    const long double mid = ball["mid"].get<double>(), rad = ball["rad"].get<double>();
+    return std::fabs(mid - want) <= rad + 1e-18L * (1 + std::fabs(want)) && rad <= 1e-14 * (1 + std::fabs(want));
+  };
+  {  // rolling disk at phi = 7/10 (R = 1/3, v_theta = 1, v_phi = 3/2): v_x = R cos(phi) v_theta, d/dt v_x = -R sin(phi) v_phi v_theta
+    const Outcome r = run("solve " + case_path("rolling-disk-generic-angle") + " --backend certified --json");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const json a = json::parse(r.out).at("at_given");
+    ASSERT_TRUE(a["certified"].get<bool>()) << a.dump();
+    EXPECT_TRUE(a["moved"].empty()) << a.dump();
+    const long double c = std::cos(0.7L) / 3, s = std::sin(0.7L) / 3;
+    EXPECT_TRUE(holds(a["point"]["phi"], 0.7L)) << a["point"]["phi"];
+    EXPECT_TRUE(holds(a["point"]["v_x"], c)) << a["point"]["v_x"];
+    EXPECT_TRUE(holds(a["point"]["v_y"], s)) << a["point"]["v_y"];
+    EXPECT_TRUE(holds(a["point"]["p_x"], 2 * c)) << a["point"]["p_x"];  // m = 2
+    EXPECT_TRUE(holds(a["velocity"]["v_x"], -s * 1.5L)) << a["velocity"]["v_x"];
+    EXPECT_TRUE(holds(a["velocity"]["v_y"], c * 1.5L)) << a["velocity"]["v_y"];
+    const Outcome ref = run("solve " + case_path("rolling-disk-generic-angle") + " --backend reference --json");
+    EXPECT_FALSE(json::parse(ref.out).contains("at_given"));  // balls are the certified tier's
+  }
+  {  // the Josephson LC at phi = 1.3: no rational place (Lindemann), balls at the point: d/dt v_phi = -phi - 20 sin(phi)
+    const std::string jj = write_temp("dcad_balls_josephson.json", R"J({"dcad": 1, "name": "josephson",
+      "lagrangian": {"coordinates": ["phi"], "L": "1/2*v_phi^2 - 1/2*phi^2 + 20*cos(phi)"}, "initial": {"phi": "1.3", "v_phi": "0.4"}})J");
+    const Outcome r = run("solve " + jj + " --backend certified --json");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const json got = json::parse(r.out);
+    EXPECT_FALSE(got["certified"].get<bool>());  // its tower is decided in double
+    ASSERT_TRUE(got["at_given"]["certified"].get<bool>()) << got["at_given"].dump();
+    EXPECT_TRUE(holds(got["at_given"]["velocity"]["v_phi"], -1.3L - 20 * std::sin(1.3L))) << got["at_given"]["velocity"];
+  }
+  {  // the spherical pendulum at 16-digit decimals: the balls' centres on |q| = 1, tangent, and the double route's velocity
+    const Outcome r = run("solve " + case_path("spherical-pendulum-rounded") + " --backend certified --json");
+    const Outcome f = run("solve " + case_path("spherical-pendulum-rounded") + " --backend fast --json");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    ASSERT_EQ(f.rc, 0) << f.err;
+    const json a = json::parse(r.out).at("at_given"), fv = json::parse(f.out).at("velocity");
+    ASSERT_TRUE(a["certified"].get<bool>()) << a.dump();
+    const auto mid = [&](const char* k) { return static_cast<long double>(a["point"][k]["mid"].get<double>()); };
+    EXPECT_NEAR(static_cast<double>(mid("x") * mid("x") + mid("y") * mid("y") + mid("z") * mid("z")), 1.0, 1e-15);
+    EXPECT_NEAR(static_cast<double>(mid("x") * mid("v_x") + mid("y") * mid("v_y") + mid("z") * mid("v_z")), 0.0, 1e-15);
+    for (const char* k : {"x", "y", "z", "v_x", "v_y", "v_z", "mu"}) {
+      const double want = fv[k].is_string() ? number_of(fv[k]) : fv[k].get<double>();
+      EXPECT_NEAR(a["velocity"][k]["mid"].get<double>(), want, 1e-9 * (1 + std::abs(want))) << k;
+    }
+  }
+}
+
 TEST(Expression, MtkIssue1704ReductionIsJudged) {
   const std::string pendulum = case_path("mtk-1704-pendulum");
   const Outcome mtk = run("check " + std::string(DCAD_SOURCE_DIR) + "/proptests/peers/mtk_1704_818.json " + pendulum);

@@ -60,14 +60,21 @@ certified::Solution not_certified(const io::Problem& p, const reference::NotExac
 
 namespace {
 
-/// The expression form's formulas on a chart, where the result is consistent and regular.
-void attach_formulas(const io::Problem& p, Solved& s) {
+/// The expression form's formulas on a chart, where the result is consistent and regular; for the
+/// certified tier where its point is not the given values (a rational place, or double precision), the
+/// values at the given point in balls on that chart.
+void attach_formulas(const io::Problem& p, Backend backend, Solved& s) {
   std::visit(
       [&](auto& r) {
         if (!r.pointwise || !r.consistent || !r.pointwise->regular) return;
-        auto f = formulas(p.expression, r.dims());
-        if (auto* ok = std::get_if<Formulas>(&f)) r.pointwise->formulas = std::move(*ok);
-        else r.pointwise->formulas_why = std::get<std::string>(f);
+        auto f = chart_for(p.expression, r.dims());
+        if (auto* ok = std::get_if<Charted>(&f)) {
+          r.pointwise->formulas = formulas_of(p.expression, ok->chart);
+          const bool elsewhere = !r.pointwise->place.empty() || !r.exact;
+          if (backend == Backend::certified && p.expression.has_initial && elsewhere) r.pointwise->at_given = at_given(p.expression, *ok, !r.pointwise->place.empty());
+        } else {
+          r.pointwise->formulas_why = std::get<std::string>(f);
+        }
       },
       s);
 }
@@ -94,7 +101,7 @@ Solved solve_form(const io::Problem& p, Backend backend, const Parts& parts) {
 
 Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
   Solved s = solve_form(p, backend, parts);
-  if (p.form == io::Form::expression) guarded(p, [&]() { attach_formulas(p, s); return 0; });
+  if (p.form == io::Form::expression) guarded(p, [&]() { attach_formulas(p, backend, s); return 0; });
   return s;
 }
 

@@ -1,16 +1,19 @@
 // The expression form's results as formulas on a chart (CONTRACT "Formulas for nonlinear results"):
-// fast/chart.hpp's chart near the backend's point, its tower checked against the backend's dims.
+// fast/chart.hpp's chart near the backend's point, its tower checked against the backend's dims; and
+// the certified tier's balls at the given values on that chart.
 #include "formulas.hpp"
 
-#include "dcad/fast/chart.hpp"
+#include "dcad/certified/zero_enclosure.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
+
+#include <cmath>
 
 namespace dcad::api {
 
 namespace ex = reference::expr;
 
-std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const std::vector<long>& dims) {
+std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const std::vector<long>& dims) {
   fast::Solution near;
   try {  // a point on (or near) M_c in double; its failure is no formulas, never a failed solve
     near = fast::solve_expression(c);
@@ -19,15 +22,20 @@ std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const 
   }
   if (!near.consistent || !near.pointwise || !near.pointwise->regular) return std::string("the double route reaches no regular point of M_c");
   const std::size_t n = c.system.n;
-  std::vector<double> at(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
-  at.push_back(near.pointwise->time);
-  fast::Chart ch;
+  Charted out;
+  out.point.assign(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
+  out.point.push_back(near.pointwise->time);
   try {
     const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
-    ch = fast::chart_near(c.system, at, dims, near.pointwise->gauge.empty() ? &v : nullptr);
+    out.chart = fast::chart_near(c.system, out.point, dims, near.pointwise->gauge.empty() ? &v : nullptr);
   } catch (const std::exception& e) {
     return std::string(e.what());
   }
+  return out;
+}
+
+Formulas formulas_of(const io::LagrangianCase& c, const fast::Chart& ch) {
+  const std::size_t n = c.system.n;
   const std::vector<std::string> names = c.system.variable_names();
   const auto text = [&](const ex::Expr& e) { return ex::to_text(e, names); };
   Formulas f;
@@ -50,6 +58,52 @@ std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const 
     f.decided += (i ? ", " : "") + names[i] + " = " + io::float_text(ch.point[i]);
   f.decided += "); the formulas are exact and their tower equals this result's dims";
   return f;
+}
+
+AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_place) {
+  const fast::Chart& ch = charted.chart;
+  const std::size_t n = c.system.n, m = 2 * n + 1;  // variables (q, v, t)
+  const std::vector<std::string> names = c.system.variable_names();
+  certified::ZeroProblem z;
+  z.equations = ch.constraints;
+  z.gradients = ch.gradients;
+  for (auto& g : z.gradients) g.push_back(ex::number(0));  // ∂/∂t: t is held
+  z.given.assign(c.initial.begin(), c.initial.end());
+  if (!z.given[2 * n]) z.given[2 * n] = reference::Rational(charted.point[2 * n]);  // the time is never solved for
+  z.approx = charted.point;
+  for (std::size_t i = 0; i < n; ++i)
+    if (c.initial_p[i]) {  // a given momentum: ∂L/∂v_i = p_i
+      z.equations.push_back(ex::sub(ch.momenta[i], ex::number(*c.initial_p[i])));
+      std::vector<ex::Expr> g;
+      for (std::size_t j = 0; j < m; ++j) g.push_back(j < 2 * n ? ex::diff(ch.momenta[i], j) : ex::number(0));
+      z.gradients.push_back(g);
+    }
+  for (const auto& v : ch.valid_where) z.nonzero.push_back(v.formula);
+  z.outputs = ch.rates;
+  z.outputs.insert(z.outputs.end(), ch.momenta.begin(), ch.momenta.end());
+  const certified::ZeroEnclosure e = certified::enclose_zero(z);
+  AtGiven a;
+  a.proved = e.proved;
+  a.why = e.why;
+  for (std::size_t i : e.solved) {
+    a.solved.push_back(names[i]);
+    if (c.initial[i] && i < e.values.size()) {  // moved: its ball leaves out the given value (up to the given value's rounding to double)
+      const double g = c.initial[i]->convert_to<double>();
+      if (!(std::abs(e.values[i].mid - g) <= e.values[i].rad + std::ldexp(std::abs(g), -52))) a.moved.push_back(names[i]);
+    }
+  }
+  for (std::size_t i = 0; i < 2 * n && i < e.values.size(); ++i) a.point.push_back({names[i], e.values[i].mid, e.values[i].rad});
+  if (e.proved) {
+    for (std::size_t i = 0; i < n; ++i) a.point.push_back({"p_" + c.system.names[i], e.outputs[2 * n + i].mid, e.outputs[2 * n + i].rad});
+    for (std::size_t i = 0; i < 2 * n; ++i) a.velocity.push_back({names[i], e.outputs[i].mid, e.outputs[i].rad});
+  }
+  a.claim = "proved in Arb's balls (Krawczyk's test): the chart's constraint formulas (`formulas`) have exactly one zero in these balls with "
+            "the given values held exactly" + std::string(a.moved.empty() ? "" : " (except those in `moved`, whose decimals miss M_c)") +
+            ", the chart's conditions (`valid_where`) are nonzero there, and the velocity is the chart's equations of motion there; that this "
+            "chart is M_c's near the given values rests on " +
+            (at_place ? std::string("the tower decided exactly at the rational place (`place`), generic on the component")
+                      : std::string("the tower decided in double (this result is not certified: `note`)"));
+  return a;
 }
 
 }  // namespace dcad::api

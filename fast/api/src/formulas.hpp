@@ -1,6 +1,8 @@
-// The expression form's results as formulas on a chart (formulas.cpp).
+// The expression form's results as formulas on a chart, and the certified balls at the given values
+// computed on that chart (formulas.cpp).
 #pragma once
 
+#include "dcad/fast/chart.hpp"
 #include "dcad/io/lagrangian_case.hpp"
 #include "dcad/solution.hpp"
 
@@ -10,7 +12,22 @@
 
 namespace dcad::api {
 
-/// The case's CAD as formulas, the chart's tower required to have `dims` (the backend's); else why not.
-std::variant<Formulas, std::string> formulas(const io::LagrangianCase& c, const std::vector<long>& dims);
+/// A chart of the case's CAD with the double route's completed point it was decided near.
+struct Charted {
+  fast::Chart chart;
+  std::vector<double> point;  ///< (q, v, t): the double route's point of M_c at the given values
+};
+
+/// The chart near the double route's point, its tower required to have `dims` (the backend's); else why not.
+std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const std::vector<long>& dims);
+
+/// The chart as text in the case's names.
+Formulas formulas_of(const io::LagrangianCase& c, const fast::Chart& ch);
+
+/// The values at the case's given point in balls (certified/zero_enclosure.hpp): the chart's constraints
+/// (and given momenta) solved by Krawczyk's test for as many coordinates as constraints, given values
+/// held exactly where possible; the chart's equations of motion and momenta evaluated on the proved box.
+/// `at_place`: the backend's tower was decided exactly at a rational place near the given values (else in double).
+AtGiven at_given(const io::LagrangianCase& c, const Charted& ch, bool at_place);
 
 }  // namespace dcad::api

@@ -407,6 +407,18 @@ json pointwise_json(const Printed& r) {
     j["formulas"] = nullptr;
     j["formulas_why"] = p.formulas_why;
   }
+  if (p.at_given) {
+    const AtGiven& a = *p.at_given;
+    const auto balls = [](const std::vector<AtGiven::Ball>& bs) {
+      json o = json::object();
+      for (const AtGiven::Ball& b : bs) o[b.name] = {{"mid", b.mid}, {"rad", b.rad}};
+      return o;
+    };
+    json at = {{"certified", a.proved}, {"point", balls(a.point)}, {"velocity", balls(a.velocity)}, {"solved_for", a.solved},
+               {"moved", a.moved}, {"claim", a.claim}};
+    if (!a.why.empty()) at["why"] = a.why;
+    j["at_given"] = at;
+  }
   if (!r.note.empty()) j["note"] = r.note;
   return j;
 }
@@ -468,6 +480,17 @@ std::string pointwise_text(const Printed& r) {
     for (std::size_t i = 0; i < f.valid_where.size(); ++i) o << "      valid where " << shown(f.valid_where[i]) << " != 0   (" << f.valid_where_why[i] << ")\n";
   } else if (!p.formulas_why.empty()) {
     o << "  no formulas: " << p.formulas_why << "\n";
+  }
+  if (p.at_given) {
+    const AtGiven& a = *p.at_given;
+    o << "  at the given values, in balls (" << (a.proved ? "proved" : "NOT proved: " + a.why) << "):";
+    const auto show = [&o](const std::string& pre, const std::vector<AtGiven::Ball>& bs) {
+      for (std::size_t i = 0; i < bs.size(); ++i)
+        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± " << [](double r) { std::ostringstream t; t.precision(2); t << r; return t.str(); }(bs[i].rad) << (i + 1 < bs.size() ? "," : "");
+    };
+    show("", a.point);
+    show("d/dt ", a.velocity);
+    o << "\n      " << a.claim << "\n";
   }
   if (!r.note.empty()) o << "  note: " << r.note << "\n";
   return o.str();

@@ -152,6 +152,23 @@ struct Formulas {
   std::string decided;                   ///< where the chart's decisions were made
 };
 
+/// The values at the user's own given point where the exact tiers could not run there (an irrational
+/// point, decimals that miss M_c by their rounding): balls proved by Krawczyk's test on the chart's
+/// constraints, the equations of motion evaluated on the proved box (certified/zero_enclosure.hpp).
+struct AtGiven {
+  struct Ball {
+    std::string name;
+    double mid = 0, rad = 0;  ///< the value lies in [mid − rad, mid + rad]
+  };
+  bool proved = false;
+  std::string why;                  ///< not proved: which test failed
+  std::vector<Ball> point;          ///< q, v, p
+  std::vector<Ball> velocity;       ///< d/dt of q and v
+  std::vector<std::string> solved;  ///< the coordinates the chart's constraints were solved for
+  std::vector<std::string> moved;   ///< given values among them (their decimals miss M_c)
+  std::string claim;                ///< what the balls prove, and what they take from the tower
+};
+
 /// The pointwise CAD of the expression form (reference/nonlinear/pointwise.hpp) at its point.
 template <class N>
 struct Pointwise {
@@ -186,6 +203,7 @@ struct Pointwise {
   std::vector<std::pair<std::size_t, std::string>> point_text;  ///< values of `point` N cannot hold ("2*atan(1/3)")
   std::optional<Formulas> formulas;  ///< where a chart was found (consistent, regular results)
   std::string formulas_why;          ///< else why not
+  std::optional<AtGiven> at_given;   ///< certified: balls at the given values where the point is not exact
 };
 
 template <class N>
@@ -338,6 +356,7 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
     q.point_text = p.point_text;
     q.formulas = p.formulas;
     q.formulas_why = p.formulas_why;
+    q.at_given = p.at_given;
     o.pointwise = q;
   }
   o.decisions = s.decisions;
