@@ -71,7 +71,7 @@ void attach_formulas(const io::Problem& p, Backend backend, Solved& s) {
         if (auto* ok = std::get_if<Charted>(&f)) {
           r.pointwise->formulas = formulas_of(p.expression, ok->chart);
           const bool elsewhere = !r.pointwise->place.empty() || !r.exact;
-          if (backend == Backend::certified && p.expression.has_initial && elsewhere) r.pointwise->at_given = at_given(p.expression, *ok, !r.pointwise->place.empty());
+          if (backend == Backend::certified && p.expression.has_initial && elsewhere) r.pointwise->at_given = at_given(p.expression, *ok, !r.pointwise->place.empty(), r.certified.yes() || ok->fast_certain);
         } else {
           r.pointwise->formulas_why = std::get<std::string>(f);
         }

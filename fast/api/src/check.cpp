@@ -551,10 +551,36 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   return k.out;
 }
 
+/// A linear DAE (CONTRACT "Linear and implicit DAEs"): another tool's discrete claims — dims, steps,
+/// consistency, solution rank, regularity of the pencil and its index — against the reference's
+/// CEF (1.6).  The constraints and velocities are named as not compared (not yet).
+Checked check_dae(const std::string& result_file, const json& r, const io::Problem& p) {
+  const io::DaeCase& c = p.dae;
+  if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
+  if (r.contains("name") && r["name"] != c.name)
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(c.variables))
+    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
+  const json want = printed_json(reference::solve(p));
+  Checker k{result_file, {}};
+  bool any = false;
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "regular_pencil", "index"})
+    if (r.contains(key)) {
+      any = true;
+      k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
+    }
+  if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, regular_pencil, index", "none of them");
+  for (const char* key : {"tower", "final_constraints", "reduced"})
+    if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the dae form)");
+  return k.out;
+}
+
 Checked checked(const std::string& result_file, const std::string* text, const io::Problem& p, std::size_t points) {
   return guarded(p, [&] {
     const json r = read_result(result_file, text);
-    Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points) : check_linear(result_file, r, p);
+    Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points)
+                : p.form == io::Form::dae        ? check_dae(result_file, r, p)
+                                                 : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     // every top-level key of the result that nothing above compared is named, never ignored in silence
     std::string quiet;

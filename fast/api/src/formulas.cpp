@@ -7,6 +7,7 @@
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dcad::api {
@@ -23,6 +24,7 @@ std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const 
   if (!near.consistent || !near.pointwise || !near.pointwise->regular) return std::string("the double route reaches no regular point of M_c");
   const std::size_t n = c.system.n;
   Charted out;
+  out.fast_certain = near.certified.yes();
   out.point.assign(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
   out.point.push_back(near.pointwise->time);
   try {
@@ -60,7 +62,7 @@ Formulas formulas_of(const io::LagrangianCase& c, const fast::Chart& ch) {
   return f;
 }
 
-AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_place) {
+AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_place, bool tower_certain) {
   const fast::Chart& ch = charted.chart;
   const std::size_t n = c.system.n, m = 2 * n + 1;  // variables (q, v, t)
   const std::vector<std::string> names = c.system.variable_names();
@@ -83,26 +85,33 @@ AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_pl
   z.outputs.insert(z.outputs.end(), ch.momenta.begin(), ch.momenta.end());
   const certified::ZeroEnclosure e = certified::enclose_zero(z);
   AtGiven a;
-  a.proved = e.proved;
-  a.why = e.why;
+  a.proved = e.proved && tower_certain;
+  a.why = !e.proved ? e.why : tower_certain ? "" : "the balls rest on a tower decided in double that is not certain (`note`)";
+  if (!e.proved) {  // no proof: no balls (a failed box is no enclosure) and no claim
+    a.claim = "not proved: " + e.why;
+    return a;
+  }
   for (std::size_t i : e.solved) {
     a.solved.push_back(names[i]);
-    if (c.initial[i] && i < e.values.size()) {  // moved: its ball leaves out the given value (up to the given value's rounding to double)
-      const double g = c.initial[i]->convert_to<double>();
-      if (!(std::abs(e.values[i].mid - g) <= e.values[i].rad + std::ldexp(std::abs(g), -52))) a.moved.push_back(names[i]);
+    if (c.initial[i]) {  // moved: its ball does not contain the given value exactly
+      const reference::Rational& g = *c.initial[i];
+      const reference::Rational mid(e.values[i].mid), rad(e.values[i].rad);
+      if (!(mid - rad <= g && g <= mid + rad)) a.moved.push_back(names[i]);
     }
   }
   for (std::size_t i = 0; i < 2 * n && i < e.values.size(); ++i) a.point.push_back({names[i], e.values[i].mid, e.values[i].rad});
-  if (e.proved) {
-    for (std::size_t i = 0; i < n; ++i) a.point.push_back({"p_" + c.system.names[i], e.outputs[2 * n + i].mid, e.outputs[2 * n + i].rad});
-    for (std::size_t i = 0; i < 2 * n; ++i) a.velocity.push_back({names[i], e.outputs[i].mid, e.outputs[i].rad});
-  }
+  for (std::size_t i = 0; i < n; ++i) a.point.push_back({"p_" + c.system.names[i], e.outputs[2 * n + i].mid, e.outputs[2 * n + i].rad});
+  for (std::size_t i = 0; i < 2 * n; ++i) a.velocity.push_back({names[i], e.outputs[i].mid, e.outputs[i].rad});
+  std::string held;
+  for (std::size_t i = 0; i < 2 * n; ++i)
+    if (!c.initial[i] && std::find(e.solved.begin(), e.solved.end(), i) == e.solved.end()) held += (held.empty() ? "" : ", ") + names[i];
   a.claim = "proved in Arb's balls (Krawczyk's test): the chart's constraint formulas (`formulas`) have exactly one zero in these balls with "
             "the given values held exactly" + std::string(a.moved.empty() ? "" : " (except those in `moved`, whose decimals miss M_c)") +
-            ", the chart's conditions (`valid_where`) are nonzero there, and the velocity is the chart's equations of motion there; that this "
+            (held.empty() ? "" : " and " + held + " (not given) held at the double route's values, exactly as printed") +
+            "; the chart's conditions (`valid_where`) are nonzero there, and the velocity is the chart's equations of motion there; that this "
             "chart is M_c's near the given values rests on " +
             (at_place ? std::string("the tower decided exactly at the rational place (`place`), generic on the component")
-                      : std::string("the tower decided in double (this result is not certified: `note`)"));
+                      : std::string("the tower decided in double (`note`)"));
   return a;
 }
 

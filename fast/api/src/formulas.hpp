@@ -16,6 +16,7 @@ namespace dcad::api {
 struct Charted {
   fast::Chart chart;
   std::vector<double> point;  ///< (q, v, t): the double route's point of M_c at the given values
+  bool fast_certain = false;  ///< every decision of that double route was certain
 };
 
 /// The chart near the double route's point, its tower required to have `dims` (the backend's); else why not.
@@ -27,7 +28,9 @@ Formulas formulas_of(const io::LagrangianCase& c, const fast::Chart& ch);
 /// The values at the case's given point in balls (certified/zero_enclosure.hpp): the chart's constraints
 /// (and given momenta) solved by Krawczyk's test for as many coordinates as constraints, given values
 /// held exactly where possible; the chart's equations of motion and momenta evaluated on the proved box.
-/// `at_place`: the backend's tower was decided exactly at a rational place near the given values (else in double).
-AtGiven at_given(const io::LagrangianCase& c, const Charted& ch, bool at_place);
+/// `at_place`: the backend's tower was decided exactly at a rational place near the given values (else in
+/// double); `tower_certain`: that tower is certain (exact, or fast's decisions all certain) — else the
+/// balls are not `certified` however tight, as they rest on it.
+AtGiven at_given(const io::LagrangianCase& c, const Charted& ch, bool at_place, bool tower_certain);
 
 }  // namespace dcad::api

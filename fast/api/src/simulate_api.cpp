@@ -109,6 +109,9 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
   return guarded(p, [&] {
+    if (p.form == io::Form::dae)  // issue 30: solve and check take the dae form; its simulate is not built yet
+      throw UsageError(p.file + ": simulate: expected a case in a form simulate takes (linear, netlist, lagrangian); the dae form is taken by "
+                       "solve and check only, so far");
     if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
       std::vector<std::string> all = simulate_columns(p);
       if (options.enclose) all.insert(all.end(), {"rad_q", "rad_v", "rad_p"});

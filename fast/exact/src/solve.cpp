@@ -7,11 +7,14 @@ namespace dcad::fast {
 Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& options);
 Solution solve_forced_netlist(const io::Netlist& deck, const std::vector<std::string>& variables, const Options& options);
 Solution solve_forced_case(const io::CaseFile& c, const Options& options);
+Solution solve_dae(const io::DaeCase& c, const Options& options);
 
 Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
   Solution s;
   if (p.form == io::Form::expression) {
     s = solve_expression(p.expression, opt);
+  } else if (p.form == io::Form::dae) {
+    s = solve_dae(p.dae, opt);
   } else if (p.form == io::Form::netlist) {
     s = p.netlist.forced ? solve_forced_netlist(p.netlist, p.linear.variables, opt) : solve_lc(p.netlist, p.linear, parts, opt);
     s.circuit = io::circuit_facts(p.netlist);

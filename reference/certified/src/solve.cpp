@@ -5,6 +5,7 @@
 #include "dcad/io/report.hpp"
 #include "dcad/lc_graph.hpp"
 #include "dcad/reference/pipeline/circuit.hpp"
+#include "dcad/reference/pipeline/dae.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 #include "dcad/reference/solve.hpp"
@@ -88,6 +89,8 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   Solution s;
   if (p.form == io::Form::expression) {
     s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
+  } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
+    s = exact_solution(reference::pipeline::solve_dae(p.dae));
   } else if (p.form == io::Form::netlist) {
     if (p.netlist.forced) {
       s = exact_solution(reference::pipeline::solve_forced(p.netlist, p.linear.variables));

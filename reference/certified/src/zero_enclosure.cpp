@@ -61,6 +61,12 @@ class Evaluator {
 /// among the columns not `held`, or where none is above 1e-10 of the matrix's size, among the held
 /// ones (`moved` then says so); empty if some row has none.
 std::vector<std::size_t> pivot_columns(std::vector<std::vector<double>> j, const std::vector<bool>& held, bool& moved) {
+  for (std::size_t c = 0; c < held.size(); ++c) {  // columns scaled to max-norm 1: rank is invariant, a small coordinate's column is not "zero"
+    double big = 0;
+    for (const auto& row : j) big = std::max(big, std::abs(row[c]));
+    if (big > 0)
+      for (auto& row : j) row[c] /= big;
+  }
   double size = 0;
   for (const auto& row : j)
     for (double x : row) size = std::max(size, std::abs(x));
@@ -158,9 +164,11 @@ ZeroEnclosure enclose_zero(const ZeroProblem& p, long precision) {
     BallMat yf(kk, 1);
     arb_mat_mul(yf.m, y.m, f.m, prec);
     std::vector<double> rad(k);
+    double size = 0;  // the unknowns' common scale: a zero that is exactly 0 still gets a box of that scale's rounding
+    for (std::size_t c = 0; c < k; ++c) size = std::max(size, std::abs(arf_get_d(arb_midref(mid[c].v), ARF_RND_NEAR)));
     for (std::size_t c = 0; c < k; ++c) {
       const double yfc = enclosure_of(yf.at(static_cast<slong>(c), 0)).mid, s = std::abs(arf_get_d(arb_midref(mid[c].v), ARF_RND_NEAR));
-      rad[c] = 4 * std::abs(yfc) + std::ldexp(s, -static_cast<int>(prec) / 2) + 1e-300;
+      rad[c] = 4 * std::abs(yfc) + std::ldexp(s + 1e-12 * size, -static_cast<int>(prec) / 2) + 1e-300;
     }
     BallMat x(kk, 1), kx(kk, 1), ya(kk, kk), dx(kk, 1);
     for (int attempt = 0; attempt < 40 && !inside; ++attempt) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "dcad/io/case_file.hpp"
+#include "dcad/io/dae_case.hpp"
 #include "dcad/io/lagrangian_case.hpp"
 
 #include <nlohmann/json.hpp>
@@ -12,5 +13,8 @@ namespace dcad::io {
 bool is_expression_case(const nlohmann::json& j);
 LagrangianCase read_lagrangian_case(const nlohmann::json& j, const std::string& file);
 CaseFile read_case(const nlohmann::json& j, const std::string& file);
+/// The case holds `dae`: the linear DAE form E ẋ = A x + f(t) (dae_case.hpp).
+bool is_dae_case(const nlohmann::json& j);
+DaeCase read_dae_case(const nlohmann::json& j, const std::string& file);
 
 }  // namespace dcad::io

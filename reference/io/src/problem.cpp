@@ -6,11 +6,11 @@
 namespace dcad::io {
 
 std::vector<std::string> Problem::variables() const {
-  return form == Form::expression ? expression.system.state_names() : linear.variables;
+  return form == Form::expression ? expression.system.state_names() : form == Form::dae ? dae.variables : linear.variables;
 }
 
 std::string Problem::name() const {
-  return form == Form::expression ? expression.name : form == Form::netlist ? netlist.title : linear.name;
+  return form == Form::expression ? expression.name : form == Form::dae ? dae.name : form == Form::netlist ? netlist.title : linear.name;
 }
 
 namespace {
@@ -18,7 +18,10 @@ namespace {
 Problem from_json(const nlohmann::json& j, const std::string& file) {
   Problem p;
   p.file = file;
-  if (is_expression_case(j)) {
+  if (is_dae_case(j)) {
+    p.form = Form::dae;
+    p.dae = read_dae_case(j, file);
+  } else if (is_expression_case(j)) {
     p.form = Form::expression;
     p.expression = read_lagrangian_case(j, file);
   } else {

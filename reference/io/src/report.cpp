@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -211,12 +212,27 @@ std::string circuit_text(const Printed& s, const std::vector<std::string>& branc
   return o.str();
 }
 
+/// A radius with two significant digits, rounded up (never printed smaller than the bound).
+std::string radius_text(double r) {
+  if (r == 0 || !std::isfinite(r)) return float_text(r);
+  const int e = static_cast<int>(std::floor(std::log10(r)));
+  long m = static_cast<long>(std::ceil(r / std::pow(10.0, e - 1) * (1 + 1e-12)));  // 10…100
+  int ex = e;
+  if (m >= 100) m = 10, ++ex;
+  return std::to_string(m / 10) + "." + std::to_string(m % 10) + "e" + std::to_string(ex);
+}
+
 json cad_json(const Printed& r) {
   const std::vector<std::string> names = r.columns();
   json j = {{"dcad", 1},           {"backend", r.backend},       {"certified", r.certified.yes()}, {"dims", r.dims()},
             {"steps", r.steps},    {"consistent", r.consistent}, {"variables", r.variables}};
   j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
+  if (r.regular_pencil) {  // a square linear DAE: for a regular pencil, steps is the differentiation index
+    j["regular_pencil"] = *r.regular_pencil;
+    j["index"] = *r.regular_pencil && r.consistent ? json(r.steps) : json(nullptr);
+  }
+  if (!r.jets.empty()) j["source_jets"] = r.jets;  // the columns after the variables in final_constraints
   json tower = json::array();
   for (std::size_t k = 0; k < r.tower.size(); ++k) {
     json eqs = json::array();
@@ -228,7 +244,7 @@ json cad_json(const Printed& r) {
     json rows = json::array();
     for (const Eq& e : *r.final_constraints) {
       // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)
-      std::vector<std::string> row(r.variables.size(), r.exact ? "0" : "0.0");
+      std::vector<std::string> row(names.size(), r.exact ? "0" : "0.0");  // the variables, then the sources' jets (if any)
       for (const auto& [var, coeff] : e.terms) row[var] = coeff;
       row.push_back(e.rhs);
       rows.push_back(row);
@@ -278,7 +294,8 @@ json cad_json(const Printed& r) {
 std::string cad_text(const Printed& r) {
   const std::vector<std::string> names = r.columns();
   std::ostringstream o;
-  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": CAD (CEF §5), backend " << r.backend
+  const bool ide = r.regular_pencil.has_value() || r.algorithm == "CEF (1.6)";  // a DAE: the implicit-equation algorithm
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << (ide ? ": the constraint algorithm of CEF (1.6)" : ": CAD (CEF §5)") << ", backend " << r.backend
     << (r.certified.yes() ? ", certified" : ", NOT certified") << "\n";
   for (std::size_t k = 0; k < r.tower.size(); ++k) {
     o << "  M_" << k << ": " << (r.tower[k].dim < 0 ? std::string("empty") : "dim " + std::to_string(r.tower[k].dim)) << "\n";
@@ -289,8 +306,17 @@ std::string cad_text(const Printed& r) {
   } else {
     const long rank = r.solution_rank.value_or(0);
     o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << r.tower.back().dim << "\n";
-    o << "  solution rank dim(ker omega_D ∩ T M_c) = " << rank << (rank == 0 ? " (unique)" : " (not unique)") << "\n";
+    o << (ide ? "  solution rank dim{v in T M_c : E v = A x + f} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ") << rank << (rank == 0 ? " (unique)" : " (not unique)") << "\n";
   }
+  if (r.regular_pencil)
+    o << "  pencil sE - A: " << (*r.regular_pencil ? "regular (det(sE - A) is not identically 0)" + std::string(r.consistent ? "; differentiation index " + std::to_string(r.steps) : "")
+                                                  : std::string("singular (det(sE - A) = 0 for every s): no unique solution for every f")) << "\n";
+  if (ide)
+    for (const std::string& f : r.source_names) o << "  source " << f << "\n";
+  if (!r.circuit)
+    for (const SourceCondition& v : r.source_conditions)
+      o << "  condition on the sources " << v.text << ": " << (v.holds.yes() ? "holds" : v.holds.no() ? "FAILS for generic t (an empty M_k)" : "UNDECIDED") << " ("
+        << v.evidence << ")\n";
   if (r.classes) {
     o << "  constraints of M_c (CEF §2.1, Lemma 3.23): " << r.classes->first_class << " first class, " << r.classes->second_class
       << " second class\n";
@@ -311,7 +337,7 @@ std::string cad_text(const Printed& r) {
     for (std::size_t i : m.coordinates) coords.push_back(r.variables[i]);
     std::vector<std::string> lambdas;
     for (std::size_t k = 0; k < (m.g.empty() ? 0 : m.g[0].size()); ++k) lambdas.push_back("lambda" + std::to_string(k + 1));
-    o << "  equations of motion on M_c (CEF (5.12)) in coordinates (";
+    o << (ide ? "  velocities on M_c (E v = A x + f, v tangent to M_c) in coordinates (" : "  equations of motion on M_c (CEF (5.12)) in coordinates (");
     for (std::size_t i = 0; i < coords.size(); ++i) o << (i ? ", " : "") << coords[i];
     o << "):\n";
     for (std::size_t i = 0; i < coords.size(); ++i) {
@@ -486,10 +512,12 @@ std::string pointwise_text(const Printed& r) {
     o << "  at the given values, in balls (" << (a.proved ? "proved" : "NOT proved: " + a.why) << "):";
     const auto show = [&o](const std::string& pre, const std::vector<AtGiven::Ball>& bs) {
       for (std::size_t i = 0; i < bs.size(); ++i)
-        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± " << [](double r) { std::ostringstream t; t.precision(2); t << r; return t.str(); }(bs[i].rad) << (i + 1 < bs.size() ? "," : "");
+        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± " << radius_text(bs[i].rad) << (i + 1 < bs.size() ? "," : "");
     };
     show("", a.point);
     show("d/dt ", a.velocity);
+    if (!a.solved.empty()) o << "\n      solved for: " << joined(a.solved);
+    if (!a.moved.empty()) o << "\n      given values moved (their decimals miss M_c): " << joined(a.moved);
     o << "\n      " << a.claim << "\n";
   }
   if (!r.note.empty()) o << "  note: " << r.note << "\n";

@@ -2,6 +2,7 @@
 #include "dcad/reference/solve.hpp"
 
 #include "dcad/reference/pipeline/circuit.hpp"
+#include "dcad/reference/pipeline/dae.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 
@@ -72,7 +73,10 @@ Solution expression(const io::LagrangianCase& c) {
 }  // namespace
 
 Solution solve(const io::Problem& p, const Parts& parts) {
-  Solution s = p.form == io::Form::expression ? expression(p.expression) : p.form == io::Form::netlist ? netlist(p, parts) : linear(p.linear, parts);
+  Solution s = p.form == io::Form::expression ? expression(p.expression)
+               : p.form == io::Form::dae      ? pipeline::solve_dae(p.dae)
+               : p.form == io::Form::netlist  ? netlist(p, parts)
+                                              : linear(p.linear, parts);
   s.backend = "reference";
   s.exact = true;
   s.warnings = p.warnings();

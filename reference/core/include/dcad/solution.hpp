@@ -218,6 +218,8 @@ struct Solution {
   long steps = 0;                      ///< c (or k of the empty M_k)
   bool consistent = true;
   std::optional<long> solution_rank;   ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]; none when inconsistent or singular
+  std::optional<bool> regular_pencil;  ///< a square linear DAE: det(sE − A) ≢ 0
+  std::string algorithm;               ///< "CEF (1.6)" for the DAE forms; "" for the CAD (CEF §5)
   std::optional<std::vector<Equation<N>>> final_constraints;  ///< M_c = {a·x = b}
   std::optional<ExactSubspace<N>> final_exact;                ///< M_c as point + span (exact routes)
   std::optional<Motion<N>> motion;
@@ -324,6 +326,8 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
   o.circuit = s.circuit;
   o.source_names = s.source_names;
   o.source_conditions = s.source_conditions;
+  o.regular_pencil = s.regular_pencil;
+  o.algorithm = s.algorithm;
   if (s.pointwise) {
     const Pointwise<From>& p = *s.pointwise;
     Pointwise<To> q;

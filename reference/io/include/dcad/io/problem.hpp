@@ -4,6 +4,7 @@
 #pragma once
 
 #include "dcad/io/case_file.hpp"
+#include "dcad/io/dae_case.hpp"
 #include "dcad/io/lagrangian_case.hpp"
 #include "dcad/io/netlist.hpp"
 
@@ -16,6 +17,7 @@ enum class Form {
   linear,      ///< a `dirac`, `pontryagin` or `constrained` case (CEF §2, §5, §6)
   netlist,     ///< an LC or RLC netlist (CEF §6, YM §4)
   expression,  ///< the expression form: a Lagrangian system by formulas (YM §4–§6, V §3)
+  dae,         ///< a linear DAE E ẋ = A x + f(t) (CEF (1.6); CONTRACT "Linear and implicit DAEs")
 };
 
 struct Problem {
@@ -24,6 +26,7 @@ struct Problem {
   CaseFile linear;             ///< Form::linear: the case; Form::netlist: the circuit's variable names (q_*, v_*, p_*)
   Netlist netlist;             ///< Form::netlist
   LagrangianCase expression;   ///< Form::expression
+  DaeCase dae;                 ///< Form::dae
 
   /// The state's variable names, in order: x of a linear case, (q, v, p) of a circuit or a Lagrangian system.
   std::vector<std::string> variables() const;

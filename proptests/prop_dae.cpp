@@ -1,0 +1,154 @@
+// Linear DAEs E ẋ = A x + f(t) (issue 30; CEF (1.6)), on planted Kronecker–Weierstrass structures
+// hidden by random unimodular changes of rows and columns, E = P E₀ Q, A = P A₀ Q (P, Q integer with
+// determinant ±1: the solutions are x = Q⁻¹ x₀, and every M_k is Q⁻¹ of the blocks' own):
+//  - an ODE block (E = I, A random) and nilpotent blocks N_ν (E = the ν×ν shift, A = I): the pencil is
+//    regular, steps = the largest ν (the differentiation index; 0 without a nilpotent block), and
+//    dim M_k = r + Σ_ν max(0, ν − k) (block N_ν loses one coordinate per step), unique;
+//  - with a singular block L_ε (ε × (ε+1): E = [I 0], A = [0 I]) and its transpose L_ηᵀ the square
+//    pencil is singular (det(sE − A) ≡ 0) and the solution is not unique (L_ε leaves one velocity free);
+//  - the fast twin's Wong sequences (fast/exact/src/dae.cpp) reach the reference's RREF answers
+//    (dims, steps, solution rank, regularity) wherever fast says certified;
+//  - sources f (polynomials in t) on a regular pencil change no dimension and stay consistent.
+#include "dcad/fast/solve.hpp"
+#include "dcad/io/problem.hpp"
+#include "dcad/reference/pipeline/dae.hpp"
+#include "gen.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+namespace dcad::test {
+namespace {
+
+namespace ex = reference::expr;
+using QM = reference::Matrix<Q>;
+
+struct Planted {
+  QM e, a;
+  long ode = 0;
+  std::vector<long> nilpotent;  ///< ν of each block
+  long singular = 0;            ///< L_ε blocks (each with an L_ηᵀ)
+};
+
+/// Block-diagonal pencil, then hidden by unimodular P (rows) and Q (columns).
+Planted planted(bool with_singular) {
+  Planted p;
+  p.ode = *rc::gen::inRange(0, 3);
+  const int blocks = *rc::gen::inRange(with_singular ? 0 : 1, 3);
+  for (int b = 0; b < blocks; ++b) p.nilpotent.push_back(*rc::gen::inRange(1, 4));
+  std::vector<std::pair<QM, QM>> parts;
+  if (p.ode > 0) {
+    QM a(p.ode, p.ode);
+    for (Index i = 0; i < a.rows(); ++i)
+      for (Index j = 0; j < a.cols(); ++j) a(i, j) = Q(*rc::gen::inRange(-3, 4));
+    parts.emplace_back(QM::identity(p.ode), a);
+  }
+  for (long nu : p.nilpotent) {
+    QM e(nu, nu);
+    for (long i = 0; i + 1 < nu; ++i) e(i, i + 1) = 1;
+    parts.emplace_back(e, QM::identity(nu));
+  }
+  if (with_singular) {
+    p.singular = 1;
+    const long eps = *rc::gen::inRange(0, 3), eta = *rc::gen::inRange(0, 3);
+    QM le(eps, eps + 1), la(eps, eps + 1), te(eta + 1, eta), ta(eta + 1, eta);
+    for (long i = 0; i < eps; ++i) le(i, i) = 1, la(i, i + 1) = 1;
+    for (long i = 0; i < eta; ++i) te(i, i) = 1, ta(i + 1, i) = 1;
+    parts.emplace_back(le, la);
+    parts.emplace_back(te, ta);
+  }
+  Index rows = 0, cols = 0;
+  for (const auto& [e, a] : parts) rows += e.rows(), cols += e.cols();
+  p.e = QM(rows, cols), p.a = QM(rows, cols);
+  Index r0 = 0, c0 = 0;
+  for (const auto& [e, a] : parts) {
+    for (Index i = 0; i < e.rows(); ++i)
+      for (Index j = 0; j < e.cols(); ++j) p.e(r0 + i, c0 + j) = e(i, j), p.a(r0 + i, c0 + j) = a(i, j);
+    r0 += e.rows(), c0 += e.cols();
+  }
+  const auto unimodular = [](Index n) {  // a product of elementary matrices I + k e_i e_jᵀ (i ≠ j) and swaps
+    QM m = QM::identity(n);
+    const int steps = n < 2 ? 0 : *rc::gen::inRange(0, static_cast<int>(3 * n));
+    for (int s = 0; s < steps; ++s) {
+      const Index i = *rc::gen::inRange<Index>(0, n), j = *rc::gen::inRange<Index>(0, n);
+      if (i == j) continue;
+      const Q k(*rc::gen::inRange(-2, 3));
+      for (Index c = 0; c < n; ++c) m(i, c) += k * m(j, c);
+      if (*rc::gen::inRange(0, 4) == 0)
+        for (Index c = 0; c < n; ++c) std::swap(m(i, c), m(j, c));
+    }
+    return m;
+  };
+  if (rows > 0 && cols > 0) {
+    const QM pm = unimodular(rows), qm = unimodular(cols);
+    p.e = pm * p.e * qm;
+    p.a = pm * p.a * qm;
+  }
+  return p;
+}
+
+io::DaeCase as_case(const Planted& p, bool sources) {
+  io::DaeCase c;
+  c.file = "planted";
+  for (Index j = 0; j < p.e.cols(); ++j) c.variables.push_back("x" + std::to_string(j + 1));
+  c.e = p.e, c.a = p.a;
+  c.time_name = "t";
+  c.f.assign(p.e.rows(), ex::number(0));
+  if (sources)
+    for (auto& f : c.f)  // a polynomial in t
+      f = ex::add(ex::number(Q(*rc::gen::inRange(-3, 4))), ex::mul(ex::number(Q(*rc::gen::inRange(-3, 4))), ex::pow(ex::variable(0), *rc::gen::inRange(1, 3))));
+  return c;
+}
+
+fast::Solution fast_of(const io::DaeCase& c) {
+  io::Problem p;
+  p.form = io::Form::dae;
+  p.file = c.file;
+  p.dae = c;
+  return fast::solve(p);
+}
+
+RC_GTEST_PROP(Dae, PlantedRegularPencilHasItsIndexAndDims, ()) {
+  const Planted p = planted(false);
+  const bool sources = *rc::gen::arbitrary<bool>();
+  const io::DaeCase c = as_case(p, sources);
+  const auto r = reference::pipeline::solve_dae(c);
+  long index = 0;
+  for (long nu : p.nilpotent) index = std::max(index, nu);
+  RC_ASSERT(r.regular_pencil && *r.regular_pencil);
+  RC_ASSERT(r.consistent);
+  RC_ASSERT(r.steps == index);
+  RC_ASSERT(r.solution_rank && *r.solution_rank == 0);
+  for (long k = 0; k <= r.steps; ++k) {
+    long dim = p.ode;
+    for (long nu : p.nilpotent) dim += std::max(0L, nu - k);
+    RC_ASSERT(r.tower[static_cast<std::size_t>(k)].dim == dim);
+  }
+  const fast::Solution f = fast_of(c);
+  RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");
+  if (f.certified.yes()) {
+    RC_ASSERT(f.dims() == r.dims());
+    RC_ASSERT(f.steps == r.steps);
+    RC_ASSERT(f.solution_rank == r.solution_rank);
+    RC_ASSERT(f.regular_pencil == r.regular_pencil);
+  }
+}
+
+RC_GTEST_PROP(Dae, PlantedSingularPencilIsSingularAndNotUnique, ()) {
+  const Planted p = planted(true);
+  const io::DaeCase c = as_case(p, false);
+  const auto r = reference::pipeline::solve_dae(c);
+  RC_ASSERT(r.consistent);  // f = 0: x = 0 solves it
+  RC_ASSERT(r.regular_pencil && !*r.regular_pencil);
+  RC_ASSERT(r.solution_rank && *r.solution_rank >= 1);  // L_ε leaves a velocity free
+  const fast::Solution f = fast_of(c);
+  RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");
+  if (f.certified.yes()) {
+    RC_ASSERT(f.dims() == r.dims());
+    RC_ASSERT(f.solution_rank == r.solution_rank);
+    RC_ASSERT(f.regular_pencil == r.regular_pencil);
+  }
+}
+
+}  // namespace
+}  // namespace dcad::test

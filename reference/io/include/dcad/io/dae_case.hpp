@@ -1,0 +1,32 @@
+// The CONTRACT's linear DAE form (section "Linear and implicit DAEs (CEF (1.6))"): E ẋ = A x + f(t),
+// E and A m×N exact rationals (rectangular allowed), f optional (formulas in the time), read exactly.
+#pragma once
+
+#include "dcad/io/case_file.hpp"
+#include "dcad/reference/nonlinear/expression.hpp"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dcad::io {
+
+struct DaeCase {
+  std::string file, name, description;
+  std::vector<std::string> variables;  ///< x's names, N of them
+  QMatrix e, a;                        ///< m × N
+  /// f_i(t), one per equation, over the variable 0 (the time); the number 0 where f is absent.
+  std::vector<reference::expr::Expr> f;
+  std::string time_name;               ///< "" when the case names no time (f then constant)
+  std::map<std::string, Rational> parameters;
+  std::vector<std::optional<Rational>> initial;  ///< size N
+  std::optional<Rational> initial_time;
+  bool has_initial = false;
+  std::size_t equations() const { return static_cast<std::size_t>(e.rows()); }
+};
+
+/// The case's text for f_i, as given ("0" where absent), for messages and reports.
+std::string source_name(std::size_t i, long order);
+
+}  // namespace dcad::io

@@ -1,0 +1,113 @@
+// Reading the linear DAE form (dae_case.hpp).
+#include "dcad/io/dae_case.hpp"
+
+#include "expression_parse.hpp"
+#include "forms.hpp"
+#include "json_input.hpp"
+
+#include <algorithm>
+#include <set>
+
+namespace dcad::io {
+
+using nlohmann::json;
+
+bool is_dae_case(const json& j) { return j.is_object() && j.contains("dae"); }
+
+std::string source_name(std::size_t i, long order) {
+  return "f_" + std::to_string(i + 1) + std::string(static_cast<std::size_t>(order), '\'') + "(t)";
+}
+
+namespace {
+
+std::string text_at(const json& j, const Where& at, const std::string& what) {
+  if (!j.is_string()) at.fail(what, describe(j));
+  return j.get<std::string>();
+}
+
+}  // namespace
+
+DaeCase read_dae_case(const json& j, const std::string& file) {
+  const Where root{file, ""};
+  require_known_keys(j, root, {"dcad", "name", "description", "variables", "parameters", "dae", "initial", "expect", "known_failures"});
+  if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
+  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1)) (root / "dcad").fail("format version 1", describe(j["dcad"]));
+  DaeCase c;
+  c.file = file;
+  if (j.contains("name")) c.name = text_at(j["name"], root / "name", "a string");
+  if (j.contains("description")) c.description = text_at(j["description"], root / "description", "a string");
+  if (!j.contains("variables")) root.fail("the key \"variables\" (the names of x, in order)", "no such key");
+  const json& vs = j["variables"];
+  if (!vs.is_array() || vs.empty()) (root / "variables").fail("a non-empty array of names", describe(vs));
+  std::set<std::string> taken;
+  for (std::size_t i = 0; i < vs.size(); ++i) {
+    const std::string name = text_at(vs[i], root / "variables" / i, "a variable name");
+    if (!is_identifier(name)) (root / "variables" / i).fail("a name (a letter or _, then letters, digits, _)", "\"" + name + "\"");
+    if (!taken.insert(name).second) (root / "variables" / i).fail("a name not used before", "\"" + name + "\" again");
+    c.variables.push_back(name);
+  }
+  const std::size_t n = c.variables.size();
+  const json& d = j["dae"];
+  const Where w = root / "dae";
+  if (!d.is_object()) w.fail("an object {E, A, f, time}", describe(d));
+  require_known_keys(d, w, {"E", "A", "f", "time"});
+  if (!d.contains("E")) w.fail("the key \"E\" (m×N, N = " + std::to_string(n) + " variables)", "no such key");
+  if (!d.contains("A")) w.fail("the key \"A\" (m×N, N = " + std::to_string(n) + " variables)", "no such key");
+  c.e = read_matrix(d["E"], w / "E", -1, static_cast<long>(n));
+  c.a = read_matrix(d["A"], w / "A", c.e.rows(), static_cast<long>(n));
+  if (c.e.rows() == 0) (w / "E").fail("at least one equation (row)", "none");
+  if (d.contains("time")) {
+    c.time_name = text_at(d["time"], w / "time", "the name of the time variable");
+    if (!is_identifier(c.time_name)) (w / "time").fail("a name", "\"" + c.time_name + "\"");
+    if (taken.count(c.time_name)) (w / "time").fail("a name other than the variables'", "\"" + c.time_name + "\"");
+  }
+  if (j.contains("parameters")) {
+    const json& p = j["parameters"];
+    if (!p.is_object()) (root / "parameters").fail("an object {name: exact value}", describe(p));
+    for (const auto& [k, v] : p.items()) {
+      if (taken.count(k) || k == c.time_name) (root / "parameters" / k).fail("a name not used by a variable or the time", "\"" + k + "\"");
+      c.parameters[k] = read_number(v, root / "parameters" / k);
+    }
+  }
+  const std::size_t m = static_cast<std::size_t>(c.e.rows());
+  c.f.assign(m, reference::expr::number(0));
+  if (d.contains("f")) {
+    const json& f = d["f"];
+    if (!f.is_array() || f.size() != m) (w / "f").fail("an array of " + std::to_string(m) + " expressions in the time (one per equation)", describe(f));
+    std::map<std::string, std::size_t> vars;
+    if (!c.time_name.empty()) vars[c.time_name] = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const Where at = w / "f" / i;
+      if (f[i].is_number()) {
+        c.f[i] = reference::expr::number(read_number(f[i], at));
+        continue;
+      }
+      c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
+    }
+  }
+  c.initial.assign(n, std::nullopt);
+  if (j.contains("initial")) {
+    const json& in = j["initial"];
+    const Where wi = root / "initial";
+    if (!in.is_object()) wi.fail("an object {name: exact value} (variables, the time)", describe(in));
+    c.has_initial = true;
+    for (const auto& [k, v] : in.items()) {
+      const Rational value = read_number(v, wi / k);
+      if (!c.time_name.empty() && k == c.time_name) {
+        c.initial_time = value;
+        continue;
+      }
+      const auto it = std::find(c.variables.begin(), c.variables.end(), k);
+      if (it == c.variables.end()) {
+        std::vector<std::string> known = c.variables;
+        if (!c.time_name.empty()) known.push_back(c.time_name);
+        const std::string best = nearest_name(k, known);
+        (wi / k).fail("a variable or the time", "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+      }
+      c.initial[static_cast<std::size_t>(it - c.variables.begin())] = value;
+    }
+  }
+  return c;
+}
+
+}  // namespace dcad::io

@@ -1,0 +1,201 @@
+// The linear DAE form by the reference (pipeline/dae.hpp).
+#include "dcad/reference/pipeline/dae.hpp"
+
+#include "dcad/reference/linear_ide.hpp"
+#include "dcad/reference/pipeline/exact_place.hpp"
+#include "dcad/reference/nonlinear/jet.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace dcad::reference::pipeline {
+
+namespace ex = reference::expr;
+
+Truth vanishes_identically(const ex::Expr& g, std::string& evidence) {
+  if (ex::is_number(g)) {
+    evidence = g->value == 0 ? "identically 0" : "the constant " + g->value.str();
+    return g->value == 0 ? yes : no;
+  }
+  const auto value_at = [&](const Rational& t) { return exact_value(g, {t}); };  // NotExactHere where irrational
+  const long d = ex::degree_in(g, [](std::size_t) { return true; });
+  if (d >= 0) {  // a polynomial of degree ≤ d in t: zero iff zero at d + 1 points
+    for (long s = 0; s <= d; ++s) {
+      Rational v;
+      try {
+        v = value_at(Rational(s));
+      } catch (const std::exception&) {  // a division by a polynomial that vanishes at s: not a polynomial after all
+        evidence = "not decided (a quotient that vanishes at t = " + std::to_string(s) + ")";
+        return unknown;
+      }
+      if (v != 0) {
+        evidence = "at t = " + std::to_string(s) + " it is " + v.str();
+        return no;
+      }
+    }
+    evidence = "a polynomial of degree at most " + std::to_string(d) + " in t that vanishes at t = 0…" + std::to_string(d);
+    return yes;
+  }
+  try {
+    const Rational v = value_at(Rational(0));
+    if (v != 0) {
+      evidence = "at t = 0 it is " + v.str();
+      return no;
+    }
+  } catch (const std::exception&) {
+  }
+  evidence = "not decided: a formula that is not a polynomial in t and vanishes at t = 0";
+  return unknown;
+}
+
+namespace {
+
+/// The sources' jets as columns: u[d·s + k] = d^d/dt^d f_{rows[k]}, for the rows with f ≠ 0.
+struct Jets {
+  std::vector<std::size_t> rows;                 ///< the equations with a source
+  std::vector<std::vector<ex::Expr>> formulas;   ///< formulas[d][k]
+  std::vector<std::string> names;                ///< column names, u's order
+  Jets(const io::DaeCase& c, Index orders) {
+    for (std::size_t i = 0; i < c.f.size(); ++i)
+      if (!ex::is_number(c.f[i], 0)) rows.push_back(i);
+    for (Index d = 0; d < orders; ++d) {
+      formulas.emplace_back();
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        formulas[d].push_back(d == 0 ? c.f[rows[k]] : ex::diff(formulas[d - 1][k], 0));
+        names.push_back(io::source_name(rows[k], static_cast<long>(d)));
+      }
+    }
+  }
+  const ex::Expr& at(Index column) const { return formulas[column / rows.size()][column % rows.size()]; }
+};
+
+}  // namespace
+
+dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
+  using M = Matrix<Rational>;
+  const Index n = c.variables.size(), m = c.equations();
+  const Jets probe(c, 0);
+  const Index s = probe.rows.size();
+  M f(m, s);  // F: the sources' rows
+  for (Index k = 0; k < s; ++k) f(probe.rows[k], k) = 1;
+  // u's blocks: as few as the tower uses — a result whose last block is used is recomputed with twice
+  // as many (N + 2 always suffice: at most N + 1 steps, each one derivative more)
+  const auto uses_last_block = [&](const IdeTower<Rational>& t) {
+    const auto any = [&](const M& g) {
+      for (Index i = 0; i < g.rows(); ++i)
+        for (Index j = s * (t.orders - 1); j < g.cols(); ++j)
+          if (g(i, j) != 0) return true;
+      return false;
+    };
+    if (t.orders == 0) return false;
+    for (const IdeLevel<Rational>& l : t.levels)
+      if (any(l.g) || any(l.conditions)) return true;
+    return any(t.u_rate);
+  };
+  Index orders = s == 0 ? 0 : std::min<Index>(4, n + 2);
+  IdeTower<Rational> t = linear_ide_tower(c.e, c.a, f, orders);
+  while (orders > 0 && orders < n + 2 && uses_last_block(t)) {
+    orders = std::min<Index>(2 * orders, n + 2);
+    t = linear_ide_tower(c.e, c.a, f, orders);
+  }
+  const Jets jets(c, orders);
+
+  dcad::Solution<Rational> out;
+  out.backend = "reference";
+  out.exact = true;
+  out.file = c.file;
+  out.name = c.name;
+  out.variables = c.variables;
+  out.algorithm = "CEF (1.6)";
+  for (std::size_t k = 0; k < s; ++k) out.source_names.push_back(io::source_name(jets.rows[k], 0) + " = " + ex::to_text(c.f[jets.rows[k]], {c.time_name.empty() ? "t" : c.time_name}));
+  // the jet columns any output uses, in u's order
+  const Index u = s * orders;
+  std::vector<bool> used(u, false);
+  const auto mark = [&](const M& g) {
+    for (Index i = 0; i < g.rows(); ++i)
+      for (Index j = 0; j < g.cols(); ++j)
+        if (g(i, j) != 0) used[j] = true;
+  };
+  for (const IdeLevel<Rational>& l : t.levels) mark(l.g), mark(l.fresh_g), mark(l.conditions);
+  mark(t.u_rate);
+  std::vector<std::size_t> column(u, 0);
+  for (Index j = 0; j < u; ++j)
+    if (used[j]) {
+      column[j] = n + out.jets.size();
+      out.jets.push_back(jets.names[j]);
+    }
+  const auto equation = [&](const M& cx, const M& gu, Index i) {  // C x − G u = 0
+    Equation<Rational> e;
+    for (Index j = 0; j < n; ++j)
+      if (cx(i, j) != 0) e.terms.emplace_back(j, cx(i, j));
+    for (Index j = 0; j < u; ++j)
+      if (gu(i, j) != 0) e.terms.emplace_back(column[j], -gu(i, j));
+    return e;
+  };
+  out.tower.push_back({static_cast<long>(n), {}});
+  bool certain = true;
+  for (std::size_t k = 0; k < t.levels.size(); ++k) {
+    const IdeLevel<Rational>& l = t.levels[k];
+    bool empty = false;
+    for (Index i = 0; i < l.conditions.rows(); ++i) {  // 0 = Σ c_j u_j(t): decided against f
+      ex::Expr g = ex::number(0);
+      std::string text;
+      for (Index j = 0; j < u; ++j)
+        if (l.conditions(i, j) != 0) {
+          g = ex::add(g, ex::mul(ex::number(l.conditions(i, j)), jets.at(j)));
+          const Rational& q = l.conditions(i, j);
+          const std::string mag = abs(q) == 1 ? "" : Rational(abs(q)).str() + "*";
+          text += (text.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + jets.names[j];
+        }
+      SourceCondition sc;
+      sc.text = text + " = 0";
+      sc.holds = vanishes_identically(g, sc.evidence);
+      sc.evidence = "found for M_" + std::to_string(k + 1) + "; " + sc.evidence;
+      if (sc.holds.no()) empty = true;
+      if (sc.holds.unknown()) certain = false;
+      out.source_conditions.push_back(sc);
+    }
+    if (empty) {  // no velocity exists anywhere on M_k for generic t: M_{k+1} = ∅
+      out.tower.push_back({-1, {}});
+      out.consistent = false;
+      out.steps = static_cast<long>(k + 1);
+      break;
+    }
+    if (l.fresh_c.rows() == 0) {  // nothing new: M_{k+1} = M_k = M_c
+      out.steps = static_cast<long>(k);
+      break;
+    }
+    Level<Rational> level;
+    level.dim = static_cast<long>(l.dim());
+    for (Index i = 0; i < l.fresh_c.rows(); ++i) level.constraints.push_back(equation(l.fresh_c, l.fresh_g, i));
+    out.tower.push_back(level);
+  }
+  if (out.consistent) {
+    const IdeLevel<Rational>& last = t.levels.back();
+    out.solution_rank = static_cast<long>(t.solution_rank());
+    std::vector<Equation<Rational>> fin;
+    for (Index i = 0; i < last.c.rows(); ++i) fin.push_back(equation(last.c, last.g, i));
+    out.final_constraints = fin;
+    Motion<Rational> mo;
+    for (Index i = 0; i < n; ++i) mo.coordinates.push_back(i);
+    mo.f_matrix.assign(n, std::vector<Rational>(n));
+    mo.f.assign(n, Rational(0));
+    mo.g.assign(n, std::vector<Rational>(t.gauge.cols()));
+    mo.source_columns = out.jets;
+    mo.s.assign(n, std::vector<Rational>(out.jets.size()));
+    for (Index i = 0; i < n; ++i) {
+      for (Index j = 0; j < n; ++j) mo.f_matrix[i][j] = t.x_rate(i, j);
+      for (Index j = 0; j < t.gauge.cols(); ++j) mo.g[i][j] = t.gauge(i, j);
+      for (Index j = 0; j < u; ++j)
+        if (used[j]) mo.s[i][column[j] - n] = t.u_rate(i, j);
+    }
+    out.motion = mo;
+  }
+  if (c.e.rows() == c.e.cols()) out.regular_pencil = regular_pencil(c.e, c.a);
+  out.certified = certain ? yes : unknown;
+  out.note = "CEF (1.6) on E x' = A x + f(t), exact (reference/linear_ide.hpp): M_k(t) = {C x = G u(t)}, u the sources' jets";
+  if (!certain) out.note += "; a condition on the sources was not decided (source_conditions)";
+  return out;
+}
+
+}  // namespace dcad::reference::pipeline
