@@ -8,9 +8,15 @@
 //    pencil is singular (det(sE − A) ≡ 0) and the solution is not unique (L_ε leaves one velocity free);
 //  - the fast twin's Wong sequences (fast/exact/src/dae.cpp) reach the reference's RREF answers
 //    (dims, steps, solution rank, regularity) wherever fast says certified;
-//  - sources f (polynomials in t) on a regular pencil change no dimension and stay consistent.
+//  - sources f (polynomials in t) on a regular pencil change no dimension and stay consistent;
+//  - two routes to one tower: a linear Dirac system (x, ẋ) ⊕ dE(x) ∈ D (CEF §5) written as equations
+//    is a linear DAE — with [P | R] the equations of D (P v + R α = 0 on D), φ(x, v) = P v + R (H x + g)
+//    — and CEF (1.6) on it is the CAD by definition (M_{k+1} = {x ∈ M_k : ∃ v ∈ T M_k, (v, dE(x)) ∈ D}):
+//    dims, steps, consistency and solution rank of reference/linear_ide.hpp equal reference/cad.hpp's
+//    (which works in W_k = T M_k ∩ E_D and ω_D, not with [P | R]).
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/problem.hpp"
+#include "dcad/reference/cad.hpp"
 #include "dcad/reference/pipeline/dae.hpp"
 #include "gen.hpp"
 
@@ -148,6 +154,29 @@ RC_GTEST_PROP(Dae, PlantedSingularPencilIsSingularAndNotUnique, ()) {
     RC_ASSERT(f.solution_rank == r.solution_rank);
     RC_ASSERT(f.regular_pencil == r.regular_pencil);
   }
+}
+
+RC_GTEST_PROP(Dae, DiracSystemAsEquationsHasTheCadTower, ()) {
+  const reference::LinearSystem<Q> sys = any_system();
+  const reference::CadResult<Q> cad = reference::constraint_tower(sys);
+  const Index n = sys.d.n;
+  const QM pr = reference::nullspace(sys.d.d.basis());  // rows (P | R) with P v + R α = 0 for every (v, α) ∈ D
+  const QM p = pr.block(0, pr.rows(), 0, n), r = pr.block(0, pr.rows(), n, 2 * n);
+  io::DaeCase c;
+  c.file = "dirac-as-dae";
+  for (Index j = 0; j < n; ++j) c.variables.push_back("x" + std::to_string(j + 1));
+  c.e = p;
+  c.a = -(r * sys.hessian);  // P v = −R (H x + g)
+  const QM rg = r * QM::column(sys.gradient);
+  for (Index i = 0; i < rg.rows(); ++i) c.f.push_back(ex::number(-rg(i, 0)));
+  const auto ide = reference::pipeline::solve_dae(c);
+  RC_TAG(cad.consistent ? "consistent" : "inconsistent");
+  RC_ASSERT(ide.consistent == cad.consistent);
+  RC_ASSERT(ide.steps == static_cast<long>(cad.steps));
+  std::vector<long> dims;
+  for (const auto& st : cad.tower) dims.push_back(st.dim());
+  RC_ASSERT(ide.dims() == dims);
+  if (cad.consistent) RC_ASSERT(ide.solution_rank && *ide.solution_rank == static_cast<long>(cad.solution_rank));
 }
 
 }  // namespace

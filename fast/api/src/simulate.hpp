@@ -53,6 +53,9 @@ Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optio
 /// The expression form: RK4 on the pointwise CAD's vector field, projected onto M_c at every
 /// evaluation, with Richardson step doubling per output step (simulate_lagrangian.cpp).
 Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+/// The linear DAE form: the exact velocities on M_c from the start completed onto M_c(t0), Dormand–Prince
+/// (simulate_dae.cpp).
+Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 
 /// The summary of a run: rows, and the worst of err[i]/scale[i] (the long-double shadow's difference
 /// relative to the largest magnitude over the run among the variables of i's kind: q_, v_, p_ for

@@ -109,9 +109,6 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
   return guarded(p, [&] {
-    if (p.form == io::Form::dae)  // issue 30: solve and check take the dae form; its simulate is not built yet
-      throw UsageError(p.file + ": simulate: expected a case in a form simulate takes (linear, netlist, lagrangian); the dae form is taken by "
-                       "solve and check only, so far");
     if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
       std::vector<std::string> all = simulate_columns(p);
       if (options.enclose) all.insert(all.end(), {"rad_q", "rad_v", "rad_p"});
@@ -122,6 +119,13 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
     ColumnFilter filter(csv, options.columns, p.file);
     std::ostream filtered(&filter);
     std::ostream& rows = options.columns.empty() ? csv : filtered;
+    if (p.form == io::Form::dae) {  // the exact velocities on M_c, Dormand–Prince
+      if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the dae form");
+      if (options.route == Route::sparse || options.enclose) throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the dae form");
+      const Summary sum = simulate_dae(p.dae, options, rows, log);
+      rows.flush();
+      return sum;
+    }
     if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
       if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the expression form");
       if (options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
