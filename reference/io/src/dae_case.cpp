@@ -6,6 +6,7 @@
 #include "json_input.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace dcad::io {
@@ -23,6 +24,35 @@ namespace {
 std::string text_at(const json& j, const Where& at, const std::string& what) {
   if (!j.is_string()) at.fail(what, describe(j));
   return j.get<std::string>();
+}
+
+/// e at time t in double (a sanity check of the input, never a result): NaN where undefined.
+double value_at(const reference::expr::Expr& e, double t) {
+  using reference::expr::ExprOp;
+  switch (e->op) {
+    case ExprOp::Number: return e->value.convert_to<double>();
+    case ExprOp::Variable: return t;
+    case ExprOp::Add: return value_at(e->a, t) + value_at(e->b, t);
+    case ExprOp::Sub: return value_at(e->a, t) - value_at(e->b, t);
+    case ExprOp::Mul: return value_at(e->a, t) * value_at(e->b, t);
+    case ExprOp::Div: {
+      const double d = value_at(e->b, t);
+      return d == 0 ? NAN : value_at(e->a, t) / d;
+    }
+    case ExprOp::Neg: return -value_at(e->a, t);
+    case ExprOp::Pow: {
+      const double b = value_at(e->a, t);
+      return b == 0 && e->exponent < 0 ? NAN : std::pow(b, static_cast<double>(e->exponent));
+    }
+    case ExprOp::Sin: return std::sin(value_at(e->a, t));
+    case ExprOp::Cos: return std::cos(value_at(e->a, t));
+    case ExprOp::Exp: return std::exp(value_at(e->a, t));
+    case ExprOp::Sqrt: {
+      const double a = value_at(e->a, t);
+      return a < 0 ? NAN : std::sqrt(a);
+    }
+  }
+  return NAN;
 }
 
 }  // namespace
@@ -83,6 +113,10 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
         continue;
       }
       c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
+      bool defined = false;  // a source must be defined for generic t: 1/(t - t) or sqrt(-1 - t^2) is no function
+      for (double t : {0.5, 1.0, 2.0, 3.7}) defined = defined || std::isfinite(value_at(c.f[i], t));
+      if (!defined)
+        at.fail("a formula defined (finite and real) for generic t", "\"" + f[i].get<std::string>() + "\", undefined at t = 0.5, 1, 2 and 3.7");
     }
   }
   c.initial.assign(n, std::nullopt);

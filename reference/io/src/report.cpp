@@ -309,7 +309,7 @@ std::string cad_text(const Printed& r) {
     o << (ide ? "  solution rank dim{v in T M_c : E v = A x + f} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ") << rank << (rank == 0 ? " (unique)" : " (not unique)") << "\n";
   }
   if (r.regular_pencil)
-    o << "  pencil sE - A: " << (*r.regular_pencil ? "regular (det(sE - A) is not identically 0)" + std::string(r.consistent ? "; differentiation index " + std::to_string(r.steps) : "")
+    o << "  pencil sE - A" << (r.certified.yes() ? "" : " (uncertain, as this result)") << ": " << (*r.regular_pencil ? "regular (det(sE - A) is not identically 0)" + std::string(r.consistent ? "; differentiation index " + std::to_string(r.steps) : "")
                                                   : std::string("singular (det(sE - A) = 0 for every s): no unique solution for every f")) << "\n";
   if (ide)
     for (const std::string& f : r.source_names) o << "  source " << f << "\n";

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 namespace dcad::reference::pipeline {
 
@@ -36,15 +37,32 @@ Truth vanishes_identically(const ex::Expr& g, std::string& evidence) {
     evidence = "a polynomial of degree at most " + std::to_string(d) + " in t that vanishes at t = 0…" + std::to_string(d);
     return yes;
   }
-  try {
-    const Rational v = value_at(Rational(0));
+  for (const Rational& at : {Rational(1), Rational(2), Rational(1, 2)}) {  // exact values where they are rational (1/t at t = 1)
+    try {
+      const Rational v = value_at(at);
+      if (v != 0) {
+        evidence = "at t = " + at.str() + " it is " + v.str();
+        return no;
+      }
+    } catch (const std::exception&) {
+    }
+  }
+  // analytic at 0 (sin, cos, exp have rational derivatives there): a nonzero Taylor coefficient proves g ≢ 0
+  ex::Expr dk = g;
+  for (int k = 0; k <= 8; ++k) {
+    Rational v;
+    try {
+      v = exact_value(dk, {Rational(0)});
+    } catch (const std::exception&) {
+      break;  // not exact at 0 (or not defined there)
+    }
     if (v != 0) {
-      evidence = "at t = 0 it is " + v.str();
+      evidence = k == 0 ? "at t = 0 it is " + v.str() : "its derivative of order " + std::to_string(k) + " at t = 0 is " + v.str();
       return no;
     }
-  } catch (const std::exception&) {
+    dk = ex::diff(dk, 0);
   }
-  evidence = "not decided: a formula that is not a polynomial in t and vanishes at t = 0";
+  evidence = "not decided: a formula that is not a polynomial in t, whose first derivatives vanish at t = 0 (or are not exact there)";
   return unknown;
 }
 
@@ -134,22 +152,29 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   };
   out.tower.push_back({static_cast<long>(n), {}});
   bool certain = true;
+  std::set<std::string> seen;
   for (std::size_t k = 0; k < t.levels.size(); ++k) {
     const IdeLevel<Rational>& l = t.levels[k];
     bool empty = false;
     for (Index i = 0; i < l.conditions.rows(); ++i) {  // 0 = Σ c_j u_j(t): decided against f
-      ex::Expr g = ex::number(0);
       std::string text;
+      std::map<std::string, std::pair<Rational, ex::Expr>> same;  // identical formulas (two equal sources) summed first
       for (Index j = 0; j < u; ++j)
         if (l.conditions(i, j) != 0) {
-          g = ex::add(g, ex::mul(ex::number(l.conditions(i, j)), jets.at(j)));
           const Rational& q = l.conditions(i, j);
+          auto& entry = same.try_emplace(ex::to_text(jets.at(j), {"t"}), Rational(0), jets.at(j)).first->second;
+          entry.first += q;
           const std::string mag = abs(q) == 1 ? "" : Rational(abs(q)).str() + "*";
           text += (text.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + jets.names[j];
         }
+      if (!seen.insert(text).second) continue;  // found again at a later step: said once
+      ex::Expr g = ex::number(0);
+      for (const auto& [formula, term] : same)
+        if (term.first != 0) g = ex::add(g, ex::mul(ex::number(term.first), term.second));
       SourceCondition sc;
       sc.text = text + " = 0";
       sc.holds = vanishes_identically(g, sc.evidence);
+      if (sc.holds.yes() && ex::is_number(g, 0) && same.size() > 0) sc.evidence = "identical formulas cancel";
       sc.evidence = "found for M_" + std::to_string(k + 1) + "; " + sc.evidence;
       if (sc.holds.no()) empty = true;
       if (sc.holds.unknown()) certain = false;

@@ -318,9 +318,18 @@ T determinant(Matrix<T> m) {
       det = -det;
     }
     det *= m(c, c);
+    std::vector<Index> nonzero;  // the pivot row's nonzero entries: a sparse matrix's rows change only there
+    for (Index j = c; j < m.cols(); ++j)
+      if (!known_zero(m(c, j))) nonzero.push_back(j);
+    T f, t;
     for (Index i = c + 1; i < m.rows(); ++i) {
-      const T f = m(i, c) / m(c, c);
-      for (Index j = c; j < m.cols(); ++j) m(i, j) -= f * m(c, j);
+      if (known_zero(m(i, c))) continue;  // nothing to eliminate
+      f = m(i, c) / m(c, c);
+      for (Index j : nonzero) {
+        t = f;
+        t *= m(c, j);
+        m(i, j) -= t;
+      }
     }
   }
   return det;
