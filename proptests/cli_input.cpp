@@ -91,6 +91,20 @@ TEST(Cli, BadDaeCasesNameTheirPath) {
   }
 }
 
+// The dae form's E and A may name parameters ("C", "1/R"): the MNA golden written so has its numbers'
+// tower (cases/dae-mna-capacitor-source-loop.json: dims [2, 1, 0], index 2).
+TEST(Cli, DaeMatricesTakeParameters) {
+  const std::string file = write_temp("dcad_dae_params.json", R"D({"dcad": 1, "variables": ["e", "i"], "parameters": {"C": "1e-12", "G": "1/1000000"},
+    "dae": {"E": [["C", "0"], ["0", "0"]], "A": [["-G", "-1"], ["1", "0"]], "f": ["0", "-sin(1000000000*t)"], "time": "t"}})D");
+  const Outcome r = run("solve " + file + " --backend reference --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::parse("[2, 1, 0]")) << r.out.substr(0, 400);
+  const std::string no_time = write_temp("dcad_dae_no_time.json", R"D({"dcad": 1, "variables": ["x"], "dae": {"E": [["1"]], "A": [["0"]], "f": ["sin(t)"]}})D");
+  const Outcome bad = run("solve " + no_time);
+  EXPECT_EQ(bad.rc, 1);
+  EXPECT_NE(bad.err.find("/dae/time"), std::string::npos) << bad.err;
+}
+
 TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   const fs::path dir = fs::path(temp_path("dcad_hier"));
   fs::create_directories(dir / "lib");

@@ -26,6 +26,30 @@ std::string text_at(const json& j, const Where& at, const std::string& what) {
   return j.get<std::string>();
 }
 
+/// A matrix of exact numbers, each a number or a string: a rational ("1/1000", "1e-12") or a formula in
+/// the parameters ("1/C", "R*C"), which must be a number once they are substituted.
+QMatrix read_entries(const json& j, const Where& at, long rows, long cols, const std::map<std::string, Rational>& parameters) {
+  if (!j.is_array()) at.fail("a matrix (array of rows)", describe(j));
+  if (rows >= 0 && static_cast<long>(j.size()) != rows) at.fail(std::to_string(rows) + " rows", std::to_string(j.size()) + " rows");
+  QMatrix m(j.size(), static_cast<reference::Index>(cols));
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const Where ri = at / i;
+    if (!j[i].is_array()) ri.fail("a row (array of numbers)", describe(j[i]));
+    if (static_cast<long>(j[i].size()) != cols) ri.fail("a row of length " + std::to_string(cols), "length " + std::to_string(j[i].size()));
+    for (std::size_t k = 0; k < j[i].size(); ++k) {
+      const json& x = j[i][k];
+      if (!x.is_string()) {
+        m(i, k) = read_number(x, ri / k);
+        continue;
+      }
+      const reference::expr::Expr e = parse_expression(x.get<std::string>(), {}, parameters, ri / k);
+      if (!reference::expr::is_number(e)) (ri / k).fail("a number, or a formula in the parameters", "\"" + x.get<std::string>() + "\"");
+      m(i, k) = e->value;
+    }
+  }
+  return m;
+}
+
 /// e at time t in double (a sanity check of the input, never a result): NaN where undefined.
 double value_at(const reference::expr::Expr& e, double t) {
   using reference::expr::ExprOp;
@@ -83,9 +107,6 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
   require_known_keys(d, w, {"E", "A", "f", "time"});
   if (!d.contains("E")) w.fail("the key \"E\" (m×N, N = " + std::to_string(n) + " variables)", "no such key");
   if (!d.contains("A")) w.fail("the key \"A\" (m×N, N = " + std::to_string(n) + " variables)", "no such key");
-  c.e = read_matrix(d["E"], w / "E", -1, static_cast<long>(n));
-  c.a = read_matrix(d["A"], w / "A", c.e.rows(), static_cast<long>(n));
-  if (c.e.rows() == 0) (w / "E").fail("at least one equation (row)", "none");
   if (d.contains("time")) {
     c.time_name = text_at(d["time"], w / "time", "the name of the time variable");
     if (!is_identifier(c.time_name)) (w / "time").fail("a name", "\"" + c.time_name + "\"");
@@ -99,6 +120,9 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
       c.parameters[k] = read_number(v, root / "parameters" / k);
     }
   }
+  c.e = read_entries(d["E"], w / "E", -1, static_cast<long>(n), c.parameters);
+  c.a = read_entries(d["A"], w / "A", c.e.rows(), static_cast<long>(n), c.parameters);
+  if (c.e.rows() == 0) (w / "E").fail("at least one equation (row)", "none");
   const std::size_t m = static_cast<std::size_t>(c.e.rows());
   c.f.assign(m, reference::expr::number(0));
   if (d.contains("f")) {
@@ -112,7 +136,12 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
         c.f[i] = reference::expr::number(read_number(f[i], at));
         continue;
       }
-      c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
+      try {
+        c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
+      } catch (const InputError& e) {
+        if (!c.time_name.empty()) throw;
+        throw InputError(std::string(e.what()) + " (a source that depends on the time needs its name in /dae/time, e.g. \"time\": \"t\")");
+      }
       bool defined = false;  // a source must be defined for generic t: 1/(t - t) or sqrt(-1 - t^2) is no function
       for (double t : {0.5, 1.0, 2.0, 3.7}) defined = defined || std::isfinite(value_at(c.f[i], t));
       if (!defined)
