@@ -84,13 +84,27 @@ TEST(Check, EveryCaseValidatesAndRoundTrips) {
       const bool forced = count("resistors") + count("current_sources") + count("couplings") + count("voltage_sources") > 0 ||
                           slurp(file).find("\"forces\"") != std::string::npos;
       const bool expression = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).contains("lagrangian");  // compared: the velocity
-      const bool dae = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).contains("dae");  // compared: the discrete claims
+      const bool dae = file.extension() == ".json" && (nlohmann::json::parse(slurp(file)).contains("dae") ||
+                                                      nlohmann::json::parse(slurp(file)).contains("implicit"));  // compared: the discrete claims
       if (backend == "reference" && !forced && !expression && !dae) EXPECT_NE(c.out.find("final_constraints"), std::string::npos) << file;
       if (expression) EXPECT_NE(c.out.find("velocity"), std::string::npos) << file;
       ++checked;
     }
   }
   EXPECT_GE(checked, 30);
+}
+
+// Issue 30, the implicit form: a reducer that reports the Cartesian pendulum as index 2 (it missed the
+// hidden constraint x u + y w = 0's own derivative, the multiplier's equation) is caught by name.
+TEST(Check, ImplicitPendulumIndexClaimsAreJudged) {
+  const std::string i3 = (fs::path(DCAD_SOURCE_DIR) / "cases/implicit-pendulum-index-3.json").string();
+  const std::string right = write_temp("dcad_i3_right.json", R"({"dims": [5, 4, 3, 2], "steps": 3, "consistent": true, "solution_rank": 0, "index": 3})");
+  const std::string wrong = write_temp("dcad_i3_wrong.json", R"({"dims": [5, 4, 3], "steps": 2, "consistent": true, "solution_rank": 0, "index": 2})");
+  const Outcome ok = run("check " + right + " " + i3);
+  EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
+  const Outcome bad = run("check " + wrong + " " + i3);
+  EXPECT_EQ(bad.rc, 3) << bad.out << bad.err;
+  EXPECT_NE(bad.out.find("index: expected 3, found 2"), std::string::npos) << bad.out;
 }
 
 // Issue 30: another tool's index and regularity claims for a linear DAE are judged against CEF (1.6):

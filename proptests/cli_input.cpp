@@ -91,6 +91,29 @@ TEST(Cli, BadDaeCasesNameTheirPath) {
   }
 }
 
+// Issue 30, the implicit form: an equation not affine in the derivatives, an unknown name, a derivative
+// given as state, an unknown key and given values off M_c are each bad input naming their JSON path, on
+// every backend (the reference's jets and fast's derivative array alike).
+TEST(Cli, BadImplicitCasesNameTheirPath) {
+  const auto imp = [](const std::string& body, const std::string& initial = "") {
+    return R"I({"dcad": 1, "implicit": )I" + body + (initial.empty() ? "" : R"I(, "initial": )I" + initial) + "}";
+  };
+  const std::string circle = R"I({"coordinates": ["x", "y"], "equations": ["v_x - y", "x^2 + y^2 - 1"]})I";
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x^2 - x"]})I"), "/implicit/equations/0: expected an equation affine in the derivatives"},
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x - z"]})I"), "/implicit/equations/0: column 7"},
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x - x"]})I", R"I({"v_x": "1"})I"), "/initial/v_x"},
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x - x"], "L": "0"})I"), "/implicit/L"},
+      {imp(R"I({"coordinates": [], "equations": []})I"), "/implicit/coordinates"},
+      {imp(circle, R"I({"x": "2", "y": "0"})I"), "/initial: expected values that extend to a point of M_c"},
+  };
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    const std::string file = write_temp("dcad_bad_implicit_" + std::to_string(i) + ".json", bad[i].first);
+    for (const std::string backend : {"reference", "fast", "certified"})
+      expect_input_error(run("solve " + file + " --backend " + backend), file + ": " + bad[i].second, "", bad[i].first + " " + backend);
+  }
+}
+
 // The dae form's E and A may name parameters ("C", "1/R"): the MNA golden written so has its numbers'
 // tower (cases/dae-mna-capacitor-source-loop.json: dims [2, 1, 0], index 2).
 TEST(Cli, DaeMatricesTakeParameters) {

@@ -70,6 +70,37 @@ TEST(Simulate, DaeFollowsItsClosedFormFromACompletedStart) {
   EXPECT_NE(bad.err.find("/initial: expected values on M_c"), std::string::npos) << bad.err;
 }
 
+// Issue 30, the implicit form: the pendulum in its index-3 and index-2 formulations is one motion (two
+// formulations of one system, each reduced by dcad), and along it the length x² + y² = 1 (the index-3
+// constraint, only a first integral of the index-2 one) and the energy ½(u² + w²) + g y are conserved
+// (Hairer–Wanner VII.1).  Every completed value is reported.
+TEST(Simulate, ImplicitPendulumFormulationsAreOneMotion) {
+  const std::string i3 = (fs::path(DCAD_SOURCE_DIR) / "cases/implicit-pendulum-index-3.json").string();
+  const std::string i2 = write_temp("dcad_pendulum_i2.json", R"J({"dcad": 1, "parameters": {"g": "981/100"},
+    "implicit": {"coordinates": ["x", "y", "u", "w", "lam"],
+                 "equations": ["v_x - u", "v_y - w", "v_u + lam*x", "v_w + lam*y + g", "x*u + y*w"]},
+    "initial": {"x": "3/5", "y": "-4/5", "u": "0", "w": "0"}})J");
+  const Outcome a = run("simulate " + i3 + " --tstop 0.5 --step 0.125");
+  const Outcome b = run("simulate " + i2 + " --tstop 0.5 --step 0.125");
+  ASSERT_EQ(a.rc, 0) << a.err;
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_EQ(a.out.substr(0, a.out.find('\n')), "t,x,y,u,w,lam");
+  EXPECT_NE(a.err.find("lam = 7.848"), std::string::npos) << a.err;  // g·4/5 at rest: completed
+  EXPECT_NE(a.err.find("(completed)"), std::string::npos) << a.err;
+  const auto ra = csv_rows(a.out), rb = csv_rows(b.out);
+  ASSERT_EQ(ra.size(), 5u);
+  ASSERT_EQ(rb.size(), 5u);
+  const double g = 9.81, e0 = g * -0.8;
+  double worst = 0;
+  for (std::size_t k = 0; k < ra.size(); ++k) {
+    const auto& x = ra[k];
+    worst = std::max({worst, std::abs(x[1] * x[1] + x[2] * x[2] - 1), std::abs(0.5 * (x[3] * x[3] + x[4] * x[4]) + g * x[2] - e0)});
+    for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - rb[k][i]) / 10);
+  }
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_GT(std::abs(ra.back()[1] - 0.6), 0.1);  // it moved
+}
+
 // Cross-check with ngspice (Debian package, installed by .ci/setup): the same 4-port deck, ngspice at
 // reltol 1e-10 with the deck's IC= (uic), resampled on dcad's grid (linearize).  ngspice is good to
 // about 5e-7 relative here (issue 4); dcad is exact up to rounding.

@@ -13,11 +13,17 @@
 //    is a linear DAE — with [P | R] the equations of D (P v + R α = 0 on D), φ(x, v) = P v + R (H x + g)
 //    — and CEF (1.6) on it is the CAD by definition (M_{k+1} = {x ∈ M_k : ∃ v ∈ T M_k, (v, dE(x)) ∈ D}):
 //    dims, steps, consistency and solution rank of reference/linear_ide.hpp equal reference/cad.hpp's
-//    (which works in W_k = T M_k ∩ E_D and ω_D, not with [P | R]).
+//    (which works in W_k = T M_k ∩ E_D and ω_D, not with [P | R]);
+//  - the linear form equals the implicit form on linear data: the same planted pencil written as the
+//    equations Σ E_ij v_xj − Σ A_ij x_j − f_i(t) = 0 (the `implicit` form, CEF (1.6) at a point on jets,
+//    pipeline/implicit.hpp) has the dae form's dims, steps, consistency and solution rank (a linear
+//    M_k is the same subspace at every point: the pointwise tower at any point is the global one); and
+//    fast's derivative array (Campbell; fast/derivative_array.hpp) reaches them where it says certified.
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/problem.hpp"
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/pipeline/dae.hpp"
+#include "dcad/reference/pipeline/implicit.hpp"
 #include "gen.hpp"
 
 #include <gtest/gtest.h>
@@ -177,6 +183,60 @@ RC_GTEST_PROP(Dae, DiracSystemAsEquationsHasTheCadTower, ()) {
   for (const auto& st : cad.tower) dims.push_back(st.dim());
   RC_ASSERT(ide.dims() == dims);
   if (cad.consistent) RC_ASSERT(ide.solution_rank && *ide.solution_rank == static_cast<long>(cad.solution_rank));
+}
+
+/// The dae case as the implicit form: Σ_j E_ij v_xj − Σ_j A_ij x_j − f_i(t) (LagrangianSystem's
+/// indices: x_j = j, v_xj = n + j, t = 2n).
+io::LagrangianCase as_implicit(const io::DaeCase& d) {
+  io::LagrangianCase c;
+  c.file = d.file + " (implicit)";
+  reference::LagrangianSystem& s = c.system;
+  s.implicit = true;
+  s.lagrangian = ex::number(0);
+  s.names = d.variables;
+  s.n = s.names.size();
+  s.has_time = true;
+  s.time_name = "t";
+  for (Index i = 0; i < d.e.rows(); ++i) {
+    ex::Expr e = ex::neg(ex::substitute(d.f[static_cast<std::size_t>(i)], 0, ex::variable(s.t())));
+    for (Index j = 0; j < d.e.cols(); ++j) {
+      if (d.e(i, j) != 0) e = ex::add(e, ex::mul(ex::number(d.e(i, j)), ex::variable(s.v(static_cast<std::size_t>(j)))));
+      if (d.a(i, j) != 0) e = ex::sub(e, ex::mul(ex::number(d.a(i, j)), ex::variable(s.q(static_cast<std::size_t>(j)))));
+    }
+    s.constraints.push_back(e);
+  }
+  c.initial.assign(2 * s.n + 1, std::nullopt);
+  c.initial_p.assign(s.n, std::nullopt);
+  return c;
+}
+
+RC_GTEST_PROP(Dae, LinearFormEqualsImplicitFormOnLinearData, ()) {
+  const bool singular = *rc::gen::arbitrary<bool>();
+  const Planted p = planted(singular);
+  const io::DaeCase d = as_case(p, !singular && *rc::gen::arbitrary<bool>());
+  const auto lin = reference::pipeline::solve_dae(d);
+  const io::LagrangianCase c = as_implicit(d);
+  for (const auto& e : c.system.constraints) RC_LOG() << ex::to_text(e, c.system.variable_names()) << " = 0\n";
+  const auto imp = reference::pipeline::solve_implicit_exact(c);
+  RC_TAG(singular ? "singular pencil" : "regular pencil");
+  RC_ASSERT(imp.certified.yes());  // a linear system has no singular point
+  RC_ASSERT(imp.dims() == lin.dims());
+  RC_ASSERT(imp.steps == lin.steps);
+  RC_ASSERT(imp.consistent == lin.consistent);
+  RC_ASSERT(imp.solution_rank == lin.solution_rank);
+  // fast's own route, the derivative array (fast/derivative_array.hpp), where it says certified
+  io::Problem pr;
+  pr.form = io::Form::implicit;
+  pr.file = c.file;
+  pr.expression = c;
+  const fast::Solution f = fast::solve(pr);
+  RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");
+  if (f.certified.yes()) {
+    RC_ASSERT(f.dims() == lin.dims());
+    RC_ASSERT(f.steps == lin.steps);
+    RC_ASSERT(f.consistent == lin.consistent);
+    RC_ASSERT(f.solution_rank == lin.solution_rank);
+  }
 }
 
 }  // namespace

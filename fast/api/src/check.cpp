@@ -581,11 +581,41 @@ Checked check_dae(const std::string& result_file, const json& r, const io::Probl
   return k.out;
 }
 
+/// An implicit DAE (CONTRACT "Linear and implicit DAEs"): another tool's discrete claims — dims,
+/// steps, consistency, solution rank, uniqueness and index — against the reference's CEF (1.6) at the
+/// case's point (exact).  Constraints and reduced equations are named as not compared (not yet).
+Checked check_implicit(const std::string& result_file, const json& r, const io::Problem& p) {
+  const io::LagrangianCase& c = p.expression;
+  if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
+  if (r.contains("name") && r["name"] != c.name)
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(c.system.names))
+    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
+  const reference::Solution truth = reference::solve(p);
+  const json want = printed_json(truth);
+  Checker k{result_file, {}};
+  bool any = false;
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "index"})
+    if (r.contains(key)) {
+      any = true;
+      if (!truth.certified.yes()) {  // a singular point: the tower is not decided there
+        k.out.not_compared.push_back(std::string(key) + " (the reference's point is singular: " + truth.pointwise->why + ")");
+        continue;
+      }
+      k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
+    }
+  if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index", "none of them");
+  for (const char* key : {"tower", "final_constraints", "reduced", "formulas"})
+    if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the implicit form)");
+  return k.out;
+}
+
 Checked checked(const std::string& result_file, const std::string* text, const io::Problem& p, std::size_t points) {
   return guarded(p, [&] {
     const json r = read_result(result_file, text);
     Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points)
                 : p.form == io::Form::dae        ? check_dae(result_file, r, p)
+                : p.form == io::Form::implicit   ? check_implicit(result_file, r, p)
                                                  : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     // every top-level key of the result that nothing above compared is named, never ignored in silence

@@ -7,6 +7,8 @@ Inspection inspect(const io::Problem& p, Backend backend) {
   if (p.form == io::Form::expression)
     throw io::InputError(p.file + ": /lagrangian: expected a linear case (dirac, pontryagin or constrained) here; the expression form is taken by "
                          "solve, check and simulate, found the expression form");
+  if (p.form == io::Form::implicit)
+    throw io::InputError(p.file + ": /implicit: expected a case file with a `dirac` member for inspect, found the implicit form (taken by solve, check and simulate)");
   if (p.form == io::Form::dae)
     throw io::InputError(p.file + ": /dae: expected a case file with a `dirac` member for inspect, found the dae form (taken by solve and check)");
   if (p.form == io::Form::netlist) throw io::InputError(p.file + ": expected a case file with a `dirac` member for inspect, found a netlist");

@@ -55,6 +55,8 @@ Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optio
 Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 /// The linear DAE form: the exact velocities on M_c from the start completed onto M_c(t0), Dormand–Prince
 /// (simulate_dae.cpp).
+/// The implicit form: RK4 on the pointwise CEF (1.6) in double, projected onto M_c (simulate_implicit.cpp).
+Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 
 /// The summary of a run: rows, and the worst of err[i]/scale[i] (the long-double shadow's difference

@@ -126,6 +126,13 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       rows.flush();
       return sum;
     }
+    if (p.form == io::Form::implicit) {  // RK4 on the pointwise CEF (1.6), projected onto M_c
+      if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the implicit form");
+      if (options.route == Route::sparse || options.enclose) throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the implicit form");
+      const Summary sum = simulate_implicit(p.expression, options, rows, log);
+      rows.flush();
+      return sum;
+    }
     if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
       if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the expression form");
       if (options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");

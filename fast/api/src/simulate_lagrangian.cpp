@@ -6,6 +6,7 @@
 // integrated with m and 2m substeps, m doubling until the two agree to 1e-9 relative (Richardson):
 // the difference is the a-posteriori error estimate that is printed.
 #include "simulate.hpp"
+#include "projected_rk4.hpp"
 
 #include "dcad/fast/chart.hpp"
 #include "dcad/fast/pointwise.hpp"
@@ -68,29 +69,6 @@ struct Field {
   }
 };
 
-std::vector<double> axpy(const std::vector<double>& y, double h, const std::vector<double>& k) {
-  std::vector<double> out(y);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] += h * k[i];
-  return out;
-}
-
-/// One RK4 step from (t, y) with y on M_c; returns the projection of the result onto M_c and
-/// accumulates the size of that projection in `drift`.
-std::vector<double> rk4(Field& f, double t, const std::vector<double>& y, double h, double& drift) {
-  const auto k1 = f(t, y).dx, k2 = f(t + h / 2, axpy(y, h / 2, k1)).dx, k3 = f(t + h / 2, axpy(y, h / 2, k2)).dx,
-             k4 = f(t + h, axpy(y, h, k3)).dx;
-  std::vector<double> next(y);
-  for (std::size_t i = 0; i < y.size(); ++i) next[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-  const auto p = f(t + h, next).x;
-  double scale = 1, d = 0;
-  for (std::size_t i = 0; i < next.size(); ++i) {
-    scale = std::max(scale, std::abs(next[i]));
-    d = std::max(d, std::abs(p[i] - next[i]));
-  }
-  drift = std::max(drift, d / scale);
-  return std::vector<double>(p.begin(), p.begin() + static_cast<long>(next.size()));
-}
-
 /// E = p·v − L is conserved: no forces, L and the constraints independent of t, constraints linear in v.
 bool conservative(const reference::LagrangianSystem& s) {
   for (const auto& f : s.forces)
@@ -101,38 +79,6 @@ bool conservative(const reference::LagrangianSystem& s) {
   for (const auto& b : d.b)
     if (!reference::expr::is_number(b, 0)) return false;
   return !reference::expr::depends_on(s.lagrangian, s.t());
-}
-
-double distance(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, s = 1;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    d = std::max(d, std::abs(a[i] - b[i]));
-    s = std::max(s, std::abs(a[i]));
-  }
-  return d / s;
-}
-
-void put(std::ostream& out, double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  out.write(buf, r.ptr - buf);
-}
-
-/// One CSV row, flushed (rows are streamed: a user watching the file, or a pipe, sees them as they
-/// come), and a progress line on the log every 2 s.
-void write_row(std::ostream& out, std::ostream& log, double time, const std::vector<double>& x, double tstop,
-               std::chrono::steady_clock::time_point& last) {
-  put(out, time);
-  for (double v : x) {
-    out << ",";
-    put(out, v);
-  }
-  out << "\n";
-  out.flush();
-  if (std::chrono::steady_clock::now() - last > std::chrono::seconds(2)) {
-    last = std::chrono::steady_clock::now();
-    log << "simulate: t = " << io::float_text(time) << " of " << io::float_text(tstop) << "\n";
-  }
 }
 
 }  // namespace
@@ -155,7 +101,7 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
   // or a pipe, sees them as they come — before, a redirected run showed 0 bytes for minutes), with a
   // progress line on the log every 2 s
   auto last = std::chrono::steady_clock::now();
-  const auto row = [&](double time, const std::vector<double>& x) { write_row(out, log, time, x, opt.tstop, last); };
+  const auto row = [&](double time, const std::vector<double>& x) { projected::write_row(out, log, time, x, opt.tstop, last); };
   Field::At now = f(t, y);
   row(t, now.x);
   const auto energy = [&](const std::vector<double>& x) {  // E = p·v − L
@@ -170,45 +116,23 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
                }).value();
   };
   const double e0 = energy(now.x);
-  double emax = 0, estimate = 0, drift = 0;
-  long substeps = 0;
+  double emax = 0;
+  projected::Richardson rich;
   const double t0 = t;  // rows at t0 + k·step up to the final time --tstop
   if (opt.tstop < t0) throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) + ", found " + io::float_text(opt.tstop));
   const long steps = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
-  long m = 1;
   for (long k = 1; k <= steps; ++k) {
     const double t1 = t0 + static_cast<double>(k) * opt.step;
     f.plan_at(t, y);
-    for (;;) {  // m and 2m substeps must agree
-      std::vector<double> a = y, b = y;
-      double da = 0, db = 0;
-      const double h = (t1 - t) / static_cast<double>(m);
-      for (long j = 0; j < m; ++j) a = rk4(f, t + static_cast<double>(j) * h, a, h, da);
-      for (long j = 0; j < 2 * m; ++j) b = rk4(f, t + static_cast<double>(j) * h / 2, b, h / 2, db);
-      const double err = distance(b, a);
-      if (err <= 1e-9 || m >= 4096) {
-        estimate = std::max(estimate, err);
-        drift = std::max(drift, db);
-        substeps += 2 * m;
-        y = b;
-        if (m > 1 && err < 1e-12) m /= 2;
-        break;
-      }
-      m *= 2;
-    }
+    projected::output_step(f, t, t1, y, rich);
     t = t1;
     now = f(t, y);
     row(t, now.x);
     emax = std::max(emax, std::abs(energy(now.x) - e0));
   }
-  Summary sum;
-  sum.rows = steps + 1;
-  sum.error_estimate = estimate;
-  sum.worst_variable = "(Richardson: m and 2m RK4 substeps)";
-  log << "simulate: " << sum.rows << " rows, " << substeps << " RK4 substeps, " << f.evaluations
-      << " evaluations of the pointwise CAD; estimated error " << io::float_text(estimate) << " per output step (relative), largest projection onto M_c "
-      << io::float_text(drift) << " (relative: the drift RK4 made and the projection removed); energy p·v − L varied by " << io::float_text(emax)
-      << " from " << io::float_text(e0) << (conservative(c.system) ? " (conserved by the exact motion)" : "") << "\n";
+  const Summary sum = projected::summary(steps + 1, rich, f.evaluations, "the pointwise CAD", log);
+  log << "; energy p·v − L varied by " << io::float_text(emax) << " from " << io::float_text(e0)
+      << (conservative(c.system) ? " (conserved by the exact motion)" : "") << "\n";
   return sum;
 }
 
@@ -256,7 +180,7 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
                              (path.empty() ? std::string() : " (" + path + ": " + what + ")"));
       }
   };
-  const auto row = [&](double time, const std::vector<double>& x) { write_row(out, log, time, x, opt.tstop, last); };
+  const auto row = [&](double time, const std::vector<double>& x) { projected::write_row(out, log, time, x, opt.tstop, last); };
   const auto energy = [&](const std::vector<double>& x, double time) {  // E = p·v − L
     std::vector<double> at(x.begin(), x.begin() + static_cast<long>(2 * n));
     at.push_back(time);

@@ -1,13 +1,16 @@
 // The expression form by the pointwise CAD in double (fast::pointwise_cad, dcad::fast_nonlinear), on the
 // case's point rounded by the one exact-to-double conversion (exact.hpp).
 #include "dcad/fast/chart.hpp"
+#include "dcad/fast/derivative_array.hpp"
 #include "dcad/fast/exact.hpp"
 #include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
+#include "dcad/reference/pipeline/implicit.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 #include <cmath>
+#include <set>
 
 namespace dcad::fast {
 
@@ -52,6 +55,61 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
     out.certified = decide.certain & (r.regular ? yes : unknown) & point;
     if (decide.certain.unknown()) out.note = "not certified: " + decide.evidence;
     else if (point.unknown()) out.note = "not certified: the point was rounded to double (" + input_caveat(opt) + ")";
+    return out;
+  });
+}
+
+Solution solve_implicit(const io::LagrangianCase& c, const Options& options) {
+  namespace pl = reference::pipeline;
+  return pl::pointwise_input_errors(c, [&] {
+    std::vector<bool> fixed;
+    Options opt = options;
+    const std::vector<reference::Rational> start = pl::start_point(c, fixed);
+    std::vector<double> x;
+    for (const reference::Rational& q : start) x.push_back(to_double(q, opt));
+    {  // the equations' numbers are rounded as the point's are: a rounding that may decide a rank voids certainty
+      std::vector<const reference::expr::ExprNode*> todo;
+      for (const auto& e : c.system.constraints) todo.push_back(e.get());
+      std::set<const reference::expr::ExprNode*> seen;
+      while (!todo.empty()) {
+        const reference::expr::ExprNode* e = todo.back();
+        todo.pop_back();
+        if (!seen.insert(e).second) continue;
+        if (e->op == reference::expr::ExprOp::Number) to_double(e->value, opt);
+        if (e->a) todo.push_back(e->a.get());
+        if (e->b) todo.push_back(e->b.get());
+      }
+    }
+    const DerivativeArrayResult r = derivative_array(c.system, x, fixed, opt);
+    Solution out;
+    out.file = c.file;
+    out.name = c.name;
+    out.variables = c.system.names;
+    out.algorithm = "CEF (1.6)";
+    for (long d : r.dims) out.tower.push_back({d, {}});
+    out.steps = r.steps;
+    out.consistent = r.consistent;
+    const bool ended = !r.point.empty();
+    if (r.consistent && ended) out.solution_rank = r.solution_rank;
+    Pointwise<double> p;
+    p.route = "derivative array (Campbell) in double";
+    p.regular = r.consistent ? ended : true;
+    p.why = r.consistent ? (ended ? "" : r.evidence) : r.why;
+    if (c.system.has_time) p.time_name = c.system.time_name;
+    p.time = r.time;
+    p.point = r.point;
+    p.velocity = r.velocity;
+    p.gauge = r.gauge;
+    p.order = r.order;
+    for (std::size_t k = 1; k < r.dims.size() && r.dims[k] >= 0; ++k) p.levels.push_back({r.dims[k], {}, {}});
+    if (r.consistent && ended) p.checked_order = 1;
+    out.pointwise = p;
+    out.backend = "fast";
+    const Truth point = opt.input_exact ? yes : unknown;
+    out.certified = r.certain & point;
+    if (!r.certain.yes()) out.note = "not certified: " + r.evidence;
+    else if (point.unknown()) out.note = "not certified: the case's numbers were rounded to double (" + input_caveat(opt) + ")";
+    if (!r.certain.yes() || point.unknown()) out.certified = unknown;
     return out;
   });
 }

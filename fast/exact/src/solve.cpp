@@ -13,6 +13,8 @@ Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
   Solution s;
   if (p.form == io::Form::expression) {
     s = solve_expression(p.expression, opt);
+  } else if (p.form == io::Form::implicit) {
+    s = solve_implicit(p.expression, opt);
   } else if (p.form == io::Form::dae) {
     s = solve_dae(p.dae, opt);
   } else if (p.form == io::Form::netlist) {

@@ -173,7 +173,8 @@ std::pair<std::string, std::string> nonfinite_formula(const reference::Lagrangia
     found = check(d.dl_dq[i], "/lagrangian/L (its derivative in " + names[i] + ")");
     if (found.first.empty()) found = check(d.dl_dv[i], "/lagrangian/L (its derivative in " + names[sys.v(i)] + ")");
   }
-  for (std::size_t a = 0; a < sys.m() && found.first.empty(); ++a) found = check(sys.constraints[a], "/lagrangian/constraints/" + std::to_string(a));
+  for (std::size_t a = 0; a < sys.m() && found.first.empty(); ++a)
+    found = check(sys.constraints[a], (sys.implicit ? "/implicit/equations/" : "/lagrangian/constraints/") + std::to_string(a));
   for (std::size_t i = 0; i < sys.forces.size() && found.first.empty(); ++i) found = check(sys.forces[i], "/lagrangian/forces/" + std::to_string(i));
   return found;
 }
@@ -202,7 +203,7 @@ reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSyst
   if (!path.empty())
     throw std::range_error(path + ": expected formulas whose values at the point are within double's range (the fast route computes in double), found " +
                            text + " at " + where);
-  throw std::range_error("/lagrangian: expected a pointwise CAD within double's range at " + where +
+  throw std::range_error(std::string(sys.implicit ? "/implicit" : "/lagrangian") + ": expected a pointwise CAD within double's range at " + where +
                          ", found a value that overflowed in the elimination (every formula is finite there): rescale the case");
 }
 

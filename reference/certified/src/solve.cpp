@@ -7,6 +7,7 @@
 #include "dcad/reference/pipeline/circuit.hpp"
 #include "dcad/reference/pipeline/dae.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
+#include "dcad/reference/pipeline/implicit.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 #include "dcad/reference/solve.hpp"
 
@@ -89,6 +90,8 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   Solution s;
   if (p.form == io::Form::expression) {
     s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
+  } else if (p.form == io::Form::implicit) {  // CEF (1.6) at a point, exact: every decision an exact zero test
+    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_implicit_exact(p.expression); }));
   } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
     s = exact_solution(reference::pipeline::solve_dae(p.dae));
   } else if (p.form == io::Form::netlist) {

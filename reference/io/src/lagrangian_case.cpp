@@ -39,29 +39,25 @@ void claim(const std::string& name, const Where& at, std::set<std::string>& take
   if (!taken.insert(name).second) at.fail(what + " not used for anything else", "\"" + name + "\" given twice (or a velocity/momentum name)");
 }
 
-}  // namespace
-
-LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
-  const Where root{file, ""};
-  require_known_keys(j, root, {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures"});
+/// The format version, `name` and `description`.
+LagrangianCase read_header(const json& j, const Where& root, const std::string& file) {
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
   if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1)) (root / "dcad").fail("format version 1", describe(j["dcad"]));
-  if (!j.contains("lagrangian")) root.fail("the key \"lagrangian\" (the expression form)", "\"parameters\" without it");
   LagrangianCase c;
   c.file = file;
   if (j.contains("name")) c.name = read_string(j["name"], root / "name", "a string");
   if (j.contains("description")) c.description = read_string(j["description"], root / "description", "a string");
-  const json& lag = j["lagrangian"];
-  const Where l = root / "lagrangian";
-  if (!lag.is_object()) l.fail("an object {coordinates, L, constraints, forces, time}", describe(lag));
-  require_known_keys(lag, l, {"coordinates", "L", "constraints", "forces", "time"});
-  if (!lag.contains("coordinates")) l.fail("the key \"coordinates\"", "no such key");
-  if (!lag.contains("L")) l.fail("the key \"L\" (the Lagrangian)", "no such key");
+  return c;
+}
+
+/// The names both formula forms declare, in order: `coordinates` (each claiming v_<name>, and p_<name>
+/// when the form has momenta), the optional `time`, the case's `parameters`.
+void read_names(const json& j, const json& form, const Where& root, const Where& l, bool momenta, std::size_t most, LagrangianCase& c,
+                std::set<std::string>& taken) {
   reference::LagrangianSystem& s = c.system;
-  std::set<std::string> taken;
-  const json& coords = lag["coordinates"];
+  const json& coords = form["coordinates"];
   if (!coords.is_array() || coords.empty()) (l / "coordinates").fail("a non-empty array of names", describe(coords));
-  if (coords.size() > 64) (l / "coordinates").fail("at most 64 coordinates", std::to_string(coords.size()));
+  if (coords.size() > most) (l / "coordinates").fail("at most " + std::to_string(most) + " coordinates", std::to_string(coords.size()));
   for (std::size_t i = 0; i < coords.size(); ++i) {
     const std::string name = read_string(coords[i], l / "coordinates" / i, "a coordinate name");
     claim(name, l / "coordinates" / i, taken, "a coordinate name");
@@ -70,11 +66,11 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   s.n = s.names.size();
   for (std::size_t i = 0; i < s.n; ++i) {
     claim("v_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose velocity name v_" + s.names[i] + " is free");
-    claim("p_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose momentum name p_" + s.names[i] + " is free");
+    if (momenta) claim("p_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose momentum name p_" + s.names[i] + " is free");
   }
-  if (lag.contains("time")) {
+  if (form.contains("time")) {
     s.has_time = true;
-    s.time_name = read_string(lag["time"], l / "time", "the name of the time variable");
+    s.time_name = read_string(form["time"], l / "time", "the name of the time variable");
     claim(s.time_name, l / "time", taken, "a time name");
   }
   if (j.contains("parameters")) {
@@ -85,12 +81,36 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
       c.parameters[k] = read_number(v, root / "parameters" / k);
     }
   }
-  std::map<std::string, std::size_t> vars;  // the arguments of L, constraints and forces: t, q, v
+}
+
+/// The arguments of the formulas: t, q, v (LagrangianSystem's indices).
+std::map<std::string, std::size_t> formula_variables(const reference::LagrangianSystem& s) {
+  std::map<std::string, std::size_t> vars;
   for (std::size_t i = 0; i < s.n; ++i) {
     vars[s.names[i]] = s.q(i);
     vars["v_" + s.names[i]] = s.v(i);
   }
   if (s.has_time) vars[s.time_name] = s.t();
+  return vars;
+}
+
+}  // namespace
+
+LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
+  const Where root{file, ""};
+  require_known_keys(j, root, {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures"});
+  if (!j.contains("lagrangian")) root.fail("the key \"lagrangian\" (the expression form)", "\"parameters\" without it");
+  LagrangianCase c = read_header(j, root, file);
+  const json& lag = j["lagrangian"];
+  const Where l = root / "lagrangian";
+  if (!lag.is_object()) l.fail("an object {coordinates, L, constraints, forces, time}", describe(lag));
+  require_known_keys(lag, l, {"coordinates", "L", "constraints", "forces", "time"});
+  if (!lag.contains("coordinates")) l.fail("the key \"coordinates\"", "no such key");
+  if (!lag.contains("L")) l.fail("the key \"L\" (the Lagrangian)", "no such key");
+  reference::LagrangianSystem& s = c.system;
+  std::set<std::string> taken;
+  read_names(j, lag, root, l, true, 64, c, taken);
+  const std::map<std::string, std::size_t> vars = formula_variables(s);  // the arguments of L, constraints and forces
   const auto parse = [&](const json& e, const Where& at, const std::string& what) {
     return parse_expression(read_string(e, at, what), vars, c.parameters, at);
   };
@@ -151,14 +171,66 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
 
 LagrangianCase read_lagrangian_case(const std::string& file) { return read_lagrangian_case(read_json_file(file), file); }
 
-reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file, const std::string& path) {
-  const reference::LagrangianSystem& s = c.system;
-  std::map<std::string, std::size_t> vars;
-  for (std::size_t i = 0; i < s.n; ++i) {
-    vars[s.names[i]] = s.q(i);
-    vars["v_" + s.names[i]] = s.v(i);
+bool is_implicit_case(const json& j) { return j.is_object() && j.contains("implicit"); }
+
+LagrangianCase read_implicit_case(const json& j, const std::string& file) {
+  const Where root{file, ""};
+  require_known_keys(j, root, {"dcad", "name", "description", "parameters", "implicit", "initial", "expect", "known_failures"});
+  LagrangianCase c = read_header(j, root, file);
+  const json& im = j["implicit"];
+  const Where l = root / "implicit";
+  if (!im.is_object()) l.fail("an object {coordinates, equations, time}", describe(im));
+  require_known_keys(im, l, {"coordinates", "equations", "time"});
+  if (!im.contains("coordinates")) l.fail("the key \"coordinates\"", "no such key");
+  if (!im.contains("equations")) l.fail("the key \"equations\" (phi(t, x, v_x) = 0, affine in the v_*)", "no such key");
+  reference::LagrangianSystem& s = c.system;
+  s.implicit = true;
+  s.lagrangian = reference::expr::number(0);
+  std::set<std::string> taken;
+  read_names(j, im, root, l, false, 1000, c, taken);
+  const std::map<std::string, std::size_t> vars = formula_variables(s);  // the arguments of the equations: t, x, v_x
+  const json& k = im["equations"];
+  const Where ke = l / "equations";
+  if (!k.is_array()) ke.fail("an array of equations phi(t, x, v_x) = 0 as string expressions, affine in the v_*", describe(k));
+  for (std::size_t a = 0; a < k.size(); ++a)
+    s.constraints.push_back(parse_expression(read_string(k[a], ke / a, "an equation as a string expression"), vars, c.parameters, ke / a));
+  std::vector<std::size_t> vs;
+  for (std::size_t i = 0; i < s.n; ++i) vs.push_back(s.v(i));
+  for (std::size_t bad; (bad = reference::first_non_affine_constraint(s)) < s.m();) {  // as for constraints: affine after expanding
+    const auto form = reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
+    if (!form)
+      (ke / bad).fail("an equation affine in the derivatives v_*, E(t, x)·v + g(t, x) (CONTRACT)",
+                      "\"" + k[bad].get<std::string>() + "\", not affine in the v_* (after expanding and collecting terms)");
+    reference::expr::Expr e = form->second;
+    for (std::size_t i = 0; i < s.n; ++i) e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
+    s.constraints[bad] = e;
   }
-  if (s.has_time) vars[s.time_name] = s.t();
+  c.initial.assign(2 * s.n + 1, std::nullopt);
+  c.initial_p.assign(s.n, std::nullopt);
+  if (j.contains("initial")) {
+    const json& in = j["initial"];
+    const Where w = root / "initial";
+    if (!in.is_object()) w.fail("an object {name: exact value} (coordinates, the time)", describe(in));
+    c.has_initial = true;
+    std::vector<std::string> known = s.names;
+    if (s.has_time) known.push_back(s.time_name);
+    for (const auto& [key, v] : in.items()) {
+      const Rational value = read_number(v, w / key);
+      const auto it = vars.find(key);
+      if (it != vars.end() && !(it->second >= s.n && it->second < 2 * s.n)) {
+        c.initial[it->second] = value;
+        continue;
+      }
+      const std::string best = nearest_name(key, known);
+      (w / key).fail("a coordinate or the time name (the derivatives v_* are not state: the equations give them)",
+                     "\"" + key + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+    }
+  }
+  return c;
+}
+
+reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file, const std::string& path) {
+  const std::map<std::string, std::size_t> vars = formula_variables(c.system);
   const Where at{file, path};
   return parse_expression(text, vars, c.parameters, at);
 }

@@ -6,11 +6,11 @@
 namespace dcad::io {
 
 std::vector<std::string> Problem::variables() const {
-  return form == Form::expression ? expression.system.state_names() : form == Form::dae ? dae.variables : linear.variables;
+  return form == Form::expression || form == Form::implicit ? expression.system.state_names() : form == Form::dae ? dae.variables : linear.variables;
 }
 
 std::string Problem::name() const {
-  return form == Form::expression ? expression.name : form == Form::dae ? dae.name : form == Form::netlist ? netlist.title : linear.name;
+  return form == Form::expression || form == Form::implicit ? expression.name : form == Form::dae ? dae.name : form == Form::netlist ? netlist.title : linear.name;
 }
 
 namespace {
@@ -21,6 +21,9 @@ Problem from_json(const nlohmann::json& j, const std::string& file) {
   if (is_dae_case(j)) {
     p.form = Form::dae;
     p.dae = read_dae_case(j, file);
+  } else if (is_implicit_case(j)) {
+    p.form = Form::implicit;
+    p.expression = read_implicit_case(j, file);
   } else if (is_expression_case(j)) {
     p.form = Form::expression;
     p.expression = read_lagrangian_case(j, file);

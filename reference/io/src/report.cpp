@@ -374,6 +374,9 @@ json pointwise_json(const Printed& r) {
   j["consistent"] = p.regular || !r.consistent ? json(r.consistent) : json(nullptr);
   j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
+  // the implicit form: where ẋ is unique on M_c, steps is the index (Rabier–Rheinboldt's geometric
+  // index, which is the differentiation index there); else none
+  if (r.algorithm == "CEF (1.6)") j["index"] = r.consistent && r.solution_rank && *r.solution_rank == 0 ? json(r.steps) : json(nullptr);
   if (!r.name.empty()) j["name"] = r.name;
   j["variables"] = r.variables;
   j["route"] = p.route;
@@ -390,7 +393,8 @@ json pointwise_json(const Printed& r) {
   for (std::size_t k = 0; k < p.levels.size(); ++k) {
     const auto& l = p.levels[k];
     json cs = json::array(), solved = json::array(), ps = json::array();
-    if (k == 0) {
+    const bool formula = k == 0 && !p.first_constraints.empty();  // the implicit form's M_1 is a tangent equation too
+    if (formula) {
       cs = p.first_constraints;
     } else {
       for (const auto& con : l.constraints) {
@@ -407,8 +411,8 @@ json pointwise_json(const Printed& r) {
     }
     for (const auto& pv : l.pivots) ps.push_back({{"row", pv.row}, {"column", pv.column}, {"value", pv.value}});
     json step = {{"k", k + 1}, {"dim", k + 1 < dims.size() ? dims[k + 1] : l.dim}, {"new_constraints", cs}};
-    step["form"] = k == 0 ? "formula" : "tangent at the point";
-    if (k > 0) step["solved_for"] = solved;
+    step["form"] = formula ? "formula" : "tangent at the point";
+    if (!formula) step["solved_for"] = solved;
     step["pivots"] = ps;  // of the linear system for (d/dt s, lambda) on this M_k
     tower.push_back(step);
   }
@@ -465,7 +469,8 @@ std::string pointwise_text(const Printed& r) {
   const std::vector<long> dims = r.dims();
   const std::vector<std::string>& st = r.variables;
   std::ostringstream o;
-  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": CAD (CEF §5) at a point, " << p.route << ", backend " << r.backend << ", "
+  const bool ide = r.algorithm == "CEF (1.6)";
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << (ide ? ": the constraint algorithm of CEF (1.6) at a point, " : ": CAD (CEF §5) at a point, ") << p.route << ", backend " << r.backend << ", "
     << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
   o << "  point" << (!p.time_name.empty() ? " at " + p.time_name + " = " + p.time : "") << ":";
   std::vector<std::string> shown = p.point;
@@ -488,9 +493,14 @@ std::string pointwise_text(const Printed& r) {
   if (!p.regular) o << "  SINGULAR POINT: " << p.why << " (the tower is not decided here; try another point)\n";
   if (r.consistent && p.regular) {
     const long rank = r.solution_rank.value_or(0);
-    o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; the last step's "
-      << "constraints vanish on M_c to order " << p.checked_order << ")\n";
-    o << "  solution rank dim(ker omega_D ∩ T M_c) = " << rank << (rank == 0 ? " (unique)" : "") << "\n";
+    if (p.route.rfind("derivative array", 0) == 0)
+      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (ranks of the derivative array F_" << p.order
+        << " at a zero of it)\n";
+    else
+      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; the last step's "
+        << "constraints vanish on M_c to order " << p.checked_order << ")\n";
+    o << (ide ? "  solution rank dim{v in T M_c : phi(t, x, v) = 0} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ") << rank << (rank == 0 ? " (unique)" : "")
+      << (ide && rank == 0 ? "; index " + std::to_string(r.steps) : "") << "\n";
     o << "  velocity at the point (one solution" << (rank ? " of a " + std::to_string(rank) + "-parameter family" : "") << "):";
     for (std::size_t i = 0; i < p.velocity.size(); ++i) o << (i % 4 == 0 ? "\n     " : "") << " d/dt " << st[i] << " = " << p.velocity[i] << (i + 1 < p.velocity.size() ? "," : "");
     o << "\n";

@@ -1,6 +1,7 @@
 // The expression form by the exact pointwise CAD (the one translation unit that instantiates
 // reference/nonlinear/pointwise.hpp on mpq_rational).
 #include "dcad/reference/pipeline/exact_place.hpp"
+#include "dcad/reference/pipeline/implicit.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 #include <cmath>
@@ -155,6 +156,20 @@ dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c)
   out.certified = r.regular ? yes : unknown;
   out.note = "exact at a rational place near the given values (`place`), not at them: the tower, steps and solution rank are generic on the "
              "component (CEF §5), the point and velocity are the place's";
+  return out;
+}
+
+dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c) {
+  std::vector<bool> fixed;
+  PointwiseResult<Rational> r;
+  for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
+    r = run(c.system, start_point(c, fixed, seed), fixed);
+    if (r.regular || c.has_initial) break;
+  }
+  check_given_implicit<Rational>(
+      r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
+  dcad::Solution<Rational> out = implicit_solution(r, c, "pointwise exact");
+  out.certified = r.regular ? yes : unknown;  // a singular point decides no tower
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include "dcad/reference/pipeline/circuit.hpp"
 #include "dcad/reference/pipeline/dae.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
+#include "dcad/reference/pipeline/implicit.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 namespace dcad::reference {
@@ -70,10 +71,22 @@ Solution expression(const io::LagrangianCase& c) {
   });
 }
 
+Solution implicit(const io::LagrangianCase& c) {
+  return pipeline::pointwise_input_errors(c, [&] {
+    try {
+      return pipeline::solve_implicit_exact(c);
+    } catch (const NotExactHere& e) {
+      throw io::InputError(c.file + ": /initial: expected a point where every value of the equations is rational (the exact route), found " +
+                           e.what() + "; give such a point or use --backend fast or certified");
+    }
+  });
+}
+
 }  // namespace
 
 Solution solve(const io::Problem& p, const Parts& parts) {
   Solution s = p.form == io::Form::expression ? expression(p.expression)
+               : p.form == io::Form::implicit ? implicit(p.expression)
                : p.form == io::Form::dae      ? pipeline::solve_dae(p.dae)
                : p.form == io::Form::netlist  ? netlist(p, parts)
                                               : linear(p.linear, parts);

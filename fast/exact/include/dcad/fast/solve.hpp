@@ -34,6 +34,8 @@ Inspection inspect(const io::CaseFile& c, const Options& opt = {});
 /// fast_nonlinear at the case's point; certified when every zero test was; io::InputError for given
 /// values off M_c, as the exact route) and the LC graph route.
 Solution solve_expression(const io::LagrangianCase& c, const Options& opt = {});
+/// The implicit form (CEF (1.6), pipeline/implicit.hpp) by the same pointwise algorithm in double.
+Solution solve_implicit(const io::LagrangianCase& c, const Options& opt = {});
 Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& opt = {});
 
 }  // namespace dcad::fast

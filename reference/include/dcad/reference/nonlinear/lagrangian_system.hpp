@@ -17,6 +17,10 @@ namespace dcad::reference {
 struct LagrangianSystem {
   std::size_t n = 0;
   bool has_time = false;
+  /// The CONTRACT's `implicit` form instead: the implicit differential equation φ(t, q, q̇) = 0 on Q
+  /// itself (CEF (1.6), M_0 = Q), each φ_a affine in q̇ — `constraints` are the φ_a (any number),
+  /// there is no L, no force, no momentum and no multiplier λ: the state is q alone.
+  bool implicit = false;
   std::vector<std::string> names;  ///< the n coordinate names
   std::string time_name = "t";
   expr::Expr lagrangian;
@@ -34,8 +38,9 @@ struct LagrangianSystem {
     out.push_back(time_name);
     return out;
   }
-  /// Names of M's coordinates x = (q, v, p).
+  /// Names of M's coordinates x = (q, v, p) (the implicit form: q).
   std::vector<std::string> state_names() const {
+    if (implicit) return names;
     std::vector<std::string> out = variable_names();
     out.pop_back();
     for (const std::string& s : names) out.push_back("p_" + s);

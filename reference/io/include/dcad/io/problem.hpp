@@ -18,6 +18,7 @@ enum class Form {
   netlist,     ///< an LC or RLC netlist (CEF §6, YM §4)
   expression,  ///< the expression form: a Lagrangian system by formulas (YM §4–§6, V §3)
   dae,         ///< a linear DAE E ẋ = A x + f(t) (CEF (1.6); CONTRACT "Linear and implicit DAEs")
+  implicit,    ///< an implicit DAE φ(t, x, ẋ) = 0 affine in ẋ (CEF (1.6)), held in `expression` (system.implicit)
 };
 
 struct Problem {
@@ -25,7 +26,7 @@ struct Problem {
   std::string file;            ///< where it was read from (names every message)
   CaseFile linear;             ///< Form::linear: the case; Form::netlist: the circuit's variable names (q_*, v_*, p_*)
   Netlist netlist;             ///< Form::netlist
-  LagrangianCase expression;   ///< Form::expression
+  LagrangianCase expression;   ///< Form::expression; Form::implicit (its system is `implicit`)
   DaeCase dae;                 ///< Form::dae
 
   /// The state's variable names, in order: x of a linear case, (q, v, p) of a circuit or a Lagrangian system.

@@ -31,10 +31,11 @@ class Run {
     for (T& x : point) x = JetFunctions<T>::as_input(x);
     out = PointwiseResult<T>();
     out.order = K;
-    out.dims.push_back(static_cast<long>(3 * s_.n));
+    out.dims.push_back(static_cast<long>(s_.implicit ? s_.n : 3 * s_.n));
     State st;
-    if (!first_level(point, K, out, st)) return Outcome::Done;
-    for (std::size_t k = 1;; ++k)
+    if (s_.implicit) implicit_start(point, K, st);  // CEF (1.6): M_0 = Q, the first step is M_0 → M_1
+    else if (!first_level(point, K, out, st)) return Outcome::Done;
+    for (std::size_t k = s_.implicit ? 0 : 1;; ++k)
       if (const std::optional<Outcome> o = next_level(k, point, K, out, st)) return *o;
   }
 
@@ -46,6 +47,19 @@ class Run {
     std::vector<J> x;
     PointwiseLevel<T> level;
   };
+
+  /// The implicit form's M_0 = Q: the chart is (t, q), every q a coordinate (the v entries of x are
+  /// unused: the equations' velocities are the unknowns q̇ of the system, system.hpp).
+  void implicit_start(const std::vector<T>& point, long K, State& st) {
+    if (s_.has_time) st.chart.push_back(s_.t());
+    for (std::size_t i = 0; i < s_.n; ++i) st.chart.push_back(s_.q(i));
+    auto space = std::make_shared<const JetSpace>(st.chart.size(), static_cast<std::size_t>(K));
+    st.x.assign(2 * s_.n + 1, J(space, T(0)));
+    for (std::size_t j = 0; j < st.chart.size(); ++j) st.x[st.chart[j]] = J::variable(space, j, point[st.chart[j]]);
+    if (!s_.has_time) st.x[s_.t()] = J(space, point[s_.t()]);
+    st.level.dim = static_cast<long>(s_.n);
+    st.level.chart = st.chart;
+  }
 
   /// M_1 = {p = ∂L/∂v, a(t, q)·v + b = 0}: the dependent velocities (pivots nonzero at the point) and
   /// the graph over (t, q, free velocities).  False if the constraints' rank drops at the point.
@@ -89,6 +103,7 @@ class Run {
   /// The point as given: (q, v, p = ∂L/∂v) and the time.
   void finish_given(PointwiseResult<T>& out, const std::vector<T>& point) {
     const std::size_t n = s_.n;
+    if (s_.implicit) return finish_implicit(out, point);
     out.point.assign(3 * n, T(0));
     for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
     for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = value(d_.dl_dv[i], point);
@@ -464,7 +479,11 @@ class Run {
       // term): those first (the spherical pendulum's μ|q|² − |v|² + g z = 0 is solved for μ, not v_z)
       std::vector<std::vector<std::size_t>> groups(2);
       for (std::size_t j : movable) groups[affine_along(cand, j) || multiplier(chart[j]) ? 0 : 1].push_back(j);
-      st.piv = eliminate_constants(aug, rhs, groups, largest);
+      // the implicit form: the coordinates in the charts' own order (the ones the next chart solves for
+      // move): by magnitude, 2 x1 − x2 = 0 moved x1, which M_2's chart over x1 then moved back, forever
+      // (prop_dae's LinearFormEqualsImplicitFormOnLinearData)
+      if (s_.implicit) st.piv = eliminate_constants(aug, rhs, groups, decide_);
+      else st.piv = eliminate_constants(aug, rhs, groups, largest);
     } else {
       st.piv = eliminate_constants(aug, rhs, movable, largest);
     }
@@ -614,7 +633,9 @@ class Run {
   /// The solution rank and the velocities at the point, from the final system's constant terms:
   /// z = (ṡ, λ) solves R z = h; ẋ = Σ_j ∂x/∂s_j ṡ_j + ∂x/∂t for every coordinate of x = (q, v, p).
   void solutions(const MotionSystem<T>& sys, const std::vector<J>& x, const std::vector<std::size_t>& chart, PointwiseResult<T>& out) {
-    const std::size_t n = s_.n, rows = sys.r.size(), w = rows ? sys.r[0].size() : s_.m(), ms = w - s_.m();
+    // the implicit form: x = q, z = ṡ (no λ); rows may be none (no equation): w = the chart's non-time size
+    const std::size_t n = s_.n, lambdas = s_.implicit ? 0 : s_.m(), nx = s_.implicit ? n : 3 * n;
+    const std::size_t w = rows_width(sys, chart, lambdas), rows = sys.r.size(), ms = w - lambdas;
     std::vector<std::vector<T>> r(rows, std::vector<T>(w));
     std::vector<T> h(rows);
     for (std::size_t i = 0; i < rows; ++i) {
@@ -631,8 +652,8 @@ class Run {
       is_piv[pc.second] = 1;
     }
     const auto full = [&](const std::vector<T>& zz, bool with_time) {
-      std::vector<T> v(3 * n, T(0));
-      for (std::size_t var = 0; var < 3 * n; ++var) {
+      std::vector<T> v(nx, T(0));
+      for (std::size_t var = 0; var < nx; ++var) {
         const J& f = var < 2 * n ? x[var] : sys.p[var - 2 * n];
         std::size_t jj = 0;
         for (std::size_t j = 0; j < chart.size(); ++j) {
@@ -648,7 +669,7 @@ class Run {
     out.velocity = full(z, true);
     out.tangent.clear();
     for (std::size_t j = 0; j < ms; ++j) {
-      std::vector<T> e(ms + s_.m(), T(0));
+      std::vector<T> e(ms + lambdas, T(0));
       e[j] = T(1);
       out.tangent.push_back(full(e, false));
     }
@@ -662,19 +683,34 @@ class Run {
     }
     std::vector<std::vector<T>> rr = dirs;  // the ẋ-directions they span
     std::vector<T> zr(rr.size(), T(0));
-    std::vector<std::size_t> xcols(3 * n);
-    for (std::size_t j = 0; j < 3 * n; ++j) xcols[j] = j;
+    std::vector<std::size_t> xcols(nx);
+    for (std::size_t j = 0; j < nx; ++j) xcols[j] = j;
     out.gauge.clear();
     for (const auto& pc : eliminate_constants(rr, zr, xcols, decide_)) out.gauge.push_back(dirs[pc.first]);
     out.solution_rank = out.gauge.size();
   }
 
+  /// The width of the system's rows: the non-time chart coordinates and the multipliers.
+  std::size_t rows_width(const MotionSystem<T>& sys, const std::vector<std::size_t>& chart, std::size_t lambdas) const {
+    if (!sys.r.empty()) return sys.r[0].size();
+    std::size_t w = lambdas;
+    for (std::size_t c : chart) w += c == s_.t() ? 0 : 1;
+    return w;
+  }
+
   /// The point (q, v, p = ∂L/∂v) and the time.
   void finish(PointwiseResult<T>& out, const std::vector<T>& point, const std::vector<J>& x) {
     const std::size_t n = s_.n;
+    if (s_.implicit) return finish_implicit(out, point);
     out.point.assign(3 * n, T(0));
     for (std::size_t i = 0; i < 2 * n; ++i) out.point[i] = point[i];
     for (std::size_t i = 0; i < n; ++i) out.point[2 * n + i] = eval(d_.dl_dv[i], x).value();
+    out.time = point[s_.t()];
+  }
+
+  /// The implicit form's point: q and the time.
+  void finish_implicit(PointwiseResult<T>& out, const std::vector<T>& point) {
+    out.point.assign(point.begin(), point.begin() + static_cast<std::ptrdiff_t>(s_.n));
     out.time = point[s_.t()];
   }
 

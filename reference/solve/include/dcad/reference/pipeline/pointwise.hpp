@@ -50,6 +50,41 @@ void check_given(const PointwiseResult<T>& r, const io::LagrangianCase& c, const
     if (c.initial_p[i] && !same(r.point[2 * n + i], *c.initial_p[i])) bad(2 * n + i, *c.initial_p[i], r.point[2 * n + i]);
 }
 
+/// The pointwise algorithm's result at the point: the point, a velocity and the gauge, each step's
+/// constraints (tangent equations at the point, solved for a coordinate) and pivots, from r.levels[skip]
+/// on (the implicit form skips its M_0), so that levels[k] describes M_{k+1}.
+template <class T>
+Pointwise<T> pointwise_part(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::string& route, std::size_t skip) {
+  Pointwise<T> p;
+  p.route = route;
+  p.regular = r.regular;
+  p.why = r.why;
+  if (c.system.has_time) p.time_name = c.system.time_name;
+  p.time = r.time;
+  p.point = r.point;
+  p.velocity = r.velocity;
+  p.gauge = r.gauge;
+  const std::vector<std::string> names = c.system.variable_names();
+  for (std::size_t k = skip; k < r.levels.size(); ++k) {
+    const PointwiseLevel<T>& l = r.levels[k];
+    typename Pointwise<T>::Step step;
+    step.dim = l.dim;
+    for (const PointwiseConstraint<T>& con : l.added) {
+      typename Pointwise<T>::Tangent t;
+      t.solved_for = names[con.solved_for];
+      for (const auto& [j, g] : con.gradient) t.terms.emplace_back(names[j], g);
+      t.rhs = con.rhs;
+      step.constraints.push_back(t);
+    }
+    for (const PointwisePivot<T>& pv : l.pivots) step.pivots.push_back({pv.row, pv.column, pv.value});
+    p.levels.push_back(step);
+  }
+  p.order = r.order;
+  p.checked_order = r.checked_order;
+  p.moves = static_cast<long>(r.moves);
+  return p;
+}
+
 /// The pointwise CAD's result as a Solution: dims, the tower's constraints (M_1 as formulas, the later
 /// ones as tangent equations at the point), the point, a velocity and the gauge.
 template <class T>
@@ -62,38 +97,14 @@ dcad::Solution<T> pointwise_solution(const PointwiseResult<T>& r, const io::Lagr
   out.steps = static_cast<long>(r.steps);
   out.consistent = r.consistent;
   if (r.consistent && r.regular) out.solution_rank = static_cast<long>(r.solution_rank);
-  Pointwise<T> p;
-  p.route = route;
-  p.regular = r.regular;
-  p.why = r.why;
-  if (c.system.has_time) p.time_name = c.system.time_name;
-  p.time = r.time;
-  p.point = r.point;
-  p.velocity = r.velocity;
-  p.gauge = r.gauge;
-  const std::vector<std::string> names = c.system.variable_names();
-  for (const PointwiseLevel<T>& l : r.levels) {
-    typename Pointwise<T>::Step step;
-    step.dim = l.dim;
-    for (const PointwiseConstraint<T>& k : l.added) {
-      typename Pointwise<T>::Tangent t;
-      t.solved_for = names[k.solved_for];
-      for (const auto& [j, g] : k.gradient) t.terms.emplace_back(names[j], g);
-      t.rhs = k.rhs;
-      step.constraints.push_back(t);
-    }
-    for (const PointwisePivot<T>& pv : l.pivots) step.pivots.push_back({pv.row, pv.column, pv.value});
-    p.levels.push_back(step);
-  }
+  Pointwise<T> p = pointwise_part(r, c, route, 0);
   {  // M_1 = {p = ∂L/∂v, a·v + b = 0} as formulas (symbolic derivatives of L)
+    const std::vector<std::string> names = c.system.variable_names();
     const LagrangianDerivatives d = derivatives(c.system);
     const std::vector<std::string> st = c.system.state_names();
     for (std::size_t i = 0; i < c.system.n; ++i) p.first_constraints.push_back(st[2 * c.system.n + i] + " = " + expr::to_text(d.dl_dv[i], names));
     for (const auto& k : c.system.constraints) p.first_constraints.push_back(expr::to_text(k, names) + " = 0");
   }
-  p.order = r.order;
-  p.checked_order = r.checked_order;
-  p.moves = static_cast<long>(r.moves);
   out.pointwise = p;
   return out;
 }
@@ -108,7 +119,7 @@ auto pointwise_input_errors(const io::LagrangianCase& c, F f) {
     throw;
   } catch (const PointwiseNoPoint& e) {
     if (!c.has_initial)  // the file gave no point: dcad's default start is not the user's input
-      throw io::InputError(c.file + ": /lagrangian: expected a system whose M_c dcad reaches from its default point (no `initial` given), found " +
+      throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") + ": expected a system whose M_c dcad reaches from its default point (no `initial` given), found " +
                            e.what() + "; give `initial` values near M_c");
     throw io::InputError(c.file + ": /initial: expected values that extend to a point of M_c, found " + e.what());
   } catch (const std::range_error& e) {  // the double route's values overflowed (its message names the formula and the point)
@@ -116,7 +127,7 @@ auto pointwise_input_errors(const io::LagrangianCase& c, F f) {
   } catch (const std::domain_error& e) {
     throw io::InputError(c.file + ": /initial: expected a point where the formulas are defined and differentiable, found " + e.what());
   } catch (const std::length_error& e) {
-    throw io::InputError(c.file + ": /lagrangian/coordinates: expected a system whose tower fits in jets of at most 200000 monomials, found " +
+    throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") + "/coordinates: expected a system whose tower fits in jets of at most 200000 monomials, found " +
                          std::to_string(c.system.n) + " coordinates: " + e.what());
   }
 }

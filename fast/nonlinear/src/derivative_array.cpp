@@ -1,0 +1,259 @@
+// Campbell's derivative array for the implicit form (derivative_array.hpp: the definitions).
+#include "dcad/fast/derivative_array.hpp"
+
+#include "dcad/reference/nonlinear/pointwise/result.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace dcad::fast {
+
+namespace {
+
+namespace ex = reference::expr;
+
+/// One equation of the array with its partial derivatives in the x^(j) (not t), symbolically.
+struct ArrayEquation {
+  ex::Expr e;
+  std::vector<std::pair<std::size_t, ex::Expr>> grad;
+};
+
+void variables_of(const ex::Expr& e, std::set<std::size_t>& out, std::unordered_set<const ex::ExprNode*>& seen) {
+  if (!seen.insert(e.get()).second) return;
+  if (e->op == ex::ExprOp::Variable) out.insert(e->var);
+  if (e->a) variables_of(e->a, out, seen);
+  if (e->b) variables_of(e->b, out, seen);
+}
+
+ArrayEquation equation(const ex::Expr& e, std::size_t time) {
+  ArrayEquation q{e, {}};
+  std::set<std::size_t> vars;
+  std::unordered_set<const ex::ExprNode*> seen;
+  variables_of(e, vars, seen);
+  for (std::size_t v : vars)
+    if (v != time) {
+      ex::Expr g = ex::diff(e, v);
+      if (!ex::is_number(g, 0)) q.grad.emplace_back(v, g);
+    }
+  return q;
+}
+
+/// d/dt e = ∂_t e + Σ_v ∂e/∂v · (v's next derivative), v's next derivative n indices on.
+ex::Expr total_derivative(const ArrayEquation& q, std::size_t n, std::size_t time) {
+  ex::Expr d = ex::diff(q.e, time);
+  for (const auto& [v, g] : q.grad) d = ex::add(d, ex::mul(g, ex::variable(v + n)));
+  return d;
+}
+
+/// e at z in double; `memo` shares subexpressions across the array's equations and derivatives (they
+/// share operands).  std::domain_error where a value is not finite (a division by 0, a root of a negative).
+double value(const ex::Expr& e, const std::vector<double>& z, std::unordered_map<const ex::ExprNode*, double>& memo) {
+  if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
+  const auto sub = [&](const ex::Expr& x) { return value(x, z, memo); };
+  double r = 0;
+  switch (e->op) {
+    case ex::ExprOp::Number: r = e->value.convert_to<double>(); break;
+    case ex::ExprOp::Variable: r = z.at(e->var); break;
+    case ex::ExprOp::Add: r = sub(e->a) + sub(e->b); break;
+    case ex::ExprOp::Sub: r = sub(e->a) - sub(e->b); break;
+    case ex::ExprOp::Neg: r = -sub(e->a); break;
+    case ex::ExprOp::Mul: r = sub(e->a) * sub(e->b); break;
+    case ex::ExprOp::Div: r = sub(e->a) / sub(e->b); break;
+    case ex::ExprOp::Pow: r = std::pow(sub(e->a), static_cast<double>(e->exponent)); break;
+    case ex::ExprOp::Sin: r = std::sin(sub(e->a)); break;
+    case ex::ExprOp::Cos: r = std::cos(sub(e->a)); break;
+    case ex::ExprOp::Exp: r = std::exp(sub(e->a)); break;
+    case ex::ExprOp::Sqrt: r = std::sqrt(sub(e->a)); break;
+  }
+  if (!std::isfinite(r)) throw std::domain_error("a value that is not finite in double (a division by 0, a root of a negative number, an overflow) at the point");
+  memo.emplace(e.get(), r);
+  return r;
+}
+
+struct Values {
+  Eigen::VectorXd f;
+  Eigen::MatrixXd j;  ///< over the first `cols` variables
+};
+
+Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, std::size_t cols) {
+  Values v{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(eqs.size())), Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(eqs.size()), static_cast<Eigen::Index>(cols))};
+  std::unordered_map<const ex::ExprNode*, double> memo;
+  for (std::size_t i = 0; i < eqs.size(); ++i) {
+    v.f(static_cast<Eigen::Index>(i)) = value(eqs[i].e, z, memo);
+    for (const auto& [var, g] : eqs[i].grad)
+      if (var < cols) v.j(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(var)) = value(g, z, memo);
+  }
+  return v;
+}
+
+std::string text(double x) {
+  std::ostringstream o;
+  o.precision(3);
+  o << x;
+  return o.str();
+}
+
+/// Gauss–Newton with minimum-norm steps on the free columns: the residual it ends at, and its scale.
+struct Newton {
+  double residual = 0, scale = 1;
+};
+Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols, const std::vector<bool>& held) {
+  Newton out;
+  std::vector<Eigen::Index> free;
+  for (std::size_t c = 0; c < cols; ++c)
+    if (!held[c]) free.push_back(static_cast<Eigen::Index>(c));
+  double best = HUGE_VAL;
+  std::vector<double> best_z = z;
+  for (int it = 0; it < 60; ++it) {
+    const Values v = evaluate_array(eqs, z, cols);
+    double zmax = 1;
+    for (std::size_t c = 0; c < cols; ++c) zmax = std::max(zmax, std::abs(z[c]));
+    out.scale = std::max(1.0, v.j.cwiseAbs().maxCoeff()) * zmax;
+    const double r = v.f.size() ? v.f.cwiseAbs().maxCoeff() : 0.0;
+    if (r < best) best = r, best_z = z;
+    if (r <= 1e-15 * out.scale || free.empty()) break;
+    Eigen::MatrixXd jf(v.j.rows(), static_cast<Eigen::Index>(free.size()));
+    for (std::size_t k = 0; k < free.size(); ++k) jf.col(static_cast<Eigen::Index>(k)) = v.j.col(free[k]);
+    const Eigen::VectorXd step = jf.completeOrthogonalDecomposition().solve(-v.f);
+    if (!step.allFinite()) break;
+    for (std::size_t k = 0; k < free.size(); ++k) z[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
+    if (step.cwiseAbs().maxCoeff() <= 1e-16 * zmax && r > 0) {  // a stationary point of the residual
+      const Values w = evaluate_array(eqs, z, cols);
+      const double r2 = w.f.size() ? w.f.cwiseAbs().maxCoeff() : 0.0;
+      if (r2 < best) best = r2, best_z = z;
+      break;
+    }
+  }
+  z = best_z;
+  out.residual = best;
+  return out;
+}
+
+}  // namespace
+
+DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start, const std::vector<bool>& fixed,
+                                       const Options& opt) {
+  const std::size_t n = sys.n, kcap = std::min<std::size_t>(n + 1, 12);
+  const std::size_t time = (kcap + 2) * n;  // x^(j)_l at j n + l (so x = q, x' = v of the system), then t
+  DerivativeArrayResult out;
+  out.time = start[sys.t()];
+  out.dims.push_back(static_cast<long>(n));
+  std::vector<double> z(time + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) z[i] = start[sys.q(i)];
+  z[time] = out.time;
+  std::vector<bool> held(time, false);
+  bool any_held = false;
+  for (std::size_t i = 0; i < n; ++i) held[i] = fixed[sys.q(i)], any_held = any_held || held[i];
+  std::vector<ArrayEquation> eqs;
+  for (const ex::Expr& c : sys.constraints) eqs.push_back(equation(ex::substitute(c, sys.t(), ex::variable(time)), time));
+  const auto uncertain = [&](const std::string& why) {
+    if (out.certain.yes()) out.evidence = why;
+    out.certain = unknown;
+  };
+  const auto decided = [&](const RankDecision& d, const std::string& what) {
+    if (!d.certain.yes()) uncertain(what + ": " + d.describe());
+  };
+  std::size_t block = 0;  // eqs[block…] are the last derivatives added
+  for (std::size_t k = 0; k <= kcap; ++k) {
+    if (k > 0) {
+      const std::size_t end = eqs.size();
+      for (std::size_t i = block; i < end; ++i) eqs.push_back(equation(total_derivative(eqs[i], n, time), time));
+      block = end;
+    }
+    out.order = static_cast<long>(k);
+    const std::size_t cols = (k + 2) * n;
+    std::vector<double> before = z;
+    Newton nw = gauss_newton(eqs, z, cols, held);
+    const auto affine = [&] {
+      for (const ArrayEquation& q : eqs)
+        for (const auto& [v, g] : q.grad)
+          if (!ex::is_number(g)) return false;
+      return true;
+    };
+    if (nw.residual > 1e-12 * nw.scale) {  // no zero of F_k found near the point
+      if (any_held) {  // the same without the given values: then they are what is off
+        std::vector<double> loose = before;
+        const Newton lw = gauss_newton(eqs, loose, cols, std::vector<bool>(time, false));
+        if (lw.residual <= 1e-12 * lw.scale) {
+          std::string given;
+          for (std::size_t i = 0; i < n; ++i)
+            if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
+          throw reference::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) +
+                                            " (the derivative array F_" + std::to_string(k) + " has a zero without them, none with them: residual " +
+                                            text(nw.residual) + ")");
+        }
+      }
+      out.consistent = false;
+      out.dims.push_back(-1);
+      out.steps = static_cast<long>(k + 1);
+      out.why = "the derivative array F_" + std::to_string(k) + " has no zero near the point (Gauss–Newton's least residual " + text(nw.residual) +
+                "): M_" + std::to_string(k + 1) + " is empty";
+      if (nw.residual <= 1e-6 * nw.scale) uncertain("F_" + std::to_string(k) + "'s least residual " + text(nw.residual) + " is small against its scale " + text(nw.scale) + ": a zero missed by rounding?");
+      else if (!affine()) uncertain("F_" + std::to_string(k) + " is nonlinear: Gauss–Newton from one start proves no emptiness");
+      break;
+    }
+    if (eqs.empty()) {  // no equation: every velocity is free
+      out.steps = 0;
+      out.solution_rank = static_cast<long>(n);
+      out.point.assign(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(n));
+      out.velocity.assign(n, 0.0);
+      for (std::size_t i = 0; i < n; ++i) {
+        out.gauge.emplace_back(n, 0.0);
+        out.gauge.back()[i] = 1;
+      }
+      return out;
+    }
+    const Values v = evaluate_array(eqs, z, cols);
+    const double scale = v.j.norm();
+    const Eigen::Index nn = static_cast<Eigen::Index>(n);
+    const Eigen::MatrixXd jd = v.j.rightCols(static_cast<Eigen::Index>(cols) - nn), jx = v.j.leftCols(nn),
+                          jr = v.j.rightCols(static_cast<Eigen::Index>(cols) - 2 * nn);
+    const RankRevealing rd(jd, scale, opt);
+    decided(rd.decision(), "rank of dF_" + std::to_string(k) + "/d(x', ...)");
+    const Eigen::MatrixXd g = rd.corange().transpose() * jx;  // the constraints' gradients in x
+    const int rg = g.rows() == 0 ? 0 : [&] {
+      const RankDecision d = decide_rank(g, scale, opt);
+      decided(d, "rank of the constraints of M_" + std::to_string(k + 1));
+      return d.rank;
+    }();
+    const long dim = static_cast<long>(n) - rg;
+    if (dim != out.dims.back()) {
+      out.dims.push_back(dim);
+      continue;
+    }
+    // M_{k+1} = M_k: the tower ends; the velocities that F_k leaves
+    int rr = 0;
+    if (jr.cols() > 0) {
+      const RankDecision dr = decide_rank(jr, scale, opt);
+      decided(dr, "rank of dF_" + std::to_string(k) + "/d(x'', ...)");
+      rr = dr.rank;
+    }
+    out.steps = static_cast<long>(k);
+    out.solution_rank = static_cast<long>(n) - rd.rank() + rr;
+    out.point.assign(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(n));
+    out.velocity.assign(z.begin() + static_cast<std::ptrdiff_t>(n), z.begin() + static_cast<std::ptrdiff_t>(2 * n));
+    if (out.solution_rank > 0) {  // ker J_d's x' part, orthonormal
+      const RankRevealing kt(jd.transpose(), scale, opt, false);
+      const Eigen::MatrixXd kernel = kt.corange();  // ker J_d
+      const Eigen::MatrixXd top = kernel.topRows(nn);
+      if (top.cols() > 0) {
+        const RankRevealing tr(top, -1, opt, false);
+        const Eigen::MatrixXd basis = tr.range();
+        if (basis.cols() != out.solution_rank) uncertain("the free velocities' directions have rank " + std::to_string(basis.cols()) + ", the ranks say " + std::to_string(out.solution_rank));
+        for (Eigen::Index c = 0; c < basis.cols(); ++c) out.gauge.emplace_back(basis.col(c).data(), basis.col(c).data() + nn);
+      }
+    }
+    return out;
+  }
+  if (out.consistent) uncertain("the tower did not end within the derivative array's cap F_" + std::to_string(kcap));
+  return out;
+}
+
+}  // namespace dcad::fast
