@@ -93,6 +93,27 @@ Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<d
   return v;
 }
 
+/// Rows, then columns, scaled by powers of two to a largest entry in [1, 2): exact in binary, and no
+/// rank, left null space of the derivative columns or rank of the x-gradients on it changes (row scaling
+/// D maps Z to D⁻¹Z; column scaling multiplies columns), while the array's graded rows (higher
+/// derivatives carry products of the multipliers and the data) no longer set one scale for all.
+/// Returns the column factors C (J becomes D J C: a kernel vector y of it is C y of J's).
+Eigen::VectorXd equilibrate(Eigen::MatrixXd& j) {
+  Eigen::VectorXd cs = Eigen::VectorXd::Ones(j.cols());
+  for (Eigen::Index r = 0; r < j.rows(); ++r) {
+    const double m = j.row(r).cwiseAbs().maxCoeff();
+    if (m > 0 && std::isfinite(m)) j.row(r) *= std::ldexp(1.0, -std::ilogb(m));
+  }
+  for (Eigen::Index c = 0; c < j.cols(); ++c) {
+    const double m = j.col(c).cwiseAbs().maxCoeff();
+    if (m > 0 && std::isfinite(m)) {
+      cs(c) = std::ldexp(1.0, -std::ilogb(m));
+      j.col(c) *= cs(c);
+    }
+  }
+  return cs;
+}
+
 std::string text(double x) {
   std::ostringstream o;
   o.precision(3);
@@ -210,7 +231,8 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       }
       return out;
     }
-    const Values v = evaluate_array(eqs, z, cols);
+    Values v = evaluate_array(eqs, z, cols);
+    const Eigen::VectorXd cs = equilibrate(v.j);
     const double scale = v.j.norm();
     const Eigen::Index nn = static_cast<Eigen::Index>(n);
     const Eigen::MatrixXd jd = v.j.rightCols(static_cast<Eigen::Index>(cols) - nn), jx = v.j.leftCols(nn),
@@ -242,7 +264,7 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     if (out.solution_rank > 0) {  // ker J_d's x' part, orthonormal
       const RankRevealing kt(jd.transpose(), scale, opt, false);
       const Eigen::MatrixXd kernel = kt.corange();  // ker J_d
-      const Eigen::MatrixXd top = kernel.topRows(nn);
+      const Eigen::MatrixXd top = cs.segment(nn, nn).asDiagonal() * kernel.topRows(nn);  // back to x' (unscaled)
       if (top.cols() > 0) {
         const RankRevealing tr(top, -1, opt, false);
         const Eigen::MatrixXd basis = tr.range();
