@@ -158,8 +158,9 @@ RC_GTEST_PROP(Uncertainty, RlcNetlistsWithSources, ()) {
   every_decision_reaches_the_verdict(p, "RLC netlist", text);
 }
 
-// The expression form (the pointwise CAD in double, ToleranceDecisions): every decision of every
-// expression-form case of the corpus (nonholonomic, time-dependent, LC written as formulas …).
+// The expression form (the pointwise CAD in double, ToleranceDecisions) and the implicit form (the
+// derivative array's rank decisions): every decision of every such case of the corpus (nonholonomic,
+// time-dependent, LC written as formulas, the pendulum's DAE formulations …).
 TEST(Uncertainty, ExpressionFormCasesOfTheCorpus) {
   long cases = 0, certified = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(DCAD_SOURCE_DIR) + "/cases")) {
@@ -170,7 +171,7 @@ TEST(Uncertainty, ExpressionFormCasesOfTheCorpus) {
     } catch (const io::InputError&) {  // the corpus' bad-input cases
       continue;
     }
-    if (p.form != io::Form::expression) continue;
+    if (p.form != io::Form::expression && p.form != io::Form::implicit) continue;  // implicit: fast's derivative array
     ++cases;
     fast::DecisionProbe count;
     fast::Options opt;
