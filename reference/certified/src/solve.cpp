@@ -91,7 +91,13 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   if (p.form == io::Form::expression) {
     s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
   } else if (p.form == io::Form::implicit) {  // CEF (1.6) at a point, exact: every decision an exact zero test
-    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_implicit_exact(p.expression); }));
+    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] {
+      try {
+        return reference::pipeline::solve_implicit_exact(p.expression);
+      } catch (const std::length_error& e) {  // jets too large for the exact tier: no exact tier here (api falls back, not certified)
+        throw reference::NotExactHere(std::string("the exact route's jets are too large (") + e.what() + ")");
+      }
+    }));
   } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
     s = exact_solution(reference::pipeline::solve_dae(p.dae));
   } else if (p.form == io::Form::netlist) {
