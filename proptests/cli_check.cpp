@@ -94,6 +94,32 @@ TEST(Check, EveryCaseValidatesAndRoundTrips) {
   EXPECT_GE(checked, 30);
 }
 
+// Issue 30: a reducer's M_c for a linear DAE, as rows [a…, b], is compared as a subspace: Hessenberg
+// index 3 (x' = v, v' = -x + lam, 0 = x) has M_c = {0}, so x = v = lam = 0 in any basis agrees, while a
+// reducer that stopped after two steps (x = v = 0, lam free) does not; with sources (Hessenberg index 2,
+// 0 = x1 + sin t) the directions are compared and the right sides named as not compared.
+TEST(Check, DaeConstraintClaimsAreComparedAsSubspaces) {
+  const std::string idx3 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-3.json").string();
+  const std::string idx2 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-2.json").string();
+  const std::string head = R"("consistent": true, "solution_rank": 0, )";
+  const std::string right = write_temp("dcad_dae_mc_right.json", "{\"dims\": [3, 2, 1, 0], \"steps\": 3, " + head +
+                                                                     R"("final_constraints": [[1, 1, 0, 0], [0, 1, 0, 0], [0, 2, 3, 0]]})");
+  const std::string short_ = write_temp("dcad_dae_mc_short.json", "{\"dims\": [3, 2, 1, 0], \"steps\": 3, " + head +
+                                                                      R"("final_constraints": [[1, 0, 0, 0], [0, 1, 0, 0]]})");
+  EXPECT_EQ(run("check " + right + " " + idx3).rc, 0);
+  const Outcome bad = run("check " + short_ + " " + idx3);
+  EXPECT_EQ(bad.rc, 3) << bad.out << bad.err;
+  EXPECT_NE(bad.out.find("final_constraints: expected equations of a 0-dimensional M_c, found 1-dimensional"), std::string::npos) << bad.out;
+  const std::string dirs = write_temp("dcad_dae_mc_dirs.json", "{\"dims\": [3, 2, 1], \"steps\": 2, " + head +
+                                                                   R"("final_constraints": [[1, 0, 0, 0], [0, 1, 1, 0]]})");
+  const Outcome d = run("check " + dirs + " " + idx2);
+  EXPECT_EQ(d.rc, 0) << d.out << d.err;
+  EXPECT_NE((d.out + d.err).find("right sides"), std::string::npos) << d.out << d.err;
+  const std::string wrong = write_temp("dcad_dae_mc_wrong.json", "{\"dims\": [3, 2, 1], \"steps\": 2, " + head +
+                                                                    R"("final_constraints": [[1, 0, 0, 0], [0, 1, 0, 0]]})");
+  EXPECT_EQ(run("check " + wrong + " " + idx2).rc, 3);
+}
+
 // Issue 30, the implicit form: a reducer that reports the Cartesian pendulum as index 2 (it missed the
 // hidden constraint x u + y w = 0's own derivative, the multiplier's equation) is caught by name.
 TEST(Check, ImplicitPendulumIndexClaimsAreJudged) {

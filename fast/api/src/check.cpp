@@ -551,6 +551,52 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   return k.out;
 }
 
+/// A linear DAE's M_c(t) = {C x = G u(t)} (u the sources' jets) against a claim of rows [a…, b]: the
+/// same subspace of directions (ker C: the rows' x-coefficients span C's rows), and where the system has
+/// no sources (M_c a fixed subspace through 0) the same right sides; with sources the right sides are
+/// G u(t), which constant rows cannot state: those are named as not compared.
+void compare_dae_final_constraints(Checker& k, const json& r, const reference::Solution& truth, std::size_t n) {
+  const json& found = r["final_constraints"];
+  if (!truth.certified.yes()) {
+    k.out.not_compared.push_back("final_constraints (the reference left a condition on the sources undecided)");
+    return;
+  }
+  if (!truth.consistent || !truth.final_constraints) {
+    k.out.compared.push_back("final_constraints");
+    if (!found.is_null()) k.out.disagreements.push_back("final_constraints: expected null (M_c is empty), found some");
+    return;
+  }
+  // dcad's own form: rows over (x, the sources' jets `source_jets`, b) — compared as a subspace of (x, u)
+  const std::size_t jets = truth.jets.size();
+  if (jets > 0 && r.contains("source_jets") && found.is_array() && !found.empty() && found[0].is_array() && found[0].size() == n + jets + 1) {
+    k.out.compared.push_back("source_jets");
+    if (r["source_jets"] != json(truth.jets)) {
+      k.out.disagreements.push_back("source_jets: expected " + json(truth.jets).dump() + " (the columns after the variables), found " + shown(r["source_jets"]));
+      return;
+    }
+    io::QMatrix cu(truth.final_constraints->size(), n + jets);
+    for (std::size_t i = 0; i < truth.final_constraints->size(); ++i)
+      for (const auto& [j, v] : (*truth.final_constraints)[i].terms) cu(i, j) = v;
+    const io::QMatrix kernel = reference::nullspace(cu);
+    compare_final_constraints(k, found, kernel, std::vector<io::Rational>(n + jets, io::Rational(0)), static_cast<long>(kernel.rows()));
+    return;
+  }
+  io::QMatrix c(truth.final_constraints->size(), n);
+  bool sources = false;
+  for (std::size_t i = 0; i < truth.final_constraints->size(); ++i)
+    for (const auto& [j, v] : (*truth.final_constraints)[i].terms) {
+      if (j < n) c(i, j) = v;
+      else if (v != 0) sources = true;
+    }
+  const io::QMatrix kernel = reference::nullspace(c);  // rows: a basis of ker C
+  json rows = found;
+  if (sources && rows.is_array())  // the right sides are the sources' jets: the directions only
+    for (auto& row : rows)
+      if (row.is_array() && !row.empty()) row.back() = 0;
+  compare_final_constraints(k, rows, kernel, std::vector<io::Rational>(n, io::Rational(0)), truth.tower.back().dim);
+  if (sources) k.out.not_compared.push_back("final_constraints' right sides (M_c(t) = {C x = G u(t)} moves with the sources' jets: its directions were compared)");
+}
+
 /// A linear DAE (CONTRACT "Linear and implicit DAEs"): another tool's discrete claims — dims, steps,
 /// consistency, solution rank, regularity of the pencil and its index — against the reference's
 /// CEF (1.6).  The constraints and velocities are named as not compared (not yet).
@@ -576,7 +622,8 @@ Checked check_dae(const std::string& result_file, const json& r, const io::Probl
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
   if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, regular_pencil, index", "none of them");
-  for (const char* key : {"tower", "final_constraints", "reduced"})
+  if (r.contains("final_constraints")) compare_dae_final_constraints(k, r, truth, c.variables.size());
+  for (const char* key : {"tower", "reduced"})
     if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the dae form)");
   return k.out;
 }
