@@ -32,6 +32,18 @@ void variables_of(const ex::Expr& e, std::set<std::size_t>& out, std::unordered_
   if (e->b) variables_of(e->b, out, seen);
 }
 
+/// The size of e as a tree (its DAG unshared, saturating at `cap`): what symbolic differentiation,
+/// which does not share, walks.
+double tree_size(const ex::Expr& e, std::unordered_map<const ex::ExprNode*, double>& memo, double cap) {
+  if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
+  double n = 1;
+  if (e->a) n += tree_size(e->a, memo, cap);
+  if (e->b) n += tree_size(e->b, memo, cap);
+  n = std::min(n, cap);
+  memo.emplace(e.get(), n);
+  return n;
+}
+
 ArrayEquation equation(const ex::Expr& e, std::size_t time) {
   ArrayEquation q{e, {}};
   std::set<std::size_t> vars;
@@ -185,6 +197,14 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
   for (std::size_t k = 0; k <= kcap; ++k) {
     if (k > 0) {
       const std::size_t end = eqs.size();
+      constexpr double kTree = 2e5;  // a bound on the work of differentiating once more (never a hang on user input)
+      std::unordered_map<const ex::ExprNode*, double> memo;
+      for (std::size_t i = block; i < end; ++i)
+        if (tree_size(eqs[i].e, memo, kTree) >= kTree) {
+          uncertain("the derivative array F_" + std::to_string(k - 1) + " has an equation of more than " + text(kTree) +
+                    " operations (as a tree): not differentiated further");
+          return out;
+        }
       for (std::size_t i = block; i < end; ++i) eqs.push_back(equation(total_derivative(eqs[i], n, time), time));
       block = end;
     }

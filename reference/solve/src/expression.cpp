@@ -162,9 +162,18 @@ dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c)
 dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c) {
   std::vector<bool> fixed;
   PointwiseResult<Rational> r;
-  for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
-    r = run(c.system, start_point(c, fixed, seed), fixed);
-    if (r.regular || c.has_initial) break;
+  try {
+    for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
+      r = run(c.system, start_point(c, fixed, seed), fixed);
+      if (r.regular || c.has_initial) break;
+    }
+  } catch (const NotExactHere&) {
+    // dcad's own default point made a formula irrational (sin 29/20): the given values (if any) and 0 for
+    // the others, where sin, cos and exp are rational, is dcad's choice too
+    std::vector<Rational> zero = start_point(c, fixed);
+    for (std::size_t i = 0; i < zero.size(); ++i)
+      if (!fixed[i]) zero[i] = 0;
+    r = run(c.system, zero, fixed);
   }
   check_given_implicit<Rational>(
       r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });

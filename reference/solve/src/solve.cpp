@@ -76,6 +76,9 @@ Solution implicit(const io::LagrangianCase& c) {
     try {
       return pipeline::solve_implicit_exact(c);
     } catch (const NotExactHere& e) {
+      if (!c.has_initial)
+        throw io::InputError(c.file + ": /implicit: expected equations whose values are rational at dcad's default points (the exact route), found " +
+                             e.what() + "; give `initial` values where they are, or use --backend fast or certified");
       throw io::InputError(c.file + ": /initial: expected a point where every value of the equations is rational (the exact route), found " +
                            e.what() + "; give such a point or use --backend fast or certified");
     }
