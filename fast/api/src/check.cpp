@@ -645,13 +645,13 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
   for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "index"})
     if (r.contains(key)) {
       any = true;
-      if (!truth.certified.yes()) {  // a singular point: the tower is not decided there
-        k.out.not_compared.push_back(std::string(key) + " (the reference's point is singular: " + truth.pointwise->why + ")");
-        continue;
-      }
+      if (!truth.certified.yes()) continue;  // judged below: nothing can be
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
   if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index", "none of them");
+  if (!truth.certified.yes())  // nothing judged is no agreement
+    k.out.disagreements.push_back("no claim could be judged: the reference is not certified at its point (" +
+                                  (truth.note.empty() ? truth.pointwise->why : truth.note) + "); give `initial` at a regular point of M_c");
   for (const char* key : {"tower", "final_constraints", "reduced", "formulas"})
     if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the implicit form)");
   return k.out;

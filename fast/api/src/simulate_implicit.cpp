@@ -11,6 +11,7 @@
 
 #include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/solve.hpp"
+#include "dcad/reference/pipeline/pointwise.hpp"
 #include "dcad/io/report.hpp"
 
 #include <cmath>
@@ -68,15 +69,27 @@ struct ImplicitField {
 
 Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
   require_times(opt);
-  const fast::Solution first = fast::solve_implicit(c);  // the start on M_c (given values checked)
-  const Pointwise<double>& at = *first.pointwise;
-  if (!first.consistent || !at.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
-  if (first.solution_rank.value_or(0) > 0)
-    log << "note: solutions are not unique (solution rank " << *first.solution_rank << "); simulating the one of least norm in the free directions\n";
+  // the start: the pointwise algorithm in double from the given values (held) at the case's time, as
+  // every evaluation of the field is (fast's own answer, the derivative array, decides at a generic time)
+  namespace pl = reference::pipeline;
+  std::vector<bool> fixed;
+  std::vector<double> x0;
+  for (const reference::Rational& q : pl::start_point(c, fixed)) x0.push_back(q.convert_to<double>());
+  const reference::PointwiseResult<double> at = pl::pointwise_input_errors(c, [&] {
+    fast::ToleranceDecisions d;
+    return fast::pointwise_cad(c.system, x0, fixed, d);
+  });
+  if (!at.consistent || !at.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
+  for (std::size_t i = 0; i < c.system.n; ++i)
+    if (c.initial[i] && std::abs(at.point[i] - c.initial[i]->convert_to<double>()) > 1e-9 * (1 + std::abs(c.initial[i]->convert_to<double>())))
+      throw io::InputError(c.file + ": /initial/" + c.system.names[i] + ": expected a value on M_c, found " + c.initial[i]->str() +
+                           " (the constraints give " + io::float_text(at.point[i]) + ")");
+  if (at.solution_rank > 0)
+    log << "note: solutions are not unique (solution rank " << at.solution_rank << "); simulating the one of least norm in the free directions\n";
   const std::size_t n = c.system.n;
   log << "start on M_c (dims";
-  for (long d : first.dims()) log << " " << d;
-  log << ", index " << (first.solution_rank.value_or(1) == 0 ? std::to_string(first.steps) : std::string("none: not unique")) << "):";
+  for (long d : at.dims) log << " " << d;
+  log << ", index " << (at.solution_rank == 0 ? std::to_string(at.steps) : std::string("none: not unique")) << "):";
   for (std::size_t i = 0; i < n; ++i) log << " " << c.system.names[i] << " = " << io::float_text(at.point[i]) << (c.initial[i] ? " (given)" : " (completed)");
   log << "\n";
   ImplicitField f{c, 0, {}};

@@ -67,6 +67,9 @@ Solution solve_implicit(const io::LagrangianCase& c, const Options& options) {
     const std::vector<reference::Rational> start = pl::start_point(c, fixed);
     std::vector<double> x;
     for (const reference::Rational& q : start) x.push_back(to_double(q, opt));
+    // the derivative array decides consistency at one time: at a generic one where the case gives none
+    // (at t = 0, x = t² has ẋ = 2t = 0 and looks consistent)
+    if (c.system.has_time && !fixed[c.system.t()]) x[c.system.t()] = 0.3819660112501051;
     {  // the equations' numbers are rounded as the point's are: a rounding that may decide a rank voids certainty
       std::vector<const reference::expr::ExprNode*> todo;
       for (const auto& e : c.system.constraints) todo.push_back(e.get());

@@ -110,11 +110,16 @@ Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<d
 /// D maps Z to D⁻¹Z; column scaling multiplies columns), while the array's graded rows (higher
 /// derivatives carry products of the multipliers and the data) no longer set one scale for all.
 /// Returns the column factors C (J becomes D J C: a kernel vector y of it is C y of J's).
-Eigen::VectorXd equilibrate(Eigen::MatrixXd& j) {
+/// `rs` gets the row factors D.
+Eigen::VectorXd equilibrate(Eigen::MatrixXd& j, Eigen::VectorXd& rs) {
   Eigen::VectorXd cs = Eigen::VectorXd::Ones(j.cols());
+  rs = Eigen::VectorXd::Ones(j.rows());
   for (Eigen::Index r = 0; r < j.rows(); ++r) {
     const double m = j.row(r).cwiseAbs().maxCoeff();
-    if (m > 0 && std::isfinite(m)) j.row(r) *= std::ldexp(1.0, -std::ilogb(m));
+    if (m > 0 && std::isfinite(m)) {
+      rs(r) = std::ldexp(1.0, -std::ilogb(m));
+      j.row(r) *= rs(r);
+    }
   }
   for (Eigen::Index c = 0; c < j.cols(); ++c) {
     const double m = j.col(c).cwiseAbs().maxCoeff();
@@ -142,7 +147,7 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
   std::vector<Eigen::Index> free;
   for (std::size_t c = 0; c < cols; ++c)
     if (!held[c]) free.push_back(static_cast<Eigen::Index>(c));
-  double best = HUGE_VAL;
+  double best = HUGE_VAL, best_scale = 1;
   std::vector<double> best_z = z;
   for (int it = 0; it < 60; ++it) {
     const Values v = evaluate_array(eqs, z, cols);
@@ -150,7 +155,7 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     for (std::size_t c = 0; c < cols; ++c) zmax = std::max(zmax, std::abs(z[c]));
     out.scale = std::max(1.0, v.j.cwiseAbs().maxCoeff()) * zmax;
     const double r = v.f.size() ? v.f.cwiseAbs().maxCoeff() : 0.0;
-    if (r < best) best = r, best_z = z;
+    if (r < best) best = r, best_z = z, best_scale = out.scale;
     if (r <= 1e-15 * out.scale || free.empty()) break;
     Eigen::MatrixXd jf(v.j.rows(), static_cast<Eigen::Index>(free.size()));
     for (std::size_t k = 0; k < free.size(); ++k) jf.col(static_cast<Eigen::Index>(k)) = v.j.col(free[k]);
@@ -160,12 +165,13 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     if (step.cwiseAbs().maxCoeff() <= 1e-16 * zmax && r > 0) {  // a stationary point of the residual
       const Values w = evaluate_array(eqs, z, cols);
       const double r2 = w.f.size() ? w.f.cwiseAbs().maxCoeff() : 0.0;
-      if (r2 < best) best = r2, best_z = z;
+      if (r2 < best) best = r2, best_z = z, best_scale = out.scale;
       break;
     }
   }
-  z = best_z;
+  z = best_z;  // with the scale where it was reached (a diverged iterate's huge scale would excuse any residual)
   out.residual = best;
+  out.scale = best_scale;
   return out;
 }
 
@@ -219,6 +225,18 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       return true;
     };
     if (nw.residual > 1e-12 * nw.scale) {  // no zero of F_k found near the point
+      if (any_held) {  // first from a nudged start (x² + y² = 1 with x given, y at 0: ∂/∂y = 0 there)
+        std::vector<double> nudged = before;
+        for (std::size_t c = 0; c < cols; ++c)
+          if (!held[c]) nudged[c] += 0.1 + 0.01 * static_cast<double>(c % 7);
+        const Newton again = gauss_newton(eqs, nudged, cols, held);
+        if (again.residual <= 1e-12 * again.scale) {
+          z = nudged;
+          nw = again;
+        }
+      }
+    }
+    if (nw.residual > 1e-12 * nw.scale) {
       if (any_held) {  // the same without the given values: then they are what is off
         std::vector<double> loose = before;
         const Newton lw = gauss_newton(eqs, loose, cols, std::vector<bool>(time, false));
@@ -252,7 +270,18 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       return out;
     }
     Values v = evaluate_array(eqs, z, cols);
-    const Eigen::VectorXd cs = equilibrate(v.j);
+    {  // an equation that vanishes with its whole differential at the zero (x² = 0; a singular point): its rank
+       // contribution there is not the one nearby — nothing decided from these ranks is certain
+      const double jmax = std::max(1.0, v.j.cwiseAbs().maxCoeff());
+      for (Eigen::Index i = 0; i < v.j.rows(); ++i)
+        if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax) {
+          uncertain("equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) +
+                    " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)");
+          break;
+        }
+    }
+    Eigen::VectorXd rs;
+    const Eigen::VectorXd cs = equilibrate(v.j, rs);
     const double scale = v.j.norm();
     const Eigen::Index nn = static_cast<Eigen::Index>(n);
     const Eigen::MatrixXd jd = v.j.rightCols(static_cast<Eigen::Index>(cols) - nn), jx = v.j.leftCols(nn),
@@ -265,6 +294,26 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       decided(d, "rank of the constraints of M_" + std::to_string(k + 1));
       return d.rank;
     }();
+    if (g.rows() > rg && out.certain.yes()) {
+      // a combination of the constraints whose differential vanishes here but which does not vanish
+      // nearby (y − (x − 1/5)⁴ and v_y = 0 at x = 1/5 combine to 4 (x − 1/5)³ x' = 0): M_{k+1} is smaller
+      // here than its rank says.  Probed at x ± h e_j (the derivatives held), second order and up.
+      const RankRevealing gw(g, scale, opt, false);
+      const Eigen::MatrixXd y = rs.asDiagonal() * (rd.corange() * gw.corange());  // rows of F_k combined
+      double zmax = 1;
+      for (std::size_t c = 0; c < cols; ++c) zmax = std::max(zmax, std::abs(z[c]));
+      const double fscale = std::max(1.0, evaluate_array(eqs, z, cols).j.cwiseAbs().maxCoeff()) * zmax;
+      for (Eigen::Index w = 0; w < y.cols() && out.certain.yes(); ++w)
+        for (std::size_t j = 0; j < n && out.certain.yes(); ++j) {
+          std::vector<double> moved = z;
+          moved[j] += 1e-2 * std::max(1.0, std::abs(z[j]));
+          const double val = y.col(w).dot(evaluate_array(eqs, moved, cols).f);
+          if (std::abs(val) > 1e-9 * y.col(w).cwiseAbs().sum() * fscale)
+            uncertain("a combination of the constraints of M_" + std::to_string(k + 1) + " vanishes with its differential at the point but is " + text(val) +
+                      " at " + sys.names[j] + " + " + text(1e-2 * std::max(1.0, std::abs(z[j]))) + " (not a generic point: M_" + std::to_string(k + 1) +
+                      " may be smaller here than its rank says)");
+        }
+    }
     const long dim = static_cast<long>(n) - rg;
     if (dim != out.dims.back()) {
       out.dims.push_back(dim);

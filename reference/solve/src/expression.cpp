@@ -111,6 +111,45 @@ bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, co
   return ok;
 }
 
+/// Every equation is affine in the coordinates (the time and the derivatives enter anyhow): every M_k(t)
+/// is then an affine subspace, one component.
+bool affine_in_coordinates(const LagrangianSystem& s) {
+  for (const expr::Expr& e : s.constraints) {
+    const long d = expr::degree_in(e, [&](std::size_t i) { return i < s.n; });
+    if (d < 0 || d > 1) return false;
+  }
+  return true;
+}
+
+/// The implicit form's tower again from a nearby point (every coordinate and the time moved by small
+/// distinct rationals, nothing held): a condition that vanishes at the first point only to the jets'
+/// order — x = t⁶ at t = 0, (x − 1/5)⁴ at x = 1/5 — gives another tower there.  Why they differ, or ""
+/// (the same tower, or no exact run there: an irrational value, no rational point reached).
+std::string second_look(const io::LagrangianCase& c, const PointwiseResult<Rational>& r) {
+  const LagrangianSystem& s = c.system;
+  std::vector<Rational> start(2 * s.n + 1, Rational(0));
+  for (std::size_t i = 0; i < s.n && i < r.point.size(); ++i) start[s.q(i)] = r.point[i] + Rational(1, static_cast<long>(7 + 2 * i));
+  start[s.t()] = r.time + (s.has_time ? Rational(1, 3) : Rational(0));
+  PointwiseResult<Rational> o;
+  try {
+    o = run(s, start, std::vector<bool>(start.size(), false));
+  } catch (const NotExactHere&) {
+    return "";
+  } catch (const PointwiseNoPoint&) {
+    return "";
+  }
+  if (!o.regular) return "";
+  if (o.dims == r.dims && o.consistent == r.consistent && (!r.consistent || o.solution_rank == r.solution_rank)) return "";
+  const auto dims = [](const std::vector<long>& d) {
+    std::string t;
+    for (long x : d) t += (t.empty() ? "" : ", ") + std::to_string(x);
+    return "[" + t + "]";
+  };
+  return "from a nearby point (every value and the time moved by 1/3 or less) the tower is " + dims(o.dims) + (o.consistent ? "" : " (inconsistent)") +
+         ", here " + dims(r.dims) + (r.consistent ? "" : " (inconsistent)") +
+         ": a condition vanishes at this point only to the jets' order (not a generic point of its component)";
+}
+
 }  // namespace
 
 dcad::Solution<Rational> solve_pointwise_exact(const io::LagrangianCase& c) {
@@ -179,6 +218,19 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c) {
       r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
   dcad::Solution<Rational> out = implicit_solution(r, c, "pointwise exact");
   out.certified = r.regular ? yes : unknown;  // a singular point decides no tower
+  if (r.regular && !r.consistent && (!c.has_initial || r.moves > 0) && !affine_in_coordinates(c.system)) {
+    out.certified = unknown;  // x (1 − y) = 0 is two lines: the completion reached y = 1, where v_y = 1 fails; x = 0 has solutions
+    out.note = "not certified: inconsistent on the component of M_k that the completion reached from " +
+               std::string(c.has_initial ? "the given values" : "dcad's default point") + "; a nonlinear M_k may have other components";
+    return out;
+  }
+  if (r.regular) {
+    const std::string differs = second_look(c, r);
+    if (!differs.empty()) {
+      out.certified = unknown;
+      out.note = "not certified: " + differs;
+    }
+  }
   return out;
 }
 
