@@ -232,7 +232,7 @@ class Run {
     if (gp.empty()) {
       // the implicit form, exactly: the last candidates are zero to their known order only; a condition
       // that vanishes at the point to a higher order (x = t⁶ at t = 0, (x − 1/5)⁴ at x = 1/5) looks like
-      // zero there — checked to order 6 while the jets stay small (at most 20,000 monomials)
+      // zero there — checked to order 6 while the jets stay small (at most 5,000 monomials)
       if (s_.implicit && std::is_same_v<T, Rational> && ord < 6 && K + 2 <= static_cast<long>(2 * s_.n + 6) &&
           small_jets(s_.n + (s_.has_time ? 1 : 0), static_cast<std::size_t>(K + 2)))
         return Outcome::MoreOrder;
@@ -603,11 +603,11 @@ class Run {
     return critical && !st.movable.empty() ? Reach::critical : Reach::go;
   }
 
-  /// Jets in d variables to order k have at most 20,000 monomials.
+  /// Jets in d variables to order k have at most 5,000 monomials.
   static bool small_jets(std::size_t d, std::size_t k) {
     double r = 1;
     for (std::size_t i = 1; i <= k; ++i) r = r * static_cast<double>(d + i) / static_cast<double>(i);
-    return r <= 20000;
+    return r <= 5000;
   }
 
   /// Some nonzero coefficient of `jet` is of a monomial in one of the chart positions `positions`.
