@@ -36,7 +36,8 @@ class JetSpace {
     // the monomials, and the product table (one entry per pair of degree sum ≤ k: C(2d + k, k))
     if (binomial(d + k, k) > 200'000 || binomial(2 * d + k, k) > 20'000'000)
       throw std::length_error("jets in " + std::to_string(d) + " variables to order " + std::to_string(k) + " (" +
-                              std::to_string(static_cast<long>(binomial(d + k, k))) + " monomials) exceed what dcad computes");
+                              std::to_string(static_cast<long>(binomial(d + k, k))) + " monomials, a product table of " +
+                              std::to_string(static_cast<long>(binomial(2 * d + k, k))) + ") exceed what dcad computes");
     std::vector<std::uint8_t> alpha(d, 0);
     index_[alpha] = 0;
     exps_.push_back(alpha);

@@ -127,7 +127,7 @@ auto pointwise_input_errors(const io::LagrangianCase& c, F f) {
   } catch (const std::domain_error& e) {
     throw io::InputError(c.file + ": /initial: expected a point where the formulas are defined and differentiable, found " + e.what());
   } catch (const std::length_error& e) {
-    throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") + "/coordinates: expected a system whose tower fits in jets of at most 200000 monomials, found " +
+    throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") + "/coordinates: expected a system whose tower fits in jets of at most 200000 monomials (and 20000000 products), found " +
                          std::to_string(c.system.n) + " coordinates: " + e.what());
   }
 }
