@@ -141,6 +141,8 @@ std::string text(double x) {
 /// Gauss–Newton with minimum-norm steps on the free columns: the residual it ends at, and its scale.
 struct Newton {
   double residual = 0, scale = 1;
+  double relative = HUGE_VAL;  ///< at the best iterate: max_i |F_i| / Σ_j |∂F_i/∂z_j · z_j| (each row against its own terms)
+  bool zero() const { return residual <= 1e-12 * scale || relative <= 1e-10; }
 };
 Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols, const std::vector<bool>& held) {
   Newton out;
@@ -159,7 +161,16 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     if (r <= 1e-15 * out.scale || free.empty()) break;
     Eigen::MatrixXd jf(v.j.rows(), static_cast<Eigen::Index>(free.size()));
     for (std::size_t k = 0; k < free.size(); ++k) jf.col(static_cast<Eigen::Index>(k)) = v.j.col(free[k]);
-    const Eigen::VectorXd step = jf.completeOrthogonalDecomposition().solve(-v.f);
+    // columns scaled by powers of two first: a pF coefficient beside a 1000 is not a rank deficiency
+    Eigen::VectorXd colscale = Eigen::VectorXd::Ones(jf.cols());
+    for (Eigen::Index c = 0; c < jf.cols(); ++c) {
+      const double m = jf.col(c).cwiseAbs().maxCoeff();
+      if (m > 0 && std::isfinite(m)) {
+        colscale(c) = std::ldexp(1.0, -std::ilogb(m));
+        jf.col(c) *= colscale(c);
+      }
+    }
+    const Eigen::VectorXd step = colscale.asDiagonal() * jf.completeOrthogonalDecomposition().solve(-v.f);
     if (!step.allFinite()) break;
     for (std::size_t k = 0; k < free.size(); ++k) z[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
     if (step.cwiseAbs().maxCoeff() <= 1e-16 * zmax && r > 0) {  // a stationary point of the residual
@@ -172,6 +183,15 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
   z = best_z;  // with the scale where it was reached (a diverged iterate's huge scale would excuse any residual)
   out.residual = best;
   out.scale = best_scale;
+  {  // graded rows (2.2 pF · e'' beside 1000 cos 1000 t): rounding there is relative to the row's own terms
+    const Values v = evaluate_array(eqs, z, cols);
+    out.relative = 0;
+    for (Eigen::Index i = 0; i < v.f.size(); ++i) {
+      double terms = 0;
+      for (std::size_t c = 0; c < cols; ++c) terms += std::abs(v.j(i, static_cast<Eigen::Index>(c)) * z[c]);
+      out.relative = std::max(out.relative, terms > 0 ? std::abs(v.f(i)) / terms : (v.f(i) == 0 ? 0.0 : HUGE_VAL));
+    }
+  }
   return out;
 }
 
@@ -224,23 +244,23 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
           if (!ex::is_number(g)) return false;
       return true;
     };
-    if (nw.residual > 1e-12 * nw.scale) {  // no zero of F_k found near the point
+    if (!nw.zero()) {  // no zero of F_k found near the point
       if (any_held) {  // first from a nudged start (x² + y² = 1 with x given, y at 0: ∂/∂y = 0 there)
         std::vector<double> nudged = before;
         for (std::size_t c = 0; c < cols; ++c)
           if (!held[c]) nudged[c] += 0.1 + 0.01 * static_cast<double>(c % 7);
         const Newton again = gauss_newton(eqs, nudged, cols, held);
-        if (again.residual <= 1e-12 * again.scale) {
+        if (again.zero()) {
           z = nudged;
           nw = again;
         }
       }
     }
-    if (nw.residual > 1e-12 * nw.scale) {
+    if (!nw.zero()) {
       if (any_held) {  // the same without the given values: then they are what is off
         std::vector<double> loose = before;
         const Newton lw = gauss_newton(eqs, loose, cols, std::vector<bool>(time, false));
-        if (lw.residual <= 1e-12 * lw.scale) {
+        if (lw.zero()) {
           std::string given;
           for (std::size_t i = 0; i < n; ++i)
             if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
@@ -273,8 +293,22 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     {  // an equation that vanishes with its whole differential at the zero (x² = 0; a singular point): its rank
        // contribution there is not the one nearby — nothing decided from these ranks is certain
       const double jmax = std::max(1.0, v.j.cwiseAbs().maxCoeff());
+      // small against the array is not zero (2.2 pF beside 1000): the row must also grow faster than
+      // linearly away from the point (x² does, 2.2e-12·x does not)
+      const auto superlinear = [&](Eigen::Index i) {
+        const double f0 = v.f(i);
+        for (std::size_t c = 0; c < cols; ++c) {
+          const double h = 1e-2 * std::max(1.0, std::abs(z[c]));
+          std::vector<double> a = z, b = z;
+          a[c] += h;
+          b[c] += 2 * h;
+          const double da = std::abs(evaluate_array(eqs, a, cols).f(i) - f0), db = std::abs(evaluate_array(eqs, b, cols).f(i) - f0);
+          if (db > 3 * da && db > 0) return true;
+        }
+        return false;
+      };
       for (Eigen::Index i = 0; i < v.j.rows(); ++i)
-        if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax) {
+        if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax && superlinear(i)) {
           uncertain("equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) +
                     " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)");
           break;
