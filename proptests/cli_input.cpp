@@ -84,6 +84,15 @@ TEST(Cli, BadDaeCasesNameTheirPath) {
       {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "sin(s)"], "time": "t"})D"), "/dae/f/1"},
       {dae(R"D({"E": [["1","x"],["0","0"]], "A": [["0","1"],["1","0"]]})D"), "/dae/E/0/1"},
       {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "g": 1})D"), "/dae"},
+      // the sparse encoding {"rows": m, "entries": [[row, column, value], …]}
+      {dae(R"D({"E": {"entries": [[0, 0, "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E: expected the key \"rows\""},
+      {dae(R"D({"E": {"rows": 2, "entries": [[2, 0, "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0/0: expected a row from 0 to 1"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[0, "z", "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0/1"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[0, 2, "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0/1: expected a column from 0 to 1"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[0, 0, "1"], [0, "x", "2"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/1: expected each entry once"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[0, 0]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0"},
+      {dae(R"D({"E": {"rows": 2, "entries": []}, "A": {"rows": 3, "entries": []}})D"), "/dae/A/rows: expected 2 rows (as E)"},
+      {dae(R"D({"E": {"rows": 2, "entries": [], "cols": 2}, "A": [["0","1"],["1","0"]]})D"), "/dae/E"},
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
     const std::string file = write_temp("dcad_bad_dae_" + std::to_string(i) + ".json", bad[i].first);

@@ -46,7 +46,9 @@ namespace {
 /// The certified tier where no exact tier can run (the expression form at an irrational point):
 /// double precision, not certified, and the note says why.
 certified::Solution not_certified(const io::Problem& p, const reference::NotExactHere& e) {
-  const fast::Solution f = p.form == io::Form::implicit ? fast::solve_implicit(p.expression) : fast::solve_expression(p.expression);
+  const fast::Solution f = p.form == io::Form::implicit ? fast::solve_implicit(p.expression)
+                           : p.form == io::Form::dae    ? fast::solve(p)
+                                                        : fast::solve_expression(p.expression);
   certified::Solution s =
       map_numbers<certified::Number>(f, [](double x) { return certified::Number{false, reference::Rational(0), x, HUGE_VAL}; });  // no enclosure
   s.backend = "certified";

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <unordered_map>
 
 namespace dcad::io {
 
@@ -26,27 +27,92 @@ std::string text_at(const json& j, const Where& at, const std::string& what) {
   return j.get<std::string>();
 }
 
-/// A matrix of exact numbers, each a number or a string: a rational ("1/1000", "1e-12") or a formula in
-/// the parameters ("1/C", "R*C"), which must be a number once they are substituted.
-QMatrix read_entries(const json& j, const Where& at, long rows, long cols, const std::map<std::string, Rational>& parameters) {
-  if (!j.is_array()) at.fail("a matrix (array of rows)", describe(j));
+/// One entry of E or A: a number or a string, a rational ("1/1000", "1e-12") or a formula in the
+/// parameters ("1/C", "R*C"), which must be a number once they are substituted.
+Rational read_entry(const json& x, const Where& at, const std::map<std::string, Rational>& parameters) {
+  if (!x.is_string()) return read_number(x, at);
+  const reference::expr::Expr e = parse_expression(x.get<std::string>(), {}, parameters, at);
+  if (!reference::expr::is_number(e)) at.fail("a number, or a formula in the parameters", "\"" + x.get<std::string>() + "\"");
+  return e->value;
+}
+
+struct Entries {
+  long rows = 0;
+  std::vector<DaeCase::Entry> nonzeros;
+};
+
+/// E or A in either encoding: an array of m rows of N entries, or sparse, {"rows": m, "entries":
+/// [[i, j, value], …]} with i and j counted from 0 (as in JSON paths and scipy's coo_matrix), j also
+/// a variable's name; an entry given twice is bad input (it would be summed or dropped elsewhere).
+Entries read_entries(const json& j, const Where& at, long rows, const std::vector<std::string>& variables,
+                     const std::map<std::string, Rational>& parameters) {
+  const long cols = static_cast<long>(variables.size());
+  Entries out;
+  if (j.is_object()) {
+    require_known_keys(j, at, {"rows", "entries"});
+    if (!j.contains("rows") && rows < 0) at.fail("the key \"rows\" (m, the number of equations)", "no such key");
+    if (j.contains("rows")) {
+      const json& r = j["rows"];
+      if (!r.is_number_integer() || r.get<long>() < 0 || r.get<long>() > 10'000'000)
+        (at / "rows").fail("a number of rows (an integer from 0 to 10,000,000)", describe(r));
+      if (rows >= 0 && r.get<long>() != rows) (at / "rows").fail(std::to_string(rows) + " rows (as E)", std::to_string(r.get<long>()));
+      out.rows = r.get<long>();
+    } else {
+      out.rows = rows;
+    }
+    if (!j.contains("entries")) at.fail("the key \"entries\" ([[row, column, value], …])", "no such key");
+    const json& es = j["entries"];
+    if (!es.is_array()) (at / "entries").fail("an array of [row, column, value]", describe(es));
+    std::map<std::string, long> column_of;
+    for (long k = 0; k < cols; ++k) column_of[variables[static_cast<std::size_t>(k)]] = k;
+    std::unordered_map<long, std::size_t> seen;  // row · N + column → the entry's index
+    for (std::size_t k = 0; k < es.size(); ++k) {
+      const Where ek = at / "entries" / k;
+      const json& e = es[k];
+      if (!e.is_array() || e.size() != 3) ek.fail("[row, column, value] (row and column from 0; the column may be a variable's name)", describe(e));
+      if (!e[0].is_number_integer() || e[0].get<long>() < 0 || e[0].get<long>() >= out.rows)
+        (ek / 0).fail("a row from 0 to " + std::to_string(out.rows - 1), describe(e[0]));
+      long col = -1;
+      if (e[1].is_string()) {
+        const auto it = column_of.find(e[1].get<std::string>());
+        if (it == column_of.end()) {
+          const std::string best = nearest_name(e[1].get<std::string>(), variables);
+          (ek / 1).fail("a column from 0 to " + std::to_string(cols - 1) + " or a variable's name",
+                        "unknown name " + describe(e[1]) + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+        }
+        col = it->second;
+      } else if (e[1].is_number_integer() && e[1].get<long>() >= 0 && e[1].get<long>() < cols) {
+        col = e[1].get<long>();
+      } else {
+        (ek / 1).fail("a column from 0 to " + std::to_string(cols - 1) + " or a variable's name", describe(e[1]));
+      }
+      const long row = e[0].get<long>();
+      const auto [it, fresh] = seen.emplace(row * cols + col, k);
+      if (!fresh)
+        ek.fail("each entry once", "row " + std::to_string(row) + ", column " + std::to_string(col) + " again (first at " + at.path + "/entries/" + std::to_string(it->second) + ")");
+      Rational v = read_entry(e[2], ek / 2, parameters);
+      if (v != 0) out.nonzeros.push_back({row, col, std::move(v)});
+    }
+    return out;
+  }
+  if (!j.is_array()) at.fail("a matrix (array of rows, or {\"rows\": m, \"entries\": [[row, column, value], …]})", describe(j));
   if (rows >= 0 && static_cast<long>(j.size()) != rows) at.fail(std::to_string(rows) + " rows", std::to_string(j.size()) + " rows");
-  QMatrix m(j.size(), static_cast<reference::Index>(cols));
+  out.rows = static_cast<long>(j.size());
   for (std::size_t i = 0; i < j.size(); ++i) {
     const Where ri = at / i;
     if (!j[i].is_array()) ri.fail("a row (array of numbers)", describe(j[i]));
     if (static_cast<long>(j[i].size()) != cols) ri.fail("a row of length " + std::to_string(cols), "length " + std::to_string(j[i].size()));
     for (std::size_t k = 0; k < j[i].size(); ++k) {
-      const json& x = j[i][k];
-      if (!x.is_string()) {
-        m(i, k) = read_number(x, ri / k);
-        continue;
-      }
-      const reference::expr::Expr e = parse_expression(x.get<std::string>(), {}, parameters, ri / k);
-      if (!reference::expr::is_number(e)) (ri / k).fail("a number, or a formula in the parameters", "\"" + x.get<std::string>() + "\"");
-      m(i, k) = e->value;
+      Rational v = read_entry(j[i][k], ri / k, parameters);
+      if (v != 0) out.nonzeros.push_back({static_cast<long>(i), static_cast<long>(k), std::move(v)});
     }
   }
+  return out;
+}
+
+QMatrix densely(const Entries& x, long cols) {
+  QMatrix m(x.rows, cols);
+  for (const DaeCase::Entry& e : x.nonzeros) m(e.row, e.col) = e.value;
   return m;
 }
 
@@ -120,10 +186,15 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
       c.parameters[k] = read_number(v, root / "parameters" / k);
     }
   }
-  c.e = read_entries(d["E"], w / "E", -1, static_cast<long>(n), c.parameters);
-  c.a = read_entries(d["A"], w / "A", c.e.rows(), static_cast<long>(n), c.parameters);
-  if (c.e.rows() == 0) (w / "E").fail("at least one equation (row)", "none");
-  const std::size_t m = static_cast<std::size_t>(c.e.rows());
+  Entries e = read_entries(d["E"], w / "E", -1, c.variables, c.parameters);
+  if (e.rows == 0) (w / "E").fail("at least one equation (row)", "none");
+  Entries a = read_entries(d["A"], w / "A", e.rows, c.variables, c.parameters);
+  c.rows = e.rows;
+  c.dense = e.rows * static_cast<long>(n) <= DaeCase::dense_limit;
+  if (c.dense) c.e = densely(e, static_cast<long>(n)), c.a = densely(a, static_cast<long>(n));
+  c.e_entries = std::move(e.nonzeros);
+  c.a_entries = std::move(a.nonzeros);
+  const std::size_t m = static_cast<std::size_t>(c.rows);
   c.f.assign(m, reference::expr::number(0));
   if (d.contains("f")) {
     const json& f = d["f"];
