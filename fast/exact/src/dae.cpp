@@ -30,7 +30,40 @@ MatrixXd cut_rows(const Subspace& vk, const Subspace& vnext) {
 
 }  // namespace
 
+Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in);
+
+bool has_sources(const io::DaeCase& c) {
+  for (const auto& fi : c.f)
+    if (!reference::expr::is_number(fi, 0)) return true;
+  return false;
+}
+
+bool exact_source_conditions(const io::DaeCase& c, Solution& out) {
+  const dcad::Solution<reference::Rational> exact = reference::pipeline::solve_dae(c);
+  out.source_conditions = exact.source_conditions;
+  if (!exact.consistent) {  // M_k = ∅: the tower ends there
+    out.consistent = false;
+    out.steps = exact.steps;
+    out.tower.resize(static_cast<std::size_t>(exact.steps));
+    out.tower.push_back({-1, {}});
+    out.solution_rank.reset();
+  }
+  return !exact.certified.unknown();
+}
+
+Solution dae_solution(const io::DaeCase& c) {
+  Solution out;
+  out.backend = "fast";
+  out.file = c.file;
+  out.name = c.name;
+  out.variables = c.variables;
+  out.algorithm = "CEF (1.6)";
+  out.tower.push_back({static_cast<long>(c.variables.size()), {}});
+  return out;
+}
+
 Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
+  if (!c.dense || static_cast<long>(c.variables.size()) >= opt_in.dae_sparse_from) return solve_dae_sparse(c, opt_in);
   Options opt = opt_in;
   const MatrixXd e = to_double(c.e, opt), a = to_double(c.a, opt);
   assess_input(e, opt);
@@ -48,16 +81,8 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
     if (next.dim() >= v.back().dim()) break;  // V_{k+1} = V_k (never larger: nested)
     v.push_back(std::move(next));
   }
-  bool has_f = false;
-  for (const auto& fi : c.f) has_f = has_f || !reference::expr::is_number(fi, 0);
-
-  Solution out;
-  out.backend = "fast";
-  out.file = c.file;
-  out.name = c.name;
-  out.variables = c.variables;
-  out.algorithm = "CEF (1.6)";
-  out.tower.push_back({n, {}});
+  const bool has_f = has_sources(c);
+  Solution out = dae_solution(c);
   for (std::size_t k = 1; k < v.size(); ++k) {
     Level<double> level;
     level.dim = v[k].dim();
@@ -96,16 +121,7 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
   std::string note = "Wong sequences V_{k+1} = A^-1(E V_k) on orthonormal bases (fast/exact/src/dae.cpp)";
   const bool regular = out.regular_pencil && *out.regular_pencil;
   if (has_f && !regular) {  // conditions on the sources: the exact route decides them
-    const dcad::Solution<reference::Rational> exact = reference::pipeline::solve_dae(c);
-    out.source_conditions = exact.source_conditions;
-    if (!exact.consistent) {
-      out.consistent = false;
-      out.steps = exact.steps;
-      out.tower.resize(static_cast<std::size_t>(exact.steps));
-      out.tower.push_back({-1, {}});
-      out.solution_rank.reset();
-    }
-    if (exact.certified.unknown()) certain = unknown;
+    if (!exact_source_conditions(c, out)) certain = unknown;
     note += "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";
   }
   if (out.consistent && !has_f) {  // ẋ = X x + K λ on M_c: the minimum-norm solution of [E; C_c] v = [A x; 0]
