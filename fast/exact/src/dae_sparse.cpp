@@ -48,6 +48,7 @@ namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Row = std::vector<std::pair<int, double>>;  // (column, value), columns ascending
+using Combination = std::vector<std::pair<int, double>>;  // Σ z_i (row i): (row, z_i), rows distinct
 constexpr double eps = std::numeric_limits<double>::epsilon();
 /// What this route takes as zero relative to the data it came from (an entry of a null vector against
 /// its largest, a constraint's entry against the size of the rows it combines, a remainder against the
@@ -208,9 +209,7 @@ class EFactor {
         live_.push_back(i);
         dr_.push_back(power_of_two_inverse(largest_in_row[static_cast<std::size_t>(i)]));
       } else {
-        Eigen::VectorXd z = Eigen::VectorXd::Zero(m_);
-        z(i) = 1;
-        null_of_e.push_back(std::move(z));
+        null_of_e.push_back({{i, 1.0}});
       }
     if (live_.empty()) return;
     std::vector<Eigen::Triplet<double>> t;
@@ -252,18 +251,17 @@ class EFactor {
     for (std::size_t l = 0; l < live_.size(); ++l) {  // a dependent row less its combination of the kept ones
       if (kept[l]) continue;
       const Eigen::VectorXd x = qr_->qr.solve(Eigen::VectorXd(et_.col(static_cast<Eigen::Index>(l))));
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(m_);
-      z(live_[l]) = dr_[l];
+      Combination z{{live_[l], dr_[l]}};
       add_kept(z, -x);
       null_of_e.push_back(std::move(z));
     }
   }
 
-  std::vector<Eigen::VectorXd> null_of_e;  ///< z (length m) with zᵀ E = 0
+  std::vector<Combination> null_of_e;  ///< z with zᵀ E = 0
   long rank = 0;                           ///< rank E
 
   /// The z_E of a basis of S_k's left null vectors beyond E's own; `extra` = rank S_k − rank E.
-  std::vector<Eigen::VectorXd> with(const std::vector<Row>& c, long& extra, Evidence& ev) const {
+  std::vector<Combination> with(const std::vector<Row>& c, long& extra, Evidence& ev) const {
     const int n = static_cast<int>(col_scale_.size());
     const Eigen::Index k = static_cast<Eigen::Index>(c.size());
     std::vector<Eigen::VectorXd> y;  // D_c c_i / ‖D_c c_i‖
@@ -278,7 +276,7 @@ class EFactor {
       outside.col(i) = q.tail(n - rank);
     }
     ++ev.decisions;
-    std::vector<Eigen::VectorXd> out;
+    std::vector<Combination> out;
     if (outside.rows() == 0) {  // E has full column rank: every combination of C lies in its row space
       extra = 0;
       for (Eigen::Index i = 0; i < k; ++i) out.push_back(z_of(y, Eigen::VectorXd::Unit(k, i)));
@@ -296,8 +294,8 @@ class EFactor {
 
  private:
   /// z_E with Eᵀ z_E = −Σ u_i y_i (least squares on the kept rows; exact where the sum is in E's row space).
-  Eigen::VectorXd z_of(const std::vector<Eigen::VectorXd>& y, const Eigen::VectorXd& u) const {
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(m_);
+  Combination z_of(const std::vector<Eigen::VectorXd>& y, const Eigen::VectorXd& u) const {
+    Combination z;
     if (!qr_) return z;
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(col_scale_.size()));
     for (std::size_t i = 0; i < y.size(); ++i) sum += u(static_cast<Eigen::Index>(i)) * y[i];
@@ -305,13 +303,13 @@ class EFactor {
     return z;
   }
   /// z += the combination x of the kept rows (in E's units), its entries at rounding level dropped.
-  void add_kept(Eigen::VectorXd& z, const Eigen::VectorXd& x) const {
+  void add_kept(Combination& z, const Eigen::VectorXd& x) const {
     const double top = x.size() ? x.cwiseAbs().maxCoeff() : 0;
     for (std::size_t k = 0; k < qr_->kept.size(); ++k) {
       const double v = x(static_cast<Eigen::Index>(k));
       if (std::abs(v) > kRelative * top) {
         const int l = qr_->kept[k];
-        z(live_[static_cast<std::size_t>(l)]) += dr_[static_cast<std::size_t>(l)] * v;
+        z.emplace_back(live_[static_cast<std::size_t>(l)], dr_[static_cast<std::size_t>(l)] * v);  // rows distinct
       }
     }
   }
@@ -426,22 +424,32 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   std::vector<std::vector<Row>> cut;     // the rows each step added
   long last_rank = 0;                    // rank [E; C_c]
   const EFactor ef(e, col_scale, ev);
+  Eigen::VectorXd acc = Eigen::VectorXd::Zero(n);
+  std::vector<char> hit(static_cast<std::size_t>(n), 0);
   for (int step = 0; step <= n; ++step) {
     long extra = 0;
-    const std::vector<Eigen::VectorXd> zs = step == 0 ? ef.null_of_e : ef.with(constraints, extra, ev);
+    const std::vector<Combination> zs = step == 0 ? ef.null_of_e : ef.with(constraints, extra, ev);
     last_rank = ef.rank + extra;
     std::vector<Row> candidates;
     std::vector<double> sizes;
-    for (const Eigen::VectorXd& ze : zs) {
+    for (const Combination& ze : zs) {
       double size = 0;
       long terms = 0;
-      for (int i = 0; i < m; ++i)
-        if (ze(i) != 0) size += std::abs(ze(i)) * a_row_size[static_cast<std::size_t>(i)], ++terms;
+      for (const auto& [i, zi] : ze)
+        if (zi != 0) size += std::abs(zi) * a_row_size[static_cast<std::size_t>(i)], ++terms;
       if (size == 0) continue;  // a combination of the constraints alone: nothing new
-      const Eigen::VectorXd row = at * ze;
+      std::vector<int> touched;  // Σ z_i A_i, on the columns it touches (acc is all zero between rows)
+      for (const auto& [i, zi] : ze)
+        for (SpMat::InnerIterator it(at, i); it; ++it) {
+          if (!hit[static_cast<std::size_t>(it.row())]) hit[static_cast<std::size_t>(it.row())] = 1, touched.push_back(static_cast<int>(it.row()));
+          acc(it.row()) += zi * it.value();
+        }
+      std::sort(touched.begin(), touched.end());
       Row r;
-      for (int j = 0; j < n; ++j)  // below: the error of z (a QR's, times [E; C_k]'s conditioning) and of the sum
-        if (std::abs(row(j)) * col_scale[static_cast<std::size_t>(j)] > kRelative * size) r.emplace_back(j, row(j));
+      for (int j : touched) {  // below: the error of z (a QR's, times [E; C_k]'s conditioning) and of the sum
+        if (std::abs(acc(j)) * col_scale[static_cast<std::size_t>(j)] > kRelative * size) r.emplace_back(j, acc(j));
+        acc(j) = 0, hit[static_cast<std::size_t>(j)] = 0;
+      }
       if (r.empty()) continue;
       candidates.push_back(std::move(r));
       sizes.push_back(size);
@@ -487,7 +495,7 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
     if (!c.dense)
       throw std::invalid_argument("a " + std::string(m == n ? "singular" : "rectangular") +
                                   " pencil with sources at this size: the conditions on the sources are decided by the exact route, which takes at most " +
-                                  std::to_string(io::DaeCase::dense_limit) + " entries of E (m·N = " + std::to_string(static_cast<long>(m) * n) + ")");
+                                  std::to_string(io::DaeCase::dense_limit) + " entries of E (m·N = " + std::to_string(static_cast<long>(m) * n) + ") and " + std::to_string(io::DaeCase::dense_side) + " rows or columns");
     exact_source_conditions(c, out);  // not certified either way
     note << "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";
   }

@@ -101,7 +101,7 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
     if (!p.dae.dense)  // api falls back to fast's sparse route, not certified
       throw reference::NotExactHere("E and A are " + std::to_string(p.dae.rows) + " × " + std::to_string(p.dae.variables.size()) +
-                                    ", beyond the dense exact route's " + std::to_string(io::DaeCase::dense_limit) + " entries");
+                                    ", beyond the dense exact route's " + std::to_string(io::DaeCase::dense_limit) + " entries or " + std::to_string(io::DaeCase::dense_side) + " rows or columns");
     s = exact_solution(reference::pipeline::solve_dae(p.dae));
   } else if (p.form == io::Form::netlist) {
     if (p.netlist.forced) {

@@ -53,8 +53,8 @@ Entries read_entries(const json& j, const Where& at, long rows, const std::vecto
     if (!j.contains("rows") && rows < 0) at.fail("the key \"rows\" (m, the number of equations)", "no such key");
     if (j.contains("rows")) {
       const json& r = j["rows"];
-      if (!r.is_number_integer() || r.get<long>() < 0 || r.get<long>() > 10'000'000)
-        (at / "rows").fail("a number of rows (an integer from 0 to 10,000,000)", describe(r));
+      if (!r.is_number_integer() || r.get<long>() < 0 || r.get<long>() > 1'000'000)
+        (at / "rows").fail("a number of rows (an integer from 0 to 1,000,000)", describe(r));
       if (rows >= 0 && r.get<long>() != rows) (at / "rows").fail(std::to_string(rows) + " rows (as E)", std::to_string(r.get<long>()));
       out.rows = r.get<long>();
     } else {
@@ -190,7 +190,7 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
   if (e.rows == 0) (w / "E").fail("at least one equation (row)", "none");
   Entries a = read_entries(d["A"], w / "A", e.rows, c.variables, c.parameters);
   c.rows = e.rows;
-  c.dense = e.rows * static_cast<long>(n) <= DaeCase::dense_limit;
+  c.dense = e.rows * static_cast<long>(n) <= DaeCase::dense_limit && e.rows <= DaeCase::dense_side && static_cast<long>(n) <= DaeCase::dense_side;
   if (c.dense) c.e = densely(e, static_cast<long>(n)), c.a = densely(a, static_cast<long>(n));
   c.e_entries = std::move(e.nonzeros);
   c.a_entries = std::move(a.nonzeros);

@@ -95,7 +95,8 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   if (!c.dense)
     throw std::invalid_argument("E and A are " + std::to_string(c.rows) + " × " + std::to_string(c.variables.size()) +
                                 ": the exact route (CEF (1.6) on dense rational matrices) takes at most " +
-                                std::to_string(io::DaeCase::dense_limit) + " entries (m·N); `dcad solve --backend fast` takes the sparse route (simulate and check need the exact tower)");
+                                std::to_string(io::DaeCase::dense_limit) + " entries (m·N) and " + std::to_string(io::DaeCase::dense_side) +
+                                " rows or columns; `dcad solve --backend fast` takes the sparse route (simulate and check need the exact tower)");
   const Index n = c.variables.size(), m = c.equations();
   const Jets probe(c, 0);
   const Index s = probe.rows.size();
