@@ -67,6 +67,7 @@ double power_of_two_inverse(double x) {
 struct Evidence {
   double smallest_pivot = HUGE_VAL;  ///< the smallest |r_ii| kept, relative to its matrix's largest column
   double threshold = 0;              ///< the largest threshold used, relative likewise
+  double largest_dropped = 0;        ///< the largest remainder taken as zero, relative likewise
   long decisions = 0;
   void kept(double pivot, double scale, double tau) {
     smallest_pivot = std::min(smallest_pivot, pivot / scale);
@@ -105,6 +106,7 @@ struct CleanQr {
   std::vector<int> kept;  ///< m's columns, in the factored matrix's order (ascending)
   long factorizations = 0;
   double smallest_pivot = HUGE_VAL;
+  double largest_dropped = 0;  ///< the largest remainder of a removed column (the last round's)
 
   CleanQr(const SpMat& m, double tau) {
     std::vector<int> alive;
@@ -135,9 +137,12 @@ struct CleanQr {
       for (int j : removed) {
         const Eigen::VectorXd c = Eigen::VectorXd(m.col(j));
         const Eigen::VectorXd qc = qr.matrixQ().transpose() * c;
-        (qc.tail(qc.size() - r).norm() >= tau ? back : still).push_back(j);
+        const double rest = qc.tail(qc.size() - r).norm();
+        (rest >= tau ? back : still).push_back(j);
+        if (rest < tau) largest_dropped = std::max(largest_dropped, rest);
       }
       if (back.empty() || round > 20) break;
+      largest_dropped = 0;
       alive.insert(alive.end(), back.begin(), back.end());
       std::sort(alive.begin(), alive.end());
       removed = std::move(still);
@@ -153,6 +158,7 @@ void record(const CleanQr<Ordering>& c, double tau, double largest, Evidence& ev
   ev.decisions += c.factorizations;
   if (!c.kept.empty()) ev.kept(c.smallest_pivot, largest, tau);
   else ev.threshold = std::max(ev.threshold, tau / largest);
+  ev.largest_dropped = std::max(ev.largest_dropped, c.largest_dropped / largest);
 }
 
 /// Rows and columns of `s` scaled by powers of two until each row's and column's largest entry is
@@ -288,6 +294,7 @@ class EFactor {
     for (Eigen::Index i = 0; i < sigma.size(); ++i)
       if (sigma(i) > kRelative) ++extra;  // the columns have unit norm: 1 is the scale
     if (extra > 0) ev.kept(sigma(extra - 1), 1.0, kRelative);
+    if (extra < sigma.size()) ev.largest_dropped = std::max(ev.largest_dropped, sigma(extra));
     for (Eigen::Index i = extra; i < k; ++i) out.push_back(z_of(y, svd.matrixV().col(i)));
     return out;
   }
@@ -488,13 +495,16 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   std::ostringstream note;
   note << "sparse route: the constraints' rows C_{k+1} = [C_k; Z^T A], Z the left null space of [E; C_k] by sparse QR "
           "(fast/exact/src/dae_sparse.cpp); rank decisions by a threshold on the remainders (the smallest pivot kept "
-       << ev.smallest_pivot << ", the threshold " << ev.threshold
+       << ev.smallest_pivot << ", the largest remainder taken as zero " << ev.largest_dropped << ", the threshold " << ev.threshold
        << ", relative to their matrices), which bounds no singular value: not certified";
+  if (ev.smallest_pivot < 1e3 * ev.threshold || ev.largest_dropped > 1e-3 * ev.threshold)
+    note << " (and a decision fell within a factor 1000 of the threshold: graded data this route may misjudge)";
   const bool regular = out.regular_pencil && *out.regular_pencil;
   if (has_f && !regular) {  // conditions on the sources: the exact route decides them, where it runs
     if (!c.dense)
-      throw std::invalid_argument("a " + std::string(m == n ? "singular" : "rectangular") +
-                                  " pencil with sources at this size: the conditions on the sources are decided by the exact route, which takes at most " +
+      throw std::invalid_argument(std::string(m == n ? "a pencil this route does not find regular (singular, or a threshold decision on graded data: it is not certified either way)"
+                                                     : "a rectangular pencil") +
+                                  " with sources at this size: the conditions on the sources are decided by the exact route, which takes at most " +
                                   std::to_string(io::DaeCase::dense_limit) + " entries of E (m·N = " + std::to_string(static_cast<long>(m) * n) + ") and " + std::to_string(io::DaeCase::dense_side) + " rows or columns");
     exact_source_conditions(c, out);  // not certified either way
     note << "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";

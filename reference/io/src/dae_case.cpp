@@ -36,6 +36,17 @@ Rational read_entry(const json& x, const Where& at, const std::map<std::string, 
   return e->value;
 }
 
+/// What an index was instead of an integer: JSON numbers that are not integers reach here as their
+/// text (the loader keeps decimals exact), so "3.0" is named a number, not a string.
+std::string not_an_index(const json& j) {
+  if (j.is_string()) {
+    const std::string t = j.get<std::string>();
+    if (!t.empty() && t.find_first_not_of("+-0123456789.eE") == std::string::npos && t.find_first_of("0123456789") != std::string::npos)
+      return "number " + t + " (not an integer)";
+  }
+  return describe(j);
+}
+
 struct Entries {
   long rows = 0;
   std::vector<DaeCase::Entry> nonzeros;
@@ -54,7 +65,7 @@ Entries read_entries(const json& j, const Where& at, long rows, const std::vecto
     if (j.contains("rows")) {
       const json& r = j["rows"];
       if (!r.is_number_integer() || r.get<long>() < 0 || r.get<long>() > 1'000'000)
-        (at / "rows").fail("a number of rows (an integer from 0 to 1,000,000)", describe(r));
+        (at / "rows").fail("a number of rows (an integer from 0 to 1,000,000)", not_an_index(r));
       if (rows >= 0 && r.get<long>() != rows) (at / "rows").fail(std::to_string(rows) + " rows (as E)", std::to_string(r.get<long>()));
       out.rows = r.get<long>();
     } else {
@@ -71,9 +82,11 @@ Entries read_entries(const json& j, const Where& at, long rows, const std::vecto
       const json& e = es[k];
       if (!e.is_array() || e.size() != 3) ek.fail("[row, column, value] (row and column from 0; the column may be a variable's name)", describe(e));
       if (!e[0].is_number_integer() || e[0].get<long>() < 0 || e[0].get<long>() >= out.rows)
-        (ek / 0).fail("a row from 0 to " + std::to_string(out.rows - 1), describe(e[0]));
+        (ek / 0).fail("a row from 0 to " + std::to_string(out.rows - 1), not_an_index(e[0]));
       long col = -1;
-      if (e[1].is_string()) {
+      if (e[1].is_string() && not_an_index(e[1]) != describe(e[1])) {
+        (ek / 1).fail("a column from 0 to " + std::to_string(cols - 1) + " or a variable's name", not_an_index(e[1]));
+      } else if (e[1].is_string()) {
         const auto it = column_of.find(e[1].get<std::string>());
         if (it == column_of.end()) {
           const std::string best = nearest_name(e[1].get<std::string>(), variables);
