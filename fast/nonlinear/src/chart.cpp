@@ -207,49 +207,6 @@ class Independent {
 
 }  // namespace
 
-// ---- Differentiator --------------------------------------------------------------------------
-
-bool Differentiator::depends(const Expr& e, std::size_t i) {
-  if (e->op == ExprOp::Number) return false;
-  if (e->op == ExprOp::Variable) return e->var == i;
-  const Key k{e.get(), i};
-  if (const auto it = dep_.find(k); it != dep_.end()) return it->second;
-  const bool r = depends(e->a, i) || (e->b && depends(e->b, i));
-  keep_.push_back(e);
-  dep_.emplace(k, r);
-  return r;
-}
-
-Expr Differentiator::operator()(const Expr& e, std::size_t i) {
-  if (!depends(e, i)) return ex::number(0);
-  if (e->op == ExprOp::Variable) return ex::number(1);
-  const Key k{e.get(), i};
-  if (const auto it = d_.find(k); it != d_.end()) return it->second;
-  const Expr& a = e->a;
-  const auto d = [&](const Expr& x) { return (*this)(x, i); };
-  Expr r;
-  switch (e->op) {
-    case ExprOp::Add: r = ex::add(d(a), d(e->b)); break;
-    case ExprOp::Sub: r = ex::sub(d(a), d(e->b)); break;
-    case ExprOp::Neg: r = ex::neg(d(a)); break;
-    case ExprOp::Mul: r = ex::add(ex::mul(d(a), e->b), ex::mul(a, d(e->b))); break;
-    case ExprOp::Div: {  // (a/b)' = a'/b − (a/b)·b'/b: the quotient itself is shared
-      const Expr db = d(e->b);
-      r = ex::sub(ex::div(d(a), e->b), ex::div(ex::mul(e, db), e->b));
-      break;
-    }
-    case ExprOp::Pow: r = ex::mul(ex::mul(ex::number(e->exponent), ex::pow(a, e->exponent - 1)), d(a)); break;
-    case ExprOp::Sin: r = ex::mul(ex::cos(a), d(a)); break;
-    case ExprOp::Cos: r = ex::neg(ex::mul(ex::sin(a), d(a))); break;
-    case ExprOp::Exp: r = ex::mul(e, d(a)); break;
-    case ExprOp::Sqrt: r = ex::div(d(a), ex::mul(ex::number(2), e)); break;
-    default: throw std::logic_error("diff: unknown operation");
-  }
-  keep_.push_back(e);
-  d_.emplace(k, r);
-  return r;
-}
-
 // ---- Tape -----------------------------------------------------------------------------------
 
 Tape::Tape(const std::vector<Expr>& outputs) {

@@ -424,7 +424,10 @@ json pointwise_json(const Printed& r) {
     j["velocity"] = v;
     j["gauge"] = p.gauge;
   }
-  j["jets"] = {{"order", p.order}, {"checked_order", p.checked_order}, {"moves", p.moves}};
+  if (p.checked_order < 0)  // the implicit form's formula route: no jets, every zero test an identity of the formulas
+    j["zero_tests"] = {{"by", "identities of the formulas (their canonical polynomial forms)"}, {"moves", p.moves}};
+  else
+    j["jets"] = {{"order", p.order}, {"checked_order", p.checked_order}, {"moves", p.moves}};
   if (p.formulas) {
     const Formulas& f = *p.formulas;
     json eq = json::object(), mo = json::object();
@@ -496,6 +499,9 @@ std::string pointwise_text(const Printed& r) {
     if (p.route.rfind("derivative array", 0) == 0)
       o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (ranks of the derivative array F_" << p.order
         << " at a zero of it)\n";
+    else if (p.checked_order < 0)  // the formula route: every zero test an identity
+      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; every zero test an "
+        << "identity of the formulas)\n";
     else
       o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; the last step's "
         << "constraints vanish on M_c to order " << p.checked_order << ")\n";

@@ -1,12 +1,16 @@
 // The expression form by the exact pointwise CAD (the one translation unit that instantiates
 // reference/nonlinear/pointwise.hpp on mpq_rational).
+#include "dcad/reference/nonlinear/calculus.hpp"
+#include "dcad/reference/nonlinear/ide_formulas.hpp"
 #include "dcad/reference/pipeline/exact_place.hpp"
 #include "dcad/reference/pipeline/implicit.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 #include <cmath>
+
 #include <exception>
 #include <sstream>
+#include <unordered_map>
 
 namespace dcad::reference::pipeline {
 
@@ -111,6 +115,66 @@ bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, co
   return ok;
 }
 
+/// The implicit form's CEF (1.6) at `start`, exactly: on the formulas (ide_formulas.hpp) where they decide
+/// every step by identities, else on jets (pointwise.hpp), which settle what the formulas leave open (a
+/// singular point, a formula vanishing on M_k only) to their order.  `formulas` says which ran.
+PointwiseResult<Rational> run_implicit(const LagrangianSystem& s, const std::vector<Rational>& start, const std::vector<bool>& fixed, ImplicitRoute route,
+                                       std::optional<IdeFormulas>& formulas) {
+  formulas.reset();
+  if (route != ImplicitRoute::jets) {
+    std::variant<IdeFormulas, IdeUndecided> f = ide_on_formulas(s, start, fixed);
+    if (std::holds_alternative<IdeFormulas>(f)) {
+      formulas = std::move(std::get<IdeFormulas>(f));
+      return formulas->result;
+    }
+    if (route == ImplicitRoute::formulas) throw FormulasUndecided(std::get<IdeUndecided>(f).why);
+  }
+  return run(s, start, fixed);
+}
+
+/// The formula route's tower as the CONTRACT's `formulas` (the constraints of every M_k and the equations of
+/// motion on M_c, in the case's names), or why not: formulas that print as trees of more than 200,000 nodes
+/// (a chain's multipliers, solved by back substitution, print each other's formulas again and again).
+void attach_implicit_formulas(const IdeFormulas& f, const io::LagrangianCase& c, Pointwise<Rational>& p) {
+  const LagrangianSystem& s = c.system;
+  constexpr double kCap = 2e5;
+  std::unordered_map<const expr::ExprNode*, double> memo;
+  double total = 0;
+  for (const auto& level : f.levels)
+    for (const expr::Expr& e : level) total += expr::tree_size(e, memo, kCap);
+  for (const expr::Expr& e : f.rates) total += expr::tree_size(e, memo, kCap);
+  for (const auto& v : f.valid_where) total += expr::tree_size(v.formula, memo, kCap);
+  if (total >= kCap) {
+    p.formulas_why = "the formulas are too large to print (more than " + std::to_string(static_cast<long>(kCap)) +
+                     " operations written out as trees); the tower and the point are exact as reported";
+    return;
+  }
+  const std::vector<std::string> names = s.variable_names();
+  Formulas out;
+  for (std::size_t k = 0; k < f.levels.size(); ++k)
+    for (const expr::Expr& e : f.levels[k]) {
+      out.constraints.push_back(expr::to_text(e, names));
+      out.levels.push_back(static_cast<long>(k + 1));
+    }
+  for (std::size_t i = 0; i < s.n; ++i) out.equations.emplace_back(names[s.q(i)], expr::to_text(f.rates[i], names));
+  for (std::size_t i : f.free) out.free.push_back(names[i]);
+  std::vector<bool> solved(2 * s.n + 1, false);
+  for (const auto& level : f.solved)
+    for (std::size_t i : level) {
+      solved[i] = true;
+      out.solved.push_back(names[i]);
+    }
+  for (std::size_t i = 0; i < s.n; ++i)
+    if (!solved[s.q(i)]) out.kept.push_back(names[s.q(i)]);
+  for (const auto& v : f.valid_where) {
+    out.valid_where.push_back(expr::to_text(v.formula, names));
+    out.valid_where_why.push_back(v.what);
+  }
+  out.decided = "exactly at the point (the tower's): every pivot a nonzero rational there, every zero test an identity of the formulas; the "
+                "formulas hold near it on M_c wherever valid_where does not vanish";
+  p.formulas = out;
+}
+
 /// Every equation is affine in the coordinates (the time and the derivatives enter anyhow): every M_k(t)
 /// is then an affine subspace, one component.
 bool affine_in_coordinates(const LagrangianSystem& s) {
@@ -198,12 +262,13 @@ dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c)
   return out;
 }
 
-dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c) {
+dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, ImplicitRoute route) {
   std::vector<bool> fixed;
   PointwiseResult<Rational> r;
+  std::optional<IdeFormulas> formulas;
   try {
     for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
-      r = run(c.system, start_point(c, fixed, seed), fixed);
+      r = run_implicit(c.system, start_point(c, fixed, seed), fixed, route, formulas);
       if (r.regular || c.has_initial) break;
     }
   } catch (const NotExactHere&) {
@@ -212,19 +277,21 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c) {
     std::vector<Rational> zero = start_point(c, fixed);
     for (std::size_t i = 0; i < zero.size(); ++i)
       if (!fixed[i]) zero[i] = 0;
-    r = run(c.system, zero, fixed);
+    r = run_implicit(c.system, zero, fixed, route, formulas);
   }
   check_given_implicit<Rational>(
       r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
-  dcad::Solution<Rational> out = implicit_solution(r, c, "pointwise exact");
+  dcad::Solution<Rational> out = implicit_solution(r, c, formulas ? "formulas exact" : "pointwise exact");
   out.certified = r.regular ? yes : unknown;  // a singular point decides no tower
+  if (formulas && r.consistent) attach_implicit_formulas(*formulas, c, *out.pointwise);
+  else if (r.consistent && r.regular) out.pointwise->formulas_why = "the exact route ran on jets (the formulas left a decision open): no formulas";
   if (r.regular && !r.consistent && (!c.has_initial || r.moves > 0) && !affine_in_coordinates(c.system)) {
     out.certified = unknown;  // x (1 − y) = 0 is two lines: the completion reached y = 1, where v_y = 1 fails; x = 0 has solutions
     out.note = "not certified: inconsistent on the component of M_k that the completion reached from " +
                std::string(c.has_initial ? "the given values" : "dcad's default point") + "; a nonlinear M_k may have other components";
     return out;
   }
-  if (r.regular) {
+  if (r.regular && !formulas) {  // the formulas' decisions are identities and open conditions: they hold near the point
     const std::string differs = second_look(c, r);
     if (!differs.empty()) {
       out.certified = unknown;

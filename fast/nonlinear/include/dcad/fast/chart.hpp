@@ -21,6 +21,7 @@
 // where the point is rational.  This is a fast route: the reference is the pointwise CAD.
 #pragma once
 
+#include "dcad/reference/nonlinear/calculus.hpp"
 #include "dcad/reference/nonlinear/lagrangian_system.hpp"
 
 #include <stdexcept>
@@ -135,25 +136,7 @@ class ChartField {
   mutable std::vector<double> buf_;
 };
 
-/// ∂e/∂x_i with shared subexpressions differentiated once (the DAG's sharing kept in the result).
-class Differentiator {
- public:
-  reference::expr::Expr operator()(const reference::expr::Expr& e, std::size_t i);
-  std::size_t size() const { return d_.size(); }  ///< derivatives cached
-
- private:
-  bool depends(const reference::expr::Expr& e, std::size_t i);
-  struct Key {
-    const reference::expr::ExprNode* node;
-    std::size_t var;
-    bool operator==(const Key& o) const { return node == o.node && var == o.var; }
-  };
-  struct Hash {
-    std::size_t operator()(const Key& k) const { return std::hash<const void*>()(k.node) ^ (k.var * 0x9e3779b97f4a7c15ULL); }
-  };
-  std::vector<reference::expr::Expr> keep_;  ///< keys stay alive: a freed node's address is never reused while cached
-  std::unordered_map<Key, reference::expr::Expr, Hash> d_;
-  std::unordered_map<Key, bool, Hash> dep_;
-};
+/// ∂e/∂x_i with shared subexpressions differentiated once (reference/nonlinear/calculus.hpp).
+using Differentiator = reference::expr::Differentiator;
 
 }  // namespace dcad::fast

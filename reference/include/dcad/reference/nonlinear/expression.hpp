@@ -51,12 +51,13 @@ inline Expr make(ExprOp op, Expr a, Expr b = nullptr, long exponent = 0) {
   return n;
 }
 
+inline Expr sub(const Expr& a, const Expr& b);
 inline Expr neg(const Expr& a) {
   if (is_number(a)) return number(-a->value);
   if (a->op == ExprOp::Neg) return a->a;
   if (a->op == ExprOp::Mul && is_number(a->a))  // −(c·x) = (−c)·x
     return a->a->value == -1 ? a->b : make(ExprOp::Mul, number(-a->a->value), a->b);
-  if (a->op == ExprOp::Sub) return make(ExprOp::Sub, a->b, a->a);  // −(x − y) = y − x
+  if (a->op == ExprOp::Sub) return sub(a->b, a->a);  // −(x − y) = y − x (folded: −(−3 − x) prints x + 3, not x - -3)
   return make(ExprOp::Neg, a);
 }
 /// −b as a "positive" expression if b is visibly negative (−x, a negative number, c·x with c < 0), else

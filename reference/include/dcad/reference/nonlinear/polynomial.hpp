@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -24,7 +25,17 @@ class Canonical {
   using Poly = std::map<Mono, Rational>;                    ///< nonzero coefficients only
 
   /// The canonical form of e; std::length_error beyond `max_terms` terms (an expansion too large to decide).
+  /// A node shared in the DAG (derivatives share their operands) is expanded once.
   Poly of(const Expr& e) {
+    if (e->op == ExprOp::Number || e->op == ExprOp::Variable) return expand(e);
+    if (const auto it = memo_.find(e.get()); it != memo_.end()) return it->second;
+    Poly p = expand(e);
+    keep_.push_back(e);  // the key stays alive: a freed node's address is never reused while cached
+    return memo_.emplace(e.get(), std::move(p)).first->second;
+  }
+
+ private:
+  Poly expand(const Expr& e) {
     switch (e->op) {
       case ExprOp::Number: return constant(e->value);
       case ExprOp::Variable: return atom("x" + std::to_string(e->var), e);
@@ -47,6 +58,7 @@ class Canonical {
     throw std::logic_error("Canonical: unknown operation");
   }
 
+ public:
   /// Canonical text of a form (equal forms, equal texts).
   static std::string key(const Poly& p) {
     std::string s;
@@ -70,9 +82,12 @@ class Canonical {
   const Expr& atom_expr(const std::string& key) const { return atoms_.at(key); }
 
   std::size_t max_terms = 4096;
+  std::size_t max_key = 20000;
 
  private:
   std::map<std::string, Expr> atoms_;
+  std::unordered_map<const ExprNode*, Poly> memo_;
+  std::vector<Expr> keep_;
 
   static Poly constant(const Rational& v) {
     Poly p;
@@ -80,6 +95,9 @@ class Canonical {
     return p;
   }
   Poly atom(const std::string& key, const Expr& e) {
+    // an atom's key holds its argument's canonical text: nested quotients (1/(… 1/(…) …)) grow it
+    // geometrically, so a large one is "too large to decide", like a large expansion
+    if (key.size() > max_key) throw std::length_error("an atom of more than " + std::to_string(max_key) + " characters");
     atoms_.emplace(key, e);
     return Poly{{Mono{{key, 1}}, Rational(1)}};
   }

@@ -10,6 +10,7 @@
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,17 @@ dcad::Solution<T> implicit_solution(const PointwiseResult<T>& r, const io::Lagra
   return out;
 }
 
+/// Which exact route: CEF (1.6) eliminated on the formulas (nonlinear/ide_formulas.hpp) where it decides
+/// every step, else on jets (the default); or one of them alone (two routes to one tower, for the tests).
+enum class ImplicitRoute { automatic, formulas, jets };
+
+/// ImplicitRoute::formulas where the formulas leave a decision open (what() says which).
+struct FormulasUndecided : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// The reference's route: exact, at the given values (or dcad's default point); NotExactHere where a
 /// formula is irrational there, PointwiseNoPoint where no rational point of M_c is reached.
-dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c);
+dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, ImplicitRoute route = ImplicitRoute::automatic);
 
 }  // namespace dcad::reference::pipeline
