@@ -18,7 +18,10 @@
 //    equations Σ E_ij v_xj − Σ A_ij x_j − f_i(t) = 0 (the `implicit` form, CEF (1.6) at a point on jets,
 //    pipeline/implicit.hpp) has the dae form's dims, steps, consistency and solution rank (a linear
 //    M_k is the same subspace at every point: the pointwise tower at any point is the global one); and
-//    fast's derivative array (Campbell; fast/derivative_array.hpp) reaches them where it says certified.
+//    fast's derivative array (Campbell; fast/derivative_array.hpp) reaches them where it says certified;
+//    both exact routes of the implicit form (on formulas, on jets) do;
+//  - CEF (1.6) is coordinate-free: the planted pencil pulled back by a polynomial diffeomorphism keeps its
+//    tower (Implicit.PulledBackLinearDaeHasThePlantedTower).
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/problem.hpp"
 #include "dcad/reference/cad.hpp"
@@ -298,6 +301,21 @@ io::LagrangianCase as_implicit(const io::DaeCase& d) {
   return c;
 }
 
+/// fast's derivative array on the implicit case `c` reaches the tower `want` wherever it says certified.
+void fast_has_the_tower(const io::LagrangianCase& c, const dcad::Solution<Q>& want) {
+  io::Problem pr;
+  pr.form = io::Form::implicit;
+  pr.file = c.file;
+  pr.expression = c;
+  const fast::Solution f = fast::solve(pr);
+  RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");
+  if (!f.certified.yes()) return;
+  RC_ASSERT(f.dims() == want.dims());
+  RC_ASSERT(f.steps == want.steps);
+  RC_ASSERT(f.consistent == want.consistent);
+  RC_ASSERT(f.solution_rank == want.solution_rank);
+}
+
 RC_GTEST_PROP(Dae, LinearFormEqualsImplicitFormOnLinearData, ()) {
   const bool singular = *rc::gen::arbitrary<bool>();
   const Planted p = planted(singular);
@@ -305,26 +323,101 @@ RC_GTEST_PROP(Dae, LinearFormEqualsImplicitFormOnLinearData, ()) {
   const auto lin = reference::pipeline::solve_dae(d);
   const io::LagrangianCase c = as_implicit(d);
   for (const auto& e : c.system.constraints) RC_LOG() << ex::to_text(e, c.system.variable_names()) << " = 0\n";
-  const auto imp = reference::pipeline::solve_implicit_exact(c);
   RC_TAG(singular ? "singular pencil" : "regular pencil");
-  RC_ASSERT(imp.certified.yes());  // a linear system has no singular point
-  RC_ASSERT(imp.dims() == lin.dims());
-  RC_ASSERT(imp.steps == lin.steps);
-  RC_ASSERT(imp.consistent == lin.consistent);
-  RC_ASSERT(imp.solution_rank == lin.solution_rank);
-  // fast's own route, the derivative array (fast/derivative_array.hpp), where it says certified
-  io::Problem pr;
-  pr.form = io::Form::implicit;
-  pr.file = c.file;
-  pr.expression = c;
-  const fast::Solution f = fast::solve(pr);
-  RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");
-  if (f.certified.yes()) {
-    RC_ASSERT(f.dims() == lin.dims());
-    RC_ASSERT(f.steps == lin.steps);
-    RC_ASSERT(f.consistent == lin.consistent);
-    RC_ASSERT(f.solution_rank == lin.solution_rank);
+  // both exact routes: CEF (1.6) eliminated on the formulas (every zero test of linear data is an identity,
+  // so it always decides) and on jets
+  for (const auto route : {reference::pipeline::ImplicitRoute::formulas, reference::pipeline::ImplicitRoute::jets}) {
+    const auto imp = reference::pipeline::solve_implicit_exact(c, route);
+    RC_ASSERT(imp.certified.yes());  // a linear system has no singular point
+    RC_ASSERT(imp.dims() == lin.dims());
+    RC_ASSERT(imp.steps == lin.steps);
+    RC_ASSERT(imp.consistent == lin.consistent);
+    RC_ASSERT(imp.solution_rank == lin.solution_rank);
   }
+  // fast's own route, the derivative array (fast/derivative_array.hpp), where it says certified
+  fast_has_the_tower(c, lin);
+}
+
+/// x = Φ(y): x_i = y_i + c_i y_{i−1}² (c_1 = 0), a polynomial diffeomorphism of R^N (triangular, its
+/// inverse y_i = x_i − c_i y_{i−1}² polynomial too).  The dae case pulled back: E DΦ(y) ẏ = A Φ(y) + f(t),
+/// affine in ẏ, nonlinear in y.
+io::LagrangianCase pulled_back(const io::DaeCase& d, std::vector<long>& c) {
+  io::LagrangianCase out = as_implicit(d);
+  reference::LagrangianSystem& s = out.system;
+  const std::size_t n = s.n;
+  c.assign(n, 0);
+  std::vector<ex::Expr> phi(n), dphi(n);  // x_i and ẋ_i in (y, ẏ)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0) c[i] = *rc::gen::inRange(-2, 3);
+    phi[i] = ex::variable(s.q(i));
+    dphi[i] = ex::variable(s.v(i));
+    if (c[i] != 0) {
+      phi[i] = ex::add(phi[i], ex::mul(ex::number(c[i]), ex::pow(ex::variable(s.q(i - 1)), 2)));
+      dphi[i] = ex::add(dphi[i], ex::mul(ex::number(2 * c[i]), ex::mul(ex::variable(s.q(i - 1)), ex::variable(s.v(i - 1)))));
+    }
+  }
+  s.constraints.clear();
+  for (Index i = 0; i < d.e.rows(); ++i) {
+    ex::Expr e = ex::neg(ex::substitute(d.f[static_cast<std::size_t>(i)], 0, ex::variable(s.t())));
+    for (Index j = 0; j < d.e.cols(); ++j) {
+      const std::size_t jj = static_cast<std::size_t>(j);
+      if (d.e(i, j) != 0) e = ex::add(e, ex::mul(ex::number(d.e(i, j)), dphi[jj]));
+      if (d.a(i, j) != 0) e = ex::sub(e, ex::mul(ex::number(d.a(i, j)), phi[jj]));
+    }
+    s.constraints.push_back(e);
+  }
+  return out;
+}
+
+// CEF (1.6) is coordinate-free: M_k is a submanifold, and a diffeomorphism Φ carries the tower of the
+// pulled-back system Φ*φ (φ(Φ(y), DΦ(y) ẏ) = 0) onto φ's, with the same dimensions, consistency and
+// solution rank (ẏ = DΦ⁻¹ ẋ).  So a planted linear pencil, pulled back by a polynomial Φ, has the planted
+// (dae form's) tower at every regular point — an answer derived from the planted blocks, not from any
+// route.  Both exact routes where they decide (on formulas; on jets), and fast's derivative array where it
+// says certified; the two exact routes agree with each other on the point and the velocity too.
+RC_GTEST_PROP(Implicit, PulledBackLinearDaeHasThePlantedTower, ()) {
+  const bool singular = *rc::gen::arbitrary<bool>();
+  const Planted p = planted(singular);
+  RC_PRE(p.e.cols() > 0);
+  const io::DaeCase d = as_case(p, !singular && *rc::gen::arbitrary<bool>());
+  const auto lin = reference::pipeline::solve_dae(d);
+  std::vector<long> c;
+  const io::LagrangianCase y = pulled_back(d, c);
+  for (const auto& e : y.system.constraints) RC_LOG() << ex::to_text(e, y.system.variable_names()) << " = 0\n";
+  std::optional<dcad::Solution<Q>> by_formulas, by_jets;
+  try {
+    by_formulas = reference::pipeline::solve_implicit_exact(y, reference::pipeline::ImplicitRoute::formulas);
+  } catch (const reference::pipeline::FormulasUndecided& e) {
+    RC_LOG() << "formulas undecided: " << e.what() << "\n";
+  } catch (const std::invalid_argument&) {  // no rational point of M_c reached from dcad's default point
+  }
+  try {
+    by_jets = reference::pipeline::solve_implicit_exact(y, reference::pipeline::ImplicitRoute::jets);
+  } catch (const std::invalid_argument&) {
+  } catch (const std::length_error&) {
+  }
+  RC_TAG(by_formulas ? "formulas decided" : "formulas undecided");
+  RC_TAG(by_jets ? "jets ran" : "jets did not run");
+  for (const auto* r : {by_formulas ? &*by_formulas : nullptr, by_jets ? &*by_jets : nullptr}) {
+    if (!r || !r->certified.yes()) continue;
+    RC_ASSERT(r->dims() == lin.dims());
+    RC_ASSERT(r->steps == lin.steps);
+    RC_ASSERT(r->consistent == lin.consistent);
+    RC_ASSERT(r->solution_rank == lin.solution_rank);
+  }
+  // each route's point y lies on M_c: Φ(y) satisfies the linear M_c's equations (without sources, a·x = b)
+  const bool sourceless = std::all_of(d.f.begin(), d.f.end(), [](const ex::Expr& f) { return ex::is_number(f, 0); });
+  if (sourceless && lin.consistent && lin.final_constraints)
+    for (const auto* r : {by_formulas ? &*by_formulas : nullptr, by_jets ? &*by_jets : nullptr}) {
+      if (!r || !r->certified.yes()) continue;
+      const std::vector<Q>& yv = r->pointwise->point;
+      for (const auto& eq : *lin.final_constraints) {
+        Q ax = 0;
+        for (const auto& [j, a] : eq.terms) ax += a * (yv[j] + (j > 0 ? Q(c[j]) * yv[j - 1] * yv[j - 1] : Q(0)));
+        RC_ASSERT(ax == eq.rhs);
+      }
+    }
+  fast_has_the_tower(y, lin);
 }
 
 }  // namespace

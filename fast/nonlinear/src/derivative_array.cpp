@@ -1,6 +1,8 @@
 // Campbell's derivative array for the implicit form (derivative_array.hpp: the definitions).
 #include "dcad/fast/derivative_array.hpp"
 
+#include "dcad/reference/nonlinear/calculus.hpp"
+
 #include "dcad/reference/nonlinear/pointwise/result.hpp"
 
 #include <Eigen/Dense>
@@ -32,17 +34,7 @@ void variables_of(const ex::Expr& e, std::set<std::size_t>& out, std::unordered_
   if (e->b) variables_of(e->b, out, seen);
 }
 
-/// The size of e as a tree (its DAG unshared, saturating at `cap`): what symbolic differentiation,
-/// which does not share, walks.
-double tree_size(const ex::Expr& e, std::unordered_map<const ex::ExprNode*, double>& memo, double cap) {
-  if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
-  double n = 1;
-  if (e->a) n += tree_size(e->a, memo, cap);
-  if (e->b) n += tree_size(e->b, memo, cap);
-  n = std::min(n, cap);
-  memo.emplace(e.get(), n);
-  return n;
-}
+using reference::expr::tree_size;
 
 ArrayEquation equation(const ex::Expr& e, std::size_t time) {
   ArrayEquation q{e, {}};
@@ -144,7 +136,9 @@ struct Newton {
   double relative = HUGE_VAL;  ///< at the best iterate: max_i |F_i| / Σ_j |∂F_i/∂z_j · z_j| (each row against its own terms)
   bool zero() const { return residual <= 1e-12 * scale || relative <= 1e-10; }
 };
-Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols, const std::vector<bool>& held) {
+/// `ceiling`: the largest scale a residual may be judged against (2^10 × the problem's own, at the case's
+/// point): a diverging iterate, or a start that is an earlier level's wild zero, never excuses one.
+Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols, const std::vector<bool>& held, double ceiling) {
   Newton out;
   std::vector<Eigen::Index> free;
   for (std::size_t c = 0; c < cols; ++c)
@@ -155,17 +149,23 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     const Values v = evaluate_array(eqs, z, cols);
     double zmax = 1;
     for (std::size_t c = 0; c < cols; ++c) zmax = std::max(zmax, std::abs(z[c]));
-    out.scale = std::max(1.0, v.j.cwiseAbs().maxCoeff()) * zmax;
+    // the scale a residual is judged against: the iterate's, but never above the ceiling — a diverging
+    // iterate (z ~ 1e12, |J| ~ 1e13) excused a residual of 1.6e13 against 2.6e26, and a pulled-back
+    // index-3 system's M_c = {0} became a curve of free velocities, certified (prop_dae's
+    // Implicit.PulledBackLinearDaeHasThePlantedTower)
+    out.scale = std::min(std::max(1.0, v.j.cwiseAbs().maxCoeff()) * zmax, ceiling);
     const double r = v.f.size() ? v.f.cwiseAbs().maxCoeff() : 0.0;
     if (r < best) best = r, best_z = z, best_scale = out.scale;
     if (r <= 1e-15 * out.scale || free.empty()) break;
     Eigen::MatrixXd jf(v.j.rows(), static_cast<Eigen::Index>(free.size()));
     for (std::size_t k = 0; k < free.size(); ++k) jf.col(static_cast<Eigen::Index>(k)) = v.j.col(free[k]);
-    // columns scaled by powers of two first: a pF coefficient beside a 1000 is not a rank deficiency
+    // columns scaled by powers of two first: a pF coefficient beside a 1000 is not a rank deficiency; a
+    // column at rounding level (2 x1 at x1 = 2e-16) is noise, not data: scaled up it took steps of 1e12
     Eigen::VectorXd colscale = Eigen::VectorXd::Ones(jf.cols());
+    const double jmax = jf.size() ? jf.cwiseAbs().maxCoeff() : 0.0;
     for (Eigen::Index c = 0; c < jf.cols(); ++c) {
       const double m = jf.col(c).cwiseAbs().maxCoeff();
-      if (m > 0 && std::isfinite(m)) {
+      if (m > 1e-13 * jmax && std::isfinite(m)) {
         colscale(c) = std::ldexp(1.0, -std::ilogb(m));
         jf.col(c) *= colscale(c);
       }
@@ -220,6 +220,7 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     if (!d.certain.yes()) uncertain(what + ": " + d.describe());
   };
   std::size_t block = 0;  // eqs[block…] are the last derivatives added
+  double ceiling = HUGE_VAL;  // 2^10 × the scale of F_0 at the case's point (gauss_newton)
   for (std::size_t k = 0; k <= kcap; ++k) {
     if (k > 0) {
       const std::size_t end = eqs.size();
@@ -237,7 +238,13 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     out.order = static_cast<long>(k);
     const std::size_t cols = (k + 2) * n;
     std::vector<double> before = z;
-    Newton nw = gauss_newton(eqs, z, cols, held);
+    if (k == 0) {
+      const Values v0 = evaluate_array(eqs, z, cols);
+      double zmax = 1;
+      for (std::size_t c = 0; c < cols; ++c) zmax = std::max(zmax, std::abs(z[c]));
+      ceiling = 1024 * std::max(1.0, v0.j.size() ? v0.j.cwiseAbs().maxCoeff() : 0.0) * zmax;
+    }
+    Newton nw = gauss_newton(eqs, z, cols, held, ceiling);
     const auto affine = [&] {
       for (const ArrayEquation& q : eqs)
         for (const auto& [v, g] : q.grad)
@@ -249,7 +256,7 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
         std::vector<double> nudged = before;
         for (std::size_t c = 0; c < cols; ++c)
           if (!held[c]) nudged[c] += 0.1 + 0.01 * static_cast<double>(c % 7);
-        const Newton again = gauss_newton(eqs, nudged, cols, held);
+        const Newton again = gauss_newton(eqs, nudged, cols, held, ceiling);
         if (again.zero()) {
           z = nudged;
           nw = again;
@@ -259,7 +266,7 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     if (!nw.zero()) {
       if (any_held) {  // the same without the given values: then they are what is off
         std::vector<double> loose = before;
-        const Newton lw = gauss_newton(eqs, loose, cols, std::vector<bool>(time, false));
+        const Newton lw = gauss_newton(eqs, loose, cols, std::vector<bool>(time, false), ceiling);
         if (lw.zero()) {
           std::string given;
           for (std::size_t i = 0; i < n; ++i)
