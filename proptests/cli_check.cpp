@@ -178,6 +178,70 @@ TEST(Check, ImplicitPendulumIndexClaimsAreJudged) {
   EXPECT_NE(bad.out.find("index: expected 3, found 2"), std::string::npos) << bad.out;
 }
 
+// Issue 30 / CONTRACT "Formulas for nonlinear results": a DAE tool's reduced pendulum (index 3) as formulas,
+// derived by hand — M_c = {x² + y² = 1, x u + y w = 0, λ (x² + y²) = u² + w² − g y}, and on it
+// λ' = d/dt (u² + w² − g y)/(x² + y²) = (−2λ (x u + y w) − 3 g w)/(x² + y²) = −3 g w/(x² + y²) — agrees; a sign
+// slip in λ' and a missing hidden constraint are caught by name.  dcad's own `formulas` agree with itself
+// (what `solve` prints is what `check` compares).
+TEST(Check, ImplicitFormulasAreComparedOnMc) {
+  const std::string i3 = (fs::path(DCAD_SOURCE_DIR) / "cases/implicit-pendulum-index-3.json").string();
+  const std::string cons = R"J("constraints": ["x^2 + y^2 - 1", "x*u + y*w", "u^2 + w^2 - lam*(x^2 + y^2) - 981/100*y"])J";
+  const std::string eqs = R"("x": "u", "y": "w", "u": "-lam*x", "w": "-lam*y - 981/100")";
+  const Outcome right = run("check " + write_temp("dcad_i3_formulas.json", R"({"dcad": 1, "formulas": {)" + cons + R"(, "equations": {)" + eqs +
+                                                                                R"J(, "lam": "-3*981/100*w/(x^2 + y^2)"}}})J") + " " + i3);
+  EXPECT_EQ(right.rc, 0) << right.out << right.err;
+  EXPECT_NE(right.out.find("formulas.equations (exactly at the reference's rational point"), std::string::npos) << right.out;
+  const Outcome sign = run("check " + write_temp("dcad_i3_formulas_sign.json", R"({"dcad": 1, "formulas": {)" + cons + R"(, "equations": {)" + eqs +
+                                                                                   R"J(, "lam": "3*981/100*w/(x^2 + y^2)"}}})J") + " " + i3);
+  EXPECT_EQ(sign.rc, 3) << sign.out << sign.err;
+  EXPECT_NE(sign.out.find("formulas.equations.lam: expected"), std::string::npos) << sign.out;
+  const Outcome missing = run("check " + write_temp("dcad_i3_formulas_missing.json", R"({"dcad": 1, "formulas": {"constraints": ["x^2 + y^2 - 1", "x*u + y*w"]}})") + " " + i3);
+  EXPECT_EQ(missing.rc, 3) << missing.out << missing.err;
+  EXPECT_NE(missing.out.find("expected 3 independent constraints"), std::string::npos) << missing.out;
+  EXPECT_NE(missing.out.find("(M_3)"), std::string::npos) << missing.out;  // the one not implied, named
+  const Outcome own = run("solve " + i3 + " --json");
+  ASSERT_EQ(own.rc, 0) << own.err;
+  const Outcome self = run("check " + write_temp("dcad_i3_own.json", own.out) + " " + i3);
+  EXPECT_EQ(self.rc, 0) << self.out << self.err;
+}
+
+// CONTRACT "Linear and implicit DAEs": a DAE tool's reduced equations in its own coordinates, derived by
+// hand.  Hessenberg index 1 (x' = −x + y, 0 = x + y − exp(−t), f_2 = −exp(−t)): y eliminated, x' = −2x − f_2(t);
+// F = −1 (y not eliminated) and the source's sign slipped are caught.  The capacitor–source loop (C e' + i = 0,
+// e = V(t) = −f_2): e' = −f_2'(t), i' = −C V'' = C f_2''(t) — and a tool that drops the source's second derivative
+// (i' = 0) is caught.  dcad's own `reduced` (all variables, another F on M_c) agrees with itself.
+TEST(Check, DaeReducedEquationsAreComparedOnMc) {
+  const std::string h1 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-1.json").string();
+  const auto claim = [](const std::string& reduced) {
+    return R"J({"dcad": 1, "dims": [2, 1], "steps": 1, "consistent": true, "solution_rank": 0, "reduced": )J" + reduced + "}";
+  };
+  const Outcome right = run("check " + write_temp("dcad_h1_red.json", claim(R"J({"coordinates": ["x"], "F": [["-2"]], "f": ["0"], "G": [], "sources": {"columns": ["f_2(t)"], "S": [["-1"]]}})J")) + " " + h1);
+  EXPECT_EQ(right.rc, 0) << right.out << right.err;
+  EXPECT_NE(right.out.find("reduced (on the consistent states"), std::string::npos) << right.out;
+  const Outcome floats = run("check " + write_temp("dcad_h1_red_f.json", claim(R"J({"coordinates": ["x"], "F": [[-2.0]], "f": [0.0], "sources": {"columns": ["f_2(t)"], "S": [[-1.0000000000000002]]}})J")) + " " + h1);
+  EXPECT_EQ(floats.rc, 0) << floats.out << floats.err;
+  for (const std::string wrong : {R"J({"coordinates": ["x"], "F": [["-1"]], "f": ["0"], "sources": {"columns": ["f_2(t)"], "S": [["-1"]]}})J",
+                                  R"J({"coordinates": ["x"], "F": [["-2"]], "f": ["0"], "sources": {"columns": ["f_2(t)"], "S": [["1"]]}})J"}) {
+    const Outcome r = run("check " + write_temp("dcad_h1_red_w.json", claim(wrong)) + " " + h1);
+    EXPECT_EQ(r.rc, 3) << wrong << r.out << r.err;
+    EXPECT_NE(r.out.find("reduced: d/dt of the coordinates [\"x\"] differs"), std::string::npos) << r.out;
+  }
+  const std::string loop = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-mna-capacitor-source-loop.json").string();
+  const auto loop_claim = [](const std::string& s) {
+    return R"J({"dcad": 1, "dims": [2, 1, 0], "steps": 2, "consistent": true, "solution_rank": 0, "reduced": {"coordinates": ["e", "i"], "F": [["0", "0"], ["0", "0"]], "f": ["0", "0"], "sources": {"columns": ["f_2'(t)", "f_2''(t)"], "S": )J" + s + "}}}";
+  };
+  const Outcome lr = run("check " + write_temp("dcad_loop_red.json", loop_claim(R"J([["-1", "0"], ["0", "1e-12"]])J")) + " " + loop);
+  EXPECT_EQ(lr.rc, 0) << lr.out << lr.err;
+  const Outcome lw = run("check " + write_temp("dcad_loop_red_w.json", loop_claim(R"J([["-1", "0"], ["0", "0"]])J")) + " " + loop);
+  EXPECT_EQ(lw.rc, 3) << lw.out << lw.err;
+  for (const std::string& f : {h1, loop}) {
+    const Outcome own = run("solve " + f + " --json");
+    ASSERT_EQ(own.rc, 0) << own.err;
+    const Outcome self = run("check " + write_temp("dcad_dae_own.json", own.out) + " " + f);
+    EXPECT_EQ(self.rc, 0) << f << self.out << self.err;
+  }
+}
+
 // Issue 30: another tool's index and regularity claims for a linear DAE are judged against CEF (1.6):
 // a benchmark that labels a singular pencil with an index, or an index-3 system reported as index 2.
 TEST(Check, DaeIndexAndRegularityClaimsAreJudged) {

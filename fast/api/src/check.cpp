@@ -597,9 +597,126 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
   if (sources) k.out.not_compared.push_back("final_constraints' right sides (M_c(t) = {C x = G u(t)} moves with the sources' jets: its directions were compared)");
 }
 
+/// A linear DAE's equations of motion on M_c, claimed in the result's own coordinates z = P x (a subset of
+/// the variables, as an index reducer leaves the differential ones): ż = F z + f + S u + G λ with u the
+/// sources' jets (`sources.columns`, named as dcad names them) and λ free.  They are right iff along every
+/// solution — at every consistent (x, u) (M_c's equations, over x and u) and for every velocity the DAE
+/// allows there (ẋ = X x + W u + gauge·μ, the reference's) — P ẋ − (F P x + f + S u) lies in span(G), and
+/// span(G) is no more than the free directions P·gauge.  Compared exactly on a basis of the consistent
+/// (x, u) (the kernel of M_c's rows) and at a point of it; within 1e-9 × entries × scale for floats.  F
+/// itself is not unique where z does not parametrize M_c: any F that gives the right ż passes.
+void compare_dae_reduced(Checker& k, const json& red, const reference::Solution& truth, const std::vector<std::string>& variables) {
+  const std::string key = "reduced";
+  if (!truth.certified.yes()) {
+    k.out.not_compared.push_back("reduced (the reference left a condition on the sources undecided)");
+    return;
+  }
+  k.out.compared.push_back("reduced (on the consistent states and sources' jets" + std::string(truth.jets.empty() ? "" : ", " + json(truth.jets).dump()) + ")");
+  if (!truth.consistent || !truth.motion || !truth.final_constraints) {
+    k.out.disagreements.push_back("reduced: expected none (M_c is empty), found some");
+    return;
+  }
+  const std::size_t n = variables.size(), nj = truth.jets.size();
+  const json& coords = red.value("coordinates", json());
+  if (!coords.is_array()) bad(k.file, "/reduced/coordinates", "an array of variable names", shown(coords));
+  std::vector<std::size_t> z;
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    const auto it = std::find(variables.begin(), variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
+    if (it == variables.end()) bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable of the case", shown(coords[i]));
+    z.push_back(static_cast<std::size_t>(it - variables.begin()));
+  }
+  const std::size_t m = z.size();
+  std::vector<std::vector<Number>> nf, nv, ng, ns;
+  const json fv_json = [&] {
+    json col = json::array();
+    for (const json& x : red.value("f", json::array())) col.push_back(json::array({x}));
+    return col;
+  }();
+  const auto f_found = found_matrix(k, "reduced.F", red.value("F", json()), m, m, nf);
+  const auto v_found = red.contains("f") ? found_matrix(k, "reduced.f", fv_json, m, 1, nv) : std::optional<io::QMatrix>(io::QMatrix(m, 1));
+  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty() ? json(std::vector<json>(m, json::array())) : red.value("G", json());
+  const std::size_t g_cols = g_json.is_array() && !g_json.empty() && g_json[0].is_array() ? g_json[0].size() : 0;
+  const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>(io::QMatrix(m, 0));
+  io::QMatrix s_found(m, nj);  // over dcad's jet columns (a column the result does not name: 0)
+  if (red.contains("sources")) {
+    const json& src = red["sources"];
+    const json& cols = src.is_object() ? src.value("columns", json()) : json();
+    if (!cols.is_array()) bad(k.file, "/reduced/sources/columns", "an array of the sources' jets as dcad names them (source_jets)", shown(cols));
+    const auto sm = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, cols.size(), ns);
+    if (!sm) return;
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      const auto it = std::find(truth.jets.begin(), truth.jets.end(), cols[c].is_string() ? cols[c].get<std::string>() : "");
+      if (it == truth.jets.end()) bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "one of " + json(truth.jets).dump(), shown(cols[c]));
+      for (std::size_t i = 0; i < m; ++i) s_found(i, static_cast<std::size_t>(it - truth.jets.begin())) += (*sm)(i, c);
+    }
+  }
+  if (!f_found || !v_found || !g_found) return;
+  bool exact = true;
+  for (const auto* nums : {&nf, &nv, &ng, &ns})
+    for (const auto& row : *nums)
+      for (const Number& v : row) exact = exact && v.exact;
+  // the consistent (x, u): [C D] (x, u) = b — a point (x0, u0) and a basis of the directions
+  const std::size_t w = n + nj;
+  io::QMatrix cd(truth.final_constraints->size(), w + 1);
+  for (std::size_t i = 0; i < truth.final_constraints->size(); ++i) {
+    for (const auto& [j, v] : (*truth.final_constraints)[i].terms) cd(i, j) = v;
+    cd(i, w) = (*truth.final_constraints)[i].rhs;
+  }
+  const io::QMatrix lhs = cd.block(0, cd.rows(), 0, w), dirs = reference::nullspace(lhs);  // rows
+  std::vector<io::Rational> b(cd.rows()), point;
+  for (std::size_t i = 0; i < cd.rows(); ++i) b[i] = cd(i, w);
+  if (!reference::solve_particular(lhs, b, point)) throw InternalError("check: the reference's M_c has no point");
+  // the residual map (x, u, 1) ↦ P (X x + W u) − (F P x + S u + f), as an m × (w + 1) matrix
+  const Motion<io::Rational>& mo = *truth.motion;
+  io::QMatrix res(m, w + 1);
+  for (std::size_t a = 0; a < m; ++a) {
+    const std::size_t i = z[a];
+    for (std::size_t j = 0; j < n; ++j) res(a, j) = mo.f_matrix[i][j];
+    for (std::size_t j = 0; j < nj; ++j) res(a, n + j) = mo.s[i][j] - s_found(a, j);
+    for (std::size_t b = 0; b < m; ++b) res(a, z[b]) -= (*f_found)(a, b);
+    res(a, w) = mo.f[i] - (*v_found)(a, 0);
+  }
+  io::QMatrix at(w + 1, dirs.rows() + 1);  // columns: the directions (0 in the last row), and the point (1)
+  for (std::size_t c = 0; c < dirs.rows(); ++c)
+    for (std::size_t j = 0; j < w; ++j) at(j, c) = dirs(c, j);
+  for (std::size_t j = 0; j < w; ++j) at(j, dirs.rows()) = point[j];
+  at(w, dirs.rows()) = 1;
+  // projected off span(G) (N: the annihilator of their G's columns); the true free directions P·gauge too
+  const io::QMatrix n_g = reference::annihilator(reference::Subspace<io::Rational>::span(g_found->transpose())).basis();
+  io::QMatrix pg(m, mo.g.empty() ? 0 : mo.g[0].size());
+  for (std::size_t a = 0; a < m; ++a)
+    for (std::size_t c = 0; c < pg.cols(); ++c) pg(a, c) = mo.g[z[a]][c];
+  const io::QMatrix off = n_g * res * at, free_off = n_g * pg;
+  const double scale = std::max(1.0, max_abs(n_g)) * std::max({1.0, max_abs(res), max_abs(at)});
+  const double tol = exact ? 0 : matrix_tolerance(m * (w + 1)) * scale;
+  const auto nonzero = [&](const io::Rational& v) { return exact ? v != 0 : std::abs(v.convert_to<double>()) > tol; };
+  for (std::size_t a = 0; a < off.rows(); ++a)
+    for (std::size_t c = 0; c < off.cols(); ++c)
+      if (nonzero(off(a, c))) {
+        k.out.disagreements.push_back("reduced: d/dt of the coordinates " + coords.dump() + " differs from the DAE's on M_c" +
+                                      (c + 1 == off.cols() ? " at its point" : " along a consistent direction of (x, u)") + " (component " + std::to_string(a) +
+                                      " of the difference, off span(G): " + io::float_text(off(a, c).convert_to<double>()) + ")");
+        return;
+      }
+  for (std::size_t a = 0; a < free_off.rows(); ++a)
+    for (std::size_t c = 0; c < free_off.cols(); ++c)
+      if (nonzero(free_off(a, c))) {
+        k.out.disagreements.push_back("reduced.G: the DAE leaves a direction of d/dt " + coords.dump() + " free that span(G) does not contain (solution rank " +
+                                      std::to_string(pg.cols()) + ")");
+        return;
+      }
+  const io::QMatrix n_pg = reference::annihilator(reference::Subspace<io::Rational>::span(pg.transpose())).basis(), extra = n_pg * *g_found;
+  for (std::size_t a = 0; a < extra.rows(); ++a)
+    for (std::size_t c = 0; c < extra.cols(); ++c)
+      if (nonzero(extra(a, c))) {
+        k.out.disagreements.push_back("reduced.G: column " + std::to_string(c) + " frees a direction the DAE determines");
+        return;
+      }
+}
+
 /// A linear DAE (CONTRACT "Linear and implicit DAEs"): another tool's discrete claims — dims, steps,
 /// consistency, solution rank, regularity of the pencil and its index — against the reference's
-/// CEF (1.6).  The constraints and velocities are named as not compared (not yet).
+/// CEF (1.6); its M_c (`final_constraints`) as a subspace, and its equations of motion (`reduced`).
 Checked check_dae(const std::string& result_file, const json& r, const io::Problem& p) {
   const io::DaeCase& c = p.dae;
   if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
@@ -623,15 +740,18 @@ Checked check_dae(const std::string& result_file, const json& r, const io::Probl
     }
   if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, regular_pencil, index", "none of them");
   if (r.contains("final_constraints")) compare_dae_final_constraints(k, r, truth, c.variables.size());
-  for (const char* key : {"tower", "reduced"})
-    if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the dae form)");
+  if (r.contains("reduced")) {
+    if (!r["reduced"].is_object()) bad(result_file, "/reduced", "an object (coordinates, F, f, G, sources)", shown(r["reduced"]));
+    compare_dae_reduced(k, r["reduced"], truth, c.variables);
+  }
+  if (r.contains("tower")) k.out.not_compared.push_back("tower (not yet for the dae form)");
   return k.out;
 }
 
 /// An implicit DAE (CONTRACT "Linear and implicit DAEs"): another tool's discrete claims — dims,
 /// steps, consistency, solution rank, uniqueness and index — against the reference's CEF (1.6) at the
-/// case's point (exact).  Constraints and reduced equations are named as not compared (not yet).
-Checked check_implicit(const std::string& result_file, const json& r, const io::Problem& p) {
+/// case's point (exact); its constraints of M_c and equations of motion as `formulas` (check_formulas.cpp).
+Checked check_implicit(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
   const io::LagrangianCase& c = p.expression;
   if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
   if (r.contains("name") && r["name"] != c.name)
@@ -648,12 +768,15 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
       if (!truth.certified.yes()) continue;  // judged below: nothing can be
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
-  if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index", "none of them");
+  const bool formulas = r.contains("formulas") && !r["formulas"].is_null();
+  if (!any && !formulas) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index, or formulas", "none of them");
   if (!truth.certified.yes())  // nothing judged is no agreement
     k.out.disagreements.push_back("no claim could be judged: the reference is not certified at its point (" +
                                   (truth.note.empty() ? truth.pointwise->why : truth.note) + "); give `initial` at a regular point of M_c");
-  for (const char* key : {"tower", "final_constraints", "reduced", "formulas"})
-    if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the implicit form)");
+  if (r.contains("formulas") && r["formulas"].is_null()) k.out.not_compared.push_back("formulas (null in the result)");
+  else if (formulas && truth.certified.yes()) check_formulas(result_file, r["formulas"], p, points, k.out);  // their constraints and equations of motion
+  for (const char* key : {"tower", "final_constraints", "reduced"})
+    if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the implicit form: give the constraints and equations as `formulas`)");
   return k.out;
 }
 
@@ -662,7 +785,7 @@ Checked checked(const std::string& result_file, const std::string* text, const i
     const json r = read_result(result_file, text);
     Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points)
                 : p.form == io::Form::dae        ? check_dae(result_file, r, p)
-                : p.form == io::Form::implicit   ? check_implicit(result_file, r, p)
+                : p.form == io::Form::implicit   ? check_implicit(result_file, r, p, points)
                                                  : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     // every top-level key of the result that nothing above compared is named, never ignored in silence

@@ -1,10 +1,13 @@
 // `dcad check EQUATIONS DECK` (CONTRACT "Formulas for nonlinear results"): another tool's formulas for
-// an expression-form case — the constraints of M_c and the equations of motion, e.g. from sympy.physics.
-// mechanics, ModelingToolkit's structural_simplify or MATLAB's reduceDAEToODE — against dcad's chart at
-// K points of M_c.  At each point: every one of their constraints vanishes (they hold on M_c); their
-// constraints are as many as M_c needs (rank of their Jacobian = 2n − dim M_c: none missing); each of
-// their equations equals dcad's rate (where dcad's is not free).  The points: the case's point of M_c
-// and perturbations of it moved onto M_c by dcad's constraints (fast/chart.hpp), in double.
+// an expression-form or implicit-form case — the constraints of M_c and the equations of motion, e.g.
+// from sympy.physics.mechanics, ModelingToolkit's structural_simplify, MATLAB's reduceDAEIndex or
+// reduceDAEToODE — against dcad's at K points of M_c.  At each point: every one of their constraints
+// vanishes (they hold on M_c); their constraints are as many as M_c needs (the rank of their Jacobian is
+// the codimension of M_c: none missing); each of their equations equals dcad's rate (where dcad's is not
+// free).  The points: dcad's point of M_c — exactly, where it is rational — and perturbations of it moved
+// onto M_c by dcad's constraints, in double.  dcad's side: the expression form's chart (fast/chart.hpp);
+// the implicit form's exact tower on formulas (reference/nonlinear/ide_formulas.hpp, as `dcad solve`
+// prints its `formulas`).
 #include "check_formulas.hpp"
 
 #include "dcad/fast/chart.hpp"
@@ -16,6 +19,8 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <random>
 
 namespace dcad::api {
@@ -46,157 +51,111 @@ std::size_t rank_of(std::vector<std::vector<double>> m) {
   return r;
 }
 
-std::string point_text(const std::vector<std::string>& names, const std::vector<double>& at) {
+std::string point_text(const std::vector<std::string>& names, const std::vector<double>& at, std::size_t width) {
   std::string s;
-  for (std::size_t i = 0; i < at.size() && i < names.size(); ++i) s += (i ? ", " : "") + names[i] + " = " + io::float_text(at[i]);
+  for (std::size_t i = 0; i < width && i < at.size(); ++i) s += (i ? ", " : "") + names[i] + " = " + io::float_text(at[i]);
   return s;
 }
 
-}  // namespace
+/// Their formulas: the constraints (each = 0 on M_c) and the equations (variable index, d/dt of it).
+struct Theirs {
+  std::vector<ex::Expr> constraints;
+  std::vector<std::pair<std::size_t, ex::Expr>> equations;
+};
 
-namespace {
-
-/// CONTRACT: "exactly where the point is rational".  At the exact tiers' point of M_c (the case's, or
-/// the rational place near it; not where an angle sits at 2*atan(t)) their constraints must vanish and,
-/// for a unique motion, their equations equal the exact velocity, in rationals.  False if there is no
-/// such point (nothing compared exactly).
-bool exact_point_check(const io::LagrangianCase& c, const std::vector<ex::Expr>& theirs, const std::vector<std::pair<std::size_t, ex::Expr>>& eqs,
-                       Checked& out) {
-  const std::size_t n = c.system.n;
-  dcad::Solution<reference::Rational> r;
-  try {
-    io::Problem p;
-    p.form = io::Form::expression;
-    p.expression = c;
-    r = reference::solve(p);
-  } catch (const std::exception&) {
-    return false;  // no exact point (the double points still compare)
-  }
-  if (!r.pointwise || !r.consistent || !r.pointwise->regular || !r.pointwise->point_text.empty()) return false;
-  const auto& pw = *r.pointwise;
-  std::vector<reference::Rational> x(pw.point.begin(), pw.point.begin() + static_cast<long>(2 * n));
-  x.push_back(pw.time);
+/// `formulas` read: `rated` are the variables an equation may give d/dt of (by index).
+Theirs read_theirs(const std::string& file, const nlohmann::json& f, const io::LagrangianCase& c, const std::vector<std::size_t>& rated) {
   const std::vector<std::string> names = c.system.variable_names();
-  std::string where;
-  for (std::size_t i = 0; i < 2 * n; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
-  try {
-    for (std::size_t i = 0; i < theirs.size(); ++i) {
-      const reference::Rational v = reference::pipeline::exact_value(theirs[i], x);
-      if (v != 0)
-        out.disagreements.push_back("formulas.constraints/" + std::to_string(i) + ": expected 0 on M_c, found " + v.str() + " exactly at the point of M_c " + where);
-    }
-    if (r.solution_rank && *r.solution_rank == 0)
-      for (const auto& [k, e] : eqs) {
-        const reference::Rational v = reference::pipeline::exact_value(e, x);
-        if (v != pw.velocity[k])
-          out.disagreements.push_back("formulas.equations." + names[k] + ": expected d/dt " + names[k] + " = " + pw.velocity[k].str() + ", found " + v.str() +
-                                      " exactly at the point of M_c " + where);
-      }
-  } catch (const reference::NotExactHere&) {
-    return false;  // their formula is irrational there (sin(1/2)): the double points compare it
-  }
-  return true;
-}
-
-}  // namespace
-
-void check_formulas(const std::string& file, const nlohmann::json& f, const io::Problem& p, std::size_t points, Checked& out) {
-  const io::LagrangianCase& c = p.expression;
-  const reference::LagrangianSystem& s = c.system;
-  const std::size_t n = s.n;
-  const std::vector<std::string> names = s.variable_names();
   const auto fail = [&](const std::string& path, const std::string& expected, const nlohmann::json& found) {
     throw io::InputError(file + ": " + path + ": expected " + expected + ", found " + found.dump());
   };
   if (!f.is_object()) fail("/formulas", "an object {constraints: [...], equations: {name: formula}}", f);
-  std::vector<ex::Expr> theirs;
+  Theirs t;
   if (f.contains("constraints")) {
     if (!f["constraints"].is_array()) fail("/formulas/constraints", "an array of formulas (each = 0 on M_c)", f["constraints"]);
     for (std::size_t i = 0; i < f["constraints"].size(); ++i) {
       const std::string path = "/formulas/constraints/" + std::to_string(i);
       if (!f["constraints"][i].is_string()) fail(path, "a formula as a string", f["constraints"][i]);
-      theirs.push_back(io::parse_case_formula(c, f["constraints"][i].get<std::string>(), file, path));
+      t.constraints.push_back(io::parse_case_formula(c, f["constraints"][i].get<std::string>(), file, path));
     }
   }
-  std::vector<std::pair<std::size_t, ex::Expr>> eqs;  // (variable index, formula)
   if (f.contains("equations")) {
-    if (!f["equations"].is_object()) fail("/formulas/equations", "an object {coordinate or velocity: d/dt of it}", f["equations"]);
+    const std::string what = c.system.implicit ? "a coordinate" : "a coordinate or velocity";
+    if (!f["equations"].is_object()) fail("/formulas/equations", "an object {" + what + ": d/dt of it}", f["equations"]);
     for (const auto& [name, e] : f["equations"].items()) {
       const std::string path = "/formulas/equations/" + name;
-      std::size_t k = 2 * n;
-      for (std::size_t i = 0; i < 2 * n; ++i)
+      std::optional<std::size_t> k;
+      for (std::size_t i : rated)
         if (names[i] == name) k = i;
-      if (k == 2 * n) fail(path, "a coordinate or velocity of " + c.file, nlohmann::json(name));
+      if (!k) fail(path, what + " of " + c.file, nlohmann::json(name));
       if (!e.is_string()) fail(path, "a formula as a string", e);
-      eqs.emplace_back(k, io::parse_case_formula(c, e.get<std::string>(), file, path));
+      t.equations.emplace_back(*k, io::parse_case_formula(c, e.get<std::string>(), file, path));
     }
   }
-  if (theirs.empty() && eqs.empty()) fail("/formulas", "constraints or equations", f);
-  if (points == 0) throw io::InputError(file + ": --points: expected at least 1 point, found 0");
-  // dcad's chart at the case's point of M_c
-  fast::Solution near;
-  try {
-    near = fast::solve_expression(c);
-  } catch (const io::InputError& e) {
-    out.not_compared.push_back(std::string("formulas (dcad reaches no point of M_c: ") + e.what() + ")");
-    return;
-  }
-  if (!near.consistent || !near.pointwise || !near.pointwise->regular) {
-    out.not_compared.push_back("formulas (the case has no regular point of M_c here: " + (near.pointwise ? near.pointwise->why : std::string()) + ")");
-    return;
-  }
-  std::vector<double> at(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
-  at.push_back(near.pointwise->time);
-  fast::Chart ch;
-  try {
-    const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
-    ch = fast::chart_near(s, at, near.dims(), near.pointwise->gauge.empty() ? &v : nullptr);
-  } catch (const fast::ChartFailure& e) {
-    out.not_compared.push_back(std::string("formulas (dcad has no chart of M_c here: ") + e.what() + ")");
-    return;
-  }
-  const fast::ChartField field(ch);
-  std::vector<char> free(2 * n, 0);
-  for (std::size_t i : ch.free) free[i] = 1;
-  // their formulas and their gradients over (q, v), compiled
+  if (t.constraints.empty() && t.equations.empty()) fail("/formulas", "constraints or equations", f);
+  return t;
+}
+
+/// dcad's side of the comparison, in the variables of LagrangianSystem (the time last, at `width`… the
+/// point's last entry): the state columns compared are 0 … width−1.
+struct Ours {
+  std::size_t width = 0;                  ///< state columns: (q, v) for the expression form, q for the implicit form
+  long dim = 0;                           ///< dim M_c
+  std::vector<double> at;                 ///< dcad's point of M_c (width values, then the time)
+  std::vector<char> free;                 ///< per state column: its rate is free on M_c
+  std::vector<ex::Expr> constraints;      ///< dcad's constraints of M_c, in order of the levels
+  std::vector<long> levels;               ///< the M_k each cuts out
+  std::vector<std::vector<ex::Expr>> gradients;  ///< ∂/∂(state columns) of each
+  /// y (width values) moved onto M_c at time t, and dcad's formulas valid there; false if not reached.
+  std::function<bool(std::vector<double>& y, double t)> onto;
+  /// dcad's rates at (y, t), one per state column.
+  std::function<void(const std::vector<double>& y, double t, std::vector<double>& rates)> rates;
+};
+
+/// The comparison at `points` points of M_c: how many were reached.
+std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool has_time, std::size_t points, Checked& out) {
+  const std::size_t w = us.width;
+  // their formulas and their gradients over the state columns, compiled (variables indexed as in the case:
+  // a point is padded to the time's index)
   fast::Differentiator d;
   std::vector<ex::Expr> grads;
-  for (const ex::Expr& e : theirs)
-    for (std::size_t j = 0; j < 2 * n; ++j) grads.push_back(d(e, j));
+  for (const ex::Expr& e : th.constraints)
+    for (std::size_t j = 0; j < w; ++j) grads.push_back(d(e, j));
   std::vector<ex::Expr> eq_formulas;
-  for (const auto& [k, e] : eqs) eq_formulas.push_back(e);
-  const fast::Tape con_tape(theirs), grad_tape(grads), eq_tape(eq_formulas);
-  const std::size_t needed = 2 * n - static_cast<std::size_t>(near.dims().back());
+  for (const auto& [k, e] : th.equations) eq_formulas.push_back(e);
+  const fast::Tape con_tape(th.constraints), grad_tape(grads), eq_tape(eq_formulas);
+  const std::size_t t_index = names.size() - 1, needed = w - static_cast<std::size_t>(us.dim);
   std::mt19937_64 rng(20261127);
   std::uniform_real_distribution<double> u(-1, 1);
   std::size_t used = 0;
   bool con_bad = false, rank_bad = false;
-  std::vector<char> eq_bad(eqs.size(), 0);
+  std::vector<char> eq_bad(th.equations.size(), 0);
   for (std::size_t k = 0; k < 50 * points && used < points; ++k) {
-    std::vector<double> y(at.begin(), at.end() - 1);
-    double t = at.back();
-    if (k > 0) {  // a perturbation moved onto M_c by dcad's constraints; kept where dcad's chart holds
+    std::vector<double> y(us.at.begin(), us.at.begin() + static_cast<long>(w));
+    double t = us.at.back();
+    if (k > 0) {  // a perturbation moved onto M_c by dcad's constraints; kept where dcad's formulas hold
       // spread: relative 1/20 … 1 of each value (at least of 1): a case that starts at rest still gets points
       // with velocities of order 1, where a wrong velocity-dependent term shows
       const double size = std::array<double, 4>{0.05, 0.2, 0.5, 1.0}[k % 4];
       for (double& x : y) x += size * u(rng) * std::max(1.0, std::abs(x));
-      if (s.has_time) t += size * u(rng) * std::max(1.0, std::abs(t));
-      if (!fast::project_onto(ch.constraints, ch.gradients, y, t, 1e-14) || field.margin(y, t) < 1e-6) continue;
+      if (has_time) t += size * u(rng) * std::max(1.0, std::abs(t));
+      if (!us.onto(y, t)) continue;
     }
     ++used;
-    std::vector<double> x(y);
-    x.push_back(t);
-    const std::string where = point_text(names, x);
+    std::vector<double> x(t_index + 1, 0.0);
+    std::copy(y.begin(), y.end(), x.begin());
+    x[t_index] = t;
+    const std::string where = point_text(names, x, w) + (has_time ? ", " + names[t_index] + " = " + io::float_text(t) : "");
     double scale = 1;
     for (double v : y) scale = std::max(scale, std::abs(v));
-    if (!theirs.empty()) {
-      std::vector<double> phi(theirs.size()), g(grads.size());
+    if (!th.constraints.empty()) {
+      std::vector<double> phi(th.constraints.size()), g(grads.size());
       con_tape.evaluate(x.data(), phi.data());
       grad_tape.evaluate(x.data(), g.data());
-      std::vector<std::vector<double>> jac(theirs.size(), std::vector<double>(2 * n));
-      for (std::size_t i = 0; i < theirs.size(); ++i) {
+      std::vector<std::vector<double>> jac(th.constraints.size(), std::vector<double>(w));
+      for (std::size_t i = 0; i < th.constraints.size(); ++i) {
         double gn = 0;
-        for (std::size_t j = 0; j < 2 * n; ++j) gn = std::max(gn, std::abs(jac[i][j] = g[i * 2 * n + j]));
+        for (std::size_t j = 0; j < w; ++j) gn = std::max(gn, std::abs(jac[i][j] = g[i * w + j]));
         if (!con_bad && !(std::abs(phi[i]) <= 1e-8 * std::max(gn * scale, 1e-300) + 1e-300)) {
           con_bad = true;
           out.disagreements.push_back("formulas.constraints[" + std::to_string(i) + "]: expected 0 on M_c, found " + io::float_text(phi[i]) +
@@ -208,34 +167,32 @@ void check_formulas(const std::string& file, const nlohmann::json& f, const io::
         rank_bad = true;
         // which of dcad's constraints theirs do not imply (by rank)
         std::string missing;
-        std::vector<double> dg(ch.gradients.size() * 2 * n);
         std::vector<ex::Expr> flat;
-        for (const auto& row : ch.gradients) flat.insert(flat.end(), row.begin(), row.end());
+        for (const auto& row : us.gradients) flat.insert(flat.end(), row.begin(), row.end());
+        std::vector<double> dg(flat.size());
         fast::Tape(flat).evaluate(x.data(), dg.data());
-        std::size_t level = 0, seen = 0;
-        for (std::size_t i = 0; i < ch.constraints.size(); ++i) {
-          while (level < ch.levels.size() && seen + ch.levels[level].size() <= i) seen += ch.levels[level++].size();
+        for (std::size_t i = 0; i < us.constraints.size(); ++i) {
           std::vector<std::vector<double>> more = jac;
-          more.emplace_back(dg.begin() + static_cast<long>(i * 2 * n), dg.begin() + static_cast<long>((i + 1) * 2 * n));
+          more.emplace_back(dg.begin() + static_cast<long>(i * w), dg.begin() + static_cast<long>((i + 1) * w));
           if (rank_of(more) > rank_of(jac)) {
-            missing = ex::to_text(ch.constraints[i], names) + " = 0 (M_" + std::to_string(level + 1) + ")";
+            missing = ex::to_text(us.constraints[i], names) + " = 0 (M_" + std::to_string(us.levels[i]) + ")";
             break;
           }
         }
         out.disagreements.push_back("formulas.constraints: expected " + std::to_string(needed) + " independent constraints (dim M_c = " +
-                                    std::to_string(near.dims().back()) + " in " + std::to_string(2 * n) + " coordinates and velocities), found rank " +
-                                    std::to_string(r) + " at " + where + (missing.empty() ? "" : "; not implied: " + missing));
+                                    std::to_string(us.dim) + " in " + std::to_string(w) + " state columns), found rank " + std::to_string(r) + " at " + where +
+                                    (missing.empty() ? "" : "; not implied: " + missing));
       }
     }
-    if (!eqs.empty()) {
-      std::vector<double> theirs_v(eqs.size()), ours(2 * n);
+    if (!th.equations.empty()) {
+      std::vector<double> theirs_v(th.equations.size()), ours;
       eq_tape.evaluate(x.data(), theirs_v.data());
-      field.rates(y.data(), t, ours.data());
+      us.rates(y, t, ours);
       double rscale = 1;
       for (double v : ours) rscale = std::max(rscale, std::abs(v));
-      for (std::size_t i = 0; i < eqs.size(); ++i) {
-        const std::size_t k2 = eqs[i].first;
-        if (free[k2] || eq_bad[i]) continue;
+      for (std::size_t i = 0; i < th.equations.size(); ++i) {
+        const std::size_t k2 = th.equations[i].first;
+        if (us.free[k2] || eq_bad[i]) continue;
         if (!(std::abs(theirs_v[i] - ours[k2]) <= 1e-8 * rscale)) {
           eq_bad[i] = 1;
           out.disagreements.push_back("formulas.equations." + names[k2] + ": expected d/dt " + names[k2] + " = " + io::float_text(ours[k2]) + ", found " +
@@ -244,19 +201,206 @@ void check_formulas(const std::string& file, const nlohmann::json& f, const io::
       }
     }
   }
-  const bool exactly = exact_point_check(c, theirs, eqs, out);
+  return used;
+}
+
+/// At the reference's rational point x of M_c (variables indexed as in the case, the time last) their
+/// constraints must vanish and, for a unique motion, their equations equal the exact velocity `v` (per
+/// state column), in rationals.  False if a formula is irrational there (nothing compared exactly).
+bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>& x, const std::vector<reference::Rational>* v, const std::vector<std::string>& names,
+                       std::size_t width, Checked& out) {
+  std::string where;
+  for (std::size_t i = 0; i < width; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
+  try {
+    for (std::size_t i = 0; i < th.constraints.size(); ++i) {
+      const reference::Rational val = reference::pipeline::exact_value(th.constraints[i], x);
+      if (val != 0)
+        out.disagreements.push_back("formulas.constraints/" + std::to_string(i) + ": expected 0 on M_c, found " + val.str() + " exactly at the point of M_c " + where);
+    }
+    if (v)
+      for (const auto& [k, e] : th.equations) {
+        const reference::Rational val = reference::pipeline::exact_value(e, x);
+        if (val != (*v)[k])
+          out.disagreements.push_back("formulas.equations." + names[k] + ": expected d/dt " + names[k] + " = " + (*v)[k].str() + ", found " + val.str() +
+                                      " exactly at the point of M_c " + where);
+      }
+  } catch (const reference::NotExactHere&) {
+    return false;  // their formula is irrational there (sin(1/2)): the double points compare it
+  }
+  return true;
+}
+
+/// What was compared, and what not, once the points are done.
+void summarize(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool exactly, std::size_t used, std::size_t points, Checked& out) {
   const std::string how = std::string(exactly ? " (exactly at the reference's rational point of M_c, and at " : " (at ") + std::to_string(used) +
                           " points of M_c in double: 1e-8 relative)";
-  if (!theirs.empty()) out.compared.push_back("formulas.constraints" + how);
-  if (!eqs.empty()) out.compared.push_back("formulas.equations" + how);
-  for (std::size_t i = 0; i < eqs.size(); ++i)
-    if (free[eqs[i].first]) out.not_compared.push_back("formulas.equations." + names[eqs[i].first] + " (its rate is free on M_c: solutions are not unique)");
+  if (!th.constraints.empty()) out.compared.push_back("formulas.constraints" + how);
+  if (!th.equations.empty()) out.compared.push_back("formulas.equations" + how);
+  for (const auto& [k, e] : th.equations)
+    if (us.free[k]) out.not_compared.push_back("formulas.equations." + names[k] + " (its rate is free on M_c: solutions are not unique)");
   if (used < points) out.not_compared.push_back("formulas at " + std::to_string(points - used) + " of the " + std::to_string(points) + " points asked (no more points of M_c in dcad's chart were reached)");
-  for (std::size_t i = 0; i < 2 * n; ++i) {
+  for (std::size_t i = 0; i < us.width; ++i) {
     bool given = false;
-    for (const auto& [k2, e] : eqs) given = given || k2 == i;
-    if (!given && !eqs.empty()) out.not_compared.push_back("formulas.equations." + names[i] + " (not given)");
+    for (const auto& [k2, e] : th.equations) given = given || k2 == i;
+    if (!given && !th.equations.empty()) out.not_compared.push_back("formulas.equations." + names[i] + " (not given)");
   }
+}
+
+/// The expression form: dcad's chart near the double route's point of M_c (fast/chart.hpp); the exact
+/// point is the reference's (or its rational place; not where an angle sits at 2*atan(t)).
+void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, std::size_t points, Checked& out) {
+  const reference::LagrangianSystem& s = c.system;
+  const std::size_t n = s.n;
+  const std::vector<std::string> names = s.variable_names();
+  fast::Solution near;
+  try {
+    near = fast::solve_expression(c);
+  } catch (const io::InputError& e) {
+    out.not_compared.push_back(std::string("formulas (dcad reaches no point of M_c: ") + e.what() + ")");
+    return;
+  }
+  if (!near.consistent || !near.pointwise || !near.pointwise->regular) {
+    out.not_compared.push_back("formulas (the case has no regular point of M_c here: " + (near.pointwise ? near.pointwise->why : std::string()) + ")");
+    return;
+  }
+  Ours us;
+  us.width = 2 * n;
+  us.dim = near.dims().back();
+  us.at.assign(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
+  us.at.push_back(near.pointwise->time);
+  fast::Chart ch;
+  try {
+    const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
+    ch = fast::chart_near(s, us.at, near.dims(), near.pointwise->gauge.empty() ? &v : nullptr);
+  } catch (const fast::ChartFailure& e) {
+    out.not_compared.push_back(std::string("formulas (dcad has no chart of M_c here: ") + e.what() + ")");
+    return;
+  }
+  const auto field = std::make_shared<fast::ChartField>(ch);
+  us.free.assign(2 * n, 0);
+  for (std::size_t i : ch.free) us.free[i] = 1;
+  us.constraints = ch.constraints;
+  us.gradients = ch.gradients;
+  for (std::size_t k = 0; k < ch.levels.size(); ++k)
+    for (std::size_t i = 0; i < ch.levels[k].size(); ++i) us.levels.push_back(static_cast<long>(k + 1));
+  us.onto = [&ch, field](std::vector<double>& y, double t) { return fast::project_onto(ch.constraints, ch.gradients, y, t, 1e-14) && field->margin(y, t) >= 1e-6; };
+  us.rates = [field, n](const std::vector<double>& y, double t, std::vector<double>& r) {
+    r.assign(2 * n, 0.0);
+    field->rates(y.data(), t, r.data());
+  };
+  const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out);
+  bool exactly = false;
+  try {
+    io::Problem p;
+    p.form = io::Form::expression;
+    p.expression = c;
+    const dcad::Solution<reference::Rational> r = reference::solve(p);
+    if (r.pointwise && r.consistent && r.pointwise->regular && r.pointwise->point_text.empty()) {
+      std::vector<reference::Rational> x(r.pointwise->point.begin(), r.pointwise->point.begin() + static_cast<long>(2 * n));
+      x.push_back(r.pointwise->time);
+      const bool unique = r.solution_rank && *r.solution_rank == 0;
+      exactly = exact_point_check(th, x, unique ? &r.pointwise->velocity : nullptr, names, 2 * n, out);
+    }
+  } catch (const std::exception&) {  // no exact point (the double points still compare)
+  }
+  summarize(th, us, names, exactly, used, points, out);
+}
+
+/// The implicit form: dcad's formulas are the exact route's on formulas (`dcad solve --json`'s `formulas`,
+/// read back: what is printed is what is compared), decided at its exact point of M_c.
+void check_implicit_formulas(const std::string& file, const Theirs& th, const io::Problem& p, std::size_t points, Checked& out) {
+  const io::LagrangianCase& c = p.expression;
+  const reference::LagrangianSystem& s = c.system;
+  const std::size_t n = s.n;
+  const std::vector<std::string> names = s.variable_names();
+  dcad::Solution<reference::Rational> r;
+  try {
+    r = reference::solve(p);
+  } catch (const std::exception& e) {
+    out.not_compared.push_back(std::string("formulas (the exact route reaches no point of M_c: ") + e.what() + ")");
+    return;
+  }
+  if (!r.certified.yes() || !r.consistent || !r.pointwise || !r.pointwise->formulas) {
+    out.not_compared.push_back("formulas (dcad has none for this case: " +
+                               (r.pointwise && !r.pointwise->formulas_why.empty() ? r.pointwise->formulas_why
+                                : !r.consistent                                  ? std::string("M_c is empty")
+                                                                                  : std::string("the exact route is not certified here")) + ")");
+    return;
+  }
+  const Formulas& f = *r.pointwise->formulas;
+  const auto parse = [&](const std::string& text, const std::string& what) { return io::parse_case_formula(c, text, file + " (dcad's own " + what + ")", ""); };
+  Ours us;
+  us.width = n;
+  us.dim = r.dims().back();
+  us.free.assign(n, 0);
+  for (const std::string& name : f.free)
+    for (std::size_t i = 0; i < n; ++i)
+      if (names[i] == name) us.free[i] = 1;
+  fast::Differentiator d;
+  std::vector<std::vector<ex::Expr>> grads;  // over (q, v) for project_onto: the v entries 0
+  for (std::size_t i = 0; i < f.constraints.size(); ++i) {
+    us.constraints.push_back(parse(f.constraints[i], "constraint"));
+    us.levels.push_back(f.levels[i]);
+    us.gradients.emplace_back();
+    for (std::size_t j = 0; j < n; ++j) us.gradients.back().push_back(d(us.constraints.back(), j));
+    grads.push_back(us.gradients.back());
+    grads.back().resize(2 * n, ex::number(0));
+  }
+  std::vector<ex::Expr> rates(n, ex::number(0)), valid;
+  for (const auto& [name, e] : f.equations)
+    for (std::size_t i = 0; i < n; ++i)
+      if (names[i] == name) rates[i] = parse(e, "equation");
+  for (const std::string& v : f.valid_where) valid.push_back(parse(v, "valid_where"));
+  const auto rate_tape = std::make_shared<fast::Tape>(rates), valid_tape = std::make_shared<fast::Tape>(valid);
+  std::vector<reference::Rational> x0(2 * n + 1, reference::Rational(0));
+  for (std::size_t i = 0; i < n; ++i) x0[i] = r.pointwise->point[i];
+  x0[2 * n] = r.pointwise->time;
+  us.at.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) us.at[i] = x0[i].convert_to<double>();
+  us.at.push_back(x0[2 * n].convert_to<double>());
+  const auto padded = [n](const std::vector<double>& y, double t) {  // (q, v = 0, t): the case's variable indices
+    std::vector<double> x(2 * n + 1, 0.0);
+    std::copy(y.begin(), y.begin() + static_cast<long>(n), x.begin());
+    x[2 * n] = t;
+    return x;
+  };
+  std::vector<double> valid0(valid.size());
+  valid_tape->evaluate(padded(us.at, us.at.back()).data(), valid0.data());
+  const std::vector<ex::Expr> cons = us.constraints;
+  us.onto = [=](std::vector<double>& y, double t) {
+    std::vector<double> yv(2 * n, 0.0);  // project_onto's (q, v): the v entries have no gradient and stay 0
+    std::copy(y.begin(), y.end(), yv.begin());
+    if (!fast::project_onto(cons, grads, yv, t, 1e-14)) return false;
+    std::copy(yv.begin(), yv.begin() + static_cast<long>(n), y.begin());
+    std::vector<double> val(valid.size());
+    valid_tape->evaluate(padded(y, t).data(), val.data());
+    for (std::size_t i = 0; i < val.size(); ++i)  // where the formulas' pivots hold (as the chart's margin)
+      if (!(std::abs(val[i]) >= 1e-6 * std::abs(valid0[i]))) return false;
+    return true;
+  };
+  us.rates = [=](const std::vector<double>& y, double t, std::vector<double>& out_r) {
+    out_r.assign(n, 0.0);
+    rate_tape->evaluate(padded(y, t).data(), out_r.data());
+  };
+  const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out);
+  std::vector<reference::Rational> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = r.pointwise->velocity[i];
+  const bool unique = r.solution_rank && *r.solution_rank == 0;
+  const bool exactly = exact_point_check(th, x0, unique ? &v : nullptr, names, n, out);
+  summarize(th, us, names, exactly, used, points, out);
+}
+
+}  // namespace
+
+void check_formulas(const std::string& file, const nlohmann::json& f, const io::Problem& p, std::size_t points, Checked& out) {
+  const io::LagrangianCase& c = p.expression;
+  const std::size_t n = c.system.n;
+  std::vector<std::size_t> rated;  // what an equation may give d/dt of: (q, v), or q for the implicit form
+  for (std::size_t i = 0; i < (c.system.implicit ? n : 2 * n); ++i) rated.push_back(i);
+  const Theirs th = read_theirs(file, f, c, rated);
+  if (points == 0) throw io::InputError(file + ": --points: expected at least 1 point, found 0");
+  if (c.system.implicit) check_implicit_formulas(file, th, p, points, out);
+  else check_expression_formulas(th, c, points, out);
 }
 
 }  // namespace dcad::api
