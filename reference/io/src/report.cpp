@@ -240,7 +240,18 @@ json cad_json(const Printed& r) {
     tower.push_back({{"k", k}, {"dim", r.tower[k].dim}, {"new_constraints", eqs}});
   }
   j["tower"] = tower;
-  if (r.final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
+  // M_c's rows beyond 2·10⁶ entries (5,000 constraints of a 10⁴-node circuit: 5·10⁷ strings, 6 GB of JSON) go
+  // in E and A's sparse encoding instead, {rows, columns, entries: [[row, column, value]], rhs}
+  const std::size_t dense_entries = r.final_constraints ? r.final_constraints->size() * (names.size() + 1) : 0;
+  if (r.final_constraints && dense_entries > 2'000'000) {
+    json entries = json::array(), rhs = json::array();
+    for (std::size_t i = 0; i < r.final_constraints->size(); ++i) {
+      const Eq& e = (*r.final_constraints)[i];
+      for (const auto& [var, coeff] : e.terms) entries.push_back(json::array({i, var, coeff}));
+      rhs.push_back(e.rhs);
+    }
+    j["final_constraints_sparse"] = {{"rows", r.final_constraints->size()}, {"columns", names}, {"entries", entries}, {"rhs", rhs}};
+  } else if (r.final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
     json rows = json::array();
     for (const Eq& e : *r.final_constraints) {
       // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)

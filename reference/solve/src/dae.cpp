@@ -90,6 +90,17 @@ struct Jets {
 
 }  // namespace
 
+dcad::Solution<Rational> dae_result(const io::DaeCase& c, const std::string& backend) {
+  dcad::Solution<Rational> out;
+  out.backend = backend;
+  out.exact = true;
+  out.file = c.file;
+  out.name = c.name;
+  out.variables = c.variables;
+  out.algorithm = "CEF (1.6)";
+  return out;
+}
+
 dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   using M = Matrix<Rational>;
   if (!c.dense)
@@ -124,13 +135,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   }
   const Jets jets(c, orders);
 
-  dcad::Solution<Rational> out;
-  out.backend = "reference";
-  out.exact = true;
-  out.file = c.file;
-  out.name = c.name;
-  out.variables = c.variables;
-  out.algorithm = "CEF (1.6)";
+  dcad::Solution<Rational> out = dae_result(c, "reference");
   for (std::size_t k = 0; k < s; ++k) out.source_names.push_back(io::source_name(jets.rows[k], 0) + " = " + ex::to_text(c.f[jets.rows[k]], {c.time_name.empty() ? "t" : c.time_name}));
   // the jet columns any output uses, in u's order
   const Index u = s * orders;
@@ -161,7 +166,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   std::set<std::string> seen;
   for (std::size_t k = 0; k < t.levels.size(); ++k) {
     const IdeLevel<Rational>& l = t.levels[k];
-    bool empty = false;
+    bool empty = false, open = false;  // a condition of this step fails; one is undecided
     for (Index i = 0; i < l.conditions.rows(); ++i) {  // 0 = Σ c_j u_j(t): decided against f
       std::string text;
       std::map<std::string, std::pair<Rational, ex::Expr>> same;  // identical formulas (two equal sources) summed first
@@ -183,9 +188,12 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
       if (sc.holds.yes() && ex::is_number(g, 0) && same.size() > 0) sc.evidence = "identical formulas cancel";
       sc.evidence = "found for M_" + std::to_string(k + 1) + "; " + sc.evidence;
       if (sc.holds.no()) empty = true;
-      if (sc.holds.unknown()) certain = false;
+      if (sc.holds.unknown()) open = true;
       out.source_conditions.push_back(sc);
     }
+    // an undecided condition leaves the tower undecided from here — unless another of the same step fails:
+    // then M_{k+1} = ∅ whatever the undecided one does
+    if (open && !empty) certain = false;
     if (empty) {  // no velocity exists anywhere on M_k for generic t: M_{k+1} = ∅
       out.tower.push_back({-1, {}});
       out.consistent = false;

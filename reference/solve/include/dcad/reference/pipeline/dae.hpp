@@ -14,6 +14,10 @@ namespace dcad::reference::pipeline {
 /// solution rank, the velocities on M_c and, for square E and A, whether det(sE − A) ≢ 0.
 dcad::Solution<Rational> solve_dae(const io::DaeCase& c);
 
+/// A result for the case with nothing decided yet: its file, name, variables and the algorithm's name
+/// (CEF (1.6)), exact, from `backend`.
+dcad::Solution<Rational> dae_result(const io::DaeCase& c, const std::string& backend);
+
 /// Whether g(t) = 0 for all t, for g a formula in the time (variable 0): yes when g is a polynomial
 /// in t (degree d) that vanishes at t = 0, 1, …, d, or the number 0; no when some exact value is not
 /// 0; else unknown (a transcendental g that vanishes at t = 0).  `evidence` says which.
