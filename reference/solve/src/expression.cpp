@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include <exception>
+#include <functional>
 #include <sstream>
 #include <unordered_map>
 
@@ -24,8 +25,10 @@ PointwiseResult<Rational> run(const LagrangianSystem& s, const std::vector<Ratio
 /// The CAD at `start`, or, where the exact route cannot run there (an irrational value of a formula,
 /// given values that miss M_c by their rounding), at a rational place near it (exact_place.hpp).
 /// The first failure is what is thrown if no place is found; `placed` says where it ran.
+using Runner = std::function<PointwiseResult<Rational>(const LagrangianSystem&, const std::vector<Rational>&, const std::vector<bool>&)>;
+
 PointwiseResult<Rational> run_or_place(const io::LagrangianCase& c, const std::vector<Rational>& start, const std::vector<bool>& fixed, bool given,
-                                       std::optional<ExactPlace>& placed) {
+                                       std::optional<ExactPlace>& placed, const Runner& run = pipeline::run) {
   std::exception_ptr first;
   std::string first_what;
   try {
@@ -127,7 +130,11 @@ PointwiseResult<Rational> run_implicit(const LagrangianSystem& s, const std::vec
       formulas = std::move(std::get<IdeFormulas>(f));
       return formulas->result;
     }
-    if (route == ImplicitRoute::formulas) throw FormulasUndecided(std::get<IdeUndecided>(f).why);
+    const IdeUndecided& u = std::get<IdeUndecided>(f);
+    if (route == ImplicitRoute::formulas) throw FormulasUndecided(u.why);
+    // no rational point reached: the jets' Newton steps land where the formulas' do not at small sizes (other
+    // pivots), but beyond 30 coordinates they take long to fail the same way — the caller's rational place next
+    if (u.no_point && s.n > 30) throw PointwiseNoPoint(u.why);
   }
   return run(s, start, fixed);
 }
@@ -266,9 +273,18 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, Impli
   std::vector<bool> fixed;
   PointwiseResult<Rational> r;
   std::optional<IdeFormulas> formulas;
+  std::optional<ExactPlace> placed;
+  const Runner implicit_run = [&](const LagrangianSystem& s, const std::vector<Rational>& start, const std::vector<bool>& held) {
+    return run_implicit(s, start, held, route, formulas);
+  };
   try {
     for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
-      r = run_implicit(c.system, start_point(c, fixed, seed), fixed, route, formulas);
+      // without `initial` the point is dcad's choice: where no rational point of M_c is reached from it (x² + y² = 1
+      // from a random rational point), a rational place of the same component (exact_place.hpp: positions put on
+      // the equations without derivatives, angles on rational points of the circle)
+      const std::vector<Rational> start = start_point(c, fixed, seed);
+      placed.reset();
+      r = c.has_initial ? implicit_run(c.system, start, fixed) : run_or_place(c, start, fixed, false, placed, implicit_run);
       if (r.regular || c.has_initial) break;
     }
   } catch (const NotExactHere&) {
@@ -277,14 +293,19 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, Impli
     std::vector<Rational> zero = start_point(c, fixed);
     for (std::size_t i = 0; i < zero.size(); ++i)
       if (!fixed[i]) zero[i] = 0;
+    placed.reset();
     r = run_implicit(c.system, zero, fixed, route, formulas);
   }
   check_given_implicit<Rational>(
       r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
   dcad::Solution<Rational> out = implicit_solution(r, c, formulas ? "formulas exact" : "pointwise exact");
   out.certified = r.regular ? yes : unknown;  // a singular point decides no tower
-  if (formulas && r.consistent) attach_implicit_formulas(*formulas, c, *out.pointwise);
-  else if (r.consistent && r.regular) out.pointwise->formulas_why = "the exact route ran on jets (the formulas left a decision open): no formulas";
+  const bool translated = placed && !placed->angles.empty();  // the formulas are then in the translated angles
+  if (placed) describe_place(*placed, r, c, *out.pointwise);
+  if (formulas && r.consistent && !translated) attach_implicit_formulas(*formulas, c, *out.pointwise);
+  else if (r.consistent && r.regular)
+    out.pointwise->formulas_why = translated ? "the exact route ran at a rational place with its angles translated (`place`): no formulas"
+                                             : "the exact route ran on jets (the formulas left a decision open): no formulas";
   if (r.regular && !r.consistent && (!c.has_initial || r.moves > 0) && !affine_in_coordinates(c.system)) {
     out.certified = unknown;  // x (1 − y) = 0 is two lines: the completion reached y = 1, where v_y = 1 fails; x = 0 has solutions
     out.note = "not certified: inconsistent on the component of M_k that the completion reached from " +

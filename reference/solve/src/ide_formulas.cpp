@@ -23,6 +23,10 @@ using expr::Expr;
 struct Undecided {
   std::string why;
 };
+/// No exact Newton step lands from this point (IdeUndecided::no_point).
+struct NoLanding {
+  std::string why;
+};
 
 /// Formulas' values at the point, each node once (a cached node is kept alive: its address is never reused).
 class Values {
@@ -413,6 +417,14 @@ class Pass {
                               " = " + point_[s_.t()].str() + ": M_" + std::to_string(k + 1) + "(t) is empty there");
       return false;
     }
+    // a step along a coordinate some nonzero candidate is not affine in does not land (the digits double
+    // instead); later passes may still land by other, affine, steps — at small sizes.  Beyond 30 coordinates
+    // each such pass is dear and the jets cannot follow: no point is reached from here, the caller's rational
+    // place next
+    for (const auto& [p, c] : piv)
+      if (s_.n > 30 && rhs[p] != 0 && std::find(groups[2].begin(), groups[2].end(), c) != groups[2].end())
+        throw NoLanding{"no point of M_c reached from the given values: M_" + std::to_string(k + 1) + "'s candidates are affine in no coordinate that may move (" +
+                        names_[c] + " is moved at second order), so no exact Newton step lands"};
     for (const auto& [p, c] : piv) point[s_.q(c)] += rhs[p] / aug[p][c];
     return true;
   }
@@ -500,6 +512,14 @@ class Pass {
   std::vector<IdeFormulas::Condition> valid_;
 };
 
+/// The largest size of a value of x in bits (numerator and denominator).
+std::size_t bits(const std::vector<Rational>& x) {
+  std::size_t b = 0;
+  for (const Rational& q : x)
+    if (q != 0) b = std::max<std::size_t>(b, msb(boost::multiprecision::abs(boost::multiprecision::numerator(q))) + msb(boost::multiprecision::denominator(q)) + 2);
+  return b;
+}
+
 }  // namespace
 
 std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& s, std::vector<Rational> start, const std::vector<bool>& fixed,
@@ -507,6 +527,7 @@ std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& 
   if (!s.implicit) throw std::invalid_argument("ide_on_formulas: the implicit form's systems only");
   const LagrangianDerivatives d = derivatives(s);
   expr::Differentiator D;
+  const std::size_t start_bits = bits(start);
   for (std::size_t moves = 0;; ++moves) {
     IdeFormulas out;
     std::vector<Rational> point = start;
@@ -518,8 +539,13 @@ std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& 
       }
     } catch (const Undecided& u) {
       return IdeUndecided{u.why};
+    } catch (const NoLanding& u) {
+      return IdeUndecided{u.why, true};
     }
-    if (moves + 1 > max_moves) return IdeUndecided{"no point of M_c reached from the given values in " + std::to_string(max_moves) + " exact Newton steps"};
+    if (moves + 1 > max_moves) return IdeUndecided{"no point of M_c reached from the given values in " + std::to_string(max_moves) + " exact Newton steps", true};
+    // steps that do not land double the digits: beyond 16 times the start's bits (and 1,024) none is near
+    if (bits(point) > std::max<std::size_t>(1024, 16 * start_bits))
+      return IdeUndecided{"no point of M_c reached from the given values: the exact Newton steps' numbers outgrew the start's 16-fold", true};
     start = point;
   }
 }

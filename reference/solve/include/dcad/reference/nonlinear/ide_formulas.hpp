@@ -60,6 +60,7 @@ struct IdeFormulas {
 /// A decision the formulas alone cannot make exactly, and which one.
 struct IdeUndecided {
   std::string why;
+  bool no_point = false;  ///< what was open: a point of M_c (exact Newton steps did not land), not a decision
 };
 
 /// CEF (1.6) of the implicit system `s` (LagrangianSystem::implicit) at `start` (values of x, and of the
