@@ -153,7 +153,7 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     // iterate (z ~ 1e12, |J| ~ 1e13) excused a residual of 1.6e13 against 2.6e26, and a pulled-back
     // index-3 system's M_c = {0} became a curve of free velocities, certified (prop_dae's
     // Implicit.PulledBackLinearDaeHasThePlantedTower)
-    out.scale = std::min(std::max(1.0, v.j.cwiseAbs().maxCoeff()) * zmax, ceiling);
+    out.scale = std::min(std::max(1.0, v.j.size() ? v.j.cwiseAbs().maxCoeff() : 0.0) * zmax, ceiling);
     const double r = v.f.size() ? v.f.cwiseAbs().maxCoeff() : 0.0;
     if (r < best) best = r, best_z = z, best_scale = out.scale;
     if (r <= 1e-15 * out.scale || free.empty()) break;
@@ -173,7 +173,7 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     const Eigen::VectorXd step = colscale.asDiagonal() * jf.completeOrthogonalDecomposition().solve(-v.f);
     if (!step.allFinite()) break;
     for (std::size_t k = 0; k < free.size(); ++k) z[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
-    if (step.cwiseAbs().maxCoeff() <= 1e-16 * zmax && r > 0) {  // a stationary point of the residual
+    if ((step.size() ? step.cwiseAbs().maxCoeff() : 0.0) <= 1e-16 * zmax && r > 0) {  // a stationary point of the residual
       const Values w = evaluate_array(eqs, z, cols);
       const double r2 = w.f.size() ? w.f.cwiseAbs().maxCoeff() : 0.0;
       if (r2 < best) best = r2, best_z = z, best_scale = out.scale;
@@ -302,9 +302,11 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       const double jmax = std::max(1.0, v.j.cwiseAbs().maxCoeff());
       // small against the array is not zero (2.2 pF beside 1000): the row must also grow faster than
       // linearly away from the point (x² does, 2.2e-12·x does not)
+      // (t moved too: t⁶⁴ = 0 at t = 0 is a zero of every order there, and a constraint nowhere else)
       const auto superlinear = [&](Eigen::Index i) {
         const double f0 = v.f(i);
-        for (std::size_t c = 0; c < cols; ++c) {
+        for (std::size_t c = 0; c <= cols; ++c) {
+          if (c == cols) c = time;
           const double h = 1e-2 * std::max(1.0, std::abs(z[c]));
           std::vector<double> a = z, b = z;
           a[c] += h;
@@ -315,7 +317,10 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
         return false;
       };
       for (Eigen::Index i = 0; i < v.j.rows(); ++i)
-        if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax && superlinear(i)) {
+        // an exactly zero differential needs no probe: y·(eˣ − Σ_{j<8} xʲ/j!) at x = 0 is flat to order 8, below
+        // what double resolves beside it (an exact zero is no pF scale)
+        if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax &&
+            (v.j.row(i).cwiseAbs().maxCoeff() == 0 || superlinear(i))) {
           uncertain("equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) +
                     " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)");
           break;
@@ -323,12 +328,44 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     }
     Eigen::VectorXd rs;
     const Eigen::VectorXd cs = equilibrate(v.j, rs);
+    {  // a zero whose coordinates span more than 1/√ε in magnitude (x1 = 4.3 beside x5 = 1.8e13 for a pencil pulled
+       // back by x_i = y_i + c y_{i-1}², completed from dcad's default point): its Jacobian's entries carry rounding
+       // at the large ones' scale into the small ones, which no equilibration undoes — the rank of M_3's
+       // constraints came out one short, certified (Implicit.PulledBackLinearDaeHasThePlantedTower); no rank
+       // deficiency is certain there (rank.hpp's separation hypothesis, as for graded input)
+      double lo = HUGE_VAL, hi = 0;
+      for (std::size_t c = 0; c < cols; ++c)
+        if (std::isfinite(z[c])) hi = std::max(hi, std::abs(z[c]));
+      for (std::size_t c = 0; c < cols; ++c) {  // values at rounding level beside the largest (and 1) are zeros, not grading
+        const double x = std::abs(z[c]);
+        if (x > 1e-12 * std::max(1.0, hi) && std::isfinite(x)) lo = std::min(lo, x);
+      }
+      // (only where the largest is itself beyond 1/√ε: small values beside unit ones — a chain's derivatives of
+      // 1e-10 beside multipliers of 30, pF currents beside volts — are the data's own grading, which the
+      // equilibration handles)
+      if (hi > 1 / opt.nonzero_factor && lo < hi * opt.nonzero_factor)
+        uncertain("the derivative array F_" + std::to_string(k) + "'s zero spans " + text(hi / lo) +
+                  " in magnitude (its coordinates and derivatives): graded beyond a certain rank decision in double");
+    }
     const double scale = v.j.norm();
     const Eigen::Index nn = static_cast<Eigen::Index>(n);
     const Eigen::MatrixXd jd = v.j.rightCols(static_cast<Eigen::Index>(cols) - nn), jx = v.j.leftCols(nn),
                           jr = v.j.rightCols(static_cast<Eigen::Index>(cols) - 2 * nn);
     const RankRevealing rd(jd, scale, opt);
     decided(rd.decision(), "rank of dF_" + std::to_string(k) + "/d(x', ...)");
+    if (out.certain.yes()) {  // the rank at the point is the rank near it (x v_x = u at x = 0 drops it: a singular point)
+      std::vector<double> near = z;
+      for (std::size_t i = 0; i < n; ++i) near[i] += 1e-3 * std::max(1.0, std::abs(z[i])) * (1 + 0.37 * static_cast<double>(i % 5));
+      Values w = evaluate_array(eqs, near, cols);
+      Eigen::VectorXd rs2;
+      equilibrate(w.j, rs2);
+      Options quiet = opt;  // a probe of the neighbourhood, not one of the result's decisions (their uncertainty is tested, prop_uncertainty.cpp)
+      quiet.probe = nullptr;
+      const RankRevealing rn(w.j.rightCols(static_cast<Eigen::Index>(cols) - nn), w.j.norm(), quiet);
+      if (rn.rank() != rd.rank())
+        uncertain("the rank of dF_" + std::to_string(k) + "/d(x', ...) is " + std::to_string(rd.rank()) + " at the point and " + std::to_string(rn.rank()) +
+                  " beside it (x moved by 1e-3 relative): a point where it drops, singular");
+    }
     const Eigen::MatrixXd g = rd.corange().transpose() * jx;  // the constraints' gradients in x
     const int rg = g.rows() == 0 ? 0 : [&] {
       const RankDecision d = decide_rank(g, scale, opt);
