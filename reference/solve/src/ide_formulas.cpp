@@ -8,6 +8,10 @@
 #include "dcad/reference/nonlinear/pointwise/eliminate.hpp"
 #include "rational_functions.hpp"
 
+#include <flint/fmpz.h>
+#include <flint/fmpz_poly.h>
+#include <flint/fmpz_poly_factor.h>
+
 #include <map>
 #include <memory>
 #include <optional>
@@ -68,11 +72,47 @@ void subtract(std::map<std::size_t, Expr>& r, std::size_t j, const Expr& f, cons
   }
 }
 
+/// The rational root of Σ a_k δ^k (a polynomial in δ = z − z0) nearest to z0, as z; nothing if it has none.
+std::optional<Rational> nearest_root(const std::vector<Rational>& a, const Rational& z0) {
+  boost::multiprecision::mpz_int l = 1;  // the coefficients over Z: times the lcm of their denominators
+  for (const Rational& x : a) l = boost::multiprecision::lcm(l, boost::multiprecision::denominator(x));
+  fmpz_poly_t p;
+  fmpz_poly_init(p);
+  fmpz_t c;
+  fmpz_init(c);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const boost::multiprecision::mpz_int v = boost::multiprecision::numerator(a[k]) * (l / boost::multiprecision::denominator(a[k]));
+    fmpz_set_mpz(c, v.backend().data());
+    fmpz_poly_set_coeff_fmpz(p, static_cast<slong>(k), c);
+  }
+  std::optional<Rational> best;
+  if (fmpz_poly_degree(p) >= 1) {
+    fmpz_poly_factor_t f;
+    fmpz_poly_factor_init(f);
+    fmpz_poly_factor(f, p);
+    for (slong i = 0; i < f->num; ++i) {
+      if (fmpz_poly_degree(f->p + i) != 1) continue;
+      boost::multiprecision::mpz_int b0, b1;  // b1 δ + b0 = 0
+      fmpz_poly_get_coeff_fmpz(c, f->p + i, 0);
+      fmpz_get_mpz(b0.backend().data(), c);
+      fmpz_poly_get_coeff_fmpz(c, f->p + i, 1);
+      fmpz_get_mpz(b1.backend().data(), c);
+      const Rational delta = Rational(-b0) / Rational(b1);
+      if (!best || abs(delta) < abs(*best - z0)) best = z0 + delta;
+    }
+    fmpz_poly_factor_clear(f);
+  }
+  fmpz_clear(c);
+  fmpz_poly_clear(p);
+  return best;
+}
+
 class Pass {
  public:
   Pass(const LagrangianSystem& s, const LagrangianDerivatives& d, expr::Differentiator& D, const std::vector<Rational>& point,
-       const std::vector<bool>& fixed)
-      : s_(s), d_(d), D_(D), fixed_(fixed), point_(point), value_(point), rf_(2 * s.n + 1), names_(s.variable_names()), solved_col_(s.n + 1, false) {}
+       const std::vector<bool>& fixed, std::size_t& nudges)
+      : s_(s), d_(d), D_(D), fixed_(fixed), point_(point), value_(point), rf_(2 * s.n + 1), names_(s.variable_names()), solved_col_(s.n + 1, false),
+        nudges_(nudges) {}
 
   /// The tower (true) or a Newton step that moved `point` (false); Undecided is thrown.
   bool run(IdeFormulas& out, std::vector<Rational>& point) {
@@ -194,13 +234,16 @@ class Pass {
   bool identically_zero(const Expr& e) { return rf_.zero(e); }
 
   /// e in lowest terms, if it involves no coordinate (a function of the time alone); else nothing (also
-  /// where e is too large to reduce).
-  std::optional<Expr> of_time_alone(const Expr& e) {
+  /// where e is too large to reduce).  `rational`: it has no sin, cos, exp or sqrt (then, not 0, it is a
+  /// nonzero function of the time, t^64 as surely as t).
+  std::optional<Expr> of_time_alone(const Expr& e, bool* rational = nullptr) {
     std::vector<bool> inv;
-    const std::optional<Expr> r = rf_.reduced(e, &inv);
+    bool atoms = true;
+    const std::optional<Expr> r = rf_.reduced(e, &inv, &atoms);
     if (!r) return std::nullopt;
     for (std::size_t i = 0; i < s_.n; ++i)
       if (inv[s_.q(i)]) return std::nullopt;
+    if (rational) *rational = !atoms;
     return r;
   }
 
@@ -294,8 +337,11 @@ class Pass {
       if (is_piv[i]) continue;
       const Expr comb = combination(i);
       if (identically_zero(comb)) continue;
-      if (const std::optional<Expr> c = of_time_alone(comb)) {
-        const std::optional<bool> nz = nonzero_in_time(*c);
+      bool rational = false;
+      if (const std::optional<Expr> c = of_time_alone(comb, &rational)) {
+        // a rational function of t alone that is not 0 in lowest terms is a nonzero function; with sin, cos,
+        // exp or sqrt a nonzero Taylor coefficient proves it
+        const std::optional<bool> nz = rational ? std::optional<bool>(true) : nonzero_in_time(*c);
         if (nz && !*nz) continue;
         if (nz && *nz) {
           inconsistent(out, "step " + std::to_string(k) + " gives a condition on the time alone, " + expr::to_text(*c, names_) +
@@ -400,16 +446,23 @@ class Pass {
     const auto piv = pointwise_detail::eliminate_constants(aug, rhs, groups, exact);
     std::vector<char> is_piv(m, 0);
     for (const auto& pc : piv) is_piv[pc.first] = 1;
+    // a critical point of the coordinates that may move is no verdict: from a nearby point (lam^3 + 1 at lam = 0),
+    // one coordinate at a time in the charts' order (the multiplier before the velocities a lower M_k ties together)
+    const auto nudge = [&](const std::string& why) {
+      if (nudges_ >= 3 || movable[0].empty()) throw Undecided{"a candidate of step " + std::to_string(k) + " " + why};
+      point[s_.q(movable[0][nudges_ % movable[0].size()])] += Rational(1, 3);
+      ++nudges_;
+      return true;
+    };
     for (std::size_t i = 0; i < m; ++i) {
       if (is_piv[i] || rhs[i] == 0) continue;
       for (std::size_t j = 0; j < n; ++j)
-        if (aug[i][j] != 0)
-          throw Undecided{"a candidate of step " + std::to_string(k) + " that no coordinate may move to zero (given values, or a critical point)"};
+        if (aug[i][j] != 0) return nudge("that no coordinate that may move brings to zero (given values it conflicts with, or a critical point)");
       Expr comb = expr::number(0);
       for (std::size_t j = 0; j < m; ++j)
         if (aug[i][n + 1 + j] != 0) comb = expr::add(comb, expr::mul(expr::number(aug[i][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
       const std::optional<Expr> c = of_time_alone(comb);
-      if (!c) throw Undecided{"a candidate of step " + std::to_string(k) + " whose differential vanishes at the point although its value does not"};
+      if (!c) return nudge("whose differential vanishes at the point although its value does not");
       if (expr::is_number(*c))
         inconsistent(out, "step " + std::to_string(k) + " requires 0 = " + (*c)->value.str() + " (its constraints combined): M_" + std::to_string(k + 1) + " is empty");
       else
@@ -418,15 +471,52 @@ class Pass {
       return false;
     }
     // a step along a coordinate some nonzero candidate is not affine in does not land (the digits double
-    // instead); later passes may still land by other, affine, steps — at small sizes.  Beyond 30 coordinates
-    // each such pass is dear and the jets cannot follow: no point is reached from here, the caller's rational
-    // place next
-    for (const auto& [p, c] : piv)
-      if (s_.n > 30 && rhs[p] != 0 && std::find(groups[2].begin(), groups[2].end(), c) != groups[2].end())
+    // instead): where its combination is a polynomial in one such coordinate with a rational root, that root
+    // is where it lands (lam^3 + 1 = 0: lam = -1), this coordinate alone; where none has one, later passes may
+    // still land by other steps at small sizes — beyond 30 coordinates each such pass is dear and the jets
+    // cannot follow: no point is reached from here (the caller's rational place next)
+    for (const auto& [p, c] : piv) {
+      if (rhs[p] == 0 || std::find(groups[2].begin(), groups[2].end(), c) == groups[2].end()) continue;
+      Expr comb = expr::number(0);
+      for (std::size_t j = 0; j < m; ++j)
+        if (aug[p][n + 1 + j] != 0) comb = expr::add(comb, expr::mul(expr::number(aug[p][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
+      std::vector<std::size_t> along{c};
+      for (std::size_t j : groups[2])
+        if (j != c) along.push_back(j);
+      for (std::size_t j : along)
+        if (const std::optional<Rational> root = nearest_rational_root(comb, s_.q(j))) {
+          point[s_.q(j)] = *root;
+          return true;
+        }
+      if (s_.n > 30)
         throw NoLanding{"no point of M_c reached from the given values: M_" + std::to_string(k + 1) + "'s candidates are affine in no coordinate that may move (" +
-                        names_[c] + " is moved at second order), so no exact Newton step lands"};
+                        names_[c] + " enters at second order, without a rational root), so no exact Newton step lands"};
+      break;
+    }
     for (const auto& [p, c] : piv) point[s_.q(c)] += rhs[p] / aug[p][c];
     return true;
+  }
+
+  /// The rational root of e (a polynomial of degree 2…12 in variable `var`, the others at the point) nearest to
+  /// the point's value, if it has one: the polynomial's Taylor coefficients there (exact to its degree), over
+  /// Z, factored (FLINT), its linear factors.
+  std::optional<Rational> nearest_rational_root(const Expr& e, std::size_t var) {
+    const std::optional<Expr> low = rf_.reduced(e);
+    if (!low) return std::nullopt;
+    const long d = expr::degree_in(*low, [&](std::size_t v) { return v == var; });
+    if (d < 2 || d > 12) return std::nullopt;
+    std::vector<Rational> a(static_cast<std::size_t>(d) + 1);
+    try {
+      const auto space = std::make_shared<const JetSpace>(1, static_cast<std::size_t>(d));
+      std::vector<Jet<Rational>> x;
+      for (std::size_t i = 0; i < point_.size(); ++i)
+        x.push_back(i == var ? Jet<Rational>::variable(space, 0, point_[i]) : Jet<Rational>(space, point_[i]));
+      const Jet<Rational> j = expr::evaluate<Jet<Rational>>(*low, x, [&](const Rational& q) { return Jet<Rational>(space, q); });
+      for (std::size_t k = 0; k < a.size(); ++k) a[k] = j.coefficient(k);
+    } catch (const std::exception&) {  // an irrational value, a division by zero: no root found exactly
+      return std::nullopt;
+    }
+    return nearest_root(a, point_[var]);
   }
 
   /// M_{k+1} is empty: the point as it is.
@@ -510,6 +600,7 @@ class Pass {
   std::vector<bool> solved_col_;
   PointwiseLevel<Rational> level_;
   std::vector<IdeFormulas::Condition> valid_;
+  std::size_t& nudges_;  ///< moves to a nearby point from a critical one, over the whole call (at most 3)
 };
 
 /// The largest size of a value of x in bits (numerator and denominator).
@@ -528,11 +619,12 @@ std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& 
   const LagrangianDerivatives d = derivatives(s);
   expr::Differentiator D;
   const std::size_t start_bits = bits(start);
+  std::size_t nudges = 0;
   for (std::size_t moves = 0;; ++moves) {
     IdeFormulas out;
     std::vector<Rational> point = start;
     try {
-      Pass pass(s, d, D, start, fixed);
+      Pass pass(s, d, D, start, fixed, nudges);
       if (pass.run(out, point)) {
         out.result.moves = moves;
         return out;

@@ -217,10 +217,15 @@ bool RationalFunctions::zero(const Expr& e) {
   }
 }
 
-std::optional<Expr> RationalFunctions::reduced(const Expr& e, std::vector<bool>* involves) {
+std::optional<Expr> RationalFunctions::reduced(const Expr& e, std::vector<bool>* involves, bool* atoms) {
   try {
     const Impl::Fraction* f = p_->of(e);
     if (involves) *involves = p_->involved(f);
+    if (atoms) {
+      *atoms = false;
+      for (const auto* q : {&f->n, &f->d})
+        for (std::size_t s = p_->vars; s < p_->slots; ++s) *atoms = *atoms || fmpq_mpoly_degree_si(*q, static_cast<slong>(s), p_->ctx) > 0;
+    }
     const Expr n = p_->expression(f->n);
     return fmpq_mpoly_is_one(f->d, p_->ctx) ? n : expr::div(n, p_->expression(f->d));
   } catch (const std::length_error&) {

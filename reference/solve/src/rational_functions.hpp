@@ -30,8 +30,9 @@ class RationalFunctions {
   /// Expressions too large to reduce (more than 20,000 terms in N or D, more than 64 atoms) prove nothing.
   bool zero(const expr::Expr& e);
   /// e in lowest terms as an expression (N/D), or nothing if too large; `involves[i]`: the reduced form
-  /// (its atoms' arguments included) has variable i.
-  std::optional<expr::Expr> reduced(const expr::Expr& e, std::vector<bool>* involves = nullptr);
+  /// (its atoms' arguments included) has variable i; `atoms`: it has a sin, cos, exp or sqrt (without one, a
+  /// reduced form other than 0 is a nonzero function: the zero test is then complete).
+  std::optional<expr::Expr> reduced(const expr::Expr& e, std::vector<bool>* involves = nullptr, bool* atoms = nullptr);
 
  private:
   struct Impl;

@@ -39,9 +39,9 @@ PointwiseResult<T> pointwise_cad(const LagrangianSystem& sys, std::vector<T> sta
                                  const std::vector<std::vector<std::size_t>>* plan = nullptr) {
   const LagrangianDerivatives der = derivatives(sys);
   PointwiseResult<T> out;
-  std::size_t moves = 0, polished = 0;
+  std::size_t moves = 0, polished = 0, constant_nudges = 0;
   for (long K = order;;) {
-    pointwise_detail::Run<T, Decide> run(sys, der, fixed, decide, constant, plan, polished);
+    pointwise_detail::Run<T, Decide> run(sys, der, fixed, decide, constant, plan, polished, &constant_nudges);
     const auto o = run.pass(start, K, out);
     if (o == pointwise_detail::Run<T, Decide>::Outcome::Done) {
       out.moves = moves;

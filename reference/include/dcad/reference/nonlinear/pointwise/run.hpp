@@ -20,8 +20,10 @@ class Run {
  public:
   using J = Jet<T>;
   Run(const LagrangianSystem& sys, const LagrangianDerivatives& der, const std::vector<bool>& fixed, Decide& decide,
-      const std::function<T(const Rational&)>& constant, const std::vector<std::vector<std::size_t>>* plan, std::size_t& polished)
-      : polished_(polished), s_(sys), d_(der), fixed_(fixed), decide_(decide), constant_(constant), names_(sys.variable_names()), plan_(plan) {}
+      const std::function<T(const Rational&)>& constant, const std::vector<std::vector<std::size_t>>* plan, std::size_t& polished,
+      std::size_t* constant_nudges = nullptr)
+      : polished_(polished), constant_nudges_(constant_nudges), s_(sys), d_(der), fixed_(fixed), decide_(decide), constant_(constant),
+        names_(sys.variable_names()), plan_(plan) {}
 
   enum class Outcome { Done, Moved, MoreOrder };
 
@@ -567,6 +569,15 @@ class Run {
       for (std::size_t j = 0; j < chart.size(); ++j) flat = flat && (chart[j] == s_.t() || decide_.zero(comb.gradient(j)));
       std::vector<T> gi(chart.size(), T(0));  // the combination's differential (x − 1 − t and x combine to −1 − t: the time alone)
       for (std::size_t j = 0; j < chart.size(); ++j) gi[j] = comb.gradient(j);
+      // constant to the jets' order only: lam² x at lam = 0 looks constant to order 1, as −10 (a certified
+      // "0 = −10" for a pendulum whose multiplier enters squared): below order 6, once, a nearby point first
+      // (a true constant — x² + y² − 1 against x² + y² − 4 — is constant there too and decided then; the
+      // implicit form's constants are decided by the formulas, ide_formulas.hpp, before the jets run)
+      if (constant && comb.order() < 6 && !st.movable.empty() && constant_nudges_ && *constant_nudges_ == 0) {
+        ++*constant_nudges_;
+        critical = true;
+        continue;
+      }
       if (constant) {
         out.consistent = false;
         out.dims.push_back(-1);
@@ -757,6 +768,7 @@ class Run {
 
   mutable std::vector<signed char> multiplier_;  ///< multiplier(q_i), computed once (−1: not yet)
   std::size_t& polished_;  ///< Newton steps taken only to polish, over the whole call (bounded)
+  std::size_t* constant_nudges_;  ///< nearby points tried for a combination constant to low order only, over the whole call (one)
   const LagrangianSystem& s_;
   const LagrangianDerivatives& d_;
   const std::vector<bool>& fixed_;
