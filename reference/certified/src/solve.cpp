@@ -98,14 +98,18 @@ Solution solve(const io::Problem& p, const Parts& parts) {
         return reference::pipeline::solve_implicit_exact(p.expression);
       } catch (const std::length_error& e) {  // jets too large for the exact tier: no exact tier here (api falls back, not certified)
         throw reference::NotExactHere(std::string("the exact route's jets are too large (") + e.what() + ")");
+      } catch (const reference::PointwiseNoPoint& e) {
+        // no rational point of M_c reached (lam² = 8 on a pendulum whose multiplier enters squared): no exact
+        // tier here either — fast's answer, not certified (given values that miss M_c are bad input there too)
+        throw reference::NotExactHere(std::string("the exact route reaches no rational point of M_c (") + e.what() + ")");
       }
     }));
   } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
-    // beyond the dense route's size, and above 200 variables where no equations of motion are asked (the
-    // sparse route forms none: dense N × N), the sparse one: modular elimination, every null vector verified
-    // in rationals (dae_sparse.hpp; a 1,001-node ladder: 0.02 s against the dense route's 2–16 s); where it
-    // reaches no proof, NotExactHere (api falls back to fast, not certified)
-    const bool sparse = !p.dae.dense || (!parts.reduced && p.dae.variables.size() > 200);
+    // beyond 200 variables or equations, the sparse route: modular elimination, every null vector verified in
+    // rationals (dae_sparse.hpp; a 1,001-node ladder: 0.2 s against the dense route's 2–24 s, a random graded
+    // circuit of 516 variables: against more than 300 s) — it forms no equations of motion (dense N × N; the
+    // reference backend does, up to 2,000); where it reaches no proof, NotExactHere (api: fast, not certified)
+    const bool sparse = !p.dae.dense || p.dae.variables.size() > 200 || p.dae.equations() > 200;
     s = exact_solution(sparse ? solve_dae_sparse(p.dae) : reference::pipeline::solve_dae(p.dae));
   } else if (p.form == io::Form::netlist) {
     if (p.netlist.forced) {

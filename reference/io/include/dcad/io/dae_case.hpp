@@ -28,7 +28,7 @@ struct DaeCase {
   };
   std::vector<Entry> e_entries, a_entries;
   static constexpr long dense_limit = 4'000'000;  ///< m·N: 2,000 variables and equations (128 MB per matrix)
-  static constexpr long dense_side = 4'000;        ///< and m, N each (the exact route's left null vectors are m × m)
+  static constexpr long dense_side = 2'000;        ///< and m, N each (the exact route's left null vectors are m × m: a 3,900 × 150 case took 17 GB)
   /// f_i(t), one per equation, over the variable 0 (the time); the number 0 where f is absent.
   std::vector<reference::expr::Expr> f;
   std::string time_name;               ///< "" when the case names no time (f then constant)
