@@ -633,6 +633,8 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
   for (std::size_t i = 0; i < coords.size(); ++i) {
     const auto it = std::find(variables.begin(), variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
     if (it == variables.end()) bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable of the case", shown(coords[i]));
+    if (std::find(z.begin(), z.end(), static_cast<std::size_t>(it - variables.begin())) != z.end())
+      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable not named before in the list", shown(coords[i]));
     z.push_back(static_cast<std::size_t>(it - variables.begin()));
   }
   const std::size_t m = z.size();
@@ -657,6 +659,8 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
     for (std::size_t c = 0; c < cols.size(); ++c) {
       const auto it = std::find(truth.jets.begin(), truth.jets.end(), cols[c].is_string() ? cols[c].get<std::string>() : "");
       if (it == truth.jets.end()) bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "one of " + json(truth.jets).dump(), shown(cols[c]));
+      for (std::size_t c2 = 0; c2 < c; ++c2)
+        if (cols[c2] == cols[c]) bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "a jet not named before in the list", shown(cols[c]));
       for (std::size_t i = 0; i < m; ++i) s_found(i, static_cast<std::size_t>(it - truth.jets.begin())) += (*sm)(i, c);
     }
   }

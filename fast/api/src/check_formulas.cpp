@@ -33,6 +33,20 @@ namespace {
 std::size_t rank_of(std::vector<std::vector<double>> m) {
   std::size_t r = 0;
   const std::size_t cols = m.empty() ? 0 : m[0].size();
+  // rows, then columns, to a largest entry of 1 by powers of two (exact; the rank is unchanged): constraints
+  // x5 − 2 x4² beside x1 + x2 − 4 x3 at x4 = 5.7e6 are graded, not dependent (an unscaled threshold at 1e-9 of
+  // the largest entry took their rank one short)
+  const auto unit = [](double mx) { int e = 0; std::frexp(mx, &e); return mx > 0 && std::isfinite(mx) ? std::ldexp(1.0, -e) : 1.0; };
+  for (auto& row : m) {
+    double mx = 0;
+    for (double x : row) mx = std::max(mx, std::abs(x));
+    for (double& x : row) x *= unit(mx);
+  }
+  for (std::size_t c = 0; c < cols; ++c) {
+    double mx = 0;
+    for (const auto& row : m) mx = std::max(mx, std::abs(row[c]));
+    for (auto& row : m) row[c] *= unit(mx);
+  }
   double scale = 0;
   for (const auto& row : m)
     for (double x : row) scale = std::max(scale, std::abs(x));
@@ -113,7 +127,9 @@ struct Ours {
 };
 
 /// The comparison at `points` points of M_c: how many were reached.
-std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool has_time, std::size_t points, Checked& out) {
+/// A rank of their constraints short in double goes to `rank_short` (settled with the exact rank, settle_rank).
+std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool has_time, std::size_t points, Checked& out,
+                              std::string& rank_short) {
   const std::size_t w = us.width;
   // their formulas and their gradients over the state columns, compiled (variables indexed as in the case:
   // a point is padded to the time's index)
@@ -179,9 +195,8 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
             break;
           }
         }
-        out.disagreements.push_back("formulas.constraints: expected " + std::to_string(needed) + " independent constraints (dim M_c = " +
-                                    std::to_string(us.dim) + " in " + std::to_string(w) + " state columns), found rank " + std::to_string(r) + " at " + where +
-                                    (missing.empty() ? "" : "; not implied: " + missing));
+        rank_short = "formulas.constraints: expected " + std::to_string(needed) + " independent constraints (dim M_c = " + std::to_string(us.dim) + " in " +
+                     std::to_string(w) + " state columns), found rank " + std::to_string(r) + " at " + where + (missing.empty() ? "" : "; not implied: " + missing);
       }
     }
     if (!th.equations.empty()) {
@@ -207,11 +222,38 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
 /// At the reference's rational point x of M_c (variables indexed as in the case, the time last) their
 /// constraints must vanish and, for a unique motion, their equations equal the exact velocity `v` (per
 /// state column), in rationals.  False if a formula is irrational there (nothing compared exactly).
+/// `full_rank`: whether their constraints' gradients over the state columns have rank `needed` there, exactly
+/// (`exact_short` says so where not; settle_rank reports it).
 bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>& x, const std::vector<reference::Rational>* v, const std::vector<std::string>& names,
-                       std::size_t width, Checked& out) {
+                       std::size_t width, std::size_t needed, std::optional<bool>& full_rank, std::string& exact_short, Checked& out) {
   std::string where;
   for (std::size_t i = 0; i < width; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
   try {
+    {  // the rank, by Gaussian elimination in rationals (no threshold)
+      fast::Differentiator d;
+      std::vector<std::vector<reference::Rational>> m;
+      for (const ex::Expr& e : th.constraints) {
+        m.emplace_back();
+        for (std::size_t j = 0; j < width; ++j) m.back().push_back(reference::pipeline::exact_value(d(e, j), x));
+      }
+      std::size_t r = 0;
+      for (std::size_t c = 0; c < width && r < m.size(); ++c) {
+        std::size_t p = r;
+        while (p < m.size() && m[p][c] == 0) ++p;
+        if (p == m.size()) continue;
+        std::swap(m[p], m[r]);
+        for (std::size_t i = r + 1; i < m.size(); ++i)
+          if (m[i][c] != 0) {
+            const reference::Rational f = m[i][c] / m[r][c];
+            for (std::size_t j = c; j < width; ++j) m[i][j] -= f * m[r][j];
+          }
+        ++r;
+      }
+      full_rank = r >= needed;
+      if (r < needed)
+        exact_short = "formulas.constraints: expected " + std::to_string(needed) + " independent constraints, found rank " + std::to_string(r) +
+                      " exactly at the point of M_c " + where;
+    }
     for (std::size_t i = 0; i < th.constraints.size(); ++i) {
       const reference::Rational val = reference::pipeline::exact_value(th.constraints[i], x);
       if (val != 0)
@@ -228,6 +270,19 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
     return false;  // their formula is irrational there (sin(1/2)): the double points compare it
   }
   return true;
+}
+
+/// A rank short in double where the exact rank at the rational point is full: the double points were too
+/// ill-conditioned to tell (x5 − 2 x4² at x4 = 5.7e6 beside rows of order 1: condition 3e21), not a disagreement.
+/// Short exactly: a disagreement (the double points' message names a constraint of dcad's theirs do not imply).
+void settle_rank(const std::string& rank_short, const std::optional<bool>& full_rank, const std::string& exact_short, Checked& out) {
+  if (full_rank == false) out.disagreements.push_back(rank_short.empty() ? exact_short : rank_short + " (and " + exact_short.substr(22) + ")");
+  else if (rank_short.empty()) return;
+  else if (full_rank == true)
+    out.not_compared.push_back("the rank of formulas.constraints in double (short at a point: " + rank_short +
+                               "; full exactly at the reference's rational point — ill-conditioned in double)");
+  else
+    out.disagreements.push_back(rank_short);
 }
 
 /// What was compared, and what not, once the points are done.
@@ -288,7 +343,9 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
     r.assign(2 * n, 0.0);
     field->rates(y.data(), t, r.data());
   };
-  const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out);
+  std::string rank_short, exact_short;
+  std::optional<bool> full_rank;
+  const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out, rank_short);
   bool exactly = false;
   try {
     io::Problem p;
@@ -299,10 +356,11 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
       std::vector<reference::Rational> x(r.pointwise->point.begin(), r.pointwise->point.begin() + static_cast<long>(2 * n));
       x.push_back(r.pointwise->time);
       const bool unique = r.solution_rank && *r.solution_rank == 0;
-      exactly = exact_point_check(th, x, unique ? &r.pointwise->velocity : nullptr, names, 2 * n, out);
+      exactly = exact_point_check(th, x, unique ? &r.pointwise->velocity : nullptr, names, 2 * n, 2 * n - static_cast<std::size_t>(us.dim), full_rank, exact_short, out);
     }
   } catch (const std::exception&) {  // no exact point (the double points still compare)
   }
+  settle_rank(rank_short, full_rank, exact_short, out);
   summarize(th, us, names, exactly, used, points, out);
 }
 
@@ -320,11 +378,17 @@ void check_implicit_formulas(const std::string& file, const Theirs& th, const io
     out.not_compared.push_back(std::string("formulas (the exact route reaches no point of M_c: ") + e.what() + ")");
     return;
   }
-  if (!r.certified.yes() || !r.consistent || !r.pointwise || !r.pointwise->formulas) {
-    out.not_compared.push_back("formulas (dcad has none for this case: " +
-                               (r.pointwise && !r.pointwise->formulas_why.empty() ? r.pointwise->formulas_why
-                                : !r.consistent                                  ? std::string("M_c is empty")
-                                                                                  : std::string("the exact route is not certified here")) + ")");
+  if (r.certified.yes() && !r.consistent) {  // formulas of a nonempty M_c for a system that has none
+    out.compared.push_back("formulas");
+    out.disagreements.push_back("formulas: expected none (M_c is empty: " + (r.pointwise ? r.pointwise->why : std::string()) + "), found " +
+                                std::to_string(th.constraints.size()) + " constraints and " + std::to_string(th.equations.size()) + " equations of motion");
+    return;
+  }
+  if (!r.certified.yes() || !r.pointwise || !r.pointwise->formulas) {
+    // nothing judged is no agreement (check.cpp's rule for a result whose every claim went uncompared)
+    out.disagreements.push_back("formulas: not judged — dcad has none for this case (" +
+                                (r.pointwise && !r.pointwise->formulas_why.empty() ? r.pointwise->formulas_why : std::string("the exact route is not certified here")) +
+                                "); give `initial` where the exact route runs on formulas, or compare dims, steps and index");
     return;
   }
   const Formulas& f = *r.pointwise->formulas;
@@ -382,11 +446,14 @@ void check_implicit_formulas(const std::string& file, const Theirs& th, const io
     out_r.assign(n, 0.0);
     rate_tape->evaluate(padded(y, t).data(), out_r.data());
   };
-  const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out);
+  std::string rank_short, exact_short;
+  std::optional<bool> full_rank;
+  const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out, rank_short);
   std::vector<reference::Rational> v(n);
   for (std::size_t i = 0; i < n; ++i) v[i] = r.pointwise->velocity[i];
   const bool unique = r.solution_rank && *r.solution_rank == 0;
-  const bool exactly = exact_point_check(th, x0, unique ? &v : nullptr, names, n, out);
+  const bool exactly = exact_point_check(th, x0, unique ? &v : nullptr, names, n, n - static_cast<std::size_t>(us.dim), full_rank, exact_short, out);
+  settle_rank(rank_short, full_rank, exact_short, out);
   summarize(th, us, names, exactly, used, points, out);
 }
 
