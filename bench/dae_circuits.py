@@ -12,8 +12,8 @@ neighbours and from the last node to ground, in three families:
 
     /usr/bin/python3 bench/dae_circuits.py build/dcad 1000 10000 100000
 
-reference runs up to 2,000 variables (its dense limit); fast gets a 300 s timeout per run."""
-import json, random, subprocess, sys, tempfile, time
+reference runs up to 2,000 variables (its dense limit); fast gets a 300 s timeout per run; every run 12 GiB of memory."""
+import json, random, resource, subprocess, sys, tempfile, time
 from fractions import Fraction as F
 
 
@@ -50,6 +50,11 @@ def circuit(n, family, seed=1):
             "dae": {"E": enc(E), "A": enc(A), "f": f, "time": "t"}}
 
 
+def limit_memory():
+    """12 GiB of address space per run: a run that needs more fails (and says so) instead of taking the machine."""
+    resource.setrlimit(resource.RLIMIT_AS, (12 << 30, 12 << 30))
+
+
 def by_hand(n, family):
     if family == "grounded":
         return [n + 1, n, n - 1]
@@ -75,7 +80,7 @@ def main():
                 t0 = time.perf_counter()
                 try:
                     out = subprocess.run([dcad, "solve", fh.name, "--backend", backend, "--json", "--with", "none"], capture_output=True, text=True,
-                                         timeout=300 if backend == "fast" else 3600)
+                                         timeout=300 if backend == "fast" else 3600, preexec_fn=limit_memory)
                 except subprocess.TimeoutExpired:
                     print(f"| {n + 1} | {family} | {backend} | > 300 | | | | timeout |")
                     continue

@@ -166,14 +166,17 @@ RC_GTEST_PROP(Dae, PlantedSingularPencilIsSingularAndNotUnique, ()) {
   }
 }
 
-/// fast's sparse route forced (Options::dae_sparse_from = 0), whatever the size.
-fast::Solution sparse_route(const io::DaeCase& c) {
+/// fast's sparse route forced (Options::dae_sparse_from = 0), whatever the size; `sparse_qr`: with the
+/// part of the constraints outside E's row space by sparse QR too (Options::dae_sparse_qr_from = 0), the
+/// route of large sparse circuits, instead of the dense SVD.
+fast::Solution sparse_route(const io::DaeCase& c, bool sparse_qr = false) {
   io::Problem pr;
   pr.form = io::Form::dae;
   pr.file = c.file;
   pr.dae = c;
   fast::Options opt;
   opt.dae_sparse_from = 0;
+  if (sparse_qr) opt.dae_sparse_qr_from = 0;
   return fast::solve(pr, {}, opt);
 }
 
@@ -219,12 +222,14 @@ TEST(Dae, SparseRouteHasTheReferenceTowerOnRcLadders) {
       EXPECT_EQ(r.dims(), (std::vector<long>{301, 300, 299}));
       EXPECT_EQ(r.steps, 2);
     }
-    const fast::Solution f = sparse_route(c);
-    EXPECT_TRUE(f.certified.unknown()) << c.file;  // a threshold bounds no singular value
-    EXPECT_EQ(f.dims(), r.dims()) << c.file;
-    EXPECT_EQ(f.steps, r.steps) << c.file;
-    EXPECT_EQ(f.solution_rank, r.solution_rank) << c.file;
-    EXPECT_EQ(f.regular_pencil, r.regular_pencil) << c.file;
+    for (bool sparse_qr : {false, true}) {
+      const fast::Solution f = sparse_route(c, sparse_qr);
+      EXPECT_TRUE(f.certified.unknown()) << c.file;  // a threshold bounds no singular value
+      EXPECT_EQ(f.dims(), r.dims()) << c.file << " " << sparse_qr;
+      EXPECT_EQ(f.steps, r.steps) << c.file << " " << sparse_qr;
+      EXPECT_EQ(f.solution_rank, r.solution_rank) << c.file << " " << sparse_qr;
+      EXPECT_EQ(f.regular_pencil, r.regular_pencil) << c.file << " " << sparse_qr;
+    }
   }
 }
 
@@ -245,8 +250,10 @@ RC_GTEST_PROP(Dae, SparseRouteHasTheReferenceTower, ()) {
     RC_LOG() << "\n";
   }
   const auto r = reference::pipeline::solve_dae(c);
-  const fast::Solution f = sparse_route(c);
+  const bool sparse_qr = *rc::gen::arbitrary<bool>();  // the outside part by sparse QR, or by the SVD
+  const fast::Solution f = sparse_route(c, sparse_qr);
   RC_TAG(singular ? "singular pencil" : "regular pencil");
+  RC_TAG(sparse_qr ? "outside part by sparse QR" : "outside part by SVD");
   RC_ASSERT(f.certified.unknown());
   RC_ASSERT(f.dims() == r.dims());
   RC_ASSERT(f.steps == r.steps);

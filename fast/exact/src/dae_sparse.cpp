@@ -9,7 +9,9 @@
 //   dim(ker E ∩ M_c) = N − rank [E; C_c] (the last S_k).  A square pencil is regular iff that is 0
 //   (see the end).
 // E is factored once (EFactor): S_k's left null vectors beyond E's own come from C_k's part outside E's
-// row space, a small dense matrix, so no constraint row (dense where E has no diagonal) enters a sparse QR.
+// row space, factored densely (an SVD) where it is small or dense, so no dense constraint row (as where E
+// has no diagonal) enters a sparse QR; where it is large and sparse (an MNA ladder with capacitors at every
+// other node: nearly unit vectors) by a sparse QR of that part.
 // The same tower as the dense route's Wong sequences (dae.cpp) — V_{k+1} = A⁻¹(E V_k) is
 // {x : z_Eᵀ A x = 0} ∩ V_k by the same duality — computed on the equations, which stay sparse where
 // the left null vectors do (a row of E that is zero, as at every node of an MNA circuit without a
@@ -92,6 +94,29 @@ SpMat columns_of(const SpMat& m, const std::vector<int>& keep) {
   out.setFromTriplets(t.begin(), t.end());
   out.makeCompressed();
   return out;
+}
+
+/// Rows renumbered so that column ℓ's largest entry not yet taken sits at row ℓ: Eigen's SparseQR pivots
+/// on the diagonal position without permuting rows, and an entry off it fills in (a nearly diagonal E
+/// put through COLAMD's order took 6 s at 10⁴ variables; [C_1; candidates]ᵀ of a 5,000-node ladder,
+/// 7,500 entries, 2.4 s in the rows' own order; 0.08 s so).  Returns new row of each old one; rank and
+/// which columns are independent do not depend on the rows' order.  Not a cure for every structure: the
+/// rows left over (no column's pivot) sit last and gather fill in the Householder vectors along a chain
+/// of columns that share rows — 180 MB at 10⁴ nodes of a ladder with capacitors at every other node, out
+/// of memory at 10⁵ (bench/results/dae_circuits.md; the certified tier's elimination answers there).
+std::vector<int> diagonal_first(const SpMat& m) {
+  std::vector<int> row_at(static_cast<std::size_t>(m.rows()), -1);
+  int next = 0;
+  for (int l = 0; l < m.outerSize(); ++l) {
+    int best = -1;
+    double big = 0;
+    for (SpMat::InnerIterator it(m, l); it; ++it)
+      if (row_at[static_cast<std::size_t>(it.row())] < 0 && std::abs(it.value()) > big) big = std::abs(it.value()), best = static_cast<int>(it.row());
+    if (best >= 0) row_at[static_cast<std::size_t>(best)] = next++;
+  }
+  for (int& r : row_at)
+    if (r < 0) r = next++;
+  return row_at;
 }
 
 /// A sparse QR of the columns of m that are independent (Heath's threshold τ), with full column rank.
@@ -224,23 +249,11 @@ class EFactor {
         const int l = at[static_cast<std::size_t>(it.row())];
         t.emplace_back(j, l, it.value() * col_scale[static_cast<std::size_t>(j)] * dr_[static_cast<std::size_t>(l)]);
       }
-    {  // rows (variables) ordered so that column ℓ's largest entry not yet taken sits at row ℓ: Eigen's
-       // QR pivots on the diagonal position without permuting rows, and an entry off it fills in
-       // (a nearly diagonal E put through COLAMD's order took 6 s at 10⁴ variables)
+    {  // rows (variables) in diagonal_first's order
       SpMat raw(n, static_cast<Eigen::Index>(live_.size()));
       raw.setFromTriplets(t.begin(), t.end());
       raw.makeCompressed();
-      row_at_.assign(static_cast<std::size_t>(n), -1);
-      int next = 0;
-      for (int l = 0; l < raw.outerSize(); ++l) {
-        int best = -1;
-        double big = 0;
-        for (SpMat::InnerIterator it(raw, l); it; ++it)
-          if (row_at_[static_cast<std::size_t>(it.row())] < 0 && std::abs(it.value()) > big) big = std::abs(it.value()), best = static_cast<int>(it.row());
-        if (best >= 0) row_at_[static_cast<std::size_t>(best)] = next++;
-      }
-      for (int& r : row_at_)
-        if (r < 0) r = next++;
+      row_at_ = diagonal_first(raw);
       for (auto& x : t) x = Eigen::Triplet<double>(row_at_[static_cast<std::size_t>(x.row())], x.col(), x.value());
     }
     et_ = SpMat(n, static_cast<Eigen::Index>(live_.size()));
@@ -267,27 +280,73 @@ class EFactor {
   long rank = 0;                           ///< rank E
 
   /// The z_E of a basis of S_k's left null vectors beyond E's own; `extra` = rank S_k − rank E.
-  std::vector<Combination> with(const std::vector<Row>& c, long& extra, Evidence& ev) const {
+  /// The part outside E's row space is factored densely (an SVD) where it is small or dense, by a sparse
+  /// QR (CleanQr, the threshold as for E) where it is large and sparse: an MNA ladder with a capacitor at
+  /// every other node has 5,000 constraints whose parts outside are nearly unit vectors (the SVD of that
+  /// 5,000 × 5,000 took 270 s at 10⁴ nodes).
+  std::vector<Combination> with(const std::vector<Row>& c, long& extra, Evidence& ev, int sparse_qr_from) const {
     const int n = static_cast<int>(col_scale_.size());
     const Eigen::Index k = static_cast<Eigen::Index>(c.size());
-    std::vector<Eigen::VectorXd> y;  // D_c c_i / ‖D_c c_i‖
+    std::vector<Eigen::SparseVector<double>> y;  // D_c c_i / ‖D_c c_i‖, in et_'s row order
     for (const Row& r : c) {
-      Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
-      for (const auto& [j, x] : r) v(row_at_.empty() ? j : row_at_[static_cast<std::size_t>(j)]) = x * col_scale_[static_cast<std::size_t>(j)];
-      y.push_back(v / v.norm());
+      Eigen::SparseVector<double> v(n);
+      std::vector<std::pair<int, double>> at;
+      double norm2 = 0;
+      for (const auto& [j, x] : r) {
+        at.emplace_back(row_at_.empty() ? j : row_at_[static_cast<std::size_t>(j)], x * col_scale_[static_cast<std::size_t>(j)]);
+        norm2 += at.back().second * at.back().second;
+      }
+      std::sort(at.begin(), at.end());
+      const double norm = std::sqrt(norm2);
+      for (const auto& [j, x] : at) v.insert(j) = x / norm;
+      y.push_back(std::move(v));
     }
-    Eigen::MatrixXd outside(n - rank, k);  // the part of each y outside E's row space
+    const Eigen::Index below = n - rank;
+    std::vector<Eigen::Triplet<double>> t;  // the part of each y outside E's row space
+    Eigen::VectorXd yi(n), q(n);  // reused across the constraints
     for (Eigen::Index i = 0; i < k; ++i) {
-      const Eigen::VectorXd q = qr_ ? Eigen::VectorXd(qr_->qr.matrixQ().transpose() * y[static_cast<std::size_t>(i)]) : y[static_cast<std::size_t>(i)];
-      outside.col(i) = q.tail(n - rank);
+      yi.setZero();
+      for (Eigen::SparseVector<double>::InnerIterator it(y[static_cast<std::size_t>(i)]); it; ++it) yi(it.index()) = it.value();
+      if (qr_) q.noalias() = qr_->qr.matrixQ().transpose() * yi;
+      else q = yi;
+      for (Eigen::Index r = 0; r < below; ++r)
+        if (q(rank + r) != 0) t.emplace_back(static_cast<int>(r), static_cast<int>(i), q(rank + r));
     }
     ++ev.decisions;
     std::vector<Combination> out;
-    if (outside.rows() == 0) {  // E has full column rank: every combination of C lies in its row space
+    if (below == 0) {  // E has full column rank: every combination of C lies in its row space
       extra = 0;
-      for (Eigen::Index i = 0; i < k; ++i) out.push_back(z_of(y, Eigen::VectorXd::Unit(k, i)));
+      for (Eigen::Index i = 0; i < k; ++i) out.push_back(z_of(y, {{static_cast<int>(i), 1.0}}));
       return out;
     }
+    if (sparse_qr_from == 0 || (k >= sparse_qr_from && static_cast<double>(t.size()) <= 0.05 * static_cast<double>(below) * static_cast<double>(k))) {
+      SpMat outside(below, k);
+      outside.setFromTriplets(t.begin(), t.end());
+      outside.makeCompressed();
+      // the columns are parts of unit vectors: 1 is the scale, as for the SVD below (not the largest part,
+      // which is rounding residue where every constraint lies in E's row space)
+      const double tau = std::max(20.0 * static_cast<double>(below + k) * eps, kRelative);
+      const CleanQr<Eigen::COLAMDOrdering<int>> clean(outside, tau);
+      record(clean, tau, 1.0, ev);
+      extra = static_cast<long>(clean.kept.size());
+      std::vector<char> kept(static_cast<std::size_t>(k), 0);
+      for (int j : clean.kept) kept[static_cast<std::size_t>(j)] = 1;
+      for (Eigen::Index j = 0; j < k; ++j) {  // a dependent column less its combination of the kept ones
+        if (kept[static_cast<std::size_t>(j)]) continue;
+        Combination u{{static_cast<int>(j), 1.0}};
+        if (!clean.kept.empty()) {
+          const Eigen::VectorXd x = clean.qr.solve(Eigen::VectorXd(outside.col(j)));
+          const double top = x.size() ? x.cwiseAbs().maxCoeff() : 0;
+          for (std::size_t l = 0; l < clean.kept.size(); ++l)
+            if (std::abs(x(static_cast<Eigen::Index>(l))) > kRelative * top) u.emplace_back(clean.kept[l], -x(static_cast<Eigen::Index>(l)));
+        }
+        out.push_back(z_of(y, u));
+      }
+      return out;
+    }
+    SpMat sparse_outside(below, k);
+    sparse_outside.setFromTriplets(t.begin(), t.end());
+    const Eigen::MatrixXd outside(sparse_outside);
     Eigen::BDCSVD<Eigen::MatrixXd> svd(outside, Eigen::ComputeFullV);
     const auto& sigma = svd.singularValues();
     extra = 0;
@@ -295,17 +354,23 @@ class EFactor {
       if (sigma(i) > kRelative) ++extra;  // the columns have unit norm: 1 is the scale
     if (extra > 0) ev.kept(sigma(extra - 1), 1.0, kRelative);
     if (extra < sigma.size()) ev.largest_dropped = std::max(ev.largest_dropped, sigma(extra));
-    for (Eigen::Index i = extra; i < k; ++i) out.push_back(z_of(y, svd.matrixV().col(i)));
+    for (Eigen::Index i = extra; i < k; ++i) {
+      Combination u;
+      for (Eigen::Index j = 0; j < k; ++j) u.emplace_back(static_cast<int>(j), svd.matrixV()(j, i));
+      out.push_back(z_of(y, u));
+    }
     return out;
   }
 
  private:
-  /// z_E with Eᵀ z_E = −Σ u_i y_i (least squares on the kept rows; exact where the sum is in E's row space).
-  Combination z_of(const std::vector<Eigen::VectorXd>& y, const Eigen::VectorXd& u) const {
+  /// z_E with Eᵀ z_E = −Σ u_i y_i (least squares on the kept rows; exact where the sum is in E's row space);
+  /// u as (index of y, coefficient).
+  Combination z_of(const std::vector<Eigen::SparseVector<double>>& y, const Combination& u) const {
     Combination z;
     if (!qr_) return z;
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(col_scale_.size()));
-    for (std::size_t i = 0; i < y.size(); ++i) sum += u(static_cast<Eigen::Index>(i)) * y[i];
+    for (const auto& [i, ui] : u)
+      for (Eigen::SparseVector<double>::InnerIterator it(y[static_cast<std::size_t>(i)]); it; ++it) sum(it.index()) += ui * it.value();
     add_kept(z, -Eigen::VectorXd(qr_->qr.solve(sum)));
     return z;
   }
@@ -355,6 +420,12 @@ std::vector<std::size_t> independent(const std::vector<Row>& kept, const std::ve
   SpMat ct(n, static_cast<Eigen::Index>(c));
   ct.setFromTriplets(t.begin(), t.end());
   ct.makeCompressed();
+  {  // rows in diagonal_first's order (the columns', which decide, unchanged)
+    const std::vector<int> row_at = diagonal_first(ct);
+    for (auto& x : t) x = Eigen::Triplet<double>(row_at[static_cast<std::size_t>(x.row())], x.col(), x.value());
+    ct.setFromTriplets(t.begin(), t.end());
+    ct.makeCompressed();
+  }
   double largest = 0;
   // the candidates carry the error of the null vectors they come from (a QR's, amplified by [E; C_k]'s
   // conditioning), not only their own rounding: a remainder below 1e-9 of the largest is taken as zero
@@ -435,7 +506,7 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   std::vector<char> hit(static_cast<std::size_t>(n), 0);
   for (int step = 0; step <= n; ++step) {
     long extra = 0;
-    const std::vector<Combination> zs = step == 0 ? ef.null_of_e : ef.with(constraints, extra, ev);
+    const std::vector<Combination> zs = step == 0 ? ef.null_of_e : ef.with(constraints, extra, ev, opt_in.dae_sparse_qr_from);
     last_rank = ef.rank + extra;
     std::vector<Row> candidates;
     std::vector<double> sizes;

@@ -65,6 +65,9 @@ struct Options {
   /// and always where E and A are too large to hold densely: only where the dense routes cannot run, as
   /// its answers are less sure (see there); the tests set it to 0 to compare it with the reference.
   int dae_sparse_from = 2001;
+  /// On that route, the part of C_k outside E's row space is factored by sparse QR (not a dense SVD) from
+  /// this many constraints on, where it is at most 5 % filled; 0: always (the tests, to compare both).
+  int dae_sparse_qr_from = 201;
   DecisionProbe* probe = nullptr;  ///< testing: see DecisionProbe (shared by copies of these options)
 };
 
