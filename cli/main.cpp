@@ -7,6 +7,7 @@
 #include "dcad/io/netlist.hpp"  // parse_spice_value: --tstop 20n
 #include "plot.hpp"
 
+#include <new>
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -45,6 +46,10 @@ int solve_files(const std::vector<std::string>& files, dcad::api::Backend backen
       continue;
     } catch (const dcad::api::InternalError& e) {  // an internal invariant: never an answer, never a crash
       message = std::string("dcad: internal error: ") + e.what() + "; please report it with the input";
+      code = 4;
+    } catch (const std::bad_alloc&) {  // a resource limit, not a wrong answer
+      const char* name = backend == dcad::api::Backend::fast ? "fast" : backend == dcad::api::Backend::reference ? "reference" : "certified";
+      message = file + ": out of memory on backend " + name + " (no answer; another backend may need less)";
       code = 4;
     } catch (const std::exception& e) {
       message = e.what();
@@ -375,6 +380,9 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
     std::cerr << (sim->parsed() ? sim_file : check->parsed() ? check_file : file) << ": " << e.what() << "\n";
     return 1;
+  } catch (const std::bad_alloc&) {  // a resource limit, not a wrong answer
+    std::cerr << "dcad: out of memory (no answer)\n";
+    return 4;
   } catch (const std::exception& e) {  // an internal invariant: never an answer, never a crash
     std::cerr << "dcad: internal error: " << e.what() << "; please report it with the input\n";
     return 4;
