@@ -141,6 +141,9 @@ struct CleanQr {
           alive.push_back(j);
           break;
         }
+    // no nonzero column (every constraint inside E's row space): nothing to factor — and Eigen 3.4's
+    // SparseQR writes past its arrays on a matrix without columns (AddressSanitizer, prop_dae)
+    if (alive.empty()) return;
     std::vector<int> removed;
     qr.setPivotThreshold(tau);
     for (int round = 0;; ++round) {
