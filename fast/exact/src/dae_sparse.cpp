@@ -158,14 +158,17 @@ struct CleanQr {
         std::vector<int> next;
         for (std::size_t j = 0; j < alive.size(); ++j) (dead[j] ? removed : next).push_back(alive[j]);
         alive = std::move(next);
+        if (alive.empty()) break;  // every column below τ: rank 0 (and no QR of a matrix without columns)
       }
       // each removed column against the final factor: its remainder beyond the first `rank` rows of Qᵀ c
       std::vector<int> back, still;
-      const Eigen::Index r = qr.rank();
+      const Eigen::Index r = alive.empty() ? 0 : qr.rank();
       for (int j : removed) {
         const Eigen::VectorXd c = Eigen::VectorXd(m.col(j));
-        const Eigen::VectorXd qc = qr.matrixQ().transpose() * c;
-        const double rest = qc.tail(qc.size() - r).norm();
+        const double rest = alive.empty() ? c.norm() : [&] {
+          const Eigen::VectorXd qc = qr.matrixQ().transpose() * c;
+          return qc.tail(qc.size() - r).norm();
+        }();
         (rest >= tau ? back : still).push_back(j);
         if (rest < tau) largest_dropped = std::max(largest_dropped, rest);
       }
@@ -176,6 +179,7 @@ struct CleanQr {
       removed = std::move(still);
     }
     kept = alive;
+    if (alive.empty()) return;
     const SpMat rr = qr.matrixR();
     for (Eigen::Index i = 0; i < qr.rank(); ++i) smallest_pivot = std::min(smallest_pivot, std::abs(rr.coeff(i, i)));
   }
