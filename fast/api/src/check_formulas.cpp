@@ -229,30 +229,15 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
   std::string where;
   for (std::size_t i = 0; i < width; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
   try {
-    {  // the rank, by Gaussian elimination in rationals (no threshold)
+    {  // the rank in rationals (reference::rank: RREF, no threshold)
       fast::Differentiator d;
-      std::vector<std::vector<reference::Rational>> m;
-      for (const ex::Expr& e : th.constraints) {
-        m.emplace_back();
-        for (std::size_t j = 0; j < width; ++j) m.back().push_back(reference::pipeline::exact_value(d(e, j), x));
-      }
-      std::size_t r = 0;
-      for (std::size_t c = 0; c < width && r < m.size(); ++c) {
-        std::size_t p = r;
-        while (p < m.size() && m[p][c] == 0) ++p;
-        if (p == m.size()) continue;
-        std::swap(m[p], m[r]);
-        for (std::size_t i = r + 1; i < m.size(); ++i)
-          if (m[i][c] != 0) {
-            const reference::Rational f = m[i][c] / m[r][c];
-            for (std::size_t j = c; j < width; ++j) m[i][j] -= f * m[r][j];
-          }
-        ++r;
-      }
+      reference::Matrix<reference::Rational> m(th.constraints.size(), width);
+      for (std::size_t i = 0; i < th.constraints.size(); ++i)
+        for (std::size_t j = 0; j < width; ++j) m(i, j) = reference::pipeline::exact_value(d(th.constraints[i], j), x);
+      const std::size_t r = static_cast<std::size_t>(reference::rank(m));
       full_rank = r >= needed;
       if (r < needed)
-        exact_short = "formulas.constraints: expected " + std::to_string(needed) + " independent constraints, found rank " + std::to_string(r) +
-                      " exactly at the point of M_c " + where;
+        exact_short = "expected " + std::to_string(needed) + " independent constraints, found rank " + std::to_string(r) + " exactly at the point of M_c " + where;
     }
     for (std::size_t i = 0; i < th.constraints.size(); ++i) {
       const reference::Rational val = reference::pipeline::exact_value(th.constraints[i], x);
@@ -276,7 +261,7 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
 /// ill-conditioned to tell (x5 − 2 x4² at x4 = 5.7e6 beside rows of order 1: condition 3e21), not a disagreement.
 /// Short exactly: a disagreement (the double points' message names a constraint of dcad's theirs do not imply).
 void settle_rank(const std::string& rank_short, const std::optional<bool>& full_rank, const std::string& exact_short, Checked& out) {
-  if (full_rank == false) out.disagreements.push_back(rank_short.empty() ? exact_short : rank_short + " (and " + exact_short.substr(22) + ")");
+  if (full_rank == false) out.disagreements.push_back(rank_short.empty() ? "formulas.constraints: " + exact_short : rank_short + " (and " + exact_short + ")");
   else if (rank_short.empty()) return;
   else if (full_rank == true)
     out.not_compared.push_back("the rank of formulas.constraints in double (short at a point: " + rank_short +

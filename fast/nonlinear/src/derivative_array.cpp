@@ -305,8 +305,10 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       // (t moved too: t⁶⁴ = 0 at t = 0 is a zero of every order there, and a constraint nowhere else)
       const auto superlinear = [&](Eigen::Index i) {
         const double f0 = v.f(i);
-        for (std::size_t c = 0; c <= cols; ++c) {
-          if (c == cols) c = time;
+        std::vector<std::size_t> moved(cols);
+        for (std::size_t c = 0; c < cols; ++c) moved[c] = c;
+        moved.push_back(time);
+        for (std::size_t c : moved) {
           const double h = 1e-2 * std::max(1.0, std::abs(z[c]));
           std::vector<double> a = z, b = z;
           a[c] += h;
