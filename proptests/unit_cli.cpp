@@ -70,7 +70,12 @@ TEST(Waveform, PiecewiseLinearAndDcAtZero) {
 TEST(Waveform, ConstantIsDcOrASineThatCannotMove) {
   EXPECT_TRUE(wave("5").constant());
   EXPECT_TRUE(wave("SIN(3 0 1000)").constant());
-  EXPECT_TRUE(wave("SIN(3 2 0)").constant());  // FREQ 0, PHASE 0: VO + VA sin 0
+  // FREQ 0 is ngspice's 1/TSTOP (vsrcload.c), not a constant: it waits for .tran's TSTOP
+  Waveform zero_freq = wave("SIN(3 2 0)");
+  EXPECT_THROW(zero_freq.complete(Rational(1, 10), std::nullopt), std::invalid_argument);
+  zero_freq.complete(Rational(1, 10), Rational(2));
+  EXPECT_EQ(zero_freq.p[2], Rational(1, 2));
+  EXPECT_FALSE(zero_freq.constant());
   EXPECT_FALSE(wave("SIN(0 1 1000)").constant());
   EXPECT_FALSE(wave("PULSE(0 1 0 1 1 1 4)").constant());
   EXPECT_FALSE(wave("PWL(0 0 1 1)").constant());
@@ -78,6 +83,45 @@ TEST(Waveform, ConstantIsDcOrASineThatCannotMove) {
 
 // PWL times start at 0 or later and increase (ngspice); values may be anything.  Killed by: the
 // first *value* checked for sign instead of the first time.
+// ngspice's source syntax for a transient (issue 45 §1): AC, distortion and port specifications in every
+// spelling are not part of the transient; SPICE3 functions without parentheses; PULSE's defaults from .tran
+// (vsrcload.c: TR, TF = TSTEP also where <= 0; PW = 0 with five values, else TSTOP; PER = TSTOP) and its NP.
+TEST(Waveform, NgspiceSpellingsOfOneTransient) {
+  for (const char* spec : {"AC 1", "ac 1 0", "dc 0 ac 1", "AC 1 DC 0", "dc=0 ac=1", "0 portnum 1 z0 50"}) {
+    const Waveform w = wave(spec);
+    EXPECT_EQ(w.kind, Waveform::Kind::dc) << spec;
+    EXPECT_EQ(w.p[0], Rational(0)) << spec;
+    EXPECT_FALSE(w.ignored.empty()) << spec;
+  }
+  EXPECT_EQ(wave("12 AC 1").p[0], Rational(12));
+  EXPECT_EQ(wave("DC=3").p[0], Rational(3));
+  for (const char* spec : {"AC 1 SIN(0 1 1000)", "SIN 0 1 1000", "sin(0, 1, 1000) ac 1", "dc 5 sin(0 1 1000)", "SIN(0 1 1000) AC 1 0"}) {
+    const Waveform w = wave(spec);
+    EXPECT_EQ(w.kind, Waveform::Kind::sin) << spec;
+    EXPECT_EQ(w.p[2], Rational(1000)) << spec;
+  }
+  EXPECT_EQ(wave("ac 1 pwl(0 0 1 2)").p, (std::vector<Rational>{0, 0, 1, 2}));
+  EXPECT_EQ(wave("PWL 0 1 1 0").p, (std::vector<Rational>{0, 1, 1, 0}));
+  Waveform p = wave("pulse(0 1) ac 1");
+  EXPECT_THROW(p.complete(std::nullopt, Rational(1)), std::invalid_argument);  // TR = TSTEP: none given
+  p.complete(Rational(1, 100), Rational(1));
+  EXPECT_EQ(p.p, (std::vector<Rational>{0, 1, 0, Rational(1, 100), Rational(1, 100), 1, 1}));
+  Waveform five = wave("PULSE 0 1 1/1000 0 2/1000");
+  five.complete(Rational(1, 1000), Rational(1));
+  EXPECT_EQ(five.p, (std::vector<Rational>{0, 1, Rational(1, 1000), Rational(1, 1000), Rational(2, 1000), 0, 1}));
+  Waveform np = wave("PULSE(0 1 0 1 1 1 4 2)");  // two pulses, then V1
+  np.complete(Rational(1), Rational(20));
+  EXPECT_EQ(np.pulses, 2);
+  EXPECT_EQ(np.value(5.5, 0), 1.0);   // inside the second pulse
+  EXPECT_EQ(np.value(9.5, 0), 0.0);   // where a third would rise
+  EXPECT_FALSE(np.next_corner(Rational(8)).has_value());  // nothing moves after the last pulse
+  Waveform cut = wave("PULSE(0 1 0 1 1 3 4)");  // PER < TR + PW + TF: the fall is cut at PER (ngspice)
+  EXPECT_EQ(cut.value(4.5, 0), 0.5);  // rising again, not falling
+  EXPECT_THROW(wave("EXP(0 1 1u 1u 2u 1u)"), std::invalid_argument);
+  EXPECT_THROW(wave("SFFM(0 1 1k 2 100)"), std::invalid_argument);
+  EXPECT_THROW(wave("1 2"), std::invalid_argument);
+}
+
 TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {
   EXPECT_THROW(wave("PWL(-1 0 1 1)"), std::invalid_argument);
   EXPECT_NO_THROW(wave("PWL(0 -1 1 1)"));

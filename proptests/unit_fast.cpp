@@ -14,10 +14,20 @@
 
 using namespace dcad::fast;
 
+namespace {
+/// These tests plant their matrices (exact in double, of known rank): they vouch for them, as a caller may
+/// (rank.hpp's Options::input_assessed), so that what is tested is the decision, not the input assessment.
+Options vouched() {
+  Options o;
+  o.input_assessed = true;
+  return o;
+}
+}  // namespace
+
 TEST(DecideRank, CertainOnClearGap) {
   MatrixXd a(3, 3);
   a << 1, 2, 3, 2, 4, 6, 0, 1, 1;
-  const RankDecision d = decide_rank(a);
+  const RankDecision d = decide_rank(a, -1, vouched());
   EXPECT_EQ(d.rank, 2);
   EXPECT_TRUE(d.certain.yes());
   EXPECT_GT(d.gap, 1e12);
@@ -28,12 +38,12 @@ TEST(DecideRank, CertainOnClearGap) {
 TEST(DecideRank, UncertainInsideTheBand) {
   MatrixXd a = MatrixXd::Identity(3, 3);
   a(2, 2) = std::ldexp(1.0, -40);  // 9e-13: neither rounding noise nor clearly nonzero
-  const RankDecision d = decide_rank(a);
+  const RankDecision d = decide_rank(a, -1, vouched());
   EXPECT_FALSE(d.certain.yes());
   EXPECT_NE(d.describe().find("UNCERTAIN"), std::string::npos);
   a(2, 2) = std::ldexp(1.0, -20);  // 1e-6 > √ε: certainly nonzero
-  EXPECT_TRUE(decide_rank(a).certain.yes());
-  EXPECT_EQ(decide_rank(a).rank, 3);
+  EXPECT_TRUE(decide_rank(a, -1, vouched()).certain.yes());
+  EXPECT_EQ(decide_rank(a, -1, vouched()).rank, 3);
 }
 
 namespace {
@@ -52,7 +62,7 @@ TEST(DecideRank, PivotedQrBracketsTheCut) {
   std::srand(5);
   VectorXd sigma = VectorXd::LinSpaced(70, 3.0, 0.5);  // rank 70 of 120×90
   const MatrixXd a = with_singular_values(120, 90, sigma);
-  const RankDecision d = decide_rank(a);
+  const RankDecision d = decide_rank(a, -1, vouched());
   EXPECT_TRUE(d.by_qr);
   EXPECT_EQ(d.rank, 70);
   EXPECT_TRUE(d.certain.yes());
@@ -60,7 +70,7 @@ TEST(DecideRank, PivotedQrBracketsTheCut) {
   EXPECT_GT(d.kept_lower, 0.5 / 100);  // within √rank of σ_min in practice
   EXPECT_LE(d.dropped_upper, d.zero_threshold);
   EXPECT_NE(d.describe().find("pivoted QR"), std::string::npos);
-  Options svd_only;
+  Options svd_only = vouched();
   svd_only.qr_from = 1 << 30;
   const RankDecision s = decide_rank(a, -1, svd_only);
   EXPECT_FALSE(s.by_qr);
@@ -76,14 +86,14 @@ TEST(DecideRank, PivotedQrNeverDecidesInsideTheBand) {
   std::srand(6);
   VectorXd sigma = VectorXd::Constant(60, 1.0);
   sigma(59) = 1e-10;  // τ0 = 64·80·ε = 1.1e-12 < 1e-10 < τ1 = 1.5e-8
-  const RankDecision d = decide_rank(with_singular_values(80, 80, sigma));
+  const RankDecision d = decide_rank(with_singular_values(80, 80, sigma), -1, vouched());
   EXPECT_FALSE(d.certain.yes());
   EXPECT_EQ(d.rank, 60);
   sigma(59) = 1.5e-12;  // just above τ0: neither bound decides, the SVD does (uncertain)
-  const RankDecision s = decide_rank(with_singular_values(80, 80, sigma));
+  const RankDecision s = decide_rank(with_singular_values(80, 80, sigma), -1, vouched());
   EXPECT_FALSE(s.certain.yes());
   sigma(59) = 1e-3;  // clearly nonzero: QR decides, rank 60 of 80, certain
-  const RankDecision e = decide_rank(with_singular_values(80, 80, sigma));
+  const RankDecision e = decide_rank(with_singular_values(80, 80, sigma), -1, vouched());
   EXPECT_TRUE(e.by_qr);
   EXPECT_EQ(e.rank, 60);
   EXPECT_TRUE(e.certain.yes());
@@ -96,7 +106,7 @@ TEST(RankRevealing, RangeCorangeAndMinimumNormSolutions) {
   const MatrixXd a = with_singular_values(70, 60, VectorXd::LinSpaced(40, 2.0, 1.0));
   const MatrixXd xs = a * MatrixXd::Random(60, 3);  // in im A
   for (int from : {0, 1 << 30}) {
-    Options opt;
+    Options opt = vouched();
     opt.qr_from = from;
     const RankRevealing f(a, -1, opt);
     ASSERT_EQ(f.rank(), 40);
@@ -118,7 +128,7 @@ TEST(RankRevealing, SolveRangeSolvesOnTheRange) {
   const MatrixXd a = with_singular_values(70, 60, VectorXd::LinSpaced(40, 2.0, 1.0));
   const MatrixXd y = a * MatrixXd::Random(60, 4);
   for (int from : {0, 1 << 30}) {
-    Options opt;
+    Options opt = vouched();
     opt.qr_from = from;
     const RankRevealing f(a, -1, opt);
     ASSERT_EQ(f.rank(), 40);
@@ -132,18 +142,18 @@ TEST(RankRevealing, SolveRangeSolvesOnTheRange) {
 TEST(DecideRank, ResidueIsRankZeroByItsNorm) {
   std::srand(9);
   const MatrixXd noise = 1e-16 * MatrixXd::Random(100, 60);
-  const RankRevealing f(noise, 1.0, Options{});
+  const RankRevealing f(noise, 1.0, vouched());
   EXPECT_TRUE(f.decision().by_norm);
   EXPECT_EQ(f.rank(), 0);
   EXPECT_TRUE(f.decision().certain.yes());
   EXPECT_EQ(f.corange().cols(), 100);
   EXPECT_LE((f.corange() - MatrixXd::Identity(100, 100)).norm(), 0.0);
   EXPECT_NE(f.decision().describe().find("Frobenius"), std::string::npos);
-  const RankDecision small = decide_rank(1e-10 * MatrixXd::Random(100, 60), 1.0);
+  const RankDecision small = decide_rank(1e-10 * MatrixXd::Random(100, 60), 1.0, vouched());
   EXPECT_FALSE(small.by_norm);
   EXPECT_EQ(small.rank, 60);
   EXPECT_FALSE(small.certain.yes());  // 1e-10 is inside the band (τ0, τ1]
-  Options inexact;
+  Options inexact = vouched();
   inexact.input_exact = false;  // a deficiency from inexact input is never certain, by norm or not
   EXPECT_FALSE(RankRevealing(noise, 1.0, inexact).decision().certain.yes());
 }
@@ -151,7 +161,7 @@ TEST(DecideRank, ResidueIsRankZeroByItsNorm) {
 TEST(DecideRank, InexactInputNeverCertifiesADeficiency) {
   MatrixXd a(2, 2);
   a << 1, 1, 1, 1;
-  Options opt;
+  Options opt = vouched();
   opt.input_exact = false;
   EXPECT_EQ(decide_rank(a, -1, opt).rank, 1);
   EXPECT_FALSE(decide_rank(a, -1, opt).certain.yes());
@@ -168,7 +178,7 @@ TEST(DecideRank, GradedRegression) {
   w(1, 3) = std::ldexp(1.0, -15);
   w(2, 3) = -64;
   w -= MatrixXd(w.transpose());
-  Options opt;
+  Options opt = vouched();
   assess_input(w, opt);
   EXPECT_TRUE(opt.input_well_scaled);
   const RankDecision d = decide_rank(w, -1, opt);
@@ -189,12 +199,12 @@ TEST(DecideRank, EntriesWhoseDigitsSpanMoreThanTauOne) {
   const MatrixXd moved = shear.transpose() * w * shear;
   EXPECT_EQ(moved(4, 5), 1 + std::ldexp(1.0, -40));
   EXPECT_EQ((moved.array().abs() < 0.5 && moved.array() != 0).count(), 0);  // nothing small on its own
-  Options opt;
+  Options opt = vouched();
   assess_input(moved, opt);
   EXPECT_FALSE(opt.input_well_scaled);
   const RankDecision d = decide_rank(moved, -1, opt);
   EXPECT_TRUE(d.rank == 6 || d.certain.unknown()) << d.describe();
-  Options plain;  // the same form without the 2^-40: well scaled, and rank 4 is certain
+  Options plain = vouched();  // the same form without the 2^-40: well scaled, and rank 4 is certain
   MatrixXd w4 = MatrixXd::Zero(6, 6);
   w4(0, 2) = w4(1, 3) = 1;
   w4 -= MatrixXd(w4.transpose());
@@ -209,7 +219,7 @@ TEST(DecideRank, EntriesWhoseDigitsSpanMoreThanTauOne) {
 // thresholds it scales). Killed by: the SVD route reporting σ₂ (seed-26 survivor [92]).
 TEST(DecideRank, EvidenceNamesTheLargestSingularValue) {
   const MatrixXd a = Eigen::Vector3d(2, 3, 1e-20).asDiagonal();
-  const RankDecision d = decide_rank(a);  // 3×3: below qr_from, the SVD route
+  const RankDecision d = decide_rank(a, -1, vouched());  // 3×3: below qr_from, the SVD route
   EXPECT_EQ(d.rank, 2);
   EXPECT_NEAR(d.largest, 3, 1e-15);
   EXPECT_NEAR(d.kept_lower, 2, 1e-15);
@@ -219,9 +229,9 @@ TEST(DecideRank, EvidenceNamesTheLargestSingularValue) {
 }
 
 TEST(DecideRank, Empty) {
-  EXPECT_EQ(decide_rank(MatrixXd(0, 3)).rank, 0);
-  EXPECT_TRUE(decide_rank(MatrixXd(0, 3)).certain.yes());
-  EXPECT_EQ(decide_rank(MatrixXd::Zero(2, 2)).rank, 0);
+  EXPECT_EQ(decide_rank(MatrixXd(0, 3), -1, vouched()).rank, 0);
+  EXPECT_TRUE(decide_rank(MatrixXd(0, 3), -1, vouched()).certain.yes());
+  EXPECT_EQ(decide_rank(MatrixXd::Zero(2, 2), -1, vouched()).rank, 0);
 }
 
 TEST(Subspace, Operations) {
@@ -291,8 +301,37 @@ TEST(DiracBergmann, UndecidedBracketMatrixIsUncertain) {
     return dcad::fast::dirac_bergmann(s);
   };
   EXPECT_FALSE(run(1e-10).certain.yes());
-  EXPECT_TRUE(run(1e-3).certain.yes());
+  EXPECT_TRUE(run(0x1p-10).certain.yes());  // an ε that is exact in double (1e-3 is not: the assessment doubts it)
   EXPECT_TRUE(run(0).certain.yes());
+}
+
+// Issue 45 §5: the library with default options on a caller's doubles.  ω = dq1∧dp1 + 1e-20 dq2∧dp2 is
+// exactly nondegenerate, so with E = p2 the exact tower is M_0 = M_c = R⁴ (consistent, unique); in double
+// the 1e-20 block is below every threshold and the CAD finds dE(e4) = 1 against a kernel: inconsistent.
+// That answer was returned certain.  Default options now assess the caller's data (1e-20 beside 1: graded),
+// so it is uncertain; the same form with 1 in place of 1e-20 stays certain and right.
+// Killed by: constraint_tower not assessing its input (rank.hpp's `assessed`), or a decision made on
+// unassessed options taken as provable.
+TEST(Cad, DefaultOptionsAssessTheCallersDoubles) {
+  const auto tower = [](double tiny) {
+    MatrixXd w = MatrixXd::Zero(4, 4);
+    w(0, 2) = 1, w(2, 0) = -1, w(1, 3) = tiny, w(3, 1) = -tiny;
+    LinearSystem s;
+    s.d = dirac_from_presymplectic(w);
+    s.hessian = MatrixXd::Zero(4, 4);
+    s.gradient = VectorXd::Unit(4, 3);
+    return constraint_tower(s);
+  };
+  const CadResult graded = tower(1e-20);
+  EXPECT_TRUE(!graded.certain.yes() || (graded.consistent && graded.solution_rank == 0));  // never certain and wrong
+  EXPECT_FALSE(graded.certain.yes());
+  const CadResult plain = tower(1);
+  ASSERT_TRUE(plain.certain.yes());
+  EXPECT_TRUE(plain.consistent);
+  EXPECT_EQ(plain.solution_rank, 0);
+  MatrixXd w = MatrixXd::Zero(4, 4);
+  w(0, 2) = 1, w(2, 0) = -1, w(1, 3) = 1e-20, w(3, 1) = -1e-20;
+  EXPECT_FALSE(decide_rank(w, -1, Options{}).certain.yes());  // the one decision, on the caller's matrix: assessed too
 }
 
 // A tower that ends empty keeps the shape cad.hpp documents for every step's equations, [a | b] of

@@ -7,7 +7,8 @@
 namespace dcad::fast {
 
 AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constraints, const std::vector<bool>& primary,
-                                       const Options& opt) {
+                                       const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w, constraints});
   const int n = static_cast<int>(w.rows());
   if (static_cast<Eigen::Index>(primary.size()) != constraints.rows())
     throw std::invalid_argument("adapted_constraints: expected one primary flag per constraint, found " +
@@ -73,18 +74,21 @@ FoliatedEmbedding tangent_cotangent_embedding(const PontryaginInput& in, const O
   return f;
 }
 
-LinearSystem foliated_system(const FoliatedEmbedding& f, const Options& opt) {
+LinearSystem foliated_system(const FoliatedEmbedding& f, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.omega, f.hessian, f.primary, f.leaf, f.gradient});
   MatrixXd both(f.primary.rows() + f.leaf.rows(), f.primary.cols());
   both << f.primary, f.leaf;
   return {dirac_from_distribution(kernel(both.leftCols(f.omega.rows()), opt), f.omega), f.hessian, f.gradient, 0.0};
 }
 
-CadResult foliated_tower(const FoliatedEmbedding& f, const Options& opt) {
+CadResult foliated_tower(const FoliatedEmbedding& f, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.omega, f.hessian, f.primary, f.leaf, f.gradient});
   return constraint_tower(foliated_system(f, opt), opt, f.primary);
 }
 
 AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary, const MatrixXd& leaf,
-                                    const Options& opt) {
+                                    const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w, primary, secondary, leaf});
   AdaptedToPrimary out;
   out.constraints.resize(primary.rows() + secondary.rows() + leaf.rows(), primary.cols());
   out.constraints << primary, secondary, leaf;

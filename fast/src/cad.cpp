@@ -33,7 +33,8 @@ LinearSystem pontryagin_energy(const PontryaginInput& in) {
   return s;
 }
 
-LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt) {
+LinearSystem pontryagin_system(const PontryaginInput& in, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {in.k, in.vv, in.qv, in.qq, in.q, in.v});
   LinearSystem s = pontryagin_energy(in);  // E = p·v − L, and the input's checks
   const int n = static_cast<int>(in.vv.rows());
   const Subspace delta = in.k.rows() ? kernel(in.k, opt) : Subspace::whole(n);
@@ -161,7 +162,18 @@ DOrthogonal d_orthogonal(const Frame& f, const MatrixXd& a, const Options& opt, 
 
 }  // namespace
 
-CadResult constraint_tower(const LinearSystem& s, const Options& opt, const MatrixXd& initial) {
+namespace {
+/// The given values of a start point, assessed as a caller's data (absent values are no data).
+Options assessed_given(const Options& opt, const std::vector<std::optional<double>>& given) {
+  VectorXd g = VectorXd::Zero(static_cast<Eigen::Index>(given.size()));
+  for (std::size_t i = 0; i < given.size(); ++i)
+    if (given[i]) g(static_cast<Eigen::Index>(i)) = *given[i];
+  return assessed(opt, {g});
+}
+}  // namespace
+
+CadResult constraint_tower(const LinearSystem& s, const Options& opt_in, const MatrixXd& initial) {
+  const Options opt = assessed(opt_in, {dirac_data(s.d), s.hessian, s.gradient, initial});
   const int n = s.d.n;
   require_finite(s.hessian, "constraint_tower");
   require_finite(s.gradient, "constraint_tower");
@@ -233,7 +245,8 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt, const Matr
   return out;
 }
 
-ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords, const Options& opt) {
+ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(s.d), s.hessian, s.gradient});
   if (!r.consistent) throw std::invalid_argument("reduced_equations: expected a consistent system, found M_c empty");
   const int n = s.d.n;
   const MatrixXd b = r.final_step().m.direction.columns();  // n × m
@@ -295,7 +308,8 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
 
 VectorXd energy_differential(const LinearSystem& s, const VectorXd& x) { return s.hessian * x + s.gradient; }
 
-AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const VectorXd& x, const Options& opt) {
+AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const VectorXd& x, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(s.d), s.hessian, s.gradient});  // x: a point of M_c, not data
   const int n = s.d.n;
   // ẋ = B w (B: basis of T M_c); (B w, dE) ∈ D ⇔ Γ_v B w = −Γ_α dE for the equations Γ of D
   const MatrixXd& b = r.final_step().m.direction.columns();
@@ -313,7 +327,8 @@ AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const Vecto
   return out;
 }
 
-InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt) {
+InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt_in) {
+  const Options opt = assessed_given(opt_in, given);
   const int n = static_cast<int>(given.size());
   std::vector<int> rows_of_level;  // equations of the tower, level by level
   int total = 0;

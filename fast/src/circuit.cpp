@@ -97,7 +97,8 @@ void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
 
 bool is_physical(const CircuitGraph& g) { return lc::physical(g.branches); }
 
-CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt) {
+CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt_in) {
+  const Options opt = assessed_values(opt_in, g);
   validate(g);
   CircuitTower t;
   static_cast<lc::Tower<double>&>(t) = lc::first_step(g.nodes, g.branches);  // M_1 and the loops (dcad/lc_graph.hpp)

@@ -32,7 +32,8 @@ void record(CircuitMotion& out, const RankDecision& d) {
 
 }  // namespace
 
-CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::vector<int> coords, const Options& opt) {
+CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::vector<int> coords, const Options& opt_in) {
+  const Options opt = assessed_values(opt_in, g);
   const std::size_t n = g.branches.size();
   const Eigen::Index ni = static_cast<Eigen::Index>(n);
   CircuitMotion out;

@@ -17,7 +17,8 @@ Subspace orthonormalize(const MatrixXd& cols) {
 }
 }  // namespace
 
-DiracCheck dirac_defect(const DiracStructure& d, const Options& opt) {
+DiracCheck dirac_defect(const DiracStructure& d, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   if (d.d.ambient() != 2 * d.n) return {no, "a subspace of R^" + std::to_string(2 * d.n)};
   if (d.d.dim() != d.n)
     return {Truth::decided(false, d.d.certain()), "dim D = " + std::to_string(d.d.dim()) + " (a Dirac structure on R^" +
@@ -29,17 +30,20 @@ DiracCheck dirac_defect(const DiracStructure& d, const Options& opt) {
   return {Truth::decided(true, r.certain & d.d.certain()), ""};
 }
 
-Truth require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt) {
+Truth require_dirac(const DiracStructure& d, const std::string& fn, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   const DiracCheck c = dirac_defect(d, opt);
   if (c.valid.no()) throw std::invalid_argument(fn + ": expected a Dirac structure (Lemma 4.1), found " + c.why);
   return c.valid;
 }
 
-DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt) {
+DiracStructure dirac_from_basis(const MatrixXd& rows, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {rows});
   if (rows.cols() % 2 != 0)
     throw std::invalid_argument("dirac_from_basis: expected rows (v, α) of even length 2n, found length " +
                                 std::to_string(rows.cols()));
   DiracStructure d{static_cast<int>(rows.cols() / 2), Subspace::span_columns(rows.transpose(), -1, opt)};
+  d.given = rows;
   d.d.and_certain(require_dirac(d, "dirac_from_basis", opt));
   return d;
 }
@@ -66,6 +70,7 @@ DiracStructure dirac_from_distribution(const Subspace& e, const MatrixXd& w) {
   cols.bottomLeftCorner(n, q.cols()) = q * (q.transpose() * w.transpose() * q);
   cols.bottomRightCorner(n, g.cols()) = g;
   DiracStructure d{n, orthonormalize(cols)};
+  d.given = w;
   d.d.and_certain(e.certain());
   return d;
 }
@@ -75,14 +80,18 @@ DiracStructure dirac_from_poisson(const MatrixXd& p) {
   const int n = static_cast<int>(p.rows());
   MatrixXd cols(2 * n, n);  // columns (P e_i, e_i)
   cols << p, MatrixXd::Identity(n, n);
-  return {n, orthonormalize(cols)};
+  DiracStructure d{n, orthonormalize(cols)};
+  d.given = p;
+  return d;
 }
 
-Subspace dirac_distribution(const DiracStructure& d, const Options& opt) {
+Subspace dirac_distribution(const DiracStructure& d, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   return Subspace::span_columns(d.v_part(), 1.0, opt).and_certain(d.d.certain());
 }
 
-AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Options& opt) {
+AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});  // x: a point, its scale the right-hand side's
   // (x, α) ∈ D  ⇔  x = V c, α = A c for some c.
   const AffineSubspace c = solve(d.v_part(), x, opt, 1.0);  // v-part of an orthonormal basis
   AffineSubspace out;
@@ -93,12 +102,14 @@ AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Opti
   return out;
 }
 
-Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt) {
+Subspace dirac_flat(const DiracStructure& d, const Subspace& w, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);  // {c : V c ∈ W}
   return Subspace::span_columns(d.alpha_part() * c.columns(), 1.0, opt).and_certain(c.certain() & d.d.certain());
 }
 
-PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
+PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   Subspace e = dirac_distribution(d, opt);
   const MatrixXd q = e.columns();
   // α_i with (q_i, α_i) ∈ D: c_i = V⁺ q_i (q_i ∈ im V), α_i = A c_i;  G_ij = α_i(q_j).
@@ -112,17 +123,20 @@ PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt) {
   return {e, q * g * q.transpose(), std::max(1.0, norm2(alphas))};
 }
 
-Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt) {
+Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);
   return Subspace::solutions((d.alpha_part() * c.columns()).transpose(), 1.0, opt).and_certain(c.certain() & d.d.certain());
 }
 
-Truth is_presymplectic(const DiracStructure& d, const Options& opt) {
+Truth is_presymplectic(const DiracStructure& d, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   const Subspace e = dirac_distribution(d, opt);
   return Truth::decided(e.dim() == d.n, e.certain());
 }
 
-Truth is_poisson(const DiracStructure& d, const Options& opt) {
+Truth is_poisson(const DiracStructure& d, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(d)});
   const Subspace a = Subspace::span_columns(d.alpha_part(), 1.0, opt).and_certain(d.d.certain());
   return Truth::decided(a.dim() == d.n, a.certain());
 }

@@ -7,13 +7,15 @@
 
 namespace dcad::fast {
 
-MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt, Truth& certain) {
+MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt_in, Truth& certain) {
+  const Options opt = assessed(opt_in, {w});
   certain &= require_symplectic(w, "poisson_tensor", opt);
   return w.transpose().fullPivLu().inverse();
 }
 
 
-DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt) {
+DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});
   const int n = static_cast<int>(s.omega.rows());
   if (s.primary.cols() != n + 1)
     throw std::invalid_argument("dirac_bergmann: expected primary constraint rows [a | b] of width " + std::to_string(n + 1) +
@@ -57,7 +59,8 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
   return out;
 }
 
-AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt) {
+AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});  // x: a point of M_c, not data
   const int n = static_cast<int>(s.omega.rows());
   Truth nondegenerate = yes;
   const MatrixXd j = poisson_tensor(s.omega, opt, nondegenerate), a = r.constraints.leftCols(n), p = s.primary.leftCols(n);
@@ -71,7 +74,8 @@ AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult
   return out;
 }
 
-ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt) {
+ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constraints, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w, constraints});
   const int n = static_cast<int>(w.rows());
   ConstraintClasses out;
   const MatrixXd j = poisson_tensor(w, opt, out.certain);
@@ -96,11 +100,13 @@ ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constr
   return out;
 }
 
-LinearSystem gotay_nester_system(const ConstrainedSystem& s, const Options& opt) {
+LinearSystem gotay_nester_system(const ConstrainedSystem& s, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});
   return {dirac_from_distribution(kernel(s.primary.leftCols(s.omega.rows()), opt), s.omega), s.hessian, s.gradient, 0.0};
 }
 
-CadResult gotay_nester(const ConstrainedSystem& s, const Options& opt) {
+CadResult gotay_nester(const ConstrainedSystem& s, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});
   return constraint_tower(gotay_nester_system(s, opt), opt, s.primary);
 }
 

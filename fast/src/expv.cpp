@@ -79,6 +79,13 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
         happy = true;
         t_step = tau - t_now;
         exps(mb);
+        // exp(τH) overflows for a stiff H over a long τ (its transient grows before it decays): shorter steps
+        for (int shrink = 0; shrink < 60 && !(f.allFinite() && fint.allFinite()); ++shrink) {
+          t_step /= 8;
+          exps(mb);
+        }
+        if (!(f.allFinite() && fint.allFinite()))
+          throw std::runtime_error("the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing source)");
         err = 0;
         break;
       }
@@ -100,8 +107,12 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
         if (phi1 > 10 * phi2) err = phi2, xm = 1.0 / k;
         else if (phi1 > phi2) err = phi1 * phi2 / (phi1 - phi2), xm = 1.0 / k;
         else err = phi1, xm = 1.0 / (k - 1);
-        if (!std::isfinite(err) || !f.allFinite() || !fint.allFinite())
-          throw std::runtime_error("the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing source)");
+        if (!std::isfinite(err) || !f.allFinite() || !fint.allFinite()) {  // too long a step for a stiff H: a shorter one
+          if (reject == 49 || !(t_step / 8 > 0))
+            throw std::runtime_error("the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing source)");
+          t_step /= 8;
+          continue;
+        }
         if (err <= delta * t_step * opt_.tol) {
           accepted = true;
           break;

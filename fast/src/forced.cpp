@@ -76,7 +76,8 @@ Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, doubl
 
 }  // namespace
 
-ForcedResult forced_tower(const ForcedSystem& f, const Options& opt) {
+ForcedResult forced_tower(const ForcedSystem& f, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {dirac_data(f.s.d), f.s.hessian, f.s.gradient, f.force, f.source_force, f.shift, f.given_conditions});
   const int n = f.s.d.n, m = f.sources;
   if (f.source_force.rows() != n || f.source_force.cols() != m || f.shift.rows() != n || f.shift.cols() != m)
     throw std::invalid_argument("forced_tower: expected B and Z of shape N×m, found other shapes");

@@ -147,7 +147,7 @@ bool decide_by_qr(const Eigen::ColPivHouseholderQR<MatrixXd>& qr, const MatrixXd
   d.largest = p ? std::abs(f(0, 0)) : 0.0;
   for (Eigen::Index i = 0; i < p; ++i) d.singular_values.push_back(std::abs(f(i, i)));
   d.gap = d.dropped_upper > 0 ? d.kept_lower / d.dropped_upper : std::numeric_limits<double>::infinity();
-  if (k < p && !(opt.input_exact && opt.input_well_scaled)) d.certain = unknown;
+  if (k < p && !deficiency_provable(opt)) d.certain = unknown;
   return true;
 }
 
@@ -199,12 +199,13 @@ RankDecision decide_with_sigma(const MatrixXd& a, const VectorXd& s, double scal
 }  // namespace
 
 RankDecision decide_rank(const MatrixXd& a, const VectorXd& s, double scale, const Options& opt) {
-  RankDecision d = decide_with_sigma(a, s, scale, opt);
+  RankDecision d = decide_with_sigma(a, s, scale, assessed(opt, {a}));  // a caller's matrix: assessed first
   return counted(d, opt);
 }
 
 RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b, const VectorXd& sigma_b,
-                                double scale_b, const Options& opt) {
+                                double scale_b, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {a, b});
   RankDecision d = RankRevealing(a, scale_a, opt, false).decision();
   d.rank -= offset;
   const RankDecision db = decide_with_sigma(b, sigma_b, scale_b, opt);
@@ -220,7 +221,7 @@ RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, c
 }
 
 RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt, bool count) {
-  decide(a, scale, opt);
+  decide(a, scale, assessed(opt, {a}));  // a caller's matrix (unassessed options): assessed first
   if (count) counted(d_, opt);
 }
 
@@ -237,7 +238,7 @@ void RankRevealing::decide(const MatrixXd& a, double scale, const Options& opt) 
       d_.by_qr = d_.by_norm = true;  // Q = I: no reflectors
       d_.largest = d_.dropped_upper = frobenius;
       d_.kept_lower = d_.gap = std::numeric_limits<double>::infinity();
-      d_.certain = opt.input_exact && opt.input_well_scaled ? yes : unknown;
+      d_.certain = deficiency_provable(opt) ? yes : unknown;
       m_ = m;
       n_ = a.cols();
       qr_ = MatrixXd::Zero(m, a.cols());
@@ -321,7 +322,7 @@ RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double sca
     if (x > d.zero_threshold && x <= d.nonzero_threshold) d.certain = unknown;
   }
   const bool deficient = d.rank < static_cast<int>(d.singular_values.size());
-  if (deficient && !(opt.input_exact && opt.input_well_scaled)) d.certain = unknown;
+  if (deficient && !deficiency_provable(opt)) d.certain = unknown;
   const double inf = std::numeric_limits<double>::infinity();
   const double above = d.rank > 0 ? d.singular_values[d.rank - 1] : inf;
   const double below = deficient ? d.singular_values[d.rank] : 0.0;
@@ -362,16 +363,25 @@ double lowest_digit(double x) {
 }
 }  // namespace
 
-void assess_input(const MatrixXd& a, Options& opt) {
+Options assessed(const Options& opt, std::initializer_list<Eigen::Ref<const MatrixXd>> data) {
+  if (opt.input_assessed) return opt;
+  Options out = opt;
+  for (const auto& a : data) assess_input(a, out);
+  out.input_assessed = true;
+  return out;
+}
+
+void assess_input(const Eigen::Ref<const MatrixXd>& a, Options& opt) {
   // the magnitudes present in the data: each entry's largest and smallest binary digit (an entry
   // 1 + 2^-40 carries 2^-40 as much as an entry 2^-40 does, and can cancel down to it)
   double lo = 1, hi = 1;  // 1 is in the range: D pairs vectors (unit 1 in its basis) with covectors
-  for (Eigen::Index i = 0; i < a.size(); ++i) {
-    const double x = std::abs(a.data()[i]);
-    if (x == 0 || !std::isfinite(x)) continue;
-    lo = std::min(lo, lowest_digit(x));
-    hi = std::max(hi, x);
-  }
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      const double x = std::abs(a(i, j));
+      if (x == 0 || !std::isfinite(x)) continue;
+      lo = std::min(lo, lowest_digit(x));
+      hi = std::max(hi, x);
+    }
   if (hi > 0 && lo < hi * opt.nonzero_factor) opt.input_well_scaled = false;
 }
 

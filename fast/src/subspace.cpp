@@ -14,7 +14,8 @@ void require_same_ambient(const Subspace& u, const Subspace& w, const char* fn) 
 }
 }  // namespace
 
-Subspace Subspace::span_columns(const MatrixXd& cols, double scale, const Options& opt) {
+Subspace Subspace::span_columns(const MatrixXd& cols, double scale, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {cols});
   require_finite(cols, "Subspace::span");
   const RankRevealing f(cols, scale, opt);
   Subspace out(f.range(), f.decision().certain);
@@ -22,12 +23,14 @@ Subspace Subspace::span_columns(const MatrixXd& cols, double scale, const Option
   return out;
 }
 
-Subspace Subspace::span(const MatrixXd& rows, double scale, const Options& opt) {
+Subspace Subspace::span(const MatrixXd& rows, double scale, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {rows});
   require_finite(rows, "Subspace::span");
   return span_columns(rows.transpose(), scale, opt);
 }
 
-Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Options& opt) {
+Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {equations});
   require_finite(equations, "Subspace::solutions");
   const RankRevealing f(equations.transpose(), scale, opt);  // ker A = (im Aᵀ)^⊥
   Subspace out(f.corange(), f.decision().certain);
@@ -35,7 +38,9 @@ Subspace Subspace::solutions(const MatrixXd& equations, double scale, const Opti
   return out;
 }
 
-Subspace sum(const Subspace& u, const Subspace& w, const Options& opt) {
+Subspace sum(const Subspace& u, const Subspace& w, const Options& opt_in) {
+  Options opt = opt_in;  // subspaces carry their own certainty (their spans were assessed)
+  opt.input_assessed = true;
   require_same_ambient(u, w, "sum");
   MatrixXd both(u.ambient(), u.dim() + w.dim());
   both << u.columns(), w.columns();
@@ -46,7 +51,9 @@ Subspace annihilator(const Subspace& u) {
   return Subspace::from_orthonormal_columns(orthogonal_complement(u.columns()), u.certain());
 }
 
-Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt) {
+Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt_in) {
+  Options opt = opt_in;  // subspaces carry their own certainty (their spans were assessed)
+  opt.input_assessed = true;
   require_same_ambient(u, w, "intersection");
   return annihilator(sum(annihilator(u), annihilator(w), opt));
 }
@@ -55,7 +62,8 @@ Subspace kernel(const MatrixXd& a, const Options& opt) { return Subspace::soluti
 
 Subspace image(const MatrixXd& a, const Options& opt) { return Subspace::span_columns(a, -1, opt); }
 
-Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt, double scale) {
+Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt_in, double scale) {
+  const Options opt = assessed(opt_in, {a});
   if (a.rows() != w.ambient())
     throw std::invalid_argument("preimage: expected a map into R^" + std::to_string(w.ambient()) + ", found a " +
                                 std::to_string(a.rows()) + "x" + std::to_string(a.cols()) + " matrix");
@@ -63,20 +71,24 @@ Subspace preimage(const MatrixXd& a, const Subspace& w, const Options& opt, doub
       .and_certain(w.certain());
 }
 
-Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt) {
+Subspace map(const MatrixXd& a, const Subspace& u, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {a});
   if (a.cols() != u.ambient())
     throw std::invalid_argument("map: expected a map from R^" + std::to_string(u.ambient()) + ", found a " +
                                 std::to_string(a.rows()) + "x" + std::to_string(a.cols()) + " matrix");
   return Subspace::span_columns(a * u.columns(), norm2(a), opt).and_certain(u.certain());
 }
 
-Truth contains(const Subspace& u, const Subspace& w, const Options& opt) {
+Truth contains(const Subspace& u, const Subspace& w, const Options& opt_in) {
+  Options opt = opt_in;  // subspaces carry their own certainty (their spans were assessed)
+  opt.input_assessed = true;
   require_same_ambient(u, w, "contains");
   const Subspace s = sum(u, w, opt);
   return Truth::decided(s.dim() == u.dim(), s.certain());
 }
 
-Truth contains(const Subspace& u, const VectorXd& x, const Options& opt) {
+Truth contains(const Subspace& u, const VectorXd& x, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {x});
   if (x.size() != u.ambient())
     throw std::invalid_argument("contains: expected a vector of R^" + std::to_string(u.ambient()) +
                                 ", found length " + std::to_string(x.size()));
@@ -93,7 +105,8 @@ double largest_principal_angle_sin(const Subspace& u, const Subspace& w) {
   return norm2(w.columns() - u.columns() * (u.columns().transpose() * w.columns()));
 }
 
-AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt, double scale, double rhs_scale) {
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt_in, double scale, double rhs_scale) {
+  const Options opt = assessed(opt_in, {a, b});
   require_finite(a, "solve");
   require_finite(b, "solve");
   AffineSubspace out;

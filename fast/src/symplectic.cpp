@@ -16,13 +16,15 @@ void require_skew(const MatrixXd& w, const std::string& fn) {
   if (w != -w.transpose()) throw std::invalid_argument(fn + ": expected a skew matrix (W = -Wᵀ), found one that is not");
 }
 
-Truth is_symplectic(const MatrixXd& w, const Options& opt) {
+Truth is_symplectic(const MatrixXd& w, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
   require_skew(w, "is_symplectic");
   const RankDecision d = decide_rank(w, -1, opt);
   return Truth::decided(d.rank == w.rows(), d.certain);
 }
 
-Truth require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt) {
+Truth require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
   const Truth nondegenerate = is_symplectic(w, opt);
   if (nondegenerate.no()) throw std::invalid_argument(fn + ": expected a nondegenerate form, found " + decide_rank(w, -1, Options()).describe());
   return nondegenerate;
@@ -36,7 +38,8 @@ VectorXd sharp(const MatrixXd& w, const VectorXd& alpha) {
   return w.transpose().fullPivLu().solve(alpha);
 }
 
-Subspace symplectic_complement(const MatrixXd& w, const Subspace& v, const Options& opt) {
+Subspace symplectic_complement(const MatrixXd& w, const Subspace& v, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
   require_skew(w, "symplectic_complement");
   return Subspace::solutions((w * v.columns()).transpose(), norm2(w), opt).and_certain(v.certain());
 }
@@ -49,7 +52,8 @@ PresymplecticForm restrict_form(const MatrixXd& w, const Subspace& v) {
   return {v, w, norm2(w)};
 }
 
-PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, const Options& opt) {
+PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.matrix});
   const Truth in = contains(f.space, u, opt);
   if (in.no()) throw std::invalid_argument("restrict_form: expected a subspace of the form's domain, found one outside it");
   PresymplecticForm g{u, f.matrix, f.scale};
@@ -59,13 +63,15 @@ PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, c
 
 MatrixXd gram(const PresymplecticForm& f) { return f.space.columns().transpose() * f.matrix * f.space.columns(); }
 
-RankDecision form_rank(const PresymplecticForm& f, const Options& opt) {
+RankDecision form_rank(const PresymplecticForm& f, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.matrix});
   RankDecision d = decide_rank(gram(f), f.scale, opt);
   d.certain &= f.space.certain();
   return d;
 }
 
-Subspace orthogonal(const PresymplecticForm& f, const Subspace& w, const Options& opt) {
+Subspace orthogonal(const PresymplecticForm& f, const Subspace& w, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.matrix});
   // v = Q c with ω(Q c, w_j) = cᵀ Qᵀ M w_j = 0 for all j.
   const MatrixXd& q = f.space.columns();
   const Subspace c = Subspace::solutions((q.transpose() * f.matrix * w.columns()).transpose(), f.scale, opt);
@@ -74,12 +80,14 @@ Subspace orthogonal(const PresymplecticForm& f, const Subspace& w, const Options
 
 Subspace form_kernel(const PresymplecticForm& f, const Options& opt) { return orthogonal(f, f.space, opt); }
 
-Subspace flat(const PresymplecticForm& f, const Subspace& w, const Options& opt) {
+Subspace flat(const PresymplecticForm& f, const Subspace& w, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.matrix});
   const MatrixXd images = f.matrix.transpose() * w.columns();  // columns: y ↦ wᵀ M y
   return sum(Subspace::span_columns(images, f.scale, opt), annihilator(f.space), opt).and_certain(w.certain());
 }
 
-NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Options& opt) {
+NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
   const Truth nondegenerate = require_symplectic(w, "normal_form_basis", opt);
   const Subspace comp = symplectic_complement(w, v, opt);
   MatrixXd rest = comp.columns();  // columns
@@ -117,7 +125,8 @@ NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Op
   return out;
 }
 
-RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const VectorXd& beta, const Options& opt) {
+RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const VectorXd& beta, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w, beta});
   const Truth nondegenerate = require_symplectic(w, "solve_restricted", opt);
   require_finite(beta, "solve_restricted");
   const MatrixXd gamma = annihilator(v).columns();                // columns γ_i
@@ -133,7 +142,8 @@ RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const 
   return out;
 }
 
-AffineSubspace solve_on_subspace(const PresymplecticForm& f, const VectorXd& beta, const Options& opt) {
+AffineSubspace solve_on_subspace(const PresymplecticForm& f, const VectorXd& beta, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.matrix, beta});
   const MatrixXd& q = f.space.columns();
   const AffineSubspace c = solve(gram(f).transpose(), q.transpose() * beta, opt, f.scale);
   AffineSubspace out;

@@ -193,7 +193,7 @@ int export_waveforms(const std::string& dir_name, std::ostream& log) {
     std::string how;
     if (enc.ok) {
       for (std::size_t k = 0; k < names.size(); ++k)
-        for (std::size_t i = 0; i < times.size(); ++i) value[k][i] = enc.right[k][i].mid, radius[k][i] = enc.right[k][i].rad;
+        for (std::size_t i = 0; i < times.size(); ++i) value[k][i] = enc.right[k][i].mid, radius[k][i] = io::printed_radius(enc.right[k][i].mid, enc.right[k][i].rad);
       how = "enclosures (certified), radii in " + p.stem().string() + ".bounds.csv";
     } else {
       std::ostringstream quiet;

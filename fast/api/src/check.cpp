@@ -797,6 +797,7 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
 
 Checked checked(const std::string& result_file, const std::string* text, const io::Problem& p, std::size_t points) {
   return guarded(p, [&] {
+    io::validate(p);
     const json r = read_result(result_file, text);
     Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points)
                 : p.form == io::Form::dae        ? check_dae(result_file, r, p)

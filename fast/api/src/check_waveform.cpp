@@ -7,6 +7,7 @@
 #include "sparse_flow.hpp"
 
 #include "dcad/reference/pipeline/forced.hpp"
+#include "dcad/reference/pipeline/initial_state.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,8 @@
 namespace dcad::api {
 
 namespace {
+
+std::size_t nb_of(const io::Netlist& d) { return d.rlc.branches.size(); }
 
 std::string lower(std::string s) {
   for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
@@ -327,12 +330,16 @@ WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std
 }
 
 WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+  io::validate(tr);
+  io::validate(p);
   for (std::size_t k = 0; k < tr.skipped.size() && k < 5; ++k) log << "note: skipped a simulator's message inside the table at " << tr.skipped[k] << "\n";
   if (tr.skipped.size() > 5) log << "note: … and " << tr.skipped.size() - 5 << " more messages skipped\n";
   if (p.form != io::Form::netlist)
     throw io::InputError(p.netlist.file.empty() ? tr.file + ": check: expected a netlist as DECK for a waveform, found a case file"
                                                 : p.netlist.file + ": check: expected a netlist for a waveform");
   const io::Netlist& deck = p.netlist;
+  if (!deck.indefinite_inductance.empty())
+    throw io::InputError(deck.indefinite_inductance + "; check: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
   if (!(opt.rtol >= 0) || !(opt.atol >= 0)) throw UsageError("--rtol and --atol: expected numbers >= 0");
   if (tr.names.empty())
     throw io::InputError(tr.file + ": expected at least one vector besides time (" + tr.format + "), found none: nothing to check" +
@@ -358,10 +365,12 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
       rad_l(nv, std::vector<double>(np));
   std::vector<bool> two_sided(np, false);
   long jumps = 0;
+  std::vector<std::string> jumped;  // the variables that jump at t = 0 (q_C, v_L, p_L)
   std::vector<double> uncertainty(nv, 0.0);
+  double circuit_kind_scale[4] = {0, 0, 0, 0};  // the graph route's: over every node and branch of the circuit
   if (graph) {
     SparseFlow flow(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
-    double kind_scale[4] = {0, 0, 0, 0};  // the largest potential, charge, current, flux linkage over the run
+    double* kind_scale = circuit_kind_scale;  // the largest potential, charge, current, flux linkage over the run
     for (std::size_t i = 0; i < np; ++i) {
       const double t = tr.time[i];
       flow.advance_to(t);
@@ -381,13 +390,28 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
     }
     out.error_estimate = flow.error_estimate();
     jumps = flow.jumps();
+    jumped = flow.jumped();
+    if (nb_of(deck) <= reference::pipeline::kForcedBranches) {  // small enough for the exact jump: decided in rationals
+      namespace pl = reference::pipeline;
+      try {
+        const pl::InitialState st = pl::initial_state(
+            deck, opt.initial == Initial::op ? pl::InitialRule::op : opt.initial == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck,
+            p.linear.variables);
+        if (st.computed) {
+          jumped.clear();
+          for (const pl::Jump& j : st.jumps) jumped.push_back(j.variable);
+          jumps = static_cast<long>(jumped.size());
+        }
+      } catch (const std::exception&) {  // the flow's own decision stands (its start was computed the same way)
+      }
+    }
     // dcad's own uncertainty: the Krylov estimate (at least 64 ε for the rounding of the outputs) of
     // the largest value of the vector's kind; a potential difference v(a,b) counts both ends
     for (std::size_t k = 0; k < nv; ++k)
       uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
                        (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
   } else {
-    netlist_start(deck, p.linear.variables, opt.initial, log, &jumps);
+    netlist_start(deck, p.linear.variables, opt.initial, log, &jumps, &jumped);
   }
   // an enclosure wider than the double flow's own uncertainty (a stiff circuit, wrapping) does not
   // decide its vector: the double flow does, and the run is not certified
@@ -412,10 +436,23 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
         rad_r[k][i] = rad_l[k][i] = uncertainty[k];
       }
     }
-  double first_step = 0;  // the file's first time after 0
+  // the vectors a jump at t = 0 moves: a jumped charge, current or flux linkage by its branch; potentials and
+  // the currents of other branches (functions of the whole state) whenever anything jumps
+  std::vector<bool> touched(nv, false);
+  for (std::size_t k = 0; k < nv && !jumped.empty(); ++k) {
+    if (fs[k].kind == Functional::potential) {
+      touched[k] = true;
+      continue;
+    }
+    const auto& br = deck.rlc.branches[fs[k].branch];
+    if (fs[k].kind == Functional::current && br.kind != reference::RlcKind::inductor) touched[k] = true;
+    for (const char* pre : {"q_", "v_", "p_"})
+      touched[k] = touched[k] || std::find(jumped.begin(), jumped.end(), pre + br.name) != jumped.end();
+  }
+  out.jumped = jumped;
   for (double t : tr.time)
     if (t > 0) {
-      first_step = t;
+      out.first_after_zero = t;
       break;
     }
   out.certified = enc.ok && wide.empty();
@@ -426,18 +463,34 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
                     : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
                           " of the state): values, not enclosures; no enclosure because " + enc.why;
   constexpr double u = std::numeric_limits<double>::epsilon();
+  // the CONTRACT's scale of each vector (its largest |exact|) lies in [lo, hi]; a vector whose largest |exact|
+  // is below 1e-12 of the largest of its kind (0 by symmetry, or without a source) is held to its kind's
+  std::vector<double> own(nv, 0.0), own_lo(nv, 0.0), own_hi(nv, 0.0);
+  double kind_lo[4] = {0, 0, 0, 0}, kind_hi[4] = {0, 0, 0, 0};
+  for (int q = 0; q < 4; ++q) kind_lo[q] = kind_hi[q] = circuit_kind_scale[q];  // the whole circuit's, where the flow gives it
+  for (std::size_t k = 0; k < nv; ++k) {
+    for (std::size_t i = 0; i < np; ++i) {
+      own[k] = std::max({own[k], std::abs(right[k][i]), std::abs(left[k][i])});
+      own_hi[k] = std::max({own_hi[k], std::abs(right[k][i]) + rad_r[k][i], std::abs(left[k][i]) + rad_l[k][i]});
+      own_lo[k] = std::max({own_lo[k], std::abs(right[k][i]) - rad_r[k][i], std::abs(left[k][i]) - rad_l[k][i]});
+    }
+    kind_lo[fs[k].kind] = std::max(kind_lo[fs[k].kind], own_lo[k]);
+    kind_hi[fs[k].kind] = std::max(kind_hi[fs[k].kind], own_hi[k]);
+  }
   for (std::size_t k = 0; k < nv; ++k) {
     WaveformVector v;
     v.name = tr.names[k];
     v.meaning = fs[k].meaning;
-    // the CONTRACT's scale (the largest |exact|) lies in [lo, hi]; so does each point's error
-    double scale_lo = 0, scale_hi = 0;
-    for (std::size_t i = 0; i < np; ++i) {
-      v.scale = std::max({v.scale, std::abs(right[k][i]), std::abs(left[k][i])});
-      scale_hi = std::max({scale_hi, std::abs(right[k][i]) + rad_r[k][i], std::abs(left[k][i]) + rad_l[k][i]});
-      scale_lo = std::max({scale_lo, std::abs(right[k][i]) - rad_r[k][i], std::abs(left[k][i]) - rad_l[k][i]});
-      v.exact_uncertainty = std::max({v.exact_uncertainty, rad_r[k][i], two_sided[i] ? rad_l[k][i] : 0.0});
+    double scale_lo = own_lo[k], scale_hi = own_hi[k];
+    v.scale = own[k];
+    const double klo = kind_lo[fs[k].kind], khi = kind_hi[fs[k].kind];
+    if (own_hi[k] < 1e-12 * klo) {  // certainly a vector near 0: its kind's scale
+      scale_lo = klo, scale_hi = khi, v.scale = std::max(own[k], klo);
+      v.kind_scale = true;
+    } else if (!(own_lo[k] >= 1e-12 * khi)) {  // either may hold: both
+      scale_lo = std::min(own_lo[k], klo), scale_hi = std::max(own_hi[k], khi);
     }
+    for (std::size_t i = 0; i < np; ++i) v.exact_uncertainty = std::max({v.exact_uncertainty, rad_r[k][i], two_sided[i] ? rad_l[k][i] : 0.0});
     const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u), tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
     bool first = true, within = true, beyond = false;
     for (std::size_t i = 0; i < np; ++i) {
@@ -447,9 +500,9 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
         v.max_error = HUGE_VAL, v.at = tr.time[i], v.exact = right[k][i], v.found = found;
         break;
       }
-      // after a jump onto M_c at t = 0 the simulator shows the state before it at t = 0 and smears its
-      // impulse over its first step: neither is compared
-      if (jumps > 0 && tr.time[i] <= first_step) {
+      // after a jump onto M_c at t = 0 (decided on the exact model) the simulator shows the state before it at
+      // t = 0: there, and only there, the vectors the jump moves are not compared
+      if (tr.time[i] <= 0 && touched[k]) {
         ++v.skipped_at_jump;
         continue;
       }
@@ -498,16 +551,19 @@ std::string waveform_text(const WaveformChecked& c, const std::string& waveform_
   for (const WaveformVector& v : c.vectors) wide = std::max(wide, v.name.size());
   for (const WaveformVector& v : c.vectors) {
     s << "  " << (v.agree ? "agrees    " : v.decided ? "DISAGREES " : "UNDECIDED ") << v.name << std::string(wide - v.name.size() + 1, ' ') << "largest error "
-      << io::float_text(v.max_error) << " (" << io::float_text(v.scale > 0 ? v.max_error / v.scale : 0.0) << " of " << io::float_text(v.scale)
+      << io::float_text(v.max_error) << " (" << io::float_text(v.scale > 0 ? v.max_error / v.scale : 0.0) << " of " << io::float_text(v.scale) << (v.kind_scale ? ", its kind's largest: the vector is 0 or nearly" : "")
       << ") at t = " << io::float_text(v.at) << ": exact " << io::float_text(v.exact) << ", found " << io::float_text(v.found)
       << (v.at_corner ? " (a source corner or t = 0: either one-sided value allowed)" : "") << "\n";
     if (!v.decided)
       s << "    dcad's own value is uncertain by " << io::float_text(v.exact_uncertainty)
         << (c.certified ? " (the largest radius of its enclosures)" : " (its error estimate times the largest value of this kind)")
         << ": it cannot tell this difference from the tolerance; not a proof either way (--atol above the uncertainty decides it)\n";
+    if (!v.agree && !c.jumped.empty() && v.at > 0 && v.at == c.first_after_zero)
+      s << "    the state jumps at t = 0 (" << c.jumped.front() << (c.jumped.size() > 1 ? ", …" : "")
+        << "): a simulator that smears the impulse over its first step shows it here; the exact waveform has no such step\n";
     if (v.skipped_at_jump)
-      s << "    t = 0 and the first step not compared (" << v.skipped_at_jump << (v.skipped_at_jump == 1 ? " point" : " points")
-        << "): the state jumps onto M_c at t = 0, and a simulator shows the state before it, then its impulse smeared over one step\n";
+      s << "    t = 0 not compared (" << v.skipped_at_jump << (v.skipped_at_jump == 1 ? " point" : " points")
+        << "): the state jumps onto M_c at t = 0 (decided on the exact model) and a simulator shows the state before it there\n";
   }
   if (c.format == "gnucap" && o.rtol < 1e-4)
     s << "  note: gnucap prints 5 significant digits unless told otherwise (.options numdgt=12): below --rtol 1e-4 its rounding alone may disagree\n";
@@ -519,11 +575,11 @@ std::string waveform_json(const WaveformChecked& c, const WaveformOptions& o) {
   nlohmann::json vs = nlohmann::json::array();
   for (const WaveformVector& v : c.vectors)
     vs.push_back({{"name", v.name},   {"meaning", v.meaning}, {"max_error", v.max_error}, {"at", v.at},
-                  {"exact", v.exact}, {"found", v.found},     {"scale", v.scale},         {"agree", v.agree},
-                  {"at_corner", v.at_corner}, {"not_compared_at_jump", v.skipped_at_jump}, {"exact_uncertainty", v.exact_uncertainty}, {"decided", v.decided}});
+                  {"exact", v.exact}, {"found", v.found},     {"scale", v.scale},         {"kind_scale", v.kind_scale}, {"agree", v.agree},
+                  {"at_corner", v.at_corner}, {"not_compared_at_jump", v.skipped_at_jump}, {"exact_uncertainty", io::printed_radius(v.exact, v.exact_uncertainty)}, {"decided", v.decided}});
   nlohmann::json j = {{"agree", c.agree},   {"certified", c.certified}, {"certified_reason", c.certified_reason},
                       {"format", c.format}, {"points", c.points},       {"rtol", o.rtol},
-                      {"atol", o.atol},     {"error_estimate", c.error_estimate}, {"vectors", vs}};
+                      {"atol", o.atol},     {"error_estimate", c.error_estimate}, {"jumped_at_zero", c.jumped}, {"vectors", vs}};
   return j.dump(2);
 }
 

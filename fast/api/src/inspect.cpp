@@ -4,6 +4,7 @@
 namespace dcad::api {
 
 Inspection inspect(const io::Problem& p, Backend backend) {
+  io::validate(p);
   if (p.form == io::Form::expression)
     throw io::InputError(p.file + ": /lagrangian: expected a linear case (dirac, pontryagin or constrained) here; the expression form is taken by "
                          "solve, check and simulate, found the expression form");

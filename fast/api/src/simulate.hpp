@@ -111,6 +111,7 @@ WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std
                                      double step);
 
 /// The state a netlist starts from (SPICE's rule, the jump onto M_c), told on `log`, as per-variable values.
-std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule, std::ostream& log, long* jumps = nullptr);
+std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule, std::ostream& log, long* jumps = nullptr,
+                                                       std::vector<std::string>* jumped = nullptr);
 
 }  // namespace dcad::api

@@ -21,12 +21,14 @@ std::vector<std::string> simulate_columns(const io::Problem& p) {
 /// The state a netlist starts from (SPICE's rule, the jump onto M_c), told on `log`; as per-variable
 /// values: charges, flux linkages and inductor currents fixed, the other currents left to M_c.
 std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule,
-                                                       std::ostream& log, long* jumps) {
+                                                       std::ostream& log, long* jumps, std::vector<std::string>* jumped) {
   namespace pl = reference::pipeline;
   const pl::InitialState st =
       pl::initial_state(deck, rule == Initial::op ? pl::InitialRule::op : rule == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck, variables);
   log << "initial state: " << st.rule << "\n";
   if (jumps) *jumps = static_cast<long>(st.jumps.size());
+  if (jumped)
+    for (const pl::Jump& j : st.jumps) jumped->push_back(j.variable);
   for (const std::string& note : st.notes) log << "note: " << note << "\n";
   for (const pl::Jump& j : st.jumps)
     log << "jump at t = 0: " << j.variable << " from " << io::float_text(j.from.convert_to<double>()) << " to "
@@ -109,6 +111,9 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
   return guarded(p, [&] {
+    io::validate(p);
+    if (p.form == io::Form::netlist && !p.netlist.indefinite_inductance.empty())
+      throw io::InputError(p.netlist.indefinite_inductance + "; simulate: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
     if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
       std::vector<std::string> all = simulate_columns(p);
       if (options.enclose) all.insert(all.end(), {"rad_q", "rad_v", "rad_p"});

@@ -594,7 +594,7 @@ Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const 
     for (std::size_t i = 0; i < n; ++i) {
       line += ',';
       put(x[i].mid);
-      rad[i / nb] = std::max(rad[i / nb], x[i].rad);
+      rad[i / nb] = std::max(rad[i / nb], io::printed_radius(x[i].mid, x[i].rad));  // the printed decimals hold the value
       scale[i / nb] = std::max(scale[i / nb], std::abs(x[i].mid));
     }
     for (int kind = 0; kind < 3; ++kind) {

@@ -58,6 +58,93 @@ sr::Network circuit_of(const io::Netlist& d) {
   return c;
 }
 
+namespace {
+
+/// Union–find over the nodes (ground −1 is node `nodes`).
+struct Components {
+  std::vector<std::size_t> up;
+  explicit Components(std::size_t n) : up(n + 1) {
+    for (std::size_t i = 0; i <= n; ++i) up[i] = i;
+  }
+  static std::size_t at(long node, std::size_t n) { return node < 0 ? n : static_cast<std::size_t>(node); }
+  std::size_t root(std::size_t i) {
+    while (up[i] != i) i = up[i] = up[up[i]];
+    return i;
+  }
+  void join(std::size_t a, std::size_t b) { up[root(a)] = root(b); }
+};
+
+/// The branches that are no bridge of the subgraph `in` (they lie on a loop of it): Tarjan's lowlink,
+/// iterative, parallel branches told apart by their index.
+std::vector<bool> on_loops(const sr::Network& c, const std::vector<bool>& in) {
+  const std::size_t n = c.nodes + 1, nb = c.branches.size();
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> adj(n);  // (other node, branch)
+  for (std::size_t b = 0; b < nb; ++b)
+    if (in[b]) {
+      const std::size_t u = Components::at(c.branches[b].from, c.nodes), v = Components::at(c.branches[b].to, c.nodes);
+      adj[u].push_back({v, b});
+      adj[v].push_back({u, b});
+    }
+  std::vector<long> disc(n, -1), low(n, 0);
+  std::vector<bool> bridge(nb, false);
+  long clock = 0;
+  struct Frame {
+    std::size_t node, via, next;
+  };
+  for (std::size_t s = 0; s < n; ++s) {
+    if (disc[s] >= 0) continue;
+    std::vector<Frame> stack{{s, nb, 0}};
+    disc[s] = low[s] = clock++;
+    while (!stack.empty()) {
+      Frame& f = stack.back();
+      if (f.next < adj[f.node].size()) {
+        const auto [w, b] = adj[f.node][f.next++];
+        if (b == f.via) continue;
+        if (disc[w] < 0) {
+          disc[w] = low[w] = clock++;
+          stack.push_back({w, b, 0});
+        } else {
+          low[f.node] = std::min(low[f.node], disc[w]);
+        }
+        continue;
+      }
+      const Frame done = f;
+      stack.pop_back();
+      if (!stack.empty()) {
+        Frame& parent = stack.back();
+        low[parent.node] = std::min(low[parent.node], low[done.node]);
+        if (low[done.node] > disc[parent.node]) bridge[done.via] = true;
+      }
+    }
+  }
+  std::vector<bool> out(nb, false);
+  for (std::size_t b = 0; b < nb; ++b) out[b] = in[b] && !bridge[b];
+  return out;
+}
+
+}  // namespace
+
+std::vector<bool> jump_places(const sr::Network& c) {
+  const std::size_t nb = c.branches.size();
+  std::vector<bool> cv(nb), out(nb, false);
+  for (std::size_t b = 0; b < nb; ++b) {
+    const rlc::Kind k = c.branches[b].kind;
+    cv[b] = k == rlc::Kind::capacitor || k == rlc::Kind::voltage || k == rlc::Kind::wire;
+  }
+  const std::vector<bool> loop = on_loops(c, cv);
+  Components rest(c.nodes);  // the branches that are neither inductors nor current sources
+  for (const sr::Element& e : c.branches)
+    if (e.kind != rlc::Kind::inductor && e.kind != rlc::Kind::current)
+      rest.join(Components::at(e.from, c.nodes), Components::at(e.to, c.nodes));
+  for (std::size_t b = 0; b < nb; ++b) {
+    const sr::Element& e = c.branches[b];
+    if (e.kind == rlc::Kind::capacitor) out[b] = loop[b];
+    if (e.kind == rlc::Kind::inductor)
+      out[b] = rest.root(Components::at(e.from, c.nodes)) != rest.root(Components::at(e.to, c.nodes));
+  }
+  return out;
+}
+
 bool sparse_route_takes(const io::Netlist& deck) { return reference::pipeline::graph_route_holds(deck.rlc); }
 
 SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial initial, double step, double horizon, std::ostream& log)
@@ -128,13 +215,15 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
       if (circ_.branches[b].kind == rlc::Kind::inductor) iscale = std::max({iscale, std::abs(ib(bb)), std::abs(after.i(bb))});
     }
     long told = 0;
+    const std::vector<bool> movable = jump_places(circ_);  // a branch no loop or cutset can move keeps its value exactly
     for (std::size_t b = 0; b < n; ++b) {
       const auto bb = static_cast<Eigen::Index>(b);
       const bool cap = circ_.branches[b].kind == rlc::Kind::capacitor, ind = circ_.branches[b].kind == rlc::Kind::inductor;
-      if (!cap && !ind) continue;
+      if ((!cap && !ind) || !movable[b]) continue;
       const double from = cap ? qb(bb) : ib(bb), to = cap ? after.q(bb) : after.i(bb), scale = cap ? qscale : iscale;
       if (std::abs(to - from) <= 1e-12 * scale) continue;
       ++jumps_;
+      jumped_.push_back((cap ? "q_" : "v_") + circ_.branch_names[b]);
       if (told++ < 20)
         log << "jump at t = 0: " << (cap ? "q_" : "v_") << circ_.branch_names[b] << " from " << io::float_text(from) << " to " << io::float_text(to)
             << ", forced by " << (cap ? "KVL around a loop of capacitors and voltage sources (the charge of each node is kept)"

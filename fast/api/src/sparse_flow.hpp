@@ -20,6 +20,10 @@ namespace sr = dcad::fast::sparse_rlc;
 using Vec = Eigen::VectorXd;
 
 sr::Network circuit_of(const io::Netlist& d);
+/// The capacitors and inductors whose value can jump at t = 0 at all: a capacitor on a loop of capacitors,
+/// voltage sources and wires (KVL may move its charge), an inductor on a cutset of inductors and current
+/// sources (KCL may move its current).  Every other one keeps its value exactly, whatever double says.
+std::vector<bool> jump_places(const sr::Network& c);
 
 class SparseFlow {
  public:
@@ -43,6 +47,8 @@ class SparseFlow {
   bool corner(double t) const;
   /// How many capacitor charges and inductor currents jumped at t = 0.
   long jumps() const { return jumps_; }
+  /// Their variables (q_C, v_L), decided in double among the branches jump_places allows.
+  const std::vector<std::string>& jumped() const { return jumped_; }
 
   const sr::Network& network() const { return circ_; }
   const sr::Model& model() const { return *model_; }
@@ -64,6 +70,7 @@ class SparseFlow {
   std::size_t next_break_ = 0;
   double t_ = 0, max_norm_ = 0;
   long jumps_ = 0;
+  std::vector<std::string> jumped_;
   Vec state() const;
   void sources(double t, bool left, std::vector<double>& sig, std::vector<double>& dsig) const;
 };

@@ -25,6 +25,7 @@ io::Rational height(const io::Rational& x) {
 double resolution(const io::Rational& x) { return x == 0 ? 0.0 : io::Rational(abs(x) / height(x)).convert_to<double>(); }
 
 double to_double(const io::Rational& x, Options& opt) {
+  opt.input_assessed = true;  // this conversion is the assessment (of the exact values)
   const double d = x.convert_to<double>();
   if (!std::isfinite(d) || (d == 0 && x != 0))
     throw std::invalid_argument("expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +

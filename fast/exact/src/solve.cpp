@@ -10,6 +10,7 @@ Solution solve_forced_case(const io::CaseFile& c, const Options& options);
 Solution solve_dae(const io::DaeCase& c, const Options& options);
 
 Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
+  io::validate(p);
   Solution s;
   if (p.form == io::Form::expression) {
     s = solve_expression(p.expression, opt);
@@ -23,6 +24,10 @@ Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
   } else {
     const io::CaseFile& c = p.linear;
     s = io::at_input(c, [&] { return c.has_pontryagin && c.pontryagin.has_forces ? solve_forced_case(c, opt) : solve_linear(c, parts, opt); });
+  }
+  if (p.form == io::Form::netlist && !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+    s.certified = unknown;
+    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
   }
   s.backend = "fast";
   s.warnings = p.warnings();

@@ -89,6 +89,7 @@ void add_state(Solution& s, const io::Netlist& deck, const Parts& parts) {
 }  // namespace
 
 Solution solve(const io::Problem& p, const Parts& parts) {
+  io::validate(p);
   Solution s;
   if (p.form == io::Form::expression) {
     s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
@@ -123,6 +124,10 @@ Solution solve(const io::Problem& p, const Parts& parts) {
     s.circuit = io::circuit_facts(p.netlist);
   } else {
     s = linear(p.linear, parts);
+  }
+  if (p.form == io::Form::netlist && !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+    s.certified = unknown;
+    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
   }
   s.backend = "certified";
   s.warnings = p.warnings();

@@ -90,6 +90,7 @@ CircuitFacts circuit_facts(const Netlist& n) {
   f.nodes = static_cast<long>(n.circuit.nodes) + 1;
   f.empty_loops = static_cast<long>(reference::empty_loop_count(n.circuit));
   f.kvlpc_graph = static_cast<long>(reference::kvlpc_count(n.circuit));
+  if (!n.indefinite_inductance.empty()) f.physical = false;  // couplings that make Φ indefinite
   for (const auto& b : n.circuit.branches) {
     if (b.value < 0) f.physical = false;
     if (b.kind == BranchKind::empty) f.has_empty_branch = true;

@@ -1,11 +1,16 @@
 #include "dcad/io/netlist.hpp"
 
+#include <boost/math/constants/constants.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
+#include <optional>
 #include <sstream>
 
 namespace dcad::io {
@@ -89,16 +94,36 @@ struct Line {
 }
 
 /// The words of a line, `NAME = VALUE` glued into `NAME=VALUE` (ngspice reads `IC = 0.5`, `IC= 0.5`
-/// and `.ic V(a) = 2` as their unspaced forms).
+/// and `.ic V(a) = 2` as their unspaced forms).  A braced expression `{a + 1}` is one word whatever its
+/// spaces, and so is an HSPICE-quoted one `'a + 1'`, which becomes `{a + 1}`.
 std::vector<std::string> tokens(const std::string& text) {
-  std::istringstream ss(text);
-  std::vector<std::string> tok;
-  for (std::string t; ss >> t;) {
-    if (!tok.empty() && (t.front() == '=' || tok.back().back() == '=')) {
-      tok.back() += t;
+  std::vector<std::string> words;
+  std::string t;
+  int braces = 0;
+  bool quote = false;
+  for (char ch : text) {
+    if (ch == '\'' && braces == 0) {
+      quote = !quote;
+      t += quote ? '{' : '}';
       continue;
     }
-    tok.push_back(t);
+    if (!quote) braces += ch == '{' ? 1 : ch == '}' ? -1 : 0;
+    if (braces < 0) braces = 0;
+    if (!quote && braces == 0 && std::isspace(static_cast<unsigned char>(ch))) {
+      if (!t.empty()) words.push_back(t);
+      t.clear();
+      continue;
+    }
+    t += ch;
+  }
+  if (!t.empty()) words.push_back(t);
+  std::vector<std::string> tok;
+  for (const std::string& w : words) {
+    if (!tok.empty() && (w.front() == '=' || tok.back().back() == '=')) {
+      tok.back() += w;
+      continue;
+    }
+    tok.push_back(w);
   }
   return tok;
 }
@@ -176,6 +201,16 @@ class Reader {
         if (head == ".endc") in_control = false;
         continue;
       }
+      if (!skip_until.empty()) {  // .data … .enddata, a .lib section not asked for, .if blocks
+        if (head == skip_until) skip_until.clear();
+        continue;
+      }
+      if (head == ".data") {
+        skip_until = ".enddata";
+        warnings.push_back(here.where() + ": ignored .data block (a table for sweeps: dcad solves the circuit at the values as written)");
+        continue;
+      }
+      if (head == ".if") fail(here, "a netlist without conditionals (write the branch that applies)", ".if");
       if (head == ".control") {
         in_control = true;
         warnings.push_back(here.where() + ": ignored .control block");
@@ -200,27 +235,61 @@ class Reader {
         read(beside(beside_this, unquote(tok[1])), false, tok[2], depth + 1, &here);
         continue;
       }
+      if (head == ".lib" && tok.size() == 2) {
+        std::error_code ec;
+        const std::string whole = beside(beside_this, unquote(tok[1]));
+        if (std::filesystem::is_regular_file(whole, ec)) {  // .lib FILE: the whole file, as .include (Xyce, HSPICE without a section)
+          read(whole, false, "", depth + 1, &here);
+          if (ended) return;
+          continue;
+        }
+        skip_until = ".endl";  // .lib SECTION … .endl defined here and not asked for: skipped, as ngspice does
+        continue;
+      }
       if (head == ".lib") fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
       lines.push_back(here);
     }
     if (!section.empty() && !in_section && from) fail(*from, "a section .lib " + section + " in " + file, "none");
   }
   bool ended = false;
+  std::string skip_until;  ///< lines are skipped up to this card
 };
 
-/// Exact arithmetic on .param expressions: numbers (SPICE suffixes), parameters, + - * / ( ),
-/// unary signs, ^ or ** with an integer exponent.
+/// A user function of the deck: `.func NAME(a, b) {body}` or `.param NAME(a, b) = {body}`.
+struct UserFunction {
+  std::vector<std::string> args;
+  std::string body;
+};
+
+/// What evaluating the deck's expressions noted: values that are irrational (rounded to 80 significant
+/// digits) and statistical functions read at their nominal value.
+struct ExpressionNotes {
+  bool rounded = false;               ///< the last value read was rounded (irrational)
+  std::vector<std::string> nominal;   ///< "agauss(…)" read as its nominal value
+};
+
+/// Arithmetic on .param expressions as ngspice's numparam and Xyce read them: numbers (SPICE suffixes),
+/// parameters, + - * / ( ), unary signs, ^ or ** (exact for an integer exponent), comparisons, && || !,
+/// c ? a : b, pi, and the functions decks use (sqrt abs exp log ln log10 pow pwr min max sin cos tan asin
+/// acos atan atan2 sinh cosh tanh int floor ceil nint round sign if), the user's .func functions, and the
+/// statistical ones (agauss gauss aunif unif limit) at their nominal value.  Exact where the value is
+/// rational; an irrational value (sqrt(2), exp(1), pi) is rounded to 80 significant digits and says so.
 class Expression {
  public:
-  Expression(const std::string& text, const std::map<std::string, Rational>& params) : s_(lower(text)), params_(params) {}
+  using Functions = std::map<std::string, UserFunction>;
+  Expression(const std::string& text, const std::map<std::string, Rational>& params, const Functions* functions = nullptr,
+             ExpressionNotes* notes = nullptr, int depth = 0)
+      : s_(lower(text)), params_(params), functions_(functions), notes_(notes), depth_(depth) {}
   Rational value() {
-    const Rational v = sum();
+    if (depth_ > 32) throw std::invalid_argument("user functions nested more than 32 deep (a recursive .func?)");
+    const Rational v = ternary();
     skip();
     if (i_ != s_.size()) throw std::invalid_argument("unexpected \"" + s_.substr(i_) + "\"");
     return v;
   }
 
  private:
+  using Float = boost::multiprecision::cpp_bin_float_100;
   void skip() {
     while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
   }
@@ -229,6 +298,81 @@ class Expression {
     if (s_.compare(i_, op.size(), op) != 0) return false;
     i_ += op.size();
     return true;
+  }
+  bool peek(const std::string& op) {
+    skip();
+    return s_.compare(i_, op.size(), op) == 0;
+  }
+  /// An irrational value, rounded: 80 significant digits of its 100-digit float, noted.
+  Rational rounded(const Float& x) {
+    if (notes_) notes_->rounded = true;
+    if (x == 0) return Rational(0);
+    int e = 0;
+    const Float m = boost::multiprecision::frexp(x, &e);  // x = m 2^e, |m| in [1/2, 1)
+    const boost::multiprecision::mpz_int n = boost::multiprecision::ldexp(m, 266).convert_to<boost::multiprecision::mpz_int>();  // 80 digits
+    Rational r(n);
+    const int shift = e - 266;
+    const Rational two = shift >= 0 ? Rational(boost::multiprecision::mpz_int(1) << shift) : Rational(1, boost::multiprecision::mpz_int(1) << -shift);
+    return r * two;
+  }
+  static Float as_float(const Rational& x) {
+    return Float(boost::multiprecision::numerator(x).str()) / Float(boost::multiprecision::denominator(x).str());
+  }
+  static bool whole(const Rational& x) { return boost::multiprecision::denominator(x) == 1; }
+  /// x^e for an integer e, exactly (bounded).
+  static Rational ipow(const Rational& base, const Rational& e) {
+    if (boost::multiprecision::abs(e) > 64) throw std::invalid_argument("expected an integer exponent of at most 64, found " + e.str());
+    Rational r(1);
+    for (long k = 0; k < boost::multiprecision::abs(e); ++k) r *= base;
+    if (e < 0) {
+      if (r == 0) throw std::invalid_argument("division by zero");
+      r = Rational(1) / r;
+    }
+    return r;
+  }
+  /// The exact square root of x if it is rational.
+  static std::optional<Rational> exact_sqrt(const Rational& x) {
+    using boost::multiprecision::mpz_int;
+    const mpz_int n = boost::multiprecision::numerator(x), d = boost::multiprecision::denominator(x);
+    const mpz_int rn = boost::multiprecision::sqrt(n), rd = boost::multiprecision::sqrt(d);
+    if (rn * rn == n && rd * rd == d) return Rational(rn, rd);
+    return std::nullopt;
+  }
+  Rational ternary() {
+    const Rational c = logical_or();
+    if (!eat("?")) return c;
+    const Rational a = ternary();
+    if (!eat(":")) throw std::invalid_argument("expected ':' of c ? a : b");
+    const Rational b = ternary();
+    return c != 0 ? a : b;
+  }
+  Rational logical_or() {
+    Rational v = logical_and();
+    while (eat("||")) {
+      const Rational w = logical_and();
+      v = (v != 0 || w != 0) ? 1 : 0;
+    }
+    return v;
+  }
+  Rational logical_and() {
+    Rational v = comparison();
+    while (eat("&&")) {
+      const Rational w = comparison();
+      v = (v != 0 && w != 0) ? 1 : 0;
+    }
+    return v;
+  }
+  Rational comparison() {
+    Rational v = sum();
+    for (;;) {
+      if (eat("==")) v = v == sum() ? 1 : 0;
+      else if (eat("!=")) v = v != sum() ? 1 : 0;
+      else if (eat("<=")) v = v <= sum() ? 1 : 0;
+      else if (eat(">=")) v = v >= sum() ? 1 : 0;
+      else if (eat("<")) v = v < sum() ? 1 : 0;
+      else if (eat(">")) v = v > sum() ? 1 : 0;
+      else return v;
+    }
   }
   Rational sum() {
     Rational v = product();
@@ -255,38 +399,43 @@ class Expression {
   Rational power() {
     const Rational base = unary();
     if (!eat("^") && !eat("**")) return base;
-    const Rational e = unary();
-    if (boost::multiprecision::denominator(e) != 1 || boost::multiprecision::abs(e) > 64)
-      throw std::invalid_argument("expected an integer exponent of at most 64, found " + e.str());
-    Rational r(1);
-    for (long k = 0; k < boost::multiprecision::abs(e); ++k) {
-      r *= base;
+    return pow_of(base, unary());
+  }
+  Rational pow_of(const Rational& base, const Rational& e) {
+    if (whole(e)) {
+      const Rational r = ipow(base, e);
       if (boost::multiprecision::msb(boost::multiprecision::abs(boost::multiprecision::numerator(r)) + 1) > 20000 ||
           boost::multiprecision::msb(boost::multiprecision::denominator(r)) > 20000)
         throw std::invalid_argument("a power beyond 20000 bits");
+      return r;
     }
-    if (e < 0) {
-      if (r == 0) throw std::invalid_argument("division by zero");
-      r = Rational(1) / r;
-    }
-    return r;
+    if (base < 0) throw std::invalid_argument("a negative number to a fractional power");
+    if (boost::multiprecision::denominator(e) == 2)
+      if (const auto r = exact_sqrt(base)) return ipow(*r, Rational(boost::multiprecision::numerator(e)));
+    if (base == 0) return Rational(0);
+    return rounded(boost::multiprecision::pow(as_float(base), as_float(e)));
   }
   Rational unary() {
     if (eat("-")) return -unary();
     if (eat("+")) return unary();
+    if (peek("!=")) throw std::invalid_argument("expected a value before '!='");
+    if (eat("!")) return unary() == 0 ? 1 : 0;
     if (eat("(")) {
-      const Rational v = sum();
+      const Rational v = ternary();
       if (!eat(")")) throw std::invalid_argument("expected ')'");
       return v;
     }
     skip();
     const std::size_t start = i_;
     if (i_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_')) {
-      while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_')) ++i_;
+      while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_' || s_[i_] == '.')) ++i_;
       const std::string name = s_.substr(start, i_ - start);
+      if (peek("(")) return call(name);
       const auto it = params_.find(name);
-      if (it == params_.end()) throw std::invalid_argument("unknown parameter \"" + name + "\"");
-      return it->second;
+      if (it != params_.end()) return it->second;
+      if (name == "pi") return rounded(boost::math::constants::pi<Float>());
+      if (name == "temper" || name == "temp") return Rational(27);  // ngspice's nominal temperature, °C
+      throw std::invalid_argument("unknown parameter \"" + name + "\"");
     }
     while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.' ||
                               ((s_[i_] == '+' || s_[i_] == '-') && i_ > start && s_[i_ - 1] == 'e' &&
@@ -295,20 +444,116 @@ class Expression {
     if (i_ == start) throw std::invalid_argument("expected a number, a parameter or '('");
     return parse_spice_value(s_.substr(start, i_ - start));
   }
+  std::vector<Rational> arguments(const std::string& name) {
+    eat("(");
+    std::vector<Rational> a;
+    if (eat(")")) return a;
+    for (;;) {
+      a.push_back(ternary());
+      if (eat(")")) return a;
+      if (!eat(",")) throw std::invalid_argument("expected ',' or ')' in the arguments of " + name);
+    }
+  }
+  Rational call(const std::string& name) {
+    if (functions_) {
+      const auto f = functions_->find(name);
+      if (f != functions_->end()) {
+        const std::vector<Rational> a = arguments(name);
+        if (a.size() != f->second.args.size())
+          throw std::invalid_argument(name + ": expected " + std::to_string(f->second.args.size()) + " arguments, found " + std::to_string(a.size()));
+        std::map<std::string, Rational> local = params_;
+        for (std::size_t k = 0; k < a.size(); ++k) local[f->second.args[k]] = a[k];
+        return Expression(f->second.body, local, functions_, notes_, depth_ + 1).value();
+      }
+    }
+    const std::size_t at = i_;
+    const std::vector<Rational> a = arguments(name);
+    const auto want = [&](std::size_t lo, std::size_t hi) {
+      if (a.size() < lo || a.size() > hi)
+        throw std::invalid_argument(name + ": expected " + std::to_string(lo) + (hi > lo ? " to " + std::to_string(hi) : "") + " arguments, found " +
+                                    std::to_string(a.size()));
+    };
+    const auto transcendental = [&](Float (*fn)(const Float&), const Rational& at_zero_arg, const Rational& at_zero_value) -> Rational {
+      want(1, 1);
+      if (a[0] == at_zero_arg) return at_zero_value;
+      return rounded(fn(as_float(a[0])));
+    };
+    if (name == "sqrt") {
+      want(1, 1);
+      if (a[0] < 0) throw std::invalid_argument("sqrt of a negative number");
+      if (const auto r = exact_sqrt(a[0])) return *r;
+      return rounded(boost::multiprecision::sqrt(as_float(a[0])));
+    }
+    if (name == "abs") return want(1, 1), boost::multiprecision::abs(a[0]);
+    if (name == "exp") return transcendental([](const Float& x) { return Float(boost::multiprecision::exp(x)); }, 0, 1);
+    if (name == "log" || name == "ln" || name == "log10") {
+      want(1, 1);
+      if (a[0] <= 0) throw std::invalid_argument(name + " of a number <= 0");
+      if (a[0] == 1) return Rational(0);
+      if (name == "log10") {  // exact at powers of ten
+        for (int k = -64; k <= 64; ++k)
+          if (a[0] == ipow(Rational(10), Rational(k))) return Rational(k);
+        return rounded(boost::multiprecision::log10(as_float(a[0])));
+      }
+      return rounded(boost::multiprecision::log(as_float(a[0])));
+    }
+    if (name == "pow" || name == "pwr") return want(2, 2), pow_of(a[0], a[1]);
+    if (name == "min") return want(2, 2), std::min(a[0], a[1]);
+    if (name == "max") return want(2, 2), std::max(a[0], a[1]);
+    if (name == "sin") return transcendental([](const Float& x) { return Float(boost::multiprecision::sin(x)); }, 0, 0);
+    if (name == "cos") return transcendental([](const Float& x) { return Float(boost::multiprecision::cos(x)); }, 0, 1);
+    if (name == "tan") return transcendental([](const Float& x) { return Float(boost::multiprecision::tan(x)); }, 0, 0);
+    if (name == "asin") return transcendental([](const Float& x) { return Float(boost::multiprecision::asin(x)); }, 0, 0);
+    if (name == "acos") return transcendental([](const Float& x) { return Float(boost::multiprecision::acos(x)); }, 1, 0);
+    if (name == "atan") return transcendental([](const Float& x) { return Float(boost::multiprecision::atan(x)); }, 0, 0);
+    if (name == "sinh") return transcendental([](const Float& x) { return Float(boost::multiprecision::sinh(x)); }, 0, 0);
+    if (name == "cosh") return transcendental([](const Float& x) { return Float(boost::multiprecision::cosh(x)); }, 0, 1);
+    if (name == "tanh") return transcendental([](const Float& x) { return Float(boost::multiprecision::tanh(x)); }, 0, 0);
+    if (name == "atan2") {
+      want(2, 2);
+      if (a[0] == 0 && a[1] > 0) return Rational(0);
+      return rounded(boost::multiprecision::atan2(as_float(a[0]), as_float(a[1])));
+    }
+    using boost::multiprecision::mpz_int;
+    const auto floor_q = [](const Rational& x) {
+      const mpz_int n = boost::multiprecision::numerator(x), d = boost::multiprecision::denominator(x);
+      mpz_int f = n / d;
+      if (f * d > n) f -= 1;
+      return Rational(f);
+    };
+    if (name == "floor") return want(1, 1), floor_q(a[0]);
+    if (name == "ceil") return want(1, 1), -floor_q(-a[0]);
+    if (name == "int") return want(1, 1), a[0] >= 0 ? floor_q(a[0]) : -floor_q(-a[0]);  // toward zero
+    if (name == "nint" || name == "round") return want(1, 1), a[0] >= 0 ? floor_q(a[0] + Rational(1, 2)) : -floor_q(-a[0] + Rational(1, 2));
+    if (name == "sign" || name == "sgn") return want(1, 1), Rational(a[0] > 0 ? 1 : a[0] < 0 ? -1 : 0);
+    if (name == "if") return want(3, 3), a[0] != 0 ? a[1] : a[2];
+    if (name == "agauss" || name == "gauss" || name == "aunif" || name == "unif" || name == "limit") {
+      want(1, 4);
+      if (notes_) notes_->nominal.push_back(name + s_.substr(at, i_ - at));
+      return a[0];  // the nominal value (Xyce outside sampling analyses; ngspice draws a random one)
+    }
+    throw std::invalid_argument("unknown function \"" + name + "\"" +
+                                (name == "rand" || name == "trrandom" ? " (random: no exact transient)" : ""));
+  }
   std::string s_;
   std::size_t i_ = 0;
   const std::map<std::string, Rational>& params_;
+  const Functions* functions_;
+  ExpressionNotes* notes_;
+  int depth_;
 };
 
 /// name=value pairs of a .param line or a subcircuit's params: list ("a=1 b={2*a}", spaces around
-/// '=' allowed), evaluated in order into `into`.
-void read_params(const std::vector<std::string>& tok, std::size_t from, const Line& l, std::map<std::string, Rational>& into) {
+/// '=' allowed), as written (the value's text without braces).  A name with arguments, f(x, y), is a
+/// user function (ngspice's `.param f(x) = {…}`).
+std::vector<std::pair<std::string, std::string>> param_pairs(const std::vector<std::string>& tok, std::size_t from, const Line& l) {
   std::string joined;
   for (std::size_t k = from; k < tok.size(); ++k) joined += tok[k] + " ";
+  std::vector<std::pair<std::string, std::string>> out;
   std::size_t i = 0;
   while (true) {
     while (i < joined.size() && std::isspace(static_cast<unsigned char>(joined[i]))) ++i;
-    if (i >= joined.size()) return;
+    if (i >= joined.size()) return out;
     const std::size_t eq = joined.find('=', i);
     if (eq == std::string::npos) fail(l, "NAME=VALUE", "\"" + joined.substr(i) + "\"");
     std::string name = lower(joined.substr(i, eq - i));
@@ -317,19 +562,19 @@ void read_params(const std::vector<std::string>& tok, std::size_t from, const Li
     if (name.empty() || j == std::string::npos) fail(l, "NAME=VALUE", "\"" + joined.substr(i) + "\"");
     std::size_t end;
     if (joined[j] == '{') {
-      end = joined.find('}', j);
-      if (end == std::string::npos) fail(l, "a closing '}'", "\"" + joined.substr(j) + "\"");
+      int depth = 0;
+      for (end = j; end < joined.size(); ++end) {
+        depth += joined[end] == '{' ? 1 : joined[end] == '}' ? -1 : 0;
+        if (depth == 0) break;
+      }
+      if (end >= joined.size()) fail(l, "a closing '}'", "\"" + joined.substr(j) + "\"");
       ++end;
     } else {
       end = joined.find_first_of(" \t", j);
     }
     std::string expr = joined.substr(j, end - j);
     if (expr.front() == '{') expr = expr.substr(1, expr.size() - 2);
-    try {
-      into[name] = Expression(expr, into).value();
-    } catch (const std::invalid_argument& e) {
-      fail(l, "a parameter value (exact: numbers, parameters, + - * / ^, parentheses)", "\"" + expr + "\" (" + e.what() + ")");
-    }
+    out.emplace_back(name, expr);
     i = end;
   }
 }
@@ -337,31 +582,35 @@ void read_params(const std::vector<std::string>& tok, std::size_t from, const Li
 struct Subcircuit {
   std::string name;
   std::vector<std::string> ports;
-  std::map<std::string, Rational> defaults;
+  std::vector<std::pair<std::string, std::string>> defaults;  ///< params: as written, evaluated per instance
   std::vector<Line> body;
   Line where;
 };
 
-/// Flattens the deck: .param, .subckt … .ends, X instances (hierarchical names as ngspice makes them:
-/// element L1 of instance X1 is l.x1.l1, internal node n of X1 is x1.n), .ic v(node)=value.
+/// Flattens the deck: .param (global and inside .subckt, scoped), .func, .global, .subckt … .ends (nested
+/// ones too), X instances (hierarchical names as ngspice makes them: element L1 of instance X1 is
+/// l.x1.l1, internal node n of X1 is x1.n), .ic / .dcvolt v(node)=value.
 class Flattener {
  public:
   Netlist& out;
   std::map<std::string, std::size_t> names, nodes;
   std::map<std::string, Subcircuit> subckts;
   std::map<std::string, Rational> node_ic;
+  std::set<std::string> globals;  ///< .global nodes: the same node in every instance
+  Expression::Functions functions;
   struct Coupling {
     Line line;
     std::string name, a, b;
     Rational k;
   };
   std::vector<Coupling> couplings;  ///< K elements, resolved once every inductor is known
+  std::optional<Rational> temperature;  ///< .temp, if the deck sets one
 
   explicit Flattener(Netlist& n) : out(n) {}
 
   void run(const std::vector<Line>& lines) {
     std::map<std::string, Rational> params;
-    std::vector<Line> top;
+    std::vector<Line> top, param_lines;
     for (std::size_t i = 0; i < lines.size(); ++i) {  // definitions first: ngspice allows use before definition
       const std::vector<std::string> tok = tokens(lines[i].text);
       const std::string head = lower(tok[0]);
@@ -369,24 +618,102 @@ class Flattener {
         i = define(lines, i);
       } else if (head == ".ends") {
         fail(lines[i], ".ends after a .subckt", ".ends without .subckt");
-      } else if (head == ".param") {
-        read_params(tok, 1, lines[i], params);
+      } else if (is_param_card(head) || head == ".func") {
+        param_lines.push_back(lines[i]);
+      } else if (head == ".global") {
+        for (std::size_t k = 1; k < tok.size(); ++k) globals.insert(lower(tok[k]));
       } else {
         top.push_back(lines[i]);
       }
     }
+    for (const Line& l : param_lines) read_params(l, params, nullptr);
     expand(top, "", {}, params, 0);
   }
 
  private:
+  static bool is_param_card(const std::string& head) {
+    return head == ".param" || head == ".params" || head == ".global_param" || head == ".parameter" || head == ".parameters" || head == ".csparam";
+  }
+
+  /// A .param-like or .func line into `params` (functions into `functions`), in order; names in `keep`
+  /// are not overwritten (an instance's overrides beat its subcircuit's own .param).
+  void read_params(const Line& l, std::map<std::string, Rational>& params, const std::set<std::string>* keep) {
+    const std::vector<std::string> tok = tokens(l.text);
+    const std::string head = lower(tok[0]);
+    if (head == ".func") {  // .func NAME(args) {body}  or  .func NAME(args) = {body}
+      std::string rest;
+      for (std::size_t k = 1; k < tok.size(); ++k) rest += tok[k] + " ";
+      const std::size_t open = rest.find('('), close = rest.find(')');
+      if (open == std::string::npos || close == std::string::npos || close < open) fail(l, ".func NAME(ARGS) {EXPRESSION}", "\"" + l.text + "\"");
+      std::string body = rest.substr(close + 1);
+      body.erase(0, body.find_first_not_of(" \t="));
+      body.erase(body.find_last_not_of(" \t") + 1);
+      if (body.size() >= 2 && body.front() == '{' && body.back() == '}') body = body.substr(1, body.size() - 2);
+      define_function(l, lower(rest.substr(0, open)), rest.substr(open + 1, close - open - 1), body);
+      return;
+    }
+    for (const auto& [name, expr] : param_pairs(tok, 1, l)) {
+      const std::size_t open = name.find('(');
+      if (open != std::string::npos) {  // .param f(x, y) = {…}
+        const std::size_t close = name.find(')', open);
+        if (close == std::string::npos) fail(l, "NAME(ARGS)={EXPRESSION}", "\"" + name + "\"");
+        define_function(l, name.substr(0, open), name.substr(open + 1, close - open - 1), expr);
+        continue;
+      }
+      if (keep && keep->count(name)) continue;
+      params[name] = evaluate(l, expr, params, "a parameter value");
+    }
+  }
+
+  void define_function(const Line& l, std::string name, const std::string& args, const std::string& body) {
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    UserFunction f;
+    std::string a;
+    for (char ch : args + ",") {
+      if (ch == ',') {
+        a.erase(0, a.find_first_not_of(" \t"));
+        a.erase(a.find_last_not_of(" \t") + 1);
+        if (!a.empty()) f.args.push_back(lower(a));
+        a.clear();
+      } else {
+        a += ch;
+      }
+    }
+    if (name.empty() || body.empty()) fail(l, ".func NAME(ARGS) {EXPRESSION}", "\"" + l.text + "\"");
+    f.body = body;
+    functions[lower(name)] = f;
+  }
+
+  /// An expression's value; an irrational one is recorded (rounded: the certified tier does not claim it).
+  Rational evaluate(const Line& l, const std::string& expr, const std::map<std::string, Rational>& params, const std::string& what) {
+    ExpressionNotes notes;
+    Rational v;
+    try {
+      v = Expression(expr, params, &functions, &notes).value();
+    } catch (const std::invalid_argument& e) {
+      fail(l, what + " (numbers, parameters, + - * / ^, comparisons, ?:, pi, sqrt, exp, log, trig, min, max, .func)",
+           "\"" + expr + "\" (" + e.what() + ")");
+    }
+    if (notes.rounded) out.rounded.push_back(l.where() + ": {" + expr + "} is irrational: used to 80 significant digits");
+    for (const std::string& n : notes.nominal)
+      out.warnings.push_back(l.where() + ": " + n + " read as its nominal value (a statistical function: dcad solves the nominal circuit)");
+    return v;
+  }
+
   std::size_t define(const std::vector<Line>& lines, std::size_t i) {
     const Line& l = lines[i];
     const std::vector<std::string> tok = tokens(l.text);
     if (tok.size() < 2) fail(l, ".subckt NAME PORT…", "\"" + l.text + "\"");
     Subcircuit s{lower(tok[1]), {}, {}, {}, l};
     std::size_t k = 2;
-    for (; k < tok.size() && lower(tok[k]) != "params:" && tok[k].find('=') == std::string::npos; ++k) s.ports.push_back(lower(tok[k]));
-    if (k < tok.size()) read_params(tok, lower(tok[k]) == "params:" ? k + 1 : k, l, s.defaults);
+    for (; k < tok.size() && lower(tok[k]) != "params:" && tok[k].find('=') == std::string::npos; ++k) {
+      std::string port = lower(tok[k]);
+      if (!port.empty() && port.front() == '(') port.erase(0, 1);
+      if (!port.empty() && port.back() == ')') port.pop_back();
+      if (!port.empty()) s.ports.push_back(port);
+    }
+    if (k < tok.size()) s.defaults = param_pairs(tok, lower(tok[k]) == "params:" ? k + 1 : k, l);
     if (subckts.count(s.name)) fail(l, "a new subcircuit name", "a second .subckt " + tok[1]);
     for (++i; i < lines.size(); ++i) {
       const std::string head = lower(tokens(lines[i].text)[0]);
@@ -394,18 +721,23 @@ class Flattener {
         subckts[s.name] = s;
         return i;
       }
-      if (head == ".subckt") fail(lines[i], ".ends of " + tok[1] + " (nested .subckt definitions are not supported)", ".subckt");
+      if (head == ".subckt") {  // a nested definition: defined once, by its own name (ngspice scopes it; names rarely clash)
+        i = define(lines, i);
+        continue;
+      }
       s.body.push_back(lines[i]);
     }
     fail(l, ".ends for .subckt " + tok[1], "the end of the deck");
   }
 
-  /// node name in an instance: ground is global, ports map to the caller's nodes, others get the prefix
+  /// node name in an instance: ground and .global nodes are global, ports map to the caller's nodes,
+  /// others get the prefix
   std::string node_in(const std::string& n, const std::string& prefix, const std::map<std::string, std::string>& ports) const {
     const std::string s = lower(n);
     if (s == "0" || s == "gnd") return "0";
     const auto p = ports.find(s);
     if (p != ports.end()) return p->second;
+    if (globals.count(s)) return s;
     return prefix + s;
   }
 
@@ -414,6 +746,7 @@ class Flattener {
     for (const Line& l : body) {
       std::vector<std::string> tok = tokens(l.text);
       const std::string head = lower(tok[0]);
+      if (is_param_card(head) || head == ".func" || head == ".global") continue;  // read before (run, instance)
       if (head[0] == '.') {
         dot_card(l, tok, prefix, ports, params);
         continue;
@@ -426,25 +759,33 @@ class Flattener {
     }
   }
 
+  /// Cards of analyses and output: they do not change the circuit, and are skipped with a note.
+  static bool analysis_card(const std::string& head) {
+    static const std::set<std::string> cards = {
+        ".tran", ".ac", ".dc", ".op", ".options", ".option", ".opt", ".print", ".plot", ".probe", ".save", ".meas", ".measure",
+        ".four", ".fourier", ".width", ".title", ".nodeset", ".noise", ".disto", ".pz", ".sens", ".tf", ".fft", ".hb", ".list",
+        ".mor", ".status", ".dcop", ".tr", ".result", ".mpde", ".lin", ".sp", ".pss", ".shoot", ".objective", ".endl", ".end",
+        ".alter", ".graph", ".nodelist", ".nolist", ".protect", ".unprotect", ".csvprint", ".mem", ".tsave"};
+    return cards.count(head) > 0;
+  }
+  /// Sweeps and sampling: analyses run on the circuit at other values; dcad solves it as written.
+  static bool sweep_card(const std::string& head) {
+    static const std::set<std::string> cards = {".step", ".sampling", ".embeddedsampling", ".pce", ".rol", ".data", ".mc", ".monte", ".sweep", ".stat"};
+    return cards.count(head) > 0;
+  }
+
   void dot_card(const Line& l, const std::vector<std::string>& tok, const std::string& prefix,
                 const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
     const std::string head = lower(tok[0]);
-    static const std::vector<std::string> analysis = {".tran", ".ac", ".dc", ".op", ".options", ".option", ".opt", ".print",
-                                                      ".plot", ".probe", ".save", ".meas", ".measure", ".four", ".width",
-                                                      ".title", ".temp", ".nodeset", ".noise", ".disto", ".pz", ".sens", ".tf"};
-    if (head == ".ic") {
+    if (head == ".ic" || head == ".dcvolt") {
       for (std::size_t k = 1; k < tok.size(); ++k) {
         const std::string t = lower(tok[k]);
         const std::size_t eq = t.find('=');
         if (t.compare(0, 2, "v(") != 0 || eq == std::string::npos || t[eq - 1] != ')')
-          fail(l, ".ic V(NODE)=VALUE …", "\"" + tok[k] + "\"");
+          fail(l, tok[0] + " V(NODE)=VALUE …", "\"" + tok[k] + "\"");
         std::string value = t.substr(eq + 1);
         if (!value.empty() && value.front() == '{') value = value.substr(1, value.size() - 2);
-        try {
-          node_ic[node_in(t.substr(2, eq - 3), prefix, ports)] = Expression(value, params).value();
-        } catch (const std::invalid_argument& e) {
-          fail(l, "V(NODE)=VALUE", "\"" + tok[k] + "\" (" + e.what() + ")");
-        }
+        node_ic[node_in(t.substr(2, eq - 3), prefix, ports)] = evaluate(l, value, params, "V(NODE)=VALUE");
       }
       return;
     }
@@ -457,25 +798,55 @@ class Flattener {
       for (std::size_t k = 1; k < tok.size(); ++k)
         if (lower(tok[k]) != "uic") times.push_back(tok[k]);
       try {
+        const auto time = [&](const std::string& t) {
+          return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions).value() : parse_spice_value(t);
+        };
         if (times.size() >= 2) {
-          out.tran_step = parse_spice_value(times[0]);
-          out.tran_stop = parse_spice_value(times[1]);
+          out.tran_step = time(times[0]);
+          out.tran_stop = time(times[1]);
         }
-      } catch (const std::invalid_argument&) {  // a parameter expression: not needed by the circuit
+      } catch (const std::invalid_argument&) {  // not needed by the circuit (only by sources' defaults, which then say so)
       }
     }
-    if (std::find(analysis.begin(), analysis.end(), head) != analysis.end()) {
+    if (head == ".temp") {
+      if (tok.size() >= 2) try {
+          temperature = parse_spice_value(tok[1]);
+        } catch (const std::invalid_argument&) {
+        }
+      out.warnings.push_back(l.where() + ": " + tok[0] + ": read for resistors' TC (dcad's elements have no temperature dependence otherwise)");
+      return;
+    }
+    if (analysis_card(head)) {
       out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged" +
                              (head == ".tran" ? "; simulate reads its uic for the initial state)" : ")"));
       return;
     }
-    fail(l, "an R, L, C, V, I, K or X element, or a supported dot-card (.param, .subckt, .include, .lib, .ic, analysis cards)",
-         "unsupported " + tok[0] + " (it would change the circuit)");
+    if (sweep_card(head)) {
+      out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (a sweep or sampling analysis: dcad solves the circuit at the values as written)");
+      return;
+    }
+    if (head == ".model") {  // no element dcad reads takes a model; an element that names one is refused where it is
+      out.warnings.push_back(l.where() + ": ignored .model " + (tok.size() > 1 ? tok[1] : std::string()) + " (no R, L, C, K, V or I element uses it)");
+      return;
+    }
+    if (head == ".preprocess")
+      fail(l, "cards that leave the circuit as written", ".preprocess (Xyce: it may add resistors or remove devices; write the circuit as it should be solved)");
+    if (head == ".lib")
+      fail(l, ".lib FILE SECTION", "\"" + l.text + "\" (a library section is read where it is named)");
+    fail(l, "an R, L, C, V, I, K or X element, or a card dcad reads (.param, .func, .subckt, .include, .lib, .ic, .global, analysis and output cards)",
+         "unknown card " + tok[0] + " (dcad cannot tell whether it changes the circuit: remove it if it does not)");
   }
 
-  void instance(const Line& l, const std::vector<std::string>& tok, const std::string& prefix,
+  void instance(const Line& l, const std::vector<std::string>& tok_in, const std::string& prefix,
                 const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params, int depth) {
     if (depth >= 32) fail(l, "subcircuits nested at most 32 deep", "deeper (a recursive .subckt?)");
+    std::vector<std::string> tok;
+    for (const std::string& t : tok_in) {  // "(a b)" node lists as gnucap writes them
+      std::string u = t;
+      if (&t != &tok_in.front() && !u.empty() && u.front() == '(') u.erase(0, 1);
+      if (!u.empty() && u.back() == ')' && u.find('(') == std::string::npos && u.find('{') == std::string::npos) u.pop_back();
+      if (!u.empty()) tok.push_back(u);
+    }
     std::size_t k = tok.size();
     while (k > 1 && tok[k - 1].find('=') != std::string::npos) --k;  // trailing name=value overrides
     if (k > 1 && lower(tok[k - 1]) == "params:") --k;
@@ -489,12 +860,31 @@ class Flattener {
            std::to_string(k - 2) + " in " + tok[0]);
     std::map<std::string, std::string> inner;
     for (std::size_t p = 0; p < s.ports.size(); ++p) inner[s.ports[p]] = node_in(tok[1 + p], prefix, ports);
-    std::map<std::string, Rational> local = params;  // global .params, then the defaults, then the overrides
-    for (const auto& [name, value] : s.defaults) local[name] = value;
+    // the caller's parameters, then the subcircuit's defaults (which may use them), then this instance's
+    // overrides (in the caller's scope), then the subcircuit's own .param lines but for overridden names
+    std::map<std::string, Rational> local = params;
+    for (const auto& [name, expr] : s.defaults) local[name] = evaluate(s.where, expr, local, "a parameter default");
     std::size_t first_override = k;
     if (first_override < tok.size() && lower(tok[first_override]) == "params:") ++first_override;
-    read_params(tok, first_override, l, local);
+    std::set<std::string> overridden;
+    for (const auto& [name, expr] : param_pairs(tok, first_override, l)) {
+      local[name] = evaluate(l, expr, params_with(params, local), "a parameter value");
+      overridden.insert(name);
+    }
+    for (const Line& b : s.body)
+      if (is_param_card(lower(tokens(b.text)[0])) || lower(tokens(b.text)[0]) == ".func") read_params(b, local, &overridden);
+    for (const Line& b : s.body)
+      if (lower(tokens(b.text)[0]) == ".global")
+        for (const std::string& g : tokens(b.text)) if (g[0] != '.') globals.insert(lower(g));
     expand(s.body, prefix + lower(tok[0]) + ".", inner, local, depth + 1);
+  }
+
+  /// An instance's overrides are written in the caller's scope; the subcircuit's defaults are visible too
+  /// (ngspice evaluates `X1 … w={2*w0}` with the caller's parameters first).
+  static std::map<std::string, Rational> params_with(const std::map<std::string, Rational>& caller, const std::map<std::string, Rational>& local) {
+    std::map<std::string, Rational> m = local;
+    for (const auto& [k, v] : caller) m[k] = v;
+    return m;
   }
 
   void element(const Line& l, std::vector<std::string> tok, const std::string& prefix,
@@ -503,18 +893,38 @@ class Flattener {
     const char kind = head[0];
     if (std::string("lcvrik").find(kind) == std::string::npos)
       fail(l, "an L, C, R, V, I, K or X element", "element " + tok[0] + " (not supported)");
-    if (tok.size() < 4) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    // gnucap writes the nodes in parentheses, "(a b)" or "( a b )": ngspice reads them as separators too
+    if (kind != 'k' && tok.size() >= 3) {
+      std::vector<std::string> t{tok[0]};
+      std::size_t k = 1;
+      for (std::size_t got = 0; k < tok.size() && got < 2; ++k) {
+        std::string u = tok[k];
+        if (got == 0 && !u.empty() && u.front() == '(') u.erase(0, 1);
+        if (got == 1 && !u.empty() && u.back() == ')' && u.find('(') == std::string::npos) u.pop_back();
+        if (u.empty() || u == ")") continue;
+        t.push_back(u);
+        ++got;
+      }
+      if (k < tok.size() && tok[k] == ")") ++k;
+      t.insert(t.end(), tok.begin() + static_cast<long>(k), tok.end());
+      tok = t;
+    }
+    if (tok.size() < 4 && !(kind == 'v' || kind == 'i')) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    if (tok.size() < 3) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
     // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
     const auto hier = [&](const std::string& t) { return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t); };
     const std::string name = hier(tok[0]);
     const std::string key = lower(name);
     if (names.count(key)) fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
     const auto number = [&](const std::string& text, const std::string& what) {
+      if (!text.empty() && text.front() == '{') {
+        if (text.back() != '}') fail(l, what, "\"" + text + "\" (no closing '}')");
+        return evaluate(l, text.substr(1, text.size() - 2), params, what);
+      }
+      const std::string t = lower(text);
+      if (!t.empty() && (std::isalpha(static_cast<unsigned char>(t[0])) || t[0] == '_') && params.count(t))
+        return params.at(t);  // a parameter's name without braces (Xyce, and ngspice's numparam)
       try {
-        if (!text.empty() && text.front() == '{') {
-          if (text.back() != '}') throw std::invalid_argument("no closing '}'");
-          return Expression(text.substr(1, text.size() - 2), params).value();
-        }
         std::string ignored;
         const Rational v = parse_spice_value(text, &ignored);
         if (!ignored.empty())
@@ -526,10 +936,14 @@ class Flattener {
       }
     };
     if (kind == 'k') {
-      if (tok.size() != 4) fail(l, "KNAME LX LY COUPLING", "\"" + l.text + "\"");
-      const Rational k = number(tok[3], "a coupling coefficient");
-      if (k < -1 || k > 1) fail(l, "a coupling coefficient with |k| <= 1", tok[3]);
-      couplings.push_back({l, name, lower(hier(tok[1])), lower(hier(tok[2])), k});
+      if (tok.size() < 4) fail(l, "KNAME LX LY COUPLING", "\"" + l.text + "\"");
+      const Rational k = number(tok.back(), "a coupling coefficient");
+      if (k < -1 || k > 1)
+        fail(l, "a coupling coefficient with |k| <= 1 for " + name + (prefix.empty() ? "" : " (instance " + prefix.substr(0, prefix.size() - 1) + ")"),
+             "k = " + shown(k) + (tok.back().front() == '{' ? " from " + tok.back() : std::string()));
+      // K L1 L2 … k: every pair of the listed inductors (Xyce); two of them as in ngspice
+      for (std::size_t a = 1; a + 1 < tok.size(); ++a)
+        for (std::size_t b = a + 1; b + 1 < tok.size(); ++b) couplings.push_back({l, name, lower(hier(tok[a])), lower(hier(tok[b])), k});
       names[key] = out_lines.size();
       out_lines.push_back(l.where());
       return;
@@ -560,6 +974,7 @@ class Flattener {
         throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
       }
       w.element = name;
+      if (!w.ignored.empty()) out.warnings.push_back(l.where() + ": " + name + ": not part of the transient, ignored: " + w.ignored);
       b.kind = reference::BranchKind::empty;
       if (kind == 'v' && w.kind == Waveform::Kind::dc && w.p[0] == 0) {
         rb.kind = reference::RlcKind::wire;  // a zero-volt source is a wire (an ammeter)
@@ -567,6 +982,7 @@ class Flattener {
         rb.kind = kind == 'v' ? reference::RlcKind::voltage : reference::RlcKind::current;
         rb.source = out.waveforms.size();
         out.waveforms.push_back(w);
+        source_lines.push_back(l);
         out.forced = true;
       }
       out.circuit.branches.push_back(b);
@@ -575,17 +991,48 @@ class Flattener {
       out.where.push_back(l.where());
       return;
     }
-    const Rational value = number(tok[3], "a value (number with optional SPICE suffix, or {expression})");
-    std::optional<Rational> ic;
-    for (std::size_t k = 4; k < tok.size(); ++k) {
+    // the value: positional, or as a keyword (r=, c=, l=, value=); then IC=, a multiplier M= and temperature
+    // coefficients, which change nothing at the nominal temperature
+    const std::string value_key = kind == 'r' ? "r=" : kind == 'c' ? "c=" : "l=";
+    std::optional<Rational> value;
+    std::optional<Rational> ic, multiplier;
+    std::vector<std::string> tc;
+    for (std::size_t k = 3; k < tok.size(); ++k) {
       const std::string t = lower(tok[k]);
-      if (t.compare(0, 3, "ic=") == 0 && kind != 'r') ic = number(tok[k].substr(3), "IC=value");
-      else fail(l, kind == 'r' ? "nothing after the resistance" : "nothing or IC=value after the value", "\"" + tok[k] + "\"");
+      const std::size_t eq = t.find('=');
+      const std::string key = eq == std::string::npos ? "" : t.substr(0, eq + 1);
+      if (key.empty() && !value && k == 3) {
+        value = number(tok[k], "a value (number with optional SPICE suffix, or {expression})");
+      } else if ((key == value_key || key == "value=") && !value) {
+        value = number(tok[k].substr(eq + 1), "a value");
+      } else if (key == "ic=" && kind != 'r') {
+        ic = number(tok[k].substr(3), "IC=value");
+      } else if (key == "m=") {
+        multiplier = number(tok[k].substr(2), "M=multiplier");
+        if (*multiplier <= 0) fail(l, "a multiplier M > 0", "M = " + shown(*multiplier));
+      } else if (key == "tc=" || key == "tc1=" || key == "tc2=" || key == "temp=" || key == "dtemp=" || key == "tnom=") {
+        number(tok[k].substr(eq + 1), "a temperature coefficient");
+        tc.push_back(tok[k]);
+      } else {
+        fail(l, kind == 'r' ? "nothing, M=, TC1=, TC2= after the resistance" : "nothing, IC=, M= after the value", "\"" + tok[k] + "\"");
+      }
     }
-    rb.value = value;
+    if (!value) fail(l, "a value (positional or " + value_key + "VALUE)", "none in \"" + l.text + "\"");
+    Rational v = *value;
+    if (multiplier) v = kind == 'c' ? Rational(v * *multiplier) : Rational(v / *multiplier);  // M parallel copies
+    if (!tc.empty()) {
+      const bool hot = temperature && *temperature != 27;
+      bool tdep = false;
+      for (const std::string& t : tc) tdep = tdep || lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("dtemp=", 0) == 0;
+      if (hot || tdep)
+        fail(l, "the nominal temperature 27 C (temperature coefficients are not applied)", "a temperature other than it for " + name);
+      out.warnings.push_back(l.where() + ": " + name + ": temperature coefficients ignored (at the nominal 27 C they change nothing)");
+    }
+    const Rational& value_ = v;
+    rb.value = value_;
     if (kind == 'r') {
-      if (value < 0) out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
-      if (value == 0)  // a wire has another index class than a resistor: neither is guessed
+      if (value_ < 0) out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
+      if (value_ == 0)  // a wire has another index class than a resistor: neither is guessed
         fail(l, "a nonzero resistance (ngspice replaces R = 0 by 1 mOhm, a resistor; a wire is a 0-volt V source)",
              "R = 0 for " + name);
       rb.kind = reference::RlcKind::resistor;
@@ -593,17 +1040,17 @@ class Flattener {
       b.kind = reference::BranchKind::empty;
     } else if (kind == 'l') {
       b.kind = reference::BranchKind::inductor;
-      b.value = value;
+      b.value = value_;
       rb.kind = reference::RlcKind::inductor;
-      if (value < 0) out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
+      if (value_ < 0) out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
     } else {
-      if (value == 0) fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + name);
+      if (value_ == 0) fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + name);
       b.kind = reference::BranchKind::capacitor;
-      b.value = value;
+      b.value = value_;
       rb.kind = reference::RlcKind::capacitor;
-      if (value < 0) out.warnings.push_back(l.where() + ": negative capacitance " + name + " is not physical (CEF Remark 6.7)");
+      if (value_ < 0) out.warnings.push_back(l.where() + ": negative capacitance " + name + " is not physical (CEF Remark 6.7)");
     }
-    if (kind == 'l' && value == 0) {
+    if (kind == 'l' && value_ == 0) {
       b.kind = reference::BranchKind::empty;  // L = 0: a wire
       rb.kind = reference::RlcKind::wire;
     }
@@ -614,10 +1061,101 @@ class Flattener {
   }
 
  public:
+  std::vector<Line> source_lines;  ///< the line of each waveform (for completing its defaults)
   std::vector<std::string> out_lines;  ///< file:line of each branch
 };
 
 }  // namespace
+
+/// det of a square matrix of rationals, by elimination with row exchanges.
+static Rational determinant(std::vector<std::vector<Rational>> a) {
+  const std::size_t n = a.size();
+  Rational det = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t p = i;
+    while (p < n && a[p][i] == 0) ++p;
+    if (p == n) return 0;
+    if (p != i) std::swap(a[p], a[i]), det = -det;
+    det *= a[i][i];
+    for (std::size_t r = i + 1; r < n; ++r)
+      if (a[r][i] != 0) {
+        const Rational m = a[r][i] / a[i][i];
+        for (std::size_t c = i; c < n; ++c) a[r][c] -= m * a[i][c];
+      }
+  }
+  return det;
+}
+
+static Rational product_of_values(const Netlist& out, const std::vector<std::size_t>& members) {
+  Rational p = 1;
+  for (std::size_t i : members) p *= out.rlc.branches[i].value;
+  return p;
+}
+
+/// Every group of coupled inductors (all L > 0) has a positive semidefinite inductance matrix, decided
+/// exactly: Φ = D K D with D = diag(√L_i) and K the coupling coefficients (1 on the diagonal), so Φ is
+/// semidefinite iff K is — symmetric elimination on K in rationals, a zero pivot allowed only with a zero
+/// row (k = 1 is a perfect transformer).  Every |k| < 1 does not suffice (three inductors with k12 = 0.75,
+/// k13 = 0.8, k23 = 0: det K = -0.2025).  A group that is not is recorded (Netlist::indefinite_inductance) and warned
+/// about: its energy ½ iᵀ Φ i is unbounded below, so `simulate` and `check` refuse it.
+static void check_inductance(Netlist& out, const Flattener& f) {
+  const std::size_t nb = out.rlc.branches.size();
+  std::vector<std::size_t> group(nb);
+  for (std::size_t i = 0; i < nb; ++i) group[i] = i;
+  const auto root = [&](std::size_t i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
+  for (const auto& mu : out.rlc.mutuals) group[root(mu.a)] = root(mu.b);
+  std::map<std::size_t, std::vector<std::size_t>> groups;
+  for (const auto& mu : out.rlc.mutuals) groups[root(mu.a)];
+  for (std::size_t i = 0; i < nb; ++i)
+    if (groups.count(root(i))) groups[root(i)].push_back(i);
+  for (const auto& [r, members] : groups) {
+    bool positive = true;
+    for (std::size_t i : members) positive = positive && out.rlc.branches[i].value > 0;
+    if (!positive) continue;  // a negative L is warned about as such (CEF Remark 6.7)
+    const std::size_t g = members.size();
+    std::vector<std::vector<Rational>> k(g, std::vector<Rational>(g, Rational(0)));
+    std::vector<std::string> pairs;
+    for (std::size_t i = 0; i < g; ++i) k[i][i] = 1;
+    for (std::size_t c = 0; c < out.rlc.mutuals.size(); ++c) {
+      const auto& mu = out.rlc.mutuals[c];
+      const auto ia = std::find(members.begin(), members.end(), mu.a), ib = std::find(members.begin(), members.end(), mu.b);
+      if (ia == members.end() || !mu.k) continue;
+      const std::size_t a = static_cast<std::size_t>(ia - members.begin()), b = static_cast<std::size_t>(ib - members.begin());
+      k[a][b] = k[b][a] = *mu.k;
+      pairs.push_back(f.couplings[c].name + " = " + shown(*mu.k));
+    }
+    const std::vector<std::vector<Rational>> k0 = k;
+    bool semidefinite = true;
+    for (std::size_t i = 0; i < g && semidefinite; ++i) {
+      const Rational d = k[i][i];
+      if (d < 0) semidefinite = false;
+      if (d <= 0) {
+        for (std::size_t j = i + 1; j < g; ++j) semidefinite = semidefinite && k[i][j] == 0;
+        continue;
+      }
+      for (std::size_t r2 = i + 1; r2 < g; ++r2)
+        if (k[r2][i] != 0) {
+          const Rational m = k[r2][i] / d;
+          for (std::size_t c2 = i; c2 < g; ++c2) k[r2][c2] -= m * k[i][c2];
+        }
+    }
+    if (semidefinite) continue;
+    const Rational det = determinant(k0);
+    std::string names;
+    for (std::size_t i : members) names += (names.empty() ? "" : ", ") + out.rlc.branches[i].name;
+    std::string couplings;
+    for (const std::string& p : pairs) couplings += (couplings.empty() ? "" : ", ") + p;
+    const std::string what = "the coupled inductors " + names + " have an inductance matrix that is not positive semidefinite (" + couplings +
+                             ": every |k| <= 1, yet the matrix of coupling coefficients has a negative eigenvalue" +
+                             ", its determinant " + shown(det) + ", the inductance matrix's " + shown(det * product_of_values(out, members)) +
+                             "): the magnetic energy is unbounded below, no physical transformer has these couplings";
+    out.warnings.push_back(out.where[members.front()] + ": " + what);
+    if (out.indefinite_inductance.empty()) out.indefinite_inductance = out.where[members.front()] + ": " + what;
+  }
+}
 
 /// K elements: M = k √(L_a L_b), exact when k² L_a L_b is the square of a rational, otherwise
 /// truncated to 80 decimal places (with a warning).
@@ -656,6 +1194,7 @@ static void resolve_couplings(Netlist& out, const Flattener& f) {
     out.rlc.mutuals.push_back({a, b, m, c.k, rounded});
     out.forced = true;
   }
+  check_inductance(out, f);
 }
 
 namespace {
@@ -698,6 +1237,11 @@ Netlist flatten(const std::string& file, Reader& reader) {
   out.circuit.nodes = out.node_names.size();
   out.rlc.nodes = out.circuit.nodes;
   out.rlc.sources = out.waveforms.size();
+  for (std::size_t j = 0; j < out.waveforms.size(); ++j) try {  // ngspice's defaults from .tran's TSTEP and TSTOP
+      out.waveforms[j].complete(out.tran_step, out.tran_stop);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(f.source_lines[j].where() + ": " + out.waveforms[j].element + ": " + e.what());
+    }
   resolve_couplings(out, f);
   // .ic v(node)=…: a capacitor without IC= starts at the difference of its nodes' voltages
   for (std::size_t i = 0; i < out.circuit.branches.size(); ++i) {

@@ -3,6 +3,9 @@
 #include "forms.hpp"
 #include "json_input.hpp"
 
+#include <cctype>
+#include <fstream>
+
 namespace dcad::io {
 
 std::vector<std::string> Problem::variables() const {
@@ -45,8 +48,22 @@ Problem from_netlist(Netlist deck) {
 
 }  // namespace
 
+namespace {
+/// A case file is JSON: its first character that is not white space is '{' (or the file is named .json);
+/// anything else is read as a deck (.hspice, .pspice, .deck, .gc … as the SPICEs' own tests name them).
+bool looks_like_json_case(const std::string& file) {
+  const std::string json = ".json";
+  if (file.size() >= json.size() && file.compare(file.size() - json.size(), json.size(), json) == 0) return true;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return true;  // the JSON reader names the file it cannot open
+  for (char ch; in.get(ch);)
+    if (!std::isspace(static_cast<unsigned char>(ch))) return ch == '{';
+  return true;
+}
+}  // namespace
+
 Problem read_problem(const std::string& file) {
-  if (is_netlist_file(file)) return from_netlist(read_netlist(file));
+  if (is_netlist_file(file) || !looks_like_json_case(file)) return from_netlist(read_netlist(file));
   return from_json(read_json_file(file), file);
 }
 

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -22,6 +23,24 @@ std::string float_text(double x) {
   // `dcad check` compares integer and fraction strings exactly
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
   return s;
+}
+
+double printed_radius(double mid, double rad) {
+  if (!std::isfinite(rad) || !std::isfinite(mid)) return rad;
+  // how far the decimals that print mid (the shortest, as std::to_chars and the JSON writer give them,
+  // and 17 significant digits, as float_text) lie from it, exactly
+  using reference::Rational;
+  Rational off(0);
+  const Rational m(mid);
+  char buf[64];
+  const std::string shortest(buf, std::to_chars(buf, buf + sizeof buf, mid).ptr);
+  for (const std::string& text : {shortest, json(mid).dump(), float_text(mid)}) {
+    const Rational d = boost::multiprecision::abs(reference::parse_rational(text == "0.0" ? "0" : text) - m);
+    if (d > off) off = d;
+  }
+  if (rad == 0 && off == 0) return 0.0;  // an exact value printed exactly
+  const double o = std::nextafter(off.convert_to<double>(), HUGE_VAL);
+  return std::nextafter(std::nextafter(rad + o, HUGE_VAL), HUGE_VAL);
 }
 
 std::string equation_text(const Eq& e, const std::vector<std::string>& names) {
@@ -455,7 +474,7 @@ json pointwise_json(const Printed& r) {
     const AtGiven& a = *p.at_given;
     const auto balls = [](const std::vector<AtGiven::Ball>& bs) {
       json o = json::object();
-      for (const AtGiven::Ball& b : bs) o[b.name] = {{"mid", b.mid}, {"rad", b.rad}};
+      for (const AtGiven::Ball& b : bs) o[b.name] = {{"mid", b.mid}, {"rad", printed_radius(b.mid, b.rad)}};
       return o;
     };
     json at = {{"certified", a.proved}, {"point", balls(a.point)}, {"velocity", balls(a.velocity)}, {"solved_for", a.solved},
@@ -539,7 +558,7 @@ std::string pointwise_text(const Printed& r) {
     o << "  at the given values, in balls (" << (a.proved ? "proved" : "NOT proved: " + a.why) << "):";
     const auto show = [&o](const std::string& pre, const std::vector<AtGiven::Ball>& bs) {
       for (std::size_t i = 0; i < bs.size(); ++i)
-        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± " << radius_text(bs[i].rad) << (i + 1 < bs.size() ? "," : "");
+        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± " << radius_text(printed_radius(bs[i].mid, bs[i].rad)) << (i + 1 < bs.size() ? "," : "");
     };
     show("", a.point);
     show("d/dt ", a.velocity);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <complex>
+#include <optional>
 #include <stdexcept>
 
 namespace dcad::io {
@@ -21,85 +22,195 @@ constexpr double kPi = 3.141592653589793238462643383279502884;
 
 }  // namespace
 
+namespace {
+
+/// The words of a source specification: commas and parentheses are separators, each parenthesis kept as
+/// a word of its own; "KEY=VALUE" stays one word (the reader glued "KEY = VALUE").
+std::vector<std::string> spec_words(const std::string& spec) {
+  std::vector<std::string> out;
+  std::string t;
+  int depth = 0;  // inside {…}: one word
+  for (char ch : spec) {
+    if (ch == '{') ++depth;
+    if (ch == '}') --depth;
+    const bool sep = depth == 0 && (std::isspace(static_cast<unsigned char>(ch)) || ch == ',' || ch == '(' || ch == ')');
+    if (!sep) {
+      t += ch;
+      continue;
+    }
+    if (!t.empty()) out.push_back(t);
+    t.clear();
+    if (ch == '(' || ch == ')') out.push_back(std::string(1, ch));
+  }
+  if (!t.empty()) out.push_back(t);
+  return out;
+}
+
+bool is_function(const std::string& w) {
+  static const std::vector<std::string> fns = {"sin", "pulse", "pwl", "exp", "sffm", "am", "trnoise", "trrandom", "pat", "generator", "file", "sine"};
+  return std::find(fns.begin(), fns.end(), w) != fns.end();
+}
+
+bool is_keyword(const std::string& w) {
+  static const std::vector<std::string> kw = {"dc", "ac", "distof1", "distof2", "portnum", "z0", "pwr", "freq"};
+  return std::find(kw.begin(), kw.end(), w) != kw.end() || is_function(w);
+}
+
+}  // namespace
+
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number) {
-  std::string s = spec;
-  for (char& ch : s)
-    if (ch == ',') ch = ' ';
   Waveform w;
   w.text = spec;
-  const std::string l = lower(s);
-  const std::size_t open = l.find('(');
-  std::string head = l.substr(0, open == std::string::npos ? l.size() : open);
-  std::vector<std::string> pre;
-  {
-    std::string t;
-    for (std::size_t i = 0; i <= head.size(); ++i) {
-      if (i == head.size() || std::isspace(static_cast<unsigned char>(head[i]))) {
-        if (!t.empty()) pre.push_back(t);
-        t.clear();
-      } else {
-        t += s[i];
-      }
+  const std::vector<std::string> words = spec_words(spec);
+  std::optional<Rational> dc;
+  std::string fn;
+  std::vector<Rational> args;
+  std::vector<std::string> ignored;
+  const auto note = [&](const std::string& s) { ignored.push_back(s); };
+  for (std::size_t i = 0; i < words.size();) {
+    const std::string word = lower(words[i]);
+    const std::size_t eq = word.find('=');
+    const std::string key = eq == std::string::npos ? word : word.substr(0, eq);
+    if (eq != std::string::npos && (key == "dc" || key == "ac" || key == "acmag" || key == "acphase" || key == "portnum" || key == "z0" ||
+                                    key == "pwr" || key == "freq")) {
+      const std::string value = words[i].substr(eq + 1);
+      if (value.empty()) throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+      const Rational v = number(value);
+      if (key == "dc") dc = v;
+      else note(words[i]);
+      ++i;
+      continue;
     }
+    // the values after a keyword: at most `most`, while they are not keywords or parentheses
+    const auto values = [&](std::size_t from, std::size_t most, std::vector<Rational>* into) {
+      std::size_t j = from;
+      while (j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" && !is_keyword(lower(words[j]))) {
+        const Rational v = number(words[j]);
+        if (into) into->push_back(v);
+        ++j;
+      }
+      return j;
+    };
+    if (word == "dc") {
+      std::vector<Rational> v;
+      const std::size_t j = values(i + 1, 1, &v);
+      if (v.empty()) throw std::invalid_argument("expected a value after DC, found none in \"" + spec + "\"");
+      dc = v[0];
+      i = j;
+      continue;
+    }
+    if (word == "ac" || word == "distof1" || word == "distof2" || word == "portnum" || word == "z0" || word == "pwr" || word == "freq") {
+      const std::size_t j = values(i + 1, word == "ac" || word == "distof1" || word == "distof2" ? 2 : 1, nullptr);
+      if (j == i + 1 && word != "ac") throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+      std::string said = words[i];
+      for (std::size_t k = i + 1; k < j; ++k) said += " " + words[k];
+      note(said);
+      i = j;
+      continue;
+    }
+    if (is_function(word)) {
+      if (!fn.empty()) throw std::invalid_argument("expected one transient function, found " + fn + " and " + words[i] + " in \"" + spec + "\"");
+      fn = word == "sine" ? "sin" : word;
+      std::size_t j = i + 1;
+      if (j < words.size() && words[j] == "(") {
+        ++j;
+        while (j < words.size() && words[j] != ")") {
+          if (words[j] == "(") throw std::invalid_argument("expected " + words[i] + "(values), found a nested '(' in \"" + spec + "\"");
+          if (fn != "sin" && fn != "pulse" && fn != "pwl") break;  // not read: said below, the values need not be numbers
+          args.push_back(number(words[j]));
+          ++j;
+        }
+        if (fn != "sin" && fn != "pulse" && fn != "pwl") break;
+        if (j == words.size()) throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
+        i = j + 1;
+      } else {  // SPICE3: the values follow without parentheses
+        if (fn != "sin" && fn != "pulse" && fn != "pwl") break;
+        i = values(j, words.size(), &args);
+      }
+      continue;
+    }
+    if (words[i] == "(" || words[i] == ")") throw std::invalid_argument("expected a value or a keyword, found '" + words[i] + "' in \"" + spec + "\"");
+    if (dc || !fn.empty()) {  // a second bare value
+      if (eq != std::string::npos)
+        throw std::invalid_argument("expected DC, AC or a transient function, found \"" + words[i] + "\" (a keyword dcad does not read) in \"" + spec + "\"");
+      throw std::invalid_argument("expected one DC value, found another one, \"" + words[i] + "\", in \"" + spec + "\"");
+    }
+    dc = number(words[i]);  // "[DC] value": DC is optional before the first value
+    ++i;
   }
-  if (open == std::string::npos) {  // [DC] value
-    if (!pre.empty() && lower(pre[0]) == "dc") pre.erase(pre.begin());
-    if (pre.size() != 1) throw std::invalid_argument("expected [DC] VALUE, SIN(...), PULSE(...) or PWL(...), found \"" + spec + "\"");
-    w.p = {number(pre[0])};
+  if (fn == "exp" || fn == "sffm" || fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "generator" || fn == "file")
+    throw std::invalid_argument("expected DC, SIN, PULSE or PWL for the transient, found " + lower(fn == "" ? "" : fn) +
+                                (fn == "trnoise" || fn == "trrandom" ? " (a random source: no exact transient exists)"
+                                 : fn == "file" || fn == "generator" ? " (values from outside the deck)"
+                                                                     : " (not read by dcad yet)") +
+                                ": write the waveform as PWL(t1 v1 t2 v2 …)" + (fn == "exp" ? " or SIN(…) with THETA" : ""));
+  for (std::size_t k = 0; k < ignored.size(); ++k) w.ignored += (k ? ", " : "") + ignored[k];
+  if (fn.empty()) {
+    w.p = {dc ? *dc : Rational(0)};  // AC alone: DC 0 in the transient, as ngspice
+    w.given = 1;
     return w;
   }
-  // "DC v" before a transient function is the operating-point value: the transient uses the function
-  if (pre.size() >= 2 && lower(pre[0]) == "dc") pre.erase(pre.begin(), pre.begin() + 2);
-  if (pre.size() != 1) throw std::invalid_argument("expected one of SIN(...), PULSE(...), PWL(...), found \"" + spec + "\"");
-  const std::string fn = lower(pre[0]);
-  const std::size_t close = l.rfind(')');
-  if (close == std::string::npos || close < open) throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
-  for (std::size_t i = close + 1; i < l.size(); ++i)
-    if (!std::isspace(static_cast<unsigned char>(l[i])))
-      throw std::invalid_argument("expected nothing after " + pre[0] + "(...), found \"" + spec.substr(i) + "\"");
-  std::vector<Rational> a;
-  {
-    std::string t;
-    const std::string inner = s.substr(open + 1, close - open - 1);
-    for (std::size_t i = 0; i <= inner.size(); ++i) {
-      if (i == inner.size() || std::isspace(static_cast<unsigned char>(inner[i]))) {
-        if (!t.empty()) a.push_back(number(t));
-        t.clear();
-      } else {
-        t += inner[i];
-      }
-    }
-  }
+  if (dc) w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "DC " + dc->str() + " (the operating point's value; the transient uses " + fn + ")";
+  std::vector<Rational>& a = args;
+  w.given = a.size();
   if (fn == "sin") {
-    if (a.size() < 3 || a.size() > 6)
-      throw std::invalid_argument("expected SIN(VO VA FREQ [TD [THETA [PHASE]]]) with FREQ given, found " + std::to_string(a.size()) + " values");
-    a.resize(6, Rational(0));
-    if (a[3] < 0 || a[2] < 0) throw std::invalid_argument("expected FREQ >= 0 and TD >= 0 in SIN, found a negative one");
+    if (a.size() < 2 || a.size() > 6)
+      throw std::invalid_argument("expected SIN(VO VA [FREQ [TD [THETA [PHASE]]]]), found " + std::to_string(a.size()) + " values");
+    if (a.size() > 2 && a[2] < 0) throw std::invalid_argument("expected FREQ >= 0 in SIN, found " + a[2].str());
     w.kind = Waveform::Kind::sin;
   } else if (fn == "pulse") {
-    if (a.size() != 7)
-      throw std::invalid_argument("expected PULSE(V1 V2 TD TR TF PW PER) with all seven values (dcad has no TSTEP/TSTOP defaults), found " +
-                                  std::to_string(a.size()));
-    if (a[2] < 0 || a[3] <= 0 || a[4] <= 0 || a[5] < 0 || a[6] < a[3] + a[4] + a[5])
-      throw std::invalid_argument("expected PULSE with TD >= 0, TR > 0, TF > 0, PW >= 0 and PER >= TR + PW + TF, found TD = " + a[2].str() +
-                                  ", TR = " + a[3].str() + ", TF = " + a[4].str() + ", PW = " + a[5].str() + ", PER = " + a[6].str());
+    if (a.size() < 2 || a.size() > 8)
+      throw std::invalid_argument("expected PULSE(V1 V2 [TD [TR [TF [PW [PER [NP]]]]]]), found " + std::to_string(a.size()) + " values");
+    if (a.size() > 2 && a[2] < 0) throw std::invalid_argument("expected TD >= 0 in PULSE, found " + a[2].str());
+    if (a.size() == 8) {
+      if (a[7] < 0 || boost::multiprecision::denominator(a[7]) != 1 || a[7] > 1000000)
+        throw std::invalid_argument("expected PULSE's NP (number of pulses) a whole number in 0 … 10^6, found " + a[7].str());
+      w.pulses = static_cast<long>(boost::multiprecision::numerator(a[7]).convert_to<long>());
+      a.pop_back();
+    }
     w.kind = Waveform::Kind::pulse;
-  } else if (fn == "pwl") {
+  } else {
     if (a.size() < 2 || a.size() % 2 != 0) throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) + " values");
     for (std::size_t i = 2; i < a.size(); i += 2)
       if (!(a[i] > a[i - 2])) throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
     if (a[0] < 0) throw std::invalid_argument("expected PWL times >= 0, found " + a[0].str());
     w.kind = Waveform::Kind::pwl;
-  } else {
-    throw std::invalid_argument("expected SIN, PULSE or PWL, found \"" + pre[0] + "\" (EXP, SFFM, AM are not supported)");
   }
   w.p = a;
+  if (w.kind == Waveform::Kind::pwl) w.given = a.size();
+  if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0) w.p.resize(6, Rational(0));  // FREQ given: complete already
   return w;
+}
+
+void Waveform::complete(const std::optional<Rational>& tstep, const std::optional<Rational>& tstop) {
+  const auto need = [&](const std::optional<Rational>& x, const char* what, const char* why) -> Rational {
+    if (!x || *x <= 0)
+      throw std::invalid_argument(std::string("expected a .tran card with ") + what + " for " + text + " (ngspice takes " + why +
+                                  "), found none: give .tran or the value");
+    return *x;
+  };
+  if (kind == Kind::sin) {
+    const bool has_freq = p.size() > 2 && p[2] != 0;
+    if (!has_freq) {
+      const Rational stop = need(tstop, "TSTOP", "FREQ = 1/TSTOP where FREQ is 0 or missing");
+      if (p.size() < 3) p.resize(3, Rational(0));
+      p[2] = Rational(1) / stop;
+    }
+    p.resize(6, Rational(0));
+  } else if (kind == Kind::pulse) {
+    const std::size_t n = given > 7 ? 7 : given;
+    p.resize(7, Rational(0));
+    if (n < 4 || p[3] <= 0) p[3] = need(tstep, "TSTEP", "TR = TSTEP where TR is missing or <= 0");
+    if (n < 5 || p[4] <= 0) p[4] = need(tstep, "TSTEP", "TF = TSTEP where TF is missing or <= 0");
+    if (n == 5) p[5] = 0;
+    else if (n < 6 || p[5] < 0) p[5] = need(tstop, "TSTOP", "PW = TSTOP where PW is missing or < 0");
+    if (n < 7 || p[6] <= 0) p[6] = need(tstop, "TSTOP", "PER = TSTOP where PER is missing or <= 0");
+  }
 }
 
 bool Waveform::constant() const {
   if (kind == Kind::dc) return true;
-  if (kind == Kind::sin) return p[1] == 0 || p[2] == 0 && p[5] == 0;
+  if (kind == Kind::sin) return p[1] == 0;
   return false;
 }
 
@@ -141,6 +252,10 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
       return;
     }
     T tau = t - td;
+    if (w.pulses > 0 && tau > per * static_cast<T>(w.pulses)) {  // after NP pulses: V1 (ngspice)
+      v = v1;
+      return;
+    }
     if (per > 0) tau -= per * floor_of(T(tau / per));
     if (tau < tr) {
       slope = (v2 - v1) / tr;
@@ -231,6 +346,10 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
     for (long k = 0;; ++k) {
       const double base = td + (per > 0 ? per * static_cast<double>(k) : 0.0);
       if (base > tstop) break;
+      if (pulses > 0 && k >= pulses) {  // NP pulses done: V1 from here on
+        if (base > 0) out.push_back(base);
+        break;
+      }
       if (k >= kMaxPeriods)
         throw std::invalid_argument(element + ": " + text + " has more than " + std::to_string(kMaxPeriods) + " periods before " +
                                     std::to_string(tstop) + " s (each is four breakpoints of the exact integration)");
@@ -293,6 +412,10 @@ std::optional<Rational> Waveform::next_corner(const Rational& t) const {
     if (per > 0 && t > td) k0 = floor_of(Rational((t - td) / per));
     for (Rational k = k0; k <= k0 + 1; k += 1) {
       const Rational base = td + (per > 0 ? per * k : Rational(0));
+      if (pulses > 0 && k >= pulses) {  // NP pulses done: the last corner is the end of the last period
+        consider(td + per * pulses);
+        break;
+      }
       for (const Rational& c : {base, Rational(base + tr), Rational(base + tr + pw), Rational(base + tr + pw + tf)}) consider(c);
       if (per <= 0) break;
     }

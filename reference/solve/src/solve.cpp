@@ -88,11 +88,16 @@ Solution implicit(const io::LagrangianCase& c) {
 }  // namespace
 
 Solution solve(const io::Problem& p, const Parts& parts) {
+  io::validate(p);
   Solution s = p.form == io::Form::expression ? expression(p.expression)
                : p.form == io::Form::implicit ? implicit(p.expression)
                : p.form == io::Form::dae      ? pipeline::solve_dae(p.dae)
                : p.form == io::Form::netlist  ? netlist(p, parts)
                                               : linear(p.linear, parts);
+  if (p.form == io::Form::netlist && !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+    s.certified = unknown;
+    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
+  }
   s.backend = "reference";
   s.exact = true;
   s.warnings = p.warnings();

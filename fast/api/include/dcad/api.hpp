@@ -117,7 +117,8 @@ struct WaveformVector {
   double max_error = 0;  ///< largest |found − exact| over the compared points
   double at = 0;         ///< its time
   double exact = 0, found = 0;
-  double scale = 0;      ///< max |exact| over the run
+  double scale = 0;      ///< max |exact| over the run (its kind's largest, for a vector near 0: kind_scale)
+  bool kind_scale = false;  ///< the vector's largest |exact| is below 1e-12 of its kind's, which is its scale (CONTRACT)
   bool agree = true;
   bool at_corner = false;         ///< the worst point is a source corner (either one-sided value was allowed)
   long skipped_at_jump = 0;       ///< points at t = 0 after a jump onto M_c, not compared
@@ -136,6 +137,10 @@ struct WaveformChecked {
   std::string format;             ///< the file's format
   long points = 0;                ///< time points in the file
   double error_estimate = 0;      ///< the exact flow's own error estimate (relative to the state)
+  /// the variables (q_C, v_L, p_L) that jump onto M_c at t = 0, decided on the exact model (the dense
+  /// route's rationals up to kForcedBranches branches; beyond it the loops and cutsets that can move them)
+  std::vector<std::string> jumped;
+  double first_after_zero = 0;    ///< the file's first time after 0
   std::vector<WaveformVector> vectors;
   std::size_t worst = 0;          ///< the vector with the largest error relative to its scale (what --plot draws by default)
   std::vector<std::vector<double>> exact;  ///< with keep_exact: exact[k][i], vector k at the file's time i (the value compared)

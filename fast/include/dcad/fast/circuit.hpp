@@ -17,6 +17,9 @@
 // `proptests/prop_circuit_graph.cpp` checks both against the generic CAD (reference and fast).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "dcad/fast/rank.hpp"
 #include "dcad/graph.hpp"
 #include "dcad/lc_graph.hpp"
@@ -38,6 +41,20 @@ struct CircuitGraph {
   std::size_t nodes = 0;  ///< non-ground nodes 0 … nodes−1
   std::vector<CircuitBranch> branches;
 };
+
+/// `opt` itself if already assessed (rank.hpp), else a copy assessed on the element values as the exact
+/// conversion assesses them (dcad/fast/exact.hpp's to_double_values): their magnitudes, with 1, spanning
+/// more than 1/nonzero_factor leave no rank deficiency certain (graded values).
+inline Options assessed_values(const Options& opt, const CircuitGraph& g) {
+  if (opt.input_assessed) return opt;
+  Options out = opt;
+  double lo = 1, hi = 1;
+  for (const CircuitBranch& b : g.branches)
+    if (b.value != 0 && std::isfinite(b.value)) lo = std::min(lo, std::abs(b.value)), hi = std::max(hi, std::abs(b.value));
+  if (hi / lo > 1 / out.nonzero_factor) out.input_well_scaled = false;
+  out.input_assessed = true;
+  return out;
+}
 
 /// The tower (dcad/lc_graph.hpp's, in double) and how it was reached.
 struct CircuitTower : lc::Tower<double> {

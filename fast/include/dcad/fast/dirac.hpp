@@ -12,9 +12,16 @@ struct DiracStructure {
   /// The presymplectic form ω when D was built as its graph (dirac_from_presymplectic), else empty:
   /// then E_D = R^n and ω_D = ω (CEF §4), which the CAD uses instead of deciding them again.
   MatrixXd graph_of;
+  /// The raw data it was built from when not a graph (basis rows, a Poisson bivector, a distribution's
+  /// form): what `assessed` (rank.hpp) reads of a caller's Dirac structure.
+  MatrixXd given;
   MatrixXd v_part() const { return d.columns().topRows(n); }
   MatrixXd alpha_part() const { return d.columns().bottomRows(n); }
 };
+
+/// The raw data of a Dirac structure for `assessed` (rank.hpp): the presymplectic form it is the graph of,
+/// else its basis (orthonormal, so a deficiency decided on it is certain only if the caller vouches for it).
+inline const MatrixXd& dirac_data(const DiracStructure& d) { return d.graph_of.size() ? d.graph_of : d.given.size() ? d.given : d.d.columns(); }
 
 /// Lemma 4.1: dim D = n and ⟨⟨D, D⟩⟩ = 0; `why` explains a negative answer.
 struct DiracCheck {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,14 @@ struct Options {
   double nonzero_factor = 1.4901161193847656e-08;  // √ε
   bool input_exact = true;
   bool input_well_scaled = true;
+  /// Whether the two flags above describe this computation's data.  False (the default): the data are a
+  /// caller's doubles nobody has looked at, and every public entry point assesses the raw matrices it is
+  /// given (`assessed`, below) before deciding anything, then passes options with this set to what it
+  /// calls; a decision made with it still false (on data no entry point assessed) is never certain about
+  /// a rank deficiency.  dcad/fast/exact.hpp's conversions set it (they assess the exact values).  Set
+  /// it yourself only after assess_input on all of your data, or to vouch that your doubles are exact
+  /// data of small height (the separation hypothesis above).
+  bool input_assessed = false;
   /// Decisions on matrices with more than this many rows and columns go by pivoted QR first (see
   /// RankDecision); the properties set it to 0 to put every decision through that route.
   int qr_from = 48;
@@ -76,7 +85,12 @@ double zero_threshold(int rows, int cols, double scale, const Options& opt);
 
 /// Clears opt.input_well_scaled if the binary digits of the nonzero entries of `a` (each entry's
 /// largest and its lowest nonzero digit), together with 1, span more than 1/nonzero_factor in magnitude.
-void assess_input(const MatrixXd& a, Options& opt);
+void assess_input(const Eigen::Ref<const MatrixXd>& a, Options& opt);
+/// `opt` itself if it is already assessed; else a copy with assess_input applied to each of `data` (a
+/// public entry point's raw input: matrices, vectors, a caller's values) and input_assessed set.
+Options assessed(const Options& opt, std::initializer_list<Eigen::Ref<const MatrixXd>> data);
+/// Whether a rank deficiency may be certain with these options: assessed, exact and well scaled.
+inline bool deficiency_provable(const Options& opt) { return opt.input_assessed && opt.input_exact && opt.input_well_scaled; }
 
 /// A decision is made in one of three ways (the evidence says which):
 ///  * by the norm alone: ‖A‖_F ≤ τ0 bounds every singular value, so rank 0 without a factorization

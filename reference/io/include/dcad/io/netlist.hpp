@@ -34,7 +34,21 @@ struct Netlist {
   /// `.ic v(node)=value` by node index (ground excluded): with uic capacitor voltages, without it the
   /// voltages the operating point holds.
   std::vector<std::pair<long, Rational>> node_ic;
+  /// Non-empty when a group of coupled inductors has an inductance matrix that is not positive
+  /// semidefinite (decided exactly; file:line and the couplings): `simulate` and `check` refuse the deck.
+  std::string indefinite_inductance;
+  /// Values that are irrational (sqrt, exp, pi … in an expression), each "file:line: {expr} …": used to 80
+  /// significant digits, so the exact tiers solve a circuit within 1e-80 of the deck's, and say so.
+  std::vector<std::string> rounded;
 };
+
+/// The note of a result on a deck with irrational values (Netlist::rounded), "" if none: what an exact
+/// tier proves there is about the rounded circuit, so no tier says `certified` of the deck itself.
+inline std::string rounded_note(const Netlist& n) {
+  if (n.rounded.empty()) return "";
+  std::string s = "not certified for the deck as written: " + std::to_string(n.rounded.size()) + " irrational value(s) used to 80 significant digits (" + n.rounded.front();
+  return s + (n.rounded.size() > 1 ? ", …)" : ")") + "; the answer is exact for that rounded circuit";
+}
 
 bool is_netlist_file(const std::string& file);
 /// The deck's graph facts (dcad/graph.hpp): counts, and the loops and cutsets by signed branch names —

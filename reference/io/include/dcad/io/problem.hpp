@@ -37,6 +37,12 @@ struct Problem {
   const std::vector<std::string>& warnings() const { return netlist.warnings; }
 };
 
+/// A Problem built in code held to what the readers guarantee (issue 45 §5): sizes of every matrix and
+/// vector, unique non-empty names, node, source and variable indices in range, complete formulas.
+/// InputError naming the field, what was expected and what was found.  Every twin's solve (and every
+/// dcad::api entry point) calls it first, so a malformed problem is never solved as another one.
+void validate(const Problem& p);
+
 /// Any input file: a netlist by its extension (.cir, .sp, .net, .spice, .ckt), else a JSON case in
 /// the expression form or a linear one — the JSON is read once.  InputError for bad input.
 Problem read_problem(const std::string& file);

@@ -19,6 +19,11 @@ using Printed = Solution<std::string>;
 
 /// x as %.17g (round-trips), always as a float: "1.0", never "1" (an exact integer string) or "-0".
 std::string float_text(double x);
+/// The radius to print beside `mid` for a ball mid ± rad of an exact value (issue 45 §6): wide enough that
+/// the *printed* decimals contain it — rad plus one ulp of mid (any decimal that reads back as mid, the
+/// shortest or 17 digits, lies within half an ulp of it), rounded up twice so that even the shortest
+/// decimal of the result is not below the sum.  Infinite or NaN radii are returned as they are.
+double printed_radius(double mid, double rad);
 inline std::string number_text(double x) { return float_text(x); }
 inline std::string number_text(const reference::Rational& q) { return q.str(); }
 

@@ -20,6 +20,11 @@ struct Traces {
   std::vector<std::string> skipped;
 };
 
+/// Traces built in code held to what the readers guarantee: at least one time point, finite and
+/// nondecreasing times, one name per vector and one value per time point in each (InputError naming the
+/// field, expected and found).  dcad::api::check_waveform calls it first.
+void validate(const Traces& t);
+
 /// Reads FILE, recognising its format from its content.  Bad input (an unknown format, a truncated
 /// file, a non-numeric value, times that decrease, an AC or complex plot) is InputError naming the
 /// file, the line or byte offset, what was expected and what was found.

@@ -22,7 +22,19 @@ struct Waveform {
   std::vector<Rational> p;  ///< DC: {V}; SIN: VO VA FREQ TD THETA PHASE(deg); PULSE: V1 V2 TD TR TF PW PER; PWL: t1 v1 t2 v2 …
   std::string element;      ///< the source's name (V1, I.x1.i2)
   std::string text;         ///< as written, for messages
+  /// PULSE's 8th value NP (ngspice): the number of pulses, V1 after them; 0: unbounded.
+  long pulses = 0;
+  /// How many values the deck gave: PULSE and SIN take ngspice's defaults for the rest from .tran's TSTEP
+  /// and TSTOP (complete()); until then p may be shorter than its kind's.
+  std::size_t given = 0;
+  /// What the specification holds that the transient does not use (an AC or distortion specification, a
+  /// port's number and impedance, a DC value before a function), as written: the reader notes it.
+  std::string ignored;
 
+  /// ngspice's defaults and limits for what the deck left out (vsrcload.c): PULSE TD = 0, TR and TF = TSTEP
+  /// (also for a TR or TF <= 0), PW = TSTOP (0 with five values), PER = TSTOP (also for PER <= 0); SIN FREQ
+  /// = 1/TSTOP (also for 0).  std::invalid_argument when one is needed and .tran gives no TSTEP or TSTOP.
+  void complete(const std::optional<Rational>& tstep, const std::optional<Rational>& tstop);
   bool constant() const;
   /// σ^{(order)}(t), right limit at breakpoints (t ≥ 0).  order ≥ 2 of PULSE/PWL is 0 (away from corners).
   double value(double t, int order = 0) const;
@@ -49,9 +61,13 @@ struct Waveform {
   double omega() const;
 };
 
-/// Parses the source specification after the nodes: "[DC] v", "SIN(...)", "PULSE(...)", "PWL(...)",
-/// optionally preceded by "DC v" (ignored for the transient when a function follows, as ngspice
-/// does).  `number` converts one token exactly.  Throws std::invalid_argument.
+/// Parses the source specification after the nodes as ngspice does for a transient: "[DC] v", "DC=v",
+/// "SIN(...)", "PULSE(...)", "PWL(...)" — with or without parentheses (SPICE3) — in any order with an AC
+/// specification ("AC mag [phase]", "AC=mag"), DISTOF1/DISTOF2 and a port's "portnum N z0 Z pwr P freq F",
+/// which the transient does not use (recorded in `ignored`); a DC value before a function is the operating
+/// point's and is ignored as ngspice ignores it for .tran.  PULSE's and SIN's missing values wait for
+/// complete().  `number` converts one token exactly.  Throws std::invalid_argument naming what is not read
+/// (EXP, SFFM, AM, TRNOISE, PAT …) and what to write instead.
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number);
 
 }  // namespace dcad::io

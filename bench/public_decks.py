@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""Issue 45's acceptance corpus: public linear SPICE decks nobody here wrote, run through `dcad solve`.
+
+The decks themselves are not in this repository (their licences and the rule that fetched code stays
+out of commits); bench/public_decks.tsv lists each one's origin (source, repository, commit, path,
+licence).  Put a copy of those repositories' files under CORPUS/<source>/<path> (for instance from
+`git --git-dir=… show COMMIT:PATH`), then:
+
+    /usr/bin/python3 bench/public_decks.py build/dcad CORPUS [--out bench/results/public_decks.md]
+
+Each deck runs once, `dcad solve --json --with none DECK` in the deck's own directory (its .include
+files beside it), 60 s at most.  The table counts accepted decks (exit 0) per source and groups the
+refusals by their message (file names and numbers folded), so a refusal that is not true shows.
+"""
+import collections
+import csv
+import os
+import re
+import subprocess
+import sys
+import time
+
+
+def fold(message):
+    """A refusal's message with what varies between decks folded: file:line, quoted text, numbers."""
+    m = re.sub(r"^\S+?:\d+: ", "", message)
+    m = re.sub(r"\"[^\"]*\"", '"…"', m)
+    m = re.sub(r"\b[\w.+-]*\d[\w.+-]*\b", "#", m)
+    return m[:160]
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    dcad, corpus = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(os.path.dirname(__file__), "results", "public_decks.md")
+    listing = os.path.join(os.path.dirname(os.path.abspath(__file__)), "public_decks.tsv")
+    rows = list(csv.DictReader(open(listing), delimiter="\t"))
+    per_source = collections.defaultdict(lambda: [0, 0, 0, 0])  # present, accepted, refused, other
+    causes = collections.defaultdict(list)
+    others = []
+    t_all = time.monotonic()
+    for r in rows:
+        deck = os.path.join(corpus, r["source"], r["path"])
+        if not os.path.isfile(deck):
+            continue
+        counts = per_source[r["source"]]
+        counts[0] += 1
+        try:
+            p = subprocess.run([dcad, "solve", "--json", "--with", "none", os.path.basename(deck)], cwd=os.path.dirname(deck),
+                               capture_output=True, timeout=60)
+            code, err = p.returncode, p.stderr.decode("utf-8", "replace")
+        except subprocess.TimeoutExpired:
+            code, err = "timeout", ""
+        first = next((l for l in err.splitlines() if l.strip() and not l.startswith(("warning:", "note:"))), "")
+        if code == 0:
+            counts[1] += 1
+        elif code == 1:
+            counts[2] += 1
+            causes[fold(first)].append((r["source"], r["path"], first))
+        else:
+            counts[3] += 1
+            others.append((r["source"], r["path"], code, first))
+    seconds = time.monotonic() - t_all
+    present = sum(c[0] for c in per_source.values())
+    accepted = sum(c[1] for c in per_source.values())
+    with open(out, "w") as f:
+        f.write("# Public linear decks through `dcad solve` (issue 45)\n\n")
+        f.write("`/usr/bin/python3 bench/public_decks.py build/dcad CORPUS` — %d decks present of %d listed, %.0f s.\n\n" % (present, len(rows), seconds))
+        f.write("| source | decks | accepted | refused (exit 1) | other exit |\n|---|---|---|---|---|\n")
+        for s, c in sorted(per_source.items()):
+            f.write("| %s | %d | %d (%.1f %%) | %d | %d |\n" % (s, c[0], c[1], 100.0 * c[1] / max(c[0], 1), c[2], c[3]))
+        f.write("| all | %d | %d (%.1f %%) | %d | %d |\n\n" % (present, accepted, 100.0 * accepted / max(present, 1),
+                                                           sum(c[2] for c in per_source.values()), sum(c[3] for c in per_source.values())))
+        f.write("## Refusals by cause\n\n")
+        for cause, decks in sorted(causes.items(), key=lambda kv: -len(kv[1])):
+            f.write("- **%d** — `%s`\n" % (len(decks), cause.replace("`", "'")))
+            for s, path, first in decks[:3]:
+                f.write("  - %s `%s`: %s\n" % (s, path, first.replace("`", "'")[:300]))
+        if others:
+            f.write("\n## Other exits (crashes, internal errors, timeouts)\n\n")
+            for s, path, code, first in others:
+                f.write("- %s `%s`: exit %s, %s\n" % (s, path, code, first[:300]))
+    print("%d of %d decks accepted (%.1f %%); table in %s" % (accepted, present, 100.0 * accepted / max(present, 1), out))
+
+
+if __name__ == "__main__":
+    main()
