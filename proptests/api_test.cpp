@@ -343,3 +343,31 @@ TEST(Api, CheckNamesTheKeysItDoesNotCompare) {
   EXPECT_NE(all.find("state_equations"), std::string::npos) << all;  // dcad's own informational keys too
   EXPECT_EQ(all.find("dims"), std::string::npos) << all;             // compared keys are not listed
 }
+
+#include "fuzz/typed_mutations.hpp"
+
+// Issue 45 §5: a Problem built in code is validated at the API, like a file is by its reader.  Every
+// malformation of every form (a missing variable name or f entry, a duplicate name, a node, source or
+// variable index out of range, a null formula, sizes that do not match) is bad input on every entry point
+// and every backend — never an answer, let alone a certified one (a DaeCase with a name short was solved
+// as another system and certified).  The unmodified problems are answered (the check can fail).
+TEST(TypedInput, MalformedIsNeverAnswered) {
+  std::size_t mutations = 0;
+  for (const dcad::io::Problem& base : dcad::fuzz::typed_bases()) {
+    EXPECT_NO_THROW((void)dcad::api::solve(base, Backend::certified)) << base.file;
+    for (unsigned which = 0; which < 8; ++which)
+      for (unsigned k = 0; k < 3; ++k) {
+        dcad::io::Problem p = base;
+        if (!dcad::fuzz::malform(p, which, k)) continue;
+        ++mutations;
+        std::string what;
+        EXPECT_TRUE(dcad::fuzz::all_refuse(p, what)) << what << " (mutation " << which << ", " << k << ")";
+      }
+  }
+  EXPECT_GT(mutations, 100u);
+  const dcad::io::Problem deck = dcad::fuzz::typed_bases()[3];
+  for (unsigned which = 0; which < 5; ++which) {
+    std::ostringstream log;
+    EXPECT_THROW((void)dcad::api::check_waveform(dcad::fuzz::malformed_traces(which, 1), deck, {}, log), std::invalid_argument) << which;
+  }
+}

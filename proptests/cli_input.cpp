@@ -63,7 +63,6 @@ INSTANTIATE_TEST_SUITE_P(
                     // values other SPICEs read otherwise (issue 27): never guessed
                     BadCase{"atto", "title\nL1 1 0 1u\nC1 1 0 1a\n", "atto"},
                     BadCase{"hspicemega", "title\nL1 1 0 1u\nR1 1 0 10x\n", "mega"},
-                    BadCase{"zeror", "title\nL1 1 0 1u\nR1 1 0 0\n", "nonzero resistance"},
                     // the refusal of a card names every supported element
                     BadCase{"modelnames", "title\n.frobnicate\nL1 1 0 1\n", "an R, L, C, V, I, K or X element"},
                     BadCase{"modeluse", "title\n.model d1 D\nD1 1 0 d1\n", "element D1"},
@@ -269,6 +268,87 @@ TEST(Cli, PerfectCouplingIsOneTank) {
 // coupling matrix 1 - 0.5625 - 0.64 = -0.2025), decided exactly: solve warns (the tower is still the
 // mathematics of the deck), simulate and check refuse, naming the inductors, the couplings and the
 // determinant.  k = 1 (a perfect transformer, semidefinite) is accepted.
+// Issue 45 §1: a deck in the spellings public decks use (ngspice's examples and tests, Xyce's regression
+// decks, gnucap's tests) is the circuit of its hand-flattened twin, in ngspice's semantics: AC and port
+// specifications, `DC 0 ac 1`, SPICE3 PULSE without parentheses and with .tran's defaults (TR = TF = TSTEP,
+// PW = PER = TSTOP), EXP with TD2 = TD1 + TSTEP and TAU2 = TSTEP, .global_param, HSPICE quotes, .func, a
+// .param inside a .subckt (scoped: overridden per instance where the instance says so), a .global node,
+// gnucap's parenthesised nodes, M= and TC1= on a resistor (at 27 C), a bare parameter name, analysis,
+// sweep and output cards (.step, .meas, .print, .data … .enddata).  Same tower, same trajectory, exactly.
+TEST(Cli, PublicDeckSpellingsAreTheirFlattenedTwin) {
+  const std::string deck = write_temp("dcad_spellings.cir",
+                                      "ngspice syntax, every spelling\n"
+                                      ".global_param rs=2\n"
+                                      ".param lval = 'rs * 1m'\n"
+                                      ".func half(x) {x / 2}\n"
+                                      ".global vdd\n"
+                                      "V1 in 0 dc 0 ac 1 PULSE 0 1 1u\n"
+                                      "V2 vdd 0 AC 1 DC 3 portnum 1 z0 50\n"
+                                      "I1 0 sense EXP(0 1m 2u 1u) ac 1 0\n"
+                                      "R1 in mid {rs * 500} M=2 TC1=0.001\n"
+                                      "X1 mid out filt params: c=2n\n"
+                                      "X2 out x2.b filt\n"
+                                      "Rload out 0 rload\n"
+                                      ".param rload=1k\n"
+                                      "R3 (sense 0) {half(2k)}\n"
+                                      "C9 sense 0 1n\n"
+                                      ".subckt filt a b params: c=1n\n"
+                                      ".param lsub = {lval * 2}\n"
+                                      "L1 a b {lsub}\n"
+                                      "C1 b 0 c\n"
+                                      "R2 b vdd 10k\n"
+                                      ".ends\n"
+                                      ".tran 0.1u 20u\n"
+                                      ".step param rs list 1 2 3\n"
+                                      ".meas tran vmax max v(out)\n"
+                                      ".print tran v(out)\n"
+                                      ".fft v(out)\n"
+                                      ".data table rs 1 2\n"
+                                      ".enddata\n"
+                                      ".end\n");
+  const std::string twin = write_temp("dcad_spellings_twin.cir",
+                                      "the same circuit, flattened by hand\n"
+                                      "V1 in 0 PULSE(0 1 1u 0.1u 0.1u 20u 20u)\n"
+                                      "V2 vdd 0 3\n"
+                                      "I1 0 sense EXP(0 1m 2u 1u 2.1u 0.1u)\n"
+                                      "R1 in mid 500\n"
+                                      "L.x1.l1 mid out 4m\n"
+                                      "C.x1.c1 out 0 2n\n"
+                                      "R.x1.r2 out vdd 10k\n"
+                                      "L.x2.l1 out x2.b 4m\n"
+                                      "C.x2.c1 x2.b 0 1n\n"
+                                      "R.x2.r2 x2.b vdd 10k\n"
+                                      "Rload out 0 1k\n"
+                                      "R3 sense 0 1k\n"
+                                      "C9 sense 0 1n\n"
+                                      ".tran 0.1u 20u\n");
+  for (const char* backend : {"reference", "certified"}) {
+    const Outcome a = run("solve " + deck + " --json --with none --backend " + backend), b = run("solve " + twin + " --json --with none --backend " + backend);
+    ASSERT_EQ(a.rc, 0) << a.err;
+    ASSERT_EQ(b.rc, 0) << b.err;
+    const auto dims = [](const std::string& j) { return j.substr(j.find("\"dims\""), j.find(']', j.find("\"dims\"")) - j.find("\"dims\"")); };
+    EXPECT_EQ(dims(a.out), dims(b.out)) << backend;
+  }
+  const Outcome sa = run("simulate " + deck + " --tstop 20u --step 1u"), sb = run("simulate " + twin + " --tstop 20u --step 1u");
+  ASSERT_EQ(sa.rc, 0) << sa.err;
+  ASSERT_EQ(sb.rc, 0) << sb.err;
+  EXPECT_EQ(sa.out, sb.out);
+  for (const char* said : {"not part of the transient, ignored: ac 1", "portnum 1", "ignored .step", "ignored .meas", "ignored .data block",
+                           "temperature coefficients ignored"})
+    EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
+}
+
+// ngspice reads a resistance below 1e-12 Ohm as 1e-12 (resparam.c's RESMIN): a resistor, never a wire (whose
+// index class differs) and never refused; the warning says so.  Killed by: R = 0 read as a wire or refused.
+TEST(Cli, ZeroResistanceIsNgspicesMinimum) {
+  const std::string zero = write_temp("dcad_zero_r.cir", "title\nL1 1 0 1u\nR1 1 0 0\nC1 1 0 1n\n.end\n");
+  const std::string tiny = write_temp("dcad_tiny_r.cir", "title\nL1 1 0 1u\nR1 1 0 1e-12\nC1 1 0 1n\n.end\n");
+  const Outcome z = run("solve " + zero + " --json --backend reference"), t = run("solve " + tiny + " --json --backend reference");
+  ASSERT_EQ(z.rc, 0) << z.err;
+  EXPECT_NE(z.err.find("read as 1e-12 Ohm, as ngspice"), std::string::npos) << z.err;
+  EXPECT_EQ(nlohmann::json::parse(z.out)["dims"], nlohmann::json::parse(t.out)["dims"]);
+}
+
 TEST(Cli, IndefiniteInductanceMatrixIsNamed) {
   const std::string deck = write_temp("dcad_indefinite.cir", "title\nL1 1 0 1\nL2 2 0 1\nL3 3 0 1\nK12 L1 L2 0.75\nK13 L1 L3 0.8\n"
                                                             "C1 1 2 1\nC2 2 3 1\n.tran 1m 1 uic\n");

@@ -15,7 +15,7 @@ ctest --test-dir build-asan -j2 --output-on-failure
 
 # seed corpora: case files, netlists, and dcad's own results as results to check
 work=build-asan/fuzz
-rm -rf "$work" && mkdir -p "$work"/{case,netlist,result,waveform}
+rm -rf "$work" && mkdir -p "$work"/{case,netlist,result,waveform,typed}
 cp cases/*.json "$work/case/"
 cp cases/*.cir "$work/netlist/"
 for t in case netlist result waveform; do  # inputs that once crashed a reader, and seeds (kept as seeds, and as tests)
@@ -25,7 +25,8 @@ for f in cases/harmonic-oscillator.json cases/gauge-free-particle.json cases/rou
   for b in reference fast certified; do build-asan/dcad solve "$f" --json --backend "$b" > "$work/result/$(basename "$f" .json)-$b.json" || true; done
 done
 status=0
-for t in case netlist result waveform; do
+printf "\x03\x00\x01" > "$work/typed/seed"  # the deck, its first node out of range
+for t in case netlist result waveform typed; do
   log="$work/fuzz_$t.log"
   echo "== fuzz_$t: ${seconds} s"
   if ! build-asan/proptests/fuzz/fuzz_$t -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=65536 \

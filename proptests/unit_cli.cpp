@@ -115,9 +115,37 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   EXPECT_EQ(np.value(5.5, 0), 1.0);   // inside the second pulse
   EXPECT_EQ(np.value(9.5, 0), 0.0);   // where a third would rise
   EXPECT_FALSE(np.next_corner(Rational(8)).has_value());  // nothing moves after the last pulse
-  Waveform cut = wave("PULSE(0 1 0 1 1 3 4)");  // PER < TR + PW + TF: the fall is cut at PER (ngspice)
-  EXPECT_EQ(cut.value(4.5, 0), 0.5);  // rising again, not falling
-  EXPECT_THROW(wave("EXP(0 1 1u 1u 2u 1u)"), std::invalid_argument);
+  Waveform cut = wave("PULSE(0 1 0 1 1 3 5.5)");  // a pause at V1 between pulses, then the next rise
+  cut.complete(Rational(1), Rational(10));
+  EXPECT_EQ(cut.value(6, 0), 0.5);  // rising again, not falling
+  // EXP as ngspice evaluates it (vsrcload.c), and its defaults from TSTEP
+  Waveform e = wave("EXP(0 1 1 2 5 4)");
+  e.complete(std::nullopt, std::nullopt);
+  EXPECT_EQ(e.value(0.5, 0), 0.0);
+  EXPECT_NEAR(e.value(3, 0), 1 - std::exp(-1.0), 1e-15);
+  EXPECT_NEAR(e.value(7, 0), (1 - std::exp(-3.0)) - (1 - std::exp(-0.5)), 1e-15);
+  EXPECT_NEAR(e.value(3, 1), std::exp(-1.0) / 2, 1e-15);
+  EXPECT_EQ(e.breakpoints(10), (std::vector<double>{1, 5}));
+  EXPECT_EQ(e.exact_at_zero(0), Rational(0));
+  Waveform short_exp = wave("EXP(0 1)");
+  EXPECT_THROW(short_exp.complete(std::nullopt, Rational(1)), std::invalid_argument);  // TD1 = TSTEP: none
+  short_exp.complete(Rational(1, 10), Rational(1));
+  EXPECT_EQ(short_exp.p, (std::vector<Rational>{0, 1, Rational(1, 10), Rational(1, 10), Rational(2, 10), Rational(1, 10)}));
+  // PWL's TD= and R= (ngspice): shifted, then repeated from the point R to the last
+  const Waveform r = wave("PWL(0 0 1 1 2 0) TD=1 R=0");
+  EXPECT_EQ(r.p, (std::vector<Rational>{1, 0, 2, 1, 3, 0}));
+  EXPECT_EQ(*r.repeat, Rational(1));
+  EXPECT_EQ(r.value(2.5, 0), 0.5);
+  EXPECT_EQ(r.value(4.5, 0), 0.5);  // one period (2) later
+  EXPECT_EQ(r.value(3.5, 0), 0.5);  // rising again
+  EXPECT_EQ(r.next_corner(Rational(3)), Rational(4));
+  EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1"), std::invalid_argument);  // repeats 1 → 0 with a step: an ideal jump
+  Waveform cut_jump = wave("PULSE(0 1 0 1 1 1 2)");  // PER < TR + PW + TF, cut at 2: a step 1 → 0 there
+  cut_jump.complete(Rational(1), Rational(10));
+  EXPECT_NO_THROW(cut_jump.breakpoints(1.5));                           // a run that ends before the step
+  EXPECT_THROW(cut_jump.breakpoints(10), std::invalid_argument);        // one that reaches it: refused, named
+  EXPECT_THROW(cut_jump.next_corner(Rational(3, 2)), std::invalid_argument);
+  EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1.5"), std::invalid_argument);  // not a time point
   EXPECT_THROW(wave("SFFM(0 1 1k 2 100)"), std::invalid_argument);
   EXPECT_THROW(wave("1 2"), std::invalid_argument);
 }

@@ -1,10 +1,12 @@
 // The sources' exosystem, shared by simulate's routes (internal to dcad::api): between breakpoints every
-// SPICE source is an output of a linear system of 3 states — a ramp (σ, σ', 0) or a sine (VO, Re z, Im z)
-// with z = VA e^{(−θ+iω)(t−TD) + iφ} — so sources and circuit together are one autonomous linear system.
+// SPICE source is an output of a linear system of 3 states — a ramp (σ, σ', 0), a sine (VO, Re z, Im z)
+// with z = VA e^{(−θ+iω)(t−TD) + iφ}, or EXP's (c, e1, e2) decaying at −1/TAU1, −1/TAU2 — so sources and
+// circuit together are one autonomous linear system.
 #pragma once
 
 #include "dcad/io/waveform.hpp"
 
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -24,6 +26,10 @@ inline void exo_state_for(const io::Waveform& wf, double t, double stop, long do
       w[1] = z.real();
       w[2] = z.imag();
     }
+  } else if (wf.is_exp()) {  // read on the piece at mid, carried back along it: e_k(t) = e_k(mid) e^{rate_k (t − mid)}
+    wf.exo_state(mid, w);
+    w[1] *= std::exp(static_cast<long double>(wf.rate1()) * static_cast<long double>(t - mid));
+    w[2] *= std::exp(static_cast<long double>(wf.rate2()) * static_cast<long double>(t - mid));
   } else {
     const double slope = wf.value(mid, 1);
     w[0] = wf.value(mid, 0) - slope * (mid - t);
@@ -34,7 +40,10 @@ inline void exo_state_for(const io::Waveform& wf, double t, double stop, long do
 
 /// σ and σ' from the 3 exosystem states of a source.
 inline void exo_output(const io::Waveform& wf, const double* w, double& sigma, double& dsigma) {
-  if (wf.is_sine()) {
+  if (wf.is_exp()) {
+    sigma = w[0] + w[1] + w[2];
+    dsigma = wf.rate1() * w[1] + wf.rate2() * w[2];
+  } else if (wf.is_sine()) {
     sigma = w[0] + w[2];
     dsigma = wf.omega() * w[1] + wf.decay() * w[2];
   } else {
@@ -45,7 +54,11 @@ inline void exo_output(const io::Waveform& wf, const double* w, double& sigma, d
 
 /// d/dt of the 3 exosystem states of a source.
 inline void exo_rate(const io::Waveform& wf, const double* w, double* dw) {
-  if (wf.is_sine()) {
+  if (wf.is_exp()) {
+    dw[0] = 0;
+    dw[1] = wf.rate1() * w[1];
+    dw[2] = wf.rate2() * w[2];
+  } else if (wf.is_sine()) {
     dw[0] = 0;
     dw[1] = wf.decay() * w[1] - wf.omega() * w[2];
     dw[2] = wf.omega() * w[1] + wf.decay() * w[2];

@@ -107,7 +107,13 @@ Mat<double> exo_output(const ForcedScene& deck, long orders) {
   for (std::size_t j = 0; j < m; ++j) {
     const io::Waveform& w = deck.waveforms[j];
     const std::size_t c = 1 + 3 * j;
-    if (w.is_sine()) {
+    if (w.is_exp()) {  // σ^{(d)} = rate1^d e1 + rate2^d e2 (+ c for d = 0)
+      out(1 + j, c) = 1;
+      for (long d = 0; d <= orders; ++d) {
+        out(1 + d * m + j, c + 1) = std::pow(w.rate1(), static_cast<double>(d));
+        out(1 + d * m + j, c + 2) = std::pow(w.rate2(), static_cast<double>(d));
+      }
+    } else if (w.is_sine()) {
       Eigen::Matrix2d mm, pw = Eigen::Matrix2d::Identity();
       mm << w.decay(), -w.omega(), w.omega(), w.decay();
       for (long d = 0; d <= orders; ++d) {
@@ -130,7 +136,10 @@ Mat<double> exo_generator(const ForcedScene& deck) {
   for (std::size_t j = 0; j < m; ++j) {
     const io::Waveform& w = deck.waveforms[j];
     const std::size_t c = 1 + 3 * j;
-    if (w.is_sine()) {
+    if (w.is_exp()) {
+      s(c + 1, c + 1) = w.rate1();
+      s(c + 2, c + 2) = w.rate2();
+    } else if (w.is_sine()) {
       s(c + 1, c + 1) = s(c + 2, c + 2) = w.decay();
       s(c + 1, c + 2) = -w.omega();
       s(c + 2, c + 1) = w.omega();
@@ -395,7 +404,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
           for (long d = 1; d <= fm.orders && std::binary_search(own[j].begin(), own[j].end(), tb); ++d) {
             const io::Waveform& wf = deck.waveforms[j];
             // σ^{(d−1)} across the corner; σ itself is continuous for PULSE/PWL, its slope is read off the pieces
-            const double jump = wf.is_sine() || d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
+            const double jump = wf.is_sine() || wf.is_exp() || d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
             if (jump != 0) dy += Au.col(1 + d * m + j) * jump;
           }
         flow.add_to_y(dy);

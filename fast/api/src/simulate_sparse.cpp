@@ -245,7 +245,7 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
   for (std::size_t j = 0; j < m; ++j) {
     const double sc = std::sqrt(current[j] ? ls : cs);
     d_(static_cast<Eigen::Index>(nx_ + 3 * j)) = sc;
-    d_(static_cast<Eigen::Index>(nx_ + 3 * j + 1)) = deck.waveforms[j].is_sine() ? sc : sc * step;
+    d_(static_cast<Eigen::Index>(nx_ + 3 * j + 1)) = deck.waveforms[j].is_sine() || deck.waveforms[j].is_exp() ? sc : sc * step;
     d_(static_cast<Eigen::Index>(nx_ + 3 * j + 2)) = sc;
   }
   for (Eigen::Index i = 0; i < d_.size(); ++i)

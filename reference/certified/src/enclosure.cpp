@@ -338,6 +338,8 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
   for (const io::Waveform& w : data.waveforms) {
     if (w.kind == io::Waveform::Kind::pulse && (w.p[3] <= 0 || w.p[4] <= 0))
       throw std::invalid_argument(w.element + ": a PULSE with TR or TF = 0 jumps; its enclosure is not built");
+    if (w.is_exp())
+      throw std::invalid_argument(w.element + ": an EXP source; its enclosure is not built (the double flow evaluates it, not certified)");
     if (w.is_sine() && w.p[2] == 0)
       throw std::invalid_argument(w.element + ": a SIN with FREQ = 0 (ngspice reads it as 1/TSTOP, dcad as a constant); its enclosure is not built");
   }

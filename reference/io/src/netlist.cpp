@@ -136,7 +136,8 @@ std::string strip_inline_comment(const std::string& text) {
   return cut == std::string::npos ? text : text.substr(0, cut);
 }
 
-std::string unquote(const std::string& s) {
+std::string unquote(const std::string& s) {  // "file", 'file' (which tokens() made {file}) or {file}
+  if (s.size() >= 2 && s.front() == '{' && s.back() == '}') return s.substr(1, s.size() - 2);
   return s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front() ? s.substr(1, s.size() - 2) : s;
 }
 
@@ -434,6 +435,7 @@ class Expression {
       const auto it = params_.find(name);
       if (it != params_.end()) return it->second;
       if (name == "pi") return rounded(boost::math::constants::pi<Float>());
+      if (name == "exp") return rounded(boost::math::constants::e<Float>());  // Xyce: exp alone is e
       if (name == "temper" || name == "temp") return Rational(27);  // ngspice's nominal temperature, °C
       throw std::invalid_argument("unknown parameter \"" + name + "\"");
     }
@@ -829,6 +831,8 @@ class Flattener {
       out.warnings.push_back(l.where() + ": ignored .model " + (tok.size() > 1 ? tok[1] : std::string()) + " (no R, L, C, K, V or I element uses it)");
       return;
     }
+    if (head == ".delete" || head == ".del" || head == ".modify" || head == ".mod" || head == ".fault" || head == ".unfault")
+      fail(l, "the circuit as written", tok[0] + " (a command that changes the circuit; write the circuit it leaves)");
     if (head == ".preprocess")
       fail(l, "cards that leave the circuit as written", ".preprocess (Xyce: it may add resistors or remove devices; write the circuit as it should be solved)");
     if (head == ".lib")
@@ -1011,7 +1015,9 @@ class Flattener {
         multiplier = number(tok[k].substr(2), "M=multiplier");
         if (*multiplier <= 0) fail(l, "a multiplier M > 0", "M = " + shown(*multiplier));
       } else if (key == "tc=" || key == "tc1=" || key == "tc2=" || key == "temp=" || key == "dtemp=" || key == "tnom=") {
-        number(tok[k].substr(eq + 1), "a temperature coefficient");
+        std::string list = tok[k].substr(eq + 1) + ",";  // TC=a,b (PSpice) or one value
+        for (std::size_t c = list.find(','), from = 0; c != std::string::npos; from = c + 1, c = list.find(',', from))
+          if (c > from) number(list.substr(from, c - from), "a temperature coefficient");
         tc.push_back(tok[k]);
       } else {
         fail(l, kind == 'r' ? "nothing, M=, TC1=, TC2= after the resistance" : "nothing, IC=, M= after the value", "\"" + tok[k] + "\"");
@@ -1032,9 +1038,12 @@ class Flattener {
     rb.value = value_;
     if (kind == 'r') {
       if (value_ < 0) out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
-      if (value_ == 0)  // a wire has another index class than a resistor: neither is guessed
-        fail(l, "a nonzero resistance (ngspice replaces R = 0 by 1 mOhm, a resistor; a wire is a 0-volt V source)",
-             "R = 0 for " + name);
+      if (boost::multiprecision::abs(value_) < Rational(1, 1000000000000LL)) {  // as ngspice reads it (resparam.c: RESMIN)
+        const Rational floor_value = value_ < 0 ? Rational(-1, 1000000000000LL) : Rational(1, 1000000000000LL);
+        out.warnings.push_back(l.where() + ": " + name + ": R = " + shown(value_) + " read as " + shown(floor_value) +
+                               " Ohm, as ngspice sets a resistance below 1e-12 (a resistor, not a wire: write a 0-volt V source for a wire)");
+        rb.value = floor_value;
+      }
       rb.kind = reference::RlcKind::resistor;
       out.forced = true;
       b.kind = reference::BranchKind::empty;

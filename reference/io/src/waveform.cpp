@@ -51,6 +51,8 @@ bool is_function(const std::string& w) {
   return std::find(fns.begin(), fns.end(), w) != fns.end();
 }
 
+bool readable(const std::string& fn) { return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp"; }
+
 bool is_keyword(const std::string& w) {
   static const std::vector<std::string> kw = {"dc", "ac", "distof1", "distof2", "portnum", "z0", "pwr", "freq"};
   return std::find(kw.begin(), kw.end(), w) != kw.end() || is_function(w);
@@ -66,11 +68,19 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
   std::string fn;
   std::vector<Rational> args;
   std::vector<std::string> ignored;
+  std::optional<Rational> pwl_td, pwl_r;
   const auto note = [&](const std::string& s) { ignored.push_back(s); };
   for (std::size_t i = 0; i < words.size();) {
     const std::string word = lower(words[i]);
     const std::size_t eq = word.find('=');
     const std::string key = eq == std::string::npos ? word : word.substr(0, eq);
+    if (eq != std::string::npos && fn == "pwl" && (key == "td" || key == "r")) {  // PWL(…) TD=delay R=repeat (ngspice, Xyce)
+      const std::string value = words[i].substr(eq + 1);
+      if (value.empty()) throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+      (key == "td" ? pwl_td : pwl_r) = number(value);
+      ++i;
+      continue;
+    }
     if (eq != std::string::npos && (key == "dc" || key == "ac" || key == "acmag" || key == "acphase" || key == "portnum" || key == "z0" ||
                                     key == "pwr" || key == "freq")) {
       const std::string value = words[i].substr(eq + 1);
@@ -94,7 +104,14 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
     if (word == "dc") {
       std::vector<Rational> v;
       const std::size_t j = values(i + 1, 1, &v);
-      if (v.empty()) throw std::invalid_argument("expected a value after DC, found none in \"" + spec + "\"");
+      if (v.empty()) {  // "DC" before a function or AC with no value of its own: the operating point's 0
+        if (j < words.size() && is_keyword(lower(words[j]))) {
+          note("DC without a value");
+          i = j;
+          continue;
+        }
+        throw std::invalid_argument("expected a value after DC, found none in \"" + spec + "\"");
+      }
       dc = v[0];
       i = j;
       continue;
@@ -116,15 +133,15 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
         ++j;
         while (j < words.size() && words[j] != ")") {
           if (words[j] == "(") throw std::invalid_argument("expected " + words[i] + "(values), found a nested '(' in \"" + spec + "\"");
-          if (fn != "sin" && fn != "pulse" && fn != "pwl") break;  // not read: said below, the values need not be numbers
+          if (!readable(fn)) break;  // not read: said below, the values need not be numbers
           args.push_back(number(words[j]));
           ++j;
         }
-        if (fn != "sin" && fn != "pulse" && fn != "pwl") break;
+        if (!readable(fn)) break;
         if (j == words.size()) throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
         i = j + 1;
       } else {  // SPICE3: the values follow without parentheses
-        if (fn != "sin" && fn != "pulse" && fn != "pwl") break;
+        if (!readable(fn)) break;
         i = values(j, words.size(), &args);
       }
       continue;
@@ -138,12 +155,12 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
     dc = number(words[i]);  // "[DC] value": DC is optional before the first value
     ++i;
   }
-  if (fn == "exp" || fn == "sffm" || fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "generator" || fn == "file")
-    throw std::invalid_argument("expected DC, SIN, PULSE or PWL for the transient, found " + lower(fn == "" ? "" : fn) +
+  if (fn == "sffm" || fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "generator" || fn == "file")
+    throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + fn +
                                 (fn == "trnoise" || fn == "trrandom" ? " (a random source: no exact transient exists)"
                                  : fn == "file" || fn == "generator" ? " (values from outside the deck)"
                                                                      : " (not read by dcad yet)") +
-                                ": write the waveform as PWL(t1 v1 t2 v2 …)" + (fn == "exp" ? " or SIN(…) with THETA" : ""));
+                                ": write the waveform as PWL(t1 v1 t2 v2 …)");
   for (std::size_t k = 0; k < ignored.size(); ++k) w.ignored += (k ? ", " : "") + ignored[k];
   if (fn.empty()) {
     w.p = {dc ? *dc : Rational(0)};  // AC alone: DC 0 in the transient, as ngspice
@@ -169,13 +186,34 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
       a.pop_back();
     }
     w.kind = Waveform::Kind::pulse;
+  } else if (fn == "exp") {
+    if (a.size() < 2 || a.size() > 6)
+      throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) + " values");
+    w.kind = Waveform::Kind::exp;
   } else {
     if (a.size() < 2 || a.size() % 2 != 0) throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) + " values");
+    if (pwl_td)
+      for (std::size_t i = 0; i < a.size(); i += 2) a[i] += *pwl_td;  // TD= shifts the whole waveform
     for (std::size_t i = 2; i < a.size(); i += 2)
       if (!(a[i] > a[i - 2])) throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
     if (a[0] < 0) throw std::invalid_argument("expected PWL times >= 0, found " + a[0].str());
     w.kind = Waveform::Kind::pwl;
+    if (pwl_r && *pwl_r >= 0) {  // R = -1: no repetition (ngspice); else a time point before the last
+      Rational r = *pwl_r + (pwl_td ? *pwl_td : Rational(0));
+      bool point = false;
+      for (std::size_t i = 0; i < a.size(); i += 2) point = point || a[i] == r;
+      if (!(r < a[a.size() - 2]) || !point)
+        throw std::invalid_argument("expected PWL's R= at one of its time points before the last (ngspice), found R = " + pwl_r->str());
+      w.repeat = r;
+      Rational at_r = 0;
+      for (std::size_t i = 0; i < a.size(); i += 2)
+        if (a[i] == r) at_r = a[i + 1];
+      if (at_r != a.back())
+        throw std::invalid_argument("expected PWL's repeated part to start where it ends (" + at_r.str() + " at R, " + a.back().str() +
+                                    " at the last point), found a step: dcad's exact flows take continuous sources (add a ramp)");
+    }
   }
+  if ((pwl_td || pwl_r) && fn != "pwl") throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + fn);
   w.p = a;
   if (w.kind == Waveform::Kind::pwl) w.given = a.size();
   if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0) w.p.resize(6, Rational(0));  // FREQ given: complete already
@@ -197,6 +235,13 @@ void Waveform::complete(const std::optional<Rational>& tstep, const std::optiona
       p[2] = Rational(1) / stop;
     }
     p.resize(6, Rational(0));
+  } else if (kind == Kind::exp) {  // vsrcload.c: TD1, TAU1 = TSTEP where 0 or missing, TD2 = TD1 + TSTEP, TAU2 = TSTEP
+    const std::size_t n = given;
+    p.resize(6, Rational(0));
+    if (n < 3 || p[2] == 0) p[2] = need(tstep, "TSTEP", "TD1 = TSTEP where TD1 is 0 or missing");
+    if (n < 4 || p[3] == 0) p[3] = need(tstep, "TSTEP", "TAU1 = TSTEP where TAU1 is 0 or missing");
+    if (n < 5 || p[4] == 0) p[4] = p[2] + need(tstep, "TSTEP", "TD2 = TD1 + TSTEP where TD2 is 0 or missing");
+    if (n < 6 || p[5] == 0) p[5] = need(tstep, "TSTEP", "TAU2 = TSTEP where TAU2 is 0 or missing");
   } else if (kind == Kind::pulse) {
     const std::size_t n = given > 7 ? 7 : given;
     p.resize(7, Rational(0));
@@ -211,6 +256,7 @@ void Waveform::complete(const std::optional<Rational>& tstep, const std::optiona
 bool Waveform::constant() const {
   if (kind == Kind::dc) return true;
   if (kind == Kind::sin) return p[1] == 0;
+  if (kind == Kind::exp) return p[0] == p[1];
   return false;
 }
 
@@ -219,12 +265,31 @@ double Waveform::horizon() const {
     case Kind::dc: return 0;
     case Kind::sin: return d(p[3]) + (p[2] != 0 ? 4 / d(p[2]) : 1.0);
     case Kind::pulse: return d(p[2]) + 2 * d(p[6]);
+    case Kind::exp: return std::max(d(p[2]), d(p[4])) + 5 * (std::abs(d(p[3])) + std::abs(d(p[5])));
     default: return 2 * d(p[p.size() - 2]);
   }
 }
 
 double Waveform::decay() const { return kind == Kind::sin ? -d(p[4]) : 0.0; }
 double Waveform::omega() const { return kind == Kind::sin ? 2 * kPi * d(p[2]) : 0.0; }
+double Waveform::rate1() const { return kind == Kind::exp ? -1 / d(p[3]) : 0.0; }
+double Waveform::rate2() const { return kind == Kind::exp ? -1 / d(p[5]) : 0.0; }
+
+namespace {
+/// EXP's exosystem state (c, e1, e2) at t (right limit), as ngspice's pieces (vsrcload.c): V1 up to TD1;
+/// then V2 + (V1 − V2) e^{-(t-TD1)/TAU1} up to TD2; then V1 + (V1 − V2) e^{-(t-TD1)/TAU1} + (V2 − V1) e^{-(t-TD2)/TAU2}.
+void exp_state(const Waveform& w, double t, long double* x) {
+  const long double v1 = d(w.p[0]), v2 = d(w.p[1]), td1 = d(w.p[2]), tau1 = d(w.p[3]), td2 = d(w.p[4]), tau2 = d(w.p[5]);
+  x[0] = v1, x[1] = 0, x[2] = 0;
+  if (t <= td1) return;
+  x[1] = (v1 - v2) * std::exp(-(static_cast<long double>(t) - td1) / tau1);
+  if (t <= td2) {
+    x[0] = v2;
+    return;
+  }
+  x[2] = (v2 - v1) * std::exp(-(static_cast<long double>(t) - td2) / tau2);
+}
+}  // namespace
 
 namespace {
 
@@ -256,7 +321,7 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
       v = v1;
       return;
     }
-    if (per > 0) tau -= per * floor_of(T(tau / per));
+    if (per > 0) tau -= per * floor_of(T(tau / per));  // right limits: at k·PER the next period (ngspice's value there is the same)
     if (tau < tr) {
       slope = (v2 - v1) / tr;
       v = v1 + slope * tau;
@@ -273,6 +338,16 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
   const std::size_t n = w.p.size() / 2;
   if (t < p(0)) {
     v = p(1);
+    return;
+  }
+  if (w.repeat && t > p(2 * n - 2)) {  // R=: from the repeat point to the last, period after period (ngspice)
+    const T r = as(t, *w.repeat), period = p(2 * n - 2) - r;
+    T shifted = t - r;
+    shifted -= period * floor_of(T(shifted / period));
+    T local = r + shifted;
+    Waveform once = w;
+    once.repeat.reset();
+    linear_at(once, local, v, slope);
     return;
   }
   for (std::size_t i = 0; i + 1 < n; ++i) {
@@ -301,6 +376,12 @@ double Waveform::value(double t, int order) const {
       const std::complex<double> z = va * std::pow(s, order) * std::exp(s * (t - td) + std::complex<double>(0, phi));
       return (order == 0 ? vo : 0.0) + z.imag();
     }
+    case Kind::exp: {
+      long double x[3];
+      exp_state(*this, t, x);
+      if (order == 0) return static_cast<double>(x[0] + x[1] + x[2]);
+      return static_cast<double>(x[1] * std::pow(static_cast<long double>(rate1()), order) + x[2] * std::pow(static_cast<long double>(rate2()), order));
+    }
     default: {
       double v, slope;
       linear_at(*this, t, v, slope);
@@ -326,6 +407,9 @@ std::optional<Rational> Waveform::exact_at_zero(int order) const {
       if (phase == 270) return p[0] - p[1];
       return std::nullopt;
     }
+    case Kind::exp:  // V1 up to TD1 > 0 (ngspice's default TD1 is TSTEP): constant at 0
+      if (p[2] > 0) return order == 0 ? p[0] : Rational(0);
+      return std::nullopt;
     default: {
       Rational v, slope;
       linear_at(*this, Rational(0), v, slope);
@@ -334,13 +418,51 @@ std::optional<Rational> Waveform::exact_at_zero(int order) const {
   }
 }
 
+namespace {
+/// PULSE cut by a PER shorter than TR + PW + TF (ngspice): the value just before each period's start, where
+/// it returns to V1 — a step unless it is V1 already.  nullopt when the pulse is not cut or lands at V1.
+std::optional<Rational> pulse_step(const Waveform& w) {
+  if (w.kind != Waveform::Kind::pulse || w.p.size() < 7) return std::nullopt;
+  const Rational &v1 = w.p[0], &v2 = w.p[1], &tr = w.p[3], &tf = w.p[4], &pw = w.p[5], &per = w.p[6];
+  if (!(per < tr + pw + tf)) return std::nullopt;
+  const Rational end = per <= tr ? Rational(v1 + (v2 - v1) * per / tr) : per <= tr + pw ? v2 : Rational(v2 + (v1 - v2) * (per - tr - pw) / tf);
+  if (end == v1) return std::nullopt;
+  return end;
+}
+[[noreturn]] void refuse_step(const Waveform& w, const Rational& from, double at) {
+  throw std::invalid_argument(w.element + ": " + w.text + " steps from " + from.str() + " to V1 = " + w.p[0].str() + " at t = " +
+                              std::to_string(at) + " s (PER < TR + PW + TF cuts the pulse): dcad's exact flows take continuous sources; "
+                              "lengthen PER or end the run before it");
+}
+}  // namespace
+
 std::vector<double> Waveform::breakpoints(double tstop) const {
   std::vector<double> out;
+  if (const std::optional<Rational> step = pulse_step(*this)) {  // a step inside the run: refused where the run reaches it
+    const double first = d(p[2]) + d(p[6]);
+    if (first < tstop && (pulses == 0 || pulses > 1)) refuse_step(*this, *step, first);
+  }
   if (kind == Kind::sin) {
     if (d(p[3]) > 0 && d(p[3]) <= tstop) out.push_back(d(p[3]));
+  } else if (kind == Kind::exp) {
+    for (double c : {d(p[2]), d(p[4])})
+      if (c > 0 && c <= tstop) out.push_back(c);
   } else if (kind == Kind::pwl) {
     for (std::size_t i = 0; i < p.size(); i += 2)
       if (d(p[i]) > 0 && d(p[i]) <= tstop) out.push_back(d(p[i]));
+    if (repeat) {  // the repeated part's points, period after period
+      const double r = d(*repeat), end = d(p[p.size() - 2]), period = end - r;
+      for (long k = 1;; ++k) {
+        if (end + period * static_cast<double>(k - 1) > tstop) break;
+        if (k >= kMaxPeriods)
+          throw std::invalid_argument(element + ": " + text + " repeats more than " + std::to_string(kMaxPeriods) + " times before " + std::to_string(tstop) + " s");
+        for (std::size_t i = 0; i < p.size(); i += 2)
+          if (p[i] >= *repeat) {
+            const double c = d(p[i]) + period * static_cast<double>(k);
+            if (c > 0 && c <= tstop) out.push_back(c);
+          }
+      }
+    }
   } else if (kind == Kind::pulse) {
     const double td = d(p[2]), tr = d(p[3]), tf = d(p[4]), pw = d(p[5]), per = d(p[6]);
     for (long k = 0;; ++k) {
@@ -379,6 +501,10 @@ void Waveform::exo_state(double t, long double* w) const {
     w[2] = z.imag();
     return;
   }
+  if (kind == Kind::exp) {
+    exp_state(*this, t, w);
+    return;
+  }
   w[0] = value(t, 0);
   w[1] = value(t, 1);
 }
@@ -388,7 +514,7 @@ void Waveform::exo_state(double t, long double* w) const {
 namespace dcad::io {
 
 void Waveform::exact_piece(const Rational& t, Rational& v, Rational& slope) const {
-  if (kind == Kind::sin) throw std::invalid_argument(element + ": exact_piece of a SIN source");
+  if (kind == Kind::sin || kind == Kind::exp) throw std::invalid_argument(element + ": exact_piece of a SIN or EXP source");
   if (kind == Kind::dc) {
     v = p[0];
     slope = 0;
@@ -404,8 +530,17 @@ std::optional<Rational> Waveform::next_corner(const Rational& t) const {
   };
   if (kind == Kind::sin) {
     consider(p[3]);
+  } else if (kind == Kind::exp) {
+    consider(p[2]);
+    consider(p[4]);
   } else if (kind == Kind::pwl) {
     for (std::size_t i = 0; i < p.size(); i += 2) consider(p[i]);
+    if (repeat && t >= p[p.size() - 2]) {
+      const Rational period = p[p.size() - 2] - *repeat, k = floor_of(Rational((t - *repeat) / period));
+      for (const Rational& shift : {Rational(k * period), Rational((k + 1) * period)})
+        for (std::size_t i = 0; i < p.size(); i += 2)
+          if (p[i] >= *repeat) consider(p[i] + shift);
+    }
   } else if (kind == Kind::pulse) {
     const Rational &td = p[2], &tr = p[3], &tf = p[4], &pw = p[5], &per = p[6];
     Rational k0 = 0;
@@ -416,6 +551,7 @@ std::optional<Rational> Waveform::next_corner(const Rational& t) const {
         consider(td + per * pulses);
         break;
       }
+      if (k >= 1 && base > t && pulse_step(*this)) refuse_step(*this, *pulse_step(*this), d(base));
       for (const Rational& c : {base, Rational(base + tr), Rational(base + tr + pw), Rational(base + tr + pw + tf)}) consider(c);
       if (per <= 0) break;
     }

@@ -17,9 +17,13 @@ namespace dcad::io {
 using reference::Rational;
 
 struct Waveform {
-  enum class Kind { dc, sin, pulse, pwl };
+  enum class Kind { dc, sin, pulse, pwl, exp };
   Kind kind = Kind::dc;
-  std::vector<Rational> p;  ///< DC: {V}; SIN: VO VA FREQ TD THETA PHASE(deg); PULSE: V1 V2 TD TR TF PW PER; PWL: t1 v1 t2 v2 …
+  /// DC: {V}; SIN: VO VA FREQ TD THETA PHASE(deg); PULSE: V1 V2 TD TR TF PW PER; PWL: t1 v1 t2 v2 … (TD= added);
+  /// EXP: V1 V2 TD1 TAU1 TD2 TAU2
+  std::vector<Rational> p;
+  /// PWL's R= (ngspice): from this time point (one of the t_i) to the last the waveform repeats; none: holds
+  std::optional<Rational> repeat;
   std::string element;      ///< the source's name (V1, I.x1.i2)
   std::string text;         ///< as written, for messages
   /// PULSE's 8th value NP (ngspice): the number of pulses, V1 after them; 0: unbounded.
@@ -47,18 +51,24 @@ struct Waveform {
   /// The exosystem state (3 numbers) at t (right limit): ramp (σ, σ', 0); SIN (VO, Re z, Im z) with
   /// z = VA e^{(−θ+iω)(t−TD) + iφ} (0 before TD).
   void exo_state(double t, long double* w) const;
-  /// DC, PULSE, PWL: the exact value and slope at the exact time t (right limit).  SIN: invalid_argument.
+  /// DC, PULSE, PWL: the exact value and slope at the exact time t (right limit).  SIN, EXP: invalid_argument.
   void exact_piece(const Rational& t, Rational& v, Rational& slope) const;
   /// The first corner after t, exact (TD + k·PER + {0, TR, TR+PW, TR+PW+TF}, PWL's times, SIN's TD > 0);
   /// nullopt when there is none.  The exact counterpart of breakpoints().
   std::optional<Rational> next_corner(const Rational& t) const;
   bool is_sine() const { return kind == Kind::sin; }
+  /// EXP: between its corners V + a e^{-(t-TD1)/TAU1} + b e^{-(t-TD2)/TAU2}, an exosystem (c, e1, e2) with
+  /// rates (0, -e1/TAU1, -e2/TAU2); σ continuous, σ' jumps at TD1 and TD2.
+  bool is_exp() const { return kind == Kind::exp; }
   /// A time by which the waveform has shown every feature (delay, two periods, last PWL point).
   double horizon() const;
   static constexpr long kMaxPeriods = 1000000;
   /// SIN: −θ and ω (rad/s) of the exosystem block.
   double decay() const;
   double omega() const;
+  /// EXP: the rates −1/TAU1 and −1/TAU2 of its exosystem's states e1, e2.
+  double rate1() const;
+  double rate2() const;
 };
 
 /// Parses the source specification after the nodes as ngspice does for a transient: "[DC] v", "DC=v",
@@ -67,7 +77,7 @@ struct Waveform {
 /// which the transient does not use (recorded in `ignored`); a DC value before a function is the operating
 /// point's and is ignored as ngspice ignores it for .tran.  PULSE's and SIN's missing values wait for
 /// complete().  `number` converts one token exactly.  Throws std::invalid_argument naming what is not read
-/// (EXP, SFFM, AM, TRNOISE, PAT …) and what to write instead.
+/// (SFFM, AM, TRNOISE, PAT …) and what to write instead.  EXP and PWL's TD= and R= are read as ngspice reads them.
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number);
 
 }  // namespace dcad::io
