@@ -42,7 +42,7 @@ Table read_csv(const std::string& text) {
     if (first) t.header = f, first = false;
     else {
       std::vector<double> r;
-      for (const std::string& x : f) r.push_back(std::stod(x));
+      for (const std::string& x : f) r.push_back(std::strtod(x.c_str(), nullptr));  // subnormals too (stod refuses them)
       t.rows.push_back(r);
     }
   }

@@ -74,7 +74,7 @@ inline std::vector<std::vector<double>> csv_rows(const std::string& text) {
   while (std::getline(in, line)) {
     std::vector<double> row;
     std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::strtod(cell.c_str(), nullptr));
     rows.push_back(row);
   }
   return rows;

@@ -34,6 +34,7 @@
 #include <chrono>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <sstream>
 
@@ -293,7 +294,7 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
   const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
   Progress progress(steps + 1);
   for (long k = 0; k <= steps; ++k) {
-    const Eigen::VectorXd x = flow.x();
+    Eigen::VectorXd x = flow.x();
     if (k % stride == 0) {
       const Vec<long double> xl = shadow.x();
       for (ref::Index i = 0; i < n; ++i) {
@@ -301,6 +302,7 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
         mag[i] = std::max(mag[i], std::abs(xl(i)));
       }
       shadow.advance();
+      if (stride == 1) x = xl.cast<double>();  // every row has the long-double flow: print it (the double one is its estimate)
     }
     line.clear();
     put(static_cast<double>(k) * opt.step);
@@ -313,7 +315,9 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
     flow.advance();
     progress.at(k);
   }
-  return summarize(sum.rows, err, mag, c.variables, deck ? io::units_of(*deck).variable_scales(deck->circuit.branches.size(), false) : std::vector<long double>());
+  Summary out_sum = summarize(sum.rows, err, mag, c.variables, deck ? io::units_of(*deck).variable_scales(deck->circuit.branches.size(), false) : std::vector<long double>());
+  out_sum.error_estimate = std::max(out_sum.error_estimate, 4 * std::numeric_limits<double>::epsilon());  // the rows' own rounding
+  return out_sum;
 }
 
 /// A variable's kind: its name up to the first '_' for circuits (q_, v_, p_: charges, currents, flux

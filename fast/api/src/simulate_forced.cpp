@@ -16,12 +16,16 @@
 #include "dcad/reference/pipeline/rlc_motion.hpp"
 #include "dcad/reference/rlc.hpp"
 
+#include <boost/math/constants/constants.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
 #include <Eigen/Core>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <charconv>
 #include <complex>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -89,6 +93,61 @@ ForcedModel forced_model(const ForcedScene& deck) {
   return fm;
 }
 
+/// 113-bit floats for the two products whose terms cancel (A_u W and X0 u: a stiff circuit's large
+/// coefficients against a source's jets; in double a 10 mΩ · 100 nF branch made the common-mode choke's
+/// i(L1) 3.3e-6 wrong, and the long-double shadow, fed the same rounded product, could not see it).
+using Wide = boost::multiprecision::cpp_bin_float_quad;
+
+Wide wide(const Q& q) { return Wide(boost::multiprecision::numerator(q).str()) / Wide(boost::multiprecision::denominator(q).str()); }
+
+Mat<Wide> to_wide(const QM& m) {
+  Mat<Wide> w(m.rows(), m.cols());
+  for (ref::Index i = 0; i < m.rows(); ++i)
+    for (ref::Index j = 0; j < m.cols(); ++j) w(i, j) = wide(m(i, j));
+  return w;
+}
+
+/// σ^{(order)}(t) (right limit) in 113 bits: SIN and EXP from their closed forms, PULSE and PWL exactly.
+Wide jet_wide(const io::Waveform& w, double t, int order) {
+  const Q tq = certified::rational_of(t);
+  switch (w.kind) {
+    case io::Waveform::Kind::dc:
+      return order == 0 ? wide(w.p[0]) : Wide(0);
+    case io::Waveform::Kind::sin: {
+      const Wide pi = boost::math::constants::pi<Wide>(), phi = wide(w.p[5]) * pi / 180, va = wide(w.p[1]);
+      if (t < w.p[3].convert_to<double>()) return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // as value(): double times
+      const Wide tau = wide(tq - w.p[3]), omega = 2 * pi * wide(w.p[2]), decay = -wide(w.p[4]);
+      // Im(VA s^order e^{s τ + iφ}), s = decay + iω = r e^{iα}
+      const Wide r = sqrt(decay * decay + omega * omega), alpha = atan2(omega, decay);
+      const Wide value = va * pow(r, order) * exp(decay * tau) * sin(order * alpha + omega * tau + phi);
+      return (order == 0 ? wide(w.p[0]) : Wide(0)) + value;
+    }
+    case io::Waveform::Kind::exp: {
+      const Wide v1 = wide(w.p[0]), v2 = wide(w.p[1]);
+      const Wide r1 = -1 / wide(w.p[3]), r2 = -1 / wide(w.p[5]);
+      Wide c = v1, e1 = 0, e2 = 0;
+      if (t > w.p[2].convert_to<double>()) {  // the pieces as value() picks them
+        e1 = (v1 - v2) * exp(r1 * wide(tq - w.p[2]));
+        if (t <= w.p[4].convert_to<double>()) c = v2;
+        else e2 = (v2 - v1) * exp(r2 * wide(tq - w.p[4]));
+      }
+      return (order == 0 ? c : Wide(0)) + e1 * pow(r1, order) + e2 * pow(r2, order);
+    }
+    default:  // PULSE, PWL: the pieces as the double route reads them (the side of a corner at a double time), values exact enough
+      return Wide(w.value(t, order));
+  }
+}
+
+/// (1, σ, σ', …, σ^{(orders−1)}) in 113 bits: the u that X0 multiplies.
+Vec<Wide> jets_wide(const ForcedScene& deck, double t, long orders, std::size_t wu) {
+  const std::size_t m = deck.waveforms.size();
+  Vec<Wide> u(wu);
+  u(0) = 1;
+  for (long d = 0; d < orders; ++d)
+    for (std::size_t j = 0; j < m; ++j) u(1 + d * m + j) = jet_wide(deck.waveforms[j], t, static_cast<int>(d));
+  return u;
+}
+
 /// u_ext(t) (right limits): (1, σ, σ', …, σ^{(orders)}).
 Vec<double> jets(const ForcedScene& deck, double t, long orders) {
   const std::size_t m = deck.waveforms.size();
@@ -121,6 +180,36 @@ Mat<double> exo_output(const ForcedScene& deck, long orders) {
         out(1 + d * m + j, c + 1) = pw(1, 0);
         out(1 + d * m + j, c + 2) = pw(1, 1);
         pw = mm * pw;
+      }
+    } else {
+      out(1 + j, c) = 1;
+      if (orders >= 1) out(1 + m + j, c + 1) = 1;
+    }
+  }
+  return out;
+}
+
+/// exo_output in 113 bits (ω = 2π FREQ and its powers, EXP's rates): the factor of A_u W.
+Mat<Wide> exo_output_wide(const ForcedScene& deck, long orders) {
+  const std::size_t m = deck.waveforms.size();
+  Mat<Wide> out = Mat<Wide>::Zero(1 + m * (orders + 1), 1 + 3 * m);
+  out(0, 0) = 1;
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = deck.waveforms[j];
+    const std::size_t c = 1 + 3 * j;
+    if (w.is_exp()) {
+      out(1 + j, c) = 1;
+      const Wide r1 = -1 / wide(w.p[3]), r2 = -1 / wide(w.p[5]);
+      for (long d = 0; d <= orders; ++d) out(1 + d * m + j, c + 1) = pow(r1, d), out(1 + d * m + j, c + 2) = pow(r2, d);
+    } else if (w.is_sine()) {
+      const Wide omega = 2 * boost::math::constants::pi<Wide>() * wide(w.p[2]), decay = -wide(w.p[4]);
+      Eigen::Matrix<Wide, 2, 2> mm, pw = Eigen::Matrix<Wide, 2, 2>::Identity();
+      mm << decay, -omega, omega, decay;
+      for (long d = 0; d <= orders; ++d) {
+        if (d == 0) out(1 + j, c) = 1;
+        out(1 + d * m + j, c + 1) = pw(1, 0);
+        out(1 + d * m + j, c + 2) = pw(1, 1);
+        pw = (mm * pw).eval();
       }
     } else {
       out(1 + j, c) = 1;
@@ -187,12 +276,12 @@ struct ForcedFlow {
   }
 };
 
-template <class S>
-ForcedFlow<S> make_flow(const Mat<double>& gen, const std::vector<double>& d, std::size_t dm) {
+template <class S, class G>
+ForcedFlow<S> make_flow(const Mat<G>& gen, const std::vector<double>& d, std::size_t dm) {
   ForcedFlow<S> f;
   f.d = d;
   f.dm = dm;
-  f.g = gen.cast<S>();
+  f.g = gen.template cast<S>();
   for (Eigen::Index i = 0; i < gen.rows(); ++i)
     for (Eigen::Index j = 0; j < gen.cols(); ++j) f.g(i, j) *= static_cast<S>(d[j] / d[i]);
   f.s = Vec<S>::Zero(gen.rows());
@@ -288,15 +377,25 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
         throw io::InputError(c.file + ": simulate: " + deck.waveforms[j].element + " has breakpoints and the motion needs its derivative of order " +
                              std::to_string(d) + " (a derivative of a Dirac delta): smooth it (finite TR/TF) or use SIN");
   }
-  const Mat<double> W = exo_output(deck, fm.orders), S = exo_generator(deck);
+  const Mat<double> S = exo_generator(deck);
+  const Mat<Wide> coupling = to_wide(fm.au) * exo_output_wide(deck, fm.orders);  // A_u W: its terms cancel
   Mat<double> gen = Mat<double>::Zero(dm + 1 + 3 * m, dm + 1 + 3 * m);
   gen.topLeftCorner(dm, dm) = Ay;
-  gen.topRightCorner(dm, 1 + 3 * m) = Au * W;
+  gen.topRightCorner(dm, 1 + 3 * m) = coupling.cast<double>();
   gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
   const std::vector<double> bal = balancing(gen * opt.step);
   ForcedFlow<double> flow = make_flow<double>(gen, bal, dm);
-  ForcedFlow<long double> shadow = make_flow<long double>(gen, bal, dm);
-  for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0(i)) / bal[i];
+  Mat<long double> gen_l = gen.cast<long double>();  // the shadow: the model rounded once more finely
+  gen_l.topLeftCorner(dm, dm) = to_wide(fm.ay).cast<long double>();
+  gen_l.topRightCorner(dm, 1 + 3 * m) = coupling.cast<long double>();
+  ForcedFlow<long double> shadow = make_flow<long double>(gen_l, bal, dm);
+  const Mat<Wide> x0_wide = to_wide(fm.x0);
+  const Mat<long double> basis_l = to_wide(fm.basis).cast<long double>();
+  // the shadow's start from the exact data in 113 bits (the double start's rounding is part of what it measures)
+  Vec<Wide> x0w(n);
+  for (std::size_t i = 0; i < n; ++i) x0w(i) = wide(x0q[i]);
+  const Vec<Wide> y0w = to_wide(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis) * (x0w - x0_wide * jets_wide(deck, 0.0, fm.orders, wu));
+  for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0w(i)) / bal[i];
   std::vector<double> breaks;
   std::vector<std::vector<double>> own(m);  // each source's own corners: only they jump there
   for (std::size_t j = 0; j < m; ++j) try {
@@ -332,10 +431,11 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
     const double t = static_cast<double>(k) * opt.step;
     const Vec<double> u = jets(deck, t, fm.orders);
     const Vec<double> y = flow.y();
-    const Vec<double> x = X0 * u.head(wu) + B.transpose() * y;
+    const Vec<Wide> x0u = x0_wide * jets_wide(deck, t, fm.orders, wu);  // X0 u: its terms cancel too
+    const Vec<double> x = x0u.cast<double>() + B.transpose() * y;
     if (!x.allFinite())
       throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(t) + " s (a growing source or values beyond double's range)");
-    const Vec<long double> xl = X0.cast<long double>() * u.head(wu).cast<long double>() + B.transpose().cast<long double>() * shadow.y();
+    const Vec<long double> xl = x0u.cast<long double>() + basis_l.transpose() * shadow.y();
     for (std::size_t i = 0; i < n; ++i) {
       err[i] = std::max(err[i], std::abs(xl(i) - static_cast<long double>(x(i))));
       mag[i] = std::max(mag[i], std::abs(xl(i)));
@@ -344,7 +444,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
     put(t);
     for (Eigen::Index i = 0; i < x.size(); ++i) {
       line += ',';
-      put(x(i));
+      put(static_cast<double>(xl(i)));  // the long-double flow: the double one is its error estimate
     }
     line += '\n';
     out << line;
@@ -413,7 +513,11 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
       if (stop >= to) break;
     }
   }
-  return summarize(steps + 1, err, mag, c.variables, deck.natural);
+  Summary sum = summarize(steps + 1, err, mag, c.variables, deck.natural);
+  // the rows are the long-double flow rounded to double at t = k·step rounded to double: never less than
+  // those roundings (a few ε of the scale)
+  sum.error_estimate = std::max(sum.error_estimate, 4 * std::numeric_limits<double>::epsilon());
+  return sum;
 }
 
 Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,

@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -40,7 +41,8 @@ double printed_radius(double mid, double rad) {
   }
   if (rad == 0 && off == 0) return 0.0;  // an exact value printed exactly
   const double o = std::nextafter(off.convert_to<double>(), HUGE_VAL);
-  return std::nextafter(std::nextafter(rad + o, HUGE_VAL), HUGE_VAL);
+  const double r = std::nextafter(std::nextafter(rad + o, HUGE_VAL), HUGE_VAL);
+  return std::max(r, std::numeric_limits<double>::min());  // never subnormal: readers (strtod, stod) refuse those
 }
 
 std::string equation_text(const Eq& e, const std::vector<std::string>& names) {
