@@ -158,37 +158,6 @@ Vec<double> jets(const ForcedScene& deck, double t, long orders) {
   return u;
 }
 
-/// Generator of [y; 1; w] and the map w-state → u_ext.
-Mat<double> exo_output(const ForcedScene& deck, long orders) {
-  const std::size_t m = deck.waveforms.size();
-  Mat<double> out = Mat<double>::Zero(1 + m * (orders + 1), 1 + 3 * m);
-  out(0, 0) = 1;
-  for (std::size_t j = 0; j < m; ++j) {
-    const io::Waveform& w = deck.waveforms[j];
-    const std::size_t c = 1 + 3 * j;
-    if (w.is_exp()) {  // σ^{(d)} = rate1^d e1 + rate2^d e2 (+ c for d = 0)
-      out(1 + j, c) = 1;
-      for (long d = 0; d <= orders; ++d) {
-        out(1 + d * m + j, c + 1) = std::pow(w.rate1(), static_cast<double>(d));
-        out(1 + d * m + j, c + 2) = std::pow(w.rate2(), static_cast<double>(d));
-      }
-    } else if (w.is_sine()) {
-      Eigen::Matrix2d mm, pw = Eigen::Matrix2d::Identity();
-      mm << w.decay(), -w.omega(), w.omega(), w.decay();
-      for (long d = 0; d <= orders; ++d) {
-        if (d == 0) out(1 + j, c) = 1;
-        out(1 + d * m + j, c + 1) = pw(1, 0);
-        out(1 + d * m + j, c + 2) = pw(1, 1);
-        pw = mm * pw;
-      }
-    } else {
-      out(1 + j, c) = 1;
-      if (orders >= 1) out(1 + m + j, c + 1) = 1;
-    }
-  }
-  return out;
-}
-
 /// exo_output in 113 bits (ω = 2π FREQ and its powers, EXP's rates): the factor of A_u W.
 Mat<Wide> exo_output_wide(const ForcedScene& deck, long orders) {
   const std::size_t m = deck.waveforms.size();
@@ -218,6 +187,9 @@ Mat<Wide> exo_output_wide(const ForcedScene& deck, long orders) {
   }
   return out;
 }
+
+/// The map w-state → u_ext (the generator of [y; 1; w] is exo_generator's), rounded once from 113 bits.
+Mat<double> exo_output(const ForcedScene& deck, long orders) { return exo_output_wide(deck, orders).cast<double>(); }
 
 Mat<double> exo_generator(const ForcedScene& deck) {
   const std::size_t m = deck.waveforms.size();
