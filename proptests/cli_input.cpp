@@ -66,6 +66,7 @@ INSTANTIATE_TEST_SUITE_P(
                     // the refusal of a card names every supported element
                     BadCase{"modelnames", "title\n.frobnicate\nL1 1 0 1\n", "an R, L, C, V, I, K or X element"},
                     BadCase{"modeluse", "title\n.model d1 D\nD1 1 0 d1\n", "element D1"},
+                    BadCase{"alter", "title\nL1 1 0 1\nC1 1 0 1\n.control\nalter C1 = 2\ntran 1m 1\n.endc\n", "alter, which changes it"},
                     BadCase{"ifblock", "title\n.if (a == 1)\nL1 1 0 1\n.endif\n", "without conditionals"},
                     BadCase{"random", "title\nL1 1 0 {rand()}\n", "random"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });

@@ -198,8 +198,11 @@ class Reader {
         continue;
       }
       if (!section.empty() && head == ".endl") return;
-      if (in_control) {  // .control … .endc: ngspice's script, ignored as a whole
+      if (in_control) {  // .control … .endc: ngspice's script, ignored as a whole — unless it alters the circuit
         if (head == ".endc") in_control = false;
+        if (head == "alter" || head == "altermod" || head == "mc_source" || head == "source")
+          fail(here, "a .control block that leaves the circuit as written (dcad reads the circuit, not the script)",
+               tok[0] + ", which changes it before the analysis runs: write the altered values in the deck");
         continue;
       }
       if (!skip_until.empty()) {  // .data … .enddata, a .lib section not asked for, .if blocks
