@@ -350,6 +350,14 @@ TEST(Cli, ZeroResistanceIsNgspicesMinimum) {
   EXPECT_EQ(nlohmann::json::parse(z.out)["dims"], nlohmann::json::parse(t.out)["dims"]);
 }
 
+// Issue 45 §2: a value beyond double's range names the element and its value on fast (it said "found one
+// beyond it"); the exact backends take it.
+TEST(Cli, BeyondDoubleNamesTheElement) {
+  const std::string deck = write_temp("dcad_beyond_double.cir", "title\nL1 1 0 1\nC1 1 0 1e400\n.end\n");
+  expect_input_error(run("solve " + deck + " --backend fast"), deck, "C1 = about 1e400", "fast names the element");
+  EXPECT_EQ(run("solve " + deck + " --backend reference").rc, 0);
+}
+
 TEST(Cli, IndefiniteInductanceMatrixIsNamed) {
   const std::string deck = write_temp("dcad_indefinite.cir", "title\nL1 1 0 1\nL2 2 0 1\nL3 3 0 1\nK12 L1 L2 0.75\nK13 L1 L3 0.8\n"
                                                             "C1 1 2 1\nC2 2 3 1\n.tran 1m 1 uic\n");

@@ -4,6 +4,7 @@
 // pipeline up to kAdaptedBranches.
 #include "dcad/fast/circuit_motion.hpp"
 #include "dcad/fast/exact.hpp"
+#include "dcad/io/report.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/reference/pipeline/forced.hpp"
 
@@ -14,6 +15,7 @@
 namespace dcad::fast {
 
 Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& options);
+Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& options);
 
 namespace {
 
@@ -81,7 +83,38 @@ void to_circuit_units(Solution& r, const Units& u, std::size_t branches) {
 
 }  // namespace
 
+namespace {
+/// The elements of largest and smallest |value| (L, C), for a message about double's range.
+std::string extreme_elements(const io::Netlist& deck) {
+  const reference::Branch<reference::Rational>* lo = nullptr;
+  const reference::Branch<reference::Rational>* hi = nullptr;
+  for (const auto& b : deck.circuit.branches) {
+    if (b.kind == BranchKind::empty || b.value == 0) continue;
+    if (!hi || abs(b.value) > abs(hi->value)) hi = &b;
+    if (!lo || abs(b.value) < abs(lo->value)) lo = &b;
+  }
+  if (!hi) return "";
+  const auto shown = [](const reference::Rational& v) {
+    const std::string n = boost::multiprecision::numerator(v).str(), d = boost::multiprecision::denominator(v).str();
+    const long digits = static_cast<long>(n.size()) - static_cast<long>(d.size()) - (v < 0 ? 1 : 0);
+    if (digits > 300 || digits < -300) return std::string("about 1e") + std::to_string(digits);
+    return io::float_text(v.convert_to<double>());
+  };
+  return " (the circuit's extremes: " + hi->name + " = " + shown(hi->value) + ", " + lo->name + " = " + shown(lo->value) + ")";
+}
+}  // namespace
+
 Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& options) {
+  try {
+    return solve_lc_in_range(deck, names, parts, options);
+  } catch (const std::invalid_argument& e) {  // double's range: name the elements that leave it
+    const std::string what = e.what();
+    if (what.find("double's range") == std::string::npos) throw;
+    throw std::invalid_argument(what + extreme_elements(deck));
+  }
+}
+
+Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& options) {
   // the twin without units: double sees values near 1 whatever the circuit's units (fF … kH)
   const Units units = io::units_of(deck);
   const io::Netlist n = io::dimensionless(deck, units);
