@@ -365,6 +365,20 @@ TEST(TypedInput, MalformedIsNeverAnswered) {
       }
   }
   EXPECT_GT(mutations, 100u);
+  // Compositions, as fuzz_typed makes them: each field malformed once (a duplicate name pushed and then
+  // popped is the valid problem again — the fuzzer's finding ))2\0\5 on lagrangian.json).
+  std::size_t pairs = 0;
+  for (const dcad::io::Problem& base : dcad::fuzz::typed_bases())
+    for (unsigned first = 0; first < 8; ++first)
+      for (unsigned second = 0; second < 8; ++second) {
+        if (dcad::fuzz::malformed_field(base, first) == dcad::fuzz::malformed_field(base, second)) continue;
+        dcad::io::Problem p = base;
+        if (!dcad::fuzz::malform(p, first, 1) || !dcad::fuzz::malform(p, second, 2)) continue;
+        ++pairs;
+        std::string what;
+        EXPECT_TRUE(dcad::fuzz::all_refuse(p, what)) << what << " (mutations " << first << ", " << second << ")";
+      }
+  EXPECT_GT(pairs, 200u);
   const dcad::io::Problem deck = dcad::fuzz::typed_bases()[3];
   for (unsigned which = 0; which < 5; ++which) {
     std::ostringstream log;

@@ -11,7 +11,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 3) return 0;
   dcad::io::Problem p = bases[data[0] % bases.size()];
   bool broken = false;
-  for (std::size_t i = 1; i + 1 < size && i < 7; i += 2) broken = dcad::fuzz::malform(p, data[i], data[i + 1]) || broken;
+  unsigned touched = 0;  // the fields malformed so far (bits of malformed_field)
+  for (std::size_t i = 1; i + 1 < size && i < 7; i += 2) {
+    const unsigned field = 1u << dcad::fuzz::malformed_field(p, data[i]);
+    if (touched & field) continue;
+    if (dcad::fuzz::malform(p, data[i], data[i + 1])) broken = true, touched |= field;
+  }
   if (broken) {
     std::string what;
     if (!dcad::fuzz::all_refuse(p, what)) {

@@ -35,6 +35,20 @@ inline std::vector<io::Problem> typed_bases() {
           io::parse_case(R"J({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "1/2*v_x^2 - 1/2*x^2"}, "initial": {"x": "1"}})J", "lagrangian.json")};
 }
 
+/// The field a malformation of `p`'s form touches.  Two malformations of one field can undo each other
+/// (pushing a duplicate name and popping it restores the valid problem), so a composition malforms each
+/// field at most once.
+inline unsigned malformed_field(const io::Problem& p, unsigned which) {
+  switch (p.form) {
+    case io::Form::linear: return which % 8 <= 2 ? 0 : which % 8;  // 0, 1, 2: the variables
+    case io::Form::netlist: return which % 8;
+    case io::Form::dae: return which % 6 == 2 ? 0 : which % 6;      // 0, 2: the variables
+    case io::Form::expression:
+    case io::Form::implicit: return which % 6 == 5 ? 0 : which % 6;  // 0, 5: the names
+  }
+  return 0;
+}
+
 /// One malformation of `p` (chosen by `which`, `k` a number inside it), or false if `which` has none for
 /// p's form.  Each is something no reader produces.
 inline bool malform(io::Problem& p, unsigned which, unsigned k) {

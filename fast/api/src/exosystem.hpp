@@ -38,6 +38,32 @@ inline void exo_state_for(const io::Waveform& wf, double t, double stop, long do
   }
 }
 
+/// A sine's angular frequency and decay in long double from its exact FREQ and THETA (the double ones
+/// are rounded: over 5 ns at 1 GHz ω's rounding moves the phase by 3e-15, which a long-double shadow
+/// built on the same double ω cannot see).
+inline long double omega_ld(const io::Waveform& wf) {
+  return wf.is_sine() ? 2 * 3.14159265358979323846264338327950288L * wf.p[2].convert_to<long double>() : 0.0L;
+}
+inline long double decay_ld(const io::Waveform& wf) { return wf.is_sine() ? -wf.p[4].convert_to<long double>() : 0.0L; }
+
+/// exo_state_for with a sine's state from omega_ld and decay_ld (the long-double shadow's exosystem).
+inline void exo_state_for_ld(const io::Waveform& wf, double t, double stop, long double* w) {
+  const double mid = stop > t ? (t + stop) / 2 : t;
+  if (!wf.is_sine() || (t < wf.p[3].convert_to<double>() && mid < wf.p[3].convert_to<double>())) {
+    exo_state_for(wf, t, stop, w);
+    return;
+  }
+  const long double td = wf.p[3].convert_to<long double>(), pi = 3.14159265358979323846264338327950288L;
+  const long double phi = wf.p[5].convert_to<long double>() * pi / 180;
+  // started within the substep (t < TD <= mid): the state the sine would have at t, carried back from TD
+  const std::complex<long double> z =
+      wf.p[1].convert_to<long double>() * std::exp(std::complex<long double>(decay_ld(wf), omega_ld(wf)) * (static_cast<long double>(t) - td) +
+                                                    std::complex<long double>(0, phi));
+  w[0] = wf.p[0].convert_to<long double>();
+  w[1] = z.real();
+  w[2] = z.imag();
+}
+
 /// σ and σ' from the 3 exosystem states of a source.
 inline void exo_output(const io::Waveform& wf, const double* w, double& sigma, double& dsigma) {
   if (wf.is_exp()) {

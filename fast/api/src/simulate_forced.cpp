@@ -28,6 +28,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 namespace dcad::api {
 
@@ -107,9 +108,9 @@ Mat<Wide> to_wide(const QM& m) {
   return w;
 }
 
-/// σ^{(order)}(t) (right limit) in 113 bits: SIN and EXP from their closed forms, PULSE and PWL exactly.
-Wide jet_wide(const io::Waveform& w, double t, int order) {
-  const Q tq = certified::rational_of(t);
+/// σ^{(order)}(t) (right limit) in 113 bits: SIN and EXP from their closed forms, PULSE and PWL exactly;
+/// `tq` the exact time (k·step at an output row), `t` the double that picks the piece.
+Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
   switch (w.kind) {
     case io::Waveform::Kind::dc:
       return order == 0 ? wide(w.p[0]) : Wide(0);
@@ -138,13 +139,13 @@ Wide jet_wide(const io::Waveform& w, double t, int order) {
   }
 }
 
-/// (1, σ, σ', …, σ^{(orders−1)}) in 113 bits: the u that X0 multiplies.
-Vec<Wide> jets_wide(const ForcedScene& deck, double t, long orders, std::size_t wu) {
+/// (1, σ, σ', …, σ^{(orders−1)}) in 113 bits at the exact time tq (t: tq rounded): the u that X0 multiplies.
+Vec<Wide> jets_wide(const ForcedScene& deck, double t, const Q& tq, long orders, std::size_t wu) {
   const std::size_t m = deck.waveforms.size();
   Vec<Wide> u(wu);
   u(0) = 1;
   for (long d = 0; d < orders; ++d)
-    for (std::size_t j = 0; j < m; ++j) u(1 + d * m + j) = jet_wide(deck.waveforms[j], t, static_cast<int>(d));
+    for (std::size_t j = 0; j < m; ++j) u(1 + d * m + j) = jet_wide(deck.waveforms[j], t, tq, static_cast<int>(d));
   return u;
 }
 
@@ -191,9 +192,10 @@ Mat<Wide> exo_output_wide(const ForcedScene& deck, long orders) {
 /// The map w-state → u_ext (the generator of [y; 1; w] is exo_generator's), rounded once from 113 bits.
 Mat<double> exo_output(const ForcedScene& deck, long orders) { return exo_output_wide(deck, orders).cast<double>(); }
 
-Mat<double> exo_generator(const ForcedScene& deck) {
+template <class S = double>
+Mat<S> exo_generator(const ForcedScene& deck) {
   const std::size_t m = deck.waveforms.size();
-  Mat<double> s = Mat<double>::Zero(1 + 3 * m, 1 + 3 * m);
+  Mat<S> s = Mat<S>::Zero(1 + 3 * m, 1 + 3 * m);
   for (std::size_t j = 0; j < m; ++j) {
     const io::Waveform& w = deck.waveforms[j];
     const std::size_t c = 1 + 3 * j;
@@ -201,9 +203,10 @@ Mat<double> exo_generator(const ForcedScene& deck) {
       s(c + 1, c + 1) = w.rate1();
       s(c + 2, c + 2) = w.rate2();
     } else if (w.is_sine()) {
-      s(c + 1, c + 1) = s(c + 2, c + 2) = w.decay();
-      s(c + 1, c + 2) = -w.omega();
-      s(c + 2, c + 1) = w.omega();
+      const S omega = std::is_same_v<S, double> ? S(w.omega()) : S(omega_ld(w)), decay = std::is_same_v<S, double> ? S(w.decay()) : S(decay_ld(w));
+      s(c + 1, c + 1) = s(c + 2, c + 2) = decay;
+      s(c + 1, c + 2) = -omega;
+      s(c + 2, c + 1) = omega;
     } else {
       s(c, c + 1) = 1;
     }
@@ -215,10 +218,10 @@ template <class S>
 struct ForcedFlow {
   Mat<S> g;                 ///< balanced generator D⁻¹ G D
   std::vector<double> d;    ///< balancing
-  std::map<double, Mat<S>> cache;
+  std::map<long double, Mat<S>> cache;
   Vec<S> s;                 ///< balanced state [y; 1; w]
   std::size_t dm = 0;
-  const Mat<S>& step(double h) {
+  const Mat<S>& step(long double h) {
     auto it = cache.find(h);
     if (it == cache.end()) {
       if (cache.size() > 64) cache.clear();  // substeps cut by breakpoints rarely repeat: keep memory bounded
@@ -234,9 +237,18 @@ struct ForcedFlow {
     s(dm) = S(1) / static_cast<S>(d[dm]);
     for (std::size_t j = 0; j < m; ++j) {
       long double w[3];
-      exo_state_for(deck.waveforms[j], t, stop, w);
+      if (std::is_same_v<S, double>) exo_state_for(deck.waveforms[j], t, stop, w);
+      else exo_state_for_ld(deck.waveforms[j], t, stop, w);
       for (int k = 0; k < 3; ++k) s(dm + 1 + 3 * j + k) = static_cast<S>(w[k]) / static_cast<S>(d[dm + 1 + 3 * j + k]);
     }
+  }
+  /// Carries the exosystem from set_exo's double time t to t + dt (dt: that time's rounding, ~ulp(t)), to
+  /// first order: (ω·dt)² is far below either flow's rounding.
+  void shift_exo(long double dt) {
+    if (dt == 0) return;
+    const Eigen::Index e = g.rows() - static_cast<Eigen::Index>(dm);
+    const Vec<S> rate = g.bottomRows(e) * s;
+    s.tail(e) += static_cast<S>(dt) * rate;
   }
   Vec<S> y() const {
     Vec<S> out(dm);
@@ -360,14 +372,16 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   Mat<long double> gen_l = gen.cast<long double>();  // the shadow: the model rounded once more finely
   gen_l.topLeftCorner(dm, dm) = to_wide(fm.ay).cast<long double>();
   gen_l.topRightCorner(dm, 1 + 3 * m) = coupling.cast<long double>();
+  gen_l.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = exo_generator<long double>(deck);
   ForcedFlow<long double> shadow = make_flow<long double>(gen_l, bal, dm);
   const Mat<Wide> x0_wide = to_wide(fm.x0);
   const Mat<long double> basis_l = to_wide(fm.basis).cast<long double>();
   // the shadow's start from the exact data in 113 bits (the double start's rounding is part of what it measures)
   Vec<Wide> x0w(n);
   for (std::size_t i = 0; i < n; ++i) x0w(i) = wide(x0q[i]);
-  const Vec<Wide> y0w = to_wide(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis) * (x0w - x0_wide * jets_wide(deck, 0.0, fm.orders, wu));
+  const Vec<Wide> y0w = to_wide(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis) * (x0w - x0_wide * jets_wide(deck, 0.0, Q(0), fm.orders, wu));
   for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0w(i)) / bal[i];
+
   std::vector<double> breaks;
   std::vector<std::vector<double>> own(m);  // each source's own corners: only they jump there
   for (std::size_t j = 0; j < m; ++j) try {
@@ -399,11 +413,17 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   std::vector<long double> err(n, 0), mag(n, 0);
   std::size_t next_break = 0;
   double e0 = 0;
+  // Row k is the motion at the exact time k·step (as the enclosures' rows): every step the flows take is
+  // exactly --step, or pieces of it between breakpoints summing to it in long double, and the sources'
+  // state is carried from the printed double time to the exact one.  Steps of (k+1)·step − k·step in
+  // double drift by ulp(t): 1e-14 of the state on a 3e10 rad/s tank after ten steps, unseen by the shadow.
+  const Q hq = certified::rational_of(opt.step);
   for (long k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * opt.step;
+    const long double t_exact = static_cast<long double>(k) * static_cast<long double>(opt.step);
     const Vec<double> u = jets(deck, t, fm.orders);
     const Vec<double> y = flow.y();
-    const Vec<Wide> x0u = x0_wide * jets_wide(deck, t, fm.orders, wu);  // X0 u: its terms cancel too
+    const Vec<Wide> x0u = x0_wide * jets_wide(deck, t, hq * Q(k), fm.orders, wu);  // X0 u: its terms cancel too
     const Vec<double> x = x0u.cast<double>() + B.transpose() * y;
     if (!x.allFinite())
       throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(t) + " s (a growing source or values beyond double's range)");
@@ -456,17 +476,24 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
     }
     // advance one output step, stopping at the breakpoints inside it
     double at = t;
+    long double at_exact = t_exact;
     const double to = static_cast<double>(k + 1) * opt.step;
+    const long double to_exact = static_cast<long double>(k + 1) * static_cast<long double>(opt.step);
     while (true) {
       const double stop = next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
-      const double h = stop - at;
+      const long double stop_exact = stop == to ? to_exact : static_cast<long double>(stop);
+      const bool whole = at == t && stop == to;
+      const long double h = whole ? static_cast<long double>(opt.step) : stop_exact - at_exact;
       flow.set_exo(deck, at, stop);
       shadow.set_exo(deck, at, stop);
+      flow.shift_exo(at_exact - static_cast<long double>(at));
+      shadow.shift_exo(at_exact - static_cast<long double>(at));
       if (h > 0) {
-        flow.s = flow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * flow.s;
-        shadow.s = shadow.step(std::abs(h - opt.step) < 1e-15 * opt.step ? opt.step : h) * shadow.s;
+        flow.s = flow.step(whole ? static_cast<long double>(opt.step) : static_cast<long double>(static_cast<double>(h))) * flow.s;
+        shadow.s = shadow.step(h) * shadow.s;
       }
       at = stop;
+      at_exact = stop_exact;
       // a breakpoint at `at`: σ' jumps, σ'' has a delta of that weight
       while (next_break < breaks.size() && breaks[next_break] <= at + 1e-12 * opt.step) {
         const double tb = breaks[next_break++];

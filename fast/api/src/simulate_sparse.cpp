@@ -235,8 +235,12 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
   }
   // scales of the Krylov state: √energy for the circuit, the sources' values in the same units
   const double ctyp = typical(circ_, rlc::Kind::capacitor), ltyp = typical(circ_, rlc::Kind::inductor), rtyp = typical(circ_, rlc::Kind::resistor);
-  const double cs = ctyp > 0 ? ctyp : ltyp > 0 && rtyp > 0 ? ltyp / (rtyp * rtyp) : 1.0;
-  const double ls = ltyp > 0 ? ltyp : cs * (rtyp > 0 ? rtyp * rtyp : 1.0);
+  // a circuit without inductors (or capacitors) takes the missing kind from its resistance, or without
+  // resistors from the output step (R = step/C, L = step²/C): a fixed 1 Ω would put a current source
+  // driving a 1 fF capacitor 10⁷ below the charge it moves in a step, and the error control (relative to
+  // the state's norm) would let the Krylov basis drop what the source is about to carry
+  const double cs = ctyp > 0 ? ctyp : ltyp > 0 ? ltyp / (rtyp > 0 ? rtyp * rtyp : ltyp * ltyp / (step * step)) : 1.0;
+  const double ls = ltyp > 0 ? ltyp : cs * (rtyp > 0 ? rtyp * rtyp : ctyp > 0 ? step * step / (ctyp * ctyp) : 1.0);
   d_.resize(static_cast<Eigen::Index>(ny));
   d_.head(static_cast<Eigen::Index>(nx_)) = model_->energy_scale();
   std::vector<bool> current(m, false);
