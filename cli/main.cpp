@@ -233,22 +233,24 @@ int main(int argc, char** argv) {
     if (cases->parsed()) return cases_command(cases_action, cases_args, cases_waveforms);
     if (check->parsed() && !dcad::io::looks_like_json(check_result_file)) {
       wave_opt.initial = check_initial == "op" ? dcad::api::Initial::op : check_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
-      const dcad::io::Traces traces = dcad::io::read_traces(check_result_file);
+      // the file streams (bounded memory at any size) unless a plot needs its points in memory
+      const dcad::io::Traces traces = check_png.empty() ? dcad::io::Traces{} : dcad::io::read_traces(check_result_file);
+      const std::unique_ptr<dcad::io::TraceStream> stream = check_png.empty() ? dcad::io::open_traces(check_result_file) : dcad::io::stream_of(traces);
       wave_opt.keep_exact = !check_png.empty();
       std::vector<std::size_t> plotted;  // vectors to plot, by index
       if (!check_vars.empty()) {
         std::istringstream in(check_vars);
         for (std::string name; std::getline(in, name, ',');) {
           std::size_t k = 0;
-          while (k < traces.names.size() && traces.names[k] != name) ++k;
-          if (k == traces.names.size()) {
+          while (k < stream->names().size() && stream->names()[k] != name) ++k;
+          if (k == stream->names().size()) {
             std::cerr << "dcad check: --plot-vars: expected vectors of " << check_result_file << ", found \"" << name << "\"\n";
             return 2;
           }
           plotted.push_back(k);
         }
       }
-      const dcad::api::WaveformChecked w = dcad::api::check_waveform(traces, dcad::io::read_problem(check_file), wave_opt, std::cerr);
+      const dcad::api::WaveformChecked w = dcad::api::check_waveform(*stream, dcad::io::read_problem(check_file), wave_opt, std::cerr);
       std::cout << (check_json ? dcad::api::waveform_json(w, wave_opt) + "\n" : dcad::api::waveform_text(w, check_result_file, check_file, wave_opt));
       if (!check_png.empty() && !w.vectors.empty()) {
         if (plotted.empty()) plotted.push_back(w.worst);

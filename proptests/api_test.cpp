@@ -385,3 +385,65 @@ TEST(TypedInput, MalformedIsNeverAnswered) {
     EXPECT_THROW((void)dcad::api::check_waveform(dcad::fuzz::malformed_traces(which, 1), deck, {}, log), std::invalid_argument) << which;
   }
 }
+
+namespace {
+
+/// An ngspice binary raw file (one transient plot, time first) of the given points, as ngspice writes it.
+std::string binary_raw(const std::vector<std::string>& names, const std::vector<double>& time, const std::vector<std::vector<double>>& values) {
+  std::ostringstream h;
+  h << "Title: written by api_test\nDate: today\nPlotname: Transient Analysis\nFlags: real\nNo. Variables: " << names.size() + 1
+    << "\nNo. Points: " << time.size() << "\nVariables:\n\t0\ttime\ttime\n";
+  for (std::size_t k = 0; k < names.size(); ++k) h << "\t" << k + 1 << "\t" << names[k] << "\tvoltage\n";
+  h << "Binary:\n";
+  std::string s = h.str();
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    s.append(reinterpret_cast<const char*>(&time[i]), sizeof(double));
+    for (const auto& v : values) s.append(reinterpret_cast<const char*>(&v[i]), sizeof(double));
+  }
+  return s;
+}
+
+}  // namespace
+
+// Issue 45 §3: `dcad check` streams an ngspice binary raw file from disk (io::open_traces, chunks of
+// points: memory bounded whatever the file's size) — and the verdict is the one of the file read whole
+// (io::read_traces): the same JSON, over 10,001 points (three chunks), with a breakpoint's time written
+// negative as ngspice does.  A time that decreases is the same bad input either way, naming the point.
+TEST(TraceStream, BinaryRawStreamsAsReadWhole) {
+  const dcad::io::Problem deck = dcad::fuzz::typed_bases()[3];  // the tank with a PULSE source, .tran 1u 40u
+  const std::size_t n = 10001;
+  std::vector<double> time(n);
+  std::vector<std::vector<double>> values(2, std::vector<double>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    time[i] = 40e-6 * static_cast<double>(i) / static_cast<double>(n - 1);
+    values[0][i] = std::sin(1e5 * time[i]), values[1][i] = 1e-3 * std::cos(3e5 * time[i]);
+  }
+  time[5000] = -time[5000];
+  const std::string file = write_temp("stream.raw", binary_raw({"v(b)", "i(l1)"}, time, values));
+  const std::unique_ptr<dcad::io::TraceStream> stream = dcad::io::open_traces(file);
+  EXPECT_EQ(stream->format(), "ngspice raw (binary)");
+  EXPECT_EQ(stream->points(), n);
+  EXPECT_EQ(stream->last_time(), 40e-6);
+  std::ostringstream log_a, log_b;
+  const dcad::api::WaveformChecked a = dcad::api::check_waveform(*stream, deck, {}, log_a);
+  const dcad::api::WaveformChecked b = dcad::api::check_waveform(dcad::io::read_traces(file), deck, {}, log_b);
+  EXPECT_EQ(dcad::api::waveform_json(a, {}), dcad::api::waveform_json(b, {}));
+  EXPECT_EQ(a.points, static_cast<long>(n));
+  EXPECT_FALSE(a.agree);  // (values that are not the tank's: a verdict to compare, not a run)
+  std::swap(time[7000], time[7001]);
+  const std::string bad = write_temp("stream-bad.raw", binary_raw({"v(b)", "i(l1)"}, time, values));
+  std::string streamed, whole;
+  try {
+    std::ostringstream log;
+    (void)dcad::api::check_waveform(*dcad::io::open_traces(bad), deck, {}, log);
+  } catch (const dcad::io::InputError& e) {
+    streamed = e.what();
+  }
+  try {
+    (void)dcad::io::read_traces(bad);
+  } catch (const dcad::io::InputError& e) {
+    whole = e.what();
+  }
+  EXPECT_NE(whole.find("point 7002: expected nondecreasing times"), std::string::npos) << whole;
+  EXPECT_EQ(streamed, whole);
+}

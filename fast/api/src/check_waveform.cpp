@@ -176,55 +176,40 @@ std::vector<certified::Functional::Term> branch_voltage(const io::Netlist& deck,
   }
 }
 
-Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision);
+/// The certified tier's enclosures of the vectors at one precision, point by point in time order (the
+/// exact motion advanced along the file's times): a time within 1e-13 of the run of a source corner is
+/// read as that corner and given both one-sided values.
+class Encloser {
+ public:
+  Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision, double first, double last);
+  bool ok() const { return why_.empty(); }
+  const std::string& why() const { return why_; }
+  /// The enclosures of every vector at t (`r`), and the other side's at a corner (`l`, else `r`); false
+  /// with why() when the motion cannot be enclosed there.
+  bool at(double t, std::vector<certified::Enclosure>& r, std::vector<certified::Enclosure>& l);
+  long restarts() const { return cm_.flow ? cm_.flow->restarts() : 0; }
 
-/// Enclosures at 256 bits, then at twice the precision while some radius exceeds 2^-60 of its vector's
-/// largest value (wrapping through many corners: each doubling of the bits buys about twice the corners),
-/// up to 2048 bits.
-Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step) {
-  Enclosed e;
-  double before = HUGE_VAL;  // the widest relative radius of the previous precision
-  for (long precision = 256; precision <= 2048; precision *= 2) {
-    const auto start = std::chrono::steady_clock::now();
-    e = enclose_at(tr, p, fs, opt, step, precision);
-    if (!e.ok) return e;
-    bool finite = true;
-    for (const auto& v : e.right)
-      for (const certified::Enclosure& x : v) finite = finite && std::isfinite(x.rad);
-    // an infinite radius (a stiff circuit's exponential) does not narrow with more bits; nor is a run
-    // that took 10 s repeated at twice the cost
-    if (!finite || std::chrono::steady_clock::now() - start > std::chrono::seconds(10)) return e;
-    double widest = 0;  // over the vectors: radius / scale (a vector whose exact values are all 0: radius alone)
-    for (std::size_t k = 0; k < e.right.size(); ++k) {
-      double scale = 0, rad = 0;
-      for (std::size_t i = 0; i < e.right[k].size(); ++i)
-        scale = std::max({scale, std::abs(e.right[k][i].mid), std::abs(e.left[k][i].mid)}), rad = std::max({rad, e.right[k][i].rad, e.left[k][i].rad});
-      widest = std::max(widest, rad <= std::ldexp(1.0, -1000) ? 0.0 : scale > 0 ? rad / scale : HUGE_VAL);
-    }
-    // 2^-50: above the midpoint's own rounding to double (2^-53 of it, part of every radius), which more
-    // bits cannot narrow (at 2^-60 every run was redone at 512, 1024 and 2048 bits); and a width that twice
-    // the bits did not narrow 2^32-fold is not the precision's (a time a hair from a source corner is the
-    // hull of both sides): more bits would only cost (a 6,900-point check ran to 2048 bits, 1.5 s)
-    if (widest <= std::ldexp(1.0, -50) || widest > std::ldexp(before, -32)) return e;
-    before = widest;
-  }
-  return e;
-}
+ private:
+  CertifiedMotion cm_;
+  std::vector<certified::Functional> cf_;
+  std::map<double, io::Rational> corners_;
+  double near_ = 0;
+  std::string why_;
+};
 
-Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision) {
-  Enclosed out;
+Encloser::Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision, double first,
+                   double last) {
   const io::Netlist& deck = p.netlist;
   const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
-  CertifiedMotion cm;
   try {
-    cm = certified_motion(deck, p.linear, opt.initial, step, precision);
+    cm_ = certified_motion(deck, p.linear, opt.initial, step, precision);
   } catch (const std::exception& e) {
-    out.why = e.what();
-    return out;
+    why_ = e.what();
+    return;
   }
-  if (!cm.flow) {
-    out.why = cm.why;
-    return out;
+  if (!cm_.flow) {
+    why_ = cm_.why.empty() ? "no exact motion" : cm_.why;
+    return;
   }
   // node potentials along a spanning tree of the branches whose voltage is known (all but current sources)
   std::vector<std::optional<std::vector<certified::Functional::Term>>> pot(nodes + 1);  // index node + 1; 0 = ground
@@ -246,7 +231,7 @@ Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vecto
       grew = true;
     }
   }
-  std::vector<certified::Functional> cf(fs.size());
+  cf_.resize(fs.size());
   for (std::size_t k = 0; k < fs.size(); ++k) {
     const Functional& f = fs[k];
     using Of = certified::Functional::Of;
@@ -254,69 +239,120 @@ Enclosed enclose_at(const io::Traces& tr, const io::Problem& p, const std::vecto
       for (long node : {f.a, f.b}) {
         const auto& path = pot[static_cast<std::size_t>(node + 1)];
         if (!path) {
-          out.why = "node " + deck.node_names[static_cast<std::size_t>(node)] + " reaches ground only through current sources: its potential is not enclosed";
-          return out;
+          why_ = "node " + deck.node_names[static_cast<std::size_t>(node)] + " reaches ground only through current sources: its potential is not enclosed";
+          return;
         }
         for (auto term : *path) {
           if (node == f.b) term.coef = -term.coef;
-          cf[k].terms.push_back(term);
+          cf_[k].terms.push_back(term);
         }
       }
     } else {
       const std::size_t base = f.kind == Functional::charge ? 0 : f.kind == Functional::current ? nb : 2 * nb;
-      cf[k].terms.push_back({Of::x, base + f.branch, io::Rational(1)});
+      cf_[k].terms.push_back({Of::x, base + f.branch, io::Rational(1)});
     }
   }
-  const std::size_t np = tr.time.size();
   // the exact corners: a file time within 1e-13 of the run of one (a simulator's breakpoint, TD + k·PER
   // summed in double) is read as that corner and compared with its two one-sided values
-  const double near = 1e-13 * std::max(std::abs(tr.time.back()), std::abs(tr.time.front()));
-  std::map<double, io::Rational> corners;
-  const std::vector<io::Rational> all = cm.flow->corners(certified::rational_of(tr.time.back() + 2 * near), kEnclosedCorners + 1);
-  if (all.size() > kEnclosedCorners) {
-    out.why = "the sources have more than " + std::to_string(kEnclosedCorners) + " corners in the run (each is crossed exactly)";
-    return out;
-  }
-  for (const io::Rational& c : all) corners.emplace(c.convert_to<double>(), c);
-  const auto corner_of = [&](double t) -> const io::Rational* {
-    auto it = corners.lower_bound(t - near);
-    return it != corners.end() && it->first <= t + near ? &it->second : nullptr;
-  };
-  out.right.assign(fs.size(), std::vector<certified::Enclosure>(np));
-  out.left = out.right;
+  near_ = 1e-13 * std::max(std::abs(last), std::abs(first));
   try {
-    for (std::size_t i = 0; i < np; ++i) {
-      const io::Rational at = certified::rational_of(tr.time[i]);
-      const io::Rational* c = corner_of(tr.time[i]);
-      if (at < cm.flow->time() || (c && *c < cm.flow->time())) {
-        out.why = "two of the file's times lie within 1e-13 of the run of one source corner";
-        return out;
-      }
-      std::vector<certified::Enclosure> before;  // at the file's own time, when it is just before the corner
-      if (c && at < *c) {
-        cm.flow->advance_to(at);
-        before = cm.flow->evaluate(cf);
-      }
-      cm.flow->advance_to(c ? *c : at);
-      std::vector<certified::Enclosure> r = cm.flow->evaluate(cf), l = cm.flow->at_corner() ? cm.flow->evaluate(cf, true) : r;
-      // a time near a corner: the side it lies on holds the exact value at the file's own time (the hull
-      // of that side's value at the corner and the value at the time), the other side the corner's
-      // other one-sided value (the CONTRACT's allowance at a jump)
-      if (c && at > *c) {
-        cm.flow->advance_to(at);
-        const std::vector<certified::Enclosure> after = cm.flow->evaluate(cf);
-        for (std::size_t k = 0; k < fs.size(); ++k) r[k] = hull(r[k], after[k]);
-      }
-      for (std::size_t k = 0; k < before.size(); ++k) l[k] = hull(l[k], before[k]);
-      for (std::size_t k = 0; k < fs.size(); ++k) out.right[k][i] = r[k], out.left[k][i] = l[k];
+    const std::vector<io::Rational> all = cm_.flow->corners(certified::rational_of(last + 2 * near_), kEnclosedCorners + 1);
+    if (all.size() > kEnclosedCorners) {
+      why_ = "the sources have more than " + std::to_string(kEnclosedCorners) + " corners in the run (each is crossed exactly)";
+      return;
     }
+    for (const io::Rational& c : all) corners_.emplace(c.convert_to<double>(), c);
   } catch (const std::exception& e) {
-    out.why = e.what();
-    return out;
+    why_ = e.what();
   }
-  out.restarts = cm.flow->restarts();
-  out.ok = true;
-  return out;
+}
+
+bool Encloser::at(double t, std::vector<certified::Enclosure>& r, std::vector<certified::Enclosure>& l) {
+  if (!ok()) return false;
+  try {
+    const io::Rational at = certified::rational_of(t);
+    auto it = corners_.lower_bound(t - near_);
+    const io::Rational* c = it != corners_.end() && it->first <= t + near_ ? &it->second : nullptr;
+    if (at < cm_.flow->time() || (c && *c < cm_.flow->time())) {
+      why_ = "two of the file's times lie within 1e-13 of the run of one source corner";
+      return false;
+    }
+    std::vector<certified::Enclosure> before;  // at the file's own time, when it is just before the corner
+    if (c && at < *c) {
+      cm_.flow->advance_to(at);
+      before = cm_.flow->evaluate(cf_);
+    }
+    cm_.flow->advance_to(c ? *c : at);
+    r = cm_.flow->evaluate(cf_);
+    l = cm_.flow->at_corner() ? cm_.flow->evaluate(cf_, true) : r;
+    // a time near a corner: the side it lies on holds the exact value at the file's own time (the hull
+    // of that side's value at the corner and the value at the time), the other side the corner's
+    // other one-sided value (the CONTRACT's allowance at a jump)
+    if (c && at > *c) {
+      cm_.flow->advance_to(at);
+      const std::vector<certified::Enclosure> after = cm_.flow->evaluate(cf_);
+      for (std::size_t k = 0; k < r.size(); ++k) r[k] = hull(r[k], after[k]);
+    }
+    for (std::size_t k = 0; k < before.size(); ++k) l[k] = hull(l[k], before[k]);
+  } catch (const std::exception& e) {
+    why_ = e.what();
+    return false;
+  }
+  return true;
+}
+
+/// 2^-50: above the midpoint's own rounding to double (2^-53 of it, part of every radius), which more bits
+/// cannot narrow (at 2^-60 every run was redone at 512, 1024 and 2048 bits).
+constexpr int kNarrowEnough = -50;
+
+/// Whether enclosures at `precision` bits should be redone at twice the bits: some radius above
+/// 2^kNarrowEnough of its vector's largest value (wrapping through many corners: each doubling of the
+/// bits buys about twice the corners), finite radii, the last run under 10 s, the previous precision's
+/// widest narrowed 2^32-fold (a time a hair from a source corner is the hull of both sides: more bits
+/// would only cost), and at most 2048 bits.  `widest` is over the vectors: largest radius / largest
+/// |midpoint| (a vector whose radii are all below 2^-1000: 0; whose midpoints are all 0: infinite).
+bool more_bits(long precision, bool finite, double seconds, double widest, double& before) {
+  if (!finite || seconds > 10 || precision >= 2048) return false;
+  if (widest <= std::ldexp(1.0, kNarrowEnough) || widest > std::ldexp(before, -32)) return false;
+  before = widest;
+  return true;
+}
+
+/// Enclosures at 256 bits, then at twice the precision while more_bits says so.
+Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step) {
+  Enclosed e;
+  double before = HUGE_VAL;
+  for (long precision = 256;; precision *= 2) {
+    const auto start = std::chrono::steady_clock::now();
+    e = Enclosed{};
+    Encloser enc(p, fs, opt, step, precision, tr.time.front(), tr.time.back());
+    if (!enc.ok()) {
+      e.why = enc.why();
+      return e;
+    }
+    e.right.assign(fs.size(), std::vector<certified::Enclosure>(tr.time.size()));
+    e.left = e.right;
+    std::vector<certified::Enclosure> r, l;
+    bool finite = true;
+    std::vector<double> scale(fs.size(), 0.0), rad(fs.size(), 0.0);
+    for (std::size_t i = 0; i < tr.time.size(); ++i) {
+      if (!enc.at(tr.time[i], r, l)) {
+        e = Enclosed{};
+        e.why = enc.why();
+        return e;
+      }
+      for (std::size_t k = 0; k < fs.size(); ++k) {
+        e.right[k][i] = r[k], e.left[k][i] = l[k];
+        finite = finite && std::isfinite(r[k].rad);
+        scale[k] = std::max({scale[k], std::abs(r[k].mid), std::abs(l[k].mid)}), rad[k] = std::max({rad[k], r[k].rad, l[k].rad});
+      }
+    }
+    e.ok = true;
+    e.restarts = enc.restarts();
+    double widest = 0;
+    for (std::size_t k = 0; k < fs.size(); ++k) widest = std::max(widest, rad[k] <= std::ldexp(1.0, -1000) ? 0.0 : scale[k] > 0 ? rad[k] / scale[k] : HUGE_VAL);
+    if (!more_bits(precision, finite, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), widest, before)) return e;
+  }
 }
 
 }  // namespace
@@ -336,68 +372,123 @@ WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std
   return WaveformEnclosures{e.ok, e.why, std::move(e.right), std::move(e.left)};
 }
 
+namespace {
+
+/// One vector against one source of exact values (the enclosures, or the double flow with its radius
+/// added at the end), reduced over the points as they stream by: what the verdict needs of them.
+struct Reduced {
+  double own = 0, own_lo = 0, own_hi = 0;  ///< the largest |exact|, and its bounds with the radii
+  double max_hi = -HUGE_VAL, max_lo = -HUGE_VAL;  ///< the largest upper and lower bounds on |found − exact|
+  bool hi_nan = false;
+  double unc = 0;                          ///< the largest radius that counts (the other side's at a corner)
+  double widest_rad = 0, widest_mid = 0;   ///< over both sides (the wide test, the precision loop)
+  bool finite = true;                      ///< every right radius finite
+  bool first = true, nonfinite = false, at_corner = false;
+  double max_error = 0, at = 0, exact = 0, found = 0;
+  long skipped = 0;
+  std::vector<double> kept;  ///< with keep_exact: the exact value at each point (the side nearer the file's)
+};
+
+void reduce(Reduced& a, double t, double found, double right, double left, double rad_r, double rad_l, bool two_sided, bool touched, bool keep) {
+  constexpr double u = std::numeric_limits<double>::epsilon();
+  a.own = std::max({a.own, std::abs(right), std::abs(left)});
+  a.own_hi = std::max({a.own_hi, std::abs(right) + rad_r, std::abs(left) + rad_l});
+  a.own_lo = std::max({a.own_lo, std::abs(right) - rad_r, std::abs(left) - rad_l});
+  a.unc = std::max({a.unc, rad_r, two_sided ? rad_l : 0.0});
+  a.widest_rad = std::max({a.widest_rad, rad_r, rad_l}), a.widest_mid = std::max({a.widest_mid, std::abs(right), std::abs(left)});
+  a.finite = a.finite && std::isfinite(rad_r);
+  if (keep) a.kept.push_back(std::abs(found - left) < std::abs(found - right) ? left : right);  // the side the simulator is nearer at a corner
+  if (a.nonfinite) return;
+  if (!std::isfinite(found)) {
+    a.nonfinite = true;
+    a.max_error = HUGE_VAL, a.at = t, a.exact = right, a.found = found;
+    return;
+  }
+  // after a jump onto M_c at t = 0 (decided on the exact model) the simulator shows the state before it at
+  // t = 0: there, and only there, the vectors the jump moves are not compared
+  if (t <= 0 && touched) {
+    ++a.skipped;
+    return;
+  }
+  const double er = std::abs(found - right), el = std::abs(found - left);
+  const double err = two_sided ? std::min(er, el) : er;
+  // bounds on the true error |found − exact| at this point: either side may be taken at a corner
+  const double hi_r = er * (1 + 2 * u) + rad_r, lo_r = er * (1 - 2 * u) - rad_r;
+  const double hi_l = el * (1 + 2 * u) + rad_l, lo_l = el * (1 - 2 * u) - rad_l;
+  const double hi = two_sided ? std::min(hi_r, hi_l) : hi_r, lo = two_sided ? std::min(lo_r, lo_l) : lo_r;
+  if (std::isnan(hi)) a.hi_nan = true;
+  else a.max_hi = std::max(a.max_hi, hi);
+  if (lo > a.max_lo) a.max_lo = lo;
+  if (a.first || err > a.max_error) {
+    a.first = false;
+    a.max_error = err;
+    a.at = t;
+    a.exact = two_sided && el < er ? left : right;
+    a.found = found;
+    a.at_corner = two_sided;
+  }
+}
+
+/// Points read and compared at a time: memory is this many points of every vector, whatever the file's size.
+constexpr std::size_t kChunk = 4096;
+
+}  // namespace
+
 WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
-  io::validate(tr);
+  const std::unique_ptr<io::TraceStream> stream = io::stream_of(tr);  // validates tr
+  return check_waveform(*stream, p, opt, log);
+}
+
+WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
   io::validate(p);
-  for (std::size_t k = 0; k < tr.skipped.size() && k < 5; ++k) log << "note: skipped a simulator's message inside the table at " << tr.skipped[k] << "\n";
-  if (tr.skipped.size() > 5) log << "note: … and " << tr.skipped.size() - 5 << " more messages skipped\n";
+  const std::vector<std::string>& skipped = tr.skipped();
+  for (std::size_t k = 0; k < skipped.size() && k < 5; ++k) log << "note: skipped a simulator's message inside the table at " << skipped[k] << "\n";
+  if (skipped.size() > 5) log << "note: … and " << skipped.size() - 5 << " more messages skipped\n";
   if (p.form != io::Form::netlist)
-    throw io::InputError(p.netlist.file.empty() ? tr.file + ": check: expected a netlist as DECK for a waveform, found a case file"
+    throw io::InputError(p.netlist.file.empty() ? tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file"
                                                 : p.netlist.file + ": check: expected a netlist for a waveform");
   const io::Netlist& deck = p.netlist;
   if (!deck.indefinite_inductance.empty())
     throw io::InputError(deck.indefinite_inductance + "; check: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
   if (!(opt.rtol >= 0) || !(opt.atol >= 0)) throw UsageError("--rtol and --atol: expected numbers >= 0");
-  if (tr.names.empty())
-    throw io::InputError(tr.file + ": expected at least one vector besides time (" + tr.format + "), found none: nothing to check" +
-                         (tr.format == "gnucap" ? " (gnucap runs .tran as it reads it: put .print before .tran)" : ""));
+  if (tr.names().empty())
+    throw io::InputError(tr.file() + ": expected at least one vector besides time (" + tr.format() + "), found none: nothing to check" +
+                         (tr.format() == "gnucap" ? " (gnucap runs .tran as it reads it: put .print before .tran)" : ""));
+  if (tr.points() == 0) throw io::InputError(tr.file() + ": expected at least one time point, found none");
   const Names names = names_of(deck);
   std::vector<Functional> fs;
-  for (const std::string& name : tr.names) fs.push_back(functional(name, names, deck, tr.file));
+  for (const std::string& name : tr.names()) fs.push_back(functional(name, names, deck, tr.file()));
   WaveformChecked out;
-  out.format = tr.format;
-  out.points = static_cast<long>(tr.time.size());
-  const double horizon = tr.time.back();
-  const double step = tr.time.size() > 1 && horizon > 0 ? horizon / static_cast<double>(tr.time.size() - 1) : 1.0;
-  const std::size_t nv = fs.size(), np = tr.time.size();
-  // the certified tier first: enclosures of the exact values (rigorous), where dcad builds them
-  const Enclosed enc = opt.enclose ? enclose(tr, p, fs, opt, step) : Enclosed{false, "not asked for (WaveformOptions::enclose false)", {}, {}, 0};
+  out.format = tr.format();
+  out.points = static_cast<long>(tr.points());
+  const double horizon = tr.last_time();
+  const double step = tr.points() > 1 && horizon > 0 ? horizon / static_cast<double>(tr.points() - 1) : 1.0;
+  const std::size_t nv = fs.size();
   const bool graph = reference::pipeline::graph_route_holds(deck.rlc);
-  if (!graph && !enc.ok)
+  // the certified tier's first precision: a circuit off the graph route has only the enclosures
+  double enc_seconds = 0;
+  auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<Encloser> enc;
+  std::string enc_why = opt.enclose ? "" : "not asked for (WaveformOptions::enclose false)";
+  long precision = 256;
+  if (opt.enclose) {
+    enc = std::make_unique<Encloser>(p, fs, opt, step, precision, tr.first_time(), horizon);
+    if (!enc->ok()) enc_why = enc->why(), enc.reset();
+  }
+  enc_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto refuse_without_enclosures = [&] {
     throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1, "
-                         "or up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches for the enclosures on the dense model), found another: " + enc.why);
-  // exact values at every time point: right values, and left ones where they may differ (corners, t = 0),
-  // each with how far the exact value may be from it (an enclosure's radius, or the double flow's estimate)
-  std::vector<std::vector<double>> right(nv, std::vector<double>(np)), left(nv, std::vector<double>(np)), rad_r(nv, std::vector<double>(np)),
-      rad_l(nv, std::vector<double>(np));
-  std::vector<bool> two_sided(np, false);
+                         "or up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches for the enclosures on the dense model), found another: " + enc_why);
+  };
+  if (!graph && !enc) refuse_without_enclosures();
+  // the start and the jump at t = 0 (which vectors it moves), before any point is compared
   long jumps = 0;
   std::vector<std::string> jumped;  // the variables that jump at t = 0 (q_C, v_L, p_L)
-  std::vector<double> uncertainty(nv, 0.0);
-  double circuit_kind_scale[4] = {0, 0, 0, 0};  // the graph route's: over every node and branch of the circuit
+  std::unique_ptr<SparseFlow> flow;
   if (graph) {
-    SparseFlow flow(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
-    double* kind_scale = circuit_kind_scale;  // the largest potential, charge, current, flux linkage over the run
-    for (std::size_t i = 0; i < np; ++i) {
-      const double t = tr.time[i];
-      flow.advance_to(t);
-      const sr::BranchValues bv = flow.values();
-      const Vec e = flow.node_potentials();
-      kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
-      kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
-      kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
-      kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
-      for (std::size_t k = 0; k < nv; ++k) right[k][i] = left[k][i] = value(fs[k], bv, e);
-      if (t == 0 || flow.corner(t)) {
-        two_sided[i] = true;
-        const sr::BranchValues bl = flow.values(true);
-        const Vec el = flow.node_potentials(true);
-        for (std::size_t k = 0; k < nv; ++k) left[k][i] = value(fs[k], bl, el);
-      }
-    }
-    out.error_estimate = flow.error_estimate();
-    jumps = flow.jumps();
-    jumped = flow.jumped();
+    flow = std::make_unique<SparseFlow>(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
+    jumps = flow->jumps();
+    jumped = flow->jumped();
     if (nb_of(deck) <= reference::pipeline::kForcedBranches) {  // small enough for the exact jump: decided in rationals
       namespace pl = reference::pipeline;
       try {
@@ -412,37 +503,10 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
       } catch (const std::exception&) {  // the flow's own decision stands (its start was computed the same way)
       }
     }
-    // dcad's own uncertainty: the Krylov estimate (at least 64 ε for the rounding of the outputs) of
-    // the largest value of the vector's kind; a potential difference v(a,b) counts both ends
-    for (std::size_t k = 0; k < nv; ++k)
-      uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
-                       (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
   } else {
     netlist_start(deck, p.linear.variables, opt.initial, log, &jumps, &jumped);
   }
-  // an enclosure wider than the double flow's own uncertainty (a stiff circuit, wrapping) does not
-  // decide its vector: the double flow does, and the run is not certified
-  std::vector<bool> enclosed(nv, enc.ok);
-  std::string wide;
-  for (std::size_t k = 0; k < nv && enc.ok && graph; ++k) {
-    double worst = 0;
-    for (std::size_t i = 0; i < np; ++i) worst = std::max({worst, enc.right[k][i].rad, enc.left[k][i].rad});
-    // (a vector that is 0 over the whole run has uncertainty 0: radii of 1e-308 are not wider than it)
-    if (!(worst <= std::max(uncertainty[k], 1e-300))) {
-      enclosed[k] = false;
-      wide += std::string(wide.empty() ? "" : ", ") + tr.names[k] + " (radius " + io::float_text(worst) + ")";
-    }
-  }
-  for (std::size_t k = 0; k < nv; ++k)
-    for (std::size_t i = 0; i < np; ++i) {
-      if (enclosed[k]) {
-        right[k][i] = enc.right[k][i].mid, rad_r[k][i] = enc.right[k][i].rad;
-        left[k][i] = enc.left[k][i].mid, rad_l[k][i] = enc.left[k][i].rad;
-        two_sided[i] = two_sided[i] || left[k][i] != right[k][i] || rad_l[k][i] != rad_r[k][i];
-      } else {
-        rad_r[k][i] = rad_l[k][i] = uncertainty[k];
-      }
-    }
+  (void)jumps;
   // the vectors a jump at t = 0 moves: a jumped charge, current or flux linkage by its branch; potentials and
   // the currents of other branches (functions of the whole state) whenever anything jumps
   std::vector<bool> touched(nv, false);
@@ -456,91 +520,164 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
     for (const char* pre : {"q_", "v_", "p_"})
       touched[k] = touched[k] || std::find(jumped.begin(), jumped.end(), pre + br.name) != jumped.end();
   }
-  out.jumped = jumped;
-  for (double t : tr.time)
-    if (t > 0) {
-      out.first_after_zero = t;
+  // One pass over the file per precision of the enclosures; the first also runs the double flow (graph
+  // route).  Exact values on both sides of a corner (and at t = 0) where they may differ, each with how
+  // far the exact value may be from it (an enclosure's radius, or the double flow's estimate, known at
+  // the end: added then).
+  std::vector<Reduced> flow_acc(nv), enc_acc(nv);
+  double kind_scale[4] = {0, 0, 0, 0};  // the graph route's: over every node and branch of the circuit
+  double before = HUGE_VAL;
+  std::vector<double> t;
+  std::vector<std::vector<double>> vals;
+  std::vector<certified::Enclosure> r, l;
+  std::vector<double> right(nv), left(nv);
+  bool seen_positive = false;
+  for (bool first_pass = true;; first_pass = false) {
+    enc_acc.assign(nv, Reduced{});
+    tr.rewind();
+    double previous = -HUGE_VAL;
+    while (tr.next(kChunk, t, vals)) {
+      // a stream is held to what the readers guarantee (one value per vector and point, finite times
+      // in order), whoever implements it
+      bool sized = vals.size() == nv;
+      for (std::size_t k = 0; k < vals.size() && sized; ++k) sized = vals[k].size() == t.size();
+      if (!sized) throw io::InputError(tr.file() + ": expected " + std::to_string(nv) + " values per time point from the stream, found another count");
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        const double ti = t[i];
+        if (!(ti >= previous) || !std::isfinite(ti))
+          throw io::InputError(tr.file() + ": expected finite, nondecreasing times from the stream, found " + io::float_text(ti) + " after " + io::float_text(previous));
+        previous = ti;
+        if (first_pass && ti > 0 && !seen_positive) out.first_after_zero = ti, seen_positive = true;
+        const bool flow_sided = graph && (ti == 0 || flow->corner(ti));
+        if (first_pass && graph) {
+          flow->advance_to(ti);
+          const sr::BranchValues bv = flow->values();
+          const Vec e = flow->node_potentials();
+          kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
+          kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
+          kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
+          kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
+          for (std::size_t k = 0; k < nv; ++k) right[k] = left[k] = value(fs[k], bv, e);
+          if (flow_sided) {
+            const sr::BranchValues bl = flow->values(true);
+            const Vec el = flow->node_potentials(true);
+            for (std::size_t k = 0; k < nv; ++k) left[k] = value(fs[k], bl, el);
+          }
+        }
+        bool enc_sided = false;
+        if (enc) {
+          const auto t0 = std::chrono::steady_clock::now();
+          if (!enc->at(ti, r, l)) {
+            enc_why = enc->why();
+            enc.reset();
+            if (!graph) refuse_without_enclosures();
+          } else {
+            for (std::size_t k = 0; k < nv; ++k) enc_sided = enc_sided || l[k].mid != r[k].mid || l[k].rad != r[k].rad;
+          }
+          enc_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        }
+        const bool sided = flow_sided || enc_sided;
+        for (std::size_t k = 0; k < nv; ++k) {
+          if (first_pass && graph) reduce(flow_acc[k], ti, vals[k][i], right[k], left[k], 0.0, 0.0, sided, touched[k], opt.keep_exact);
+          if (enc) reduce(enc_acc[k], ti, vals[k][i], r[k].mid, l[k].mid, r[k].rad, l[k].rad, sided, touched[k], opt.keep_exact);
+        }
+      }
+    }
+    if (!enc) break;
+    bool finite = true;
+    double widest = 0;
+    for (const Reduced& a : enc_acc) {
+      finite = finite && a.finite;
+      widest = std::max(widest, a.widest_rad <= std::ldexp(1.0, -1000) ? 0.0 : a.widest_mid > 0 ? a.widest_rad / a.widest_mid : HUGE_VAL);
+    }
+    if (!more_bits(precision, finite, enc_seconds, widest, before)) break;
+    precision *= 2;
+    start = std::chrono::steady_clock::now();
+    enc = std::make_unique<Encloser>(p, fs, opt, step, precision, tr.first_time(), horizon);
+    enc_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!enc->ok()) {
+      enc_why = enc->why(), enc.reset();
+      if (!graph) refuse_without_enclosures();
       break;
     }
-  out.certified = enc.ok && wide.empty();
+  }
+  const bool enc_ok = enc != nullptr;
+  // dcad's own uncertainty on the graph route: the Krylov estimate (at least 64 ε for the rounding of the
+  // outputs) of the largest value of the vector's kind; a potential difference v(a,b) counts both ends
+  std::vector<double> uncertainty(nv, 0.0);
+  if (graph) {
+    out.error_estimate = flow->error_estimate();
+    for (std::size_t k = 0; k < nv; ++k)
+      uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
+                       (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
+  }
+  // an enclosure wider than the double flow's own uncertainty (a stiff circuit, wrapping) does not
+  // decide its vector: the double flow does, and the run is not certified
+  std::vector<bool> enclosed(nv, enc_ok);
+  std::string wide;
+  for (std::size_t k = 0; k < nv && enc_ok && graph; ++k)
+    // (a vector that is 0 over the whole run has uncertainty 0: radii of 1e-308 are not wider than it)
+    if (!(enc_acc[k].widest_rad <= std::max(uncertainty[k], 1e-300))) {
+      enclosed[k] = false;
+      wide += std::string(wide.empty() ? "" : ", ") + tr.names()[k] + " (radius " + io::float_text(enc_acc[k].widest_rad) + ")";
+    }
+  // the double flow's reductions with its radius: the same bounds as a constant radius per point gives
+  std::vector<Reduced> acc(nv);
+  for (std::size_t k = 0; k < nv; ++k) {
+    if (enclosed[k]) {
+      acc[k] = std::move(enc_acc[k]);
+      continue;
+    }
+    Reduced a = std::move(flow_acc[k]);
+    const double rad = uncertainty[k];
+    a.own_hi = a.own + rad, a.own_lo = std::max(0.0, a.own - rad), a.unc = rad;
+    if (a.max_hi > -HUGE_VAL) a.max_hi += rad;
+    if (a.max_lo > -HUGE_VAL) a.max_lo -= rad;
+    acc[k] = std::move(a);
+  }
+  out.jumped = jumped;
+  out.certified = enc_ok && wide.empty();
   out.certified_reason =
       out.certified ? std::string()
-      : enc.ok      ? "the enclosures of " + wide + " are wider than the double flow's own uncertainty: those vectors are decided by the double flow (estimated error " +
+      : enc_ok      ? "the enclosures of " + wide + " are wider than the double flow's own uncertainty: those vectors are decided by the double flow (estimated error " +
                      io::float_text(out.error_estimate) + " of the state), not proved"
                     : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
-                          " of the state): values, not enclosures; no enclosure because " + enc.why;
+                          " of the state): values, not enclosures; no enclosure because " + enc_why;
   constexpr double u = std::numeric_limits<double>::epsilon();
   // the CONTRACT's scale of each vector (its largest |exact|) lies in [lo, hi]; a vector whose largest |exact|
   // is below 1e-12 of the largest of its kind (0 by symmetry, or without a source) is held to its kind's
-  std::vector<double> own(nv, 0.0), own_lo(nv, 0.0), own_hi(nv, 0.0);
   double kind_lo[4] = {0, 0, 0, 0}, kind_hi[4] = {0, 0, 0, 0};
-  for (int q = 0; q < 4; ++q) kind_lo[q] = kind_hi[q] = circuit_kind_scale[q];  // the whole circuit's, where the flow gives it
+  for (int q = 0; q < 4; ++q) kind_lo[q] = kind_hi[q] = kind_scale[q];  // the whole circuit's, where the flow gives it
   for (std::size_t k = 0; k < nv; ++k) {
-    for (std::size_t i = 0; i < np; ++i) {
-      own[k] = std::max({own[k], std::abs(right[k][i]), std::abs(left[k][i])});
-      own_hi[k] = std::max({own_hi[k], std::abs(right[k][i]) + rad_r[k][i], std::abs(left[k][i]) + rad_l[k][i]});
-      own_lo[k] = std::max({own_lo[k], std::abs(right[k][i]) - rad_r[k][i], std::abs(left[k][i]) - rad_l[k][i]});
-    }
-    kind_lo[fs[k].kind] = std::max(kind_lo[fs[k].kind], own_lo[k]);
-    kind_hi[fs[k].kind] = std::max(kind_hi[fs[k].kind], own_hi[k]);
+    kind_lo[fs[k].kind] = std::max(kind_lo[fs[k].kind], acc[k].own_lo);
+    kind_hi[fs[k].kind] = std::max(kind_hi[fs[k].kind], acc[k].own_hi);
   }
   for (std::size_t k = 0; k < nv; ++k) {
+    const Reduced& a = acc[k];
     WaveformVector v;
-    v.name = tr.names[k];
+    v.name = tr.names()[k];
     v.meaning = fs[k].meaning;
-    double scale_lo = own_lo[k], scale_hi = own_hi[k];
-    v.scale = own[k];
+    double scale_lo = a.own_lo, scale_hi = a.own_hi;
+    v.scale = a.own;
     const double klo = kind_lo[fs[k].kind], khi = kind_hi[fs[k].kind];
-    if (own_hi[k] < 1e-12 * klo) {  // certainly a vector near 0: its kind's scale
-      scale_lo = klo, scale_hi = khi, v.scale = std::max(own[k], klo);
+    if (a.own_hi < 1e-12 * klo) {  // certainly a vector near 0: its kind's scale
+      scale_lo = klo, scale_hi = khi, v.scale = std::max(a.own, klo);
       v.kind_scale = true;
-    } else if (!(own_lo[k] >= 1e-12 * khi)) {  // either may hold: both
-      scale_lo = std::min(own_lo[k], klo), scale_hi = std::max(own_hi[k], khi);
+    } else if (!(a.own_lo >= 1e-12 * khi)) {  // either may hold: both
+      scale_lo = std::min(a.own_lo, klo), scale_hi = std::max(a.own_hi, khi);
     }
-    for (std::size_t i = 0; i < np; ++i) v.exact_uncertainty = std::max({v.exact_uncertainty, rad_r[k][i], two_sided[i] ? rad_l[k][i] : 0.0});
+    v.exact_uncertainty = a.unc;
     const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u), tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
-    bool first = true, within = true, beyond = false;
-    for (std::size_t i = 0; i < np; ++i) {
-      const double found = tr.values[k][i];
-      if (!std::isfinite(found)) {
-        within = false, beyond = true;
-        v.max_error = HUGE_VAL, v.at = tr.time[i], v.exact = right[k][i], v.found = found;
-        break;
-      }
-      // after a jump onto M_c at t = 0 (decided on the exact model) the simulator shows the state before it at
-      // t = 0: there, and only there, the vectors the jump moves are not compared
-      if (tr.time[i] <= 0 && touched[k]) {
-        ++v.skipped_at_jump;
-        continue;
-      }
-      const double er = std::abs(found - right[k][i]), el = std::abs(found - left[k][i]);
-      const double err = two_sided[i] ? std::min(er, el) : er;
-      // bounds on the true error |found − exact| at this point: either side may be taken at a corner
-      const double hi_r = er * (1 + 2 * u) + rad_r[k][i], lo_r = er * (1 - 2 * u) - rad_r[k][i];
-      const double hi_l = el * (1 + 2 * u) + rad_l[k][i], lo_l = el * (1 - 2 * u) - rad_l[k][i];
-      const double hi = two_sided[i] ? std::min(hi_r, hi_l) : hi_r, lo = two_sided[i] ? std::min(lo_r, lo_l) : lo_r;
-      within = within && hi <= tol_lo;
-      beyond = beyond || lo > tol_hi;
-      if (first || err > v.max_error) {
-        first = false;
-        v.max_error = err;
-        v.at = tr.time[i];
-        v.exact = two_sided[i] && el < er ? left[k][i] : right[k][i];
-        v.found = found;
-        v.at_corner = two_sided[i];
-      }
-    }
-    if (opt.keep_exact) {
-      out.exact.emplace_back(np);
-      for (std::size_t i = 0; i < np; ++i)  // the side the simulator is nearer at a corner
-        out.exact.back()[i] = std::abs(tr.values[k][i] - left[k][i]) < std::abs(tr.values[k][i] - right[k][i]) ? left[k][i] : right[k][i];
-    }
+    v.skipped_at_jump = a.skipped;
+    if (!a.first || a.nonfinite) v.max_error = a.max_error, v.at = a.at, v.exact = a.exact, v.found = a.found, v.at_corner = a.at_corner;
     // agreement needs every point within the tolerance with dcad's own uncertainty, a disagreement one
     // point beyond it with the uncertainty; between the two dcad cannot tell
+    const bool within = !a.nonfinite && !a.hi_nan && a.max_hi <= tol_lo, beyond = a.nonfinite || a.max_lo > tol_hi;
     v.agree = within && !beyond;
     v.decided = v.agree || beyond;
     out.agree = out.agree && v.agree;
     out.vectors.push_back(v);
+    if (opt.keep_exact) out.exact.push_back(a.kept);
   }
   const auto rel = [&](std::size_t k) { return out.vectors[k].scale > 0 ? out.vectors[k].max_error / out.vectors[k].scale : out.vectors[k].max_error; };
   for (std::size_t k = 1; k < out.vectors.size(); ++k)

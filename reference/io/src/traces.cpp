@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <memory>
 
 namespace dcad::io {
 
@@ -346,6 +347,144 @@ Traces read_traces(const std::string& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return parse_traces(s.str(), file);
+}
+
+namespace {
+
+/// Traces in memory, served in chunks (borrowed, or owned when read from a file).
+class MemoryStream final : public TraceStream {
+ public:
+  MemoryStream(const Traces& t, std::unique_ptr<Traces> owned) : owned_(std::move(owned)), t_(owned_ ? *owned_ : t) {
+    file_ = t_.file, format_ = t_.format, names_ = t_.names, skipped_ = t_.skipped, points_ = t_.time.size();
+    first_ = t_.time.empty() ? 0.0 : t_.time.front(), last_ = t_.time.empty() ? 0.0 : t_.time.back();
+  }
+  void rewind() override { pos_ = 0; }
+  bool next(std::size_t max, std::vector<double>& t, std::vector<std::vector<double>>& v) override {
+    const std::size_t n = std::min(max, points_ - std::min(pos_, points_));
+    t.assign(t_.time.begin() + static_cast<std::ptrdiff_t>(pos_), t_.time.begin() + static_cast<std::ptrdiff_t>(pos_ + n));
+    v.resize(t_.values.size());
+    for (std::size_t k = 0; k < v.size(); ++k)
+      v[k].assign(t_.values[k].begin() + static_cast<std::ptrdiff_t>(pos_), t_.values[k].begin() + static_cast<std::ptrdiff_t>(pos_ + n));
+    pos_ += n;
+    return n > 0;
+  }
+
+ private:
+  std::unique_ptr<Traces> owned_;
+  const Traces& t_;
+  std::size_t pos_ = 0;
+};
+
+/// An ngspice binary raw file's only plot, a real transient, read from disk `max` points at a time.
+class RawStream final : public TraceStream {
+ public:
+  RawStream(const std::string& file, std::ifstream in, std::streamoff data, std::size_t per, std::size_t points, std::vector<std::string> names)
+      : in_(std::move(in)), data_(data), per_(per) {
+    file_ = file, format_ = "ngspice raw (binary)", names_ = std::move(names), points_ = points;
+    first_ = time_at(0), last_ = time_at(points - 1);
+    rewind();
+  }
+  void rewind() override {
+    pos_ = 0;
+    previous_ = -HUGE_VAL;
+    in_.clear();
+    in_.seekg(data_);
+  }
+  bool next(std::size_t max, std::vector<double>& t, std::vector<std::vector<double>>& v) override {
+    const std::size_t n = std::min(max, points_ - pos_);
+    buffer_.resize(n * per_);
+    if (n > 0 && !in_.read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(n * per_ * sizeof(double))))
+      bad(file_, std::to_string(points_) + " points after 'Binary:'", "a read error at point " + std::to_string(pos_ + 1));
+    t.resize(n);
+    v.assign(per_ - 1, std::vector<double>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* row = buffer_.data() + i * per_;
+      // as read_traces: ngspice marks a breakpoint's time negative in some versions
+      if (!std::isfinite(row[0])) bad(file_, "finite times", "a non-finite time at point " + std::to_string(pos_ + i + 1));
+      t[i] = std::abs(row[0]);
+      if (t[i] < previous_)
+        bad(file_ + ": point " + std::to_string(pos_ + i + 1), "nondecreasing times", "t = " + float_text(t[i]) + " after " + float_text(previous_));
+      previous_ = t[i];
+      for (std::size_t k = 1; k < per_; ++k) v[k - 1][i] = row[k];
+    }
+    pos_ += n;
+    return n > 0;
+  }
+
+ private:
+  double time_at(std::size_t point) {
+    double x = 0;
+    in_.clear();
+    in_.seekg(data_ + static_cast<std::streamoff>(point * per_ * sizeof(double)));
+    if (!in_.read(reinterpret_cast<char*>(&x), sizeof x) || !std::isfinite(x)) bad(file_, "finite times", "a non-finite time at point " + std::to_string(point + 1));
+    return std::abs(x);
+  }
+  std::ifstream in_;
+  std::streamoff data_;
+  std::size_t per_, pos_ = 0;
+  double previous_ = -HUGE_VAL;
+  std::vector<double> buffer_;
+};
+
+/// The stream of an ngspice binary raw file whose one plot is a real transient with time first and
+/// exactly its points after 'Binary:', or null (read_traces then reads it, and says what is wrong).
+std::unique_ptr<TraceStream> raw_stream(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line, plotname, flags;
+  long nvars = -1, npoints = -1;
+  std::vector<std::string> names;
+  if (!std::getline(in, line) || lower(trim(line)).rfind("title:", 0) != 0) return nullptr;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::size_t colon = line.find(':');
+    const std::string key = lower(trim(line.substr(0, colon == std::string::npos ? 0 : colon + 1)));
+    const std::string val = colon == std::string::npos ? "" : trim(line.substr(colon + 1));
+    if (key == "plotname:") plotname = lower(val);
+    else if (key == "flags:") flags = lower(val);
+    else if (key == "no. variables:") nvars = std::atol(val.c_str());
+    else if (key == "no. points:") npoints = std::atol(val.c_str());
+    else if (key == "variables:") {
+      if (nvars < 1 || nvars > 1000000) return nullptr;
+      for (long k = 0; k < nvars; ++k) {
+        if (!std::getline(in, line)) return nullptr;
+        const std::vector<std::string> w = words(line);
+        if (w.size() < 3) return nullptr;
+        names.push_back(w[1]);
+      }
+    } else if (key == "values:") {
+      return nullptr;
+    } else if (key == "binary:") {
+      break;
+    }
+  }
+  if (!in || line.rfind("Binary:", 0) != 0 || npoints < 1 || names.size() < 2 || static_cast<long>(names.size()) != nvars) return nullptr;
+  if (plotname.find("transient") == std::string::npos || flags.find("complex") != std::string::npos || lower(names[0]) != "time") return nullptr;
+  const std::streamoff data = in.tellg();
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  const std::size_t per = names.size();
+  if (ec || data < 0 || static_cast<double>(size) != static_cast<double>(data) + static_cast<double>(npoints) * static_cast<double>(per) * 8.0) return nullptr;
+  names.erase(names.begin());
+  return std::make_unique<RawStream>(file, std::move(in), data, per, static_cast<std::size_t>(npoints), std::move(names));
+}
+
+}  // namespace
+
+std::unique_ptr<TraceStream> open_traces(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(file, ec)) {
+    std::ifstream probe(file, std::ios::binary);
+    if (probe)
+      if (std::unique_ptr<TraceStream> s = raw_stream(file)) return s;
+  }
+  auto owned = std::make_unique<Traces>(read_traces(file));
+  const Traces& t = *owned;
+  return std::make_unique<MemoryStream>(t, std::move(owned));
+}
+
+std::unique_ptr<TraceStream> stream_of(const Traces& t) {
+  validate(t);
+  return std::make_unique<MemoryStream>(t, nullptr);
 }
 
 bool looks_like_json(const std::string& file) {

@@ -148,6 +148,9 @@ struct WaveformChecked {
 /// InputError for an unreadable file, a vector name that DECK cannot map, or a circuit outside the
 /// route that evaluates its flow.
 WaveformChecked check_waveform(const io::Traces& traces, const io::Problem& p, const WaveformOptions& options, std::ostream& log);
+/// The same on a stream of points (io::open_traces: an ngspice binary raw file is read from disk in chunks,
+/// so memory does not grow with the file; it is read once per precision of the enclosures).
+WaveformChecked check_waveform(io::TraceStream& traces, const io::Problem& p, const WaveformOptions& options, std::ostream& log);
 /// Its report: for people, or the CONTRACT's JSON ({"agree", "certified", "vectors": [{"name", "max_error",
 /// "at", "exact", "found", "scale", "agree"}]} and more keys).
 std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file, const WaveformOptions& options);

@@ -4,6 +4,8 @@
 // points and vector names; nothing is interpolated or renamed here.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,37 @@ void validate(const Traces& t);
 Traces read_traces(const std::string& file);
 /// The same from text already read (`name` in messages).
 Traces parse_traces(const std::string& text, const std::string& name);
+
+/// A simulator's output read point by point in time order, in chunks: `dcad check` in bounded memory
+/// whatever the file's size.  An ngspice binary raw file whose one plot is the transient (what `ngspice -b
+/// -r` writes) is read from disk as it goes; every other file is read whole (read_traces) and served from
+/// memory.  Times are checked as they come (finite, nondecreasing: InputError naming the point).
+class TraceStream {
+ public:
+  virtual ~TraceStream() = default;
+  const std::string& file() const { return file_; }
+  const std::string& format() const { return format_; }
+  const std::vector<std::string>& names() const { return names_; }
+  const std::vector<std::string>& skipped() const { return skipped_; }
+  std::size_t points() const { return points_; }
+  double first_time() const { return first_; }
+  double last_time() const { return last_; }
+  /// Back to the first point (a check reads the file once per enclosure precision).
+  virtual void rewind() = 0;
+  /// The next (up to) `max` points: their times in `t`, vector k's values in `v[k]`; false at the end.
+  virtual bool next(std::size_t max, std::vector<double>& t, std::vector<std::vector<double>>& v) = 0;
+
+ protected:
+  std::string file_, format_;
+  std::vector<std::string> names_, skipped_;
+  std::size_t points_ = 0;
+  double first_ = 0, last_ = 0;
+};
+
+/// FILE as a stream (the formats and errors of read_traces).
+std::unique_ptr<TraceStream> open_traces(const std::string& file);
+/// Traces already in memory as a stream (`t` must outlive it), validated first (validate).
+std::unique_ptr<TraceStream> stream_of(const Traces& t);
 
 /// Whether the file's content is JSON (a result for `dcad check RESULT FILE`) rather than traces.
 bool looks_like_json(const std::string& file);
