@@ -441,7 +441,11 @@ std::unique_ptr<TraceStream> raw_stream(const std::string& file) {
     const std::string val = colon == std::string::npos ? "" : trim(line.substr(colon + 1));
     if (key == "plotname:") plotname = lower(val);
     else if (key == "flags:") flags = lower(val);
-    else if (key == "no. variables:") nvars = std::atol(val.c_str());
+    else if (key == "no. variables:") {
+      double count = 0;
+      if (!plain(val, count)) return nullptr;  // read_traces says what is wrong
+      nvars = std::atol(val.c_str());
+    }
     else if (key == "no. points:") npoints = std::atol(val.c_str());
     else if (key == "variables:") {
       if (nvars < 1 || nvars > 1000000) return nullptr;
