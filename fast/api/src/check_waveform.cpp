@@ -429,17 +429,161 @@ void reduce(Reduced& a, double t, double found, double right, double left, doubl
   }
 }
 
+/// The double flow's reductions with its radius `rad` at every point: the bounds a constant radius gives
+/// (reduce ran with radius 0).
+Reduced with_radius(Reduced a, double rad) {
+  a.own_hi = a.own + rad, a.own_lo = std::max(0.0, a.own - rad), a.unc = rad;
+  if (a.max_hi > -HUGE_VAL) a.max_hi += rad;
+  if (a.max_lo > -HUGE_VAL) a.max_lo -= rad;
+  return a;
+}
+
+/// One vector's verdict from its reductions and its kind's scale bounds [klo, khi] over the run.
+WaveformVector verdict(const Reduced& a, const std::string& name, const std::string& meaning, double klo, double khi, const WaveformOptions& opt) {
+  constexpr double u = std::numeric_limits<double>::epsilon();
+  WaveformVector v;
+  v.name = name;
+  v.meaning = meaning;
+  double scale_lo = a.own_lo, scale_hi = a.own_hi;
+  v.scale = a.own;
+  if (a.own_hi < 1e-12 * klo) {  // certainly a vector near 0: its kind's scale
+    scale_lo = klo, scale_hi = khi, v.scale = std::max(a.own, klo);
+    v.kind_scale = true;
+  } else if (!(a.own_lo >= 1e-12 * khi)) {  // either may hold: both
+    scale_lo = std::min(a.own_lo, klo), scale_hi = std::max(a.own_hi, khi);
+  }
+  v.exact_uncertainty = a.unc;
+  const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u), tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
+  v.skipped_at_jump = a.skipped;
+  if (!a.first || a.nonfinite) v.max_error = a.max_error, v.at = a.at, v.exact = a.exact, v.found = a.found, v.at_corner = a.at_corner;
+  // agreement needs every point within the tolerance with dcad's own uncertainty, a disagreement one
+  // point beyond it with the uncertainty; between the two dcad cannot tell
+  const bool within = !a.nonfinite && !a.hi_nan && a.max_hi <= tol_lo, beyond = a.nonfinite || a.max_lo > tol_hi;
+  v.agree = within && !beyond;
+  v.decided = v.agree || beyond;
+  return v;
+}
+
+/// The variables that jump onto M_c at t = 0: decided exactly (in rationals) where the circuit is small
+/// enough, else the sparse flow's own decision `flow_jumped` (its start was computed the same way).
+std::vector<std::string> exact_jumps(const io::Problem& p, Initial initial, std::vector<std::string> flow_jumped) {
+  const io::Netlist& deck = p.netlist;
+  if (nb_of(deck) > reference::pipeline::kForcedBranches) return flow_jumped;
+  namespace pl = reference::pipeline;
+  try {
+    const pl::InitialState st = pl::initial_state(
+        deck, initial == Initial::op ? pl::InitialRule::op : initial == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck, p.linear.variables);
+    if (!st.computed) return flow_jumped;
+    std::vector<std::string> jumped;
+    for (const pl::Jump& j : st.jumps) jumped.push_back(j.variable);
+    return jumped;
+  } catch (const std::exception&) {
+    return flow_jumped;
+  }
+}
+
+/// The vectors a jump at t = 0 moves: a jumped charge, current or flux linkage by its branch; potentials and
+/// the currents of other branches (functions of the whole state) whenever anything jumps.
+std::vector<bool> touched_by(const std::vector<Functional>& fs, const io::Netlist& deck, const std::vector<std::string>& jumped) {
+  std::vector<bool> touched(fs.size(), false);
+  for (std::size_t k = 0; k < fs.size() && !jumped.empty(); ++k) {
+    if (fs[k].kind == Functional::potential) {
+      touched[k] = true;
+      continue;
+    }
+    const auto& br = deck.rlc.branches[fs[k].branch];
+    if (fs[k].kind == Functional::current && br.kind != reference::RlcKind::inductor) touched[k] = true;
+    for (const char* pre : {"q_", "v_", "p_"})
+      touched[k] = touched[k] || std::find(jumped.begin(), jumped.end(), pre + br.name) != jumped.end();
+  }
+  return touched;
+}
+
+/// The double flow's values of the vectors at t (right, and left where the flow has a corner or t = 0),
+/// and the largest potential, charge, current and flux linkage so far in `kind_scale`.
+void flow_values(SparseFlow& flow, const std::vector<Functional>& fs, double t, bool sided, std::vector<double>& right, std::vector<double>& left,
+                 double* kind_scale) {
+  flow.advance_to(t);
+  const sr::BranchValues bv = flow.values();
+  const Vec e = flow.node_potentials();
+  kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
+  kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
+  kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
+  kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
+  for (std::size_t k = 0; k < fs.size(); ++k) right[k] = left[k] = value(fs[k], bv, e);
+  if (!sided) return;
+  const sr::BranchValues bl = flow.values(true);
+  const Vec el = flow.node_potentials(true);
+  for (std::size_t k = 0; k < fs.size(); ++k) left[k] = value(fs[k], bl, el);
+}
+
 /// Points read and compared at a time: memory is this many points of every vector, whatever the file's size.
 constexpr std::size_t kChunk = 4096;
 
-}  // namespace
-
-WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
-  const std::unique_ptr<io::TraceStream> stream = io::stream_of(tr);  // validates tr
-  return check_waveform(*stream, p, opt, log);
+/// One pass over the stream: every point of every vector reduced against the double flow (`run_flow`: the
+/// graph route's first pass; `flow` also gives the corners in every pass) and against the enclosures of
+/// `enc` (if any).  False when the enclosures failed on the way (enc->why()); the flow's reductions go on.
+bool stream_pass(io::TraceStream& tr, const std::vector<Functional>& fs, const std::vector<bool>& touched, bool keep, SparseFlow* flow, bool run_flow,
+                 std::vector<Reduced>& flow_acc, double* kind_scale, Encloser* enc, std::vector<Reduced>& enc_acc, double& enc_seconds,
+                 double& first_after_zero) {
+  const std::size_t nv = fs.size();
+  run_flow = run_flow && flow;
+  std::vector<double> t, right(nv), left(nv);
+  std::vector<std::vector<double>> vals;
+  std::vector<certified::Enclosure> r, l;
+  bool enclosing = enc != nullptr;
+  double previous = -HUGE_VAL;
+  tr.rewind();
+  while (tr.next(kChunk, t, vals)) {
+    // a stream is held to what the readers guarantee (one value per vector and point, finite times in
+    // order), whoever implements it
+    bool sized = vals.size() == nv;
+    for (std::size_t k = 0; k < vals.size() && sized; ++k) sized = vals[k].size() == t.size();
+    if (!sized) throw io::InputError(tr.file() + ": expected " + std::to_string(nv) + " values per time point from the stream, found another count");
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const double ti = t[i];
+      if (!(ti >= previous) || !std::isfinite(ti))
+        throw io::InputError(tr.file() + ": expected finite, nondecreasing times from the stream, found " + io::float_text(ti) + " after " + io::float_text(previous));
+      previous = ti;
+      if (ti > 0 && first_after_zero == 0) first_after_zero = ti;
+      const bool flow_sided = flow && (ti == 0 || flow->corner(ti));
+      if (run_flow) flow_values(*flow, fs, ti, flow_sided, right, left, kind_scale);
+      bool enc_sided = false;
+      if (enclosing) {
+        const auto t0 = std::chrono::steady_clock::now();
+        enclosing = enc->at(ti, r, l);
+        for (std::size_t k = 0; k < nv && enclosing; ++k) enc_sided = enc_sided || l[k].mid != r[k].mid || l[k].rad != r[k].rad;
+        enc_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      }
+      const bool sided = flow_sided || enc_sided;
+      for (std::size_t k = 0; k < nv; ++k) {
+        if (run_flow) reduce(flow_acc[k], ti, vals[k][i], right[k], left[k], 0.0, 0.0, sided, touched[k], keep);
+        if (enclosing) reduce(enc_acc[k], ti, vals[k][i], r[k].mid, l[k].mid, r[k].rad, l[k].rad, sided, touched[k], keep);
+      }
+    }
+  }
+  return enclosing || !enc;
 }
 
-WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+}  // namespace
+
+namespace {
+
+/// The enclosures at `precision` bits (null with `why` when there are none), the time it took in `seconds`.
+std::unique_ptr<Encloser> enclosures(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision,
+                                     const io::TraceStream& tr, std::string& why, double& seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  auto enc = std::make_unique<Encloser>(p, fs, opt, step, precision, tr.first_time(), tr.last_time());
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (enc->ok()) return enc;
+  why = enc->why();
+  return nullptr;
+}
+
+/// The problem and the file held to what a waveform check needs (a netlist, a positive definite
+/// inductance matrix, tolerances >= 0, a vector and a point), the simulator's skipped messages noted, and
+/// each vector as a functional of the circuit's motion.
+std::vector<Functional> functionals_of(const io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
   io::validate(p);
   const std::vector<std::string>& skipped = tr.skipped();
   for (std::size_t k = 0; k < skipped.size() && k < 5; ++k) log << "note: skipped a simulator's message inside the table at " << skipped[k] << "\n";
@@ -458,6 +602,68 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
   const Names names = names_of(deck);
   std::vector<Functional> fs;
   for (const std::string& name : tr.names()) fs.push_back(functional(name, names, deck, tr.file()));
+  return fs;
+}
+
+/// Over the vectors: the largest radius / the largest |midpoint| (a vector whose radii are all below
+/// 2^-1000: 0; whose midpoints are all 0: infinite), and whether every radius is finite.
+double widest_of(const std::vector<Reduced>& acc, bool& finite) {
+  double widest = 0;
+  finite = true;
+  for (const Reduced& a : acc) {
+    finite = finite && a.finite;
+    widest = std::max(widest, a.widest_rad <= std::ldexp(1.0, -1000) ? 0.0 : a.widest_mid > 0 ? a.widest_rad / a.widest_mid : HUGE_VAL);
+  }
+  return widest;
+}
+
+/// Which exact values decide each vector: the enclosures (if `enc_ok`), unless (`test_width`) an
+/// enclosure is wider than the double flow's own uncertainty (a stiff circuit, wrapping) — then the double
+/// flow with that uncertainty as its radius, and the vector is named in `wide`.
+std::vector<Reduced> chosen(std::vector<Reduced>& enc_acc, std::vector<Reduced>& flow_acc, const std::vector<double>& uncertainty, bool test_width,
+                            bool enc_ok, const std::vector<std::string>& names, std::string& wide) {
+  std::vector<Reduced> acc(flow_acc.size());
+  for (std::size_t k = 0; k < acc.size(); ++k) {
+    // (a vector that is 0 over the whole run has uncertainty 0: radii of 1e-308 are not wider than it)
+    const bool too_wide = test_width && !(enc_acc[k].widest_rad <= std::max(uncertainty[k], 1e-300));
+    if (too_wide) wide += std::string(wide.empty() ? "" : ", ") + names[k] + " (radius " + io::float_text(enc_acc[k].widest_rad) + ")";
+    acc[k] = enc_ok && !too_wide ? std::move(enc_acc[k]) : with_radius(std::move(flow_acc[k]), uncertainty[k]);
+  }
+  return acc;
+}
+
+/// Every vector's verdict into `out` (its agree, exact values with keep_exact, the worst vector).
+void add_verdicts(WaveformChecked& out, std::vector<Reduced>& acc, const std::vector<Functional>& fs, const std::vector<std::string>& names,
+                  const double* kind_scale, const WaveformOptions& opt) {
+  const std::size_t nv = acc.size();
+  // the CONTRACT's scale of each vector (its largest |exact|) lies in [lo, hi]; a vector whose largest |exact|
+  // is below 1e-12 of the largest of its kind (0 by symmetry, or without a source) is held to its kind's
+  double kind_lo[4] = {0, 0, 0, 0}, kind_hi[4] = {0, 0, 0, 0};
+  for (int q = 0; q < 4; ++q) kind_lo[q] = kind_hi[q] = kind_scale[q];  // the whole circuit's, where the flow gives it
+  for (std::size_t k = 0; k < nv; ++k) {
+    kind_lo[fs[k].kind] = std::max(kind_lo[fs[k].kind], acc[k].own_lo);
+    kind_hi[fs[k].kind] = std::max(kind_hi[fs[k].kind], acc[k].own_hi);
+  }
+  for (std::size_t k = 0; k < nv; ++k) {
+    out.vectors.push_back(verdict(acc[k], names[k], fs[k].meaning, kind_lo[fs[k].kind], kind_hi[fs[k].kind], opt));
+    out.agree = out.agree && out.vectors.back().agree;
+    if (opt.keep_exact) out.exact.push_back(std::move(acc[k].kept));
+  }
+  const auto rel = [&](std::size_t k) { return out.vectors[k].scale > 0 ? out.vectors[k].max_error / out.vectors[k].scale : out.vectors[k].max_error; };
+  for (std::size_t k = 1; k < out.vectors.size(); ++k)
+    if (rel(k) > rel(out.worst)) out.worst = k;
+}
+
+}  // namespace
+
+WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+  const std::unique_ptr<io::TraceStream> stream = io::stream_of(tr);  // validates tr
+  return check_waveform(*stream, p, opt, log);
+}
+
+WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+  const std::vector<Functional> fs = functionals_of(tr, p, opt, log);
+  const io::Netlist& deck = p.netlist;
   WaveformChecked out;
   out.format = tr.format();
   out.points = static_cast<long>(tr.points());
@@ -467,59 +673,25 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
   const bool graph = reference::pipeline::graph_route_holds(deck.rlc);
   // the certified tier's first precision: a circuit off the graph route has only the enclosures
   double enc_seconds = 0;
-  auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<Encloser> enc;
-  std::string enc_why = opt.enclose ? "" : "not asked for (WaveformOptions::enclose false)";
+  std::string enc_why = "not asked for (WaveformOptions::enclose false)";
   long precision = 256;
-  if (opt.enclose) {
-    enc = std::make_unique<Encloser>(p, fs, opt, step, precision, tr.first_time(), horizon);
-    if (!enc->ok()) enc_why = enc->why(), enc.reset();
-  }
-  enc_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::unique_ptr<Encloser> enc = opt.enclose ? enclosures(p, fs, opt, step, precision, tr, enc_why, enc_seconds) : nullptr;
   const auto refuse_without_enclosures = [&] {
     throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1, "
                          "or up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches for the enclosures on the dense model), found another: " + enc_why);
   };
   if (!graph && !enc) refuse_without_enclosures();
   // the start and the jump at t = 0 (which vectors it moves), before any point is compared
-  long jumps = 0;
   std::vector<std::string> jumped;  // the variables that jump at t = 0 (q_C, v_L, p_L)
   std::unique_ptr<SparseFlow> flow;
   if (graph) {
     flow = std::make_unique<SparseFlow>(deck, deck.file, opt.initial, step, std::max(horizon, step), log);
-    jumps = flow->jumps();
-    jumped = flow->jumped();
-    if (nb_of(deck) <= reference::pipeline::kForcedBranches) {  // small enough for the exact jump: decided in rationals
-      namespace pl = reference::pipeline;
-      try {
-        const pl::InitialState st = pl::initial_state(
-            deck, opt.initial == Initial::op ? pl::InitialRule::op : opt.initial == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck,
-            p.linear.variables);
-        if (st.computed) {
-          jumped.clear();
-          for (const pl::Jump& j : st.jumps) jumped.push_back(j.variable);
-          jumps = static_cast<long>(jumped.size());
-        }
-      } catch (const std::exception&) {  // the flow's own decision stands (its start was computed the same way)
-      }
-    }
+    jumped = exact_jumps(p, opt.initial, flow->jumped());
   } else {
+    long jumps = 0;
     netlist_start(deck, p.linear.variables, opt.initial, log, &jumps, &jumped);
   }
-  (void)jumps;
-  // the vectors a jump at t = 0 moves: a jumped charge, current or flux linkage by its branch; potentials and
-  // the currents of other branches (functions of the whole state) whenever anything jumps
-  std::vector<bool> touched(nv, false);
-  for (std::size_t k = 0; k < nv && !jumped.empty(); ++k) {
-    if (fs[k].kind == Functional::potential) {
-      touched[k] = true;
-      continue;
-    }
-    const auto& br = deck.rlc.branches[fs[k].branch];
-    if (fs[k].kind == Functional::current && br.kind != reference::RlcKind::inductor) touched[k] = true;
-    for (const char* pre : {"q_", "v_", "p_"})
-      touched[k] = touched[k] || std::find(jumped.begin(), jumped.end(), pre + br.name) != jumped.end();
-  }
+  const std::vector<bool> touched = touched_by(fs, deck, jumped);
   // One pass over the file per precision of the enclosures; the first also runs the double flow (graph
   // route).  Exact values on both sides of a corner (and at t = 0) where they may differ, each with how
   // far the exact value may be from it (an enclosure's radius, or the double flow's estimate, known at
@@ -527,76 +699,19 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
   std::vector<Reduced> flow_acc(nv), enc_acc(nv);
   double kind_scale[4] = {0, 0, 0, 0};  // the graph route's: over every node and branch of the circuit
   double before = HUGE_VAL;
-  std::vector<double> t;
-  std::vector<std::vector<double>> vals;
-  std::vector<certified::Enclosure> r, l;
-  std::vector<double> right(nv), left(nv);
-  bool seen_positive = false;
   for (bool first_pass = true;; first_pass = false) {
     enc_acc.assign(nv, Reduced{});
-    tr.rewind();
-    double previous = -HUGE_VAL;
-    while (tr.next(kChunk, t, vals)) {
-      // a stream is held to what the readers guarantee (one value per vector and point, finite times
-      // in order), whoever implements it
-      bool sized = vals.size() == nv;
-      for (std::size_t k = 0; k < vals.size() && sized; ++k) sized = vals[k].size() == t.size();
-      if (!sized) throw io::InputError(tr.file() + ": expected " + std::to_string(nv) + " values per time point from the stream, found another count");
-      for (std::size_t i = 0; i < t.size(); ++i) {
-        const double ti = t[i];
-        if (!(ti >= previous) || !std::isfinite(ti))
-          throw io::InputError(tr.file() + ": expected finite, nondecreasing times from the stream, found " + io::float_text(ti) + " after " + io::float_text(previous));
-        previous = ti;
-        if (first_pass && ti > 0 && !seen_positive) out.first_after_zero = ti, seen_positive = true;
-        const bool flow_sided = graph && (ti == 0 || flow->corner(ti));
-        if (first_pass && graph) {
-          flow->advance_to(ti);
-          const sr::BranchValues bv = flow->values();
-          const Vec e = flow->node_potentials();
-          kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
-          kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
-          kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
-          kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
-          for (std::size_t k = 0; k < nv; ++k) right[k] = left[k] = value(fs[k], bv, e);
-          if (flow_sided) {
-            const sr::BranchValues bl = flow->values(true);
-            const Vec el = flow->node_potentials(true);
-            for (std::size_t k = 0; k < nv; ++k) left[k] = value(fs[k], bl, el);
-          }
-        }
-        bool enc_sided = false;
-        if (enc) {
-          const auto t0 = std::chrono::steady_clock::now();
-          if (!enc->at(ti, r, l)) {
-            enc_why = enc->why();
-            enc.reset();
-            if (!graph) refuse_without_enclosures();
-          } else {
-            for (std::size_t k = 0; k < nv; ++k) enc_sided = enc_sided || l[k].mid != r[k].mid || l[k].rad != r[k].rad;
-          }
-          enc_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        }
-        const bool sided = flow_sided || enc_sided;
-        for (std::size_t k = 0; k < nv; ++k) {
-          if (first_pass && graph) reduce(flow_acc[k], ti, vals[k][i], right[k], left[k], 0.0, 0.0, sided, touched[k], opt.keep_exact);
-          if (enc) reduce(enc_acc[k], ti, vals[k][i], r[k].mid, l[k].mid, r[k].rad, l[k].rad, sided, touched[k], opt.keep_exact);
-        }
-      }
+    if (!stream_pass(tr, fs, touched, opt.keep_exact, flow.get(), first_pass, flow_acc, kind_scale, enc.get(), enc_acc, enc_seconds, out.first_after_zero)) {
+      enc_why = enc->why();
+      enc.reset();
+      if (!graph) refuse_without_enclosures();
     }
     if (!enc) break;
     bool finite = true;
-    double widest = 0;
-    for (const Reduced& a : enc_acc) {
-      finite = finite && a.finite;
-      widest = std::max(widest, a.widest_rad <= std::ldexp(1.0, -1000) ? 0.0 : a.widest_mid > 0 ? a.widest_rad / a.widest_mid : HUGE_VAL);
-    }
+    const double widest = widest_of(enc_acc, finite);
     if (!more_bits(precision, finite, enc_seconds, widest, before)) break;
-    precision *= 2;
-    start = std::chrono::steady_clock::now();
-    enc = std::make_unique<Encloser>(p, fs, opt, step, precision, tr.first_time(), horizon);
-    enc_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!enc->ok()) {
-      enc_why = enc->why(), enc.reset();
+    enc = enclosures(p, fs, opt, step, precision *= 2, tr, enc_why, enc_seconds);
+    if (!enc) {
       if (!graph) refuse_without_enclosures();
       break;
     }
@@ -611,30 +726,8 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
       uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
                        (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
   }
-  // an enclosure wider than the double flow's own uncertainty (a stiff circuit, wrapping) does not
-  // decide its vector: the double flow does, and the run is not certified
-  std::vector<bool> enclosed(nv, enc_ok);
   std::string wide;
-  for (std::size_t k = 0; k < nv && enc_ok && graph; ++k)
-    // (a vector that is 0 over the whole run has uncertainty 0: radii of 1e-308 are not wider than it)
-    if (!(enc_acc[k].widest_rad <= std::max(uncertainty[k], 1e-300))) {
-      enclosed[k] = false;
-      wide += std::string(wide.empty() ? "" : ", ") + tr.names()[k] + " (radius " + io::float_text(enc_acc[k].widest_rad) + ")";
-    }
-  // the double flow's reductions with its radius: the same bounds as a constant radius per point gives
-  std::vector<Reduced> acc(nv);
-  for (std::size_t k = 0; k < nv; ++k) {
-    if (enclosed[k]) {
-      acc[k] = std::move(enc_acc[k]);
-      continue;
-    }
-    Reduced a = std::move(flow_acc[k]);
-    const double rad = uncertainty[k];
-    a.own_hi = a.own + rad, a.own_lo = std::max(0.0, a.own - rad), a.unc = rad;
-    if (a.max_hi > -HUGE_VAL) a.max_hi += rad;
-    if (a.max_lo > -HUGE_VAL) a.max_lo -= rad;
-    acc[k] = std::move(a);
-  }
+  std::vector<Reduced> acc = chosen(enc_acc, flow_acc, uncertainty, enc_ok && graph, enc_ok, tr.names(), wide);
   out.jumped = jumped;
   out.certified = enc_ok && wide.empty();
   out.certified_reason =
@@ -643,45 +736,7 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
                      io::float_text(out.error_estimate) + " of the state), not proved"
                     : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
                           " of the state): values, not enclosures; no enclosure because " + enc_why;
-  constexpr double u = std::numeric_limits<double>::epsilon();
-  // the CONTRACT's scale of each vector (its largest |exact|) lies in [lo, hi]; a vector whose largest |exact|
-  // is below 1e-12 of the largest of its kind (0 by symmetry, or without a source) is held to its kind's
-  double kind_lo[4] = {0, 0, 0, 0}, kind_hi[4] = {0, 0, 0, 0};
-  for (int q = 0; q < 4; ++q) kind_lo[q] = kind_hi[q] = kind_scale[q];  // the whole circuit's, where the flow gives it
-  for (std::size_t k = 0; k < nv; ++k) {
-    kind_lo[fs[k].kind] = std::max(kind_lo[fs[k].kind], acc[k].own_lo);
-    kind_hi[fs[k].kind] = std::max(kind_hi[fs[k].kind], acc[k].own_hi);
-  }
-  for (std::size_t k = 0; k < nv; ++k) {
-    const Reduced& a = acc[k];
-    WaveformVector v;
-    v.name = tr.names()[k];
-    v.meaning = fs[k].meaning;
-    double scale_lo = a.own_lo, scale_hi = a.own_hi;
-    v.scale = a.own;
-    const double klo = kind_lo[fs[k].kind], khi = kind_hi[fs[k].kind];
-    if (a.own_hi < 1e-12 * klo) {  // certainly a vector near 0: its kind's scale
-      scale_lo = klo, scale_hi = khi, v.scale = std::max(a.own, klo);
-      v.kind_scale = true;
-    } else if (!(a.own_lo >= 1e-12 * khi)) {  // either may hold: both
-      scale_lo = std::min(a.own_lo, klo), scale_hi = std::max(a.own_hi, khi);
-    }
-    v.exact_uncertainty = a.unc;
-    const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u), tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
-    v.skipped_at_jump = a.skipped;
-    if (!a.first || a.nonfinite) v.max_error = a.max_error, v.at = a.at, v.exact = a.exact, v.found = a.found, v.at_corner = a.at_corner;
-    // agreement needs every point within the tolerance with dcad's own uncertainty, a disagreement one
-    // point beyond it with the uncertainty; between the two dcad cannot tell
-    const bool within = !a.nonfinite && !a.hi_nan && a.max_hi <= tol_lo, beyond = a.nonfinite || a.max_lo > tol_hi;
-    v.agree = within && !beyond;
-    v.decided = v.agree || beyond;
-    out.agree = out.agree && v.agree;
-    out.vectors.push_back(v);
-    if (opt.keep_exact) out.exact.push_back(a.kept);
-  }
-  const auto rel = [&](std::size_t k) { return out.vectors[k].scale > 0 ? out.vectors[k].max_error / out.vectors[k].scale : out.vectors[k].max_error; };
-  for (std::size_t k = 1; k < out.vectors.size(); ++k)
-    if (rel(k) > rel(out.worst)) out.worst = k;
+  add_verdicts(out, acc, fs, tr.names(), kind_scale, opt);
   return out;
 }
 
