@@ -447,3 +447,22 @@ TEST(TraceStream, BinaryRawStreamsAsReadWhole) {
   EXPECT_NE(whole.find("point 7002: expected nondecreasing times"), std::string::npos) << whole;
   EXPECT_EQ(streamed, whole);
 }
+
+// ngspice's tests/general/rc.cir: `pulse (0 1)` with .tran 0.1 7 takes PW = PER = TSTOP = 7, so the pulse
+// is cut at t = 7, where ngspice still gives V2 = 1 (it wraps only past PER: vsrcload.c).  That is the
+// left value of the step at a corner (either side allowed): the double flow's left value was the next
+// period's 0, and a right ngspice run was a disagreement.
+TEST(TraceStream, PulseCutByItsPeriodHasBothValuesAtThePeriod) {
+  const dcad::io::Problem deck = dcad::io::parse_netlist("Basic RC circuit\nr 1 2 1.0\nc 2 0 1.0\nvin 1 0 pulse (0 1) ac 1\n.tran 0.1 7.0\n.end\n", "rc.cir");
+  dcad::io::Traces t;
+  t.file = "rc.raw";
+  t.names = {"v(1)"};
+  t.time = {0.0, 3.5, 7.0};
+  t.values = {{0.0, 1.0, 1.0}};
+  std::ostringstream log;
+  const dcad::api::WaveformChecked c = dcad::api::check_waveform(t, deck, {}, log);
+  ASSERT_EQ(c.vectors.size(), 1u);
+  EXPECT_TRUE(c.agree) << dcad::api::waveform_json(c, {});
+  t.values = {{0.0, 1.0, 0.5}};  // neither side
+  EXPECT_FALSE(dcad::api::check_waveform(t, deck, {}, log).agree);
+}

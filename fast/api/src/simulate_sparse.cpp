@@ -292,7 +292,13 @@ void SparseFlow::sources(double t, bool left, std::vector<double>& sig, std::vec
     const double prev = it == breaks_.begin() ? 0.0 : *(it - 1);
     before = t - std::min(1e-9 * (t - prev), 1e-9 * t);
   }
-  for (std::size_t j = 0; j < m; ++j) sig[j] = deck_.waveforms[j].value(t, 0), dsig[j] = deck_.waveforms[j].value(left ? before : t, 1);
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = deck_.waveforms[j];
+    dsig[j] = w.value(left ? before : t, 1);
+    // the left value: the piece that ends at t carried to t (a PULSE cut by its PER steps there: ngspice
+    // holds V2 at t = PER itself, value(t) is the next period's start)
+    sig[j] = left && before < t ? w.value(before, 0) + dsig[j] * (t - before) : w.value(t, 0);
+  }
   if (left && t <= 0) std::fill(dsig.begin(), dsig.end(), 0.0);  // before t = 0 the circuit rests at the sources' values at 0
 }
 
