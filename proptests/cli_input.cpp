@@ -68,7 +68,14 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"modeluse", "title\n.model d1 D\nD1 1 0 d1\n", "element D1"},
                     BadCase{"alter", "title\nL1 1 0 1\nC1 1 0 1\n.control\nalter C1 = 2\ntran 1m 1\n.endc\n", "alter, which changes it"},
                     BadCase{"ifblock", "title\n.if (a == 1)\nL1 1 0 1\n.endif\n", "without conditionals"},
-                    BadCase{"random", "title\nL1 1 0 {rand()}\n", "random"}),
+                    BadCase{"random", "title\nL1 1 0 {rand()}\n", "random"},
+                    // names ngspice's tokenizer cuts (Xyce_Regression's INVALID_CHARS): refused, not guessed
+                    BadCase{"commaname", "title\nL1 1 0 1\nv2, 1 0 1\n", "an element name without"},
+                    BadCase{"parennode", "title\nL1 1 0 1\nv3 1( 0 1\n", "a node name without"},
+                    // gnucap's pulse keyword form: rise and fall 0, a step
+                    BadCase{"gnucappulse", "title\nL1 1 0 1\nv1 (1 0) pulse (iv=0 pv=10)\n", "gnucap's pulse"},
+                    BadCase{"pwlfilemissing", "title\nR1 1 0 1\nV1 1 0 PWL FILE \"nothere.csv\"\n", "\"nothere.csv\" (no such file)"},
+                    BadCase{"gnucapexpperiod", "title\nL1 1 0 1\nv1 1 0 exp iv=0 pv=1 tau1=1 td2=1 tau2=1 period=5\n", "period="}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 // A deck written the way ngspice users write it — a library section with a parametrised .subckt,
@@ -337,6 +344,59 @@ TEST(Cli, PublicDeckSpellingsAreTheirFlattenedTwin) {
   for (const char* said : {"not part of the transient, ignored: ac 1", "portnum 1", "ignored .step", "ignored .meas", "ignored .data block",
                            "temperature coefficients ignored"})
     EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
+}
+
+// Xyce's and gnucap's spellings of one circuit (issue 45's public decks: Xyce_Regression's IC_AND_NODESET,
+// BUG_667_SON, BUG_1595, PARAMS2; gnucap's bm_exp, bm_sin, c_measure) are its SPICE twin: .param with commas,
+// .IC NODE VALUE, a node and an inductor named through an instance with Xyce's ':' (and a space before ')'),
+// .INCL, Xyce's PWL FILE (a .csv beside the deck, TD= after it), ngspice's R … AC= NOISY= (for .ac and .noise),
+// gnucap's keyword EXP and SIN (its flags are step hints), .store and .fanout.
+// Killed by: the ':' path not mapped (the .ic names no node: refused), the comma kept in a value, the .IC pair
+// read as V(NODE)=VALUE (refused), gnucap's exp read with a key off by one.
+TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
+  write_temp("dcad_incl_part.cir", "R9 top 0 1k\n");
+  write_temp("dcad_pwl_points.csv", "0,0\n5e-6, 1m\r\n\n20u 0\n");
+  const std::string deck = write_temp("dcad_xyce_gnucap.cir",
+                                      "Xyce and gnucap spellings\n"
+                                      ".param R_1=100, R_2=200\n"
+                                      ".INCL dcad_incl_part.cir\n"
+                                      "V1 top 0 exp iv= 0. pv= 1. td1= 2u tau1= 5u td2= 10u tau2= 5u\n"
+                                      "I1 0 top sin(freq=20k ampl=1m peak zero)\n"
+                                      "R1 top a {R_1} ac=15k noisy=0\n"
+                                      "I2 0 top PWL FILE \"dcad_pwl_points.csv\" TD=1u\n"
+                                      "X1 a 0 tank\n"
+                                      "K1 X1:L1 X1:L2 0.5\n"
+                                      ".subckt tank p q\n"
+                                      "L1 p mid 1m\n"
+                                      "L2 mid q 2m\n"
+                                      "C1 mid q 10n\n"
+                                      "R2 p q {R_2}\n"
+                                      ".ends\n"
+                                      ".IC V(X1:mid )=0.25\n"
+                                      ".ic a 0.5\n"
+                                      ".store tran v(a)\n"
+                                      ".fanout\n"
+                                      ".tran 1u 40u uic\n"
+                                      ".end\n");
+  const std::string twin = write_temp("dcad_xyce_gnucap_twin.cir",
+                                      "the same circuit in ngspice's spelling\n"
+                                      "R9 top 0 1k\n"
+                                      "V1 top 0 EXP(0 1 2u 5u 10u 5u)\n"
+                                      "I1 0 top SIN(0 1m 20k)\n"
+                                      "R1 top a 100\n"
+                                      "I2 0 top PWL(0 0 5u 1m 20u 0) TD=1u\n"
+                                      "L.x1.l1 a x1.mid 1m\n"
+                                      "L.x1.l2 x1.mid 0 2m\n"
+                                      "C.x1.c1 x1.mid 0 10n\n"
+                                      "R.x1.r2 a 0 200\n"
+                                      "K1 L.x1.l1 L.x1.l2 0.5\n"
+                                      ".ic v(x1.mid)=0.25 v(a)=0.5\n"
+                                      ".tran 1u 40u uic\n");
+  const Outcome sa = run("simulate " + deck + " --tstop 40u --step 2u"), sb = run("simulate " + twin + " --tstop 40u --step 2u");
+  ASSERT_EQ(sa.rc, 0) << sa.err;
+  ASSERT_EQ(sb.rc, 0) << sb.err;
+  EXPECT_EQ(sa.out, sb.out);
+  for (const char* said : {"gnucap's time-step hint", "ignored .store", "ignored .fanout", "ac=15k ignored"}) EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
 }
 
 // ngspice reads a resistance below 1e-12 Ohm as 1e-12 (resparam.c's RESMIN): a resistor, never a wire (whose

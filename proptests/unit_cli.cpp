@@ -150,6 +150,38 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   EXPECT_THROW(wave("1 2"), std::invalid_argument);
 }
 
+// gnucap's keyword form (apps/bm_exp.cc, bm_sin.cc: tr_eval): EXP iv pv td1 tau1 td2 tau2 is SPICE's EXP with
+// the values as given (gnucap's td1 = 0 is 0, where ngspice puts TSTEP); SIN offset amplitude frequency delay
+// damping is SPICE's SIN with PHASE 0, keys abbreviated as gnucap takes them (o{ffset}, a{mplitude},
+// f{requency}, de{lay}, da{mping}); zero, peak, samples= steer gnucap's steps and are noted.  What has no
+// exact transient here is refused: a period=, tau 0 (a step), td2 < td1, a frequency left to the analysis,
+// pulse's form (rise 0).  Killed by: complete() adding SPICE's defaults to the form, a key matched by
+// any prefix ("d" is neither delay nor damping in gnucap), the flags read as values.
+TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
+  Waveform e = wave("exp iv=0. pv=1. td1=0 tau1=5e-9 td2=10e-9 tau2=5e-9");
+  e.complete(Rational(1, 1000000000), Rational(20, 1000000000));
+  Waveform spice = wave("EXP(0 1 0 5e-9 10e-9 5e-9)");
+  EXPECT_EQ(e.kind, Waveform::Kind::exp);
+  EXPECT_EQ(e.p, (std::vector<Rational>{0, 1, 0, Rational(5, 1000000000), Rational(10, 1000000000), Rational(5, 1000000000)}));
+  EXPECT_EQ(spice.p[2], Rational(0));  // as written; ngspice's complete() would make it TSTEP
+  const Waveform s = wave("SIN(freq=1000 ampl=2 peak zero) ac 1");
+  EXPECT_EQ(s.kind, Waveform::Kind::sin);
+  EXPECT_EQ(s.p, (std::vector<Rational>{0, 2, 1000, 0, 0, 0}));
+  EXPECT_NE(s.ignored.find("peak"), std::string::npos);
+  const Waveform s2 = wave("SIN offset= 1. amplitude=3 frequency=100e6 delay=1e-9 damping=2 samples=0 zero");
+  EXPECT_EQ(s2.p, (std::vector<Rational>{1, 3, 100000000, Rational(1, 1000000000), 2, 0}));
+  EXPECT_NEAR(s2.value(2e-9, 0), 1 + 3 * std::sin(2 * 3.141592653589793 * 1e8 * 1e-9) * std::exp(-2e-9), 1e-12);
+  EXPECT_EQ(s2.value(0.5e-9, 0), 1.0);  // offset before the delay, as gnucap
+  EXPECT_THROW(wave("sin(d=1 freq=1000)"), std::invalid_argument);          // "d": delay or damping?
+  EXPECT_THROW(wave("sin(amplitude=1)"), std::invalid_argument);          // the analysis' frequency
+  EXPECT_THROW(wave("exp iv=0 pv=1 tau1=1 tau2=1 period=5"), std::invalid_argument);
+  EXPECT_THROW(wave("exp iv=0 pv=1 td1=2 tau1=1 tau2=1"), std::invalid_argument);  // td2 = 0 < td1
+  EXPECT_THROW(wave("exp iv=0 pv=1 td1=0 td2=1 tau2=1"), std::invalid_argument);   // tau1 = 0: a step
+  EXPECT_THROW(wave("pulse (iv=0 pv=10)"), std::invalid_argument);
+  EXPECT_THROW(wave("exp(iv=0 pv=1 tau1=1 td2=1 tau2=1 bogus=3)"), std::invalid_argument);
+  EXPECT_THROW(wave("exp(iv=0 iv=1 pv=1 tau1=1 td2=1 tau2=1)"), std::invalid_argument);
+}
+
 TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {
   EXPECT_THROW(wave("PWL(-1 0 1 1)"), std::invalid_argument);
   EXPECT_NO_THROW(wave("PWL(0 -1 1 1)"));

@@ -147,6 +147,56 @@ std::string beside(const std::string& deck, const std::string& name) {  // relat
   return slash == std::string::npos ? name : deck.substr(0, slash + 1) + name;
 }
 
+/// Xyce's "PWL FILE name [TD=…] [R=…]" (also "file", the name quoted or not): the file beside the deck holds
+/// one "TIME VALUE" pair per line, separated by blanks or a comma (Xyce's .csv and text tables); the
+/// specification becomes PWL(t1 v1 t2 v2 …) with the rest kept.  Other specifications are returned as
+/// they are.  A file that is missing, or a line that is not two numbers, is an InputError naming file and line.
+std::string pwl_from_file(const Line& l, const std::string& spec) {
+  std::string low = spec;
+  std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::size_t pwl = low.find("pwl");
+  if (pwl == std::string::npos) return spec;
+  std::size_t i = low.find_first_not_of(" \t", pwl + 3);
+  if (i == std::string::npos || low.compare(i, 4, "file") != 0 || (i + 4 < low.size() && !std::isspace(static_cast<unsigned char>(low[i + 4]))))
+    return spec;
+  i = low.find_first_not_of(" \t", i + 4);
+  if (i == std::string::npos) fail(l, "PWL FILE NAME", "no file name in \"" + spec + "\"");
+  std::size_t end;
+  std::string name;
+  if (spec[i] == '"') {
+    end = spec.find('"', i + 1);
+    if (end == std::string::npos) fail(l, "a closing '\"' after PWL FILE", "\"" + spec + "\"");
+    name = spec.substr(i + 1, end - i - 1);
+    ++end;
+  } else {
+    end = spec.find_first_of(" \t", i);
+    if (end == std::string::npos) end = spec.size();
+    name = spec.substr(i, end - i);
+  }
+  const std::string path = beside(l.file, name);
+  if (name.empty() || !std::filesystem::is_regular_file(path)) fail(l, "a regular file of PWL points", "\"" + name + "\" (no such file)");
+  std::ifstream in(path, std::ios::binary);
+  std::string table, line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string t; words >> t;) w.push_back(t);
+    if (w.empty()) continue;
+    std::string shown = line.substr(0, 40);
+    for (char& ch : shown)
+      if (!std::isprint(static_cast<unsigned char>(ch))) ch = '?';
+    if (w.size() != 2) throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE (PWL FILE of " + l.where() + "), found \"" + shown + "\"");
+    for (const std::string& t : w) try {
+        (void)parse_spice_value(t);
+      } catch (const std::exception&) {
+        throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE numbers (PWL FILE of " + l.where() + "), found \"" + shown + "\"");
+      }
+    table += (table.empty() ? "" : " ") + w[0] + " " + w[1];
+  }
+  return spec.substr(0, pwl) + "PWL(" + table + ")" + spec.substr(end);
+}
+
 /// The deck's logical lines: title dropped (top file only), comments and .control blocks removed,
 /// `+` continuations joined, .include and .lib FILE SECTION read in place.  Stops at .end.
 class Reader {
@@ -229,7 +279,7 @@ class Reader {
         ended = true;
         return;
       }
-      if (head == ".include" || head == ".inc") {
+      if (head == ".include" || head == ".inc" || head == ".incl") {  // Xyce takes all three
         if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
         read(beside(beside_this, unquote(tok[1])), false, "", depth + 1, &here);
         if (ended) return;
@@ -557,7 +607,7 @@ std::vector<std::pair<std::string, std::string>> param_pairs(const std::vector<s
   std::vector<std::pair<std::string, std::string>> out;
   std::size_t i = 0;
   while (true) {
-    while (i < joined.size() && std::isspace(static_cast<unsigned char>(joined[i]))) ++i;
+    while (i < joined.size() && (std::isspace(static_cast<unsigned char>(joined[i])) || (joined[i] == ',' && !out.empty()))) ++i;  // Xyce: "a=1, b=2"
     if (i >= joined.size()) return out;
     const std::size_t eq = joined.find('=', i);
     if (eq == std::string::npos) fail(l, "NAME=VALUE", "\"" + joined.substr(i) + "\"");
@@ -579,6 +629,8 @@ std::vector<std::pair<std::string, std::string>> param_pairs(const std::vector<s
     }
     std::string expr = joined.substr(j, end - j);
     if (expr.front() == '{') expr = expr.substr(1, expr.size() - 2);
+    else if (expr.size() > 1 && expr.back() == ',' && std::count(expr.begin(), expr.end(), '(') == std::count(expr.begin(), expr.end(), ')'))
+      expr.pop_back();  // the comma between two assignments, not an argument's
     out.emplace_back(name, expr);
     i = end;
   }
@@ -591,6 +643,12 @@ struct Subcircuit {
   std::vector<Line> body;
   Line where;
 };
+
+/// Xyce's hierarchical separator ':' (x1:mid, x1:x2:l1) as ngspice's '.' (x1.mid), which dcad's names use.
+static std::string hierarchical(std::string n) {
+  std::replace(n.begin(), n.end(), ':', '.');
+  return n;
+}
 
 /// Flattens the deck: .param (global and inside .subckt, scoped), .func, .global, .subckt … .ends (nested
 /// ones too), X instances (hierarchical names as ngspice makes them: element L1 of instance X1 is
@@ -770,7 +828,8 @@ class Flattener {
         ".tran", ".ac", ".dc", ".op", ".options", ".option", ".opt", ".print", ".plot", ".probe", ".save", ".meas", ".measure",
         ".four", ".fourier", ".width", ".title", ".nodeset", ".noise", ".disto", ".pz", ".sens", ".tf", ".fft", ".hb", ".list",
         ".mor", ".status", ".dcop", ".tr", ".result", ".mpde", ".lin", ".sp", ".pss", ".shoot", ".objective", ".endl", ".end",
-        ".alter", ".graph", ".nodelist", ".nolist", ".protect", ".unprotect", ".csvprint", ".mem", ".tsave"};
+        ".alter", ".graph", ".nodelist", ".nolist", ".protect", ".unprotect", ".csvprint", ".mem", ".tsave",
+        ".store", ".fanout"};  // gnucap: waveforms kept for .measure, a listing of node connections
     return cards.count(head) > 0;
   }
   /// Sweeps and sampling: analyses run on the circuit at other values; dcad solves it as written.
@@ -784,13 +843,19 @@ class Flattener {
     const std::string head = lower(tok[0]);
     if (head == ".ic" || head == ".dcvolt") {
       for (std::size_t k = 1; k < tok.size(); ++k) {
-        const std::string t = lower(tok[k]);
+        std::string t = lower(tok[k]);
+        while (t.compare(0, 2, "v(") == 0 && t.find(')') == std::string::npos && k + 1 < tok.size()) t += lower(tok[++k]);  // "V(mid )=1"
         const std::size_t eq = t.find('=');
-        if (t.compare(0, 2, "v(") != 0 || eq == std::string::npos || t[eq - 1] != ')')
-          fail(l, tok[0] + " V(NODE)=VALUE …", "\"" + tok[k] + "\"");
-        std::string value = t.substr(eq + 1);
+        std::string node, value;
+        if (t.compare(0, 2, "v(") == 0 && eq != std::string::npos && t[eq - 1] == ')') {
+          node = t.substr(2, eq - 3), value = t.substr(eq + 1);
+        } else if (t.find_first_of("()=") == std::string::npos && k + 1 < tok.size()) {  // Xyce's ".IC NODE VALUE …"
+          node = t, value = lower(tok[++k]);
+        } else {
+          fail(l, tok[0] + " V(NODE)=VALUE … (or Xyce's NODE VALUE …)", "\"" + tok[k] + "\"");
+        }
         if (!value.empty() && value.front() == '{') value = value.substr(1, value.size() - 2);
-        node_ic[node_in(t.substr(2, eq - 3), prefix, ports)] = evaluate(l, value, params, "V(NODE)=VALUE");
+        node_ic[node_in(hierarchical(node), prefix, ports)] = evaluate(l, value, params, "V(NODE)=VALUE");
       }
       return;
     }
@@ -918,6 +983,12 @@ class Flattener {
     }
     if (tok.size() < 4 && !(kind == 'v' || kind == 'i')) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
     if (tok.size() < 3) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    // ngspice's tokenizer (INPgetTok, INPgetNetTok) ends a name at , ( ) = and reads quotes and braces as
+    // syntax: "v2, 2 0 1" is V2 there, "v4 , 0 1" a different source.  Such a name is refused, not guessed.
+    for (std::size_t k = 0; k < (kind == 'k' ? 1u : 3u); ++k)
+      if (tok[k].find_first_of(",()=\"'{}") != std::string::npos)
+        fail(l, k == 0 ? "an element name without , ( ) = \" ' { }" : "a node name without , ( ) = \" ' { }",
+             "\"" + tok[k] + "\" (ngspice reads these characters as separators or syntax: rename it)");
     // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
     const auto hier = [&](const std::string& t) { return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t); };
     const std::string name = hier(tok[0]);
@@ -976,7 +1047,7 @@ class Flattener {
       for (std::size_t k = 3; k < tok.size(); ++k) spec += (k > 3 ? " " : "") + tok[k];
       Waveform w;
       try {
-        w = parse_waveform(spec, [&](const std::string& t) { return number(t, "a source value"); });
+        w = parse_waveform(pwl_from_file(l, spec), [&](const std::string& t) { return number(t, "a source value"); });
       } catch (const std::invalid_argument& e) {
         throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
       }
@@ -1022,8 +1093,11 @@ class Flattener {
         for (std::size_t c = list.find(','), from = 0; c != std::string::npos; from = c + 1, c = list.find(',', from))
           if (c > from) number(list.substr(from, c - from), "a temperature coefficient");
         tc.push_back(tok[k]);
+      } else if (kind == 'r' && (key == "ac=" || key == "noisy=")) {  // ngspice: the AC analysis' resistance, the noise switch
+        number(tok[k].substr(eq + 1), key == "ac=" ? "AC=resistance" : "NOISY=0 or 1");
+        out.warnings.push_back(l.where() + ": " + name + ": " + tok[k] + " ignored (ngspice uses it in .ac or .noise only, not in the transient)");
       } else {
-        fail(l, kind == 'r' ? "nothing, M=, TC1=, TC2= after the resistance" : "nothing, IC=, M= after the value", "\"" + tok[k] + "\"");
+        fail(l, kind == 'r' ? "nothing, M=, TC1=, TC2=, AC=, NOISY= after the resistance" : "nothing, IC=, M= after the value", "\"" + tok[k] + "\"");
       }
     }
     if (!value) fail(l, "a value (positional or " + value_key + "VALUE)", "none in \"" + l.text + "\"");
@@ -1173,14 +1247,18 @@ static void check_inductance(Netlist& out, const Flattener& f) {
 /// truncated to 80 decimal places (with a warning).
 static void resolve_couplings(Netlist& out, const Flattener& f) {
   for (const auto& c : f.couplings) {
-    const auto find = [&](const std::string& n) -> std::size_t {
+    const auto find = [&](const std::string& written) -> std::size_t {
+      std::string n = written;
+      const std::size_t colon = n.rfind(':');  // Xyce's x1:l1 (x1:x2:l1): element l1 of instance x1, named l.x1.l1
+      if (colon != std::string::npos && colon + 1 < n.size())
+        n = n.substr(colon + 1, 1) + "." + hierarchical(n.substr(0, colon)) + "." + n.substr(colon + 1);
       for (std::size_t i = 0; i < out.rlc.branches.size(); ++i)
         if (lower(out.rlc.branches[i].name) == n) {
           if (out.rlc.branches[i].kind != reference::RlcKind::inductor)
             throw InputError(c.line.where() + ": expected an inductor for " + c.name + ", found " + out.rlc.branches[i].name);
           return i;
         }
-      throw InputError(c.line.where() + ": expected an inductor of the circuit for " + c.name + ", found \"" + n + "\"");
+      throw InputError(c.line.where() + ": expected an inductor of the circuit for " + c.name + ", found \"" + written + "\"");
     };
     const std::size_t a = find(c.a), b = find(c.b);
     if (a == b) throw InputError(c.line.where() + ": expected two different inductors for " + c.name + ", found one twice");

@@ -58,6 +58,86 @@ bool is_keyword(const std::string& w) {
   return std::find(kw.begin(), kw.end(), w) != kw.end() || is_function(w);
 }
 
+/// gnucap's keyword form of SIN, EXP and PULSE ("sin(freq=1k ampl=1 peak zero)", "exp iv=0 pv=1 td1=1n …",
+/// gnucap's apps/bm_sin.cc, bm_exp.cc, bm_pulse.cc): true when the word after the function is one of its keys.
+/// A key in braces' sense ("o{ffset}") is any prefix of the name at least as long as its mandatory part.
+struct GnucapKey {
+  const char* name;
+  std::size_t least;  ///< the mandatory prefix's length
+};
+const std::vector<GnucapKey>& gnucap_keys(const std::string& fn) {
+  static const std::vector<GnucapKey> sin = {{"offset", 1}, {"amplitude", 1}, {"frequency", 1}, {"delay", 2}, {"damping", 2},
+                                             {"samples", 2}, {"zero", 2},     {"peak", 2}};
+  static const std::vector<GnucapKey> exp = {{"iv", 2}, {"pv", 2}, {"td1", 3}, {"tau1", 4}, {"td2", 3}, {"tau2", 4}, {"period", 6}};
+  static const std::vector<GnucapKey> pulse = {{"iv", 2}, {"pv", 2}, {"delay", 5}, {"rise", 4}, {"fall", 4}, {"width", 5}, {"period", 6}};
+  static const std::vector<GnucapKey> none;
+  return fn == "sin" ? sin : fn == "exp" ? exp : fn == "pulse" ? pulse : none;
+}
+std::optional<std::string> gnucap_key(const std::string& fn, const std::string& word) {
+  const std::string key = lower(word.substr(0, word.find('=')));
+  for (const GnucapKey& k : gnucap_keys(fn))
+    if (key.size() >= k.least && std::string(k.name).compare(0, key.size(), key) == 0) return std::string(k.name);
+  return std::nullopt;
+}
+
+/// Reads gnucap's keyword form from words[from]: KEY=VALUE words (and SIN's flags ZERO, PEAK, SAMPLES=, which
+/// steer gnucap's time steps, not the waveform) up to ')' or the end, mapped to the SPICE form with gnucap's
+/// meaning.  gnucap evaluates SIN as OFFSET + AMPLITUDE sin(2π FREQUENCY (t − DELAY)) e^{−(t−DELAY) DAMPING}
+/// after DELAY (OFFSET before) — SPICE's SIN with PHASE 0 — and EXP as SPICE's EXP(IV PV TD1 TAU1 TD2 TAU2)
+/// when TD1 <= TD2 and no PERIOD; gnucap's defaults are its own (no TSTEP or TSTOP), so the form is literal.
+/// Throws where gnucap's meaning is not one dcad's exact flows take (a step, a repetition, a frequency taken
+/// from the analysis).  Returns the index after the form.
+std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& words, std::size_t from, const std::string& spec,
+                        const std::function<Rational(const std::string&)>& number, std::vector<Rational>& args, std::vector<std::string>& noted) {
+  std::vector<std::pair<std::string, Rational>> got;
+  std::size_t j = from;
+  for (; j < words.size() && words[j] != ")"; ++j) {
+    if (words[j].find('=') == std::string::npos && is_keyword(lower(words[j]))) break;  // "… ac 1" after the form
+    const std::optional<std::string> key = gnucap_key(fn, words[j]);
+    const std::size_t eq = words[j].find('=');
+    if (!key) throw std::invalid_argument("expected gnucap's " + fn + " keys (" + [&] {
+      std::string all;
+      for (const GnucapKey& k : gnucap_keys(fn)) all += (all.empty() ? "" : " ") + std::string(k.name);
+      return all;
+    }() + "), found \"" + words[j] + "\" in \"" + spec + "\"");
+    if (*key == "zero" || *key == "peak" || *key == "samples") {  // time-step hints of gnucap's, not the waveform
+      noted.push_back(words[j] + " (gnucap's time-step hint)");
+      continue;
+    }
+    std::string text = eq == std::string::npos ? "" : words[j].substr(eq + 1);
+    if (eq + 1 == words[j].size() && j + 1 < words.size() && words[j + 1] != ")") text = words[++j];  // "offset= 0." as spaced
+    if (text.empty()) throw std::invalid_argument("expected " + *key + "=VALUE, found \"" + words[j] + "\" in \"" + spec + "\"");
+    for (const auto& g : got)
+      if (g.first == *key) throw std::invalid_argument("expected " + *key + " once, found it twice in \"" + spec + "\"");
+    got.emplace_back(*key, number(text));
+  }
+  const auto value = [&](const char* key) -> std::optional<Rational> {
+    for (const auto& g : got)
+      if (g.first == key) return g.second;
+    return std::nullopt;
+  };
+  const auto refuse = [&](const std::string& why, const std::string& instead) {
+    throw std::invalid_argument("expected gnucap's " + fn + " in a form with an exact transient, found " + why + " in \"" + spec + "\": write " + instead);
+  };
+  if (fn == "sin") {
+    if (!value("frequency")) refuse("no frequency (gnucap then takes the analysis' frequency)", "frequency=F");
+    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("frequency"), value("delay").value_or(0), value("damping").value_or(0), 0};
+    if (args[2] < 0) throw std::invalid_argument("expected frequency >= 0, found " + args[2].str() + " in \"" + spec + "\"");
+  } else if (fn == "exp") {
+    if (!value("iv") || !value("pv")) refuse("no iv= or pv= (gnucap then takes a value of its own)", "iv=V1 pv=V2");
+    if (value("period")) refuse("period= (a repeated exponential)", "EXP(V1 V2 TD1 TAU1 TD2 TAU2) once, or a PWL");
+    const Rational td1 = value("td1").value_or(0), td2 = value("td2").value_or(0);
+    const Rational tau1 = value("tau1").value_or(0), tau2 = value("tau2").value_or(0);
+    if (!(tau1 > 0) || !(tau2 > 0)) refuse("tau1 or tau2 not > 0 (a step)", "tau1 and tau2 > 0");
+    if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
+    args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
+  } else {
+    refuse("pulse's keyword form (gnucap's rise and fall default to 0: a step, and width and period to forever)",
+           "PULSE(V1 V2 TD TR TF PW PER) with TR, TF > 0");
+  }
+  return j;
+}
+
 }  // namespace
 
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number) {
@@ -69,6 +149,7 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
   std::vector<Rational> args;
   std::vector<std::string> ignored;
   std::optional<Rational> pwl_td, pwl_r;
+  bool literal = false;  // gnucap's keyword form: every value given, no SPICE defaults
   const auto note = [&](const std::string& s) { ignored.push_back(s); };
   for (std::size_t i = 0; i < words.size();) {
     const std::string word = lower(words[i]);
@@ -129,6 +210,17 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
       if (!fn.empty()) throw std::invalid_argument("expected one transient function, found " + fn + " and " + words[i] + " in \"" + spec + "\"");
       fn = word == "sine" ? "sin" : word;
       std::size_t j = i + 1;
+      const std::size_t first = j < words.size() && words[j] == "(" ? j + 1 : j;
+      if (first < words.size() && words[first].find('=') != std::string::npos && gnucap_key(fn, words[first])) {  // gnucap's keyword form
+        j = gnucap_form(fn, words, first, spec, number, args, ignored);
+        if (first > i + 1) {  // "(…)"
+          if (j == words.size() || words[j] != ")") throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
+          ++j;
+        }
+        literal = true;
+        i = j;
+        continue;
+      }
       if (j < words.size() && words[j] == "(") {
         ++j;
         while (j < words.size() && words[j] != ")") {
@@ -215,6 +307,7 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
   }
   if ((pwl_td || pwl_r) && fn != "pwl") throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + fn);
   w.p = a;
+  w.literal = literal;
   if (w.kind == Waveform::Kind::pwl) w.given = a.size();
   if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0) w.p.resize(6, Rational(0));  // FREQ given: complete already
   return w;
@@ -227,6 +320,7 @@ void Waveform::complete(const std::optional<Rational>& tstep, const std::optiona
                                   "), found none: give .tran or the value");
     return *x;
   };
+  if (literal) return;  // gnucap's keyword form: its own defaults, already applied
   if (kind == Kind::sin) {
     const bool has_freq = p.size() > 2 && p[2] != 0;
     if (!has_freq) {

@@ -31,6 +31,9 @@ struct Waveform {
   /// How many values the deck gave: PULSE and SIN take ngspice's defaults for the rest from .tran's TSTEP
   /// and TSTOP (complete()); until then p may be shorter than its kind's.
   std::size_t given = 0;
+  /// Read from gnucap's keyword form ("exp iv=0 pv=1 td1=1n tau1=5n td2=10n tau2=5n"): every value is as
+  /// gnucap means it, so complete() adds none of SPICE's defaults (gnucap's TD1 = 0 is 0, not TSTEP).
+  bool literal = false;
   /// What the specification holds that the transient does not use (an AC or distortion specification, a
   /// port's number and impedance, a DC value before a function), as written: the reader notes it.
   std::string ignored;
