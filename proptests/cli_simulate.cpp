@@ -778,6 +778,51 @@ TEST(Forced, SineHoldsItsPhaseBeforeItsDelay) {
   }
 }
 
+// An EXP source is enclosed (issue 45 §1: EXP is analytic, so the enclosures take it): an RC charged through
+// EXP(1 3 1m 2m 6m 0.5m) from uic, whose current i = (V − v_C)/R follows from τc v' = V − v segment by segment:
+// on a segment from s0 with V = c + Σ a_k e^{−(t−t_k)/τ_k}, v = c + Σ a_k τ_k/(τ_k − τc) e^{−(t−t_k)/τ_k} + (the
+// rest at s0) e^{−(t−s0)/τc}.  The certified midpoints hold it to 1e-15 of the 1 mA scale, the double route
+// too (its σ' jumps at TD1 and TD2 were read off TD ± δ: 3e-10 off).
+TEST(Simulate, ExpSourceIsEnclosedAndHoldsItsClosedForm) {
+  const std::string deck = write_temp("rc_exp.cir", "rc exp\nV1 a 0 EXP(1 3 1m 2m 6m 0.5m)\nR1 a b 1k\nC1 b 0 1u\n.end\n");
+  const double V1 = 1, V2 = 3, td1 = 1e-3, t1 = 2e-3, td2 = 6e-3, t2 = 0.5e-3, tc = 1e-3, R = 1e3;
+  struct Term {
+    double a, from, tau;
+  };
+  const auto segment = [&](double t, double s0, double v0, double c, const std::vector<Term>& terms) {
+    double v = c, rest = v0 - c;
+    for (const Term& k : terms) {
+      const double g = k.a * k.tau / (k.tau - tc);
+      v += g * std::exp(-(t - k.from) / k.tau);
+      rest -= g * std::exp(-(s0 - k.from) / k.tau);
+    }
+    return v + rest * std::exp(-(t - s0) / tc);
+  };
+  const std::vector<Term> first{{V1 - V2, td1, t1}}, second{{V1 - V2, td1, t1}, {V2 - V1, td2, t2}};
+  const double v_td1 = V1 * (1 - std::exp(-td1 / tc)), v_td2 = segment(td2, td1, v_td1, V2, first);
+  const auto current = [&](double t) {
+    if (t < td1) return V1 * std::exp(-t / tc) / R;
+    if (t < td2) return (V2 + (V1 - V2) * std::exp(-(t - td1) / t1) - segment(t, td1, v_td1, V2, first)) / R;
+    const double v = V1 + (V1 - V2) * std::exp(-(t - td1) / t1) + (V2 - V1) * std::exp(-(t - td2) / t2);
+    return (v - segment(t, td2, v_td2, V1, second)) / R;
+  };
+  for (const char* how : {"", " --certified"}) {
+    const Outcome o = run("simulate " + deck + " --tstop 10m --step 0.25m --vars v_C1" + how);
+    ASSERT_EQ(o.rc, 0) << how << o.err;
+    std::istringstream rows(o.out);
+    std::string line;
+    std::getline(rows, line);
+    long n = 0;
+    while (std::getline(rows, line)) {
+      double t = 0, i = 0;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf", &t, &i), 2) << line;
+      EXPECT_NEAR(i, current(t), 1e-18) << how << " at " << line;  // 1e-15 of the 1 mA scale
+      ++n;
+    }
+    EXPECT_EQ(n, 41) << how;
+  }
+}
+
 // `simulate --certified`: what it cannot enclose is exit 1 naming why (never a plain double run
 // passed off as enclosed), a case file is a usage error; --vars may name the radius columns; the
 // series RLC's enclosed current holds its closed form i(t) = V/(L wd) e^(−αt) sin(wd t) (cases/rlc-series.cir).

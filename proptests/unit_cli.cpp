@@ -182,6 +182,16 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   EXPECT_THROW(wave("exp(iv=0 iv=1 pv=1 tau1=1 td2=1 tau2=1)"), std::invalid_argument);
 }
 
+// A function whose ')' is missing at the end of the line (Xyce's SENS/vsin.cir: "SIN(0 1 100K -2.5U 0.0 -90.0")
+// is read to the end, as Xyce and ngspice read it, and the missing ')' noted; a ')' missing before another
+// word is no such case (the word would be read as a value) and stays refused.
+TEST(Waveform, MissingClosingParenthesisAtTheEndIsReadToTheEnd) {
+  const Waveform s = wave("SIN(0 1 100000 -2.5e-6 0.0 -90.0");
+  EXPECT_EQ(s.p, wave("SIN(0 1 100000 -2.5e-6 0.0 -90.0)").p);
+  EXPECT_NE(s.ignored.find("missing ')'"), std::string::npos) << s.ignored;
+  EXPECT_THROW(wave("SIN(0 1 100000 ac 1"), std::invalid_argument);
+}
+
 TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {
   EXPECT_THROW(wave("PWL(-1 0 1 1)"), std::invalid_argument);
   EXPECT_NO_THROW(wave("PWL(0 -1 1 1)"));

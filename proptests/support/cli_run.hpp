@@ -95,6 +95,15 @@ inline void expect_input_error(const Outcome& r, const std::string& file, const 
   EXPECT_NE(r.err.find("found"), std::string::npos) << label << ": " << r.err;
 }
 
+/// Two decks that are the same circuit: `dcad simulate` prints the same table for both (exit 0); the table.
+inline std::string expect_same_simulation(const std::string& deck, const std::string& twin, const std::string& args) {
+  const Outcome a = run("simulate " + deck + " " + args), b = run("simulate " + twin + " " + args);
+  EXPECT_EQ(a.rc, 0) << deck << ": " << a.err;
+  EXPECT_EQ(b.rc, 0) << twin << ": " << b.err;
+  EXPECT_EQ(a.out, b.out) << deck << " and " << twin;
+  return a.out;
+}
+
 /// `dcad simulate DECK ARGS` as rows of named numbers (the CSV header names the columns); exit 0 expected.
 inline std::vector<std::map<std::string, double>> simulate_rows(const std::string& deck, const std::string& args, std::string* err = nullptr) {
   const Outcome r = run("simulate " + deck + " " + args);

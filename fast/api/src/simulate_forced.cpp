@@ -116,7 +116,7 @@ Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
       return order == 0 ? wide(w.p[0]) : Wide(0);
     case io::Waveform::Kind::sin: {
       const Wide pi = boost::math::constants::pi<Wide>(), phi = wide(w.p[5]) * pi / 180, va = wide(w.p[1]);
-      if (t < w.p[3].convert_to<double>()) return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // as value(): double times
+      if (tq < w.p[3]) return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // before TD at the exact row time
       const Wide tau = wide(tq - w.p[3]), omega = 2 * pi * wide(w.p[2]), decay = -wide(w.p[4]);
       // Im(VA s^order e^{s τ + iφ}), s = decay + iω = r e^{iα}
       const Wide r = sqrt(decay * decay + omega * omega), alpha = atan2(omega, decay);
@@ -127,9 +127,9 @@ Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
       const Wide v1 = wide(w.p[0]), v2 = wide(w.p[1]);
       const Wide r1 = -1 / wide(w.p[3]), r2 = -1 / wide(w.p[5]);
       Wide c = v1, e1 = 0, e2 = 0;
-      if (t > w.p[2].convert_to<double>()) {  // the pieces as value() picks them
+      if (tq >= w.p[2]) {  // the pieces at the exact row time (right limits at TD1, TD2): a corner an ulp from a row is on its side
         e1 = (v1 - v2) * exp(r1 * wide(tq - w.p[2]));
-        if (t <= w.p[4].convert_to<double>()) c = v2;
+        if (tq < w.p[4]) c = v2;
         else e2 = (v2 - v1) * exp(r2 * wide(tq - w.p[4]));
       }
       return (order == 0 ? c : Wide(0)) + e1 * pow(r1, order) + e2 * pow(r2, order);
@@ -199,9 +199,9 @@ Mat<S> exo_generator(const ForcedScene& deck) {
   for (std::size_t j = 0; j < m; ++j) {
     const io::Waveform& w = deck.waveforms[j];
     const std::size_t c = 1 + 3 * j;
-    if (w.is_exp()) {
-      s(c + 1, c + 1) = w.rate1();
-      s(c + 2, c + 2) = w.rate2();
+    if (w.is_exp()) {  // the shadow's rates from the exact TAUs (as omega_ld for a sine)
+      s(c + 1, c + 1) = std::is_same_v<S, double> ? S(w.rate1()) : S(-1 / w.p[3].convert_to<long double>());
+      s(c + 2, c + 2) = std::is_same_v<S, double> ? S(w.rate2()) : S(-1 / w.p[5].convert_to<long double>());
     } else if (w.is_sine()) {
       const S omega = std::is_same_v<S, double> ? S(w.omega()) : S(omega_ld(w)), decay = std::is_same_v<S, double> ? S(w.decay()) : S(decay_ld(w));
       s(c + 1, c + 1) = s(c + 2, c + 2) = decay;
@@ -503,7 +503,8 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
           for (long d = 1; d <= fm.orders && std::binary_search(own[j].begin(), own[j].end(), tb); ++d) {
             const io::Waveform& wf = deck.waveforms[j];
             // σ^{(d−1)} across the corner; σ itself is continuous for PULSE/PWL, its slope is read off the pieces
-            const double jump = wf.is_sine() || wf.is_exp() || d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
+            const std::optional<double> closed = wf.corner_jump(tb, static_cast<int>(d - 1));  // EXP, SIN: exact, not read off tb ± delta
+            const double jump = closed ? *closed : d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
             if (jump != 0) dy += Au.col(1 + d * m + j) * jump;
           }
         flow.add_to_y(dy);

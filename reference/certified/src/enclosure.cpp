@@ -56,6 +56,25 @@ struct MotionEnclosure::Impl {
     arb_ptr w0 = out.at(static_cast<slong>(dm + 1 + 3 * j), 0), w1 = out.at(static_cast<slong>(dm + 2 + 3 * j), 0),
             w2 = out.at(static_cast<slong>(dm + 3 + 3 * j), 0);
     arb_zero(w0), arb_zero(w1), arb_zero(w2);
+    if (w.is_exp()) {  // EXP(V1 V2 TD1 TAU1 TD2 TAU2), right limit: (V1, 0, 0) before TD1; from it e1 = (V1 − V2) e^{−(s−TD1)/TAU1}
+      const Q &v1 = w.p[0], &v2 = w.p[1], &td1 = w.p[2], &tau1 = w.p[3], &td2 = w.p[4], &tau2 = w.p[5];
+      set_q(w0, v1, prec);
+      if (s < td1) return;
+      const auto decayed = [&](arb_ptr out, const Q& amplitude, const Q& from, const Q& tau) {
+        Ball e;
+        set_q(e.v, -(s - from) / tau, prec);
+        arb_exp(e.v, e.v, prec);
+        set_q(out, amplitude, prec);
+        arb_mul(out, out, e.v, prec);
+      };
+      decayed(w1, v1 - v2, td1, tau1);
+      if (s < td2) {  // V2 + (V1 − V2) e^{…} up to TD2, then V1 + … + (V2 − V1) e^{−(s−TD2)/TAU2} (ngspice's vsrcload.c)
+        set_q(w0, v2, prec);
+        return;
+      }
+      decayed(w2, v2 - v1, td2, tau2);
+      return;
+    }
     if (!w.is_sine()) {
       Q v, slope;
       w.exact_piece(s, v, slope);
@@ -375,8 +394,8 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
   for (const io::Waveform& w : data.waveforms) {
     if (w.kind == io::Waveform::Kind::pulse && (w.p[3] <= 0 || w.p[4] <= 0))
       throw std::invalid_argument(w.element + ": a PULSE with TR or TF = 0 jumps; its enclosure is not built");
-    if (w.is_exp())
-      throw std::invalid_argument(w.element + ": an EXP source; its enclosure is not built (the double flow evaluates it, not certified)");
+    if (w.is_exp() && (w.p[3] == 0 || w.p[5] == 0))  // validate() refuses it before: a step, no exosystem
+      throw std::invalid_argument(w.element + ": an EXP with TAU1 or TAU2 = 0 (a step); its enclosure is not built");
     if (w.is_sine() && w.p[2] == 0)
       throw std::invalid_argument(w.element + ": a SIN with FREQ = 0 (ngspice reads it as 1/TSTOP, dcad as a constant); its enclosure is not built");
   }
@@ -420,6 +439,17 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
         arb_set(s.wout.at(row, c + 2), pw.at(1, 1));
         arb_mat_mul(tmp.m, mm.m, pw.m, p);
         arb_mat_swap(pw.m, tmp.m);
+      }
+    } else if (w.is_exp()) {  // (c, e1, e2) with ė_k = −e_k / TAU_k; σ = c + e1 + e2, σ^{(d)} = (−1/TAU1)^d e1 + (−1/TAU2)^d e2
+      const Q r1 = -1 / w.p[3], r2 = -1 / w.p[5];
+      set_q(sgen.at(c + 1, c + 1), r1, p);
+      set_q(sgen.at(c + 2, c + 2), r2, p);
+      Q p1 = 1, p2 = 1;
+      for (long d = 0; d <= data.orders; ++d, p1 *= r1, p2 *= r2) {
+        const slong row = static_cast<slong>(1 + static_cast<std::size_t>(d) * m + j);
+        if (d == 0) arb_one(s.wout.at(row, c));
+        set_q(s.wout.at(row, c + 1), p1, p);
+        set_q(s.wout.at(row, c + 2), p2, p);
       }
     } else {
       arb_one(sgen.at(c, c + 1));

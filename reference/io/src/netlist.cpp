@@ -325,7 +325,7 @@ struct ExpressionNotes {
 /// Arithmetic on .param expressions as ngspice's numparam and Xyce read them: numbers (SPICE suffixes),
 /// parameters, + - * / ( ), unary signs, ^ or ** (exact for an integer exponent), comparisons, && || !,
 /// c ? a : b, pi, and the functions decks use (sqrt abs exp log ln log10 pow pwr min max sin cos tan asin
-/// acos atan atan2 sinh cosh tanh int floor ceil nint round sign if), the user's .func functions, and the
+/// acos atan arctan atan2 sinh cosh tanh asinh acosh atanh sqr int floor ceil nint round sign if ternary_fcn), the user's .func functions, and the
 /// statistical ones (agauss gauss aunif unif limit) at their nominal value.  Exact where the value is
 /// rational; an irrational value (sqrt(2), exp(1), pi) is rounded to 80 significant digits and says so.
 class Expression {
@@ -359,6 +359,7 @@ class Expression {
   }
   /// An irrational value, rounded: 80 significant digits of its 100-digit float, noted.
   Rational rounded(const Float& x) {
+    if (!boost::multiprecision::isfinite(x)) throw std::invalid_argument("a value that is not finite (a function outside its real domain, or an overflow)");
     if (notes_) notes_->rounded = true;
     if (x == 0) return Rational(0);
     int e = 0;
@@ -558,9 +559,18 @@ class Expression {
     if (name == "sin") return transcendental([](const Float& x) { return Float(boost::multiprecision::sin(x)); }, 0, 0);
     if (name == "cos") return transcendental([](const Float& x) { return Float(boost::multiprecision::cos(x)); }, 0, 1);
     if (name == "tan") return transcendental([](const Float& x) { return Float(boost::multiprecision::tan(x)); }, 0, 0);
+    if ((name == "asin" || name == "acos") && a.size() == 1 && (a[0] < -1 || a[0] > 1)) throw std::invalid_argument(name + " outside its real domain");
     if (name == "asin") return transcendental([](const Float& x) { return Float(boost::multiprecision::asin(x)); }, 0, 0);
     if (name == "acos") return transcendental([](const Float& x) { return Float(boost::multiprecision::acos(x)); }, 1, 0);
-    if (name == "atan") return transcendental([](const Float& x) { return Float(boost::multiprecision::atan(x)); }, 0, 0);
+    if (name == "atan" || name == "arctan") return transcendental([](const Float& x) { return Float(boost::multiprecision::atan(x)); }, 0, 0);
+    if (name == "asinh") return transcendental([](const Float& x) { return Float(boost::multiprecision::asinh(x)); }, 0, 0);
+    if (name == "acosh" || name == "atanh") {  // ngspice's numparam functions (xpressn.c), real only
+      want(1, 1);
+      if (name == "acosh" ? a[0] < 1 : a[0] <= -1 || a[0] >= 1) throw std::invalid_argument(name + " outside its real domain");
+      if (a[0] == (name == "acosh" ? 1 : 0)) return Rational(0);
+      return rounded(name == "acosh" ? Float(boost::multiprecision::acosh(as_float(a[0]))) : Float(boost::multiprecision::atanh(as_float(a[0]))));
+    }
+    if (name == "sqr") return want(1, 1), a[0] * a[0];  // ngspice: x², not the square root
     if (name == "sinh") return transcendental([](const Float& x) { return Float(boost::multiprecision::sinh(x)); }, 0, 0);
     if (name == "cosh") return transcendental([](const Float& x) { return Float(boost::multiprecision::cosh(x)); }, 0, 1);
     if (name == "tanh") return transcendental([](const Float& x) { return Float(boost::multiprecision::tanh(x)); }, 0, 0);
@@ -581,7 +591,7 @@ class Expression {
     if (name == "int") return want(1, 1), a[0] >= 0 ? floor_q(a[0]) : -floor_q(-a[0]);  // toward zero
     if (name == "nint" || name == "round") return want(1, 1), a[0] >= 0 ? floor_q(a[0] + Rational(1, 2)) : -floor_q(-a[0] + Rational(1, 2));
     if (name == "sign" || name == "sgn") return want(1, 1), Rational(a[0] > 0 ? 1 : a[0] < 0 ? -1 : 0);
-    if (name == "if") return want(3, 3), a[0] != 0 ? a[1] : a[2];
+    if (name == "if" || name == "ternary_fcn") return want(3, 3), a[0] != 0 ? a[1] : a[2];
     if (name == "agauss" || name == "gauss" || name == "aunif" || name == "unif" || name == "limit") {
       want(1, 4);
       if (notes_) notes_->nominal.push_back(name + s_.substr(at, i_ - at));
@@ -642,6 +652,7 @@ struct Subcircuit {
   std::vector<std::pair<std::string, std::string>> defaults;  ///< params: as written, evaluated per instance
   std::vector<Line> body;
   Line where;
+  std::string key;  ///< its definition's path, "/sub1/sub": a nested .subckt is local to its parent (ngspice)
 };
 
 /// Xyce's hierarchical separator ':' (x1:mid, x1:x2:l1) as ngspice's '.' (x1.mid), which dcad's names use.
@@ -657,7 +668,7 @@ class Flattener {
  public:
   Netlist& out;
   std::map<std::string, std::size_t> names, nodes;
-  std::map<std::string, Subcircuit> subckts;
+  std::map<std::string, Subcircuit> subckts;  ///< by definition path (Subcircuit::key)
   std::map<std::string, Rational> node_ic;
   std::set<std::string> globals;  ///< .global nodes: the same node in every instance
   Expression::Functions functions;
@@ -678,7 +689,7 @@ class Flattener {
       const std::vector<std::string> tok = tokens(lines[i].text);
       const std::string head = lower(tok[0]);
       if (head == ".subckt") {
-        i = define(lines, i);
+        i = define(lines, i, "");
       } else if (head == ".ends") {
         fail(lines[i], ".ends after a .subckt", ".ends without .subckt");
       } else if (is_param_card(head) || head == ".func") {
@@ -690,7 +701,7 @@ class Flattener {
       }
     }
     for (const Line& l : param_lines) read_params(l, params, nullptr);
-    expand(top, "", {}, params, 0);
+    expand(top, "", {}, params, 0, "");
   }
 
  private:
@@ -764,11 +775,12 @@ class Flattener {
     return v;
   }
 
-  std::size_t define(const std::vector<Line>& lines, std::size_t i) {
+  /// The .subckt at lines[i] and the definitions nested in it, under the definition path `scope`.
+  std::size_t define(const std::vector<Line>& lines, std::size_t i, const std::string& scope) {
     const Line& l = lines[i];
     const std::vector<std::string> tok = tokens(l.text);
     if (tok.size() < 2) fail(l, ".subckt NAME PORT…", "\"" + l.text + "\"");
-    Subcircuit s{lower(tok[1]), {}, {}, {}, l};
+    Subcircuit s{lower(tok[1]), {}, {}, {}, l, scope + "/" + lower(tok[1])};
     std::size_t k = 2;
     for (; k < tok.size() && lower(tok[k]) != "params:" && tok[k].find('=') == std::string::npos; ++k) {
       std::string port = lower(tok[k]);
@@ -777,15 +789,15 @@ class Flattener {
       if (!port.empty()) s.ports.push_back(port);
     }
     if (k < tok.size()) s.defaults = param_pairs(tok, lower(tok[k]) == "params:" ? k + 1 : k, l);
-    if (subckts.count(s.name)) fail(l, "a new subcircuit name", "a second .subckt " + tok[1]);
+    if (subckts.count(s.key)) fail(l, "a new subcircuit name in its scope", "a second .subckt " + tok[1] + (scope.empty() ? "" : " in .subckt " + scope.substr(scope.rfind('/') + 1)));
     for (++i; i < lines.size(); ++i) {
       const std::string head = lower(tokens(lines[i].text)[0]);
       if (head == ".ends") {
-        subckts[s.name] = s;
+        subckts[s.key] = s;
         return i;
       }
-      if (head == ".subckt") {  // a nested definition: defined once, by its own name (ngspice scopes it; names rarely clash)
-        i = define(lines, i);
+      if (head == ".subckt") {  // a nested definition, seen only inside this one (ngspice scopes it)
+        i = define(lines, i, s.key);
         continue;
       }
       s.body.push_back(lines[i]);
@@ -805,7 +817,7 @@ class Flattener {
   }
 
   void expand(const std::vector<Line>& body, const std::string& prefix, const std::map<std::string, std::string>& ports,
-              const std::map<std::string, Rational>& params, int depth) {
+              const std::map<std::string, Rational>& params, int depth, const std::string& scope) {
     for (const Line& l : body) {
       std::vector<std::string> tok = tokens(l.text);
       const std::string head = lower(tok[0]);
@@ -815,7 +827,7 @@ class Flattener {
         continue;
       }
       if (head[0] == 'x') {
-        instance(l, tok, prefix, ports, params, depth);
+        instance(l, tok, prefix, ports, params, depth, scope);
         continue;
       }
       element(l, tok, prefix, ports, params);
@@ -910,7 +922,8 @@ class Flattener {
   }
 
   void instance(const Line& l, const std::vector<std::string>& tok_in, const std::string& prefix,
-                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params, int depth) {
+                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params, int depth,
+                const std::string& scope) {
     if (depth >= 32) fail(l, "subcircuits nested at most 32 deep", "deeper (a recursive .subckt?)");
     std::vector<std::string> tok;
     for (const std::string& t : tok_in) {  // "(a b)" node lists as gnucap writes them
@@ -924,7 +937,11 @@ class Flattener {
     if (k > 1 && lower(tok[k - 1]) == "params:") --k;
     if (k < 2) fail(l, "XNAME NODE… SUBCKT", "\"" + l.text + "\"");
     const std::string sub = lower(tok[k - 1]);
-    const auto it = subckts.find(sub);
+    auto it = subckts.end();  // the innermost definition visible from `scope`: its own nested ones, then its parents'
+    for (std::string sc = scope;; sc.erase(sc.rfind('/'))) {
+      it = subckts.find(sc + "/" + sub);
+      if (it != subckts.end() || sc.empty()) break;
+    }
     if (it == subckts.end()) fail(l, "a subcircuit defined by .subckt", "unknown subcircuit \"" + tok[k - 1] + "\" in " + tok[0]);
     const Subcircuit& s = it->second;
     if (k - 2 != s.ports.size())
@@ -948,7 +965,7 @@ class Flattener {
     for (const Line& b : s.body)
       if (lower(tokens(b.text)[0]) == ".global")
         for (const std::string& g : tokens(b.text)) if (g[0] != '.') globals.insert(lower(g));
-    expand(s.body, prefix + lower(tok[0]) + ".", inner, local, depth + 1);
+    expand(s.body, prefix + lower(tok[0]) + ".", inner, local, depth + 1, s.key);
   }
 
   /// An instance's overrides are written in the caller's scope; the subcircuit's defaults are visible too

@@ -230,7 +230,11 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
           ++j;
         }
         if (!readable(fn)) break;
-        if (j == words.size()) throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
+        if (j == words.size()) {  // "SIN(0 1 1k" at the end of the line: Xyce and ngspice read it to the end (Xyce's SENS/vsin.cir)
+          note("the missing ')' of " + words[i] + "(…) (its values read to the end of the line)");
+          i = j;
+          continue;
+        }
         i = j + 1;
       } else {  // SPICE3: the values follow without parentheses
         if (!readable(fn)) break;
@@ -364,6 +368,16 @@ double Waveform::horizon() const {
   }
 }
 
+std::optional<double> Waveform::corner_jump(double tb, int order) const {
+  if (kind != Kind::exp && kind != Kind::sin) return std::nullopt;
+  if (order == 0) return 0.0;
+  if (kind == Kind::sin) return tb == d(p[3]) ? value(tb, order) : 0.0;  // value at TD is the right limit
+  double jump = 0;
+  if (tb == d(p[2])) jump += (d(p[0]) - d(p[1])) * std::pow(rate1(), order);
+  if (tb == d(p[4])) jump += (d(p[1]) - d(p[0])) * std::pow(rate2(), order);
+  return jump;
+}
+
 double Waveform::decay() const { return kind == Kind::sin ? -d(p[4]) : 0.0; }
 double Waveform::omega() const { return kind == Kind::sin ? 2 * kPi * d(p[2]) : 0.0; }
 double Waveform::rate1() const { return kind == Kind::exp ? -1 / d(p[3]) : 0.0; }
@@ -373,11 +387,12 @@ namespace {
 /// EXP's exosystem state (c, e1, e2) at t (right limit), as ngspice's pieces (vsrcload.c): V1 up to TD1;
 /// then V2 + (V1 − V2) e^{-(t-TD1)/TAU1} up to TD2; then V1 + (V1 − V2) e^{-(t-TD1)/TAU1} + (V2 − V1) e^{-(t-TD2)/TAU2}.
 void exp_state(const Waveform& w, double t, long double* x) {
-  const long double v1 = d(w.p[0]), v2 = d(w.p[1]), td1 = d(w.p[2]), tau1 = d(w.p[3]), td2 = d(w.p[4]), tau2 = d(w.p[5]);
+  const auto ld = [&](std::size_t i) { return w.p[i].convert_to<long double>(); };  // from the exact values: a long-double shadow sees double's roundings
+  const long double v1 = ld(0), v2 = ld(1), td1 = ld(2), tau1 = ld(3), td2 = ld(4), tau2 = ld(5);
   x[0] = v1, x[1] = 0, x[2] = 0;
-  if (t <= td1) return;
+  if (t < td1) return;  // at TD1 itself the right limit: the decay has started (σ' = (V2 − V1)/TAU1 there)
   x[1] = (v1 - v2) * std::exp(-(static_cast<long double>(t) - td1) / tau1);
-  if (t <= td2) {
+  if (t < td2) {
     x[0] = v2;
     return;
   }

@@ -63,6 +63,11 @@ struct Waveform {
   /// EXP: between its corners V + a e^{-(t-TD1)/TAU1} + b e^{-(t-TD2)/TAU2}, an exosystem (c, e1, e2) with
   /// rates (0, -e1/TAU1, -e2/TAU2); σ continuous, σ' jumps at TD1 and TD2.
   bool is_exp() const { return kind == Kind::exp; }
+  /// EXP and SIN: the jump of σ^{(order)} at the corner tb (one of breakpoints()), from their closed forms —
+  /// EXP at TD1 (V1 − V2)(−1/TAU1)^order, at TD2 (V2 − V1)(−1/TAU2)^order (the other term is continuous), SIN
+  /// at TD its right derivative (0 before); σ itself (order 0) does not jump.  nullopt for the piecewise-linear
+  /// kinds, whose slopes read off either side are exact.
+  std::optional<double> corner_jump(double tb, int order) const;
   /// A time by which the waveform has shown every feature (delay, two periods, last PWL point).
   double horizon() const;
   static constexpr long kMaxPeriods = 1000000;
