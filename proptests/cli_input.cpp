@@ -58,8 +58,10 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"recursive", "title\n.subckt t a\nX1 a t\n.ends\nX1 1 t\n", "nested at most 32"},
                     BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" (no such file)"},
                     BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
+                    BadCase{"numberexpr", "title\n.param p=3\nL1 1 0 2*p\nC1 1 0 1\n", "\"2*p\""},  // ngspice reads 2: never -> 6
+                    BadCase{"bareunknown", "title\nL1 1 0 c+1\nC1 1 0 1\n", "\"c+1\""},
                     BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
-                    BadCase{"icnode", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(7)=1\n", "v(7)"},
+                    BadCase{"icvalue", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(1)=zz\n", "\"zz\""},  // .ic v(7)=1: ignored, as ngspice
                     // values other SPICEs read otherwise (issue 27): never guessed
                     BadCase{"atto", "title\nL1 1 0 1u\nC1 1 0 1a\n", "atto"},
                     BadCase{"hspicemega", "title\nL1 1 0 1u\nR1 1 0 10x\n", "mega"},
@@ -67,6 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"modelnames", "title\n.frobnicate\nL1 1 0 1\n", "an R, L, C, V, I, K or X element"},
                     BadCase{"modeluse", "title\n.model d1 D\nD1 1 0 d1\n", "element D1"},
                     BadCase{"alter", "title\nL1 1 0 1\nC1 1 0 1\n.control\nalter C1 = 2\ntran 1m 1\n.endc\n", "alter, which changes it"},
+                    BadCase{"alterloop", "title\nL1 1 0 1\nC1 1 0 1\n.control\nwhile 1\nop\nend\nalter C1 = 2\n.endc\n", "alter, which changes it"},
                     BadCase{"ifblock", "title\n.if (a == 1)\nL1 1 0 1\n.endif\n", "without conditionals"},
                     BadCase{"random", "title\nL1 1 0 {rand()}\n", "random"},
                     // names ngspice's tokenizer cuts (Xyce_Regression's INVALID_CHARS): refused, not guessed
@@ -287,6 +290,28 @@ TEST(Cli, PerfectCouplingIsOneTank) {
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
 }
 
+// Temperature coefficients as ngspice applies them (restemp.c, captemp.c, indtemp.c): V0 (1 + TC1 dT + TC2 dT^2),
+// dT = T - TNOM, T the instance's TEMP=, else the circuit's (.temp, even written after the element, or .options
+// temp=) plus DTEMP=.  Xyce's TC=TC1 and PSpice's TC=TC1,TC2.  The twin has the values worked by hand (R1 at
+// 100 C: 1k (1 + 0.01 * 73) = 1730, which ngspice-39 gives too: i(v1) = -5.78035e-04 for 1 V).  Killed by:
+// a .temp after the element read as 27 C (dcad before: coefficients ignored, a silently different circuit).
+TEST(Cli, TemperatureCoefficientsAreNgspicesFactor) {
+  const std::string deck = write_temp("dcad_tc.cir", "tc\nV1 1 0 1\nR1 1 2 1k TC1=0.01\nR2 2 3 2k TC=0.001,1e-5 dtemp=-23\n"
+                                                   "C1 3 0 1u tc1=0.002 temp=50\nL1 3 0 1m TC1=-0.001 TC2=1e-6 tnom=100\n.temp 100\n.end\n");
+  // R2: T = 100 - 23, dT = 50: 2k (1 + 0.001 * 50 + 1e-5 * 2500) = 2150; C1: T = 50, dT = 23: 1u (1 + 0.046);
+  // L1: TNOM = T = 100, unchanged
+  const std::string twin = write_temp("dcad_tc_twin.cir", "tc\nV1 1 0 1\nR1 1 2 1730\nR2 2 3 2150\nC1 3 0 1.046u\nL1 3 0 1m\n.end\n");
+  const Outcome a = run("solve " + deck + " --json --backend reference"), b = run("solve " + twin + " --json --backend reference");
+  ASSERT_EQ(a.rc, 0) << a.err;
+  ASSERT_EQ(b.rc, 0) << b.err;
+  const nlohmann::json ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  for (const char* key : {"dims", "tower", "reduced", "state_equations"}) EXPECT_EQ(ja.at(key), jb.at(key)) << key;
+  EXPECT_NE(a.err.find("R1: at 100 C (TNOM 27 C) its temperature coefficients scale its value by 1.73"), std::string::npos) << a.err;
+  EXPECT_NE(a.err.find("L1: at 100 C (TNOM 100 C) its temperature coefficients change nothing"), std::string::npos) << a.err;
+  const std::string bad = write_temp("dcad_tc_bad.cir", "tc\nL1 1 0 1m\nC1 1 0 1u TC1=-0.1\n.temp 40\n.end\n");
+  expect_input_error(run("solve " + bad), bad + ":3", "positive temperature factor", "factor -0.3");
+}
+
 // ngspice's numparam functions as its xpressn.c defines them: arctan is atan, sqr(x) is x² (not the root),
 // ternary_fcn(c, a, b) is c ? a : b, and the inverse hyperbolics are their logarithms (asinh x = ln(x + √(x²+1)),
 // acosh x = ln(x + √(x²−1)), atanh x = ½ ln((1+x)/(1−x))) — the deck and its twin written in those give the
@@ -378,7 +403,7 @@ TEST(Cli, PublicDeckSpellingsAreTheirFlattenedTwin) {
   ASSERT_EQ(sb.rc, 0) << sb.err;
   EXPECT_EQ(sa.out, sb.out);
   for (const char* said : {"not part of the transient, ignored: ac 1", "portnum 1", "ignored .step", "ignored .meas", "ignored .data block",
-                           "temperature coefficients ignored"})
+                           "its temperature coefficients change nothing"})
     EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
 }
 
@@ -386,7 +411,10 @@ TEST(Cli, PublicDeckSpellingsAreTheirFlattenedTwin) {
 // BUG_667_SON, BUG_1595, PARAMS2; gnucap's bm_exp, bm_sin, c_measure) are its SPICE twin: .param with commas,
 // .IC NODE VALUE, a node and an inductor named through an instance with Xyce's ':' (and a space before ')'),
 // .INCL, Xyce's PWL FILE (a .csv beside the deck, TD= after it), ngspice's R … AC= NOISY= (for .ac and .noise),
-// gnucap's keyword EXP and SIN (its flags are step hints), .store and .fanout.
+// gnucap's keyword EXP and SIN (its flags are step hints), gnucap's values without braces (dl/5, cap*2: ngspice
+// refuses them; "2*p", which ngspice reads as 2, stays refused), Xyce's .preprocess replaceground (GROUND! is 0),
+// an .ic at a node the circuit does not have (ngspice: "IC on non-existent node - nowhere, ignored"),
+// .store and .fanout.
 // Killed by: the ':' path not mapped (the .ic names no node: refused), the comma kept in a value, the .IC pair
 // read as V(NODE)=VALUE (refused), gnucap's exp read with a key off by one.
 TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
@@ -396,7 +424,10 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
                                       "Xyce and gnucap spellings\n"
                                       ".param R_1=100, R_2=200\n"
                                       ".INCL dcad_incl_part.cir\n"
-                                      "V1 top 0 exp iv= 0. pv= 1. td1= 2u tau1= 5u td2= 10u tau2= 5u\n"
+                                      ".param dl=10u cap=5n\n"
+                                      ".PREPROCESS REPLACEGROUND TRUE\n"
+                                      "R8 a GROUND! 1meg\n"
+                                      "V1 top 0 exp iv= 0. pv= 1. td1= dl/5 tau1= 5u td2= dl tau2= 5u\n"
                                       "I1 0 top sin(freq=20k ampl=1m peak zero)\n"
                                       "R1 top a {R_1} ac=15k noisy=0\n"
                                       "I2 0 top PWL FILE \"dcad_pwl_points.csv\" TD=1u\n"
@@ -405,11 +436,12 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
                                       ".subckt tank p q\n"
                                       "L1 p mid 1m\n"
                                       "L2 mid q 2m\n"
-                                      "C1 mid q 10n\n"
+                                      "C1 mid q cap*2\n"
                                       "R2 p q {R_2}\n"
                                       ".ends\n"
                                       ".IC V(X1:mid )=0.25\n"
                                       ".ic a 0.5\n"
+                                      ".IC V(nowhere)=3\n"
                                       ".store tran v(a)\n"
                                       ".fanout\n"
                                       ".tran 1u 40u uic\n"
@@ -417,6 +449,7 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
   const std::string twin = write_temp("dcad_xyce_gnucap_twin.cir",
                                       "the same circuit in ngspice's spelling\n"
                                       "R9 top 0 1k\n"
+                                      "R8 a 0 1meg\n"
                                       "V1 top 0 EXP(0 1 2u 5u 10u 5u)\n"
                                       "I1 0 top SIN(0 1m 20k)\n"
                                       "R1 top a 100\n"
@@ -432,7 +465,8 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
   ASSERT_EQ(sa.rc, 0) << sa.err;
   ASSERT_EQ(sb.rc, 0) << sb.err;
   EXPECT_EQ(sa.out, sb.out);
-  for (const char* said : {"gnucap's time-step hint", "ignored .store", "ignored .fanout", "ac=15k ignored"}) EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
+  for (const char* said : {"gnucap's time-step hint", "ignored .store", "ignored .fanout", "ac=15k ignored", "\"cap*2\" read as the expression {cap*2} = 1e-08",
+                           ".ic v(nowhere) ignored: no such node"}) EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
 }
 
 // ngspice reads a resistance below 1e-12 Ohm as 1e-12 (resparam.c's RESMIN): a resistor, never a wire (whose
@@ -546,6 +580,13 @@ TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   EXPECT_NE(r.err.find("ignored .tran"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("ignored .control"), std::string::npos) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::array({6, 3}));  // p = Φv (2), KCL (1)
+  // an alter after the script's first analysis (ngspice's tests/regression/misc/resume-1.cir: tran, then alter):
+  // that analysis ran on the circuit as written, which dcad solves, and says so; one before it, or after an
+  // analysis inside a loop, is refused (BadNetlist alter, alterloop)
+  const std::string later = write_temp("dcad_alter_after.cir", "title\nL1 1 0 1\nC1 1 0 1\n.control\ntran 1m 1\nalter C1 = 2\ntran 1m 1\n.endc\n.end\n");
+  const Outcome a = run("solve " + later + " --json");
+  EXPECT_EQ(a.rc, 0) << a.err;
+  EXPECT_NE(a.err.find(":6: the .control block's alter changes the circuit after its first analysis (tran)"), std::string::npos) << a.err;
 }
 
 // The 4-port (L = 2, C = 3, 5, 7; IC: V_C1 = V_C3 = 1, V_C2 = 2, I_L = 0) against its analytic

@@ -55,12 +55,15 @@ Rational parse_spice_value(const std::string& text, std::string* ignored) {
   std::string rest = t.substr(i);
   for (char ch : rest)
     if (!std::isalpha(static_cast<unsigned char>(ch))) throw std::invalid_argument("expected a SPICE value such as 10u or 4.7nF, found \"" + text + "\"");
-  // ngspice's scale factors (mil before m); `a` and `x` differ between SPICEs: refused, never guessed
+  // ngspice's scale factors (mil before m); `a` and `x` differ between SPICEs: refused, never guessed.  `a` is
+  // atto in ngspice 40 on (inpeval.c, 2023), HSPICE and LTspice, and no scale factor in ngspice 39 (Debian 12's)
+  // and Xyce without -hspice-ext (its PARSER/aAsAmp.cir); `x` is mega in HSPICE and none in ngspice.
   if (!rest.empty() && (rest[0] == 'a' || rest[0] == 'x'))
-    throw std::invalid_argument(std::string("'") + rest[0] + "' is a scale factor in some SPICEs (" +
-                                (rest[0] == 'a' ? "atto, 1e-18, in HSPICE and LTspice" : "mega, 1e6, in HSPICE") +
-                                ") and none in ngspice (which reads \"" + text + "\" as " + t.substr(0, i) +
-                                "): write the value without it, e.g. " + t.substr(0, i) + (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i));
+    throw std::invalid_argument(std::string("'") + rest[0] + "' is " +
+                                (rest[0] == 'a' ? "atto (1e-18) in ngspice 40 and later, HSPICE and LTspice, and no scale factor in ngspice 39 and Xyce"
+                                                : "mega (1e6) in HSPICE and no scale factor in ngspice") +
+                                " (which read \"" + text + "\" as " + t.substr(0, i) + "): write the value without it, e.g. " + t.substr(0, i) +
+                                (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i));
   static const std::vector<std::pair<std::string, Rational>> scales = {
       {"meg", Rational(1000000)},     {"mil", Rational(254, 10000000)}, {"f", Rational(1, 1000000000000000LL)},
       {"p", Rational(1, 1000000000000LL)}, {"n", Rational(1, 1000000000)},   {"u", Rational(1, 1000000)},
@@ -197,6 +200,32 @@ std::string pwl_from_file(const Line& l, const std::string& spec) {
   return spec.substr(0, pwl) + "PWL(" + table + ")" + spec.substr(end);
 }
 
+/// ngspice's .control script, read only for what it does to the circuit: an `alter` (or `altermod`,
+/// `mc_source`, `source`) changes it, and is refused unless an analysis has run before it on the circuit
+/// as written — outside any loop or branch (`tran`, `op`, `run`, … at the script's top level) — in which
+/// case dcad's circuit is that first analysis' one, and a note says the script alters it afterwards.
+struct ControlScript {
+  int depth = 0;            ///< inside while/repeat/dowhile/foreach/if … end
+  std::string analysed;     ///< the first analysis at the top level, "" before one
+  bool noted = false;
+
+  void line(const Line& l, const std::string& head, std::vector<std::string>& warnings) {
+    static const std::set<std::string> blocks = {"while", "repeat", "dowhile", "foreach", "if"};
+    static const std::set<std::string> analyses = {"tran", "op", "run", "ac", "dc", "noise", "pz", "sens", "tf", "disto", "sp", "pss"};
+    if (blocks.count(head)) ++depth;
+    else if (head == "end" && depth > 0) --depth;
+    else if (depth == 0 && analysed.empty() && analyses.count(head)) analysed = head;
+    if (head != "alter" && head != "altermod" && head != "mc_source" && head != "source") return;
+    if (analysed.empty())
+      fail(l, "a .control block that leaves the circuit as written (dcad reads the circuit, not the script)",
+           l.text.substr(0, l.text.find(' ')) + ", which changes it before the analysis runs: write the altered values in the deck");
+    if (!noted)
+      warnings.push_back(l.where() + ": the .control block's " + head + " changes the circuit after its first analysis (" + analysed +
+                         ") has run on it as written: dcad solves the circuit as written");
+    noted = true;
+  }
+};
+
 /// The deck's logical lines: title dropped (top file only), comments and .control blocks removed,
 /// `+` continuations joined, .include and .lib FILE SECTION read in place.  Stops at .end.
 class Reader {
@@ -227,6 +256,7 @@ class Reader {
     std::string raw;
     std::size_t number = 0;
     bool first = top, in_control = false, in_section = section.empty();
+    ControlScript control;
     for (; std::getline(in, raw);) {
       ++number;
       if (!raw.empty() && raw.back() == '\r') raw.pop_back();
@@ -250,9 +280,7 @@ class Reader {
       if (!section.empty() && head == ".endl") return;
       if (in_control) {  // .control … .endc: ngspice's script, ignored as a whole — unless it alters the circuit
         if (head == ".endc") in_control = false;
-        if (head == "alter" || head == "altermod" || head == "mc_source" || head == "source")
-          fail(here, "a .control block that leaves the circuit as written (dcad reads the circuit, not the script)",
-               tok[0] + ", which changes it before the analysis runs: write the altered values in the deck");
+        control.line(here, head, warnings);
         continue;
       }
       if (!skip_until.empty()) {  // .data … .enddata, a .lib section not asked for, .if blocks
@@ -267,6 +295,7 @@ class Reader {
       if (head == ".if") fail(here, "a netlist without conditionals (write the branch that applies)", ".if");
       if (head == ".control") {
         in_control = true;
+        control = ControlScript{};
         warnings.push_back(here.where() + ": ignored .control block");
         continue;
       }
@@ -670,6 +699,7 @@ class Flattener {
   std::map<std::string, std::size_t> names, nodes;
   std::map<std::string, Subcircuit> subckts;  ///< by definition path (Subcircuit::key)
   std::map<std::string, Rational> node_ic;
+  std::map<std::string, std::string> node_ic_where;  ///< the .ic line that set it
   std::set<std::string> globals;  ///< .global nodes: the same node in every instance
   Expression::Functions functions;
   struct Coupling {
@@ -678,7 +708,9 @@ class Flattener {
     Rational k;
   };
   std::vector<Coupling> couplings;  ///< K elements, resolved once every inductor is known
-  std::optional<Rational> temperature;  ///< .temp, if the deck sets one
+  std::optional<Rational> temperature;  ///< .temp or .options temp=, if the deck sets one (read before the elements)
+  Rational tnom = 27;                   ///< .options tnom=
+  bool replace_ground = false;  ///< Xyce's `.preprocess replaceground true`: gnd!, ground, ground! are node 0 too
 
   explicit Flattener(Netlist& n) : out(n) {}
 
@@ -696,6 +728,13 @@ class Flattener {
         param_lines.push_back(lines[i]);
       } else if (head == ".global") {
         for (std::size_t k = 1; k < tok.size(); ++k) globals.insert(lower(tok[k]));
+      } else if (head == ".temp" || head == ".options" || head == ".option" || head == ".opt") {  // before any element reads it
+        top.push_back(lines[i]);
+        read_temperatures(lines[i], tok);
+      } else if (head == ".preprocess" && tok.size() == 3 && lower(tok[1]) == "replaceground") {  // names, not devices: read
+        replace_ground = lower(tok[2]) == "true" || tok[2] == "1";
+        out.warnings.push_back(lines[i].where() + ": .preprocess replaceground " + tok[2] + ": GND!, GROUND and GROUND! are " +
+                               (replace_ground ? "" : "not ") + "node 0 (GND and 0 always are, as in ngspice)");
       } else {
         top.push_back(lines[i]);
       }
@@ -707,6 +746,27 @@ class Flattener {
  private:
   static bool is_param_card(const std::string& head) {
     return head == ".param" || head == ".params" || head == ".global_param" || head == ".parameter" || head == ".parameters" || head == ".csparam";
+  }
+
+  /// .temp T [T2 …] (the first: a list is a sweep) and .options temp=T tnom=T.
+  void read_temperatures(const Line& l, const std::vector<std::string>& tok) {
+    const auto value = [&](const std::string& t, const std::string& what) {
+      try {
+        return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), {}, &functions).value() : parse_spice_value(t);
+      } catch (const std::invalid_argument& e) {
+        fail(l, what, "\"" + t + "\" (" + e.what() + ")");
+      }
+    };
+    if (lower(tok[0]) == ".temp") {
+      if (tok.size() < 2) fail(l, ".temp TEMPERATURE", "none");
+      temperature = value(tok[1], "a temperature in C");
+      return;
+    }
+    for (std::size_t k = 1; k < tok.size(); ++k) {
+      const std::string t = lower(tok[k]);
+      if (t.rfind("temp=", 0) == 0) temperature = value(t.substr(5), "temp=TEMPERATURE");
+      if (t.rfind("tnom=", 0) == 0) tnom = value(t.substr(5), "tnom=TEMPERATURE");
+    }
   }
 
   /// A .param-like or .func line into `params` (functions into `functions`), in order; names in `keep`
@@ -810,6 +870,7 @@ class Flattener {
   std::string node_in(const std::string& n, const std::string& prefix, const std::map<std::string, std::string>& ports) const {
     const std::string s = lower(n);
     if (s == "0" || s == "gnd") return "0";
+    if (replace_ground && (s == "gnd!" || s == "ground" || s == "ground!")) return "0";  // Xyce's .preprocess replaceground true
     const auto p = ports.find(s);
     if (p != ports.end()) return p->second;
     if (globals.count(s)) return s;
@@ -867,7 +928,9 @@ class Flattener {
           fail(l, tok[0] + " V(NODE)=VALUE … (or Xyce's NODE VALUE …)", "\"" + tok[k] + "\"");
         }
         if (!value.empty() && value.front() == '{') value = value.substr(1, value.size() - 2);
-        node_ic[node_in(hierarchical(node), prefix, ports)] = evaluate(l, value, params, "V(NODE)=VALUE");
+        const std::string at = node_in(hierarchical(node), prefix, ports);
+        node_ic[at] = evaluate(l, value, params, "V(NODE)=VALUE");
+        node_ic_where[at] = l.where();
       }
       return;
     }
@@ -891,16 +954,15 @@ class Flattener {
       }
     }
     if (head == ".temp") {
-      if (tok.size() >= 2) try {
-          temperature = parse_spice_value(tok[1]);
-        } catch (const std::invalid_argument&) {
-        }
-      out.warnings.push_back(l.where() + ": " + tok[0] + ": read for resistors' TC (dcad's elements have no temperature dependence otherwise)");
+      out.warnings.push_back(l.where() + ": " + tok[0] + ": read for the elements' TC1, TC2 (dcad's elements have no temperature dependence otherwise)" +
+                             (tok.size() > 2 ? ": a list of temperatures (a sweep): dcad solves at the first" : ""));
       return;
     }
     if (analysis_card(head)) {
+      const bool temps = (head == ".options" || head == ".option" || head == ".opt") &&
+                         std::any_of(tok.begin(), tok.end(), [](const std::string& t) { return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0; });
       out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged" +
-                             (head == ".tran" ? "; simulate reads its uic for the initial state)" : ")"));
+                             (head == ".tran" ? "; simulate reads its uic for the initial state)" : temps ? "; its temp= and tnom= are read for TC1, TC2)" : ")"));
       return;
     }
     if (sweep_card(head)) {
@@ -976,6 +1038,40 @@ class Flattener {
     return m;
   }
 
+  /// gnucap evaluates a value written without braces as an expression over the parameters (`r2 2 0 c+1`,
+  /// `td1=delay/10`); ngspice refuses it (it wants `{c+1}`), so reading it never changes a deck ngspice
+  /// reads.  Only text that starts with a name (ngspice reads "2*p" as 2: refused as before) and has an
+  /// operator, every name a parameter or a function; said in a note.
+  std::optional<Rational> bare_expression(const Line& l, const std::string& text, const std::map<std::string, Rational>& params, const std::string& name) {
+    if (text.empty() || !(std::isalpha(static_cast<unsigned char>(text[0])) || text[0] == '_') ||
+        text.find_first_of("+-*/^()") == std::string::npos || text.find_first_of("\"'{}") != std::string::npos)
+      return std::nullopt;
+    try {
+      Expression(text, params, &functions).value();
+    } catch (const std::invalid_argument&) {
+      return std::nullopt;
+    }
+    const Rational v = evaluate(l, text, params, "a value");  // its notes (irrational, nominal) as for {…}
+    out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as the expression {" + text + "} = " + shown(v) +
+                           " (gnucap's value without braces; ngspice wants {…})");
+    return v;
+  }
+
+  /// ngspice's restemp.c, captemp.c, indtemp.c (and Xyce's): the value at the device's temperature is
+  /// V0 (1 + TC1 ΔT + TC2 ΔT²), ΔT = T − TNOM; T is the instance's TEMP=, else the circuit's (.temp, .options
+  /// temp=; 27 °C) plus DTEMP=; TNOM the instance's, else .options tnom= (27 °C).  Exact; said in a note.
+  Rational temperature_factor(const Line& l, const std::string& name, const std::optional<Rational>& tc1, const std::optional<Rational>& tc2,
+                              const std::optional<Rational>& device_temp, const std::optional<Rational>& dtemp, const std::optional<Rational>& device_tnom) {
+    const Rational t = device_temp ? *device_temp : temperature.value_or(Rational(27)) + dtemp.value_or(Rational(0));
+    const Rational dt = t - device_tnom.value_or(tnom);
+    const Rational factor = 1 + tc1.value_or(Rational(0)) * dt + tc2.value_or(Rational(0)) * dt * dt;
+    if (factor <= 0)
+      fail(l, "a positive temperature factor 1 + TC1 dT + TC2 dT^2 for " + name, shown(factor) + " at dT = " + shown(dt) + " C");
+    out.warnings.push_back(l.where() + ": " + name + ": at " + shown(t) + " C (TNOM " + shown(t - dt) + " C) its temperature coefficients " +
+                           (dt == 0 ? "change nothing" : "scale its value by " + shown(factor)));
+    return factor;
+  }
+
   void element(const Line& l, std::vector<std::string> tok, const std::string& prefix,
                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
     const std::string head = lower(tok[0]);
@@ -1027,6 +1123,7 @@ class Flattener {
                                  "\" are neither a scale factor nor a unit; ngspice ignores them too)");
         return v;
       } catch (const std::invalid_argument& e) {
+        if (const auto v = bare_expression(l, text, params, name)) return *v;
         fail(l, what, "\"" + text + "\" (" + e.what() + ")");
       }
     };
@@ -1091,7 +1188,7 @@ class Flattener {
     const std::string value_key = kind == 'r' ? "r=" : kind == 'c' ? "c=" : "l=";
     std::optional<Rational> value;
     std::optional<Rational> ic, multiplier;
-    std::vector<std::string> tc;
+    std::optional<Rational> tc1, tc2, device_temp, dtemp, device_tnom;  // ngspice's and Xyce's instance temperature parameters
     for (std::size_t k = 3; k < tok.size(); ++k) {
       const std::string t = lower(tok[k]);
       const std::size_t eq = t.find('=');
@@ -1105,11 +1202,14 @@ class Flattener {
       } else if (key == "m=") {
         multiplier = number(tok[k].substr(2), "M=multiplier");
         if (*multiplier <= 0) fail(l, "a multiplier M > 0", "M = " + shown(*multiplier));
-      } else if (key == "tc=" || key == "tc1=" || key == "tc2=" || key == "temp=" || key == "dtemp=" || key == "tnom=") {
-        std::string list = tok[k].substr(eq + 1) + ",";  // TC=a,b (PSpice) or one value
-        for (std::size_t c = list.find(','), from = 0; c != std::string::npos; from = c + 1, c = list.find(',', from))
-          if (c > from) number(list.substr(from, c - from), "a temperature coefficient");
-        tc.push_back(tok[k]);
+      } else if (key == "tc=") {  // TC=TC1 (Xyce) or TC=TC1,TC2 (PSpice)
+        const std::string list = tok[k].substr(eq + 1);
+        const std::size_t comma = list.find(',');
+        tc1 = number(list.substr(0, comma), "TC=TC1[,TC2]");
+        if (comma != std::string::npos) tc2 = number(list.substr(comma + 1), "TC=TC1[,TC2]");
+      } else if (key == "tc1=" || key == "tc2=" || key == "temp=" || key == "dtemp=" || key == "tnom=") {
+        std::optional<Rational>& slot = key == "tc1=" ? tc1 : key == "tc2=" ? tc2 : key == "temp=" ? device_temp : key == "dtemp=" ? dtemp : device_tnom;
+        slot = number(tok[k].substr(eq + 1), tok[k].substr(0, eq + 1) + "value");
       } else if (kind == 'r' && (key == "ac=" || key == "noisy=")) {  // ngspice: the AC analysis' resistance, the noise switch
         number(tok[k].substr(eq + 1), key == "ac=" ? "AC=resistance" : "NOISY=0 or 1");
         out.warnings.push_back(l.where() + ": " + name + ": " + tok[k] + " ignored (ngspice uses it in .ac or .noise only, not in the transient)");
@@ -1120,14 +1220,7 @@ class Flattener {
     if (!value) fail(l, "a value (positional or " + value_key + "VALUE)", "none in \"" + l.text + "\"");
     Rational v = *value;
     if (multiplier) v = kind == 'c' ? Rational(v * *multiplier) : Rational(v / *multiplier);  // M parallel copies
-    if (!tc.empty()) {
-      const bool hot = temperature && *temperature != 27;
-      bool tdep = false;
-      for (const std::string& t : tc) tdep = tdep || lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("dtemp=", 0) == 0;
-      if (hot || tdep)
-        fail(l, "the nominal temperature 27 C (temperature coefficients are not applied)", "a temperature other than it for " + name);
-      out.warnings.push_back(l.where() + ": " + name + ": temperature coefficients ignored (at the nominal 27 C they change nothing)");
-    }
+    if (tc1 || tc2) v *= temperature_factor(l, name, tc1, tc2, device_temp, dtemp, device_tnom);
     const Rational& value_ = v;
     rb.value = value_;
     if (kind == 'r') {
@@ -1364,7 +1457,10 @@ Netlist flatten(const std::string& file, Reader& reader) {
   }
   for (const auto& [node, v] : f.node_ic) {
     const auto at = std::find(out.node_names.begin(), out.node_names.end(), node);
-    if (node != "0" && at == out.node_names.end()) throw InputError(file + ": .ic: expected a node of the circuit, found v(" + node + ")");
+    if (node != "0" && at == out.node_names.end()) {  // ngspice: "IC on non-existent node - bleem, ignored"; Xyce warns too
+      out.warnings.push_back(f.node_ic_where.at(node) + ": .ic v(" + node + ") ignored: no such node in the circuit (ngspice and Xyce ignore it too)");
+      continue;
+    }
     if (node != "0") out.node_ic.emplace_back(static_cast<long>(at - out.node_names.begin()), v);
   }
   return out;
