@@ -40,7 +40,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"noelements", "title only\n* nothing\n.end\n", "none"},
                     BadCase{"vsource", "title\nV1 1 0 SIN(0 1)\n", "FREQ = 1/TSTOP"},
                     BadCase{"pulse", "title\nV1 1 0 PULSE(0 1 0 0 1n 1u 2u)\nR1 1 0 1\n", "TR = TSTEP"},
-                    BadCase{"sffm", "title\nI1 1 0 SFFM(0 1 1k 2 100)\nR1 1 0 1\n", "found sffm"},
+                    BadCase{"sffm", "title\nI1 1 0 SFFM(0 1 1k 2)\nR1 1 0 1\n", "SFFM(VO VA FC MDI FS) with the five values"},
                     BadCase{"pwl", "title\nV1 1 0 PWL(0 0 1 1 1 2)\nR1 1 0 1\n", "increasing PWL times"},
                     BadCase{"kmissing", "title\nL1 1 0 1\nK1 L1 L9 0.5\n", "\"l9\""},
                     BadCase{"kbig", "title\nL1 1 0 1\nL2 1 0 1\nK1 L1 L2 2\n", "|k| <= 1"},
@@ -739,6 +739,28 @@ TEST(Cli, SolveInconsistentIsAResult) {
     EXPECT_TRUE(j["solution_rank"].is_null());
     EXPECT_TRUE(j["unique"].is_null());
   }
+}
+
+// SFFM is read (five values, as SPICE3, ngspice 39 and Xyce read them: Xyce's VSFFM/vsffm.cir) and solve
+// decides its circuit: two equal SFFM sources in parallel cancel exactly, two that differ in MDI fail at a
+// sample time.  It has no finite exosystem: simulate and check refuse it by name, never integrate it as
+// something else.  Killed by: SFFM refused at the door (dcad before), a simulate that falls through to the
+// piecewise-linear evaluation of its parameters.
+TEST(Cli, SffmIsSolvedAndRefusedWhereItHasNoExactFlow) {
+  const auto conditions = [](const std::string& name, const std::string& mdi) {
+    const std::string file = write_temp(name, "parallel\nV1 a 0 SFFM(0 1 10k 3 1k)\nV2 a 0 SFFM(0 1 10k " + mdi + " 1k)\nR1 a 0 1\n.end\n");
+    const Outcome r = run("solve " + file + " --json --backend reference");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    EXPECT_NE(r.err.find("SFFM read as SPICE3, ngspice 39 and Xyce read it"), std::string::npos) << r.err;
+    return nlohmann::json::parse(r.out).at("sources").at("conditions").at(0);
+  };
+  EXPECT_EQ(conditions("dcad_sffm_equal.cir", "3").at("holds"), true);
+  EXPECT_EQ(conditions("dcad_sffm_differ.cir", "3.0001").at("holds"), false);
+  const std::string deck = write_temp("dcad_sffm_rc.cir", "rc\nV1 a 0 SFFM(0 1 10k 3 1k)\nR1 a b 1k\nC1 b 0 1n\n.tran 1u 1m\n.end\n");
+  const Outcome s = run("simulate " + deck + " --tstop 1e-4 --step 1e-6");
+  expect_input_error(s, deck, "found V1 (SFFM(0 1 10k 3 1k)), frequency modulated", "simulate");
+  const std::string trace = write_temp("dcad_sffm_trace.csv", "time,v(b)\n0,0\n1e-6,0\n");
+  expect_input_error(run("check " + trace + " " + deck), deck, "expected sources with a finite exosystem", "check");
 }
 
 // Two voltage sources in parallel (YM §4): the loop V1 V2 makes V1(t) − V2(t) = 0 a source condition,

@@ -205,10 +205,14 @@ RC_GTEST_PROP(SparseSimulate, IsTheDenseRoute, ()) {
   // particular solution, so the sources' q and v are compared only where the solution is unique
   const bool unique = sparse_log.str().find("not unique") == std::string::npos;
   RC_TAG(unique ? "unique" : "free currents around source loops");
+  // a corner on a row (EXP's TD1 = 4·TSTEP written to 17 digits: equal in double, 2e-26 after it exactly) has
+  // two one-sided currents: each route may print either (the CONTRACT's allowance at a jump), as above
+  const bool corners = has_corners(d.text);
   for (std::size_t j = 1; j < a.header.size(); ++j) {
     if (!unique && (a.header[j].rfind("q_V", 0) == 0 || a.header[j].rfind("v_V", 0) == 0)) continue;
     const double sc = scale.at(a.header[j].substr(0, 2));
     for (std::size_t i = 0; i < a.rows.size(); ++i) {
+      if (corners && a.header[j].rfind("v_", 0) == 0 && corner_row(i)) continue;
       const double e = std::abs(a.rows[i][j] - b.rows[i][j]);
       if (!(e <= 1e-8 * sc)) RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", sparse " << b.rows[i][j] << "\n";
       RC_ASSERT(e <= 1e-8 * sc);

@@ -146,7 +146,7 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   EXPECT_THROW(cut_jump.breakpoints(10), std::invalid_argument);        // one that reaches it: refused, named
   EXPECT_THROW(cut_jump.next_corner(Rational(3, 2)), std::invalid_argument);
   EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1.5"), std::invalid_argument);  // not a time point
-  EXPECT_THROW(wave("SFFM(0 1 1k 2 100)"), std::invalid_argument);
+  EXPECT_THROW(wave("AM(1 0 100 1k)"), std::invalid_argument);
   EXPECT_THROW(wave("1 2"), std::invalid_argument);
 }
 
@@ -190,6 +190,30 @@ TEST(Waveform, MissingClosingParenthesisAtTheEndIsReadToTheEnd) {
   EXPECT_EQ(s.p, wave("SIN(0 1 100000 -2.5e-6 0.0 -90.0)").p);
   EXPECT_NE(s.ignored.find("missing ')'"), std::string::npos) << s.ignored;
   EXPECT_THROW(wave("SIN(0 1 100000 ac 1"), std::invalid_argument);
+}
+
+// SFFM (SPICE3, ngspice 39, Xyce): VO + VA sin(φ), φ = 2π FC t + MDI sin(2π FS t).  Its derivatives by the
+// Taylor composition in Waveform::value are the chain rule's, written out here to the third order
+// (σ' = VA cos φ φ', σ'' = VA (cos φ φ'' − sin φ φ'²), σ''' = VA (cos φ (φ''' − φ'³) − 3 sin φ φ' φ'')); the
+// value at 0 is VO exactly; fewer than five values, or FC = 0, are refused (the defaults differ between
+// ngspice versions).  Killed by: a Taylor coefficient without its 1/k!, the recurrence's sign of c_k.
+TEST(Waveform, SffmDerivativesAreTheChainRules) {
+  const Waveform w = wave("SFFM(0.5 2 10000 3 1000)");
+  ASSERT_TRUE(w.is_sffm());
+  const double pi = 3.141592653589793, wc = 2 * pi * 1e4, ws = 2 * pi * 1e3, m = 3;
+  for (double t : {0.0, 1.234e-4, 7.77e-4, 2.5e-3}) {
+    const double ph = wc * t + m * std::sin(ws * t), d1 = wc + m * ws * std::cos(ws * t), d2 = -m * ws * ws * std::sin(ws * t),
+                 d3 = -m * ws * ws * ws * std::cos(ws * t);
+    const double want[4] = {0.5 + 2 * std::sin(ph), 2 * std::cos(ph) * d1, 2 * (std::cos(ph) * d2 - std::sin(ph) * d1 * d1),
+                            2 * (std::cos(ph) * (d3 - d1 * d1 * d1) - 3 * std::sin(ph) * d1 * d2)};
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(w.value(t, k), want[k], 2e-11 * std::pow(wc + m * ws, k)) << "t = " << t << ", order " << k;
+  }
+  EXPECT_EQ(w.exact_at_zero(0), std::optional<Rational>(Rational(1, 2)));
+  EXPECT_FALSE(w.exact_at_zero(1));
+  EXPECT_TRUE(w.breakpoints(1.0).empty());
+  EXPECT_THROW(wave("SFFM(0 1 1000)"), std::invalid_argument);
+  EXPECT_THROW(wave("SFFM(0 1 0 3 1000)"), std::invalid_argument);
+  EXPECT_THROW(wave("SFFM(0 1 1000 3 1000 90)"), std::invalid_argument);
 }
 
 TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {

@@ -146,6 +146,10 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       return sum;
     }
     const bool netlist = p.form == io::Form::netlist;
+    if (netlist)
+      if (const auto which = io::without_exosystem(p.netlist.waveforms))
+        throw io::InputError(p.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which +
+                             ", frequency modulated: solve decides its circuit; write the waveform as PWL(t1 v1 t2 v2 …) to simulate it");
     const io::CaseFile& c = p.linear;
     const bool forced_deck = netlist && p.netlist.forced, forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;
     if (energy && !forced_deck && !forced_case && !(netlist && sparse_netlist(p.netlist, options)))

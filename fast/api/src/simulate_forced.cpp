@@ -109,14 +109,15 @@ Mat<Wide> to_wide(const QM& m) {
 }
 
 /// σ^{(order)}(t) (right limit) in 113 bits: SIN and EXP from their closed forms, PULSE and PWL exactly;
-/// `tq` the exact time (k·step at an output row), `t` the double that picks the piece.
+/// `tq` the exact time (k·step at an output row), `t` the double that picks the piece — the side of a corner
+/// the double flow is on (its breakpoints are doubles), so that X0 u and the flow's y jump together.
 Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
   switch (w.kind) {
     case io::Waveform::Kind::dc:
       return order == 0 ? wide(w.p[0]) : Wide(0);
     case io::Waveform::Kind::sin: {
       const Wide pi = boost::math::constants::pi<Wide>(), phi = wide(w.p[5]) * pi / 180, va = wide(w.p[1]);
-      if (tq < w.p[3]) return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // before TD at the exact row time
+      if (t < w.p[3].convert_to<double>()) return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // the piece as the flow's corners
       const Wide tau = wide(tq - w.p[3]), omega = 2 * pi * wide(w.p[2]), decay = -wide(w.p[4]);
       // Im(VA s^order e^{s τ + iφ}), s = decay + iω = r e^{iα}
       const Wide r = sqrt(decay * decay + omega * omega), alpha = atan2(omega, decay);
@@ -127,9 +128,9 @@ Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
       const Wide v1 = wide(w.p[0]), v2 = wide(w.p[1]);
       const Wide r1 = -1 / wide(w.p[3]), r2 = -1 / wide(w.p[5]);
       Wide c = v1, e1 = 0, e2 = 0;
-      if (tq >= w.p[2]) {  // the pieces at the exact row time (right limits at TD1, TD2): a corner an ulp from a row is on its side
+      if (t >= w.p[2].convert_to<double>()) {  // the pieces as the flow's corners (double times), the values at the exact time
         e1 = (v1 - v2) * exp(r1 * wide(tq - w.p[2]));
-        if (tq < w.p[4]) c = v2;
+        if (t < w.p[4].convert_to<double>()) c = v2;
         else e2 = (v2 - v1) * exp(r2 * wide(tq - w.p[4]));
       }
       return (order == 0 ? c : Wide(0)) + e1 * pow(r1, order) + e2 * pow(r2, order);
@@ -421,9 +422,12 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   for (long k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * opt.step;
     const long double t_exact = static_cast<long double>(k) * static_cast<long double>(opt.step);
-    const Vec<double> u = jets(deck, t, fm.orders);
+    // the side of each corner the flow is on: it has applied every breakpoint <= t + 1e-12·step (an EXP's TD1
+    // an ulp after the row, or equal to it in double and 2e-26 after it exactly): the jets take the same pieces
+    const double t_pick = next_break > 0 ? std::max(t, breaks[next_break - 1]) : t;
+    const Vec<double> u = jets(deck, t_pick, fm.orders);
     const Vec<double> y = flow.y();
-    const Vec<Wide> x0u = x0_wide * jets_wide(deck, t, hq * Q(k), fm.orders, wu);  // X0 u: its terms cancel too
+    const Vec<Wide> x0u = x0_wide * jets_wide(deck, t_pick, hq * Q(k), fm.orders, wu);  // X0 u: its terms cancel too
     const Vec<double> x = x0u.cast<double>() + B.transpose() * y;
     if (!x.allFinite())
       throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(t) + " s (a growing source or values beyond double's range)");
@@ -522,6 +526,8 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
 
 Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
                                 const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  if (const auto which = io::without_exosystem(deck.waveforms))
+    throw io::InputError(c.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which);
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
     throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
                          " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
@@ -640,6 +646,10 @@ CertifiedMotion state_motion(const io::Netlist& deck, Initial rule, double step,
 CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision, EnclosureModel model,
                                  std::ostream* log) {
   CertifiedMotion out;
+  if (const auto which = io::without_exosystem(deck.waveforms)) {
+    out.why = "a source without a finite exosystem, " + *which;
+    return out;
+  }
   const std::size_t nb = deck.rlc.branches.size();
   const bool automatic = model == EnclosureModel::automatic;
   if (automatic) model = nb <= reference::pipeline::kForcedBranches ? EnclosureModel::dense : EnclosureModel::state;

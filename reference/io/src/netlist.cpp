@@ -1167,6 +1167,11 @@ class Flattener {
       }
       w.element = name;
       if (!w.ignored.empty()) out.warnings.push_back(l.where() + ": " + name + ": not part of the transient, ignored: " + w.ignored);
+      if (w.is_sffm())  // SPICE3's VO + VA sin(2π FC t + MDI sin(2π FS t)); ngspice 43 on holds 0 up to TD = 0 and limits MDI
+        out.warnings.push_back(l.where() + ": " + name + ": SFFM read as SPICE3, ngspice 39 and Xyce read it (VO + VA sin(2 pi FC t + MDI sin(2 pi FS t)))" +
+                               (w.p[0] != 0 ? "; ngspice 43 on has 0, not VO, at t = 0 (its operating point differs)" : "") +
+                               (w.p[3] > w.p[2] / w.p[4] ? "; ngspice 43 on limits MDI to FC/FS" : "") +
+                               "; simulate and check refuse it (no finite exosystem)");
       b.kind = reference::BranchKind::empty;
       if (kind == 'v' && w.kind == Waveform::Kind::dc && w.p[0] == 0) {
         rb.kind = reference::RlcKind::wire;  // a zero-volt source is a wire (an ammeter)

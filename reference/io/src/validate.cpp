@@ -125,8 +125,10 @@ void waveform(const std::string& f, const std::string& field, const Waveform& w)
                   : w.kind == Waveform::Kind::pulse ? k == 7
                   : w.kind == Waveform::Kind::pwl   ? k >= 2 && k % 2 == 0
                   : w.kind == Waveform::Kind::exp   ? k == 6
+                  : w.kind == Waveform::Kind::sffm  ? k == 5
                                                     : false;
-  if (!ok) bad(f, field + ".p", "the parameters of its kind (DC 1, SIN 6, PULSE 7, PWL pairs, EXP 6; Waveform::complete fills SIN's and PULSE's)", n_of(k) + " values");
+  if (!ok) bad(f, field + ".p", "the parameters of its kind (DC 1, SIN 6, PULSE 7, PWL pairs, EXP 6, SFFM 5; Waveform::complete fills SIN's and PULSE's)", n_of(k) + " values");
+  if (w.kind == Waveform::Kind::sffm && !(w.p[2] > 0 && w.p[4] > 0 && w.p[3] >= 0)) bad(f, field + ".p", "SFFM with FC > 0, FS > 0, MDI >= 0", w.text);
   if (w.kind == Waveform::Kind::pulse && !(w.p[3] > 0 && w.p[4] > 0 && w.p[5] >= 0 && w.p[6] > 0 && w.p[2] >= 0))
     bad(f, field + ".p", "PULSE with TD >= 0, TR > 0, TF > 0, PW >= 0, PER > 0", w.text);
   if (w.kind == Waveform::Kind::exp && (w.p[3] == 0 || w.p[5] == 0)) bad(f, field + ".p", "EXP with TAU1 and TAU2 nonzero", w.text);

@@ -51,7 +51,7 @@ bool is_function(const std::string& w) {
   return std::find(fns.begin(), fns.end(), w) != fns.end();
 }
 
-bool readable(const std::string& fn) { return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp"; }
+bool readable(const std::string& fn) { return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp" || fn == "sffm"; }
 
 bool is_keyword(const std::string& w) {
   static const std::vector<std::string> kw = {"dc", "ac", "distof1", "distof2", "portnum", "z0", "pwr", "freq"};
@@ -251,7 +251,7 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
     dc = number(words[i]);  // "[DC] value": DC is optional before the first value
     ++i;
   }
-  if (fn == "sffm" || fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "generator" || fn == "file")
+  if (fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "generator" || fn == "file")
     throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + fn +
                                 (fn == "trnoise" || fn == "trrandom" ? " (a random source: no exact transient exists)"
                                  : fn == "file" || fn == "generator" ? " (values from outside the deck)"
@@ -282,6 +282,14 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
       a.pop_back();
     }
     w.kind = Waveform::Kind::pulse;
+  } else if (fn == "sffm") {  // all five: the defaults and a 6th value differ between ngspice versions
+    if (a.size() != 5)
+      throw std::invalid_argument("expected SFFM(VO VA FC MDI FS) with the five values SPICE3, ngspice 39, ngspice 46 on and Xyce read alike "
+                                  "(their defaults for missing ones differ between ngspice versions, a 6th value is PHASEC in ngspice 39 and "
+                                  "TD in ngspice 43 on), found " + std::to_string(a.size()) + " values: write the five");
+    if (!(a[2] > 0) || !(a[4] > 0) || a[3] < 0)
+      throw std::invalid_argument("expected SFFM's FC > 0, FS > 0 and MDI >= 0, found FC = " + a[2].str() + ", MDI = " + a[3].str() + ", FS = " + a[4].str());
+    w.kind = Waveform::Kind::sffm;
   } else if (fn == "exp") {
     if (a.size() < 2 || a.size() > 6)
       throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) + " values");
@@ -355,6 +363,7 @@ bool Waveform::constant() const {
   if (kind == Kind::dc) return true;
   if (kind == Kind::sin) return p[1] == 0;
   if (kind == Kind::exp) return p[0] == p[1];
+  if (kind == Kind::sffm) return p[1] == 0;
   return false;
 }
 
@@ -364,11 +373,13 @@ double Waveform::horizon() const {
     case Kind::sin: return d(p[3]) + (p[2] != 0 ? 4 / d(p[2]) : 1.0);
     case Kind::pulse: return d(p[2]) + 2 * d(p[6]);
     case Kind::exp: return std::max(d(p[2]), d(p[4])) + 5 * (std::abs(d(p[3])) + std::abs(d(p[5])));
+    case Kind::sffm: return 2 / std::min(d(p[2]), d(p[4]));  // two periods of the slower of carrier and modulation
     default: return 2 * d(p[p.size() - 2]);
   }
 }
 
 std::optional<double> Waveform::corner_jump(double tb, int order) const {
+  if (kind == Kind::sffm) return 0.0;  // analytic everywhere: no corners
   if (kind != Kind::exp && kind != Kind::sin) return std::nullopt;
   if (order == 0) return 0.0;
   if (kind == Kind::sin) return tb == d(p[3]) ? value(tb, order) : 0.0;  // value at TD is the right limit
@@ -473,8 +484,36 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
 
 }  // namespace
 
+namespace {
+/// SFFM's σ^{(order)}(t) = VA · order! · [τ^order] sin(φ(t + τ)), φ(t) = 2π FC t + MDI sin(2π FS t): the Taylor
+/// coefficients a_k of φ at t (a_k = MDI ωs^k sin(ωs t + kπ/2)/k! for k ≥ 2) composed with sin and cos by
+/// s_k = (1/k) Σ j a_j c_{k−j}, c_k = −(1/k) Σ j a_j s_{k−j}.
+double sffm_value(const Waveform& w, double t, int order) {
+  const double vo = d(w.p[0]), va = d(w.p[1]), wc = 2 * kPi * d(w.p[2]), mdi = d(w.p[3]), ws = 2 * kPi * d(w.p[4]);
+  const auto n = static_cast<std::size_t>(order);
+  std::vector<double> a(n + 1), sn(n + 1), cs(n + 1);
+  double fact = 1, wk = 1;
+  for (std::size_t k = 0; k <= n; ++k, wk *= ws, fact *= static_cast<double>(std::max<std::size_t>(k, 1)))
+    a[k] = mdi * wk * std::sin(ws * t + static_cast<double>(k) * kPi / 2) / fact + (k == 0 ? wc * t : k == 1 ? wc : 0.0);
+  sn[0] = std::sin(a[0]), cs[0] = std::cos(a[0]);
+  for (std::size_t k = 1; k <= n; ++k) {
+    double s = 0, c = 0;
+    for (std::size_t j = 1; j <= k; ++j) {
+      s += static_cast<double>(j) * a[j] * cs[k - j];
+      c -= static_cast<double>(j) * a[j] * sn[k - j];
+    }
+    sn[k] = s / static_cast<double>(k), cs[k] = c / static_cast<double>(k);
+  }
+  double factorial = 1;
+  for (std::size_t k = 2; k <= n; ++k) factorial *= static_cast<double>(k);
+  return (order == 0 ? vo : 0.0) + va * factorial * sn[n];
+}
+}  // namespace
+
 double Waveform::value(double t, int order) const {
   switch (kind) {
+    case Kind::sffm:
+      return sffm_value(*this, t, order);
     case Kind::dc:
       return order == 0 ? d(p[0]) : 0.0;
     case Kind::sin: {
@@ -501,6 +540,10 @@ double Waveform::value(double t, int order) const {
 
 std::optional<Rational> Waveform::exact_at_zero(int order) const {
   switch (kind) {
+    case Kind::sffm:  // VO + VA sin(0); its derivatives involve π
+      if (p[1] == 0) return order == 0 ? p[0] : Rational(0);
+      if (order == 0) return p[0];
+      return std::nullopt;
     case Kind::dc:
       return order == 0 ? p[0] : Rational(0);
     case Kind::sin: {
@@ -595,6 +638,7 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
 }
 
 void Waveform::exo_state(double t, long double* w) const {
+  if (kind == Kind::sffm) throw std::invalid_argument(element + ": an SFFM source has no finite exosystem");
   w[0] = w[1] = w[2] = 0;
   if (kind == Kind::sin) {
     const double td = d(p[3]), phi = d(p[5]) * kPi / 180;
@@ -623,13 +667,19 @@ void Waveform::exo_state(double t, long double* w) const {
 namespace dcad::io {
 
 void Waveform::exact_piece(const Rational& t, Rational& v, Rational& slope) const {
-  if (kind == Kind::sin || kind == Kind::exp) throw std::invalid_argument(element + ": exact_piece of a SIN or EXP source");
+  if (kind == Kind::sin || kind == Kind::exp || kind == Kind::sffm) throw std::invalid_argument(element + ": exact_piece of a SIN, EXP or SFFM source");
   if (kind == Kind::dc) {
     v = p[0];
     slope = 0;
     return;
   }
   linear_at(*this, t, v, slope);
+}
+
+std::optional<std::string> without_exosystem(const std::vector<Waveform>& waveforms) {
+  for (const Waveform& w : waveforms)
+    if (w.is_sffm()) return w.element + " (" + w.text + ")";
+  return std::nullopt;
 }
 
 std::optional<Rational> Waveform::next_corner(const Rational& t) const {

@@ -17,10 +17,10 @@ namespace dcad::io {
 using reference::Rational;
 
 struct Waveform {
-  enum class Kind { dc, sin, pulse, pwl, exp };
+  enum class Kind { dc, sin, pulse, pwl, exp, sffm };
   Kind kind = Kind::dc;
   /// DC: {V}; SIN: VO VA FREQ TD THETA PHASE(deg); PULSE: V1 V2 TD TR TF PW PER; PWL: t1 v1 t2 v2 … (TD= added);
-  /// EXP: V1 V2 TD1 TAU1 TD2 TAU2
+  /// EXP: V1 V2 TD1 TAU1 TD2 TAU2; SFFM: VO VA FC MDI FS (VO + VA sin(2π FC t + MDI sin(2π FS t)))
   std::vector<Rational> p;
   /// PWL's R= (ngspice): from this time point (one of the t_i) to the last the waveform repeats; none: holds
   std::optional<Rational> repeat;
@@ -63,6 +63,9 @@ struct Waveform {
   /// EXP: between its corners V + a e^{-(t-TD1)/TAU1} + b e^{-(t-TD2)/TAU2}, an exosystem (c, e1, e2) with
   /// rates (0, -e1/TAU1, -e2/TAU2); σ continuous, σ' jumps at TD1 and TD2.
   bool is_exp() const { return kind == Kind::exp; }
+  /// SFFM (SPICE3, ngspice 39, Xyce): frequency modulated, no finite exosystem — solve decides source
+  /// conditions on its values and derivatives (value()), simulate and check refuse it (without_exosystem).
+  bool is_sffm() const { return kind == Kind::sffm; }
   /// EXP and SIN: the jump of σ^{(order)} at the corner tb (one of breakpoints()), from their closed forms —
   /// EXP at TD1 (V1 − V2)(−1/TAU1)^order, at TD2 (V2 − V1)(−1/TAU2)^order (the other term is continuous), SIN
   /// at TD its right derivative (0 before); σ itself (order 0) does not jump.  nullopt for the piecewise-linear
@@ -87,5 +90,9 @@ struct Waveform {
 /// complete().  `number` converts one token exactly.  Throws std::invalid_argument naming what is not read
 /// (SFFM, AM, TRNOISE, PAT …) and what to write instead.  EXP and PWL's TD= and R= are read as ngspice reads them.
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number);
+
+/// The first source whose waveform has no finite exosystem (SFFM), for simulate, check and the enclosures to
+/// refuse by name: "V1 (SFFM …)"; nullopt when every one has one.
+std::optional<std::string> without_exosystem(const std::vector<Waveform>& waveforms);
 
 }  // namespace dcad::io
