@@ -191,6 +191,24 @@ TEST(Cli, NestedSubcircuitsAreLocalToTheirParent) {
   expect_input_error(run("solve " + outside), outside, "unknown subcircuit \"inner\" in X2", "solve");
 }
 
+// An include's path is taken beside the including file, else beside the top deck — Xyce's rule
+// (Certification_Tests/BUG_1325_SON/inc_lib_file_relative_path.cir: "should be found as fallbacks since their
+// paths don't exist via the sub1 subdirectory"; "paths relative to the sub1 subdirectory are preferred").
+// ngspice reads the first; where only the second exists dcad read nothing ("no such file").
+TEST(Cli, IncludesFallBackToTheTopDecksDirectory) {
+  const fs::path dir = fs::path(temp_path("dcad_inc_fallback"));
+  fs::create_directories(dir / "sub1" / "sub2");
+  fs::create_directories(dir / "sub1" / "both");
+  fs::create_directories(dir / "both");
+  std::ofstream(dir / "sub1" / "include1") << "* relative to the top deck only\n.INC sub1/sub2/deeper\n.INC both/twice\n";
+  std::ofstream(dir / "sub1" / "sub2" / "deeper") << "C1 a 0 1n\n";
+  std::ofstream(dir / "sub1" / "both" / "twice") << "L1 a 0 1u\n";  // beside the including file: preferred
+  std::ofstream(dir / "both" / "twice") << "L1 a 0 7u\n";
+  std::ofstream(dir / "deck.cir") << "fallback\n.INC sub1/include1\n.ic v(a)=1\n.end\n";
+  std::ofstream(dir / "flat.cir") << "flat\nC1 a 0 1n\nL1 a 0 1u\n.ic v(a)=1\n.end\n";
+  expect_same_simulation((dir / "deck.cir").string(), (dir / "flat.cir").string(), "--tstop 1e-6 --step 1e-8");
+}
+
 // A subcircuit without ports (its elements tied to ground and its own internal nodes) is instanced
 // by "X1 NAME", two tokens, and is the circuit of its flat twin.  Killed by: an instance line of two
 // tokens refused as "expected XNAME NODE… SUBCKT" (a mutation survivor, k <= 2).
@@ -313,13 +331,13 @@ TEST(Cli, TemperatureCoefficientsAreNgspicesFactor) {
 }
 
 // ngspice's numparam functions as its xpressn.c defines them: arctan is atan, sqr(x) is x² (not the root),
-// ternary_fcn(c, a, b) is c ? a : b, and the inverse hyperbolics are their logarithms (asinh x = ln(x + √(x²+1)),
+// ternary_fcn(c, a, b) is c ? a : b, Xyce's sign(x, y) is sgn(y) |x|, and the inverse hyperbolics are their logarithms (asinh x = ln(x + √(x²+1)),
 // acosh x = ln(x + √(x²−1)), atanh x = ½ ln((1+x)/(1−x))) — the deck and its twin written in those give the
 // same trajectory.  Outside the real domain (acosh 0.5, atanh 1, asin 2) the value is refused, naming it.
 // Killed by: ngspice's tests/regression/parser/xpressn-*.cir refused as "unknown function" (dcad before).
 TEST(Cli, NgspiceNumparamFunctionsAreTheirDefinitions) {
   const std::string deck = write_temp("dcad_numparam.cir", "numparam\nL1 a 0 {1u*sqr(3)}\nC1 a 0 {1n*(1+arctan(0.3))}\nR1 a b {1k*asinh(2)}\n"
-                                                         "C2 b 0 {1n*acosh(1.5)}\nL2 b 0 {1u*(1+atanh(0.25))}\nR2 b 0 {ternary_fcn(2>1, 5k, 7k)}\n"
+                                                         "C2 b 0 {1n*acosh(1.5)}\nL2 b 0 {1u*(1+atanh(0.25))}\nR2 b 0 {ternary_fcn(2>1, 5k, 7k)*sign(3,2)/3}\n"
                                                          ".ic v(a)=1\n.tran 1n 1u uic\n.end\n");
   const std::string twin = write_temp("dcad_numparam_twin.cir", "twin\nL1 a 0 9u\nC1 a 0 {1n*(1+atan(0.3))}\nR1 a b {1k*log(2+sqrt(5))}\n"
                                                               "C2 b 0 {1n*log(1.5+sqrt(1.25))}\nL2 b 0 {1u*(1+0.5*log(1.25/0.75))}\nR2 b 0 5k\n"

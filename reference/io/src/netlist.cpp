@@ -233,6 +233,7 @@ class Reader {
   std::string title;
   std::vector<Line> lines;
   std::vector<std::string> warnings;
+  std::string top_deck;  ///< the top deck's path (includes fall back to its directory)
 
   /// `text`: the top deck's contents (a deck given as a string, named `file` in messages; its
   /// includes are read relative to `directory`), else the file is opened.
@@ -253,6 +254,16 @@ class Reader {
     std::istream& in = text ? *text : opened;
     // includes beside this deck (a deck given as text: in `directory`)
     const std::string beside_this = text ? (directory.empty() ? std::string("./") : directory + "/") + "deck" : file;
+    if (top) top_deck = beside_this;
+    // an include's path: beside the including file, else beside the top deck (Xyce's fallback, its
+    // Certification_Tests/BUG_1325_SON: "paths relative to the directory of the top-level netlist")
+    const auto locate = [&](const std::string& name) {
+      const std::string here_path = beside(beside_this, name);
+      std::error_code ec;
+      if (std::filesystem::exists(here_path, ec) || top_deck.empty()) return here_path;
+      const std::string top_path = beside(top_deck, name);
+      return std::filesystem::exists(top_path, ec) ? top_path : here_path;
+    };
     std::string raw;
     std::size_t number = 0;
     bool first = top, in_control = false, in_section = section.empty();
@@ -310,17 +321,17 @@ class Reader {
       }
       if (head == ".include" || head == ".inc" || head == ".incl") {  // Xyce takes all three
         if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
-        read(beside(beside_this, unquote(tok[1])), false, "", depth + 1, &here);
+        read(locate(unquote(tok[1])), false, "", depth + 1, &here);
         if (ended) return;
         continue;
       }
       if (head == ".lib" && tok.size() == 3) {
-        read(beside(beside_this, unquote(tok[1])), false, tok[2], depth + 1, &here);
+        read(locate(unquote(tok[1])), false, tok[2], depth + 1, &here);
         continue;
       }
       if (head == ".lib" && tok.size() == 2) {
         std::error_code ec;
-        const std::string whole = beside(beside_this, unquote(tok[1]));
+        const std::string whole = locate(unquote(tok[1]));
         if (std::filesystem::is_regular_file(whole, ec)) {  // .lib FILE: the whole file, as .include (Xyce, HSPICE without a section)
           read(whole, false, "", depth + 1, &here);
           if (ended) return;
@@ -619,6 +630,8 @@ class Expression {
     if (name == "ceil") return want(1, 1), -floor_q(-a[0]);
     if (name == "int") return want(1, 1), a[0] >= 0 ? floor_q(a[0]) : -floor_q(-a[0]);  // toward zero
     if (name == "nint" || name == "round") return want(1, 1), a[0] >= 0 ? floor_q(a[0] + Rational(1, 2)) : -floor_q(-a[0] + Rational(1, 2));
+    if ((name == "sign" || name == "sgn") && a.size() == 2)  // Xyce and HSPICE: sign(x, y) = sgn(y) |x|
+      return a[1] > 0 ? Rational(boost::multiprecision::abs(a[0])) : a[1] < 0 ? Rational(-boost::multiprecision::abs(a[0])) : Rational(0);
     if (name == "sign" || name == "sgn") return want(1, 1), Rational(a[0] > 0 ? 1 : a[0] < 0 ? -1 : 0);
     if (name == "if" || name == "ternary_fcn") return want(3, 3), a[0] != 0 ? a[1] : a[2];
     if (name == "agauss" || name == "gauss" || name == "aunif" || name == "unif" || name == "limit") {
