@@ -172,6 +172,10 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   EXPECT_EQ(s2.p, (std::vector<Rational>{1, 3, 100000000, Rational(1, 1000000000), 2, 0}));
   EXPECT_NEAR(s2.value(2e-9, 0), 1 + 3 * std::sin(2 * 3.141592653589793 * 1e8 * 1e-9) * std::exp(-2e-9), 1e-12);
   EXPECT_EQ(s2.value(0.5e-9, 0), 1.0);  // offset before the delay, as gnucap
+  const Waveform f = wave("SFFM  offset= 0.  amplitude= 1.  carrier=10000  modindex=.1  signal=1000 nozero nopeak");  // bm_sffm.cc
+  EXPECT_EQ(f.kind, Waveform::Kind::sffm);
+  EXPECT_EQ(f.p, (std::vector<Rational>{0, 1, 10000, Rational(1, 10), 1000}));
+  EXPECT_THROW(wave("sffm offset=0 amplitude=1 carrier=10000"), std::invalid_argument);  // no modindex, signal: no default
   EXPECT_THROW(wave("sin(d=1 freq=1000)"), std::invalid_argument);          // "d": delay or damping?
   EXPECT_THROW(wave("sin(amplitude=1)"), std::invalid_argument);          // the analysis' frequency
   EXPECT_THROW(wave("exp iv=0 pv=1 tau1=1 tau2=1 period=5"), std::invalid_argument);
@@ -184,12 +188,18 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
 
 // A function whose ')' is missing at the end of the line (Xyce's SENS/vsin.cir: "SIN(0 1 100K -2.5U 0.0 -90.0")
 // is read to the end, as Xyce and ngspice read it, and the missing ')' noted; a ')' missing before another
-// word is no such case (the word would be read as a value) and stays refused.
+// word is no such case (the word would be read as a value) and stays refused.  A value after the ')' is
+// ignored as ngspice-39 ignores it (checked: "V8 1 0 pwl(0 0.1 1 1 2 2) 7 ac 9" has v(1) = 0.1 at op).
 TEST(Waveform, MissingClosingParenthesisAtTheEndIsReadToTheEnd) {
   const Waveform s = wave("SIN(0 1 100000 -2.5e-6 0.0 -90.0");
   EXPECT_EQ(s.p, wave("SIN(0 1 100000 -2.5e-6 0.0 -90.0)").p);
   EXPECT_NE(s.ignored.find("missing ')'"), std::string::npos) << s.ignored;
   EXPECT_THROW(wave("SIN(0 1 100000 ac 1"), std::invalid_argument);
+  // a value after the function's ')' (gnucap's tests/pwl.spice): ngspice-39 ignores it, not even the operating point's
+  const Waveform after = wave("pwl(0 1/10 1 1 2 2) 7 ac 9");
+  EXPECT_EQ(after.kind, Waveform::Kind::pwl);
+  EXPECT_NE(after.ignored.find("7 after pwl"), std::string::npos) << after.ignored;
+  EXPECT_THROW(wave("pwl(0 1/10 1 1 2 2) 7 8"), std::invalid_argument);  // a second one: no reading
 }
 
 // SFFM (SPICE3, ngspice 39, Xyce): VO + VA sin(φ), φ = 2π FC t + MDI sin(2π FS t).  Its derivatives by the

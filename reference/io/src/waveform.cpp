@@ -67,11 +67,13 @@ struct GnucapKey {
 };
 const std::vector<GnucapKey>& gnucap_keys(const std::string& fn) {
   static const std::vector<GnucapKey> sin = {{"offset", 1}, {"amplitude", 1}, {"frequency", 1}, {"delay", 2}, {"damping", 2},
-                                             {"samples", 2}, {"zero", 2},     {"peak", 2}};
+                                             {"samples", 2}, {"zero", 2},     {"peak", 2},      {"nozero", 6}, {"nopeak", 6}};
   static const std::vector<GnucapKey> exp = {{"iv", 2}, {"pv", 2}, {"td1", 3}, {"tau1", 4}, {"td2", 3}, {"tau2", 4}, {"period", 6}};
   static const std::vector<GnucapKey> pulse = {{"iv", 2}, {"pv", 2}, {"delay", 5}, {"rise", 4}, {"fall", 4}, {"width", 5}, {"period", 6}};
+  static const std::vector<GnucapKey> sffm = {{"offset", 6}, {"amplitude", 9}, {"carrier", 7}, {"modindex", 8}, {"signal", 6},
+                                              {"samples", 7}, {"zero", 4},   {"peak", 4},      {"nozero", 6},   {"nopeak", 6}};
   static const std::vector<GnucapKey> none;
-  return fn == "sin" ? sin : fn == "exp" ? exp : fn == "pulse" ? pulse : none;
+  return fn == "sin" ? sin : fn == "exp" ? exp : fn == "pulse" ? pulse : fn == "sffm" ? sffm : none;
 }
 std::optional<std::string> gnucap_key(const std::string& fn, const std::string& word) {
   const std::string key = lower(word.substr(0, word.find('=')));
@@ -100,7 +102,7 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
       for (const GnucapKey& k : gnucap_keys(fn)) all += (all.empty() ? "" : " ") + std::string(k.name);
       return all;
     }() + "), found \"" + words[j] + "\" in \"" + spec + "\"");
-    if (*key == "zero" || *key == "peak" || *key == "samples") {  // time-step hints of gnucap's, not the waveform
+    if (*key == "zero" || *key == "peak" || *key == "samples" || *key == "nozero" || *key == "nopeak") {  // gnucap's time-step hints
       noted.push_back(words[j] + " (gnucap's time-step hint)");
       continue;
     }
@@ -131,6 +133,9 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
     if (!(tau1 > 0) || !(tau2 > 0)) refuse("tau1 or tau2 not > 0 (a step)", "tau1 and tau2 > 0");
     if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
     args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
+  } else if (fn == "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
+    if (!value("carrier") || !value("modindex") || !value("signal")) refuse("no carrier=, modindex= or signal= (gnucap has no default)", "all three");
+    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("carrier"), *value("modindex"), *value("signal")};
   } else {
     refuse("pulse's keyword form (gnucap's rise and fall default to 0: a step, and width and period to forever)",
            "PULSE(V1 V2 TD TR TF PW PER) with TR, TF > 0");
@@ -243,6 +248,12 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
       continue;
     }
     if (words[i] == "(" || words[i] == ")") throw std::invalid_argument("expected a value or a keyword, found '" + words[i] + "' in \"" + spec + "\"");
+    if (!fn.empty() && !dc && eq == std::string::npos && i > 0 && words[i - 1] == ")") {  // "pwl(…) 7": ngspice-39 ignores it (not even the DC)
+      number(words[i]);
+      note(words[i] + " after " + fn + "(…) (ngspice ignores a value after the function)");
+      ++i;
+      continue;
+    }
     if (dc || !fn.empty()) {  // a second bare value
       if (eq != std::string::npos)
         throw std::invalid_argument("expected DC, AC or a transient function, found \"" + words[i] + "\" (a keyword dcad does not read) in \"" + spec + "\"");
