@@ -58,6 +58,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"recursive", "title\n.subckt t a\nX1 a t\n.ends\nX1 1 t\n", "nested at most 32"},
                     BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" (no such file)"},
                     BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
+                    BadCase{"expstep", "title\nV1 1 0 EXP(0 1 2m 1m 1m 1m)\nR1 1 2 1Meg\nC1 2 0 1n\n", "TD2 >= TD1"},  // a step at TD1 (review)
+                    BadCase{"tempsub", "title\nV1 1 0 1\nX1 1 0 s\n.subckt s a b\nR1 a b 1k TC1=0.01\n.temp 100\n.ends\n", ".temp inside a .subckt"},
                     BadCase{"numberexpr", "title\n.param p=3\nL1 1 0 2*p\nC1 1 0 1\n", "\"2*p\""},  // ngspice reads 2: never -> 6
                     BadCase{"bareunknown", "title\nL1 1 0 c+1\nC1 1 0 1\n", "\"c+1\""},
                     BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
@@ -315,7 +317,7 @@ TEST(Cli, PerfectCouplingIsOneTank) {
 // a .temp after the element read as 27 C (dcad before: coefficients ignored, a silently different circuit).
 TEST(Cli, TemperatureCoefficientsAreNgspicesFactor) {
   const std::string deck = write_temp("dcad_tc.cir", "tc\nV1 1 0 1\nR1 1 2 1k TC1=0.01\nR2 2 3 2k TC=0.001,1e-5 dtemp=-23\n"
-                                                   "C1 3 0 1u tc1=0.002 temp=50\nL1 3 0 1m TC1=-0.001 TC2=1e-6 tnom=100\n.temp 100\n.end\n");
+                                                   "C1 3 0 1u tc1=0.002 temp=50\nL1 3 0 1m TC1=-0.001 TC2=1e-6 tnom=100\n.temp {hot}\n.param hot=100\n.end\n");
   // R2: T = 100 - 23, dT = 50: 2k (1 + 0.001 * 50 + 1e-5 * 2500) = 2150; C1: T = 50, dT = 23: 1u (1 + 0.046);
   // L1: TNOM = T = 100, unchanged
   const std::string twin = write_temp("dcad_tc_twin.cir", "tc\nV1 1 0 1\nR1 1 2 1730\nR2 2 3 2150\nC1 3 0 1.046u\nL1 3 0 1m\n.end\n");

@@ -218,7 +218,7 @@ struct ControlScript {
     if (head != "alter" && head != "altermod" && head != "mc_source" && head != "source") return;
     if (analysed.empty())
       fail(l, "a .control block that leaves the circuit as written (dcad reads the circuit, not the script)",
-           l.text.substr(0, l.text.find(' ')) + ", which changes it before the analysis runs: write the altered values in the deck");
+           l.text.substr(0, l.text.find(' ')) + ", which changes it before any analysis at the script's top level runs: write the altered values in the deck");
     if (!noted)
       warnings.push_back(l.where() + ": the .control block's " + head + " changes the circuit after its first analysis (" + analysed +
                          ") has run on it as written: dcad solves the circuit as written");
@@ -729,7 +729,7 @@ class Flattener {
 
   void run(const std::vector<Line>& lines) {
     std::map<std::string, Rational> params;
-    std::vector<Line> top, param_lines;
+    std::vector<Line> top, param_lines, temperature_lines;
     for (std::size_t i = 0; i < lines.size(); ++i) {  // definitions first: ngspice allows use before definition
       const std::vector<std::string> tok = tokens(lines[i].text);
       const std::string head = lower(tok[0]);
@@ -743,7 +743,7 @@ class Flattener {
         for (std::size_t k = 1; k < tok.size(); ++k) globals.insert(lower(tok[k]));
       } else if (head == ".temp" || head == ".options" || head == ".option" || head == ".opt") {  // before any element reads it
         top.push_back(lines[i]);
-        read_temperatures(lines[i], tok);
+        temperature_lines.push_back(lines[i]);
       } else if (head == ".preprocess" && tok.size() == 3 && lower(tok[1]) == "replaceground") {  // names, not devices: read
         replace_ground = lower(tok[2]) == "true" || tok[2] == "1";
         out.warnings.push_back(lines[i].where() + ": .preprocess replaceground " + tok[2] + ": GND!, GROUND and GROUND! are " +
@@ -753,6 +753,7 @@ class Flattener {
       }
     }
     for (const Line& l : param_lines) read_params(l, params, nullptr);
+    for (const Line& l : temperature_lines) read_temperatures(l, tokens(l.text), params);
     expand(top, "", {}, params, 0, "");
   }
 
@@ -762,10 +763,10 @@ class Flattener {
   }
 
   /// .temp T [T2 …] (the first: a list is a sweep) and .options temp=T tnom=T.
-  void read_temperatures(const Line& l, const std::vector<std::string>& tok) {
+  void read_temperatures(const Line& l, const std::vector<std::string>& tok, const std::map<std::string, Rational>& params) {
     const auto value = [&](const std::string& t, const std::string& what) {
       try {
-        return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), {}, &functions).value() : parse_spice_value(t);
+        return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions).value() : parse_spice_value(t);
       } catch (const std::invalid_argument& e) {
         fail(l, what, "\"" + t + "\" (" + e.what() + ")");
       }
@@ -965,6 +966,11 @@ class Flattener {
         }
       } catch (const std::invalid_argument&) {  // not needed by the circuit (only by sources' defaults, which then say so)
       }
+    }
+    if (head == ".temp" || ((head == ".options" || head == ".option" || head == ".opt") && !prefix.empty() &&
+                            std::any_of(tok.begin(), tok.end(), [](const std::string& t) { return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0; }))) {
+      if (!prefix.empty())  // read_temperatures sees the top level only: the circuit's temperature is global
+        fail(l, "the circuit's temperature (.temp, .options temp= tnom=) at the deck's top level", tok[0] + " inside a .subckt");
     }
     if (head == ".temp") {
       out.warnings.push_back(l.where() + ": " + tok[0] + ": read for the elements' TC1, TC2 (dcad's elements have no temperature dependence otherwise)" +

@@ -132,6 +132,7 @@ void waveform(const std::string& f, const std::string& field, const Waveform& w)
   if (w.kind == Waveform::Kind::pulse && !(w.p[3] > 0 && w.p[4] > 0 && w.p[5] >= 0 && w.p[6] > 0 && w.p[2] >= 0))
     bad(f, field + ".p", "PULSE with TD >= 0, TR > 0, TF > 0, PW >= 0, PER > 0", w.text);
   if (w.kind == Waveform::Kind::exp && (w.p[3] == 0 || w.p[5] == 0)) bad(f, field + ".p", "EXP with TAU1 and TAU2 nonzero", w.text);
+  if (w.kind == Waveform::Kind::exp && w.p[4] < w.p[2] && w.p[0] != w.p[1]) bad(f, field + ".p", "EXP with TD2 >= TD1 (else a step at TD1)", w.text);
   if (w.kind == Waveform::Kind::sin && w.p[2] < 0) bad(f, field + ".p", "SIN with FREQ >= 0", w.text);
 }
 

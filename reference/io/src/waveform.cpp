@@ -359,6 +359,10 @@ void Waveform::complete(const std::optional<Rational>& tstep, const std::optiona
     if (n < 4 || p[3] == 0) p[3] = need(tstep, "TSTEP", "TAU1 = TSTEP where TAU1 is 0 or missing");
     if (n < 5 || p[4] == 0) p[4] = p[2] + need(tstep, "TSTEP", "TD2 = TD1 + TSTEP where TD2 is 0 or missing");
     if (n < 6 || p[5] == 0) p[5] = need(tstep, "TSTEP", "TAU2 = TSTEP where TAU2 is 0 or missing");
+    if (p[4] < p[2] && p[0] != p[1])  // vsrcload.c: V1 up to TD1, then the third piece at once — a step there
+      throw std::invalid_argument("expected EXP's TD2 >= TD1 in " + text + ", found TD2 = " + p[4].str() + " < TD1 = " + p[2].str() +
+                                  ": ngspice's EXP then steps at TD1 (V1 before it, V1 + (V1 - V2)(1 - e^(-(TD1-TD2)/TAU2)) after); "
+                                  "dcad's exact flows take continuous sources");
   } else if (kind == Kind::pulse) {
     const std::size_t n = given > 7 ? 7 : given;
     p.resize(7, Rational(0));
