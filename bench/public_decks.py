@@ -8,8 +8,9 @@ licence).  Put a copy of those repositories' files under CORPUS/<source>/<path> 
 
     /usr/bin/python3 bench/public_decks.py build/dcad CORPUS [--out bench/results/public_decks.md]
 
-Each deck runs once, `dcad solve --json --with none DECK` in the deck's own directory (its .include
-files beside it), 60 s at most.  The table counts accepted decks (exit 0) per source and groups the
+Each deck runs once, `dcad solve --json --with none --dialect D DECK` in the deck's own directory (its
+.include files beside it), 60 s at most.  D is the deck's simulator (`dialect`): ngspice's decks are ngspice's,
+gnucap's gnucap's, Xyce's Xyce's — or hspice where Xyce's own test script runs the deck with -hspice-ext.  The table counts accepted decks (exit 0) per source and groups the
 refusals by their message (file names and numbers folded), so a refusal that is not true shows.
 """
 import collections
@@ -40,6 +41,18 @@ def meant_to_fail(path):
     return bool(MEANT_TO_FAIL.search(path))
 
 
+def dialect(source, deck):
+    """The simulator a deck was written for, as `dcad --dialect` names it: its source's, except a Xyce deck
+    whose test script (DECK.sh beside it, as Xyce_Regression runs it) passes -hspice-ext, or an HSPICE deck
+    of Xyce's XDM tests (*.hspice)."""
+    script = deck + ".sh"
+    if source == "xyce" and os.path.isfile(script) and "hspice-ext" in open(script, errors="replace").read():
+        return "hspice"
+    if deck.endswith(".hspice"):  # Xyce's XDM tests: HSPICE decks for its translator
+        return "hspice"
+    return source
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
@@ -62,7 +75,7 @@ def main():
             counts = per_source[r["source"]]
         counts[0] += 1
         try:
-            p = subprocess.run([dcad, "solve", "--json", "--with", "none", os.path.basename(deck)], cwd=os.path.dirname(deck),
+            p = subprocess.run([dcad, "solve", "--json", "--with", "none", "--dialect", dialect(r["source"], deck), os.path.basename(deck)], cwd=os.path.dirname(deck),
                                capture_output=True, timeout=60)
             code, err = p.returncode, p.stderr.decode("utf-8", "replace")
         except subprocess.TimeoutExpired:

@@ -27,15 +27,15 @@ namespace {
 /// object per file and line, with "file"; a file that fails gives {"file", "error", "exit"} and the
 /// others still run.  Returns the exit code: 0, else the largest of a file's (1 bad input, 4 internal
 /// error); messages go to `err` as for one file.
-int solve_files(const std::vector<std::string>& files, dcad::api::Backend backend, const dcad::Parts& parts, bool json, bool lines,
-                std::ostream& out, std::ostream& err) {
+int solve_files(const std::vector<std::string>& files, const dcad::io::ReadOptions& read, dcad::api::Backend backend, const dcad::Parts& parts,
+                bool json, bool lines, std::ostream& out, std::ostream& err) {
   lines = lines || (json && files.size() > 1);
   int worst = 0;
   for (const std::string& file : files) {
     std::string message;
     int code = 0;
     try {
-      const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::read_problem(file), backend, parts));
+      const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::read_problem(file, read), backend, parts));
       for (const std::string& w : s.warnings) err << "warning: " << w << "\n";
       if (lines) {
         out << dcad::io::result_json_line(s, file) << "\n";
@@ -90,6 +90,15 @@ int cases_command(const std::string& action, const std::vector<std::string>& arg
   return 0;
 }
 
+/// `--dialect NAME` on a subcommand that reads decks: how `1a` and `1x` are read (dcad::io::Dialect).
+void add_dialect(CLI::App* command, std::string& dialect) {
+  command->add_option("--dialect", dialect,
+                      "netlists: whose deck it is, for the scale factors SPICEs read differently (1a: atto in ngspice (40 on), hspice, "
+                      "gnucap; 1 in ngspice39, xyce. 1x: mega in hspice, xyce; 1 in ngspice, gnucap) and `$` (a name's character in xyce, "
+                      "else an inline comment); strict (default) refuses 1a and 1x")
+      ->check(CLI::IsMember({"strict", "ngspice", "ngspice39", "xyce", "hspice", "gnucap"}));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -123,6 +132,8 @@ int main(int argc, char** argv) {
   solve->add_flag("--jsonl", solve_lines,
                   "one compact result JSON per file and line, with \"file\"; a failing file gives {\"file\", \"error\", \"exit\"} "
                   "and the rest still run (exit code: the worst file's)");
+  std::string dialect = "strict";
+  add_dialect(solve, dialect);
   solve->add_option("--with", solve_with,
                     "what to compute beyond the CONTRACT's required keys and the tower, for linear case files and netlists: "
                     "all (default), none, or a comma-separated list of final (final_constraints), reduced (equations of "
@@ -138,6 +149,7 @@ int main(int argc, char** argv) {
   sim->add_option("FILE", sim_file, "LC/RLC netlist (.cir, .sp, .net), `pontryagin` case or expression-form case (.json)")->required();
   std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
   sim->add_option("--tstop", sim_tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
+  add_dialect(sim, dialect);
   sim->add_option("--step", sim_step, "output step (seconds; SPICE suffixes)")->required();
   sim->add_option("--backend", sim_backend, "certified|reference|fast (the dense route's model is built exactly in this version; the sparse route is double throughout)")
       ->check(CLI::IsMember({"reference", "fast", "certified"}));
@@ -172,6 +184,7 @@ int main(int argc, char** argv) {
   check->add_option("RESULT", check_result_file, "the other implementation's result (.json), or a simulator's transient output "
                                                   "(ngspice raw or wrdata, gnucap .print, CSV)")->required();
   check->add_option("FILE", check_file, "the case file or netlist it was computed for")->required();
+  add_dialect(check, dialect);
   dcad::api::WaveformOptions wave_opt;
   bool check_json = false;
   std::string check_initial = "deck";
@@ -210,6 +223,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  const dcad::io::ReadOptions read{*dcad::io::dialect_named(dialect)};  // checked by add_dialect
   try {
     if (inspect->parsed()) {
       const dcad::io::Problem p = dcad::io::read_problem(file);
@@ -228,7 +242,7 @@ int main(int argc, char** argv) {
         std::cerr << "solve: " << e.what() << "\n";
         return 2;  // bad usage
       }
-      return solve_files(solve_files_list, dcad::api::backend_named(solve_backend), parts, solve_json, solve_lines, std::cout, std::cerr);
+      return solve_files(solve_files_list, read, dcad::api::backend_named(solve_backend), parts, solve_json, solve_lines, std::cout, std::cerr);
     }
     if (cases->parsed()) return cases_command(cases_action, cases_args, cases_waveforms);
     if (check->parsed() && !dcad::io::looks_like_json(check_result_file)) {
@@ -250,7 +264,7 @@ int main(int argc, char** argv) {
           plotted.push_back(k);
         }
       }
-      const dcad::api::WaveformChecked w = dcad::api::check_waveform(*stream, dcad::io::read_problem(check_file), wave_opt, std::cerr);
+      const dcad::api::WaveformChecked w = dcad::api::check_waveform(*stream, dcad::io::read_problem(check_file, read), wave_opt, std::cerr);
       std::cout << (check_json ? dcad::api::waveform_json(w, wave_opt) + "\n" : dcad::api::waveform_text(w, check_result_file, check_file, wave_opt));
       if (!check_png.empty() && !w.vectors.empty()) {
         if (plotted.empty()) plotted.push_back(w.worst);
@@ -282,7 +296,7 @@ int main(int argc, char** argv) {
       return w.agree ? 0 : 3;
     }
     if (check->parsed()) {
-      const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file), check_points);
+      const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file, read), check_points);
       std::string keys;
       for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
       for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";
@@ -313,7 +327,7 @@ int main(int argc, char** argv) {
         if (comma == std::string::npos) break;
         start = comma + 1;
       }
-      const dcad::io::Problem problem = dcad::io::read_problem(sim_file);
+      const dcad::io::Problem problem = dcad::io::read_problem(sim_file, read);
       std::vector<std::string> header = dcad::api::simulate_columns(problem);
       if (!sim_opt.columns.empty()) {
         header.assign(1, "t");

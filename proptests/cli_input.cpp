@@ -60,6 +60,11 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
                     BadCase{"expstep", "title\nV1 1 0 EXP(0 1 2m 1m 1m 1m)\nR1 1 2 1Meg\nC1 2 0 1n\n", "TD2 >= TD1"},  // a step at TD1 (review)
                     BadCase{"tempsub", "title\nV1 1 0 1\nX1 1 0 s\n.subckt s a b\nR1 a b 1k TC1=0.01\n.temp 100\n.ends\n", ".temp inside a .subckt"},
+                    // gnucap's generator and conditional values: a step or two circuits is refused, never read as another
+                    BadCase{"gensine", "title\n.gen freq=1k\nV1 1 0 generator(1)\nR1 1 2 1\nC1 2 0 1\n", "a sine times the pulse"},
+                    BadCase{"genafter", "title\nV1 1 0 generator(1)\nR1 1 2 1\nC1 2 0 1\n.tran 0 1 .1\n.gen max=2\n", "before the deck's first .tran"},
+                    BadCase{"condtwo", "title\nV1 1 0 1\nR1 1 2 dc 1 tran 2\nC1 2 0 1\n", "1 at the operating point and 2 in the transient"},
+                    BadCase{"condac", "title\nV1 1 0 1\nR1 1 2 ac 1\nC1 2 0 1\n", "gnucap then takes 0"},
                     BadCase{"numberexpr", "title\n.param p=3\nL1 1 0 2*p\nC1 1 0 1\n", "\"2*p\""},  // ngspice reads 2: never -> 6
                     BadCase{"bareunknown", "title\nL1 1 0 c+1\nC1 1 0 1\n", "\"c+1\""},
                     BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
@@ -164,12 +169,9 @@ TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   std::ofstream(dir / "flat.cir") << "two tanks, flat\nL.x1.l1 n1 0 2u\nC.x1.c1 n1 0 1n IC=1\nL.x2.l1 n1 n2 1u\n"
                                      "C.x2.c1 n1 n2 1n IC=0.5\nC9 n2 0 1n IC=0.5\n.end\n";
   const std::string deck = (dir / "deck.spice").string(), flat = (dir / "flat.cir").string();
-  const Outcome h = run("solve " + deck + " --json"), f = run("solve " + flat + " --json");
+  const Outcome h = expect_same_solution(deck, flat, {"dims", "steps", "solution_rank", "variables", "tower", "reduced"});
   ASSERT_EQ(h.rc, 0) << h.err;
-  ASSERT_EQ(f.rc, 0) << f.err;
-  const nlohmann::json jh = nlohmann::json::parse(h.out), jf = nlohmann::json::parse(f.out);
-  for (const char* key : {"dims", "steps", "solution_rank", "variables", "tower", "reduced"}) EXPECT_EQ(jh[key], jf[key]) << key;
-  EXPECT_EQ(jh["circuit"]["branches"], 5);  // the unused .subckt adds nothing
+  EXPECT_EQ(nlohmann::json::parse(h.out)["circuit"]["branches"], 5);  // the unused .subckt adds nothing
   const Outcome sh = run("simulate " + deck + " --tstop 1e-6 --step 1e-8"), sf = run("simulate " + flat + " --tstop 1e-6 --step 1e-8");
   ASSERT_EQ(sh.rc, 0) << sh.err;
   EXPECT_EQ(sh.out, sf.out);
@@ -321,15 +323,47 @@ TEST(Cli, TemperatureCoefficientsAreNgspicesFactor) {
   // R2: T = 100 - 23, dT = 50: 2k (1 + 0.001 * 50 + 1e-5 * 2500) = 2150; C1: T = 50, dT = 23: 1u (1 + 0.046);
   // L1: TNOM = T = 100, unchanged
   const std::string twin = write_temp("dcad_tc_twin.cir", "tc\nV1 1 0 1\nR1 1 2 1730\nR2 2 3 2150\nC1 3 0 1.046u\nL1 3 0 1m\n.end\n");
-  const Outcome a = run("solve " + deck + " --json --backend reference"), b = run("solve " + twin + " --json --backend reference");
-  ASSERT_EQ(a.rc, 0) << a.err;
-  ASSERT_EQ(b.rc, 0) << b.err;
-  const nlohmann::json ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
-  for (const char* key : {"dims", "tower", "reduced", "state_equations"}) EXPECT_EQ(ja.at(key), jb.at(key)) << key;
+  const Outcome a = expect_same_solution(deck, twin, {"dims", "tower", "reduced", "state_equations"}, "--backend reference");
   EXPECT_NE(a.err.find("R1: at 100 C (TNOM 27 C) its temperature coefficients scale its value by 1.73"), std::string::npos) << a.err;
   EXPECT_NE(a.err.find("L1: at 100 C (TNOM 100 C) its temperature coefficients change nothing"), std::string::npos) << a.err;
   const std::string bad = write_temp("dcad_tc_bad.cir", "tc\nL1 1 0 1m\nC1 1 0 1u TC1=-0.1\n.temp 40\n.end\n");
   expect_input_error(run("solve " + bad), bad + ":3", "positive temperature factor", "factor -0.3");
+}
+
+// The scale factors SPICEs read differently, read as the deck's dialect reads them (--dialect): `1a` is atto in
+// ngspice (40 on), HSPICE and gnucap and a unit (1) in ngspice 39 and Xyce; `1x` is mega in HSPICE and Xyce and 1
+// in ngspice and gnucap (Xyce's PARSER/aAsAmp.cir, aAsAtto.cir, scalingFactors.cir; gnucap's ap_convert.cc).
+// Each reading is the deck written out; the strict default refuses and names the option.  Killed by: a dialect
+// that reads `a` the other way, `x` read as mega in ngspice, a default that guesses.
+TEST(Cli, DialectDecidesTheAmbiguousScaleFactors) {
+  const std::string deck = write_temp("dcad_dialect.cir", "dialect\nL1 1 0 1u\nC1 1 0 {2a*1e18*1n}\nR1 1 0 3x\n.end\n");
+  const std::vector<std::tuple<std::string, std::string, std::string>> readings = {
+      {"ngspice", "2n", "3"}, {"ngspice39", "2e9", "3"}, {"xyce", "2e9", "3Meg"}, {"hspice", "2n", "3Meg"}, {"gnucap", "2n", "3"}};
+  for (const auto& [dialect, c, r] : readings) {
+    const std::string twin = write_temp("dcad_dialect_twin.cir", "dialect\nL1 1 0 1u\nC1 1 0 " + c + "\nR1 1 0 " + r + "\n.end\n");
+    SCOPED_TRACE(dialect);
+    expect_same_solution(deck, twin, {"dims", "tower", "reduced", "state_equations"}, "--backend reference --dialect " + dialect);
+  }
+  const Outcome strict = run("solve " + deck);
+  expect_input_error(strict, deck + ":3", "--dialect", "strict");
+  EXPECT_EQ(run("solve " + deck + " --dialect spice2").rc, 2);  // not a dialect: usage
+  // `$` names a node in Xyce ($N_0001 of PSpice's netlister); in ngspice " $" starts a comment, so the line is short
+  const std::string dollar = write_temp("dcad_dialect_dollar.cir", "dollar\nL1 1 $N_1 1u\nC1 $N_1 0 1n\nC2 1 0 2n\n.end\n");
+  const std::string plain = write_temp("dcad_dialect_plain.cir", "dollar\nL1 1 N_1 1u\nC1 N_1 0 1n\nC2 1 0 2n\n.end\n");
+  expect_same_solution(dollar, plain, {"dims", "steps", "solution_rank"}, "--dialect xyce");
+  expect_input_error(run("solve " + dollar + " --dialect ngspice"), dollar + ":2", "NAME NODE+ NODE- VALUE", "ngspice's comment");
+}
+
+// gnucap's generator (apps/c_genrat.cc) and conditional values (lib/bm_cond.cc) in a deck: `.generator` sets the
+// pulse, generator(SCALE) reads it, "R1 1 2 ac 1k dc 2k" is 2k in the transient; the twin writes the same
+// circuit in SPICE's words (PWL with R=, the values).  Killed by: the .generator settings dropped (gnucap's
+// default pulse), the AC value taken, the scale ignored.
+TEST(Cli, GnucapGeneratorAndConditionalValuesAreTheirTransient) {
+  const std::string deck = write_temp("dcad_generator.ckt", "generator\n.gen max=7 min=-5 rise=3 fall=2 width=10 delay=2 offset=100 init=2 period=20\n"
+                                                         "V1 1 0 dc generator(2) ac 1\nR1 1 2 ac 1k dc 10\nC1 2 0 tran 1 ac 3\n.tran 0 50 1\n.end\n");
+  const std::string twin = write_temp("dcad_generator_twin.cir", "generator\nV1 1 0 PWL(0 4 2 4 5 214 15 214 17 190 22 190 25 214 35 214 37 190 42 190) R=22\n"
+                                                              "R1 1 2 10\nC1 2 0 1\n.tran 0 50 1\n.end\n");
+  expect_same_simulation(deck, twin, "--tstop 50 --step 0.5");
 }
 
 // ngspice's numparam functions as its xpressn.c defines them: arctan is atan, sqr(x) is x² (not the root),

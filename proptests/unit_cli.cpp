@@ -186,6 +186,41 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   EXPECT_THROW(wave("exp(iv=0 iv=1 pv=1 tau1=1 td2=1 tau2=1)"), std::invalid_argument);
 }
 
+// gnucap's generator (apps/c_genrat.cc gen(), apps/bm_generator.cc): SCALE times a pulse set by `.generator`.
+// The values are gnucap's own printout of its tests/c_genrat.1.ckt (tests/==out/c_genrat.1.ckt.out, v(1) at
+// scale 1 and v(2) at scale 2 with max=7 min=-5 rise=3 fall=2 width=10 delay=2 offset=100 init=2
+// period=20): the first rise from init, later ones from min, repeated from delay + period.  gnucap's
+// defaults are a 1 ps rise from 0 to 1 (its tests/bm_cond.2.ckt: v(1) = 1 at t = 0.1).  Killed by: the
+// repeated rise starting from init, offset not added, the repeat at the period instead of delay + period.
+TEST(Waveform, GnucapGeneratorIsItsPrintedPulse) {
+  dcad::io::Generator g;
+  for (const auto& [k, v] : std::vector<std::pair<std::string, Rational>>{
+           {"max", 7}, {"min", -5}, {"rise", 3}, {"fall", 2}, {"width", 10}, {"delay", 2}, {"offset", 100}, {"init", 2}, {"period", 20}})
+    ASSERT_TRUE(g.set(k, v)) << k;
+  const auto generator = [&](const std::string& spec) {
+    return parse_waveform(spec, [](const std::string& s) { return dcad::reference::parse_rational(s); }, g);
+  };
+  const Waveform v1 = generator("generator(1)"), v2 = generator("dc generator(2) ac 1");
+  const std::vector<std::pair<double, double>> printed = {{0, 2},    {1, 2},     {2, 2},    {2.5, 19.5}, {3, 37},   {5, 107},
+                                                          {15, 107}, {15.5, 104}, {17, 95}, {22, 95},    {22.5, 97}, {25, 107},
+                                                          {35.5, 104}, {42.5, 97}, {44, 103}, {50, 107}};
+  for (const auto& [t, v] : printed) {
+    EXPECT_NEAR(v1.value(t), v, 1e-12) << "t = " << t;
+    EXPECT_NEAR(v2.value(t), 2 * v, 1e-12) << "t = " << t;
+  }
+  EXPECT_EQ(v1.repeat, std::optional<Rational>(22));
+  const Waveform standard = wave("generator");  // gnucap's defaults
+  EXPECT_EQ(standard.p, (std::vector<Rational>{0, 0, Rational(1, 1000000000000LL), 1}));
+  EXPECT_TRUE(g.set("fa", 0) && g.fall == 0 && g.freq == 0);  // "fa" is fall, "f" frequency (gnucap's order)
+  EXPECT_THROW(generator("generator(1)"), std::invalid_argument);  // fall = 0: a step
+  g.fall = 2, g.period = 14;
+  EXPECT_THROW(generator("generator(1)"), std::invalid_argument);  // 3 + 10 + 2 > 14: the fall is cut
+  g.period = 20;
+  EXPECT_TRUE(g.set("f", 1000));
+  EXPECT_THROW(generator("generator(1)"), std::invalid_argument);  // a sine times the pulse
+  EXPECT_FALSE(g.set("bogus", 1));
+}
+
 // A function whose ')' is missing at the end of the line (Xyce's SENS/vsin.cir: "SIN(0 1 100K -2.5U 0.0 -90.0")
 // is read to the end, as Xyce and ngspice read it, and the missing ')' noted; a ')' missing before another
 // word is no such case (the word would be read as a value) and stays refused.  A value after the ')' is

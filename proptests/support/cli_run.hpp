@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <map>
@@ -102,6 +103,19 @@ inline std::string expect_same_simulation(const std::string& deck, const std::st
   EXPECT_EQ(b.rc, 0) << twin << ": " << b.err;
   EXPECT_EQ(a.out, b.out) << deck << " and " << twin;
   return a.out;
+}
+
+/// Two decks that are the same circuit: `dcad solve --json ARGS` gives the same `keys` for both (exit 0);
+/// the deck's outcome (its warnings on err).
+inline Outcome expect_same_solution(const std::string& deck, const std::string& twin, std::initializer_list<const char*> keys,
+                                    const std::string& args = "") {
+  const Outcome a = run("solve " + deck + " --json " + args), b = run("solve " + twin + " --json " + args);
+  EXPECT_EQ(a.rc, 0) << deck << ": " << a.err;
+  EXPECT_EQ(b.rc, 0) << twin << ": " << b.err;
+  if (a.rc != 0 || b.rc != 0) return a;
+  const nlohmann::json ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  for (const char* key : keys) EXPECT_EQ(ja.at(key), jb.at(key)) << key << " of " << deck << " and " << twin;
+  return a;
 }
 
 /// `dcad simulate DECK ARGS` as rows of named numbers (the CSV header names the columns); exit 0 expected.

@@ -40,7 +40,16 @@ std::string shown(const Rational& v) {
 }
 }  // namespace
 
-Rational parse_spice_value(const std::string& text, std::string* ignored) {
+std::optional<Dialect> dialect_named(const std::string& name) {
+  static const std::vector<std::pair<std::string, Dialect>> names = {{"strict", Dialect::strict}, {"ngspice", Dialect::ngspice},
+                                                                     {"ngspice39", Dialect::ngspice39}, {"xyce", Dialect::xyce},
+                                                                     {"hspice", Dialect::hspice}, {"gnucap", Dialect::gnucap}};
+  for (const auto& [n, d] : names)
+    if (n == lower(name)) return d;
+  return std::nullopt;
+}
+
+Rational parse_spice_value(const std::string& text, std::string* ignored, Dialect dialect) {
   const std::string t = lower(text);
   std::size_t i = 0;
   if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
@@ -55,15 +64,23 @@ Rational parse_spice_value(const std::string& text, std::string* ignored) {
   std::string rest = t.substr(i);
   for (char ch : rest)
     if (!std::isalpha(static_cast<unsigned char>(ch))) throw std::invalid_argument("expected a SPICE value such as 10u or 4.7nF, found \"" + text + "\"");
-  // ngspice's scale factors (mil before m); `a` and `x` differ between SPICEs: refused, never guessed.  `a` is
-  // atto in ngspice 40 on (inpeval.c, 2023), HSPICE and LTspice, and no scale factor in ngspice 39 (Debian 12's)
-  // and Xyce without -hspice-ext (its PARSER/aAsAmp.cir); `x` is mega in HSPICE and none in ngspice.
-  if (!rest.empty() && (rest[0] == 'a' || rest[0] == 'x'))
+  // ngspice's scale factors (mil before m); `a` and `x` differ between SPICEs (Dialect): read as the deck's
+  // dialect reads them, refused in the strict one, never guessed.  Where `a` is atto it is atto before any
+  // letters ("1amp" is 1e-18 and "mp" ignored, as gnucap's ap_convert.cc reads it); elsewhere it is a unit.
+  const bool atto = dialect == Dialect::ngspice || dialect == Dialect::hspice || dialect == Dialect::gnucap;
+  const bool mega = dialect == Dialect::xyce || dialect == Dialect::hspice;
+  if (dialect != Dialect::strict && !rest.empty() && rest[0] == 'a') {
+    if (atto) v /= Rational(1000000000000000000ULL);
+    rest = rest.substr(atto ? 1 : 0);
+  } else if (dialect != Dialect::strict && !rest.empty() && rest[0] == 'x') {
+    if (mega) v *= 1000000;
+    rest = rest.substr(1);
+  } else if (!rest.empty() && (rest[0] == 'a' || rest[0] == 'x'))
     throw std::invalid_argument(std::string("'") + rest[0] + "' is " +
                                 (rest[0] == 'a' ? "atto (1e-18) in ngspice 40 and later, HSPICE and LTspice, and no scale factor in ngspice 39 and Xyce"
                                                 : "mega (1e6) in HSPICE and no scale factor in ngspice") +
                                 " (which read \"" + text + "\" as " + t.substr(0, i) + "): write the value without it, e.g. " + t.substr(0, i) +
-                                (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i));
+                                (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i) + ", or give the deck's dialect (--dialect ngspice, ngspice39, xyce, hspice or gnucap)");
   static const std::vector<std::pair<std::string, Rational>> scales = {
       {"meg", Rational(1000000)},     {"mil", Rational(254, 10000000)}, {"f", Rational(1, 1000000000000000LL)},
       {"p", Rational(1, 1000000000000LL)}, {"n", Rational(1, 1000000000)},   {"u", Rational(1, 1000000)},
@@ -131,10 +148,11 @@ std::vector<std::string> tokens(const std::string& text) {
   return tok;
 }
 
-/// Text without an inline comment: `;` anywhere, `$` at the start or after white space (ngspice).
-std::string strip_inline_comment(const std::string& text) {
+/// Text without an inline comment: `;` anywhere, `$` at the start or after white space (ngspice, HSPICE) — in
+/// Xyce's dialect `$` is a character of names ("$N_0001", Xyce's INVALID_CHARS/valid_chars_device_node_names.cir).
+std::string strip_inline_comment(const std::string& text, Dialect dialect) {
   std::size_t cut = text.find(';');
-  for (std::size_t i = 0; i < text.size() && i < cut; ++i)
+  for (std::size_t i = 0; dialect != Dialect::xyce && i < text.size() && i < cut; ++i)
     if (text[i] == '$' && (i == 0 || std::isspace(static_cast<unsigned char>(text[i - 1])))) cut = i;
   return cut == std::string::npos ? text : text.substr(0, cut);
 }
@@ -154,7 +172,7 @@ std::string beside(const std::string& deck, const std::string& name) {  // relat
 /// one "TIME VALUE" pair per line, separated by blanks or a comma (Xyce's .csv and text tables); the
 /// specification becomes PWL(t1 v1 t2 v2 …) with the rest kept.  Other specifications are returned as
 /// they are.  A file that is missing, or a line that is not two numbers, is an InputError naming file and line.
-std::string pwl_from_file(const Line& l, const std::string& spec) {
+std::string pwl_from_file(const Line& l, const std::string& spec, Dialect dialect) {
   std::string low = spec;
   std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const std::size_t pwl = low.find("pwl");
@@ -191,7 +209,7 @@ std::string pwl_from_file(const Line& l, const std::string& spec) {
       if (!std::isprint(static_cast<unsigned char>(ch))) ch = '?';
     if (w.size() != 2) throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE (PWL FILE of " + l.where() + "), found \"" + shown + "\"");
     for (const std::string& t : w) try {
-        (void)parse_spice_value(t);
+        (void)parse_spice_value(t, nullptr, dialect);
       } catch (const std::exception&) {
         throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE numbers (PWL FILE of " + l.where() + "), found \"" + shown + "\"");
       }
@@ -234,6 +252,7 @@ class Reader {
   std::vector<Line> lines;
   std::vector<std::string> warnings;
   std::string top_deck;  ///< the top deck's path (includes fall back to its directory)
+  Dialect dialect = Dialect::strict;
 
   /// `text`: the top deck's contents (a deck given as a string, named `file` in messages; its
   /// includes are read relative to `directory`), else the file is opened.
@@ -278,7 +297,7 @@ class Reader {
       }
       const std::size_t start = raw.find_first_not_of(" \t");
       if (start == std::string::npos || raw[start] == '*') continue;
-      std::string text = strip_inline_comment(raw.substr(start));
+      std::string text = strip_inline_comment(raw.substr(start), dialect);
       const std::vector<std::string> tok = tokens(text);
       if (tok.empty()) continue;  // white space of any kind (\f, \v too), or only a comment
       text = text.substr(text.find_first_not_of(" \t\n\v\f\r"));  // tok is not empty: the line has a word
@@ -372,8 +391,8 @@ class Expression {
  public:
   using Functions = std::map<std::string, UserFunction>;
   Expression(const std::string& text, const std::map<std::string, Rational>& params, const Functions* functions = nullptr,
-             ExpressionNotes* notes = nullptr, int depth = 0)
-      : s_(lower(text)), params_(params), functions_(functions), notes_(notes), depth_(depth) {}
+             ExpressionNotes* notes = nullptr, int depth = 0, Dialect dialect = Dialect::strict)
+      : s_(lower(text)), params_(params), functions_(functions), notes_(notes), depth_(depth), dialect_(dialect) {}
   Rational value() {
     if (depth_ > 32) throw std::invalid_argument("user functions nested more than 32 deep (a recursive .func?)");
     const Rational v = ternary();
@@ -538,7 +557,7 @@ class Expression {
                                std::isdigit(static_cast<unsigned char>(s_[start])))))
       ++i_;
     if (i_ == start) throw std::invalid_argument("expected a number, a parameter or '('");
-    return parse_spice_value(s_.substr(start, i_ - start));
+    return parse_spice_value(s_.substr(start, i_ - start), nullptr, dialect_);
   }
   std::vector<Rational> arguments(const std::string& name) {
     eat("(");
@@ -559,7 +578,7 @@ class Expression {
           throw std::invalid_argument(name + ": expected " + std::to_string(f->second.args.size()) + " arguments, found " + std::to_string(a.size()));
         std::map<std::string, Rational> local = params_;
         for (std::size_t k = 0; k < a.size(); ++k) local[f->second.args[k]] = a[k];
-        return Expression(f->second.body, local, functions_, notes_, depth_ + 1).value();
+        return Expression(f->second.body, local, functions_, notes_, depth_ + 1, dialect_).value();
       }
     }
     const std::size_t at = i_;
@@ -648,6 +667,7 @@ class Expression {
   const Functions* functions_;
   ExpressionNotes* notes_;
   int depth_;
+  Dialect dialect_;
 };
 
 /// name=value pairs of a .param line or a subcircuit's params: list ("a=1 b={2*a}", spaces around
@@ -724,16 +744,25 @@ class Flattener {
   std::optional<Rational> temperature;  ///< .temp or .options temp=, if the deck sets one (read before the elements)
   Rational tnom = 27;                   ///< .options tnom=
   bool replace_ground = false;  ///< Xyce's `.preprocess replaceground true`: gnd!, ground, ground! are node 0 too
+  Generator generator;          ///< gnucap's `.generator` settings, read by generator(SCALE) sources
+  Dialect dialect;              ///< how `a` and `x` after a number are read
 
-  explicit Flattener(Netlist& n) : out(n) {}
+  Flattener(Netlist& n, Dialect d) : out(n), dialect(d) {}
 
   void run(const std::vector<Line>& lines) {
     std::map<std::string, Rational> params;
-    std::vector<Line> top, param_lines, temperature_lines;
+    std::vector<Line> top, param_lines, temperature_lines, generator_lines;
+    const Line* tran = nullptr;
     for (std::size_t i = 0; i < lines.size(); ++i) {  // definitions first: ngspice allows use before definition
       const std::vector<std::string> tok = tokens(lines[i].text);
       const std::string head = lower(tok[0]);
-      if (head == ".subckt") {
+      if (head == ".tran" && !tran) tran = &lines[i];
+      if (head.size() >= 4 && std::string(".generator").compare(0, head.size(), head) == 0) {  // gnucap's command, in its order
+        if (tran && tok.size() > 1)
+          fail(lines[i], "gnucap's .generator settings before the deck's first .tran (" + tran->where() + ", whose circuit dcad solves)", tok[0] + " after it");
+        generator_lines.push_back(lines[i]);
+        out.warnings.push_back(lines[i].where() + ": " + tok[0] + ": read for the generator(SCALE) sources (gnucap's signal generator)");
+      } else if (head == ".subckt") {
         i = define(lines, i, "");
       } else if (head == ".ends") {
         fail(lines[i], ".ends after a .subckt", ".ends without .subckt");
@@ -754,6 +783,7 @@ class Flattener {
     }
     for (const Line& l : param_lines) read_params(l, params, nullptr);
     for (const Line& l : temperature_lines) read_temperatures(l, tokens(l.text), params);
+    for (const Line& l : generator_lines) read_generator(l, tokens(l.text), params);
     expand(top, "", {}, params, 0, "");
   }
 
@@ -766,7 +796,7 @@ class Flattener {
   void read_temperatures(const Line& l, const std::vector<std::string>& tok, const std::map<std::string, Rational>& params) {
     const auto value = [&](const std::string& t, const std::string& what) {
       try {
-        return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions).value() : parse_spice_value(t);
+        return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value() : parse_spice_value(t, nullptr, dialect);
       } catch (const std::invalid_argument& e) {
         fail(l, what, "\"" + t + "\" (" + e.what() + ")");
       }
@@ -780,6 +810,66 @@ class Flattener {
       const std::string t = lower(tok[k]);
       if (t.rfind("temp=", 0) == 0) temperature = value(t.substr(5), "temp=TEMPERATURE");
       if (t.rfind("tnom=", 0) == 0) tnom = value(t.substr(5), "tnom=TEMPERATURE");
+    }
+  }
+
+  /// gnucap's conditional values (lib/bm_cond.cc): "r1 1 2 ac 1k dc 2k", a value per analysis.
+  static bool gnucap_mode(const std::string& word) {
+    static const std::set<std::string> modes = {"ac", "op", "dc", "tran", "trans", "transi", "transie", "transien", "transient",
+                                                "four", "fouri", "fourie", "fourier", "else", "all"};
+    return modes.count(lower(word)) > 0;
+  }
+  /// The element's words with its conditional values replaced by the transient's, as gnucap picks it: TRAN,
+  /// else the unconditioned (ELSE, ALL), else DC, else OP.  Refused where the operating point's value (DC,
+  /// else OP) differs from the transient's: dcad's transient starts on the circuit it integrates.
+  std::vector<std::string> transient_value(const Line& l, const std::vector<std::string>& tok, const std::string& name,
+                                           const std::function<Rational(const std::string&)>& number) {
+    std::map<std::string, std::string> by_mode;
+    std::size_t k = 3;
+    for (; k + 1 < tok.size() && gnucap_mode(tok[k]); k += 2) {
+      std::string mode = lower(tok[k]);
+      mode = mode.rfind("tran", 0) == 0 ? "tran" : mode.rfind("four", 0) == 0 ? "fourier" : mode == "all" ? "else" : mode;
+      if (by_mode.count(mode)) fail(l, "one value per analysis (gnucap's conditional form)", "a second " + tok[k] + " for " + name);
+      by_mode[mode] = tok[k + 1];
+    }
+    const auto first = [&](std::initializer_list<const char*> modes) -> std::optional<std::string> {
+      for (const char* m : modes)
+        if (by_mode.count(m)) return by_mode[m];
+      return std::nullopt;
+    };
+    const std::optional<std::string> tran = first({"tran", "else", "dc", "op"}), op = first({"op", "dc", "else", "tran"});
+    if (!tran) fail(l, "a value for the transient (gnucap's TRAN, ELSE, DC or OP)", "only " + tok[3] + " " + tok[4] + " for " + name + " (gnucap then takes 0)");
+    if (number(*tran) != number(*op))
+      fail(l, "one value for the operating point and the transient", *op + " at the operating point and " + *tran + " in the transient for " + name);
+    std::vector<std::string> out_tok(tok.begin(), tok.begin() + 3);
+    out_tok.push_back(*tran);
+    out_tok.insert(out_tok.end(), tok.begin() + static_cast<std::ptrdiff_t>(k), tok.end());
+    std::string rest;
+    for (const auto& [mode, value] : by_mode)
+      if (value != *tran) rest += (rest.empty() ? "" : ", ") + mode + " " + value;
+    out.warnings.push_back(l.where() + ": " + name + ": gnucap's conditional value read as " + *tran + " (the transient's)" +
+                           (rest.empty() ? "" : "; ignored " + rest + " (other analyses)"));
+    return out_tok;
+  }
+
+  /// gnucap's `.generator KEY=VALUE …` (or `KEY VALUE`, as gnucap's Get reads it): settings that persist.
+  void read_generator(const Line& l, const std::vector<std::string>& tok, const std::map<std::string, Rational>& params) {
+    for (std::size_t k = 1; k < tok.size(); ++k) {
+      const std::size_t eq = tok[k].find('=');
+      const std::string key = tok[k].substr(0, eq);
+      std::string value = eq == std::string::npos ? "" : tok[k].substr(eq + 1);
+      if (eq == std::string::npos && k + 1 < tok.size()) value = tok[++k];
+      if (value.empty()) fail(l, "KEY=VALUE after " + tok[0], "\"" + tok[k] + "\"");
+      const Rational v = value.front() == '{' ? evaluate(l, value.substr(1, value.size() - 2), params, key + "=VALUE") : number_of(l, value, key + "=VALUE");
+      if (!generator.set(key, v))
+        fail(l, "gnucap's generator keys (freq ampl phase max min offset init rise fall delay width period)", "\"" + key + "\" in " + tok[0]);
+    }
+  }
+  Rational number_of(const Line& l, const std::string& t, const std::string& what) {
+    try {
+      return parse_spice_value(t, nullptr, dialect);
+    } catch (const std::invalid_argument& e) {
+      fail(l, what, "\"" + t + "\" (" + e.what() + ")");
     }
   }
 
@@ -838,7 +928,7 @@ class Flattener {
     ExpressionNotes notes;
     Rational v;
     try {
-      v = Expression(expr, params, &functions, &notes).value();
+      v = Expression(expr, params, &functions, &notes, 0, dialect).value();
     } catch (const std::invalid_argument& e) {
       fail(l, what + " (numbers, parameters, + - * / ^, comparisons, ?:, pi, sqrt, exp, log, trig, min, max, .func)",
            "\"" + expr + "\" (" + e.what() + ")");
@@ -958,7 +1048,7 @@ class Flattener {
         if (lower(tok[k]) != "uic") times.push_back(tok[k]);
       try {
         const auto time = [&](const std::string& t) {
-          return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions).value() : parse_spice_value(t);
+          return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value() : parse_spice_value(t, nullptr, dialect);
         };
         if (times.size() >= 2) {
           out.tran_step = time(times[0]);
@@ -1066,7 +1156,7 @@ class Flattener {
         text.find_first_of("+-*/^()") == std::string::npos || text.find_first_of("\"'{}") != std::string::npos)
       return std::nullopt;
     try {
-      Expression(text, params, &functions).value();
+      Expression(text, params, &functions, nullptr, 0, dialect).value();
     } catch (const std::invalid_argument&) {
       return std::nullopt;
     }
@@ -1136,7 +1226,7 @@ class Flattener {
         return params.at(t);  // a parameter's name without braces (Xyce, and ngspice's numparam)
       try {
         std::string ignored;
-        const Rational v = parse_spice_value(text, &ignored);
+        const Rational v = parse_spice_value(text, &ignored, dialect);
         if (!ignored.empty())
           out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as " + shown(v) + " (the letters \"" + ignored +
                                  "\" are neither a scale factor nor a unit; ngspice ignores them too)");
@@ -1180,7 +1270,7 @@ class Flattener {
       for (std::size_t k = 3; k < tok.size(); ++k) spec += (k > 3 ? " " : "") + tok[k];
       Waveform w;
       try {
-        w = parse_waveform(pwl_from_file(l, spec), [&](const std::string& t) { return number(t, "a source value"); });
+        w = parse_waveform(pwl_from_file(l, spec, dialect), [&](const std::string& t) { return number(t, "a source value"); }, generator);
       } catch (const std::invalid_argument& e) {
         throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
       }
@@ -1207,6 +1297,7 @@ class Flattener {
       out.where.push_back(l.where());
       return;
     }
+    if (tok.size() > 4 && gnucap_mode(tok[3])) tok = transient_value(l, tok, name, [&](const std::string& t) { return number(t, "a value"); });
     // the value: positional, or as a keyword (r=, c=, l=, value=); then IC=, a multiplier M= and temperature
     // coefficients, which change nothing at the nominal temperature
     const std::string value_key = kind == 'r' ? "r=" : kind == 'c' ? "c=" : "l=";
@@ -1423,37 +1514,39 @@ static void resolve_couplings(Netlist& out, const Flattener& f) {
 
 namespace {
 
-Netlist flatten(const std::string& file, Reader& reader);
+Netlist flatten(const std::string& file, Reader& reader, Dialect dialect);
 
 }  // namespace
 
-Netlist read_netlist(const std::string& file) {
+Netlist read_netlist(const std::string& file, const ReadOptions& options) {
   Reader reader;
+  reader.dialect = options.dialect;
   reader.read(file, true, "", 0, nullptr);
   if (reader.title.empty() && reader.lines.empty()) {
     std::ifstream probe(file);
     if (probe.peek() == std::ifstream::traits_type::eof())
       throw InputError(file + ":1: expected a title line and LC elements, found an empty file");
   }
-  return flatten(file, reader);
+  return flatten(file, reader, options.dialect);
 }
 
-Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory) {
+Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory, const ReadOptions& options) {
   if (text.empty()) throw InputError(name + ":1: expected a title line and LC elements, found an empty deck");
   std::istringstream in(text);
   Reader reader;
+  reader.dialect = options.dialect;
   reader.read(name, true, "", 0, nullptr, &in, directory);
-  return flatten(name, reader);
+  return flatten(name, reader, options.dialect);
 }
 
 namespace {
 
-Netlist flatten(const std::string& file, Reader& reader) {
+Netlist flatten(const std::string& file, Reader& reader, Dialect dialect) {
   Netlist out;
   out.file = file;
   out.title = reader.title;
   out.warnings = reader.warnings;
-  Flattener f(out);
+  Flattener f(out, dialect);
   f.run(reader.lines);
   if (out.circuit.branches.empty())
     throw InputError(file + ":" + (reader.lines.empty() ? std::string("1") : reader.lines.back().where().substr(file.size() + 1)) +

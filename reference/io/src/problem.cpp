@@ -62,13 +62,13 @@ bool looks_like_json_case(const std::string& file) {
 }
 }  // namespace
 
-Problem read_problem(const std::string& file) {
-  if (is_netlist_file(file) || !looks_like_json_case(file)) return from_netlist(read_netlist(file));
+Problem read_problem(const std::string& file, const ReadOptions& options) {
+  if (is_netlist_file(file) || !looks_like_json_case(file)) return from_netlist(read_netlist(file, options));
   return from_json(read_json_file(file), file);
 }
 
-Problem parse_netlist(const std::string& text, const std::string& name, const std::string& directory) {
-  return from_netlist(read_netlist_text(text, name, directory));
+Problem parse_netlist(const std::string& text, const std::string& name, const std::string& directory, const ReadOptions& options) {
+  return from_netlist(read_netlist_text(text, name, directory, options));
 }
 
 Problem parse_case(const std::string& text, const std::string& name) { return from_json(parse_json_exact(text, name), name); }

@@ -51,7 +51,7 @@ bool is_function(const std::string& w) {
   return std::find(fns.begin(), fns.end(), w) != fns.end();
 }
 
-bool readable(const std::string& fn) { return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp" || fn == "sffm"; }
+bool readable(const std::string& fn) { return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp" || fn == "sffm" || fn == "generator"; }
 
 bool is_keyword(const std::string& w) {
   static const std::vector<std::string> kw = {"dc", "ac", "distof1", "distof2", "portnum", "z0", "pwr", "freq"};
@@ -145,7 +145,61 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
 
 }  // namespace
 
-Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number) {
+bool Generator::set(const std::string& key_in, const Rational& value) {
+  const std::string key = lower(key_in);
+  // gnucap's order (c_genrat.cc's ONE_OF): "f" is frequency, "fa" fall; a key is a prefix at least as long as the mandatory part
+  const std::vector<std::pair<GnucapKey, Rational Generator::*>> keys = {
+      {{"frequency", 1}, &Generator::freq}, {{"amplitude", 1}, &Generator::ampl}, {{"phase", 1}, &Generator::phase},
+      {{"max", 2}, &Generator::max},        {{"min", 2}, &Generator::min},        {{"offset", 1}, &Generator::offset},
+      {{"initial", 1}, &Generator::init},   {{"rise", 1}, &Generator::rise},      {{"fall", 1}, &Generator::fall},
+      {{"delay", 1}, &Generator::delay},    {{"width", 1}, &Generator::width},    {{"period", 2}, &Generator::period}};
+  for (const auto& [k, member] : keys)
+    if (key.size() >= k.least && std::string(k.name).compare(0, key.size(), key) == 0) {
+      this->*member = value;
+      return true;
+    }
+  return false;
+}
+
+std::vector<Rational> Generator::pwl(std::optional<Rational>* repeat) const {
+  const auto refuse = [](const std::string& found) {
+    throw std::invalid_argument("expected gnucap's generator as a continuous pulse (.generator freq=0, rise and fall > 0, period >= "
+                                "rise + width + fall), found " + found + ": write the waveform as PWL(t1 v1 t2 v2 …)");
+  };
+  if (freq != 0) refuse("freq=" + freq.str() + " (a sine times the pulse)");
+  for (const Rational* x : {&rise, &fall, &delay, &width, &period})
+    if (*x < 0) refuse("a negative time " + x->str());
+  if (rise == 0) refuse("rise=0 (a step)");
+  const Rational hi = max * ampl + offset, lo = min * ampl + offset;
+  std::vector<Rational> p;
+  const auto point = [&](const Rational& t, const Rational& v) {
+    if (!p.empty() && p[p.size() - 2] == t) return;  // a zero-length piece (delay = 0, a pulse that fills its period)
+    p.push_back(t);
+    p.push_back(v);
+  };
+  point(0, init);
+  point(delay, init);
+  point(delay + rise, hi);
+  if (width == 0) {  // on for ever; with a period it steps from max back to min where each period ends
+    if (period > 0 && hi != lo) refuse("width=0 with period=" + period.str() + " (on until the period ends, then a step to min)");
+    return p;
+  }
+  if (fall == 0) refuse("fall=0 (a step)");
+  if (period > 0 && rise + width + fall > period) refuse("period=" + period.str() + " < rise + width + fall (the pulse is cut: a step)");
+  for (int k = 0; k < (period > 0 ? 2 : 1); ++k) {  // the first pulse rises from init, the repeated ones from min
+    const Rational t0 = delay + k * period;
+    if (k == 1) {
+      *repeat = t0;
+      point(t0 + rise, hi);
+    }
+    point(t0 + rise + width, hi);
+    point(t0 + rise + width + fall, lo);
+    if (period > 0) point(t0 + period, lo);
+  }
+  return p;
+}
+
+Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number, const Generator& generator) {
   Waveform w;
   w.text = spec;
   const std::vector<std::string> words = spec_words(spec);
@@ -262,10 +316,10 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
     dc = number(words[i]);  // "[DC] value": DC is optional before the first value
     ++i;
   }
-  if (fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "generator" || fn == "file")
+  if (fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "file")
     throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + fn +
                                 (fn == "trnoise" || fn == "trrandom" ? " (a random source: no exact transient exists)"
-                                 : fn == "file" || fn == "generator" ? " (values from outside the deck)"
+                                 : fn == "file"                      ? " (values from outside the deck)"
                                                                      : " (not read by dcad yet)") +
                                 ": write the waveform as PWL(t1 v1 t2 v2 …)");
   for (std::size_t k = 0; k < ignored.size(); ++k) w.ignored += (k ? ", " : "") + ignored[k];
@@ -275,6 +329,16 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
     return w;
   }
   if (dc) w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "DC " + dc->str() + " (the operating point's value; the transient uses " + fn + ")";
+  if (fn == "generator") {  // bm_generator.cc: SCALE (default 1) times the generator's value
+    if (args.size() > 1) throw std::invalid_argument("expected generator or generator(SCALE), found " + std::to_string(args.size()) + " values in \"" + spec + "\"");
+    const Rational scale = args.empty() ? Rational(1) : args[0];
+    w.p = generator.pwl(&w.repeat);
+    for (std::size_t i = 1; i < w.p.size(); i += 2) w.p[i] *= scale;
+    w.kind = Waveform::Kind::pwl;
+    w.given = w.p.size();
+    w.literal = true;
+    return w;
+  }
   std::vector<Rational>& a = args;
   w.given = a.size();
   if (fn == "sin") {

@@ -50,19 +50,31 @@ inline std::string rounded_note(const Netlist& n) {
   return s + (n.rounded.size() > 1 ? ", …)" : ")") + "; the answer is exact for that rounded circuit";
 }
 
+/// Whose deck it is, for the scale factors the SPICEs read differently: `1a` is 1e-18 in ngspice 40 on
+/// (inpeval.c), HSPICE, LTspice and gnucap (ap_convert.cc), and 1 (a unit, amperes) in ngspice 39 and Xyce
+/// without -hspice-ext (its PARSER/aAsAmp.cir); `1x` is 1e6 in HSPICE and Xyce (PARSER/scalingFactors.cir),
+/// and 1 in ngspice and gnucap.  `strict`, the default, refuses both and names the dialects.  In Xyce's
+/// dialect `$` is a character of names ($N_0001), not an inline comment as in ngspice and HSPICE.
+enum class Dialect { strict, ngspice, ngspice39, xyce, hspice, gnucap };
+/// The dialect of a name as `--dialect` takes it (strict ngspice ngspice39 xyce hspice gnucap).
+std::optional<Dialect> dialect_named(const std::string& name);
+struct ReadOptions {
+  Dialect dialect = Dialect::strict;
+};
+
 bool is_netlist_file(const std::string& file);
 /// The deck's graph facts (dcad/graph.hpp): counts, and the loops and cutsets by signed branch names —
 /// for an LC deck CEF Thm 6.4's purely capacitive and Thm 6.8's empty loops; with resistors, sources or
 /// couplings (YM §4) the CV loops, loops of voltage sources, LI cutsets and cutsets of current sources.
 CircuitFacts circuit_facts(const Netlist& n);
-Netlist read_netlist(const std::string& file);
+Netlist read_netlist(const std::string& file, const ReadOptions& options = {});
 /// A deck given as text, named `name` in messages; `.include`/`.lib` files are read from `directory`.
-Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory);
+Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory, const ReadOptions& options = {});
 /// SPICE value, exact: a number with an optional scale factor as ngspice reads it (f p n u m mil k meg g
 /// t, case-insensitive) and an optional unit ("10uF", "2.2kOhm").  Other trailing letters are ignored, as
-/// ngspice does, and put in `*ignored` (the caller warns).  A leading `a` or `x` is refused: atto and
-/// mega in other SPICEs, nothing in ngspice.  Throws std::invalid_argument.
-Rational parse_spice_value(const std::string& text, std::string* ignored = nullptr);
+/// ngspice does, and put in `*ignored` (the caller warns).  A leading `a` or `x` is read as `dialect` reads
+/// it, and refused in the strict one.  Throws std::invalid_argument.
+Rational parse_spice_value(const std::string& text, std::string* ignored = nullptr, Dialect dialect = Dialect::strict);
 /// The case the circuit stands for: `pontryagin` with variables q_*, v_*, p_* (CONTRACT).  Without
 /// `dense`, only the names (no n×n and 3n×3n matrices: for the graph route on large circuits).
 CaseFile netlist_case(const Netlist& n, bool dense = true);

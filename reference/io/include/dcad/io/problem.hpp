@@ -44,12 +44,14 @@ struct Problem {
 void validate(const Problem& p);
 
 /// Any input file: a netlist by its extension (.cir, .sp, .net, .spice, .ckt), else a JSON case in
-/// the expression form or a linear one — the JSON is read once.  InputError for bad input.
-Problem read_problem(const std::string& file);
+/// the expression form or a linear one — the JSON is read once.  InputError for bad input.  `options`
+/// apply to a netlist (its dialect).
+Problem read_problem(const std::string& file, const ReadOptions& options = {});
 
 /// A netlist given as text; `name` stands for the file in messages, and `.include`/`.lib` paths are
 /// taken relative to `directory`.
-Problem parse_netlist(const std::string& text, const std::string& name = "netlist.cir", const std::string& directory = ".");
+Problem parse_netlist(const std::string& text, const std::string& name = "netlist.cir", const std::string& directory = ".",
+                      const ReadOptions& options = {});
 
 /// A JSON case (linear or expression form) given as text; `name` stands for the file in messages.
 Problem parse_case(const std::string& text, const std::string& name = "case.json");

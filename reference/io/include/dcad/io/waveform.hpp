@@ -82,14 +82,32 @@ struct Waveform {
   double rate2() const;
 };
 
+/// gnucap's signal generator (apps/c_genrat.cc), set by `.gen[erator] KEY=VALUE …` and read by a
+/// `generator(SCALE)` source as SCALE times its value; gnucap's defaults (a 1 ps rise from 0 to 1).
+struct Generator {
+  Rational freq = 0, ampl = 1, phase = 0, max = 1, min = 0, offset = 0, init = 0, rise = Rational(1, 1000000000000LL),
+           fall = Rational(1, 1000000000000LL), delay = 0, width = 0, period = 0;
+  /// Its value as PWL points t1 v1 t2 v2 … (gen() of c_genrat.cc with freq = 0: init up to delay, a ramp to
+  /// max·ampl + offset over rise, held for width (0: for ever), a fall to min·ampl + offset, repeated from
+  /// delay + period with `*repeat` set to that time).  std::invalid_argument where gnucap's value has no
+  /// continuous piecewise-linear form (freq != 0: a sine times the pulse; a zero rise or fall; a period that
+  /// cuts the pulse).
+  std::vector<Rational> pwl(std::optional<Rational>* repeat) const;
+  /// Sets KEY=VALUE with gnucap's abbreviations (f{requency} a{mplitude} p{hase} ma{x} mi{n} o{ffset}
+  /// i{nitial} r{ise} f{all} d{elay} w{idth} pe{riod}); false for a key it does not have.
+  bool set(const std::string& key, const Rational& value);
+};
+
 /// Parses the source specification after the nodes as ngspice does for a transient: "[DC] v", "DC=v",
 /// "SIN(...)", "PULSE(...)", "PWL(...)" — with or without parentheses (SPICE3) — in any order with an AC
 /// specification ("AC mag [phase]", "AC=mag"), DISTOF1/DISTOF2 and a port's "portnum N z0 Z pwr P freq F",
 /// which the transient does not use (recorded in `ignored`); a DC value before a function is the operating
 /// point's and is ignored as ngspice ignores it for .tran.  PULSE's and SIN's missing values wait for
 /// complete().  `number` converts one token exactly.  Throws std::invalid_argument naming what is not read
-/// (SFFM, AM, TRNOISE, PAT …) and what to write instead.  EXP and PWL's TD= and R= are read as ngspice reads them.
-Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number);
+/// (AM, TRNOISE, PAT …) and what to write instead.  EXP and PWL's TD= and R= are read as ngspice reads them;
+/// gnucap's `generator(SCALE)` as the PWL of `generator` times SCALE.
+Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number,
+                        const Generator& generator = Generator{});
 
 /// The first source whose waveform has no finite exosystem (SFFM), for simulate, check and the enclosures to
 /// refuse by name: "V1 (SFFM …)"; nullopt when every one has one.
