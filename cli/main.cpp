@@ -99,6 +99,222 @@ void add_dialect(CLI::App* command, std::string& dialect) {
       ->check(CLI::IsMember({"strict", "ngspice", "ngspice39", "xyce", "hspice", "gnucap"}));
 }
 
+/// `dcad simulate`: its options and its run (dcad::api::simulate, the CSV to stdout or --csv, --energy, --plot).
+struct SimulateCommand {
+  CLI::App* app = nullptr;
+  std::string file, csv, backend = "certified";
+  std::string tstop, step;  // SPICE values: "1e-3", "20n", "0.5us"
+  std::string initial = "deck", route = "auto", columns, png, vars, energy;
+  dcad::api::SimulateOptions opt;
+
+  void add(CLI::App& parent, std::string& dialect) {
+    app = parent.add_subcommand(
+        "simulate", "Integrate the equations of motion on M_c from the file's initial condition (netlists: SPICE's, see --initial; "
+                    "a state off M_c jumps onto it at t = 0); "
+                    "exact flow of the linear reduced system (matrix exponential); netlists beyond the dense sizes take the sparse route "
+                    "(Krylov exponential action on sparse equations of motion, error-controlled, see --route). CSV: t, then every variable (or --vars).");
+    app->add_option("FILE", file, "LC/RLC netlist (.cir, .sp, .net), `pontryagin` case or expression-form case (.json)")->required();
+    app->add_option("--tstop", tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
+    add_dialect(app, dialect);
+    app->add_option("--step", step, "output step (seconds; SPICE suffixes)")->required();
+    app->add_option("--backend", backend, "certified|reference|fast (the dense route's model is built exactly in this version; the sparse route is double throughout)")
+        ->check(CLI::IsMember({"reference", "fast", "certified"}));
+    app->add_option("--csv", csv, "write the CSV here instead of stdout");
+    app->add_option("--initial", initial,
+                    "netlists: op (the DC operating point) or uic (IC= and .ic values, the rest 0); default: as the deck's .tran says")
+        ->check(CLI::IsMember({"deck", "op", "uic"}));
+    app->add_option("--route", route,
+                    "netlists: dense (the exact model's matrix exponential; <= 60 branches with R, sources or K, <= 400 LC) or sparse (any size with "
+                    "every R, L, C > 0 and |k| < 1: Krylov exponential action on the sparse equations of motion); default auto: dense where it fits. "
+                    "With --certified: the exact model the enclosure is built on")
+        ->check(CLI::IsMember({"auto", "dense", "sparse"}));
+    app->add_option("--vars", columns, "comma-separated variables for the CSV after t (default: every variable)");
+    app->add_flag("--certified", opt.enclose,
+                  "netlists up to 200 branches (--route picks the exact model: dense up to 60, sparse = the state equations with every R, L, C > 0): "
+                  "every value the midpoint of a rigorous enclosure (Arb balls on the exact model) of the motion at "
+                  "the exact time k*step (printed rounded to double), with the largest radius of the row's charges, currents and flux "
+                  "linkages in columns rad_q, rad_v, rad_p");
+    app->add_option("--energy", energy, "circuits with R or sources: write the energy balance (E, dissipated and supplied power and work) as CSV here");
+    app->add_option("--plot", png, "also draw a PNG plot here (gnuplot)");
+    app->add_option("--plot-vars", vars, "comma-separated variables to plot (default: every q_*)");
+  }
+
+  int run(const dcad::io::ReadOptions& read) {
+    for (auto [flag, text, out] : {std::tuple{"--tstop", &tstop, &opt.tstop}, std::tuple{"--step", &step, &opt.step}}) {
+      try {
+        *out = static_cast<double>(dcad::io::parse_spice_value(*text));
+      } catch (const std::invalid_argument&) {
+        std::cerr << "dcad simulate: " << flag << ": expected a time in seconds such as 1e-3 or 20n, found \"" << *text << "\"\n";
+        return 2;
+      }
+    }
+    opt.backend = dcad::api::backend_named(backend);
+    opt.initial = initial == "op" ? dcad::api::Initial::op : initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
+    opt.route = route == "dense" ? dcad::api::Route::dense : route == "sparse" ? dcad::api::Route::sparse : dcad::api::Route::automatic;
+    for (std::size_t start = 0; !columns.empty();) {
+      const std::size_t comma = columns.find(',', start);
+      opt.columns.push_back(columns.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    const dcad::io::Problem problem = dcad::io::read_problem(file, read);
+    std::vector<std::string> header = dcad::api::simulate_columns(problem);
+    if (!opt.columns.empty()) {
+      header.assign(1, "t");
+      header.insert(header.end(), opt.columns.begin(), opt.columns.end());
+    }
+    const std::string title = problem.name().empty() ? file : problem.name();
+    std::vector<std::size_t> plot_cols;
+    if (!png.empty()) {
+      try {
+        plot_cols = dcad::cli::plot_columns(header, vars);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << e.what() << "\n";
+        return 2;
+      }
+    }
+    // rows go out as they are computed: to --csv, or to a temporary file for --plot (then copied
+    // to stdout), or straight to stdout
+    const std::string csv_path = !csv.empty() ? csv : !png.empty() ? png + ".csv" : "";
+    std::ofstream file_out;
+    if (!csv_path.empty()) {
+      file_out.open(csv_path);
+      if (!file_out) {
+        std::cerr << csv_path << ": cannot open for writing\n";
+        return 1;
+      }
+    }
+    std::ofstream energy_out;
+    if (!energy.empty()) {
+      energy_out.open(energy);
+      if (!energy_out) {
+        std::cerr << energy << ": cannot open for writing\n";
+        return 1;
+      }
+    }
+    dcad::api::simulate(problem, opt, csv_path.empty() ? std::cout : file_out, std::cerr, energy.empty() ? nullptr : &energy_out);
+    if (!csv_path.empty()) {
+      file_out.close();
+      if (!file_out) {
+        std::cerr << csv_path << ": cannot write\n";
+        return 1;
+      }
+    }
+    if (!std::cout) {
+      std::cerr << "simulate: cannot write to standard output\n";
+      return 1;
+    }
+    if (csv.empty() && !png.empty()) {
+      std::ifstream copy(csv_path);
+      std::cout << copy.rdbuf();
+    }
+    if (!png.empty()) {
+      const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, png, title);
+      if (csv.empty()) std::remove(csv_path.c_str());
+      if (!why.empty()) {
+        std::cerr << png << ": " << why << "\n";
+        return 1;
+      }
+    }
+    return 0;
+  }
+};
+
+/// `dcad check`: a simulator's waveforms against the exact flow, or another tool's result JSON against the reference.
+struct CheckCommand {
+  CLI::App* app = nullptr;
+  std::string result_file, file, initial = "deck", png, vars;
+  dcad::api::WaveformOptions wave;
+  bool json = false;
+  std::size_t points = 20;
+
+  void add(CLI::App& parent, std::string& dialect) {
+    app = parent.add_subcommand(
+        "check", "Compare another implementation's result (JSON, the keys of `dcad solve --json`) for FILE against the "
+                 "reference, or a simulator's transient output (ngspice raw or wrdata, gnucap .print, CSV) against the exact flow "
+                 "of the netlist FILE at the file's own time points: exit 0 if it agrees, 3 with the list of disagreements, 1 if "
+                 "RESULT is not a result or waveform for FILE.");
+    app->add_option("RESULT", result_file, "the other implementation's result (.json), or a simulator's transient output "
+                                                    "(ngspice raw or wrdata, gnucap .print, CSV)")->required();
+    app->add_option("FILE", file, "the case file or netlist it was computed for")->required();
+    add_dialect(app, dialect);
+    app->add_option("--rtol", wave.rtol, "waveforms: relative tolerance, of each vector's largest |exact| over the run (default 1e-3)");
+    app->add_option("--atol", wave.atol, "waveforms: absolute tolerance (default 0)");
+    app->add_option("--initial", initial, "waveforms: the simulator's initial state: deck (its .tran), op or uic")
+        ->check(CLI::IsMember({"deck", "op", "uic"}));
+    app->add_flag("--json", json, "waveforms: the report as JSON");
+    app->add_option("--points", points, "formulas: compare another tool's constraints and equations of motion at this many points of M_c (default 20)");
+    app->add_option("--plot", png, "waveforms: also draw the simulator's and the exact waveforms, the worst point marked, as a PNG (gnuplot)");
+    app->add_option("--plot-vars", vars, "waveforms: comma-separated vectors to plot (default: the one with the largest relative error)");
+  }
+
+  int run_waveform(const dcad::io::ReadOptions& read) {
+    wave.initial = initial == "op" ? dcad::api::Initial::op : initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
+    // the file streams (bounded memory at any size) unless a plot needs its points in memory
+    const dcad::io::Traces traces = png.empty() ? dcad::io::Traces{} : dcad::io::read_traces(result_file);
+    const std::unique_ptr<dcad::io::TraceStream> stream = png.empty() ? dcad::io::open_traces(result_file) : dcad::io::stream_of(traces);
+    wave.keep_exact = !png.empty();
+    std::vector<std::size_t> plotted;  // vectors to plot, by index
+    if (!vars.empty()) {
+      std::istringstream in(vars);
+      for (std::string name; std::getline(in, name, ',');) {
+        std::size_t k = 0;
+        while (k < stream->names().size() && stream->names()[k] != name) ++k;
+        if (k == stream->names().size()) {
+          std::cerr << "dcad check: --plot-vars: expected vectors of " << result_file << ", found \"" << name << "\"\n";
+          return 2;
+        }
+        plotted.push_back(k);
+      }
+    }
+    const dcad::api::WaveformChecked w = dcad::api::check_waveform(*stream, dcad::io::read_problem(file, read), wave, std::cerr);
+    std::cout << (json ? dcad::api::waveform_json(w, wave) + "\n" : dcad::api::waveform_text(w, result_file, file, wave));
+    if (!png.empty() && !w.vectors.empty()) {
+      if (plotted.empty()) plotted.push_back(w.worst);
+      const std::string csv = png + ".csv";
+      {
+        std::ofstream f(csv);
+        f.precision(17);
+        f << "t";
+        for (std::size_t k : plotted) f << "," << traces.names[k] << "," << traces.names[k] << " (exact)";
+        f << "\n";
+        for (std::size_t i = 0; i < traces.time.size(); ++i) {
+          f << traces.time[i];
+          for (std::size_t k : plotted) f << "," << traces.values[k][i] << "," << w.exact[k][i];
+          f << "\n";
+        }
+      }
+      std::vector<std::string> names;
+      std::vector<double> wt, wf;
+      for (std::size_t k : plotted) {
+        names.push_back(traces.names[k] + (w.vectors[k].agree ? " (agrees)" : " (DISAGREES)"));
+        wt.push_back(w.vectors[k].at);
+        wf.push_back(w.vectors[k].found);
+      }
+      const std::string why = dcad::cli::plot_check_png(csv, names, wt, wf, png, result_file + " against the exact flow of " + file);
+      std::remove(csv.c_str());
+      if (!why.empty()) std::cerr << "dcad check: --plot: " << why << "\n";
+      else std::cerr << "dcad check: plot written to " << png << "\n";
+    }
+    return w.agree ? 0 : 3;
+  }
+
+  int run_result(const dcad::io::ReadOptions& read) {
+    const dcad::api::Checked o = dcad::api::check(result_file, dcad::io::read_problem(file, read), points);
+    std::string keys;
+    for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
+    for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";
+    if (o.agrees) {
+      std::cout << "dcad check: " << result_file << " agrees with the reference on " << file << " (compared: " << keys << ")\n";
+      return 0;
+    }
+    std::cout << "dcad check: " << result_file << " disagrees with the reference on " << file << ":\n";
+    for (const std::string& d : o.disagreements) std::cout << "  " << d << "\n";
+    std::cout << o.disagreements.size() << " disagreement(s) among the compared keys: " << keys << "\n";
+    return 3;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -139,65 +355,11 @@ int main(int argc, char** argv) {
                     "all (default), none, or a comma-separated list of final (final_constraints), reduced (equations of "
                     "motion), classes (first/second class, Dirac bracket), adapted (Thm 3.28 / 7.4)");
 
-  std::string sim_file, sim_csv, sim_backend = "certified";
-  dcad::api::SimulateOptions sim_opt;
-  CLI::App* sim = app.add_subcommand(
-      "simulate", "Integrate the equations of motion on M_c from the file's initial condition (netlists: SPICE's, see --initial; "
-                  "a state off M_c jumps onto it at t = 0); "
-                  "exact flow of the linear reduced system (matrix exponential); netlists beyond the dense sizes take the sparse route "
-                  "(Krylov exponential action on sparse equations of motion, error-controlled, see --route). CSV: t, then every variable (or --vars).");
-  sim->add_option("FILE", sim_file, "LC/RLC netlist (.cir, .sp, .net), `pontryagin` case or expression-form case (.json)")->required();
-  std::string sim_tstop, sim_step;  // SPICE values: "1e-3", "20n", "0.5us"
-  sim->add_option("--tstop", sim_tstop, "final time (seconds; SPICE suffixes: 20n, 1.5u)")->required();
-  add_dialect(sim, dialect);
-  sim->add_option("--step", sim_step, "output step (seconds; SPICE suffixes)")->required();
-  sim->add_option("--backend", sim_backend, "certified|reference|fast (the dense route's model is built exactly in this version; the sparse route is double throughout)")
-      ->check(CLI::IsMember({"reference", "fast", "certified"}));
-  sim->add_option("--csv", sim_csv, "write the CSV here instead of stdout");
-  std::string sim_initial = "deck";
-  sim->add_option("--initial", sim_initial,
-                  "netlists: op (the DC operating point) or uic (IC= and .ic values, the rest 0); default: as the deck's .tran says")
-      ->check(CLI::IsMember({"deck", "op", "uic"}));
-  std::string sim_route = "auto", sim_columns;
-  sim->add_option("--route", sim_route,
-                  "netlists: dense (the exact model's matrix exponential; <= 60 branches with R, sources or K, <= 400 LC) or sparse (any size with "
-                  "every R, L, C > 0 and |k| < 1: Krylov exponential action on the sparse equations of motion); default auto: dense where it fits. "
-                  "With --certified: the exact model the enclosure is built on")
-      ->check(CLI::IsMember({"auto", "dense", "sparse"}));
-  sim->add_option("--vars", sim_columns, "comma-separated variables for the CSV after t (default: every variable)");
-  sim->add_flag("--certified", sim_opt.enclose,
-                "netlists up to 200 branches (--route picks the exact model: dense up to 60, sparse = the state equations with every R, L, C > 0): "
-                "every value the midpoint of a rigorous enclosure (Arb balls on the exact model) of the motion at "
-                "the exact time k*step (printed rounded to double), with the largest radius of the row's charges, currents and flux "
-                "linkages in columns rad_q, rad_v, rad_p");
-  std::string sim_png, sim_vars, sim_energy;
-  sim->add_option("--energy", sim_energy, "circuits with R or sources: write the energy balance (E, dissipated and supplied power and work) as CSV here");
-  sim->add_option("--plot", sim_png, "also draw a PNG plot here (gnuplot)");
-  sim->add_option("--plot-vars", sim_vars, "comma-separated variables to plot (default: every q_*)");
+  SimulateCommand sim;
+  sim.add(app, dialect);
 
-  std::string check_result_file, check_file;
-  CLI::App* check = app.add_subcommand(
-      "check", "Compare another implementation's result (JSON, the keys of `dcad solve --json`) for FILE against the "
-               "reference, or a simulator's transient output (ngspice raw or wrdata, gnucap .print, CSV) against the exact flow "
-               "of the netlist FILE at the file's own time points: exit 0 if it agrees, 3 with the list of disagreements, 1 if "
-               "RESULT is not a result or waveform for FILE.");
-  check->add_option("RESULT", check_result_file, "the other implementation's result (.json), or a simulator's transient output "
-                                                  "(ngspice raw or wrdata, gnucap .print, CSV)")->required();
-  check->add_option("FILE", check_file, "the case file or netlist it was computed for")->required();
-  add_dialect(check, dialect);
-  dcad::api::WaveformOptions wave_opt;
-  bool check_json = false;
-  std::string check_initial = "deck";
-  check->add_option("--rtol", wave_opt.rtol, "waveforms: relative tolerance, of each vector's largest |exact| over the run (default 1e-3)");
-  check->add_option("--atol", wave_opt.atol, "waveforms: absolute tolerance (default 0)");
-  check->add_option("--initial", check_initial, "waveforms: the simulator's initial state: deck (its .tran), op or uic")
-      ->check(CLI::IsMember({"deck", "op", "uic"}));
-  check->add_flag("--json", check_json, "waveforms: the report as JSON");
-  std::size_t check_points = 20;
-  check->add_option("--points", check_points, "formulas: compare another tool's constraints and equations of motion at this many points of M_c (default 20)");
-  std::string check_png, check_vars;
-  check->add_option("--plot", check_png, "waveforms: also draw the simulator's and the exact waveforms, the worst point marked, as a PNG (gnuplot)");
-  check->add_option("--plot-vars", check_vars, "waveforms: comma-separated vectors to plot (default: the one with the largest relative error)");
+  CheckCommand check;
+  check.add(app, dialect);
 
   std::string cases_action;
   std::vector<std::string> cases_args;
@@ -245,148 +407,8 @@ int main(int argc, char** argv) {
       return solve_files(solve_files_list, read, dcad::api::backend_named(solve_backend), parts, solve_json, solve_lines, std::cout, std::cerr);
     }
     if (cases->parsed()) return cases_command(cases_action, cases_args, cases_waveforms);
-    if (check->parsed() && !dcad::io::looks_like_json(check_result_file)) {
-      wave_opt.initial = check_initial == "op" ? dcad::api::Initial::op : check_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
-      // the file streams (bounded memory at any size) unless a plot needs its points in memory
-      const dcad::io::Traces traces = check_png.empty() ? dcad::io::Traces{} : dcad::io::read_traces(check_result_file);
-      const std::unique_ptr<dcad::io::TraceStream> stream = check_png.empty() ? dcad::io::open_traces(check_result_file) : dcad::io::stream_of(traces);
-      wave_opt.keep_exact = !check_png.empty();
-      std::vector<std::size_t> plotted;  // vectors to plot, by index
-      if (!check_vars.empty()) {
-        std::istringstream in(check_vars);
-        for (std::string name; std::getline(in, name, ',');) {
-          std::size_t k = 0;
-          while (k < stream->names().size() && stream->names()[k] != name) ++k;
-          if (k == stream->names().size()) {
-            std::cerr << "dcad check: --plot-vars: expected vectors of " << check_result_file << ", found \"" << name << "\"\n";
-            return 2;
-          }
-          plotted.push_back(k);
-        }
-      }
-      const dcad::api::WaveformChecked w = dcad::api::check_waveform(*stream, dcad::io::read_problem(check_file, read), wave_opt, std::cerr);
-      std::cout << (check_json ? dcad::api::waveform_json(w, wave_opt) + "\n" : dcad::api::waveform_text(w, check_result_file, check_file, wave_opt));
-      if (!check_png.empty() && !w.vectors.empty()) {
-        if (plotted.empty()) plotted.push_back(w.worst);
-        const std::string csv = check_png + ".csv";
-        {
-          std::ofstream f(csv);
-          f.precision(17);
-          f << "t";
-          for (std::size_t k : plotted) f << "," << traces.names[k] << "," << traces.names[k] << " (exact)";
-          f << "\n";
-          for (std::size_t i = 0; i < traces.time.size(); ++i) {
-            f << traces.time[i];
-            for (std::size_t k : plotted) f << "," << traces.values[k][i] << "," << w.exact[k][i];
-            f << "\n";
-          }
-        }
-        std::vector<std::string> names;
-        std::vector<double> wt, wf;
-        for (std::size_t k : plotted) {
-          names.push_back(traces.names[k] + (w.vectors[k].agree ? " (agrees)" : " (DISAGREES)"));
-          wt.push_back(w.vectors[k].at);
-          wf.push_back(w.vectors[k].found);
-        }
-        const std::string why = dcad::cli::plot_check_png(csv, names, wt, wf, check_png, check_result_file + " against the exact flow of " + check_file);
-        std::remove(csv.c_str());
-        if (!why.empty()) std::cerr << "dcad check: --plot: " << why << "\n";
-        else std::cerr << "dcad check: plot written to " << check_png << "\n";
-      }
-      return w.agree ? 0 : 3;
-    }
-    if (check->parsed()) {
-      const dcad::api::Checked o = dcad::api::check(check_result_file, dcad::io::read_problem(check_file, read), check_points);
-      std::string keys;
-      for (const std::string& k : o.compared) keys += (keys.empty() ? "" : ", ") + k;
-      for (const std::string& k : o.not_compared) std::cout << "dcad check: not compared: " << k << "\n";
-      if (o.agrees) {
-        std::cout << "dcad check: " << check_result_file << " agrees with the reference on " << check_file << " (compared: " << keys << ")\n";
-        return 0;
-      }
-      std::cout << "dcad check: " << check_result_file << " disagrees with the reference on " << check_file << ":\n";
-      for (const std::string& d : o.disagreements) std::cout << "  " << d << "\n";
-      std::cout << o.disagreements.size() << " disagreement(s) among the compared keys: " << keys << "\n";
-      return 3;
-    }
-    if (sim->parsed()) {
-      for (auto [flag, text, out] : {std::tuple{"--tstop", &sim_tstop, &sim_opt.tstop}, std::tuple{"--step", &sim_step, &sim_opt.step}}) {
-        try {
-          *out = static_cast<double>(dcad::io::parse_spice_value(*text));
-        } catch (const std::invalid_argument&) {
-          std::cerr << "dcad simulate: " << flag << ": expected a time in seconds such as 1e-3 or 20n, found \"" << *text << "\"\n";
-          return 2;
-        }
-      }
-      sim_opt.backend = dcad::api::backend_named(sim_backend);
-      sim_opt.initial = sim_initial == "op" ? dcad::api::Initial::op : sim_initial == "uic" ? dcad::api::Initial::uic : dcad::api::Initial::deck;
-      sim_opt.route = sim_route == "dense" ? dcad::api::Route::dense : sim_route == "sparse" ? dcad::api::Route::sparse : dcad::api::Route::automatic;
-      for (std::size_t start = 0; !sim_columns.empty();) {
-        const std::size_t comma = sim_columns.find(',', start);
-        sim_opt.columns.push_back(sim_columns.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-      }
-      const dcad::io::Problem problem = dcad::io::read_problem(sim_file, read);
-      std::vector<std::string> header = dcad::api::simulate_columns(problem);
-      if (!sim_opt.columns.empty()) {
-        header.assign(1, "t");
-        header.insert(header.end(), sim_opt.columns.begin(), sim_opt.columns.end());
-      }
-      const std::string title = problem.name().empty() ? sim_file : problem.name();
-      std::vector<std::size_t> plot_cols;
-      if (!sim_png.empty()) {
-        try {
-          plot_cols = dcad::cli::plot_columns(header, sim_vars);
-        } catch (const std::invalid_argument& e) {
-          std::cerr << e.what() << "\n";
-          return 2;
-        }
-      }
-      // rows go out as they are computed: to --csv, or to a temporary file for --plot (then copied
-      // to stdout), or straight to stdout
-      const std::string csv_path = !sim_csv.empty() ? sim_csv : !sim_png.empty() ? sim_png + ".csv" : "";
-      std::ofstream file_out;
-      if (!csv_path.empty()) {
-        file_out.open(csv_path);
-        if (!file_out) {
-          std::cerr << csv_path << ": cannot open for writing\n";
-          return 1;
-        }
-      }
-      std::ofstream energy_out;
-      if (!sim_energy.empty()) {
-        energy_out.open(sim_energy);
-        if (!energy_out) {
-          std::cerr << sim_energy << ": cannot open for writing\n";
-          return 1;
-        }
-      }
-      dcad::api::simulate(problem, sim_opt, csv_path.empty() ? std::cout : file_out, std::cerr, sim_energy.empty() ? nullptr : &energy_out);
-      if (!csv_path.empty()) {
-        file_out.close();
-        if (!file_out) {
-          std::cerr << csv_path << ": cannot write\n";
-          return 1;
-        }
-      }
-      if (!std::cout) {
-        std::cerr << "simulate: cannot write to standard output\n";
-        return 1;
-      }
-      if (sim_csv.empty() && !sim_png.empty()) {
-        std::ifstream copy(csv_path);
-        std::cout << copy.rdbuf();
-      }
-      if (!sim_png.empty()) {
-        const std::string why = dcad::cli::plot_png(csv_path, header, plot_cols, sim_png, title);
-        if (sim_csv.empty()) std::remove(csv_path.c_str());
-        if (!why.empty()) {
-          std::cerr << sim_png << ": " << why << "\n";
-          return 1;
-        }
-      }
-    }
+    if (check.app->parsed()) return dcad::io::looks_like_json(check.result_file) ? check.run_result(read) : check.run_waveform(read);
+    if (sim.app->parsed()) return sim.run(read);
   } catch (const dcad::io::InputError& e) {  // the message names the file
     std::cerr << e.what() << "\n";
     return 1;
@@ -394,7 +416,7 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
-    std::cerr << (sim->parsed() ? sim_file : check->parsed() ? check_file : file) << ": " << e.what() << "\n";
+    std::cerr << (sim.app->parsed() ? sim.file : check.app->parsed() ? check.file : file) << ": " << e.what() << "\n";
     return 1;
   } catch (const std::bad_alloc&) {  // a resource limit, not a wrong answer
     std::cerr << "dcad: out of memory (no answer)\n";

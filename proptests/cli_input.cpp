@@ -354,6 +354,17 @@ TEST(Cli, DialectDecidesTheAmbiguousScaleFactors) {
   expect_input_error(run("solve " + dollar + " --dialect ngspice"), dollar + ":2", "NAME NODE+ NODE- VALUE", "ngspice's comment");
 }
 
+// HSPICE's .macro … .eom is .subckt … .ends (Xyce's XDM/HSPICE/OTHER_PARSING/macro_statement.cir.hspice), and
+// PSpice's .probe64 and .autoconverge change nothing; the twin writes .subckt.  Killed by: .macro read as an
+// unknown card (dcad before), .eom not ending the definition (the rest of the deck swallowed).
+TEST(Cli, HspiceMacroIsSubckt) {
+  const std::string deck = write_temp("dcad_macro.sp", "macro\n.macro tank a b l=1u\nL1 a b {l}\nC1 a b 1n\n.eom tank\nX1 n1 0 tank l=2u\n"
+                                                     "X2 n1 n2 tank\nC9 n2 0 1n\n.probe64\n.autoconverge itl1=1000\n.end\n");
+  const std::string twin = write_temp("dcad_macro_twin.sp", "macro\n.subckt tank a b l=1u\nL1 a b {l}\nC1 a b 1n\n.ends tank\nX1 n1 0 tank l=2u\n"
+                                                          "X2 n1 n2 tank\nC9 n2 0 1n\n.end\n");
+  expect_same_solution(deck, twin, {"dims", "steps", "solution_rank", "variables", "tower", "reduced"});
+}
+
 // gnucap's generator (apps/c_genrat.cc) and conditional values (lib/bm_cond.cc) in a deck: `.generator` sets the
 // pulse, generator(SCALE) reads it, "R1 1 2 ac 1k dc 2k" is 2k in the transient; the twin writes the same
 // circuit in SPICE's words (PWL with R=, the values).  Killed by: the .generator settings dropped (gnucap's

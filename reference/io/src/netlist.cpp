@@ -301,8 +301,12 @@ class Reader {
       const std::vector<std::string> tok = tokens(text);
       if (tok.empty()) continue;  // white space of any kind (\f, \v too), or only a comment
       text = text.substr(text.find_first_not_of(" \t\n\v\f\r"));  // tok is not empty: the line has a word
+      std::string head = lower(tok[0]);
+      if (head == ".macro" || head == ".eom") {  // HSPICE's names of .subckt and .ends
+        text = (head == ".macro" ? ".subckt" : ".ends") + text.substr(tok[0].size());
+        head = head == ".macro" ? ".subckt" : ".ends";
+      }
       const Line here{file, number, text};
-      const std::string head = lower(tok[0]);
       if (!in_section) {  // .lib FILE SECTION: only `.lib SECTION` … `.endl`
         if (head == ".lib" && tok.size() == 2 && lower(tok[1]) == lower(section)) in_section = true;
         continue;
@@ -1006,7 +1010,8 @@ class Flattener {
         ".four", ".fourier", ".width", ".title", ".nodeset", ".noise", ".disto", ".pz", ".sens", ".tf", ".fft", ".hb", ".list",
         ".mor", ".status", ".dcop", ".tr", ".result", ".mpde", ".lin", ".sp", ".pss", ".shoot", ".objective", ".endl", ".end",
         ".alter", ".graph", ".nodelist", ".nolist", ".protect", ".unprotect", ".csvprint", ".mem", ".tsave",
-        ".store", ".fanout"};  // gnucap: waveforms kept for .measure, a listing of node connections
+        ".store", ".fanout",  // gnucap: waveforms kept for .measure, a listing of node connections
+        ".probe64", ".autoconverge"};  // PSpice: 64-bit probe data, convergence options
     return cards.count(head) > 0;
   }
   /// Sweeps and sampling: analyses run on the circuit at other values; dcad solves it as written.

@@ -199,16 +199,29 @@ std::vector<Rational> Generator::pwl(std::optional<Rational>* repeat) const {
   return p;
 }
 
-Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number, const Generator& generator) {
-  Waveform w;
-  w.text = spec;
-  const std::vector<std::string> words = spec_words(spec);
+namespace {
+
+/// A source specification's words, read: its DC value, its transient function with the values as written
+/// and what the transient does not use.
+struct SourceWords {
   std::optional<Rational> dc;
-  std::string fn;
+  std::string fn;  ///< "" (DC), sin, pulse, pwl, exp, sffm, generator, or one dcad refuses
   std::vector<Rational> args;
   std::vector<std::string> ignored;
   std::optional<Rational> pwl_td, pwl_r;
-  bool literal = false;  // gnucap's keyword form: every value given, no SPICE defaults
+  bool literal = false;  ///< gnucap's keyword form: every value given, no SPICE defaults
+};
+
+SourceWords read_source_words(const std::string& spec, const std::function<Rational(const std::string&)>& number) {
+  SourceWords r;
+  std::optional<Rational>& dc = r.dc;
+  std::string& fn = r.fn;
+  std::vector<Rational>& args = r.args;
+  std::vector<std::string>& ignored = r.ignored;
+  std::optional<Rational>& pwl_td = r.pwl_td;
+  std::optional<Rational>& pwl_r = r.pwl_r;
+  bool& literal = r.literal;
+  const std::vector<std::string> words = spec_words(spec);
   const auto note = [&](const std::string& s) { ignored.push_back(s); };
   for (std::size_t i = 0; i < words.size();) {
     const std::string word = lower(words[i]);
@@ -316,6 +329,45 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
     dc = number(words[i]);  // "[DC] value": DC is optional before the first value
     ++i;
   }
+  return r;
+}
+
+/// PWL's points (t1 v1 t2 v2 …) checked, shifted by TD= and repeated from R= as ngspice does (R = -1: none).
+void shape_pwl(Waveform& w, std::vector<Rational>& a, const std::optional<Rational>& pwl_td, const std::optional<Rational>& pwl_r) {
+  if (a.size() < 2 || a.size() % 2 != 0) throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) + " values");
+  if (pwl_td)
+    for (std::size_t i = 0; i < a.size(); i += 2) a[i] += *pwl_td;  // TD= shifts the whole waveform
+  for (std::size_t i = 2; i < a.size(); i += 2)
+    if (!(a[i] > a[i - 2])) throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
+  if (a[0] < 0) throw std::invalid_argument("expected PWL times >= 0, found " + a[0].str());
+  w.kind = Waveform::Kind::pwl;
+  if (pwl_r && *pwl_r >= 0) {  // R = -1: no repetition (ngspice); else a time point before the last
+    const Rational r = *pwl_r + (pwl_td ? *pwl_td : Rational(0));
+    bool point = false;
+    for (std::size_t i = 0; i < a.size(); i += 2) point = point || a[i] == r;
+    if (!(r < a[a.size() - 2]) || !point)
+      throw std::invalid_argument("expected PWL's R= at one of its time points before the last (ngspice), found R = " + pwl_r->str());
+    w.repeat = r;
+    Rational at_r = 0;
+    for (std::size_t i = 0; i < a.size(); i += 2)
+      if (a[i] == r) at_r = a[i + 1];
+    if (at_r != a.back())
+      throw std::invalid_argument("expected PWL's repeated part to start where it ends (" + at_r.str() + " at R, " + a.back().str() +
+                                  " at the last point), found a step: dcad's exact flows take continuous sources (add a ramp)");
+  }
+}
+
+/// The waveform the words stand for: each kind's count and ranges checked, PWL's TD= and R= applied.
+Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& generator) {
+  std::optional<Rational>& dc = r.dc;
+  std::string& fn = r.fn;
+  std::vector<Rational>& args = r.args;
+  std::vector<std::string>& ignored = r.ignored;
+  std::optional<Rational>& pwl_td = r.pwl_td;
+  std::optional<Rational>& pwl_r = r.pwl_r;
+  bool& literal = r.literal;
+  Waveform w;
+  w.text = spec;
   if (fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "file")
     throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + fn +
                                 (fn == "trnoise" || fn == "trrandom" ? " (a random source: no exact transient exists)"
@@ -370,27 +422,7 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
       throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) + " values");
     w.kind = Waveform::Kind::exp;
   } else {
-    if (a.size() < 2 || a.size() % 2 != 0) throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) + " values");
-    if (pwl_td)
-      for (std::size_t i = 0; i < a.size(); i += 2) a[i] += *pwl_td;  // TD= shifts the whole waveform
-    for (std::size_t i = 2; i < a.size(); i += 2)
-      if (!(a[i] > a[i - 2])) throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
-    if (a[0] < 0) throw std::invalid_argument("expected PWL times >= 0, found " + a[0].str());
-    w.kind = Waveform::Kind::pwl;
-    if (pwl_r && *pwl_r >= 0) {  // R = -1: no repetition (ngspice); else a time point before the last
-      Rational r = *pwl_r + (pwl_td ? *pwl_td : Rational(0));
-      bool point = false;
-      for (std::size_t i = 0; i < a.size(); i += 2) point = point || a[i] == r;
-      if (!(r < a[a.size() - 2]) || !point)
-        throw std::invalid_argument("expected PWL's R= at one of its time points before the last (ngspice), found R = " + pwl_r->str());
-      w.repeat = r;
-      Rational at_r = 0;
-      for (std::size_t i = 0; i < a.size(); i += 2)
-        if (a[i] == r) at_r = a[i + 1];
-      if (at_r != a.back())
-        throw std::invalid_argument("expected PWL's repeated part to start where it ends (" + at_r.str() + " at R, " + a.back().str() +
-                                    " at the last point), found a step: dcad's exact flows take continuous sources (add a ramp)");
-    }
+    shape_pwl(w, a, pwl_td, pwl_r);
   }
   if ((pwl_td || pwl_r) && fn != "pwl") throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + fn);
   w.p = a;
@@ -398,6 +430,12 @@ Waveform parse_waveform(const std::string& spec, const std::function<Rational(co
   if (w.kind == Waveform::Kind::pwl) w.given = a.size();
   if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0) w.p.resize(6, Rational(0));  // FREQ given: complete already
   return w;
+}
+
+}  // namespace
+
+Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number, const Generator& generator) {
+  return waveform_of(read_source_words(spec, number), spec, generator);
 }
 
 void Waveform::complete(const std::optional<Rational>& tstep, const std::optional<Rational>& tstop) {
