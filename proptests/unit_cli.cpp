@@ -139,6 +139,11 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   EXPECT_EQ(r.value(4.5, 0), 0.5);  // one period (2) later
   EXPECT_EQ(r.value(3.5, 0), 0.5);  // rising again
   EXPECT_EQ(r.next_corner(Rational(3)), Rational(4));
+  Rational v, slope;  // at the last point the right limit is the repeated part's start (R): rising again
+  r.exact_piece(Rational(3), v, slope);
+  EXPECT_EQ(v, Rational(0));
+  EXPECT_EQ(slope, Rational(1));
+  EXPECT_EQ(r.value(3, 1), 1.0);
   EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1"), std::invalid_argument);  // repeats 1 → 0 with a step: an ideal jump
   Waveform cut_jump = wave("PULSE(0 1 0 1 1 1 2)");  // PER < TR + PW + TF, cut at 2: a step 1 → 0 there
   cut_jump.complete(Rational(1), Rational(10));

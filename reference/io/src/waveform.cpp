@@ -577,7 +577,7 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
     v = p(1);
     return;
   }
-  if (w.repeat && t > p(2 * n - 2)) {  // R=: from the repeat point to the last, period after period (ngspice)
+  if (w.repeat && t >= p(2 * n - 2)) {  // R=: from the repeat point to the last, period after period (ngspice); at the last point its right limit
     const T r = as(t, *w.repeat), period = p(2 * n - 2) - r;
     T shifted = t - r;
     shifted -= period * floor_of(T(shifted / period));
@@ -597,6 +597,7 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
     }
   }
   v = p(2 * n - 1);
+  slope = T(0);  // held after the last point
 }
 
 }  // namespace
