@@ -798,13 +798,7 @@ class Flattener {
 
   /// .temp T [T2 …] (the first: a list is a sweep) and .options temp=T tnom=T.
   void read_temperatures(const Line& l, const std::vector<std::string>& tok, const std::map<std::string, Rational>& params) {
-    const auto value = [&](const std::string& t, const std::string& what) {
-      try {
-        return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value() : parse_spice_value(t, nullptr, dialect);
-      } catch (const std::invalid_argument& e) {
-        fail(l, what, "\"" + t + "\" (" + e.what() + ")");
-      }
-    };
+    const auto value = [&](const std::string& t, const std::string& what) { return card_value(l, t, params, what); };
     if (lower(tok[0]) == ".temp") {
       if (tok.size() < 2) fail(l, ".temp TEMPERATURE", "none");
       temperature = value(tok[1], "a temperature in C");
@@ -864,12 +858,14 @@ class Flattener {
       std::string value = eq == std::string::npos ? "" : tok[k].substr(eq + 1);
       if (eq == std::string::npos && k + 1 < tok.size()) value = tok[++k];
       if (value.empty()) fail(l, "KEY=VALUE after " + tok[0], "\"" + tok[k] + "\"");
-      const Rational v = value.front() == '{' ? evaluate(l, value.substr(1, value.size() - 2), params, key + "=VALUE") : number_of(l, value, key + "=VALUE");
+      const Rational v = card_value(l, value, params, key + "=VALUE");
       if (!generator.set(key, v))
         fail(l, "gnucap's generator keys (freq ampl phase max min offset init rise fall delay width period)", "\"" + key + "\" in " + tok[0]);
     }
   }
-  Rational number_of(const Line& l, const std::string& t, const std::string& what) {
+  /// A value on a card (.temp, .options, .generator): `{expression}` over the deck's parameters, or a SPICE number.
+  Rational card_value(const Line& l, const std::string& t, const std::map<std::string, Rational>& params, const std::string& what) {
+    if (t.size() > 1 && t.front() == '{') return evaluate(l, t.substr(1, t.size() - 2), params, what);
     try {
       return parse_spice_value(t, nullptr, dialect);
     } catch (const std::invalid_argument& e) {
