@@ -359,31 +359,24 @@ void shape_pwl(Waveform& w, std::vector<Rational>& a, const std::optional<Ration
 
 /// The waveform the words stand for: each kind's count and ranges checked, PWL's TD= and R= applied.
 Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& generator) {
-  std::optional<Rational>& dc = r.dc;
-  std::string& fn = r.fn;
-  std::vector<Rational>& args = r.args;
-  std::vector<std::string>& ignored = r.ignored;
-  std::optional<Rational>& pwl_td = r.pwl_td;
-  std::optional<Rational>& pwl_r = r.pwl_r;
-  bool& literal = r.literal;
   Waveform w;
   w.text = spec;
-  if (fn == "am" || fn == "trnoise" || fn == "trrandom" || fn == "pat" || fn == "file")
-    throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + fn +
-                                (fn == "trnoise" || fn == "trrandom" ? " (a random source: no exact transient exists)"
-                                 : fn == "file"                      ? " (values from outside the deck)"
+  if (r.fn == "am" || r.fn == "trnoise" || r.fn == "trrandom" || r.fn == "pat" || r.fn == "file")
+    throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + r.fn +
+                                (r.fn == "trnoise" || r.fn == "trrandom" ? " (a random source: no exact transient exists)"
+                                 : r.fn == "file"                      ? " (values from outside the deck)"
                                                                      : " (not read by dcad yet)") +
                                 ": write the waveform as PWL(t1 v1 t2 v2 …)");
-  for (std::size_t k = 0; k < ignored.size(); ++k) w.ignored += (k ? ", " : "") + ignored[k];
-  if (fn.empty()) {
-    w.p = {dc ? *dc : Rational(0)};  // AC alone: DC 0 in the transient, as ngspice
+  for (std::size_t k = 0; k < r.ignored.size(); ++k) w.ignored += (k ? ", " : "") + r.ignored[k];
+  if (r.fn.empty()) {
+    w.p = {r.dc ? *r.dc : Rational(0)};  // AC alone: DC 0 in the transient, as ngspice
     w.given = 1;
     return w;
   }
-  if (dc) w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "DC " + dc->str() + " (the operating point's value; the transient uses " + fn + ")";
-  if (fn == "generator") {  // bm_generator.cc: SCALE (default 1) times the generator's value
-    if (args.size() > 1) throw std::invalid_argument("expected generator or generator(SCALE), found " + std::to_string(args.size()) + " values in \"" + spec + "\"");
-    const Rational scale = args.empty() ? Rational(1) : args[0];
+  if (r.dc) w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "DC " + r.dc->str() + " (the operating point's value; the transient uses " + r.fn + ")";
+  if (r.fn == "generator") {  // bm_generator.cc: SCALE (default 1) times the generator's value
+    if (r.args.size() > 1) throw std::invalid_argument("expected generator or generator(SCALE), found " + std::to_string(r.args.size()) + " values in \"" + spec + "\"");
+    const Rational scale = r.args.empty() ? Rational(1) : r.args[0];
     w.p = generator.pwl(&w.repeat);
     for (std::size_t i = 1; i < w.p.size(); i += 2) w.p[i] *= scale;
     w.kind = Waveform::Kind::pwl;
@@ -391,14 +384,14 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
     w.literal = true;
     return w;
   }
-  std::vector<Rational>& a = args;
+  std::vector<Rational>& a = r.args;
   w.given = a.size();
-  if (fn == "sin") {
+  if (r.fn == "sin") {
     if (a.size() < 2 || a.size() > 6)
       throw std::invalid_argument("expected SIN(VO VA [FREQ [TD [THETA [PHASE]]]]), found " + std::to_string(a.size()) + " values");
     if (a.size() > 2 && a[2] < 0) throw std::invalid_argument("expected FREQ >= 0 in SIN, found " + a[2].str());
     w.kind = Waveform::Kind::sin;
-  } else if (fn == "pulse") {
+  } else if (r.fn == "pulse") {
     if (a.size() < 2 || a.size() > 8)
       throw std::invalid_argument("expected PULSE(V1 V2 [TD [TR [TF [PW [PER [NP]]]]]]), found " + std::to_string(a.size()) + " values");
     if (a.size() > 2 && a[2] < 0) throw std::invalid_argument("expected TD >= 0 in PULSE, found " + a[2].str());
@@ -409,7 +402,7 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
       a.pop_back();
     }
     w.kind = Waveform::Kind::pulse;
-  } else if (fn == "sffm") {  // all five: the defaults and a 6th value differ between ngspice versions
+  } else if (r.fn == "sffm") {  // all five: the defaults and a 6th value differ between ngspice versions
     if (a.size() != 5)
       throw std::invalid_argument("expected SFFM(VO VA FC MDI FS) with the five values SPICE3, ngspice 39, ngspice 46 on and Xyce read alike "
                                   "(their defaults for missing ones differ between ngspice versions, a 6th value is PHASEC in ngspice 39 and "
@@ -417,16 +410,16 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
     if (!(a[2] > 0) || !(a[4] > 0) || a[3] < 0)
       throw std::invalid_argument("expected SFFM's FC > 0, FS > 0 and MDI >= 0, found FC = " + a[2].str() + ", MDI = " + a[3].str() + ", FS = " + a[4].str());
     w.kind = Waveform::Kind::sffm;
-  } else if (fn == "exp") {
+  } else if (r.fn == "exp") {
     if (a.size() < 2 || a.size() > 6)
       throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) + " values");
     w.kind = Waveform::Kind::exp;
   } else {
-    shape_pwl(w, a, pwl_td, pwl_r);
+    shape_pwl(w, a, r.pwl_td, r.pwl_r);
   }
-  if ((pwl_td || pwl_r) && fn != "pwl") throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + fn);
+  if ((r.pwl_td || r.pwl_r) && r.fn != "pwl") throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + r.fn);
   w.p = a;
-  w.literal = literal;
+  w.literal = r.literal;
   if (w.kind == Waveform::Kind::pwl) w.given = a.size();
   if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0) w.p.resize(6, Rational(0));  // FREQ given: complete already
   return w;
