@@ -386,7 +386,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   std::vector<double> breaks;
   std::vector<std::vector<double>> own(m);  // each source's own corners: only they jump there
   for (std::size_t j = 0; j < m; ++j) try {
-      own[j] = deck.waveforms[j].breakpoints(opt.tstop);
+      own[j] = deck.waveforms[j].breakpoints(opt.tstop + opt.step);  // and a corner an ulp after the last row: applied with it
       for (double b : own[j]) breaks.push_back(b);
     } catch (const std::invalid_argument& e) {
       throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());

@@ -534,8 +534,27 @@ Rational floor_of(const Rational& x) {
 }
 double as(double, const Rational& x) { return d(x); }
 Rational as(const Rational&, const Rational& x) { return x; }
+double as_double(double x) { return x; }
+double as_double(const Rational& x) { return x.convert_to<double>(); }
 
-/// PULSE and PWL: the value and slope at t (right limit), in double or exactly (T = Rational).
+/// The period k >= k_min that t lies in: origin + period·k <= t < origin + period·(k + 1), each bound
+/// computed as breakpoints() computes its corners (in double, a row an ulp from a corner takes the side of
+/// it the flow's breakpoints put it on; exactly, the same).
+template <class T>
+long period_of(const T& t, const T& origin, const T& period, long k_min) {
+  const auto start = [&](long k) { return T(origin + period * static_cast<T>(k)); };
+  const double q = as_double(floor_of(T((t - origin) / period)));
+  if (!(q < 1e15)) return static_cast<long>(1e15);  // corners beyond double's resolution of the period (and NaN)
+  long k = std::max<long>(k_min, static_cast<long>(q));
+  while (k > k_min && t < start(k)) --k;
+  while (!(t < start(k + 1))) ++k;
+  return k;
+}
+
+/// PULSE and PWL: the value and slope at t (right limit), in double or exactly (T = Rational).  The pieces
+/// are bounded by the corners exactly as Waveform::breakpoints() writes them — PULSE's TD + PER·k (+ TR,
+/// + PW, + TF), a repeated PWL's LAST + PERIOD·(k − 1) and t_i + PERIOD·k — so that the double flow, which
+/// stops at those corners, and the jets it reads at a row agree on the side of a corner the row is on.
 template <class T>
 void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
   const auto p = [&](std::size_t i) { return as(t, w.p[i]); };
@@ -546,20 +565,21 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
       v = v1;
       return;
     }
-    T tau = t - td;
-    if (w.pulses > 0 && tau > per * static_cast<T>(w.pulses)) {  // after NP pulses: V1 (ngspice)
+    // right limits: at TD + k·PER the next period (ngspice's value there is the same)
+    const long k = per > 0 ? period_of(t, td, per, 0) : 0;
+    if (w.pulses > 0 && k >= w.pulses) {  // after NP pulses: V1 (ngspice)
       v = v1;
       return;
     }
-    if (per > 0) tau -= per * floor_of(T(tau / per));  // right limits: at k·PER the next period (ngspice's value there is the same)
-    if (tau < tr) {
+    const T base = per > 0 ? T(td + per * static_cast<T>(k)) : td;
+    if (t < T(base + tr)) {
       slope = (v2 - v1) / tr;
-      v = v1 + slope * tau;
-    } else if (tau < tr + pw) {
+      v = v1 + slope * (t - base);
+    } else if (t < T(base + tr + pw)) {
       v = v2;
-    } else if (tau < tr + pw + tf) {
+    } else if (t < T(base + tr + pw + tf)) {
       slope = (v1 - v2) / tf;
-      v = v2 + slope * (tau - tr - pw);
+      v = v2 + slope * (t - T(base + tr + pw));
     } else {
       v = v1;
     }
@@ -570,21 +590,20 @@ void linear_at(const Waveform& w, const T& t, T& v, T& slope) {
     v = p(1);
     return;
   }
-  if (w.repeat && t >= p(2 * n - 2)) {  // R=: from the repeat point to the last, period after period (ngspice); at the last point its right limit
-    const T r = as(t, *w.repeat), period = p(2 * n - 2) - r;
-    T shifted = t - r;
-    shifted -= period * floor_of(T(shifted / period));
-    T local = r + shifted;
-    Waveform once = w;
-    once.repeat.reset();
-    linear_at(once, local, v, slope);
-    return;
+  std::size_t first = 0;  // the pieces from point `first` on, their times shifted by `shift`, the first from `from`
+  T shift = 0, from = p(0);
+  if (w.repeat && !(t < p(2 * n - 2))) {  // R=: from the repeat point to the last, period after period (ngspice)
+    const T r = as(t, *w.repeat), last = p(2 * n - 2), period = last - r;
+    const long k = period_of(t, last, period, 0) + 1;  // repetition k: from LAST + PERIOD·(k − 1)
+    shift = period * static_cast<T>(k);
+    from = last + period * static_cast<T>(k - 1);
+    while (p(2 * first) != r) ++first;
   }
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    const T t0 = p(2 * i), t1 = p(2 * i + 2);
+  for (std::size_t i = first; i + 1 < n; ++i) {
+    const T t0 = i == first ? from : T(p(2 * i) + shift), t1 = p(2 * i + 2) + shift;
     if (t < t1) {
       const T v0 = p(2 * i + 1), v1 = p(2 * i + 3);
-      slope = (v1 - v0) / (t1 - t0);
+      slope = (v1 - v0) / (p(2 * i + 2) - p(2 * i));
       v = v0 + slope * (t - t0);
       return;
     }
@@ -720,7 +739,7 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
         if (k >= kMaxPeriods)
           throw std::invalid_argument(element + ": " + text + " repeats more than " + std::to_string(kMaxPeriods) + " times before " + std::to_string(tstop) + " s");
         for (std::size_t i = 0; i < p.size(); i += 2)
-          if (p[i] >= *repeat) {
+          if (p[i] > *repeat) {  // the repeat point itself is the previous period's last corner, LAST + PERIOD·(k − 1)
             const double c = d(p[i]) + period * static_cast<double>(k);
             if (c > 0 && c <= tstop) out.push_back(c);
           }
