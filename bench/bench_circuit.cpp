@@ -88,8 +88,9 @@ int main(int argc, char** argv) {
   const double json_s = seconds_since(t2);
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  std::printf("%s,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%ld,%ld,%.1f\n", family.c_str(), n.circuit.branches.size(), n.circuit.nodes + 1,
-              read_s, tower_s, json_s, seconds_since(t0), r.steps, r.dims().back(), u.ru_maxrss / 1024.0);
+  std::printf("%s,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%ld,%ld,%.1f\n", family.c_str(), n.circuit.branches.size(),
+              n.circuit.nodes + 1, read_s, tower_s, json_s, seconds_since(t0), r.steps, r.dims().back(),
+              u.ru_maxrss / 1024.0);
   std::remove(deck.c_str());
   return json.empty() ? 1 : 0;
 }

@@ -21,7 +21,8 @@ std::string dims_text(const std::vector<long>& d) {
 }
 
 /// Best of three runs (one if it takes over 2 s): seconds and the result's dims and certainty, or the error.
-void row(const std::string& file, std::size_t n, const char* route, const std::function<std::pair<std::vector<long>, bool>()>& f) {
+void row(const std::string& file, std::size_t n, const char* route,
+         const std::function<std::pair<std::vector<long>, bool>()>& f) {
   double best = 1e300;
   std::string what;
   for (int k = 0; k < 3; ++k) {
@@ -47,7 +48,8 @@ int main(int argc, char** argv) {
   for (int a = 1; a < argc; ++a) {
     const dcad::io::Problem p = dcad::io::read_problem(argv[a]);
     const std::size_t n = p.expression.system.n;
-    for (const auto& [route, name] : {std::pair{ImplicitRoute::formulas, "exact, on formulas"}, std::pair{ImplicitRoute::jets, "exact, on jets"}})
+    for (const auto& [route, name] :
+         {std::pair{ImplicitRoute::formulas, "exact, on formulas"}, std::pair{ImplicitRoute::jets, "exact, on jets"}})
       row(argv[a], n, name, [&, r = route] {
         const auto s = dcad::reference::pipeline::solve_implicit_exact(p.expression, r);
         return std::make_pair(s.dims(), s.certified.yes());

@@ -37,7 +37,8 @@ fa::LinearSystem presymplectic_system(int n) {
   const Eigen::MatrixXd f1 = small_integers(n / 4, n, 1, rng), f2 = small_integers(n / 4, n, 1, rng);
   const Eigen::MatrixXd f = small_integers(n / 2, n, 1, rng);
   const Eigen::MatrixXd h = f.transpose() * f;
-  return {fa::dirac_from_presymplectic(f1.transpose() * f2 - f2.transpose() * f1), h, h * small_integers(n, 1, 2, rng), 0.0};
+  return {fa::dirac_from_presymplectic(f1.transpose() * f2 - f2.transpose() * f1), h, h * small_integers(n, 1, 2, rng),
+          0.0};
 }
 
 void ColPivQR(benchmark::State& st) {
@@ -75,19 +76,22 @@ Eigen::MatrixXd deficient(int n) {
 }
 
 void RrefExact(benchmark::State& st) {
-  const auto m = lifted<ref::Rational>(deficient(static_cast<int>(st.range(0))), [](double x) { return ref::Rational(x); });
+  const auto m =
+      lifted<ref::Rational>(deficient(static_cast<int>(st.range(0))), [](double x) { return ref::Rational(x); });
   for (auto _ : st) benchmark::DoNotOptimize(ref::rref(m).pivots.size());
 }
 BENCHMARK(RrefExact)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 void RrefFmpq(benchmark::State& st) {
-  const auto m = lifted<ref::Fmpq>(deficient(static_cast<int>(st.range(0))), [](double x) { return ref::Fmpq(static_cast<int>(x)); });
+  const auto m = lifted<ref::Fmpq>(deficient(static_cast<int>(st.range(0))),
+                                   [](double x) { return ref::Fmpq(static_cast<int>(x)); });
   for (auto _ : st) benchmark::DoNotOptimize(ref::rref(m).pivots.size());
 }
 BENCHMARK(RrefFmpq)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 void RrefWords(benchmark::State& st) {
-  const auto m = lifted<ref::SmallRational>(deficient(static_cast<int>(st.range(0))), [](double x) { return ref::SmallRational(static_cast<int>(x)); });
+  const auto m = lifted<ref::SmallRational>(deficient(static_cast<int>(st.range(0))),
+                                            [](double x) { return ref::SmallRational(static_cast<int>(x)); });
   std::size_t pivots = 0;
   bool fits = true;
   for (auto _ : st) {
@@ -114,14 +118,27 @@ dcad::families::Instance beyond_words(int n) {
 
 template <class T>
 void CadBeyondWords(benchmark::State& st) {
-  const auto s = dcad::families::system_over<T>(beyond_words(static_cast<int>(st.range(0))), [](const ref::Rational& q) {
-    if constexpr (std::is_same<T, ref::Rational>::value) return q;
-    else return T::from(q);
-  });
+  const auto s =
+      dcad::families::system_over<T>(beyond_words(static_cast<int>(st.range(0))), [](const ref::Rational& q) {
+        if constexpr (std::is_same<T, ref::Rational>::value)
+          return q;
+        else
+          return T::from(q);
+      });
   for (auto _ : st) benchmark::DoNotOptimize(ref::constraint_tower(s).steps);
 }
-BENCHMARK_TEMPLATE(CadBeyondWords, ref::Rational)->Name("CadBeyondWords/Mpq")->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(CadBeyondWords, ref::Fmpq)->Name("CadBeyondWords/Fmpq")->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(CadBeyondWords, ref::Rational)
+    ->Name("CadBeyondWords/Mpq")
+    ->Arg(8)
+    ->Arg(16)
+    ->Arg(24)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(CadBeyondWords, ref::Fmpq)
+    ->Name("CadBeyondWords/Fmpq")
+    ->Arg(8)
+    ->Arg(16)
+    ->Arg(24)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

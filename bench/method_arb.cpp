@@ -92,7 +92,8 @@ class ArbBall {
 template <class B>
 Outcome run_balls(const families::Instance& in) {
   try {
-    return run_generic<B>(in, [](const families::Q& q) { return B::enclosing(q); }, [](const B& b) { return b.mid(); });
+    return run_generic<B>(
+        in, [](const families::Q& q) { return B::enclosing(q); }, [](const B& b) { return b.mid(); });
   } catch (const Uncertain&) {
     Outcome o = run_fmpq(in);
     o.recomputed = true;

@@ -15,10 +15,12 @@ Outcome run_fast(const families::Instance& in) {
     fast::LinearSystem s;
     if (in.pontryagin) {
       const auto& p = in.circuit;
-      s = fast::pontryagin_system({p.n, to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt),
-                                  to_double(p.q, opt), to_double(p.v, opt)}, opt);
+      s = fast::pontryagin_system({p.n, to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt),
+                                   to_double(p.qq, opt), to_double(p.q, opt), to_double(p.v, opt)},
+                                  opt);
     } else {
-      s = {fast::dirac_from_presymplectic(to_double(in.omega, opt)), to_double(in.hessian, opt), to_double(in.gradient, opt), 0.0};
+      s = {fast::dirac_from_presymplectic(to_double(in.omega, opt)), to_double(in.hessian, opt),
+           to_double(in.gradient, opt), 0.0};
     }
     const fast::CadResult r = fast::constraint_tower(s, opt);
     o.consistent = r.consistent;

@@ -46,7 +46,8 @@ namespace dcad::bench {
 
 Outcome run_flint(const families::Instance& in) {
   using F = reference::FlintFmpq;
-  return run_generic<F>(in, [](const families::Q& q) { return F::from(q); }, [](const F& f) { return f.value().convert_to<double>(); });
+  return run_generic<F>(
+      in, [](const families::Q& q) { return F::from(q); }, [](const F& f) { return f.value().convert_to<double>(); });
 }
 
 }  // namespace dcad::bench

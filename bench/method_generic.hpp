@@ -47,7 +47,8 @@ Outcome run_approx(const families::Instance& in, const F& relative) {
   using A = Approx<F>;
   A::tolerance() = relative * F(input_scale(in));
   try {
-    return run_generic<A>(in, [](const families::Q& q) { return A(F(q)); }, [](const A& a) { return static_cast<double>(a.v); });
+    return run_generic<A>(
+        in, [](const families::Q& q) { return A(F(q)); }, [](const A& a) { return static_cast<double>(a.v); });
   } catch (const std::exception& e) {
     Outcome o;
     o.failed = true;

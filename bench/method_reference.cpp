@@ -19,15 +19,18 @@ Outcome run_small(const families::Instance& in) {
   using S = reference::SmallRational;
   using W = reference::WideRational;
   try {
-    return run_generic<S>(in, [](const Q& q) { return S::from(q); }, [](const S& s) { return s.value().convert_to<double>(); });
+    return run_generic<S>(
+        in, [](const Q& q) { return S::from(q); }, [](const S& s) { return s.value().convert_to<double>(); });
   } catch (const reference::Overflow&) {
-    return run_generic<W>(in, [](const Q& q) { return W::from(q); }, [](const W& s) { return s.value().convert_to<double>(); });
+    return run_generic<W>(
+        in, [](const Q& q) { return W::from(q); }, [](const W& s) { return s.value().convert_to<double>(); });
   }
 }
 
 Outcome run_mpq(const families::Instance& in) {
   using Q = families::Q;
-  return run_generic<Q>(in, [](const Q& q) { return q; }, [](const Q& q) { return q.convert_to<double>(); });
+  return run_generic<Q>(
+      in, [](const Q& q) { return q; }, [](const Q& q) { return q.convert_to<double>(); });
 }
 
 }  // namespace dcad::bench

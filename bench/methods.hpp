@@ -5,8 +5,8 @@
 //   fast       dcad::fast (orthogonal decompositions, SVD rank decisions)  method_fast.cpp
 //   certified  machine words first, FLINT's fmpq on Overflow (dcad/certified/cascade.hpp)  method_certified.cpp
 //   tier_*     one tier alone (issue 26): tier_mpq mpq_rational, tier_fmpq FLINT's fmpq (the reference's
-//              Gauss–Jordan), tier_flint fmpq with fmpq_mat_rref, tier_ball bench/ball.hpp (the cascade's ball tier until issue 26) and
-//              tier_arb Arb's arb_t (each recomputed in fmpq on an uncertain test)   method_*.cpp
+//              Gauss–Jordan), tier_flint fmpq with fmpq_mat_rref, tier_ball bench/ball.hpp (the cascade's ball tier
+//              until issue 26) and tier_arb Arb's arb_t (each recomputed in fmpq on an uncertain test)   method_*.cpp
 #pragma once
 
 #include "families.hpp"
@@ -22,10 +22,10 @@ struct Outcome {
   std::vector<long> dims;
   long solution_rank = -1;
   bool consistent = true;
-  bool uncertain = false;   ///< the method said so (fast's verdict)
-  bool recomputed = false;  ///< certified: some zero test needed the exact recomputation
+  bool uncertain = false;      ///< the method said so (fast's verdict)
+  bool recomputed = false;     ///< certified: some zero test needed the exact recomputation
   bool machine_words = false;  ///< certified: decided exactly in 64- or 128-bit rationals
-  bool failed = false;      ///< threw (message in `error`): counted as a wrong answer
+  bool failed = false;         ///< threw (message in `error`): counted as a wrong answer
   std::string error;
   std::vector<Eigen::MatrixXd> tower;  ///< columns span T M_k, k = 0 … c (double)
 };

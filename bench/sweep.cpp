@@ -36,12 +36,15 @@ struct Exact {
   std::vector<Eigen::MatrixXd> tower;
 };
 
-bool wrong(const Outcome& o, const Exact& e) { return o.failed || o.dims != e.dims || o.solution_rank != e.solution_rank; }
+bool wrong(const Outcome& o, const Exact& e) {
+  return o.failed || o.dims != e.dims || o.solution_rank != e.solution_rank;
+}
 
 double tower_angle(const Outcome& o, const Exact& e) {
   if (o.failed || o.dims != e.dims) return 1.5707963267948966;
   double worst = 0;
-  for (std::size_t k = 0; k < e.tower.size(); ++k) worst = std::max(worst, dcad::bench::largest_angle(o.tower[k], e.tower[k]));
+  for (std::size_t k = 0; k < e.tower.size(); ++k)
+    worst = std::max(worst, dcad::bench::largest_angle(o.tower[k], e.tower[k]));
   return worst;
 }
 
@@ -94,13 +97,26 @@ struct Plan {
 
 std::vector<Plan> plans(bool quick, int reps) {
   const int r = reps > 0 ? reps : (quick ? 6 : 40);
-  std::vector<double> sizes = quick ? std::vector<double>{2, 4, 6, 8, 10} : std::vector<double>{2, 4, 6, 8, 10, 12, 16, 20, 32};
+  std::vector<double> sizes =
+      quick ? std::vector<double>{2, 4, 6, 8, 10} : std::vector<double>{2, 4, 6, 8, 10, 12, 16, 20, 32};
   return {
-      {"graded", {1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e14, 1e16}, r, [](double k, std::mt19937_64& g) { return fam::graded(k, g); }},
-      {"perturbed", {10, 20, 30, 40, 50, 60}, r, [](double k, std::mt19937_64& g) { return fam::perturbed(static_cast<int>(k), g); }},
-      {"tower", {1, 2, 3, 4, 5}, r, [](double m, std::mt19937_64& g) { return fam::tower(static_cast<fam::Index>(m), g); }},
+      {"graded",
+       {1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e14, 1e16},
+       r,
+       [](double k, std::mt19937_64& g) { return fam::graded(k, g); }},
+      {"perturbed",
+       {10, 20, 30, 40, 50, 60},
+       r,
+       [](double k, std::mt19937_64& g) { return fam::perturbed(static_cast<int>(k), g); }},
+      {"tower",
+       {1, 2, 3, 4, 5},
+       r,
+       [](double m, std::mt19937_64& g) { return fam::tower(static_cast<fam::Index>(m), g); }},
       {"lc", {0, 3, 6, 9, 12, 15}, r, [](double s, std::mt19937_64& g) { return fam::lc(s, g); }},
-      {"cancel", {2, 4, 8, 12, 16}, r, [](double d, std::mt19937_64& g) { return fam::cancel(static_cast<int>(d), g); }},
+      {"cancel",
+       {2, 4, 8, 12, 16},
+       r,
+       [](double d, std::mt19937_64& g) { return fam::cancel(static_cast<int>(d), g); }},
       {"size", sizes, std::max(2, r / 8),
        [](double m, std::mt19937_64& g) { return fam::graded(1e2, g, static_cast<fam::Index>(m), "size"); }},
   };
@@ -109,7 +125,8 @@ std::vector<Plan> plans(bool quick, int reps) {
 Exact exact_answer(const fam::Instance& in, const Outcome& ref) {
   Exact e{ref.dims, ref.solution_rank, ref.tower};
   if (in.planted && (in.dims != ref.dims || in.solution_rank != ref.solution_rank)) {
-    std::fprintf(stderr, "\nGENERATOR BUG: %s(%g): planted answer differs from the reference\n", in.family.c_str(), in.param);
+    std::fprintf(stderr, "\nGENERATOR BUG: %s(%g): planted answer differs from the reference\n", in.family.c_str(),
+                 in.param);
     std::exit(1);
   }
   return e;
@@ -147,9 +164,10 @@ int adversarial(long count, unsigned long seed) {
       }
     }
   }
-  std::printf("certified on %ld adversarial instances (seed %lu): %ld wrong; %ld exact in machine words, %ld recomputed in "
-              "fmpq\n",
-              count, seed, wrong_answers, machine_words, recomputed);
+  std::printf(
+      "certified on %ld adversarial instances (seed %lu): %ld wrong; %ld exact in machine words, %ld recomputed in "
+      "fmpq\n",
+      count, seed, wrong_answers, machine_words, recomputed);
   for (const auto& [f, n] : per_family) std::printf("  %s: %ld\n", f.c_str(), n);
   return wrong_answers == 0 ? 0 : 3;
 }
@@ -174,30 +192,44 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--quick") quick = true;
-    else if (a == "--out") out = next();
-    else if (a == "--seed") seed = std::stoul(next());
-    else if (a == "--reps") reps = std::stoi(next());
-    else if (a == "--adversarial") adv = std::stol(next());
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--out")
+      out = next();
+    else if (a == "--seed")
+      seed = std::stoul(next());
+    else if (a == "--reps")
+      reps = std::stoi(next());
+    else if (a == "--adversarial")
+      adv = std::stol(next());
     else {
-      std::fprintf(stderr, "usage: dcad_sweep [--quick] [--out DIR] [--seed S] [--reps R] | --adversarial COUNT [--seed S]\n");
+      std::fprintf(stderr,
+                   "usage: dcad_sweep [--quick] [--out DIR] [--seed S] [--reps R] | --adversarial COUNT [--seed S]\n");
       return 2;
     }
   }
   if (adv > 0) return adversarial(adv, seed);
 
   const std::vector<std::pair<std::string, dcad::bench::Method>> methods = {
-      {"reference", dcad::bench::run_reference}, {"bf100", dcad::bench::run_bf100}, {"bf50", dcad::bench::run_bf50},
-      {"naive", dcad::bench::run_naive},         {"fast", dcad::bench::run_fast},   {"certified", dcad::bench::run_certified},
+      {"reference", dcad::bench::run_reference},
+      {"bf100", dcad::bench::run_bf100},
+      {"bf50", dcad::bench::run_bf50},
+      {"naive", dcad::bench::run_naive},
+      {"fast", dcad::bench::run_fast},
+      {"certified", dcad::bench::run_certified},
       // the exact tiers, each alone (issue 26): machine words are `certified`'s first tier above
-      {"tier_fmpq", dcad::bench::run_fmpq},      {"tier_flint", dcad::bench::run_flint}, {"tier_mpq", dcad::bench::run_mpq},
-      {"tier_ball", dcad::bench::run_ball},      {"tier_arb", dcad::bench::run_arb}};
+      {"tier_fmpq", dcad::bench::run_fmpq},
+      {"tier_flint", dcad::bench::run_flint},
+      {"tier_mpq", dcad::bench::run_mpq},
+      {"tier_ball", dcad::bench::run_ball},
+      {"tier_arb", dcad::bench::run_arb}};
   std::ofstream csv(out + "/sweep.csv"), jsonl(out + "/instances.jsonl");
   if (!csv || !jsonl) {
     std::fprintf(stderr, "dcad_sweep: cannot write to %s\n", out.c_str());
     return 2;
   }
-  csv << "family,param,n,method,instances,wrong,wrong_claimed_certain,uncertain,recomputed,max_angle,mean_seconds,machine_words\n";
+  csv << "family,param,n,method,instances,wrong,wrong_claimed_certain,uncertain,recomputed,max_angle,mean_seconds,"
+         "machine_words\n";
   std::mt19937_64 rng(seed);
   const auto ps = plans(quick, reps);
   long total = 0, done = 0;
@@ -236,17 +268,19 @@ int main(int argc, char** argv) {
         }
         if (!in.pontryagin)
           jsonl << "{\"family\":\"" << in.family << "\",\"param\":" << param << ",\"omega\":" << json_matrix(in.omega)
-                << ",\"hessian\":" << json_matrix(in.hessian) << ",\"dims\":[" << [&] {
-                     std::string s;
-                     for (long d : e.dims) s += (s.empty() ? "" : ",") + std::to_string(d);
-                     return s;
-                   }() << "],\"solution_rank\":" << e.solution_rank << ",\"tower\":" << json_tower(e.tower) << "}\n";
+                << ",\"hessian\":" << json_matrix(in.hessian) << ",\"dims\":[" <<
+              [&] {
+                std::string s;
+                for (long d : e.dims) s += (s.empty() ? "" : ",") + std::to_string(d);
+                return s;
+              }()
+                << "],\"solution_rank\":" << e.solution_rank << ",\"tower\":" << json_tower(e.tower) << "}\n";
         progress(++done, total, p.family + " " + std::to_string(param).substr(0, 8));
       }
       for (std::size_t m = 0; m < methods.size(); ++m)
-        csv << p.family << ',' << param << ',' << n << ',' << methods[m].first << ',' << p.reps << ',' << acc[m].wrong << ','
-            << acc[m].wrong_certain << ',' << acc[m].uncertain << ',' << acc[m].recomputed << ',' << acc[m].angle << ',' << acc[m].seconds / p.reps << ','
-            << acc[m].machine_words << "\n";
+        csv << p.family << ',' << param << ',' << n << ',' << methods[m].first << ',' << p.reps << ',' << acc[m].wrong
+            << ',' << acc[m].wrong_certain << ',' << acc[m].uncertain << ',' << acc[m].recomputed << ',' << acc[m].angle
+            << ',' << acc[m].seconds / p.reps << ',' << acc[m].machine_words << "\n";
     }
   }
   std::fprintf(stderr, "wrote %s/sweep.csv and %s/instances.jsonl (seed %lu)\n", out.c_str(), out.c_str(), seed);

@@ -51,9 +51,10 @@ std::vector<std::size_t> plot_columns(const std::vector<std::string>& header, co
   return cols;
 }
 
-std::string plot_png(const std::string& csv_file, const std::vector<std::string>& header, const std::vector<std::size_t>& columns,
-                     const std::string& png, const std::string& title) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return "gnuplot not found (bash .ci/setup installs gnuplot-nox)";
+std::string plot_png(const std::string& csv_file, const std::vector<std::string>& header,
+                     const std::vector<std::size_t>& columns, const std::string& png, const std::string& title) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    return "gnuplot not found (bash .ci/setup installs gnuplot-nox)";
   const std::string script = png + ".gp";
   {
     std::ofstream g(script);
@@ -67,20 +68,23 @@ std::string plot_png(const std::string& csv_file, const std::vector<std::string>
   return run_gnuplot(script);
 }
 
-std::string plot_check_png(const std::string& csv_file, const std::vector<std::string>& names, const std::vector<double>& worst_t,
-                           const std::vector<double>& worst_found, const std::string& png, const std::string& title) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return "gnuplot not found (bash .ci/setup installs gnuplot-nox)";
+std::string plot_check_png(const std::string& csv_file, const std::vector<std::string>& names,
+                           const std::vector<double>& worst_t, const std::vector<double>& worst_found,
+                           const std::string& png, const std::string& title) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    return "gnuplot not found (bash .ci/setup installs gnuplot-nox)";
   const std::string script = png + ".gp";
   {
     std::ofstream g(script);
     g.precision(17);
-    g << "set datafile separator ','\nset terminal png size 1000," << 200 + 300 * names.size() << "\nset output " << quoted(png)
-      << "\nset multiplot layout " << names.size() << ",1 title " << quoted(title) << " noenhanced\nset xlabel 't'\nset key outside right noenhanced\nset grid\n";
+    g << "set datafile separator ','\nset terminal png size 1000," << 200 + 300 * names.size() << "\nset output "
+      << quoted(png) << "\nset multiplot layout " << names.size() << ",1 title " << quoted(title)
+      << " noenhanced\nset xlabel 't'\nset key outside right noenhanced\nset grid\n";
     for (std::size_t k = 0; k < names.size(); ++k)
-      g << "set title " << quoted(names[k]) << " noenhanced\nplot " << quoted(csv_file) << " every ::1 using 1:" << 2 * k + 3
-        << " with lines lw 2 title 'exact', " << quoted(csv_file) << " every ::1 using 1:" << 2 * k + 2
-        << " with points pt 7 ps 0.4 title 'simulator', '+' using (" << worst_t[k] << "):(" << worst_found[k]
-        << ") every ::0::0 with points pt 6 ps 3 lw 2 title 'worst point'\n";
+      g << "set title " << quoted(names[k]) << " noenhanced\nplot " << quoted(csv_file)
+        << " every ::1 using 1:" << 2 * k + 3 << " with lines lw 2 title 'exact', " << quoted(csv_file)
+        << " every ::1 using 1:" << 2 * k + 2 << " with points pt 7 ps 0.4 title 'simulator', '+' using (" << worst_t[k]
+        << "):(" << worst_found[k] << ") every ::0::0 with points pt 6 ps 3 lw 2 title 'worst point'\n";
     g << "unset multiplot\n";
   }
   return run_gnuplot(script);

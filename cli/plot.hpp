@@ -12,12 +12,13 @@ namespace dcad::cli {
 std::vector<std::size_t> plot_columns(const std::vector<std::string>& header, const std::string& wanted);
 
 /// Runs gnuplot on the CSV file; returns "" or what went wrong.
-std::string plot_png(const std::string& csv_file, const std::vector<std::string>& header, const std::vector<std::size_t>& columns,
-                     const std::string& png, const std::string& title);
+std::string plot_png(const std::string& csv_file, const std::vector<std::string>& header,
+                     const std::vector<std::size_t>& columns, const std::string& png, const std::string& title);
 
 /// `dcad check WAVEFORM DECK --plot OUT.png`: one panel per vector of `names` — the simulator's values
 /// (points), the exact waveform (line) and the worst point marked — from a CSV t, found_1, exact_1, ….
-std::string plot_check_png(const std::string& csv_file, const std::vector<std::string>& names, const std::vector<double>& worst_t,
-                           const std::vector<double>& worst_found, const std::string& png, const std::string& title);
+std::string plot_check_png(const std::string& csv_file, const std::vector<std::string>& names,
+                           const std::vector<double>& worst_t, const std::vector<double>& worst_found,
+                           const std::string& png, const std::string& title);
 
 }  // namespace dcad::cli

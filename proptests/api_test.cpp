@@ -32,13 +32,17 @@ using dcad::api::Backend;
 
 // Two routes to one result: the library call and the binary, for every input form and backend.
 TEST(Api, SolveEqualsTheBinary) {
-  for (const char* name : {"lc-4port.json", "lc-4port.cir", "rlc-series.cir", "rolling-disk.json", "constrained-gauge.json"})
+  for (const char* name :
+       {"lc-4port.json", "lc-4port.cir", "rlc-series.cir", "rolling-disk.json", "constrained-gauge.json"})
     for (const std::string backend : {"reference", "fast", "certified"}) {
-      const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::read_problem(case_path(name)), dcad::api::backend_named(backend)));
+      const dcad::io::Printed s = dcad::api::printed(
+          dcad::api::solve(dcad::io::read_problem(case_path(name)), dcad::api::backend_named(backend)));
       const Outcome bin = run("solve " + case_path(name) + " --backend " + backend + " --json");
       ASSERT_EQ(bin.rc, 0) << name << bin.err;
-      EXPECT_EQ(nlohmann::json::parse(dcad::io::result_json(s)), nlohmann::json::parse(bin.out)) << name << " " << backend;
-      EXPECT_EQ(dcad::io::report_text(s), run("solve " + case_path(name) + " --backend " + backend).out) << name << " " << backend;
+      EXPECT_EQ(nlohmann::json::parse(dcad::io::result_json(s)), nlohmann::json::parse(bin.out))
+          << name << " " << backend;
+      EXPECT_EQ(dcad::io::report_text(s), run("solve " + case_path(name) + " --backend " + backend).out)
+          << name << " " << backend;
     }
 }
 
@@ -60,7 +64,8 @@ TEST(Api, TypedSolutionOfADeckGivenAsText) {
 // `--with none` is the CONTRACT's required keys and the tower only.
 TEST(Api, SolveComputesWhatIsAsked) {
   const dcad::io::Problem p = dcad::io::read_problem(case_path("lc-4port.json"));
-  const dcad::reference::Solution all = dcad::reference::solve(p), none = dcad::reference::solve(p, dcad::Parts::none());
+  const dcad::reference::Solution all = dcad::reference::solve(p),
+                                  none = dcad::reference::solve(p, dcad::Parts::none());
   EXPECT_TRUE(all.adapted.has_value());
   EXPECT_TRUE(all.motion.has_value());
   EXPECT_FALSE(none.adapted.has_value());
@@ -72,7 +77,8 @@ TEST(Api, SolveComputesWhatIsAsked) {
 TEST(Api, CheckAgreesAndDisagrees) {
   const std::string file = case_path("lc-4port.json");
   const dcad::io::Problem p = dcad::io::read_problem(file);
-  nlohmann::json result = nlohmann::json::parse(dcad::io::result_json(dcad::api::printed(dcad::api::solve(p, Backend::fast, dcad::Parts::none()))));
+  nlohmann::json result = nlohmann::json::parse(
+      dcad::io::result_json(dcad::api::printed(dcad::api::solve(p, Backend::fast, dcad::Parts::none()))));
   const std::string good = write_temp("dcad_api_good.json", result.dump());
   const dcad::api::Checked ok = dcad::api::check(good, p);
   EXPECT_TRUE(ok.agrees);
@@ -124,13 +130,15 @@ TEST(Api, ErrorChannels) {
   EXPECT_THROW(dcad::api::parts_named("bracket,final"), dcad::api::UsageError);
   std::ostringstream csv, log, energy;
   try {
-    dcad::api::simulate(dcad::io::read_problem(case_path("lc-4port.cir")), {1e-3, 1e-4, Backend::certified}, csv, log, &energy);
+    dcad::api::simulate(dcad::io::read_problem(case_path("lc-4port.cir")), {1e-3, 1e-4, Backend::certified}, csv, log,
+                        &energy);
     ADD_FAILURE() << "--energy of a lossless circuit";
   } catch (const dcad::api::UsageError& e) {
     EXPECT_EQ(dcad::api::exit_code(e), 2);
     EXPECT_NE(std::string(e.what()).find("lossless"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(dcad::api::simulate(dcad::io::read_problem(case_path("rlc-series.cir")), {-1, 1e-6, Backend::certified}, csv, log),
+  EXPECT_THROW(dcad::api::simulate(dcad::io::read_problem(case_path("rlc-series.cir")), {-1, 1e-6, Backend::certified},
+                                   csv, log),
                dcad::api::InputError);
   EXPECT_EQ(dcad::api::exit_code(dcad::api::InternalError("x")), 4);
 }
@@ -180,7 +188,8 @@ TEST(Api, ASourceJumpsOnlyAtItsOwnCorners) {
     ASSERT_EQ(rows.size(), 21u);
     const double pi = 3.14159265358979323846;
     for (const auto& r : rows)  // C1 sits from ground to n2 = −V2: q_C1 = C·V2 … and q_V2 carries −C·V2'
-      EXPECT_NEAR(r[1], -40e-9 * std::sin(2 * pi * 2e9 * r[0]), 1e-12 * 40e-9) << "t = " << r[0] << (route == dcad::api::Route::dense ? " dense" : " sparse");
+      EXPECT_NEAR(r[1], -40e-9 * std::sin(2 * pi * 2e9 * r[0]), 1e-12 * 40e-9)
+          << "t = " << r[0] << (route == dcad::api::Route::dense ? " dense" : " sparse");
   }
 }
 
@@ -199,7 +208,9 @@ TEST(Api, SimulateColumnsAreTheFullCsvsColumns) {
     dcad::api::simulate(p, opt, some, log);
     const auto full = sim_rows(all.str()), part = sim_rows(some.str());
     const std::vector<std::string> names = dcad::api::simulate_columns(p);
-    const auto at = [&](const std::string& n) { return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin()); };
+    const auto at = [&](const std::string& n) {
+      return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin());
+    };
     ASSERT_EQ(full.size(), part.size());
     for (std::size_t i = 0; i < full.size(); ++i) {
       ASSERT_EQ(part[i].size(), 3u);
@@ -220,7 +231,8 @@ TEST(Api, SimulateColumnsAreTheFullCsvsColumns) {
 // print noise (1e-20 F: estimate above 1e-3 of the state).  Before, both reported ~1e-14.
 TEST(Api, TheSparseRouteSaysWhenStiffnessCostsItsAccuracy) {
   const auto deck = [](const std::string& c) {
-    return "stiff\nV1 a 0 SIN(0 1 1k)\nR1 a b 1\nC1 b 0 " + c + "\nL1 b c 1m\nR2 c 0 1k\nC2 c 0 1u\n.tran 1m 10m\n.end\n";
+    return "stiff\nV1 a 0 SIN(0 1 1k)\nR1 a b 1\nC1 b 0 " + c +
+           "\nL1 b c 1m\nR2 c 0 1k\nC2 c 0 1u\n.tran 1m 10m\n.end\n";
   };
   dcad::api::SimulateOptions opt;
   opt.tstop = 3e-3;
@@ -231,14 +243,17 @@ TEST(Api, TheSparseRouteSaysWhenStiffnessCostsItsAccuracy) {
   EXPECT_GT(s.error_estimate, 1e-8);
   EXPECT_NE(log.str().find("warning: the sparse route's error estimate"), std::string::npos) << log.str();
   std::ostringstream csv2, log2;
-  EXPECT_THROW(dcad::api::simulate(dcad::io::parse_netlist(deck("1e-20"), "stiffer.cir"), opt, csv2, log2), dcad::io::InputError);
+  EXPECT_THROW(dcad::api::simulate(dcad::io::parse_netlist(deck("1e-20"), "stiffer.cir"), opt, csv2, log2),
+               dcad::io::InputError);
 }
 
 namespace {
 
 /// The state equations of a deck (reference backend) as {block: {(row, col): exact value text}}.
-std::map<std::string, std::map<std::pair<long, long>, std::string>> state_blocks(const std::string& deck, dcad::StateEquations<std::string>& q) {
-  const dcad::io::Printed s = dcad::api::printed(dcad::api::solve(dcad::io::parse_netlist(deck, "deck.cir"), Backend::reference));
+std::map<std::string, std::map<std::pair<long, long>, std::string>> state_blocks(const std::string& deck,
+                                                                                 dcad::StateEquations<std::string>& q) {
+  const dcad::io::Printed s =
+      dcad::api::printed(dcad::api::solve(dcad::io::parse_netlist(deck, "deck.cir"), Backend::reference));
   EXPECT_TRUE(s.state);
   if (!s.state) return {};
   q = *s.state;
@@ -263,9 +278,10 @@ TEST(Api, StateEquationsAreKirchhoffsLaws) {
   EXPECT_EQ(q.i, (std::vector<std::string>{"v_L1"}));
   EXPECT_TRUE(q.e.empty());
   using E = std::map<std::pair<long, long>, std::string>;
-  EXPECT_EQ(b.at("C_ww"), (E{{{0, 0}, "3/1000000000"}, {{0, 1}, "-1/500000000"}, {{1, 0}, "-1/500000000"}, {{1, 1}, "1/500000000"}}));
+  EXPECT_EQ(b.at("C_ww"),
+            (E{{{0, 0}, "3/1000000000"}, {{0, 1}, "-1/500000000"}, {{1, 0}, "-1/500000000"}, {{1, 1}, "1/500000000"}}));
   EXPECT_EQ(b.at("G_ww"), (E{{{1, 1}, "1/3000"}}));
-  EXPECT_EQ(b.at("L_w"), (E{{{0, 0}, "-1"}}));      // −i_L in b's row
+  EXPECT_EQ(b.at("L_w"), (E{{{0, 0}, "-1"}}));       // −i_L in b's row
   EXPECT_EQ(b.at("G_rr"), (E{{{0, 0}, "1/1000"}}));  // e_a/R1
   EXPECT_EQ(b.at("L_r"), (E{{{0, 0}, "1"}}));
   EXPECT_EQ(b.at("H_r"), (E{{{0, 0}, "-1/1000"}}));  // −V1/R1
@@ -298,11 +314,14 @@ TEST(Api, StateEquationsOfAnIsland) {
 // e = value) and the sparse route's contraction (the held DC node's level fixed, the hold current fed
 // in at the node) — every variable at every row to 1e-9 of its kind's largest value.
 TEST(Api, HeldNodesStartBothRoutesAlike) {
-  const std::string circuit = "V1 in 0 DC 1\nR1 in a 1k\nC1 a 0 1n\nR2 a b 2k\nC2 b 0 2n\nL1 b c 10u IC=1m\nR3 c 0 50\n";
+  const std::string circuit =
+      "V1 in 0 DC 1\nR1 in a 1k\nC1 a 0 1n\nR2 a b 2k\nC2 b 0 2n\nL1 b c 10u IC=1m\nR3 c 0 50\n";
   // held: b and d (each its own DC node); contradicting: b and c, one DC node through L1 (both routes
   // then drop the holds, with a note)
-  for (const std::string& tail : {std::string("R4 c d 100\nC3 d 0 1n\n.ic v(b)=0.5 v(d)=-0.25\n"), std::string(".ic v(b)=0.5 v(c)=-0.25\n")}) {
-    const dcad::io::Problem p = dcad::io::parse_netlist("held node\n" + circuit + tail + ".tran 10n 2u\n.end\n", "held.cir");
+  for (const std::string& tail :
+       {std::string("R4 c d 100\nC3 d 0 1n\n.ic v(b)=0.5 v(d)=-0.25\n"), std::string(".ic v(b)=0.5 v(c)=-0.25\n")}) {
+    const dcad::io::Problem p =
+        dcad::io::parse_netlist("held node\n" + circuit + tail + ".tran 10n 2u\n.end\n", "held.cir");
     std::vector<std::vector<std::vector<double>>> runs;
     for (dcad::api::Route route : {dcad::api::Route::dense, dcad::api::Route::sparse}) {
       dcad::api::SimulateOptions opt;
@@ -317,13 +336,16 @@ TEST(Api, HeldNodesStartBothRoutesAlike) {
     ASSERT_EQ(runs[0].size(), runs[1].size());
     std::map<char, double> largest;
     for (const auto& row : runs[0])
-      for (std::size_t j = 1; j < row.size(); ++j) largest[names[j][0]] = std::max(largest[names[j][0]], std::abs(row[j]));
+      for (std::size_t j = 1; j < row.size(); ++j)
+        largest[names[j][0]] = std::max(largest[names[j][0]], std::abs(row[j]));
     for (std::size_t i = 0; i < runs[0].size(); ++i)
       for (std::size_t j = 1; j < runs[0][i].size(); ++j)
         EXPECT_NEAR(runs[1][i][j], runs[0][i][j], 1e-9 * largest[names[j][0]]) << tail << names[j] << " at row " << i;
     if (tail.find("v(d)") == std::string::npos) continue;
     // the held nodes start where .ic puts them: C2 holds v(b) = 0.5, C3 holds v(d) = -0.25
-    const auto col = [&](const std::string& n) { return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin()); };
+    const auto col = [&](const std::string& n) {
+      return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin());
+    };
     EXPECT_NEAR(runs[1][0][col("q_C2")], 0.5 * 2e-9, 1e-21);
     EXPECT_NEAR(runs[1][0][col("q_C3")], -0.25 * 1e-9, 1e-21);
   }
@@ -333,7 +355,8 @@ TEST(Api, HeldNodesStartBothRoutesAlike) {
 // with an extra `trajectory` passed with exit 0 and no word about it).
 TEST(Api, CheckNamesTheKeysItDoesNotCompare) {
   const dcad::io::Problem p = dcad::io::read_problem(case_path("rlc-series.cir"));
-  nlohmann::json r = nlohmann::json::parse(dcad::io::result_json(dcad::api::printed(dcad::api::solve(p, Backend::reference))));
+  nlohmann::json r =
+      nlohmann::json::parse(dcad::io::result_json(dcad::api::printed(dcad::api::solve(p, Backend::reference))));
   r["trajectory"] = {1, 2, 3};
   const dcad::api::Checked c = dcad::api::check_text(r.dump(), p);
   EXPECT_TRUE(c.agrees);
@@ -382,17 +405,20 @@ TEST(TypedInput, MalformedIsNeverAnswered) {
   const dcad::io::Problem deck = dcad::fuzz::typed_bases()[3];
   for (unsigned which = 0; which < 5; ++which) {
     std::ostringstream log;
-    EXPECT_THROW((void)dcad::api::check_waveform(dcad::fuzz::malformed_traces(which, 1), deck, {}, log), std::invalid_argument) << which;
+    EXPECT_THROW((void)dcad::api::check_waveform(dcad::fuzz::malformed_traces(which, 1), deck, {}, log),
+                 std::invalid_argument)
+        << which;
   }
 }
 
 namespace {
 
 /// An ngspice binary raw file (one transient plot, time first) of the given points, as ngspice writes it.
-std::string binary_raw(const std::vector<std::string>& names, const std::vector<double>& time, const std::vector<std::vector<double>>& values) {
+std::string binary_raw(const std::vector<std::string>& names, const std::vector<double>& time,
+                       const std::vector<std::vector<double>>& values) {
   std::ostringstream h;
-  h << "Title: written by api_test\nDate: today\nPlotname: Transient Analysis\nFlags: real\nNo. Variables: " << names.size() + 1
-    << "\nNo. Points: " << time.size() << "\nVariables:\n\t0\ttime\ttime\n";
+  h << "Title: written by api_test\nDate: today\nPlotname: Transient Analysis\nFlags: real\nNo. Variables: "
+    << names.size() + 1 << "\nNo. Points: " << time.size() << "\nVariables:\n\t0\ttime\ttime\n";
   for (std::size_t k = 0; k < names.size(); ++k) h << "\t" << k + 1 << "\t" << names[k] << "\tvoltage\n";
   h << "Binary:\n";
   std::string s = h.str();
@@ -453,7 +479,8 @@ TEST(TraceStream, BinaryRawStreamsAsReadWhole) {
 // left value of the step at a corner (either side allowed): the double flow's left value was the next
 // period's 0, and a right ngspice run was a disagreement.
 TEST(TraceStream, PulseCutByItsPeriodHasBothValuesAtThePeriod) {
-  const dcad::io::Problem deck = dcad::io::parse_netlist("Basic RC circuit\nr 1 2 1.0\nc 2 0 1.0\nvin 1 0 pulse (0 1) ac 1\n.tran 0.1 7.0\n.end\n", "rc.cir");
+  const dcad::io::Problem deck = dcad::io::parse_netlist(
+      "Basic RC circuit\nr 1 2 1.0\nc 2 0 1.0\nvin 1 0 pulse (0 1) ac 1\n.tran 0.1 7.0\n.end\n", "rc.cir");
   dcad::io::Traces t;
   t.file = "rc.raw";
   t.names = {"v(1)"};

@@ -1,8 +1,8 @@
 // `dcad solve` as a CI runs it (issue 14): several files in one process (JSON lines) and `--with`,
 // which computes only the parts asked for (linear cases and netlists) or prints only them (the
-// forced route and the expression form compute everything they report).  Each test compares two routes to the same answer: a
-// file solved alone against the same file in a batch; `--with none` or one part against `--with
-// all` (the default), on every case and netlist of cases/ and on all three backends.
+// forced route and the expression form compute everything they report).  Each test compares two routes to the same
+// answer: a file solved alone against the same file in a batch; `--with none` or one part against `--with all` (the
+// default), on every case and netlist of cases/ and on all three backends.
 #include "cli_run.hpp"
 
 #include <nlohmann/json.hpp>
@@ -16,8 +16,10 @@ using nlohmann::json;
 
 namespace {
 
-const std::vector<std::string> kRequired = {"dcad", "backend", "certified", "dims", "steps", "consistent", "solution_rank", "unique"};
-const std::vector<std::string> kOptional = {"final_constraints", "reduced", "constraint_classes", "dirac_bracket", "adapted"};
+const std::vector<std::string> kRequired = {"dcad",  "backend",    "certified",     "dims",
+                                            "steps", "consistent", "solution_rank", "unique"};
+const std::vector<std::string> kOptional = {"final_constraints", "reduced", "constraint_classes", "dirac_bracket",
+                                            "adapted"};
 
 /// Every case file and netlist of cases/ (linear, forced, expression form: --with applies to all).
 std::vector<std::string> corpus() {
@@ -55,11 +57,14 @@ TEST(SolveWith, PartsAgreeWithTheFullResult) {
       EXPECT_EQ(none["tower"], all["tower"]) << f << " " << backend;  // every route's tower is exact or fast's own
       for (const std::string& k : {"final_constraints", "reduced", "adapted", "dirac_bracket"})
         EXPECT_FALSE(none.contains(k)) << f << " " << backend << " --with none printed " << k;
-      for (const auto& [part, key] : std::vector<std::pair<std::string, std::string>>{
-               {"final", "final_constraints"}, {"reduced", "reduced"}, {"classes", "constraint_classes"}, {"adapted", "adapted"}}) {
+      for (const auto& [part, key] : std::vector<std::pair<std::string, std::string>>{{"final", "final_constraints"},
+                                                                                      {"reduced", "reduced"},
+                                                                                      {"classes", "constraint_classes"},
+                                                                                      {"adapted", "adapted"}}) {
         const json one = solved("--backend " + backend + " --with " + part + " " + f);
         EXPECT_EQ(one.contains(key), all.contains(key)) << f << " " << backend << " --with " << part;
-        if (all.contains(key) && backend != "certified") EXPECT_EQ(one[key], all[key]) << f << " " << backend << " --with " << part;
+        if (all.contains(key) && backend != "certified")
+          EXPECT_EQ(one[key], all[key]) << f << " " << backend << " --with " << part;
         for (const std::string& other : kOptional)
           if (other != key && !(part == "classes" && other == "dirac_bracket"))
             EXPECT_FALSE(one.contains(other)) << f << " " << backend << " --with " << part << " printed " << other;
@@ -82,7 +87,8 @@ TEST(SolveWith, UnknownPartIsBadUsage) {
 TEST(SolveBatch, JsonLinesMatchOneFileAtATime) {
   const std::vector<std::string> files = corpus();
   ASSERT_GE(files.size(), 10u);
-  const std::string bad = write_temp("dcad_batch_bad.json", "{\"dcad\": 1, \"variables\": [\"x\"], \"dirac\": {\"presymplectic\": [[1]]}}");
+  const std::string bad =
+      write_temp("dcad_batch_bad.json", "{\"dcad\": 1, \"variables\": [\"x\"], \"dirac\": {\"presymplectic\": [[1]]}}");
   std::string args = "solve --jsonl --backend reference";
   for (std::size_t i = 0; i < 6; ++i) args += " " + files[i];
   args += " " + bad + " " + files[6];
@@ -119,9 +125,11 @@ TEST(SolveBatch, JsonLinesMatchOneFileAtATime) {
 TEST(ErrorChannels, UndecidedInputIsAResultNotBadInput) {
   const auto constrained = [](const std::string& tiny) {
     return "{\"dcad\": 1, \"variables\": [\"q1\", \"p1\", \"q2\", \"p2\"], \"constrained\": {\"symplectic\": "
-           "[[\"0\", \"1\", \"0\", \"0\"], [\"-1\", \"0\", \"0\", \"0\"], [\"0\", \"0\", \"0\", \"" + tiny + "\"], [\"0\", \"0\", \"-" +
-           tiny + "\", \"0\"]], \"primary\": [[\"0\", \"0\", \"1\", \"0\", \"0\"]]}, \"energy\": {\"hessian\": "
-           "[[\"1\", \"0\", \"0\", \"0\"], [\"0\", \"1\", \"0\", \"0\"], [\"0\", \"0\", \"1\", \"0\"], [\"0\", \"0\", \"0\", \"1\"]]}}";
+           "[[\"0\", \"1\", \"0\", \"0\"], [\"-1\", \"0\", \"0\", \"0\"], [\"0\", \"0\", \"0\", \"" +
+           tiny + "\"], [\"0\", \"0\", \"-" + tiny +
+           "\", \"0\"]], \"primary\": [[\"0\", \"0\", \"1\", \"0\", \"0\"]]}, \"energy\": {\"hessian\": "
+           "[[\"1\", \"0\", \"0\", \"0\"], [\"0\", \"1\", \"0\", \"0\"], [\"0\", \"0\", \"1\", \"0\"], [\"0\", \"0\", "
+           "\"0\", \"1\"]]}}";
   };
   const std::string band = write_temp("dcad_channels_band.json", constrained("1e-10"));  // σ = 1e-10: between τ0 and τ1
   const Outcome fast = run("solve --json --backend fast " + band);

@@ -27,16 +27,18 @@ std::string schema_violation(const nlohmann::json& schema, const nlohmann::json&
   if (schema.contains("type")) {
     const auto is = [&](const std::string& t) {
       return (t == "object" && v.is_object()) || (t == "array" && v.is_array()) || (t == "string" && v.is_string()) ||
-             (t == "integer" && v.is_number_integer()) || (t == "number" && v.is_number()) || (t == "boolean" && v.is_boolean()) ||
-             (t == "null" && v.is_null());
+             (t == "integer" && v.is_number_integer()) || (t == "number" && v.is_number()) ||
+             (t == "boolean" && v.is_boolean()) || (t == "null" && v.is_null());
     };
     bool ok = false;
-    for (const auto& t : schema["type"].is_array() ? schema["type"] : nlohmann::json::array({schema["type"]})) ok = ok || is(t.get<std::string>());
+    for (const auto& t : schema["type"].is_array() ? schema["type"] : nlohmann::json::array({schema["type"]}))
+      ok = ok || is(t.get<std::string>());
     if (!ok) return path + ": type " + schema["type"].dump() + ", found " + v.dump().substr(0, 80);
   }
   if (schema.contains("enum") && std::find(schema["enum"].begin(), schema["enum"].end(), v) == schema["enum"].end())
     return path + ": one of " + schema["enum"].dump();
-  if (schema.contains("minimum") && v.is_number() && v.get<double>() < schema["minimum"].get<double>()) return path + ": below minimum";
+  if (schema.contains("minimum") && v.is_number() && v.get<double>() < schema["minimum"].get<double>())
+    return path + ": below minimum";
   if (v.is_object()) {
     for (const auto& key : schema.value("required", nlohmann::json::array()))
       if (!v.contains(key.get<std::string>())) return path + ": required " + key.get<std::string>();
@@ -46,10 +48,12 @@ std::string schema_violation(const nlohmann::json& schema, const nlohmann::json&
         if (std::string why = schema_violation(sub, v[key], path + "/" + key); !why.empty()) return why;
   }
   if (v.is_array()) {
-    if (schema.contains("minItems") && v.size() < schema["minItems"].get<std::size_t>()) return path + ": too few items";
+    if (schema.contains("minItems") && v.size() < schema["minItems"].get<std::size_t>())
+      return path + ": too few items";
     if (schema.contains("items"))
       for (std::size_t i = 0; i < v.size(); ++i)
-        if (std::string why = schema_violation(schema["items"], v[i], path + "/" + std::to_string(i)); !why.empty()) return why;
+        if (std::string why = schema_violation(schema["items"], v[i], path + "/" + std::to_string(i)); !why.empty())
+          return why;
   }
   return "";
 }
@@ -65,7 +69,8 @@ std::vector<fs::path> every_case() {
 // Every case, every backend: the result validates against the schema, and `dcad check` accepts the
 // certified ones (comparing final_constraints as subspaces whenever the reference gives M_c).
 TEST(Check, EveryCaseValidatesAndRoundTrips) {
-  const nlohmann::json schema = nlohmann::json::parse(slurp(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json"));
+  const nlohmann::json schema =
+      nlohmann::json::parse(slurp(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json"));
   int checked = 0;
   for (const fs::path& file : every_case()) {
     for (const std::string backend : {"reference", "fast", "certified"}) {
@@ -76,17 +81,23 @@ TEST(Check, EveryCaseValidatesAndRoundTrips) {
       if (!got["certified"].get<bool>()) continue;
       const std::string result = write_temp("dcad_check_result.json", r.out);
       const Outcome c = run("check " + result + " " + file.string());
-      const bool known_failure = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).value("known_failures", nlohmann::json::object()).contains(backend);
+      const bool known_failure =
+          file.extension() == ".json" &&
+          nlohmann::json::parse(slurp(file)).value("known_failures", nlohmann::json::object()).contains(backend);
       EXPECT_EQ(c.rc, known_failure ? 3 : 0) << file << " " << backend << ": " << c.out << c.err;  // check catches it
       // the forced route (a deck with R, I, K or a nonzero V; a case with forces) compares the tower only
       const nlohmann::json& circ = got.value("circuit", nlohmann::json::object());
       const auto count = [&](const char* k) { return circ.value(k, 0); };
-      const bool forced = count("resistors") + count("current_sources") + count("couplings") + count("voltage_sources") > 0 ||
-                          slurp(file).find("\"forces\"") != std::string::npos;
-      const bool expression = file.extension() == ".json" && nlohmann::json::parse(slurp(file)).contains("lagrangian");  // compared: the velocity
-      const bool dae = file.extension() == ".json" && (nlohmann::json::parse(slurp(file)).contains("dae") ||
-                                                      nlohmann::json::parse(slurp(file)).contains("implicit"));  // compared: the discrete claims
-      if (backend == "reference" && !forced && !expression && !dae) EXPECT_NE(c.out.find("final_constraints"), std::string::npos) << file;
+      const bool forced =
+          count("resistors") + count("current_sources") + count("couplings") + count("voltage_sources") > 0 ||
+          slurp(file).find("\"forces\"") != std::string::npos;
+      const bool expression = file.extension() == ".json" &&
+                              nlohmann::json::parse(slurp(file)).contains("lagrangian");  // compared: the velocity
+      const bool dae = file.extension() == ".json" &&
+                       (nlohmann::json::parse(slurp(file)).contains("dae") ||
+                        nlohmann::json::parse(slurp(file)).contains("implicit"));  // compared: the discrete claims
+      if (backend == "reference" && !forced && !expression && !dae)
+        EXPECT_NE(c.out.find("final_constraints"), std::string::npos) << file;
       if (expression) EXPECT_NE(c.out.find("velocity"), std::string::npos) << file;
       ++checked;
     }
@@ -102,21 +113,27 @@ TEST(Check, DaeConstraintClaimsAreComparedAsSubspaces) {
   const std::string idx3 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-3.json").string();
   const std::string idx2 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-2.json").string();
   const std::string head = R"("consistent": true, "solution_rank": 0, )";
-  const std::string right = write_temp("dcad_dae_mc_right.json", "{\"dims\": [3, 2, 1, 0], \"steps\": 3, " + head +
-                                                                     R"("final_constraints": [[1, 1, 0, 0], [0, 1, 0, 0], [0, 2, 3, 0]]})");
-  const std::string short_ = write_temp("dcad_dae_mc_short.json", "{\"dims\": [3, 2, 1, 0], \"steps\": 3, " + head +
-                                                                      R"("final_constraints": [[1, 0, 0, 0], [0, 1, 0, 0]]})");
+  const std::string right =
+      write_temp("dcad_dae_mc_right.json", "{\"dims\": [3, 2, 1, 0], \"steps\": 3, " + head +
+                                               R"("final_constraints": [[1, 1, 0, 0], [0, 1, 0, 0], [0, 2, 3, 0]]})");
+  const std::string short_ =
+      write_temp("dcad_dae_mc_short.json", "{\"dims\": [3, 2, 1, 0], \"steps\": 3, " + head +
+                                               R"("final_constraints": [[1, 0, 0, 0], [0, 1, 0, 0]]})");
   EXPECT_EQ(run("check " + right + " " + idx3).rc, 0);
   const Outcome bad = run("check " + short_ + " " + idx3);
   EXPECT_EQ(bad.rc, 3) << bad.out << bad.err;
-  EXPECT_NE(bad.out.find("final_constraints: expected equations of a 0-dimensional M_c, found 1-dimensional"), std::string::npos) << bad.out;
-  const std::string dirs = write_temp("dcad_dae_mc_dirs.json", "{\"dims\": [3, 2, 1], \"steps\": 2, " + head +
-                                                                   R"("final_constraints": [[1, 0, 0, 0], [0, 1, 1, 0]]})");
+  EXPECT_NE(bad.out.find("final_constraints: expected equations of a 0-dimensional M_c, found 1-dimensional"),
+            std::string::npos)
+      << bad.out;
+  const std::string dirs =
+      write_temp("dcad_dae_mc_dirs.json", "{\"dims\": [3, 2, 1], \"steps\": 2, " + head +
+                                              R"("final_constraints": [[1, 0, 0, 0], [0, 1, 1, 0]]})");
   const Outcome d = run("check " + dirs + " " + idx2);
   EXPECT_EQ(d.rc, 0) << d.out << d.err;
   EXPECT_NE((d.out + d.err).find("right sides"), std::string::npos) << d.out << d.err;
-  const std::string wrong = write_temp("dcad_dae_mc_wrong.json", "{\"dims\": [3, 2, 1], \"steps\": 2, " + head +
-                                                                    R"("final_constraints": [[1, 0, 0, 0], [0, 1, 0, 0]]})");
+  const std::string wrong =
+      write_temp("dcad_dae_mc_wrong.json", "{\"dims\": [3, 2, 1], \"steps\": 2, " + head +
+                                               R"("final_constraints": [[1, 0, 0, 0], [0, 1, 0, 0]]})");
   EXPECT_EQ(run("check " + wrong + " " + idx2).rc, 3);
 }
 
@@ -143,26 +160,49 @@ TEST(Implicit, ReviewCounterexamplesAreRightOrNotCertified) {
       {R"(["x1", "x2"])", R"J(["x1 + sin(t)", "x1"])J", "", {2, -1}, false},
       {R"(["x", "y"])", R"(["x^2 + 1", "x*y - 1"])", "", {2, -1}, false},
       {R"(["x"])", R"(["v_x - 1", "x^2"])", "", {1, 0, -1}, false},
-      {R"(["x", "y"])", R"J(["v_x - 1", "v_y", "y - (x - 1/5)^4"])J", R"(, "initial": {"x": "1/5"})", {2, 1, 0, -1}, false},
+      {R"(["x", "y"])",
+       R"J(["v_x - 1", "v_y", "y - (x - 1/5)^4"])J",
+       R"(, "initial": {"x": "1/5"})",
+       {2, 1, 0, -1},
+       false},
       {R"(["x", "y"])", R"J(["x*(1 - y)", "v_y - 1"])J", "", {2, 1}, true},
       // the review of the formula route (issue 30): zero tests the jets took as identities to their order only,
       // and a critical point of a multiplier taken as emptiness — each certified wrong then
       {R"(["x", "y"])", R"(["v_x - 1", "y^8"])", R"(, "initial": {"y": "0"})", {2, 1}, true},
       {R"(["x"])", R"(["v_x - 1", "t^64"])", "", {1, -1}, false},
-      {R"(["x"])", R"J(["v_x - 1", "x*(exp(t) - 1 - t - t^2/2 - t^3/6 - t^4/24 - t^5/120 - t^6/720 - t^7/5040)"])J", "", {1, 0, -1}, false},
-      {R"(["x", "y"])", R"J(["v_x - 1", "y*(exp(x) - 1 - x - x^2/2 - x^3/6 - x^4/24 - x^5/120 - x^6/720 - x^7/5040)"])J", R"(, "initial": {"x": "0", "y": "1"})", {2, 1, -1}, false},
+      {R"(["x"])",
+       R"J(["v_x - 1", "x*(exp(t) - 1 - t - t^2/2 - t^3/6 - t^4/24 - t^5/120 - t^6/720 - t^7/5040)"])J",
+       "",
+       {1, 0, -1},
+       false},
+      {R"(["x", "y"])",
+       R"J(["v_x - 1", "y*(exp(x) - 1 - x - x^2/2 - x^3/6 - x^4/24 - x^5/120 - x^6/720 - x^7/5040)"])J",
+       R"(, "initial": {"x": "0", "y": "1"})",
+       {2, 1, -1},
+       false},
       {R"(["x", "lam"])", R"(["v_x - lam^3 - 1", "x"])", R"(, "initial": {"x": "0"})", {2, 1, 0}, true},
-      {R"(["x", "y", "u", "w", "lam"])", R"(["v_x - u", "v_y - w", "v_u + lam^3*x", "v_w + lam^3*y + 10", "x^2 + y^2 - 1"])",
-       R"(, "initial": {"x": "3/5", "y": "-4/5"})", {5, 4, 3, 2}, true},
-      {R"(["x", "y", "u", "w", "lam"])", R"(["v_x - u", "v_y - w", "v_u + lam^2*x", "v_w + lam^2*y + 10", "x^2 + y^2 - 1"])",
-       R"(, "initial": {"x": "3/5", "y": "-4/5"})", {5, 4, 3, 2}, true},
-      {R"(["x", "u"])", R"(["x*v_x - u", "v_u + x"])", R"(, "initial": {"x": "0"})", {2, 1, 0}, true},  // singular at x = 0: right or not certified
+      {R"(["x", "y", "u", "w", "lam"])",
+       R"(["v_x - u", "v_y - w", "v_u + lam^3*x", "v_w + lam^3*y + 10", "x^2 + y^2 - 1"])",
+       R"(, "initial": {"x": "3/5", "y": "-4/5"})",
+       {5, 4, 3, 2},
+       true},
+      {R"(["x", "y", "u", "w", "lam"])",
+       R"(["v_x - u", "v_y - w", "v_u + lam^2*x", "v_w + lam^2*y + 10", "x^2 + y^2 - 1"])",
+       R"(, "initial": {"x": "3/5", "y": "-4/5"})",
+       {5, 4, 3, 2},
+       true},
+      {R"(["x", "u"])",
+       R"(["x*v_x - u", "v_u + x"])",
+       R"(, "initial": {"x": "0"})",
+       {2, 1, 0},
+       true},  // singular at x = 0: right or not certified
   };
   int certified = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& c = cases[i];
-    const std::string file = write_temp("dcad_review_" + std::to_string(i) + ".json", R"({"dcad": 1, "implicit": {"coordinates": )" + c.coordinates +
-                                                                                        R"(, "equations": )" + c.equations + R"(, "time": "t"})" + c.initial + "}");
+    const std::string file = write_temp("dcad_review_" + std::to_string(i) + ".json",
+                                        R"({"dcad": 1, "implicit": {"coordinates": )" + c.coordinates +
+                                            R"(, "equations": )" + c.equations + R"(, "time": "t"})" + c.initial + "}");
     for (const std::string backend : {"reference", "fast", "certified"}) {
       const Outcome r = run("solve " + file + " --backend " + backend + " --json");
       if (r.rc == 1) continue;  // no answer (the exact route reached no rational point) is not a wrong one
@@ -181,8 +221,11 @@ TEST(Implicit, ReviewCounterexamplesAreRightOrNotCertified) {
 // hidden constraint x u + y w = 0's own derivative, the multiplier's equation) is caught by name.
 TEST(Check, ImplicitPendulumIndexClaimsAreJudged) {
   const std::string i3 = (fs::path(DCAD_SOURCE_DIR) / "cases/implicit-pendulum-index-3.json").string();
-  const std::string right = write_temp("dcad_i3_right.json", R"({"dims": [5, 4, 3, 2], "steps": 3, "consistent": true, "solution_rank": 0, "index": 3})");
-  const std::string wrong = write_temp("dcad_i3_wrong.json", R"({"dims": [5, 4, 3], "steps": 2, "consistent": true, "solution_rank": 0, "index": 2})");
+  const std::string right =
+      write_temp("dcad_i3_right.json",
+                 R"({"dims": [5, 4, 3, 2], "steps": 3, "consistent": true, "solution_rank": 0, "index": 3})");
+  const std::string wrong = write_temp(
+      "dcad_i3_wrong.json", R"({"dims": [5, 4, 3], "steps": 2, "consistent": true, "solution_rank": 0, "index": 2})");
   const Outcome ok = run("check " + right + " " + i3);
   EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
   const Outcome bad = run("check " + wrong + " " + i3);
@@ -197,17 +240,29 @@ TEST(Check, ImplicitPendulumIndexClaimsAreJudged) {
 // (what `solve` prints is what `check` compares).
 TEST(Check, ImplicitFormulasAreComparedOnMc) {
   const std::string i3 = (fs::path(DCAD_SOURCE_DIR) / "cases/implicit-pendulum-index-3.json").string();
-  const std::string cons = R"J("constraints": ["x^2 + y^2 - 1", "x*u + y*w", "u^2 + w^2 - lam*(x^2 + y^2) - 981/100*y"])J";
+  const std::string cons =
+      R"J("constraints": ["x^2 + y^2 - 1", "x*u + y*w", "u^2 + w^2 - lam*(x^2 + y^2) - 981/100*y"])J";
   const std::string eqs = R"("x": "u", "y": "w", "u": "-lam*x", "w": "-lam*y - 981/100")";
-  const Outcome right = run("check " + write_temp("dcad_i3_formulas.json", R"({"dcad": 1, "formulas": {)" + cons + R"(, "equations": {)" + eqs +
-                                                                                R"J(, "lam": "-3*981/100*w/(x^2 + y^2)"}}})J") + " " + i3);
+  const Outcome right =
+      run("check " +
+          write_temp("dcad_i3_formulas.json", R"({"dcad": 1, "formulas": {)" + cons + R"(, "equations": {)" + eqs +
+                                                  R"J(, "lam": "-3*981/100*w/(x^2 + y^2)"}}})J") +
+          " " + i3);
   EXPECT_EQ(right.rc, 0) << right.out << right.err;
-  EXPECT_NE(right.out.find("formulas.equations (exactly at the reference's rational point"), std::string::npos) << right.out;
-  const Outcome sign = run("check " + write_temp("dcad_i3_formulas_sign.json", R"({"dcad": 1, "formulas": {)" + cons + R"(, "equations": {)" + eqs +
-                                                                                   R"J(, "lam": "3*981/100*w/(x^2 + y^2)"}}})J") + " " + i3);
+  EXPECT_NE(right.out.find("formulas.equations (exactly at the reference's rational point"), std::string::npos)
+      << right.out;
+  const Outcome sign =
+      run("check " +
+          write_temp("dcad_i3_formulas_sign.json", R"({"dcad": 1, "formulas": {)" + cons + R"(, "equations": {)" + eqs +
+                                                       R"J(, "lam": "3*981/100*w/(x^2 + y^2)"}}})J") +
+          " " + i3);
   EXPECT_EQ(sign.rc, 3) << sign.out << sign.err;
   EXPECT_NE(sign.out.find("formulas.equations.lam: expected"), std::string::npos) << sign.out;
-  const Outcome missing = run("check " + write_temp("dcad_i3_formulas_missing.json", R"({"dcad": 1, "formulas": {"constraints": ["x^2 + y^2 - 1", "x*u + y*w"]}})") + " " + i3);
+  const Outcome missing =
+      run("check " +
+          write_temp("dcad_i3_formulas_missing.json",
+                     R"({"dcad": 1, "formulas": {"constraints": ["x^2 + y^2 - 1", "x*u + y*w"]}})") +
+          " " + i3);
   EXPECT_EQ(missing.rc, 3) << missing.out << missing.err;
   EXPECT_NE(missing.out.find("expected 3 independent constraints"), std::string::npos) << missing.out;
   EXPECT_NE(missing.out.find("(M_3)"), std::string::npos) << missing.out;  // the one not implied, named
@@ -225,26 +280,43 @@ TEST(Check, ImplicitFormulasAreComparedOnMc) {
 TEST(Check, DaeReducedEquationsAreComparedOnMc) {
   const std::string h1 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-1.json").string();
   const auto claim = [](const std::string& reduced) {
-    return R"J({"dcad": 1, "dims": [2, 1], "steps": 1, "consistent": true, "solution_rank": 0, "reduced": )J" + reduced + "}";
+    return R"J({"dcad": 1, "dims": [2, 1], "steps": 1, "consistent": true, "solution_rank": 0, "reduced": )J" +
+           reduced + "}";
   };
-  const Outcome right = run("check " + write_temp("dcad_h1_red.json", claim(R"J({"coordinates": ["x"], "F": [["-2"]], "f": ["0"], "G": [], "sources": {"columns": ["f_2(t)"], "S": [["-1"]]}})J")) + " " + h1);
+  const Outcome right = run(
+      "check " +
+      write_temp(
+          "dcad_h1_red.json",
+          claim(
+              R"J({"coordinates": ["x"], "F": [["-2"]], "f": ["0"], "G": [], "sources": {"columns": ["f_2(t)"], "S": [["-1"]]}})J")) +
+      " " + h1);
   EXPECT_EQ(right.rc, 0) << right.out << right.err;
   EXPECT_NE(right.out.find("reduced (on the consistent states"), std::string::npos) << right.out;
-  const Outcome floats = run("check " + write_temp("dcad_h1_red_f.json", claim(R"J({"coordinates": ["x"], "F": [[-2.0]], "f": [0.0], "sources": {"columns": ["f_2(t)"], "S": [[-1.0000000000000002]]}})J")) + " " + h1);
+  const Outcome floats = run(
+      "check " +
+      write_temp(
+          "dcad_h1_red_f.json",
+          claim(
+              R"J({"coordinates": ["x"], "F": [[-2.0]], "f": [0.0], "sources": {"columns": ["f_2(t)"], "S": [[-1.0000000000000002]]}})J")) +
+      " " + h1);
   EXPECT_EQ(floats.rc, 0) << floats.out << floats.err;
-  for (const std::string wrong : {R"J({"coordinates": ["x"], "F": [["-1"]], "f": ["0"], "sources": {"columns": ["f_2(t)"], "S": [["-1"]]}})J",
-                                  R"J({"coordinates": ["x"], "F": [["-2"]], "f": ["0"], "sources": {"columns": ["f_2(t)"], "S": [["1"]]}})J"}) {
+  for (const std::string wrong :
+       {R"J({"coordinates": ["x"], "F": [["-1"]], "f": ["0"], "sources": {"columns": ["f_2(t)"], "S": [["-1"]]}})J",
+        R"J({"coordinates": ["x"], "F": [["-2"]], "f": ["0"], "sources": {"columns": ["f_2(t)"], "S": [["1"]]}})J"}) {
     const Outcome r = run("check " + write_temp("dcad_h1_red_w.json", claim(wrong)) + " " + h1);
     EXPECT_EQ(r.rc, 3) << wrong << r.out << r.err;
     EXPECT_NE(r.out.find("reduced: d/dt of the coordinates [\"x\"] differs"), std::string::npos) << r.out;
   }
   const std::string loop = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-mna-capacitor-source-loop.json").string();
   const auto loop_claim = [](const std::string& s) {
-    return R"J({"dcad": 1, "dims": [2, 1, 0], "steps": 2, "consistent": true, "solution_rank": 0, "reduced": {"coordinates": ["e", "i"], "F": [["0", "0"], ["0", "0"]], "f": ["0", "0"], "sources": {"columns": ["f_2'(t)", "f_2''(t)"], "S": )J" + s + "}}}";
+    return R"J({"dcad": 1, "dims": [2, 1, 0], "steps": 2, "consistent": true, "solution_rank": 0, "reduced": {"coordinates": ["e", "i"], "F": [["0", "0"], ["0", "0"]], "f": ["0", "0"], "sources": {"columns": ["f_2'(t)", "f_2''(t)"], "S": )J" +
+           s + "}}}";
   };
-  const Outcome lr = run("check " + write_temp("dcad_loop_red.json", loop_claim(R"J([["-1", "0"], ["0", "1e-12"]])J")) + " " + loop);
+  const Outcome lr =
+      run("check " + write_temp("dcad_loop_red.json", loop_claim(R"J([["-1", "0"], ["0", "1e-12"]])J")) + " " + loop);
   EXPECT_EQ(lr.rc, 0) << lr.out << lr.err;
-  const Outcome lw = run("check " + write_temp("dcad_loop_red_w.json", loop_claim(R"J([["-1", "0"], ["0", "0"]])J")) + " " + loop);
+  const Outcome lw =
+      run("check " + write_temp("dcad_loop_red_w.json", loop_claim(R"J([["-1", "0"], ["0", "0"]])J")) + " " + loop);
   EXPECT_EQ(lw.rc, 3) << lw.out << lw.err;
   for (const std::string& f : {h1, loop}) {
     const Outcome own = run("solve " + f + " --json");
@@ -259,12 +331,26 @@ TEST(Check, DaeReducedEquationsAreComparedOnMc) {
 TEST(Check, DaeIndexAndRegularityClaimsAreJudged) {
   const std::string idx3 = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-hessenberg-index-3.json").string();
   const std::string sing = (fs::path(DCAD_SOURCE_DIR) / "cases/dae-singular-pencil.json").string();
-  const Outcome right = run("check " + write_temp("dcad_dae_claim_ok.json", R"({"dcad": 1, "dims": [3, 2, 1, 0], "steps": 3, "consistent": true, "solution_rank": 0, "index": 3})") + " " + idx3);
+  const Outcome right =
+      run("check " +
+          write_temp(
+              "dcad_dae_claim_ok.json",
+              R"({"dcad": 1, "dims": [3, 2, 1, 0], "steps": 3, "consistent": true, "solution_rank": 0, "index": 3})") +
+          " " + idx3);
   EXPECT_EQ(right.rc, 0) << right.out << right.err;
-  const Outcome low = run("check " + write_temp("dcad_dae_claim_low.json", R"({"dcad": 1, "dims": [3, 2, 1], "steps": 2, "consistent": true, "solution_rank": 0, "index": 2})") + " " + idx3);
+  const Outcome low = run(
+      "check " +
+      write_temp("dcad_dae_claim_low.json",
+                 R"({"dcad": 1, "dims": [3, 2, 1], "steps": 2, "consistent": true, "solution_rank": 0, "index": 2})") +
+      " " + idx3);
   EXPECT_EQ(low.rc, 3) << low.out << low.err;
   EXPECT_NE(low.out.find("index: expected 3, found 2"), std::string::npos) << low.out;
-  const Outcome labelled = run("check " + write_temp("dcad_dae_claim_sing.json", R"({"dcad": 1, "dims": [2], "steps": 0, "consistent": true, "solution_rank": 0, "regular_pencil": true, "index": 0})") + " " + sing);
+  const Outcome labelled = run(
+      "check " +
+      write_temp(
+          "dcad_dae_claim_sing.json",
+          R"({"dcad": 1, "dims": [2], "steps": 0, "consistent": true, "solution_rank": 0, "regular_pencil": true, "index": 0})") +
+      " " + sing);
   EXPECT_EQ(labelled.rc, 3) << labelled.out << labelled.err;
   EXPECT_NE(labelled.out.find("regular_pencil: expected false"), std::string::npos) << labelled.out;
 }
@@ -312,7 +398,8 @@ TEST(Check, FloatEquationsOfMotionModuloGauge) {
   const Outcome same = run("check " + write_temp("dcad_fgauge_same.json", good.dump()) + " " + file);
   EXPECT_EQ(same.rc, 0) << same.out << same.err;
   nlohmann::json shifted = good, twice = good, wrong_f = good;
-  const double g2 = std::stod(good["reduced"]["G"][2][0].get<std::string>()), g3 = std::stod(good["reduced"]["G"][3][0].get<std::string>());
+  const double g2 = std::stod(good["reduced"]["G"][2][0].get<std::string>()),
+               g3 = std::stod(good["reduced"]["G"][3][0].get<std::string>());
   for (int j = 0; j < 4; ++j) {  // F + G K with K = (1, −2, 3.5, 0.5)/g
     const double kj = std::vector<double>{1, -2, 3.5, 0.5}[j];
     shifted["reduced"]["F"][2][j] = std::to_string(std::stod(good["reduced"]["F"][2][j].get<std::string>()) + g2 * kj);
@@ -383,7 +470,8 @@ TEST(Check, BadResultsExitOne) {
 // The worked example of the README: an independent, naive Python CAD (proptests/peers/naive_cad.py)
 // is right on the 4-port and wrong on a circuit with a 1 pH inductor, and `dcad check` says so.
 TEST(Check, NaivePythonPeer) {
-  if (std::system("command -v python3 > /dev/null 2>&1") != 0) FAIL() << "python3 not installed: run bash .ci/setup (the README's test command does)";
+  if (std::system("command -v python3 > /dev/null 2>&1") != 0)
+    FAIL() << "python3 not installed: run bash .ci/setup (the README's test command does)";
   const std::string peer = std::string(DCAD_SOURCE_DIR) + "/proptests/peers/naive_cad.py";
   const auto peer_result = [&](const std::string& deck) {
     const std::string out = temp_path("dcad_peer.json");
@@ -408,12 +496,12 @@ TEST(Cases, FreezeListShowExport) {
   fs::remove_all(dir);
   fs::create_directories(dir / "schema");
   fs::copy_file(fs::path(DCAD_SOURCE_DIR) / "cases/schema/result.schema.json", dir / "schema/result.schema.json");
-  const std::string log = write_temp(
-      "dcad_property.log",
-      "Falsifiable after 12 tests and 3 shrinks\n"
-      "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"pontryagin\": {\"Q\": 1, \"constraints\": [], \"lagrangian\": "
-      "{\"vv\": [[\"1\"]], \"qq\": [[\"-1\"]]}}}\n"
-      "/work/main/proptests/prop_cad_fast.cpp:48: RC_ASSERT(...)\n");
+  const std::string log = write_temp("dcad_property.log",
+                                     "Falsifiable after 12 tests and 3 shrinks\n"
+                                     "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"pontryagin\": {\"Q\": "
+                                     "1, \"constraints\": [], \"lagrangian\": "
+                                     "{\"vv\": [[\"1\"]], \"qq\": [[\"-1\"]]}}}\n"
+                                     "/work/main/proptests/prop_cad_fast.cpp:48: RC_ASSERT(...)\n");
   setenv("DCAD_CASES", dir.c_str(), 1);
   const Outcome f = run("cases freeze " + log + " regression-oscillator");
   EXPECT_EQ(f.rc, 0) << f.err;
@@ -431,10 +519,13 @@ TEST(Cases, FreezeListShowExport) {
   EXPECT_TRUE(fs::exists(dir / "out/regression-oscillator.expected.json"));
   EXPECT_TRUE(fs::exists(dir / "out/result.schema.json"));
   std::size_t exported = 0;  // the count printed is the count written
-  for (const auto& f : fs::directory_iterator(dir / "out")) exported += f.path().string().find(".expected.json") != std::string::npos;
-  EXPECT_NE(e.out.find("exported " + std::to_string(exported) + " cases"), std::string::npos) << e.out << " (" << exported << " files)";
+  for (const auto& f : fs::directory_iterator(dir / "out"))
+    exported += f.path().string().find(".expected.json") != std::string::npos;
+  EXPECT_NE(e.out.find("exported " + std::to_string(exported) + " cases"), std::string::npos)
+      << e.out << " (" << exported << " files)";
   // the frozen case is a golden case like any other: solve reproduces its expectations
-  const nlohmann::json got = nlohmann::json::parse(run("solve " + (dir / "regression-oscillator.json").string() + " --json").out);
+  const nlohmann::json got =
+      nlohmann::json::parse(run("solve " + (dir / "regression-oscillator.json").string() + " --json").out);
   EXPECT_EQ(got["dims"], frozen["expect"]["dims"]);
 }
 
@@ -445,7 +536,9 @@ TEST(Cases, FreezeOfBadInputNamesTheLog) {
   const fs::path dir = fs::path(temp_path("dcad_corpus_bad"));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string log = write_temp("dcad_bad_property.log", "Falsifiable after 3 tests\ndcad case: {\"dcad\": 1, \"pontryagin\": {\"Q\": \"two\"}}\n");
+  const std::string log =
+      write_temp("dcad_bad_property.log",
+                 "Falsifiable after 3 tests\ndcad case: {\"dcad\": 1, \"pontryagin\": {\"Q\": \"two\"}}\n");
   setenv("DCAD_CASES", dir.c_str(), 1);
   const Outcome r = run("cases freeze " + log + " regression-bad");
   unsetenv("DCAD_CASES");

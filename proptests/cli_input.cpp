@@ -29,63 +29,68 @@ TEST_P(BadNetlist, ExitOneWithFileLineExpectedFound) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cli, BadNetlist,
-    testing::Values(BadCase{"resistor", "title\nL1 1 0 1\nR1 1 0 10 extra\n.end\n", "after the resistance"},
-                    BadCase{"diode", "title\nD1 1 0 dmod\n", "element D1"},
-                    BadCase{"novalue", "title\nL1 1 0\n", ":2:"},
-                    BadCase{"badvalue", "title\nC1 1 0 abc\n", "\"abc\""},
-                    BadCase{"nan", "title\nC1 1 0 nan\n", "\"nan\""},
-                    BadCase{"zeroc", "title\nC1 1 0 0\n", "open branch"},
-                    BadCase{"dup", "title\nL1 1 0 1\nl1 1 0 2\n", "duplicate"},
-                    BadCase{"empty", "", "empty file"},
-                    BadCase{"noelements", "title only\n* nothing\n.end\n", "none"},
-                    BadCase{"vsource", "title\nV1 1 0 SIN(0 1)\n", "FREQ = 1/TSTOP"},
-                    BadCase{"pulse", "title\nV1 1 0 PULSE(0 1 0 0 1n 1u 2u)\nR1 1 0 1\n", "TR = TSTEP"},
-                    BadCase{"sffm", "title\nI1 1 0 SFFM(0 1 1k 2)\nR1 1 0 1\n", "SFFM(VO VA FC MDI FS) with the five values"},
-                    BadCase{"pwl", "title\nV1 1 0 PWL(0 0 1 1 1 2)\nR1 1 0 1\n", "increasing PWL times"},
-                    BadCase{"kmissing", "title\nL1 1 0 1\nK1 L1 L9 0.5\n", "\"l9\""},
-                    BadCase{"kbig", "title\nL1 1 0 1\nL2 1 0 1\nK1 L1 L2 2\n", "|k| <= 1"},
-                    BadCase{"kself", "title\nL1 1 0 1\nK1 L1 l1 0.5\n", "two different inductors for K1, found one twice"},
-                    BadCase{"ktwice", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L2 L1 0.25\n", "one coupling per pair of inductors, found a second one (K2)"},
-                    BadCase{"ktwicesame", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L1 L2 0.25\n", "found a second one (K2)"},
-                    BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="},
-                    BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""},
-                    // SPICE as ngspice reads it: what would change the circuit and is not supported is an error
-                    BadCase{"unknowncard", "title\n.frobnicate 3\nL1 1 0 1\n", "unknown card .frobnicate"},
-                    BadCase{"preprocess", "title\n.preprocess addresistors nodcpath 1G\nL1 1 0 1\n", ".preprocess"},
-                    BadCase{"nosubckt", "title\nX1 1 0 nope\n", "unknown subcircuit \"nope\""},
-                    BadCase{"subcktports", "title\n.subckt t a b\nL1 a b 1\n.ends\nX1 1 t\n", "2 nodes for t"},
-                    BadCase{"noends", "title\n.subckt t a b\nL1 a b 1\n", ".ends for .subckt t"},
-                    BadCase{"recursive", "title\n.subckt t a\nX1 a t\n.ends\nX1 1 t\n", "nested at most 32"},
-                    BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" (no such file)"},
-                    BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
-                    BadCase{"expstep", "title\nV1 1 0 EXP(0 1 2m 1m 1m 1m)\nR1 1 2 1Meg\nC1 2 0 1n\n", "TD2 >= TD1"},  // a step at TD1 (review)
-                    BadCase{"tempsub", "title\nV1 1 0 1\nX1 1 0 s\n.subckt s a b\nR1 a b 1k TC1=0.01\n.temp 100\n.ends\n", ".temp inside a .subckt"},
-                    // gnucap's generator and conditional values: a step or two circuits is refused, never read as another
-                    BadCase{"gensine", "title\n.gen freq=1k\nV1 1 0 generator(1)\nR1 1 2 1\nC1 2 0 1\n", "a sine times the pulse"},
-                    BadCase{"genafter", "title\nV1 1 0 generator(1)\nR1 1 2 1\nC1 2 0 1\n.tran 0 1 .1\n.gen max=2\n", "before the deck's first .tran"},
-                    BadCase{"condtwo", "title\nV1 1 0 1\nR1 1 2 dc 1 tran 2\nC1 2 0 1\n", "1 at the operating point and 2 in the transient"},
-                    BadCase{"condac", "title\nV1 1 0 1\nR1 1 2 ac 1\nC1 2 0 1\n", "gnucap then takes 0"},
-                    BadCase{"numberexpr", "title\n.param p=3\nL1 1 0 2*p\nC1 1 0 1\n", "\"2*p\""},  // ngspice reads 2: never -> 6
-                    BadCase{"bareunknown", "title\nL1 1 0 c+1\nC1 1 0 1\n", "\"c+1\""},
-                    BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
-                    BadCase{"icvalue", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(1)=zz\n", "\"zz\""},  // .ic v(7)=1: ignored, as ngspice
-                    // values other SPICEs read otherwise (issue 27): never guessed
-                    BadCase{"atto", "title\nL1 1 0 1u\nC1 1 0 1a\n", "atto"},
-                    BadCase{"hspicemega", "title\nL1 1 0 1u\nR1 1 0 10x\n", "mega"},
-                    // the refusal of a card names every supported element
-                    BadCase{"modelnames", "title\n.frobnicate\nL1 1 0 1\n", "an R, L, C, V, I, K or X element"},
-                    BadCase{"modeluse", "title\n.model d1 D\nD1 1 0 d1\n", "element D1"},
-                    BadCase{"alter", "title\nL1 1 0 1\nC1 1 0 1\n.control\nalter C1 = 2\ntran 1m 1\n.endc\n", "alter, which changes it"},
-                    BadCase{"alterloop", "title\nL1 1 0 1\nC1 1 0 1\n.control\nwhile 1\nop\nend\nalter C1 = 2\n.endc\n", "alter, which changes it"},
-                    BadCase{"ifblock", "title\n.if (a == 1)\nL1 1 0 1\n.endif\n", "without conditionals"},
-                    BadCase{"random", "title\nL1 1 0 {rand()}\n", "random"},
-                    // names ngspice's tokenizer cuts (Xyce_Regression's INVALID_CHARS): refused, not guessed
-                    BadCase{"commaname", "title\nL1 1 0 1\nv2, 1 0 1\n", "an element name without"},
-                    BadCase{"parennode", "title\nL1 1 0 1\nv3 1( 0 1\n", "a node name without"},
-                    // gnucap's pulse keyword form: rise and fall 0, a step
-                    BadCase{"gnucappulse", "title\nL1 1 0 1\nv1 (1 0) pulse (iv=0 pv=10)\n", "gnucap's pulse"},
-                    BadCase{"pwlfilemissing", "title\nR1 1 0 1\nV1 1 0 PWL FILE \"nothere.csv\"\n", "\"nothere.csv\" (no such file)"},
-                    BadCase{"gnucapexpperiod", "title\nL1 1 0 1\nv1 1 0 exp iv=0 pv=1 tau1=1 td2=1 tau2=1 period=5\n", "period="}),
+    testing::Values(
+        BadCase{"resistor", "title\nL1 1 0 1\nR1 1 0 10 extra\n.end\n", "after the resistance"},
+        BadCase{"diode", "title\nD1 1 0 dmod\n", "element D1"}, BadCase{"novalue", "title\nL1 1 0\n", ":2:"},
+        BadCase{"badvalue", "title\nC1 1 0 abc\n", "\"abc\""}, BadCase{"nan", "title\nC1 1 0 nan\n", "\"nan\""},
+        BadCase{"zeroc", "title\nC1 1 0 0\n", "open branch"},
+        BadCase{"dup", "title\nL1 1 0 1\nl1 1 0 2\n", "duplicate"}, BadCase{"empty", "", "empty file"},
+        BadCase{"noelements", "title only\n* nothing\n.end\n", "none"},
+        BadCase{"vsource", "title\nV1 1 0 SIN(0 1)\n", "FREQ = 1/TSTOP"},
+        BadCase{"pulse", "title\nV1 1 0 PULSE(0 1 0 0 1n 1u 2u)\nR1 1 0 1\n", "TR = TSTEP"},
+        BadCase{"sffm", "title\nI1 1 0 SFFM(0 1 1k 2)\nR1 1 0 1\n", "SFFM(VO VA FC MDI FS) with the five values"},
+        BadCase{"pwl", "title\nV1 1 0 PWL(0 0 1 1 1 2)\nR1 1 0 1\n", "increasing PWL times"},
+        BadCase{"kmissing", "title\nL1 1 0 1\nK1 L1 L9 0.5\n", "\"l9\""},
+        BadCase{"kbig", "title\nL1 1 0 1\nL2 1 0 1\nK1 L1 L2 2\n", "|k| <= 1"},
+        BadCase{"kself", "title\nL1 1 0 1\nK1 L1 l1 0.5\n", "two different inductors for K1, found one twice"},
+        BadCase{"ktwice", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L2 L1 0.25\n",
+                "one coupling per pair of inductors, found a second one (K2)"},
+        BadCase{"ktwicesame", "title\nL1 1 0 1\nL2 2 0 1\nK1 L1 L2 0.5\nK2 L1 L2 0.25\n", "found a second one (K2)"},
+        BadCase{"badic", "title\nL1 1 0 1 IC=x\n", "IC="}, BadCase{"extra", "title\nL1 1 0 1 foo\n", "\"foo\""},
+        // SPICE as ngspice reads it: what would change the circuit and is not supported is an error
+        BadCase{"unknowncard", "title\n.frobnicate 3\nL1 1 0 1\n", "unknown card .frobnicate"},
+        BadCase{"preprocess", "title\n.preprocess addresistors nodcpath 1G\nL1 1 0 1\n", ".preprocess"},
+        BadCase{"nosubckt", "title\nX1 1 0 nope\n", "unknown subcircuit \"nope\""},
+        BadCase{"subcktports", "title\n.subckt t a b\nL1 a b 1\n.ends\nX1 1 t\n", "2 nodes for t"},
+        BadCase{"noends", "title\n.subckt t a b\nL1 a b 1\n", ".ends for .subckt t"},
+        BadCase{"recursive", "title\n.subckt t a\nX1 a t\n.ends\nX1 1 t\n", "nested at most 32"},
+        BadCase{"include", "title\n.include nothere.cir\nL1 1 0 1\n", "nothere.cir\" (no such file)"},
+        BadCase{"param", "title\nL1 1 0 {2*x}\n", "unknown parameter \"x\""},
+        BadCase{"expstep", "title\nV1 1 0 EXP(0 1 2m 1m 1m 1m)\nR1 1 2 1Meg\nC1 2 0 1n\n",
+                "TD2 >= TD1"},  // a step at TD1 (review)
+        BadCase{"tempsub", "title\nV1 1 0 1\nX1 1 0 s\n.subckt s a b\nR1 a b 1k TC1=0.01\n.temp 100\n.ends\n",
+                ".temp inside a .subckt"},
+        // gnucap's generator and conditional values: a step or two circuits is refused, never read as another
+        BadCase{"gensine", "title\n.gen freq=1k\nV1 1 0 generator(1)\nR1 1 2 1\nC1 2 0 1\n", "a sine times the pulse"},
+        BadCase{"genafter", "title\nV1 1 0 generator(1)\nR1 1 2 1\nC1 2 0 1\n.tran 0 1 .1\n.gen max=2\n",
+                "before the deck's first .tran"},
+        BadCase{"condtwo", "title\nV1 1 0 1\nR1 1 2 dc 1 tran 2\nC1 2 0 1\n",
+                "1 at the operating point and 2 in the transient"},
+        BadCase{"condac", "title\nV1 1 0 1\nR1 1 2 ac 1\nC1 2 0 1\n", "gnucap then takes 0"},
+        BadCase{"numberexpr", "title\n.param p=3\nL1 1 0 2*p\nC1 1 0 1\n", "\"2*p\""},  // ngspice reads 2: never -> 6
+        BadCase{"bareunknown", "title\nL1 1 0 c+1\nC1 1 0 1\n", "\"c+1\""},
+        BadCase{"paramdiv", "title\n.param a=0\nL1 1 0 {1/a}\n", "division by zero"},
+        BadCase{"icvalue", "title\nL1 1 0 1\nC1 1 0 1\n.ic v(1)=zz\n", "\"zz\""},  // .ic v(7)=1: ignored, as ngspice
+        // values other SPICEs read otherwise (issue 27): never guessed
+        BadCase{"atto", "title\nL1 1 0 1u\nC1 1 0 1a\n", "atto"},
+        BadCase{"hspicemega", "title\nL1 1 0 1u\nR1 1 0 10x\n", "mega"},
+        // the refusal of a card names every supported element
+        BadCase{"modelnames", "title\n.frobnicate\nL1 1 0 1\n", "an R, L, C, V, I, K or X element"},
+        BadCase{"modeluse", "title\n.model d1 D\nD1 1 0 d1\n", "element D1"},
+        BadCase{"alter", "title\nL1 1 0 1\nC1 1 0 1\n.control\nalter C1 = 2\ntran 1m 1\n.endc\n",
+                "alter, which changes it"},
+        BadCase{"alterloop", "title\nL1 1 0 1\nC1 1 0 1\n.control\nwhile 1\nop\nend\nalter C1 = 2\n.endc\n",
+                "alter, which changes it"},
+        BadCase{"ifblock", "title\n.if (a == 1)\nL1 1 0 1\n.endif\n", "without conditionals"},
+        BadCase{"random", "title\nL1 1 0 {rand()}\n", "random"},
+        // names ngspice's tokenizer cuts (Xyce_Regression's INVALID_CHARS): refused, not guessed
+        BadCase{"commaname", "title\nL1 1 0 1\nv2, 1 0 1\n", "an element name without"},
+        BadCase{"parennode", "title\nL1 1 0 1\nv3 1( 0 1\n", "a node name without"},
+        // gnucap's pulse keyword form: rise and fall 0, a step
+        BadCase{"gnucappulse", "title\nL1 1 0 1\nv1 (1 0) pulse (iv=0 pv=10)\n", "gnucap's pulse"},
+        BadCase{"pwlfilemissing", "title\nR1 1 0 1\nV1 1 0 PWL FILE \"nothere.csv\"\n",
+                "\"nothere.csv\" (no such file)"},
+        BadCase{"gnucapexpperiod", "title\nL1 1 0 1\nv1 1 0 exp iv=0 pv=1 tau1=1 td2=1 tau2=1 period=5\n", "period="}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 // A deck written the way ngspice users write it — a library section with a parametrised .subckt,
@@ -95,23 +100,32 @@ INSTANTIATE_TEST_SUITE_P(
 // Issue 30, the dae form: bad input names its JSON path, expected and found — including a source that
 // is no function of t (undefined at every generic t; found by review: it was solved as if defined).
 TEST(Cli, BadDaeCasesNameTheirPath) {
-  const auto dae = [](const std::string& body) { return R"D({"dcad": 1, "variables": ["x", "y"], "dae": )D" + body + "}"; };
+  const auto dae = [](const std::string& body) {
+    return R"D({"dcad": 1, "variables": ["x", "y"], "dae": )D" + body + "}";
+  };
   const std::vector<std::pair<std::string, std::string>> bad = {
       {dae(R"D({"E": [["1","0"]], "A": [["0","1"],["1","0"]]})D"), "/dae/A"},
       {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0"]})D"), "/dae/f"},
-      {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "1/(t-t)"], "time": "t"})D"), "/dae/f/1"},
-      {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "sqrt(-1-t^2)"], "time": "t"})D"), "/dae/f/1"},
-      {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "sin(s)"], "time": "t"})D"), "/dae/f/1"},
+      {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "1/(t-t)"], "time": "t"})D"),
+       "/dae/f/1"},
+      {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "sqrt(-1-t^2)"], "time": "t"})D"),
+       "/dae/f/1"},
+      {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "f": ["0", "sin(s)"], "time": "t"})D"),
+       "/dae/f/1"},
       {dae(R"D({"E": [["1","x"],["0","0"]], "A": [["0","1"],["1","0"]]})D"), "/dae/E/0/1"},
       {dae(R"D({"E": [["1","0"],["0","0"]], "A": [["0","1"],["1","0"]], "g": 1})D"), "/dae"},
       // the sparse encoding {"rows": m, "entries": [[row, column, value], …]}
       {dae(R"D({"E": {"entries": [[0, 0, "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E: expected the key \"rows\""},
-      {dae(R"D({"E": {"rows": 2, "entries": [[2, 0, "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0/0: expected a row from 0 to 1"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[2, 0, "1"]]}, "A": [["0","1"],["1","0"]]})D"),
+       "/dae/E/entries/0/0: expected a row from 0 to 1"},
       {dae(R"D({"E": {"rows": 2, "entries": [[0, "z", "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0/1"},
-      {dae(R"D({"E": {"rows": 2, "entries": [[0, 2, "1"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0/1: expected a column from 0 to 1"},
-      {dae(R"D({"E": {"rows": 2, "entries": [[0, 0, "1"], [0, "x", "2"]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/1: expected each entry once"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[0, 2, "1"]]}, "A": [["0","1"],["1","0"]]})D"),
+       "/dae/E/entries/0/1: expected a column from 0 to 1"},
+      {dae(R"D({"E": {"rows": 2, "entries": [[0, 0, "1"], [0, "x", "2"]]}, "A": [["0","1"],["1","0"]]})D"),
+       "/dae/E/entries/1: expected each entry once"},
       {dae(R"D({"E": {"rows": 2, "entries": [[0, 0]]}, "A": [["0","1"],["1","0"]]})D"), "/dae/E/entries/0"},
-      {dae(R"D({"E": {"rows": 2, "entries": []}, "A": {"rows": 3, "entries": []}})D"), "/dae/A/rows: expected 2 rows (as E)"},
+      {dae(R"D({"E": {"rows": 2, "entries": []}, "A": {"rows": 3, "entries": []}})D"),
+       "/dae/A/rows: expected 2 rows (as E)"},
       {dae(R"D({"E": {"rows": 2, "entries": [], "cols": 2}, "A": [["0","1"],["1","0"]]})D"), "/dae/E"},
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
@@ -129,7 +143,8 @@ TEST(Cli, BadImplicitCasesNameTheirPath) {
   };
   const std::string circle = R"I({"coordinates": ["x", "y"], "equations": ["v_x - y", "x^2 + y^2 - 1"]})I";
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {imp(R"I({"coordinates": ["x"], "equations": ["v_x^2 - x"]})I"), "/implicit/equations/0: expected an equation affine in the derivatives"},
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x^2 - x"]})I"),
+       "/implicit/equations/0: expected an equation affine in the derivatives"},
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x - z"]})I"), "/implicit/equations/0: column 7"},
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x - x"]})I", R"I({"v_x": "1"})I"), "/initial/v_x"},
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x - x"], "L": "0"})I"), "/implicit/L"},
@@ -139,19 +154,23 @@ TEST(Cli, BadImplicitCasesNameTheirPath) {
   for (std::size_t i = 0; i < bad.size(); ++i) {
     const std::string file = write_temp("dcad_bad_implicit_" + std::to_string(i) + ".json", bad[i].first);
     for (const std::string backend : {"reference", "fast", "certified"})
-      expect_input_error(run("solve " + file + " --backend " + backend), file + ": " + bad[i].second, "", bad[i].first + " " + backend);
+      expect_input_error(run("solve " + file + " --backend " + backend), file + ": " + bad[i].second, "",
+                         bad[i].first + " " + backend);
   }
 }
 
 // The dae form's E and A may name parameters ("C", "1/R"): the MNA golden written so has its numbers'
 // tower (cases/dae-mna-capacitor-source-loop.json: dims [2, 1, 0], index 2).
 TEST(Cli, DaeMatricesTakeParameters) {
-  const std::string file = write_temp("dcad_dae_params.json", R"D({"dcad": 1, "variables": ["e", "i"], "parameters": {"C": "1e-12", "G": "1/1000000"},
+  const std::string file = write_temp(
+      "dcad_dae_params.json", R"D({"dcad": 1, "variables": ["e", "i"], "parameters": {"C": "1e-12", "G": "1/1000000"},
     "dae": {"E": [["C", "0"], ["0", "0"]], "A": [["-G", "-1"], ["1", "0"]], "f": ["0", "-sin(1000000000*t)"], "time": "t"}})D");
   const Outcome r = run("solve " + file + " --backend reference --json");
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["dims"], nlohmann::json::parse("[2, 1, 0]")) << r.out.substr(0, 400);
-  const std::string no_time = write_temp("dcad_dae_no_time.json", R"D({"dcad": 1, "variables": ["x"], "dae": {"E": [["1"]], "A": [["0"]], "f": ["sin(t)"]}})D");
+  const std::string no_time =
+      write_temp("dcad_dae_no_time.json",
+                 R"D({"dcad": 1, "variables": ["x"], "dae": {"E": [["1"]], "A": [["0"]], "f": ["sin(t)"]}})D");
   const Outcome bad = run("solve " + no_time);
   EXPECT_EQ(bad.rc, 1);
   EXPECT_NE(bad.err.find("/dae/time"), std::string::npos) << bad.err;
@@ -160,19 +179,23 @@ TEST(Cli, DaeMatricesTakeParameters) {
 TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
   const fs::path dir = fs::path(temp_path("dcad_hier"));
   fs::create_directories(dir / "lib");
-  std::ofstream(dir / "lib" / "parts.lib") << "* library\n.lib tanks\n.subckt tank a b params: l=1u c=1n\nL1 a b {l}\nC1 a b {c} ; shunt\n"
-                                              ".ends\n.endl\n.lib other\n.subckt junk x\nR1 x 0 1\n.ends\n.endl\n";
+  std::ofstream(dir / "lib" / "parts.lib")
+      << "* library\n.lib tanks\n.subckt tank a b params: l=1u c=1n\nL1 a b {l}\nC1 a b {c} ; shunt\n"
+         ".ends\n.endl\n.lib other\n.subckt junk x\nR1 x 0 1\n.ends\n.endl\n";
   std::ofstream(dir / "extra.inc") << "C9 n2 0 1n $ the load\n";
-  std::ofstream(dir / "deck.spice") << "two tanks\n.param lval={1e+1*0.2e-6} cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
-                                       "X1 n1 0 tank params: l={lval} c={cval}\nX2 n1 n2 tank\n.include extra.inc\n"
-                                       ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u uic\n.end\n";
+  std::ofstream(dir / "deck.spice")
+      << "two tanks\n.param lval={1e+1*0.2e-6} cval={2*500p}\n.lib \"lib/parts.lib\" tanks\n"
+         "X1 n1 0 tank params: l={lval} c={cval}\nX2 n1 n2 tank\n.include extra.inc\n"
+         ".subckt unused a\nL7 a 0 1\n.ends\n.ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u uic\n.end\n";
   std::ofstream(dir / "flat.cir") << "two tanks, flat\nL.x1.l1 n1 0 2u\nC.x1.c1 n1 0 1n IC=1\nL.x2.l1 n1 n2 1u\n"
                                      "C.x2.c1 n1 n2 1n IC=0.5\nC9 n2 0 1n IC=0.5\n.end\n";
   const std::string deck = (dir / "deck.spice").string(), flat = (dir / "flat.cir").string();
-  const Outcome h = expect_same_solution(deck, flat, {"dims", "steps", "solution_rank", "variables", "tower", "reduced"});
+  const Outcome h =
+      expect_same_solution(deck, flat, {"dims", "steps", "solution_rank", "variables", "tower", "reduced"});
   ASSERT_EQ(h.rc, 0) << h.err;
   EXPECT_EQ(nlohmann::json::parse(h.out)["circuit"]["branches"], 5);  // the unused .subckt adds nothing
-  const Outcome sh = run("simulate " + deck + " --tstop 1e-6 --step 1e-8"), sf = run("simulate " + flat + " --tstop 1e-6 --step 1e-8");
+  const Outcome sh = run("simulate " + deck + " --tstop 1e-6 --step 1e-8"),
+                sf = run("simulate " + flat + " --tstop 1e-6 --step 1e-8");
   ASSERT_EQ(sh.rc, 0) << sh.err;
   EXPECT_EQ(sh.out, sf.out);
   EXPECT_NE(sh.err.find("ignored .tran"), std::string::npos) << "simulate shows the netlist warnings: " << sh.err;
@@ -183,15 +206,19 @@ TEST(Cli, HierarchicalDeckEqualsItsFlatTwin) {
 // from where it is written.  Killed by: a second .subckt sub refused as a duplicate (dcad before), and by
 // a lookup that takes the top-level sub (5n) or the other parent's inside p1 (the flat twin's values differ).
 TEST(Cli, NestedSubcircuitsAreLocalToTheirParent) {
-  const std::string deck = write_temp("dcad_scopes.cir", "scopes\n.subckt p1 a\n.subckt sub x\nC1 x 0 1n\n.ends\nX1 a sub\nL1 a 0 1u\n.ends\n"
-                                                       ".subckt p2 a\n.subckt sub x\nC1 x 0 2n\n.ends\nX1 a sub\nL1 a 0 3u\n.ends\n"
-                                                       ".subckt sub x\nC1 x 0 5n\n.ends\nXa n1 p1\nXb n2 p2\nXc n1 sub\n"
-                                                       ".ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u uic\n.end\n");
-  const std::string flat = write_temp("dcad_scopes_flat.cir", "flat\nC.xa.x1.c1 n1 0 1n IC=1\nL.xa.l1 n1 0 1u\nC.xb.x1.c1 n2 0 2n IC=0.5\n"
-                                                            "L.xb.l1 n2 0 3u\nC.xc.c1 n1 0 5n IC=1\n.tran 1n 1u uic\n.end\n");
+  const std::string deck =
+      write_temp("dcad_scopes.cir",
+                 "scopes\n.subckt p1 a\n.subckt sub x\nC1 x 0 1n\n.ends\nX1 a sub\nL1 a 0 1u\n.ends\n"
+                 ".subckt p2 a\n.subckt sub x\nC1 x 0 2n\n.ends\nX1 a sub\nL1 a 0 3u\n.ends\n"
+                 ".subckt sub x\nC1 x 0 5n\n.ends\nXa n1 p1\nXb n2 p2\nXc n1 sub\n"
+                 ".ic v(n1)=1 v(n2)=0.5\n.tran 1n 1u uic\n.end\n");
+  const std::string flat = write_temp("dcad_scopes_flat.cir",
+                                      "flat\nC.xa.x1.c1 n1 0 1n IC=1\nL.xa.l1 n1 0 1u\nC.xb.x1.c1 n2 0 2n IC=0.5\n"
+                                      "L.xb.l1 n2 0 3u\nC.xc.c1 n1 0 5n IC=1\n.tran 1n 1u uic\n.end\n");
   expect_same_simulation(deck, flat, "--tstop 1e-6 --step 1e-8");
-  const std::string outside = write_temp("dcad_scopes_outside.cir", "scopes\n.subckt p1 a\n.subckt inner x\nC1 x 0 1n\n.ends\n"
-                                                                  "X1 a inner\n.ends\nXa n1 p1\nX2 n1 inner\nL1 n1 0 1u\n.end\n");
+  const std::string outside = write_temp("dcad_scopes_outside.cir",
+                                         "scopes\n.subckt p1 a\n.subckt inner x\nC1 x 0 1n\n.ends\n"
+                                         "X1 a inner\n.ends\nXa n1 p1\nX2 n1 inner\nL1 n1 0 1u\n.end\n");
   expect_input_error(run("solve " + outside), outside, "unknown subcircuit \"inner\" in X2", "solve");
 }
 
@@ -204,7 +231,8 @@ TEST(Cli, IncludesFallBackToTheTopDecksDirectory) {
   fs::create_directories(dir / "sub1" / "sub2");
   fs::create_directories(dir / "sub1" / "both");
   fs::create_directories(dir / "both");
-  std::ofstream(dir / "sub1" / "include1") << "* relative to the top deck only\n.INC sub1/sub2/deeper\n.INC both/twice\n";
+  std::ofstream(dir / "sub1" / "include1")
+      << "* relative to the top deck only\n.INC sub1/sub2/deeper\n.INC both/twice\n";
   std::ofstream(dir / "sub1" / "sub2" / "deeper") << "C1 a 0 1n\n";
   std::ofstream(dir / "sub1" / "both" / "twice") << "L1 a 0 1u\n";  // beside the including file: preferred
   std::ofstream(dir / "both" / "twice") << "L1 a 0 7u\n";
@@ -217,14 +245,17 @@ TEST(Cli, IncludesFallBackToTheTopDecksDirectory) {
 // by "X1 NAME", two tokens, and is the circuit of its flat twin.  Killed by: an instance line of two
 // tokens refused as "expected XNAME NODE… SUBCKT" (a mutation survivor, k <= 2).
 TEST(Cli, SubcircuitWithoutPortsEqualsItsFlatTwin) {
-  const std::string deck = write_temp("dcad_zero_port.cir", "zero-port subcircuit\n.subckt tank0\nL1 a 0 1u\nC1 a 0 1n\n.ends\n"
-                                                         "X1 tank0\nC2 b 0 1n\nL2 b 0 1u\n.end\n");
-  const std::string flat = write_temp("dcad_zero_port_flat.cir", "flat\nL.x1.l1 x1.a 0 1u\nC.x1.c1 x1.a 0 1n\nC2 b 0 1n\nL2 b 0 1u\n.end\n");
+  const std::string deck = write_temp("dcad_zero_port.cir",
+                                      "zero-port subcircuit\n.subckt tank0\nL1 a 0 1u\nC1 a 0 1n\n.ends\n"
+                                      "X1 tank0\nC2 b 0 1n\nL2 b 0 1u\n.end\n");
+  const std::string flat =
+      write_temp("dcad_zero_port_flat.cir", "flat\nL.x1.l1 x1.a 0 1u\nC.x1.c1 x1.a 0 1n\nC2 b 0 1n\nL2 b 0 1u\n.end\n");
   const Outcome h = run("solve " + deck + " --json"), f = run("solve " + flat + " --json");
   ASSERT_EQ(h.rc, 0) << h.err;
   ASSERT_EQ(f.rc, 0) << f.err;
   const nlohmann::json jh = nlohmann::json::parse(h.out), jf = nlohmann::json::parse(f.out);
-  for (const char* key : {"dims", "steps", "solution_rank", "variables", "tower", "reduced"}) EXPECT_EQ(jh[key], jf[key]) << key;
+  for (const char* key : {"dims", "steps", "solution_rank", "variables", "tower", "reduced"})
+    EXPECT_EQ(jh[key], jf[key]) << key;
   EXPECT_EQ(jh["circuit"]["branches"], 4);
 }
 
@@ -258,7 +289,9 @@ TEST(Cli, LeadingZerosAreDecimal) {
   const Outcome r = run("solve " + file + " --backend reference");
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.out.find("-1/100*v_L1 + p_L1 = 0"), std::string::npos) << r.out;
-  const std::string json = write_temp("dcad_leading_zeros.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "0.010"], ["-0.010", 0]]}, "energy": {"hessian": [["08", 0], [0, 1]]}})");
+  const std::string json = write_temp(
+      "dcad_leading_zeros.json",
+      R"({"dcad": 1, "dirac": {"presymplectic": [[0, "0.010"], ["-0.010", 0]]}, "energy": {"hessian": [["08", 0], [0, 1]]}})");
   const Outcome j = run("solve " + json + " --backend reference");
   ASSERT_EQ(j.rc, 0) << j.err;
   // dE = Wᵀẋ with W = [[0, a], [−a, 0]], a = 1/100, H = diag(8, 1): ẋ1 = 100 x2, ẋ2 = −800 x1
@@ -272,7 +305,8 @@ TEST(Cli, LeadingZerosAreDecimal) {
 // The order of the pair in K does not matter; a negative k flips the sign of M.
 TEST(Cli, CouplingGivesTheInductanceMatrix) {
   const std::string tanks = "title\nL1 a 0 1u\nC1 a 0 1n\nL2 b 0 4u\nC2 b 0 1n\n";
-  const std::string file = write_temp("dcad_k.cir", tanks + "K1 L1 L2 0.5\n"), swapped = write_temp("dcad_k_swapped.cir", tanks + "K1 L2 L1 0.5\n"),
+  const std::string file = write_temp("dcad_k.cir", tanks + "K1 L1 L2 0.5\n"),
+                    swapped = write_temp("dcad_k_swapped.cir", tanks + "K1 L2 L1 0.5\n"),
                     negative = write_temp("dcad_k_negative.cir", tanks + "K1 L1 L2 -0.5\n");
   const Outcome r = run("solve " + file + " --backend reference");
   ASSERT_EQ(r.rc, 0) << r.err;
@@ -280,7 +314,8 @@ TEST(Cli, CouplingGivesTheInductanceMatrix) {
                            "d/dt v_L1 = 4000000000000000/3*q_C1 - 1000000000000000/3*q_C2",
                            "d/dt v_L2 = -1000000000000000/3*q_C1 + 1000000000000000/3*q_C2", "1 K"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
-  const Outcome s = run("solve " + swapped + " --backend reference"), n = run("solve " + negative + " --backend reference");
+  const Outcome s = run("solve " + swapped + " --backend reference"),
+                n = run("solve " + negative + " --backend reference");
   ASSERT_EQ(s.rc, 0) << s.err;
   EXPECT_EQ(s.out.substr(s.out.find('\n')), r.out.substr(r.out.find('\n')));  // all but the file name
   ASSERT_EQ(n.rc, 0) << n.err;
@@ -295,7 +330,8 @@ TEST(Cli, CouplingGivesTheInductanceMatrix) {
   ASSERT_EQ(sh.rc, 0) << sh.err;
   EXPECT_EQ(nlohmann::json::parse(sh.out)["circuit"]["couplings"], 2);
   // k² L1 L2 not a rational square: M is rounded (80 places) and the user is told
-  const std::string irrational = write_temp("dcad_k_irrational.cir", "title\nL1 a 0 1u\nC1 a 0 1n\nL2 b 0 2u\nC2 b 0 1n\nK1 L1 L2 0.5\n");
+  const std::string irrational =
+      write_temp("dcad_k_irrational.cir", "title\nL1 a 0 1u\nC1 a 0 1n\nL2 b 0 2u\nC2 b 0 1n\nK1 L1 L2 0.5\n");
   const Outcome i = run("solve " + irrational + " --json");
   ASSERT_EQ(i.rc, 0) << i.err;
   EXPECT_NE(i.err.find(":6: K1: M = k*sqrt(Lx*Ly) is irrational"), std::string::npos) << i.err;
@@ -308,7 +344,8 @@ TEST(Cli, PerfectCouplingIsOneTank) {
   const std::string file = (fs::path(DCAD_SOURCE_DIR) / "cases/transformer-perfect-coupling.cir").string();
   const Outcome r = run("solve " + file + " --backend reference");
   ASSERT_EQ(r.rc, 0) << r.err;
-  for (const char* line : {"-2000000000*q_C1 + 1000000000*q_C2 = 0", "v_L1 - 1/2*v_L2 = 0", "d/dt q_C1 = -v_L1", "d/dt v_L1 = 200000000000000*q_C1"})
+  for (const char* line : {"-2000000000*q_C1 + 1000000000*q_C2 = 0", "v_L1 - 1/2*v_L2 = 0", "d/dt q_C1 = -v_L1",
+                           "d/dt v_L1 = 200000000000000*q_C1"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
 }
 
@@ -318,14 +355,21 @@ TEST(Cli, PerfectCouplingIsOneTank) {
 // 100 C: 1k (1 + 0.01 * 73) = 1730, which ngspice-39 gives too: i(v1) = -5.78035e-04 for 1 V).  Killed by:
 // a .temp after the element read as 27 C (dcad before: coefficients ignored, a silently different circuit).
 TEST(Cli, TemperatureCoefficientsAreNgspicesFactor) {
-  const std::string deck = write_temp("dcad_tc.cir", "tc\nV1 1 0 1\nR1 1 2 1k TC1=0.01\nR2 2 3 2k TC=0.001,1e-5 dtemp=-23\n"
-                                                   "C1 3 0 1u tc1=0.002 temp=50\nL1 3 0 1m TC1=-0.001 TC2=1e-6 tnom=100\n.temp {hot}\n.param hot=100\n.end\n");
+  const std::string deck = write_temp(
+      "dcad_tc.cir",
+      "tc\nV1 1 0 1\nR1 1 2 1k TC1=0.01\nR2 2 3 2k TC=0.001,1e-5 dtemp=-23\n"
+      "C1 3 0 1u tc1=0.002 temp=50\nL1 3 0 1m TC1=-0.001 TC2=1e-6 tnom=100\n.temp {hot}\n.param hot=100\n.end\n");
   // R2: T = 100 - 23, dT = 50: 2k (1 + 0.001 * 50 + 1e-5 * 2500) = 2150; C1: T = 50, dT = 23: 1u (1 + 0.046);
   // L1: TNOM = T = 100, unchanged
-  const std::string twin = write_temp("dcad_tc_twin.cir", "tc\nV1 1 0 1\nR1 1 2 1730\nR2 2 3 2150\nC1 3 0 1.046u\nL1 3 0 1m\n.end\n");
-  const Outcome a = expect_same_solution(deck, twin, {"dims", "tower", "reduced", "state_equations"}, "--backend reference");
-  EXPECT_NE(a.err.find("R1: at 100 C (TNOM 27 C) its temperature coefficients scale its value by 1.73"), std::string::npos) << a.err;
-  EXPECT_NE(a.err.find("L1: at 100 C (TNOM 100 C) its temperature coefficients change nothing"), std::string::npos) << a.err;
+  const std::string twin =
+      write_temp("dcad_tc_twin.cir", "tc\nV1 1 0 1\nR1 1 2 1730\nR2 2 3 2150\nC1 3 0 1.046u\nL1 3 0 1m\n.end\n");
+  const Outcome a =
+      expect_same_solution(deck, twin, {"dims", "tower", "reduced", "state_equations"}, "--backend reference");
+  EXPECT_NE(a.err.find("R1: at 100 C (TNOM 27 C) its temperature coefficients scale its value by 1.73"),
+            std::string::npos)
+      << a.err;
+  EXPECT_NE(a.err.find("L1: at 100 C (TNOM 100 C) its temperature coefficients change nothing"), std::string::npos)
+      << a.err;
   const std::string bad = write_temp("dcad_tc_bad.cir", "tc\nL1 1 0 1m\nC1 1 0 1u TC1=-0.1\n.temp 40\n.end\n");
   expect_input_error(run("solve " + bad), bad + ":3", "positive temperature factor", "factor -0.3");
 }
@@ -337,31 +381,42 @@ TEST(Cli, TemperatureCoefficientsAreNgspicesFactor) {
 // that reads `a` the other way, `x` read as mega in ngspice, a default that guesses.
 TEST(Cli, DialectDecidesTheAmbiguousScaleFactors) {
   const std::string deck = write_temp("dcad_dialect.cir", "dialect\nL1 1 0 1u\nC1 1 0 {2a*1e18*1n}\nR1 1 0 3x\n.end\n");
-  const std::vector<std::tuple<std::string, std::string, std::string>> readings = {
-      {"ngspice", "2n", "3"}, {"ngspice39", "2e9", "3"}, {"xyce", "2e9", "3Meg"}, {"hspice", "2n", "3Meg"}, {"gnucap", "2n", "3"}};
+  const std::vector<std::tuple<std::string, std::string, std::string>> readings = {{"ngspice", "2n", "3"},
+                                                                                   {"ngspice39", "2e9", "3"},
+                                                                                   {"xyce", "2e9", "3Meg"},
+                                                                                   {"hspice", "2n", "3Meg"},
+                                                                                   {"gnucap", "2n", "3"}};
   for (const auto& [dialect, c, r] : readings) {
-    const std::string twin = write_temp("dcad_dialect_twin.cir", "dialect\nL1 1 0 1u\nC1 1 0 " + c + "\nR1 1 0 " + r + "\n.end\n");
+    const std::string twin =
+        write_temp("dcad_dialect_twin.cir", "dialect\nL1 1 0 1u\nC1 1 0 " + c + "\nR1 1 0 " + r + "\n.end\n");
     SCOPED_TRACE(dialect);
-    expect_same_solution(deck, twin, {"dims", "tower", "reduced", "state_equations"}, "--backend reference --dialect " + dialect);
+    expect_same_solution(deck, twin, {"dims", "tower", "reduced", "state_equations"},
+                         "--backend reference --dialect " + dialect);
   }
   const Outcome strict = run("solve " + deck);
   expect_input_error(strict, deck + ":3", "--dialect", "strict");
   EXPECT_EQ(run("solve " + deck + " --dialect spice2").rc, 2);  // not a dialect: usage
   // `$` names a node in Xyce ($N_0001 of PSpice's netlister); in ngspice " $" starts a comment, so the line is short
-  const std::string dollar = write_temp("dcad_dialect_dollar.cir", "dollar\nL1 1 $N_1 1u\nC1 $N_1 0 1n\nC2 1 0 2n\n.end\n");
+  const std::string dollar =
+      write_temp("dcad_dialect_dollar.cir", "dollar\nL1 1 $N_1 1u\nC1 $N_1 0 1n\nC2 1 0 2n\n.end\n");
   const std::string plain = write_temp("dcad_dialect_plain.cir", "dollar\nL1 1 N_1 1u\nC1 N_1 0 1n\nC2 1 0 2n\n.end\n");
   expect_same_solution(dollar, plain, {"dims", "steps", "solution_rank"}, "--dialect xyce");
-  expect_input_error(run("solve " + dollar + " --dialect ngspice"), dollar + ":2", "NAME NODE+ NODE- VALUE", "ngspice's comment");
+  expect_input_error(run("solve " + dollar + " --dialect ngspice"), dollar + ":2", "NAME NODE+ NODE- VALUE",
+                     "ngspice's comment");
 }
 
 // HSPICE's .macro … .eom is .subckt … .ends (Xyce's XDM/HSPICE/OTHER_PARSING/macro_statement.cir.hspice), and
 // PSpice's .probe64 and .autoconverge change nothing; the twin writes .subckt.  Killed by: .macro read as an
 // unknown card (dcad before), .eom not ending the definition (the rest of the deck swallowed).
 TEST(Cli, HspiceMacroIsSubckt) {
-  const std::string deck = write_temp("dcad_macro.sp", "macro\n.macro tank a b l=1u\nL1 a b {l}\nC1 a b 1n\n.eom tank\nX1 n1 0 tank l=2u\n"
-                                                     "X2 n1 n2 tank\nC9 n2 0 1n\n.probe64\n.autoconverge itl1=1000\n.end\n");
-  const std::string twin = write_temp("dcad_macro_twin.sp", "macro\n.subckt tank a b l=1u\nL1 a b {l}\nC1 a b 1n\n.ends tank\nX1 n1 0 tank l=2u\n"
-                                                          "X2 n1 n2 tank\nC9 n2 0 1n\n.end\n");
+  const std::string deck =
+      write_temp("dcad_macro.sp",
+                 "macro\n.macro tank a b l=1u\nL1 a b {l}\nC1 a b 1n\n.eom tank\nX1 n1 0 tank l=2u\n"
+                 "X2 n1 n2 tank\nC9 n2 0 1n\n.probe64\n.autoconverge itl1=1000\n.end\n");
+  const std::string twin =
+      write_temp("dcad_macro_twin.sp",
+                 "macro\n.subckt tank a b l=1u\nL1 a b {l}\nC1 a b 1n\n.ends tank\nX1 n1 0 tank l=2u\n"
+                 "X2 n1 n2 tank\nC9 n2 0 1n\n.end\n");
   expect_same_solution(deck, twin, {"dims", "steps", "solution_rank", "variables", "tower", "reduced"});
 }
 
@@ -370,28 +425,36 @@ TEST(Cli, HspiceMacroIsSubckt) {
 // circuit in SPICE's words (PWL with R=, the values).  Killed by: the .generator settings dropped (gnucap's
 // default pulse), the AC value taken, the scale ignored.
 TEST(Cli, GnucapGeneratorAndConditionalValuesAreTheirTransient) {
-  const std::string deck = write_temp("dcad_generator.ckt", "generator\n.gen max=7 min=-5 rise=3 fall=2 width=10 delay=2 offset=100 init=2 period=20\n"
-                                                         "V1 1 0 dc generator(2) ac 1\nR1 1 2 ac 1k dc 10\nC1 2 0 tran 1 ac 3\n.tran 0 50 1\n.end\n");
-  const std::string twin = write_temp("dcad_generator_twin.cir", "generator\nV1 1 0 PWL(0 4 2 4 5 214 15 214 17 190 22 190 25 214 35 214 37 190 42 190) R=22\n"
-                                                              "R1 1 2 10\nC1 2 0 1\n.tran 0 50 1\n.end\n");
+  const std::string deck =
+      write_temp("dcad_generator.ckt",
+                 "generator\n.gen max=7 min=-5 rise=3 fall=2 width=10 delay=2 offset=100 init=2 period=20\n"
+                 "V1 1 0 dc generator(2) ac 1\nR1 1 2 ac 1k dc 10\nC1 2 0 tran 1 ac 3\n.tran 0 50 1\n.end\n");
+  const std::string twin =
+      write_temp("dcad_generator_twin.cir",
+                 "generator\nV1 1 0 PWL(0 4 2 4 5 214 15 214 17 190 22 190 25 214 35 214 37 190 42 190) R=22\n"
+                 "R1 1 2 10\nC1 2 0 1\n.tran 0 50 1\n.end\n");
   expect_same_simulation(deck, twin, "--tstop 50 --step 0.5");
 }
 
 // ngspice's numparam functions as its xpressn.c defines them: arctan is atan, sqr(x) is x² (not the root),
-// ternary_fcn(c, a, b) is c ? a : b, Xyce's sign(x, y) is sgn(y) |x|, and the inverse hyperbolics are their logarithms (asinh x = ln(x + √(x²+1)),
-// acosh x = ln(x + √(x²−1)), atanh x = ½ ln((1+x)/(1−x))) — the deck and its twin written in those give the
-// same trajectory.  Outside the real domain (acosh 0.5, atanh 1, asin 2) the value is refused, naming it.
-// Killed by: ngspice's tests/regression/parser/xpressn-*.cir refused as "unknown function" (dcad before).
+// ternary_fcn(c, a, b) is c ? a : b, Xyce's sign(x, y) is sgn(y) |x|, and the inverse hyperbolics are their logarithms
+// (asinh x = ln(x + √(x²+1)), acosh x = ln(x + √(x²−1)), atanh x = ½ ln((1+x)/(1−x))) — the deck and its twin written
+// in those give the same trajectory.  Outside the real domain (acosh 0.5, atanh 1, asin 2) the value is refused, naming
+// it. Killed by: ngspice's tests/regression/parser/xpressn-*.cir refused as "unknown function" (dcad before).
 TEST(Cli, NgspiceNumparamFunctionsAreTheirDefinitions) {
-  const std::string deck = write_temp("dcad_numparam.cir", "numparam\nL1 a 0 {1u*sqr(3)}\nC1 a 0 {1n*(1+arctan(0.3))}\nR1 a b {1k*asinh(2)}\n"
-                                                         "C2 b 0 {1n*acosh(1.5)}\nL2 b 0 {1u*(1+atanh(0.25))}\nR2 b 0 {ternary_fcn(2>1, 5k, 7k)*sign(3,2)/3}\n"
-                                                         ".ic v(a)=1\n.tran 1n 1u uic\n.end\n");
-  const std::string twin = write_temp("dcad_numparam_twin.cir", "twin\nL1 a 0 9u\nC1 a 0 {1n*(1+atan(0.3))}\nR1 a b {1k*log(2+sqrt(5))}\n"
-                                                              "C2 b 0 {1n*log(1.5+sqrt(1.25))}\nL2 b 0 {1u*(1+0.5*log(1.25/0.75))}\nR2 b 0 5k\n"
-                                                              ".ic v(a)=1\n.tran 1n 1u uic\n.end\n");
+  const std::string deck =
+      write_temp("dcad_numparam.cir",
+                 "numparam\nL1 a 0 {1u*sqr(3)}\nC1 a 0 {1n*(1+arctan(0.3))}\nR1 a b {1k*asinh(2)}\n"
+                 "C2 b 0 {1n*acosh(1.5)}\nL2 b 0 {1u*(1+atanh(0.25))}\nR2 b 0 {ternary_fcn(2>1, 5k, 7k)*sign(3,2)/3}\n"
+                 ".ic v(a)=1\n.tran 1n 1u uic\n.end\n");
+  const std::string twin = write_temp("dcad_numparam_twin.cir",
+                                      "twin\nL1 a 0 9u\nC1 a 0 {1n*(1+atan(0.3))}\nR1 a b {1k*log(2+sqrt(5))}\n"
+                                      "C2 b 0 {1n*log(1.5+sqrt(1.25))}\nL2 b 0 {1u*(1+0.5*log(1.25/0.75))}\nR2 b 0 5k\n"
+                                      ".ic v(a)=1\n.tran 1n 1u uic\n.end\n");
   expect_same_simulation(deck, twin, "--tstop 1e-6 --step 1e-8");
   for (const char* bad : {"acosh(0.5)", "atanh(1)", "asin(2)", "acos(-1.5)"}) {
-    const std::string f = write_temp("dcad_numparam_bad.cir", std::string("bad\nL1 a 0 1u\nC1 a 0 {1n*") + bad + "}\n.end\n");
+    const std::string f =
+        write_temp("dcad_numparam_bad.cir", std::string("bad\nL1 a 0 1u\nC1 a 0 {1n*") + bad + "}\n.end\n");
     expect_input_error(run("solve " + f), f + ":3", "outside its real domain", bad);
   }
 }
@@ -457,18 +520,22 @@ TEST(Cli, PublicDeckSpellingsAreTheirFlattenedTwin) {
                                       "C9 sense 0 1n\n"
                                       ".tran 0.1u 20u\n");
   for (const char* backend : {"reference", "certified"}) {
-    const Outcome a = run("solve " + deck + " --json --with none --backend " + backend), b = run("solve " + twin + " --json --with none --backend " + backend);
+    const Outcome a = run("solve " + deck + " --json --with none --backend " + backend),
+                  b = run("solve " + twin + " --json --with none --backend " + backend);
     ASSERT_EQ(a.rc, 0) << a.err;
     ASSERT_EQ(b.rc, 0) << b.err;
-    const auto dims = [](const std::string& j) { return j.substr(j.find("\"dims\""), j.find(']', j.find("\"dims\"")) - j.find("\"dims\"")); };
+    const auto dims = [](const std::string& j) {
+      return j.substr(j.find("\"dims\""), j.find(']', j.find("\"dims\"")) - j.find("\"dims\""));
+    };
     EXPECT_EQ(dims(a.out), dims(b.out)) << backend;
   }
-  const Outcome sa = run("simulate " + deck + " --tstop 20u --step 1u"), sb = run("simulate " + twin + " --tstop 20u --step 1u");
+  const Outcome sa = run("simulate " + deck + " --tstop 20u --step 1u"),
+                sb = run("simulate " + twin + " --tstop 20u --step 1u");
   ASSERT_EQ(sa.rc, 0) << sa.err;
   ASSERT_EQ(sb.rc, 0) << sb.err;
   EXPECT_EQ(sa.out, sb.out);
-  for (const char* said : {"not part of the transient, ignored: ac 1", "portnum 1", "ignored .step", "ignored .meas", "ignored .data block",
-                           "its temperature coefficients change nothing"})
+  for (const char* said : {"not part of the transient, ignored: ac 1", "portnum 1", "ignored .step", "ignored .meas",
+                           "ignored .data block", "its temperature coefficients change nothing"})
     EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
 }
 
@@ -526,12 +593,14 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
                                       "K1 L.x1.l1 L.x1.l2 0.5\n"
                                       ".ic v(x1.mid)=0.25 v(a)=0.5\n"
                                       ".tran 1u 40u uic\n");
-  const Outcome sa = run("simulate " + deck + " --tstop 40u --step 2u"), sb = run("simulate " + twin + " --tstop 40u --step 2u");
+  const Outcome sa = run("simulate " + deck + " --tstop 40u --step 2u"),
+                sb = run("simulate " + twin + " --tstop 40u --step 2u");
   ASSERT_EQ(sa.rc, 0) << sa.err;
   ASSERT_EQ(sb.rc, 0) << sb.err;
   EXPECT_EQ(sa.out, sb.out);
-  for (const char* said : {"gnucap's time-step hint", "ignored .store", "ignored .fanout", "ac=15k ignored", "\"cap*2\" read as the expression {cap*2} = 1e-08",
-                           ".ic v(nowhere) ignored: no such node"}) EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
+  for (const char* said : {"gnucap's time-step hint", "ignored .store", "ignored .fanout", "ac=15k ignored",
+                           "\"cap*2\" read as the expression {cap*2} = 1e-08", ".ic v(nowhere) ignored: no such node"})
+    EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
 }
 
 // ngspice reads a resistance below 1e-12 Ohm as 1e-12 (resparam.c's RESMIN): a resistor, never a wire (whose
@@ -539,7 +608,8 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
 TEST(Cli, ZeroResistanceIsNgspicesMinimum) {
   const std::string zero = write_temp("dcad_zero_r.cir", "title\nL1 1 0 1u\nR1 1 0 0\nC1 1 0 1n\n.end\n");
   const std::string tiny = write_temp("dcad_tiny_r.cir", "title\nL1 1 0 1u\nR1 1 0 1e-12\nC1 1 0 1n\n.end\n");
-  const Outcome z = run("solve " + zero + " --json --backend reference"), t = run("solve " + tiny + " --json --backend reference");
+  const Outcome z = run("solve " + zero + " --json --backend reference"),
+                t = run("solve " + tiny + " --json --backend reference");
   ASSERT_EQ(z.rc, 0) << z.err;
   EXPECT_NE(z.err.find("read as 1e-12 Ohm, as ngspice"), std::string::npos) << z.err;
   EXPECT_EQ(nlohmann::json::parse(z.out)["dims"], nlohmann::json::parse(t.out)["dims"]);
@@ -554,14 +624,17 @@ TEST(Cli, BeyondDoubleNamesTheElement) {
 }
 
 TEST(Cli, IndefiniteInductanceMatrixIsNamed) {
-  const std::string deck = write_temp("dcad_indefinite.cir", "title\nL1 1 0 1\nL2 2 0 1\nL3 3 0 1\nK12 L1 L2 0.75\nK13 L1 L3 0.8\n"
-                                                            "C1 1 2 1\nC2 2 3 1\n.tran 1m 1 uic\n");
+  const std::string deck = write_temp("dcad_indefinite.cir",
+                                      "title\nL1 1 0 1\nL2 2 0 1\nL3 3 0 1\nK12 L1 L2 0.75\nK13 L1 L3 0.8\n"
+                                      "C1 1 2 1\nC2 2 3 1\n.tran 1m 1 uic\n");
   const Outcome s = run("solve " + deck);
   EXPECT_EQ(s.rc, 0) << s.err;
   EXPECT_NE(s.err.find("not positive semidefinite (K12 = 0.75, K13 = 0.8"), std::string::npos) << s.err;
   EXPECT_NE(s.err.find("its determinant -0.2025"), std::string::npos) << s.err;
-  expect_input_error(run("simulate " + deck + " --tstop 1m --step 1u"), deck, "positive semidefinite inductance matrix", "simulate refuses");
-  const std::string ok = write_temp("dcad_perfect.cir", "title\nL1 1 0 1\nL2 2 0 4\nK1 L1 L2 1\nC1 1 0 1\nC2 2 0 1\n.end\n");
+  expect_input_error(run("simulate " + deck + " --tstop 1m --step 1u"), deck, "positive semidefinite inductance matrix",
+                     "simulate refuses");
+  const std::string ok =
+      write_temp("dcad_perfect.cir", "title\nL1 1 0 1\nL2 2 0 4\nK1 L1 L2 1\nC1 1 0 1\nC2 2 0 1\n.end\n");
   const Outcome p = run("solve " + ok);
   EXPECT_EQ(p.rc, 0) << p.err;
   EXPECT_EQ(p.err.find("semidefinite"), std::string::npos) << p.err;
@@ -606,13 +679,15 @@ TEST(Cli, NamedLoopsAreTheGraphCounts) {
   std::vector<std::string> decks;
   for (const auto& e : fs::directory_iterator(fs::path(DCAD_SOURCE_DIR) / "cases"))
     if (e.path().extension() == ".cir") decks.push_back(e.path().string());
-  decks.push_back(write_temp("dcad_shorted_capacitor.cir", "C1 shorted by a wire\nL1 1 2 10n\nC1 1 0 1p\nV1 1 0 0\nC2 2 0 100f\n.end\n"));
+  decks.push_back(write_temp("dcad_shorted_capacitor.cir",
+                             "C1 shorted by a wire\nL1 1 2 10n\nC1 1 0 1p\nV1 1 0 0\nC2 2 0 100f\n.end\n"));
   std::size_t named = 0;
   for (const std::string& deck : decks) {
     const Outcome r = run("solve " + deck + " --backend reference --json --with none");
     ASSERT_EQ(r.rc, 0) << deck << "\n" << r.err;
     const nlohmann::json c = nlohmann::json::parse(r.out)["circuit"];
-    if (!c.contains("pc_loop_branches")) continue;  // the forced route (R, sources) names cv_loops, source_loops instead
+    if (!c.contains("pc_loop_branches"))
+      continue;  // the forced route (R, sources) names cv_loops, source_loops instead
     ++named;
     EXPECT_EQ(nlohmann::json(c["pc_loop_branches"].size()), c["kvlpc_graph"]) << deck << "\n" << c.dump();
     EXPECT_EQ(nlohmann::json(c["empty_loop_branches"].size()), c["empty_loops"]) << deck << "\n" << c.dump();
@@ -639,7 +714,9 @@ TEST(Cli, NamedLoopsAreTheGraphCounts) {
 
 TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   // an element after .endc is read: the script ends there
-  const std::string file = write_temp("dcad_dotcards.cir", "title\nL1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\nC1 1 0 1\n.end\n");
+  const std::string file =
+      write_temp("dcad_dotcards.cir",
+                 "title\nL1 1 0 1\n.tran 1m 1\n.options reltol=1e-10\n.control\nrun\n.endc\nC1 1 0 1\n.end\n");
   const Outcome r = run("solve " + file + " --json");
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("ignored .tran"), std::string::npos) << r.err;
@@ -648,10 +725,13 @@ TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
   // an alter after the script's first analysis (ngspice's tests/regression/misc/resume-1.cir: tran, then alter):
   // that analysis ran on the circuit as written, which dcad solves, and says so; one before it, or after an
   // analysis inside a loop, is refused (BadNetlist alter, alterloop)
-  const std::string later = write_temp("dcad_alter_after.cir", "title\nL1 1 0 1\nC1 1 0 1\n.control\ntran 1m 1\nalter C1 = 2\ntran 1m 1\n.endc\n.end\n");
+  const std::string later = write_temp(
+      "dcad_alter_after.cir", "title\nL1 1 0 1\nC1 1 0 1\n.control\ntran 1m 1\nalter C1 = 2\ntran 1m 1\n.endc\n.end\n");
   const Outcome a = run("solve " + later + " --json");
   EXPECT_EQ(a.rc, 0) << a.err;
-  EXPECT_NE(a.err.find(":6: the .control block's alter changes the circuit after its first analysis (tran)"), std::string::npos) << a.err;
+  EXPECT_NE(a.err.find(":6: the .control block's alter changes the circuit after its first analysis (tran)"),
+            std::string::npos)
+      << a.err;
 }
 
 // The 4-port (L = 2, C = 3, 5, 7; IC: V_C1 = V_C3 = 1, V_C2 = 2, I_L = 0) against its analytic
@@ -661,7 +741,8 @@ TEST(Cli, NetlistDotCardsAreIgnoredWithAWarning) {
 // Letters after a value that are neither a scale factor nor a unit are ignored as ngspice ignores them,
 // with a warning naming FILE:LINE and the value read; `mil` is ngspice's 25.4e-6, not milli (issue 27).
 TEST(Cli, ValueLettersAsNgspiceReadsThem) {
-  const std::string file = write_temp("dcad_letters.cir", "title\nV1 1 0 1\nR1 1 2 2.2kOhm\nR2 2 0 4pz\nC1 2 0 10uF\nL1 2 3 2mil\nC2 3 0 1n\n.end\n");
+  const std::string file = write_temp(
+      "dcad_letters.cir", "title\nV1 1 0 1\nR1 1 2 2.2kOhm\nR2 2 0 4pz\nC1 2 0 10uF\nL1 2 3 2mil\nC2 3 0 1n\n.end\n");
   const Outcome r = run("solve " + file + " --json --backend reference");
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find(file + ":4: R2: \"4pz\" read as 4e-12"), std::string::npos) << r.err;
@@ -696,7 +777,8 @@ TEST_P(BadInput, ExitOneWithWhereExpectedFound) {
   const BadCase& b = GetParam();
   const std::string file = write_temp(std::string("dcad_bad_") + b.name + ".json", b.text);
   for (const std::string backend : {"reference", "fast"}) {
-    expect_input_error(run("inspect " + file + " --backend " + backend), file, b.needle, std::string(b.name) + " " + backend);
+    expect_input_error(run("inspect " + file + " --backend " + backend), file, b.needle,
+                       std::string(b.name) + " " + backend);
   }
 }
 
@@ -704,16 +786,17 @@ INSTANTIATE_TEST_SUITE_P(
     Cli, BadInput,
     testing::Values(
         BadCase{"syntax", "{\"dcad\": 1,\n \"dirac\": {\"presymplectic\": [[0, 1], [-1 0]]}}", ":2:"},
-        BadCase{"empty", "", ":1:1"},
-        BadCase{"version", R"({"dcad": 2, "dirac": {"presymplectic": [[0]]}})", "/dcad"},
+        BadCase{"empty", "", ":1:1"}, BadCase{"version", R"({"dcad": 2, "dirac": {"presymplectic": [[0]]}})", "/dcad"},
         BadCase{"noversion", R"({"dirac": {"presymplectic": [[0]]}})", "\"dcad\""},
-        BadCase{"nonsquare", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0, 0]]}})", "/dirac/presymplectic/1"},
+        BadCase{"nonsquare", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0, 0]]}})",
+                "/dirac/presymplectic/1"},
         BadCase{"nonskew", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [2, 0]]}})", "/dirac/presymplectic/0/1"},
         BadCase{"zerodiv", R"({"dcad": 1, "dirac": {"poisson": [["0", "1/0"], ["-1", "0"]]}})", "/dirac/poisson/0/1"},
         BadCase{"notanumber", R"({"dcad": 1, "dirac": {"poisson": [[0, "one"], [-1, 0]]}})", "/dirac/poisson/0/1"},
         BadCase{"nullentry", R"({"dcad": 1, "dirac": {"poisson": [[0, null], [-1, 0]]}})", "/dirac/poisson/0/1"},
         BadCase{"unknownform", R"({"dcad": 1, "dirac": {"symplectic": [[0]]}})", "/dirac"},
-        BadCase{"mismatch", R"({"dcad": 1, "variables": ["a", "b", "c"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})",
+        BadCase{"mismatch",
+                R"({"dcad": 1, "variables": ["a", "b", "c"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})",
                 "/dirac/presymplectic"},
         BadCase{"basisshape", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0], [0, 1, 0]]}})", "/dirac/basis"},
         BadCase{"notisotropic", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 1], [0, 1, 1, 0]]}})", "not isotropic"},
@@ -730,18 +813,23 @@ TEST_P(BadSolveInput, ExitOneWithWhereExpectedFound) {
   const BadCase& b = GetParam();
   const std::string file = write_temp(std::string("dcad_badsolve_") + b.name + ".json", b.text);
   for (const std::string backend : {"reference", "fast", "certified"}) {
-    expect_input_error(run("solve " + file + " --backend " + backend), file, b.needle, std::string(b.name) + " " + backend);
+    expect_input_error(run("solve " + file + " --backend " + backend), file, b.needle,
+                       std::string(b.name) + " " + backend);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cli, BadSolveInput,
     testing::Values(
-        BadCase{"asymhessian", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hessian": [[1, 2], [0, 1]]}})",
-                "/energy/hessian/0/1"},
-        BadCase{"gradlen", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 2, 3]}})",
+        BadCase{
+            "asymhessian",
+            R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hessian": [[1, 2], [0, 1]]}})",
+            "/energy/hessian/0/1"},
+        BadCase{"gradlen",
+                R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 2, 3]}})",
                 "/energy/gradient"},
-        BadCase{"zerodenominator", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"constant": "1/0"}})",
+        BadCase{"zerodenominator",
+                R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"constant": "1/0"}})",
                 "/energy/constant"},
         BadCase{"notdirac", R"({"dcad": 1, "dirac": {"basis": [[1, 0, 0, 1], [0, 1, 1, 0]]}})", "not isotropic"},
         BadCase{"version", R"({"dcad": "1", "dirac": {"presymplectic": [[0]]}})", "/dcad"},
@@ -749,34 +837,50 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"pontQ", R"({"dcad": 1, "pontryagin": {"Q": 0}})", "/pontryagin/Q"},
         BadCase{"pontsym", R"({"dcad": 1, "pontryagin": {"Q": 2, "lagrangian": {"vv": [[1, 1], [0, 1]]}}})",
                 "/pontryagin/lagrangian/vv/0/1"},
-        BadCase{"pontkcl", R"({"dcad": 1, "pontryagin": {"Q": 2, "constraints": [[1, 2, 3]]}})", "/pontryagin/constraints/0"},
-        BadCase{"pontkey", R"({"dcad": 1, "pontryagin": {"Q": 1, "lagrangian": {"vw": [[1]]}}})", "/pontryagin/lagrangian/vw"},
+        BadCase{"pontkcl", R"({"dcad": 1, "pontryagin": {"Q": 2, "constraints": [[1, 2, 3]]}})",
+                "/pontryagin/constraints/0"},
+        BadCase{"pontkey", R"({"dcad": 1, "pontryagin": {"Q": 1, "lagrangian": {"vw": [[1]]}}})",
+                "/pontryagin/lagrangian/vw"},
         BadCase{"pontvars", R"({"dcad": 1, "variables": ["a"], "pontryagin": {"Q": 1}})", "/variables"},
         BadCase{"coords", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "coordinates": ["nope"]})",
                 "/coordinates/0"},
-        BadCase{"badcoords",
-                R"({"dcad": 1, "variables": ["q", "v", "p"], "pontryagin": {"Q": 1, "lagrangian": {"vv": [[1]]}}, "coordinates": ["v", "p"]})",
-                "coordinates"},
+        BadCase{
+            "badcoords",
+            R"({"dcad": 1, "variables": ["q", "v", "p"], "pontryagin": {"Q": 1, "lagrangian": {"vv": [[1]]}}, "coordinates": ["v", "p"]})",
+            "coordinates"},
         // strict input: a misspelt or repeated key would otherwise solve another system silently
-        BadCase{"hesian", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hesian": [[1, 0], [0, 1]]}})",
+        BadCase{"hesian",
+                R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"hesian": [[1, 0], [0, 1]]}})",
                 "did you mean \"hessian\""},
-        BadCase{"enregy", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "enregy": {"hessian": [[1, 0], [0, 1]]}})",
-                "did you mean \"energy\""},
-        BadCase{"constraint", R"({"dcad": 1, "constraint": {"symplectic": [[0, 1], [-1, 0]]}})", "did you mean \"constrained\""},
-        BadCase{"dupkey", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 0], "gradient": [0, 1]}})",
-                "/energy: expected each key once"},
-        BadCase{"dupvar", R"({"dcad": 1, "variables": ["x", "x"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})", "/variables/1"},
-        BadCase{"twoforms", R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]], "poisson": [[0, 1], [-1, 0]]}})",
+        BadCase{
+            "enregy",
+            R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "enregy": {"hessian": [[1, 0], [0, 1]]}})",
+            "did you mean \"energy\""},
+        BadCase{"constraint", R"({"dcad": 1, "constraint": {"symplectic": [[0, 1], [-1, 0]]}})",
+                "did you mean \"constrained\""},
+        BadCase{
+            "dupkey",
+            R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]]}, "energy": {"gradient": [1, 0], "gradient": [0, 1]}})",
+            "/energy: expected each key once"},
+        BadCase{"dupvar", R"({"dcad": 1, "variables": ["x", "x"], "dirac": {"presymplectic": [[0, 1], [-1, 0]]}})",
+                "/variables/1"},
+        BadCase{"twoforms",
+                R"({"dcad": 1, "dirac": {"presymplectic": [[0, 1], [-1, 0]], "poisson": [[0, 1], [-1, 0]]}})",
                 "exactly one form"},
-        BadCase{"deep", "{\"dcad\": 1, \"x\": [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]}",
+        BadCase{"deep",
+                "{\"dcad\": 1, \"x\": "
+                "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]"
+                "]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]}",
                 "nested at most 64"},
-        BadCase{"expressionform", R"({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "v_x^^2"}})", "/lagrangian/L: column 5: expected an integer exponent"}),
+        BadCase{"expressionform", R"({"dcad": 1, "lagrangian": {"coordinates": ["x"], "L": "v_x^^2"}})",
+                "/lagrangian/L: column 5: expected an integer exponent"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 // Values beyond double: the exact backends take them, the fast one says it cannot, nothing raises
 // a signal (gmpq_set_d on an infinity raised SIGFPE), and JSON nested 10^5 deep is refused.
 TEST(Cli, ValuesBeyondDoubleAndDeepNesting) {
-  const std::string json = write_temp("dcad_1e309.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "1e309"], ["-1e309", 0]]}})");
+  const std::string json =
+      write_temp("dcad_1e309.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0, "1e309"], ["-1e309", 0]]}})");
   const std::string deck = write_temp("dcad_1e309.cir", "huge\nL1 a 0 1e309 IC=1\nC1 a 0 1\n.end\n");
   for (const std::string backend : {"reference", "certified"}) {
     EXPECT_EQ(run("solve " + json + " --json --backend " + backend).rc, 0) << backend;
@@ -793,7 +897,8 @@ TEST(Cli, ValuesBeyondDoubleAndDeepNesting) {
 
 TEST(Cli, SolveInconsistentIsAResult) {
   // E = x1 on D_0 = R^1 ⊕ 0 (ω = 0): M_1 = {dE ⊥ R} = ∅ — exit 0, consistent false, dims [1, -1].
-  const std::string file = write_temp("dcad_inconsistent.json", R"({"dcad": 1, "dirac": {"presymplectic": [[0]]}, "energy": {"gradient": [1]}})");
+  const std::string file = write_temp("dcad_inconsistent.json",
+                                      R"({"dcad": 1, "dirac": {"presymplectic": [[0]]}, "energy": {"gradient": [1]}})");
   for (const std::string backend : {"reference", "fast", "certified"}) {
     const Outcome r = run("solve " + file + " --json --backend " + backend);
     ASSERT_EQ(r.rc, 0) << r.err;
@@ -813,7 +918,8 @@ TEST(Cli, SolveInconsistentIsAResult) {
 // piecewise-linear evaluation of its parameters.
 TEST(Cli, SffmIsSolvedAndRefusedWhereItHasNoExactFlow) {
   const auto conditions = [](const std::string& name, const std::string& mdi) {
-    const std::string file = write_temp(name, "parallel\nV1 a 0 SFFM(0 1 10k 3 1k)\nV2 a 0 SFFM(0 1 10k " + mdi + " 1k)\nR1 a 0 1\n.end\n");
+    const std::string file =
+        write_temp(name, "parallel\nV1 a 0 SFFM(0 1 10k 3 1k)\nV2 a 0 SFFM(0 1 10k " + mdi + " 1k)\nR1 a 0 1\n.end\n");
     const Outcome r = run("solve " + file + " --json --backend reference");
     EXPECT_EQ(r.rc, 0) << r.err;
     EXPECT_NE(r.err.find("SFFM read as SPICE3, ngspice 39 and Xyce read it"), std::string::npos) << r.err;
@@ -821,7 +927,8 @@ TEST(Cli, SffmIsSolvedAndRefusedWhereItHasNoExactFlow) {
   };
   EXPECT_EQ(conditions("dcad_sffm_equal.cir", "3").at("holds"), true);
   EXPECT_EQ(conditions("dcad_sffm_differ.cir", "3.0001").at("holds"), false);
-  const std::string deck = write_temp("dcad_sffm_rc.cir", "rc\nV1 a 0 SFFM(0 1 10k 3 1k)\nR1 a b 1k\nC1 b 0 1n\n.tran 1u 1m\n.end\n");
+  const std::string deck =
+      write_temp("dcad_sffm_rc.cir", "rc\nV1 a 0 SFFM(0 1 10k 3 1k)\nR1 a b 1k\nC1 b 0 1n\n.tran 1u 1m\n.end\n");
   const Outcome s = run("simulate " + deck + " --tstop 1e-4 --step 1e-6");
   expect_input_error(s, deck, "found V1 (SFFM(0 1 10k 3 1k)), frequency modulated", "simulate");
   const std::string trace = write_temp("dcad_sffm_trace.csv", "time,v(b)\n0,0\n1e-6,0\n");
@@ -834,12 +941,14 @@ TEST(Cli, SffmIsSolvedAndRefusedWhereItHasNoExactFlow) {
 // certified false, the evidence given — never a guess).
 TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   const auto verdict = [](const std::string& name, const std::string& v2) {
-    const std::string file = write_temp(name, "parallel sources\nV1 a 0 SIN(0 1 1k)\nV2 a 0 " + v2 + "\nR1 a 0 1\n.end\n");
+    const std::string file =
+        write_temp(name, "parallel sources\nV1 a 0 SIN(0 1 1k)\nV2 a 0 " + v2 + "\nR1 a 0 1\n.end\n");
     const Outcome r = run("solve " + file + " --json --backend reference");
     EXPECT_EQ(r.rc, 0) << r.err;
     return nlohmann::json::parse(r.out);
   };
-  const nlohmann::json fails = verdict("dcad_cond_fails.cir", "SIN(0 2 1k)"), holds = verdict("dcad_cond_holds.cir", "SIN(0 1 1k)");
+  const nlohmann::json fails = verdict("dcad_cond_fails.cir", "SIN(0 2 1k)"),
+                       holds = verdict("dcad_cond_holds.cir", "SIN(0 1 1k)");
   ASSERT_EQ(fails["sources"]["conditions"].size(), 1u);
   EXPECT_EQ(fails["sources"]["conditions"][0]["condition"], "V1(t) - V2(t) = 0");
   EXPECT_EQ(fails["sources"]["conditions"][0]["holds"], false);
@@ -851,20 +960,24 @@ TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   EXPECT_EQ(holds["certified"], true);
   // a difference that only shows after 5 s (PULSE TD = 5) is found: the samples reach past every
   // waveform's features, not a fixed second
-  const std::string late = write_temp("dcad_cond_late.cir", "parallel sources\nV1 a 0 DC 0\nV2 a 0 PULSE(0 1 5 1 1 1 10)\nR1 a 0 1\n.end\n");
+  const std::string late =
+      write_temp("dcad_cond_late.cir", "parallel sources\nV1 a 0 DC 0\nV2 a 0 PULSE(0 1 5 1 1 1 10)\nR1 a 0 1\n.end\n");
   const nlohmann::json l = nlohmann::json::parse(run("solve " + late + " --json --backend reference").out);
   EXPECT_EQ(l["sources"]["conditions"][0]["holds"], false) << l["sources"];
   // and a PWL's features end at its last time (7 s here), not at twice its values (the samples
   // stopped at 2 s, where V2 is still 0, and the condition was reported undecided).
   // Killed by: Waveform::horizon() read p[size − 3] for PWL (seed-26 survivor [69]).
-  const std::string pwl = write_temp("dcad_cond_late_pwl.cir", "parallel sources\nV1 a 0 DC 0\nV2 a 0 PWL(0 0 5 0 6 1 7 0)\nR1 a 0 1\n.end\n");
+  const std::string pwl = write_temp("dcad_cond_late_pwl.cir",
+                                     "parallel sources\nV1 a 0 DC 0\nV2 a 0 PWL(0 0 5 0 6 1 7 0)\nR1 a 0 1\n.end\n");
   const nlohmann::json lp = nlohmann::json::parse(run("solve " + pwl + " --json --backend reference").out);
   EXPECT_EQ(lp["sources"]["conditions"][0]["holds"], false) << lp["sources"];
-  const std::string flat = write_temp("dcad_cond_undecided.cir", "parallel sources\nV1 a 0 DC 1\nV2 a 0 PULSE(1 1 0 1u 1u 1m 2m)\nR1 a 0 1\n.end\n");
+  const std::string flat = write_temp(
+      "dcad_cond_undecided.cir", "parallel sources\nV1 a 0 DC 1\nV2 a 0 PULSE(1 1 0 1u 1u 1m 2m)\nR1 a 0 1\n.end\n");
   const nlohmann::json undecided = nlohmann::json::parse(run("solve " + flat + " --json --backend reference").out);
   EXPECT_TRUE(undecided["sources"]["conditions"][0]["holds"].is_null());
   EXPECT_EQ(undecided["certified"], false);
-  EXPECT_NE(undecided["sources"]["conditions"][0]["evidence"].get<std::string>().find("cannot decide exactly"), std::string::npos);
+  EXPECT_NE(undecided["sources"]["conditions"][0]["evidence"].get<std::string>().find("cannot decide exactly"),
+            std::string::npos);
 }
 
 TEST(Cli, MissingFile) {
@@ -894,10 +1007,13 @@ TEST(Cli, TextReportNamesTheMultipliers) {
 // ngspice reads `NAME = VALUE` with spaces around '=' as NAME=VALUE: `ic = 0.5`, `IC= 0.5` and
 // `.IC V(b) = 0.5` are the deck without the spaces (dcad refused them: "expected IC=value").
 TEST(Cli, SpacesAroundEqualsReadAsNgspiceReadsThem) {
-  const std::string spaced = write_temp("dcad_eq_spaced.cir", "eq\nV1 a 0 DC 1\nR1 a b 1k\nC2 b 0 1u ic = 0.25\nC3 b c 1u IC= 0.5\n"
-                                                               "L1 c 0 1m\n.IC V(b) = 0.75\n.param r2 = 2k\nR2 b 0 {r2}\n.tran 1u 1m uic\n.end\n");
-  const std::string tight = write_temp("dcad_eq_tight.cir", "eq\nV1 a 0 DC 1\nR1 a b 1k\nC2 b 0 1u ic=0.25\nC3 b c 1u IC=0.5\n"
-                                                             "L1 c 0 1m\n.IC V(b)=0.75\n.param r2=2k\nR2 b 0 {r2}\n.tran 1u 1m uic\n.end\n");
+  const std::string spaced =
+      write_temp("dcad_eq_spaced.cir",
+                 "eq\nV1 a 0 DC 1\nR1 a b 1k\nC2 b 0 1u ic = 0.25\nC3 b c 1u IC= 0.5\n"
+                 "L1 c 0 1m\n.IC V(b) = 0.75\n.param r2 = 2k\nR2 b 0 {r2}\n.tran 1u 1m uic\n.end\n");
+  const std::string tight = write_temp("dcad_eq_tight.cir",
+                                       "eq\nV1 a 0 DC 1\nR1 a b 1k\nC2 b 0 1u ic=0.25\nC3 b c 1u IC=0.5\n"
+                                       "L1 c 0 1m\n.IC V(b)=0.75\n.param r2=2k\nR2 b 0 {r2}\n.tran 1u 1m uic\n.end\n");
   const std::string out = expect_same_simulation(spaced, tight, "--tstop 2u --step 1u");
   EXPECT_NE(out.find("\n0,0,0,2.5e-07,"), std::string::npos) << out;  // q_C2 = 1u · 0.25 V (IC= before .ic)
 }

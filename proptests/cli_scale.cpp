@@ -55,7 +55,8 @@ std::string fmt(double x) {
 /// that the printed estimate is at least a tenth of the measured error and both are below 1e-9.
 template <class Exact>
 double check_trajectory(const std::string& deck, double tstop, double step, Exact exact, const std::string& label) {
-  const Outcome r = run("simulate " + write_temp("dcad_scale.cir", deck) + " --tstop " + fmt(tstop) + " --step " + fmt(step));
+  const Outcome r =
+      run("simulate " + write_temp("dcad_scale.cir", deck) + " --tstop " + fmt(tstop) + " --step " + fmt(step));
   EXPECT_EQ(r.rc, 0) << label << "\n" << r.err;
   const auto rows = csv_rows(r.out);
   EXPECT_GE(rows.size(), 1000u) << label;
@@ -74,17 +75,19 @@ double check_trajectory(const std::string& deck, double tstop, double step, Exac
 // L i' = u, C u' = −i: i = i0 cos ωt, q_C = −(i0/ω) sin ωt, ω = 1/√(LC).  1 H/1 F … 1 nH/1 fF.
 TEST(ScaleInvariance, TankTrajectoryFromHenriesToNanohenries) {
   const std::vector<std::pair<std::pair<double, int>, std::pair<double, int>>> values = {
-      {{1, 0}, {1, 0}},     {{1, -3}, {1, -6}},   {{10, -6}, {10, -9}}, {{1, -6}, {1, -9}},
-      {{100, -9}, {100, -12}}, {{10, -9}, {1, -12}}, {{1, -9}, {1, -15}}, {{1, 3}, {1, -15}}};
+      {{1, 0}, {1, 0}},        {{1, -3}, {1, -6}},   {{10, -6}, {10, -9}}, {{1, -6}, {1, -9}},
+      {{100, -9}, {100, -12}}, {{10, -9}, {1, -12}}, {{1, -9}, {1, -15}},  {{1, 3}, {1, -15}}};
   for (const auto& [l, c] : values) {
     const double lv = l.first * std::pow(10.0, l.second), cv = c.first * std::pow(10.0, c.second), i0 = 1e-3;
     const double w = 1 / std::sqrt(lv * cv), period = 2 * M_PI / w;
-    const std::string deck = "tank\nL1 a 0 " + value(l.first, l.second) + " IC=1m\nC1 a 0 " + value(c.first, c.second) + "\n.end\n";
+    const std::string deck =
+        "tank\nL1 a 0 " + value(l.first, l.second) + " IC=1m\nC1 a 0 " + value(c.first, c.second) + "\n.end\n";
     const auto exact = [&](const std::string& csv, const std::vector<double>& row) {
       const double t = row[0], i = i0 * std::cos(w * t), q = -i0 / w * std::sin(w * t);
       return std::max(std::abs(row[column(csv, "v_L1")] - i) / i0, std::abs(row[column(csv, "q_C1")] - q) / (i0 / w));
     };
-    check_trajectory(deck, 20 * period, period / 500, exact, "tank L = " + value(l.first, l.second) + ", C = " + value(c.first, c.second));
+    check_trajectory(deck, 20 * period, period / 500, exact,
+                     "tank L = " + value(l.first, l.second) + ", C = " + value(c.first, c.second));
     // the fast backend is certified at these values as at 1 H/1 F (it said uncertain for 1 mH/1 µF)
     const Outcome f = run("solve " + write_temp("dcad_tank_fast.cir", deck) + " --json --backend fast");
     ASSERT_EQ(f.rc, 0) << f.err;
@@ -102,15 +105,19 @@ TEST(ScaleInvariance, FourPortTrajectoryAtRandomUnits) {
   std::uniform_int_distribution<int> exp(-15, 3);
   for (int k = 0; k < scaled(3); ++k) {
     const int a = exp(rng), b = exp(rng);
-    const double l = 2 * std::pow(10.0, a), c1 = 3 * std::pow(10.0, b), c2 = 5 * std::pow(10.0, b), c3 = 7 * std::pow(10.0, b);
+    const double l = 2 * std::pow(10.0, a), c1 = 3 * std::pow(10.0, b), c2 = 5 * std::pow(10.0, b),
+                 c3 = 7 * std::pow(10.0, b);
     const double w = std::sqrt((c1 + c2 + c3) / (l * c2 * (c1 + c3))), u0 = 3, period = 2 * M_PI / w;
-    const std::string deck = "4-port\nL1 0 1 " + value(2, a) + " IC=0\nC1 1 2 " + value(3, b) + " IC=1\nC2 2 0 " + value(5, b) +
-                             " IC=2\nC3 1 2 " + value(7, b) + " IC=1\n.end\n";
+    const std::string deck = "4-port\nL1 0 1 " + value(2, a) + " IC=0\nC1 1 2 " + value(3, b) + " IC=1\nC2 2 0 " +
+                             value(5, b) + " IC=2\nC3 1 2 " + value(7, b) + " IC=1\n.end\n";
     const auto exact = [&](const std::string& csv, const std::vector<double>& row) {
-      const double t = row[0], i = -u0 * std::sin(w * t) / (l * w), v2 = 2 - u0 * (1 - std::cos(w * t)) / (l * w * w * c2);
-      return std::max(std::abs(row[column(csv, "v_L1")] - i) / (u0 / (l * w)), std::abs(row[column(csv, "q_C2")] / c2 - v2) / 2);
+      const double t = row[0], i = -u0 * std::sin(w * t) / (l * w),
+                   v2 = 2 - u0 * (1 - std::cos(w * t)) / (l * w * w * c2);
+      return std::max(std::abs(row[column(csv, "v_L1")] - i) / (u0 / (l * w)),
+                      std::abs(row[column(csv, "q_C2")] / c2 - v2) / 2);
     };
-    check_trajectory(deck, 20 * period, period / 100, exact, "4-port L = 2e" + std::to_string(a) + ", C = (3, 5, 7)e" + std::to_string(b));
+    check_trajectory(deck, 20 * period, period / 100, exact,
+                     "4-port L = 2e" + std::to_string(a) + ", C = (3, 5, 7)e" + std::to_string(b));
   }
 }
 
@@ -147,7 +154,8 @@ TEST(ScaleInvariance, LadderTrajectoryAtRandomUnits) {
       coef[m] = dot / norm;
       omega[m] = std::sqrt((2 - 2 * std::cos(m * M_PIl / n)) / (l * c));
     }
-    const double slowest = 2 * M_PI / static_cast<double>(omega[1]), fastest = 2 * M_PI / static_cast<double>(omega[n - 1]);
+    const double slowest = 2 * M_PI / static_cast<double>(omega[1]),
+                 fastest = 2 * M_PI / static_cast<double>(omega[n - 1]);
     const auto exact = [&](const std::string& csv, const std::vector<double>& row) {
       double worst = 0;
       for (int i = 0; i < n; ++i) {
@@ -186,14 +194,17 @@ TEST(ScaleInvariance, TowerAndVerdictOfEveryBackend) {
         o << kind << ++id << " " << x << " " << y << " " << value(mant, kind == 'L' ? la : cb) << "\n";
       return o.str();
     };
-    const std::string unit = write_temp("dcad_scale_unit.cir", deck(0, 0)), real = write_temp("dcad_scale_real.cir", deck(a, b));
+    const std::string unit = write_temp("dcad_scale_unit.cir", deck(0, 0)),
+                      real = write_temp("dcad_scale_real.cir", deck(a, b));
     for (const std::string backend : {"reference", "fast", "certified"}) {
-      const Outcome ru = run("solve " + unit + " --json --backend " + backend), rr = run("solve " + real + " --json --backend " + backend);
+      const Outcome ru = run("solve " + unit + " --json --backend " + backend),
+                    rr = run("solve " + real + " --json --backend " + backend);
       ASSERT_EQ(ru.rc, 0) << ru.err;
       ASSERT_EQ(rr.rc, 0) << rr.err;
       const nlohmann::json ju = nlohmann::json::parse(ru.out), jr = nlohmann::json::parse(rr.out);
       for (const char* key : {"dims", "steps", "consistent", "solution_rank", "certified"})
-        EXPECT_EQ(ju[key], jr[key]) << backend << " " << key << " at L × 1e" << a << ", C × 1e" << b << "\n" << deck(a, b);
+        EXPECT_EQ(ju[key], jr[key]) << backend << " " << key << " at L × 1e" << a << ", C × 1e" << b << "\n"
+                                    << deck(a, b);
       EXPECT_TRUE(jr["certified"].get<bool>() || backend == "fast") << backend;
       // and dcad's own output at realistic values passes dcad check (floats never printed as integers)
       const Outcome c = run("check " + write_temp("dcad_scale_result.json", rr.out) + " " + real);
@@ -210,7 +221,8 @@ TEST(NoCliff, LadderOf116BranchesOnEveryBackend) {
   std::ostringstream deck;
   deck << "ladder with capacitor loops, 116 branches\nCin n0 0 1n\n";
   for (int i = 1; i <= 38; ++i) {
-    deck << "L" << i << " n" << i - 1 << " n" << i << " 1u" << (i == 1 ? " IC=1m" : "") << "\nC" << i << " n" << i << " 0 1n\n";
+    deck << "L" << i << " n" << i - 1 << " n" << i << " 1u" << (i == 1 ? " IC=1m" : "") << "\nC" << i << " n" << i
+         << " 0 1n\n";
     if (i > 1) deck << "CB" << i << " n" << i - 1 << " n" << i << " 1n\n";
   }
   deck << "Lout n38 out 1u\nCout out 0 1n\n.end\n";
@@ -236,14 +248,15 @@ TEST(NoCliff, LadderOf116BranchesOnEveryBackend) {
 // within seconds at 20,000 (dense exact elimination, O(n³)).  Beyond kStructuredBranches (400) a
 // physical circuit takes the graph route on every backend — the same tower by CEF Thms 6.4, 6.6 and 6.8,
 // here an independently counted one: a ladder of 301 µH/nF sections with a bridging capacitor in each
-// (602 + 300 = 902 branches, 301 nodes besides ground) has 3n = 2706, M_1 = 2n − 301 = 1503, and the 300 capacitor loops
-// Cb_i C_{i-1} C_i cost 300 on q (M_2) and 300 on v (M_3): [2706, 1503, 1203, 903].  A negative C beyond
-// the limit is refused (exit 1) rather than run out of memory.
+// (602 + 300 = 902 branches, 301 nodes besides ground) has 3n = 2706, M_1 = 2n − 301 = 1503, and the 300 capacitor
+// loops Cb_i C_{i-1} C_i cost 300 on q (M_2) and 300 on v (M_3): [2706, 1503, 1203, 903].  A negative C beyond the
+// limit is refused (exit 1) rather than run out of memory.
 TEST(NoCliff, ReferenceBeyondTheDenseSizeTakesTheGraphRoute) {
   std::ostringstream deck, neg;
   deck << "bridged ladder, 902 branches\n";
   for (int i = 1; i <= 301; ++i) {
-    deck << "L" << i << " " << (i == 1 ? "0" : "n" + std::to_string(i - 1)) << " n" << i << " 1u\nC" << i << " n" << i << " 0 1n\n";
+    deck << "L" << i << " " << (i == 1 ? "0" : "n" + std::to_string(i - 1)) << " n" << i << " 1u\nC" << i << " n" << i
+         << " 0 1n\n";
     if (i > 1) deck << "CB" << i << " n" << i - 1 << " n" << i << " 1n\n";
   }
   neg << deck.str() << "CN n1 0 -1n\n.end\n";
@@ -257,5 +270,6 @@ TEST(NoCliff, ReferenceBeyondTheDenseSizeTakesTheGraphRoute) {
     EXPECT_TRUE(j["certified"].get<bool>()) << backend;
   }
   const std::string bad = write_temp("dcad_ladder903_negative.cir", neg.str());
-  expect_input_error(run("solve " + bad + " --backend reference"), bad, "branches for an LC circuit with a negative L or C", "negative C at 903 branches");
+  expect_input_error(run("solve " + bad + " --backend reference"), bad,
+                     "branches for an LC circuit with a negative L or C", "negative C at 903 branches");
 }

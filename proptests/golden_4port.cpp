@@ -95,23 +95,32 @@ QM equations(Index cols, std::initializer_list<std::initializer_list<std::pair<I
 /// (q, v, p, ν) ∈ Q^16 (the first 12 entries are the point of the Pontryagin bundle).
 std::vector<Q> leaf_point(const Circuit& c, const Q& a, const Q& b) {
   const Q s13 = c.c1 + c.c3;
-  return {a, c.c1 * a / s13, a, c.c3 * a / s13, b / c.l, c.c1 * b / (c.l * s13), b / c.l, c.c3 * b / (c.l * s13),
-          b, 0, 0, 0, 0, 0, 0, 0};
+  return {a,       c.c1 * a / s13,
+          a,       c.c3 * a / s13,
+          b / c.l, c.c1 * b / (c.l * s13),
+          b / c.l, c.c3 * b / (c.l * s13),
+          b,       0,
+          0,       0,
+          0,       0,
+          0,       0};
 }
 
 std::vector<Q> first(const std::vector<Q>& y, Index n) { return std::vector<Q>(y.begin(), y.begin() + n); }
 
 /// (x, ẋ) for each vector x of the canonical basis of M_c (a linear subspace here), ẋ the velocity the
 /// reference solves from D; a point without a unique velocity is a test failure.
-std::vector<std::pair<std::vector<Q>, std::vector<Q>>> motion_on_basis(const LinearSystem<Q>& s, const CadResult<Q>& r) {
+std::vector<std::pair<std::vector<Q>, std::vector<Q>>> motion_on_basis(const LinearSystem<Q>& s,
+                                                                       const CadResult<Q>& r) {
   std::vector<std::pair<std::vector<Q>, std::vector<Q>>> out;
   const QM& basis = r.final_step().m.direction.basis();
   for (Index b = 0; b < basis.rows(); ++b) {
     std::vector<Q> x(basis.cols());
     for (Index i = 0; i < x.size(); ++i) x[i] = basis(b, i);
     const AffineSubspace<Q> vel = velocities(s, r, x);
-    if (vel.empty || vel.direction.dim() != 0) ADD_FAILURE() << "no unique velocity at basis vector " << b;
-    else out.emplace_back(x, vel.point);
+    if (vel.empty || vel.direction.dim() != 0)
+      ADD_FAILURE() << "no unique velocity at basis vector " << b;
+    else
+      out.emplace_back(x, vel.point);
   }
   return out;
 }
@@ -127,8 +136,8 @@ TEST_P(FourPort, SigmaCorrectedEntriesAndDeterminant) {
   EXPECT_EQ(cl.s, 7u) << "all 14 constraints are second class (x0 + W̃_3 is symplectic)";
   EXPECT_EQ(cl.first.rows(), 0u);
   // printed entries that are right, with the ERRATA sign convention (1-based in the paper)
-  EXPECT_EQ(sigma(0, 8), Q(-1));   // Σ₁,₉ = {p_L − L v_L, q_L − q_C2}
-  EXPECT_EQ(sigma(0, 10), -c.l);   // Σ₁,₁₁
+  EXPECT_EQ(sigma(0, 8), Q(-1));  // Σ₁,₉ = {p_L − L v_L, q_L − q_C2}
+  EXPECT_EQ(sigma(0, 10), -c.l);  // Σ₁,₁₁
   EXPECT_EQ(sigma(1, 6), -1 / c.c1);
   EXPECT_EQ(sigma(3, 6), 1 / c.c3);
   // row 8, corrected: Σ₈,₁₂ = 1/C1, Σ₈,₁₄ = −1/C3 and zero where the paper prints them
@@ -139,7 +148,8 @@ TEST_P(FourPort, SigmaCorrectedEntriesAndDeterminant) {
   EXPECT_TRUE(is_skew(sigma));
   // det Σ = L² (C1 + C3)⁴ / (C1⁴ C3⁴)
   const Q s13 = c.c1 + c.c3;
-  EXPECT_EQ(determinant(sigma), c.l * c.l * s13 * s13 * s13 * s13 / (c.c1 * c.c1 * c.c1 * c.c1 * c.c3 * c.c3 * c.c3 * c.c3));
+  EXPECT_EQ(determinant(sigma),
+            c.l * c.l * s13 * s13 * s13 * s13 / (c.c1 * c.c1 * c.c1 * c.c1 * c.c3 * c.c3 * c.c3 * c.c3));
   // the Dirac bracket of the leaf coordinates: {q_L, p_L}* = +1 (block A of §7, A₁,₅)
   EXPECT_EQ(cl.dirac_tensor(qL, pL), Q(1));
   // the whole Σ as printed after (6.42), 1-based as in the paper, row 8 corrected (ERRATA)
@@ -177,7 +187,11 @@ TEST_P(FourPort, Section6_TowerIsM1M2M3AsPrinted) {
   const CadResult<Q> r = constraint_tower(pontryagin_system(cef_input(c)));
   ASSERT_TRUE(r.consistent);
   ASSERT_EQ(r.steps, 3u);
-  const QM m1 = equations(12, {{{pL, 1}, {vL, -c.l}}, {{pC1, 1}}, {{pC2, 1}}, {{pC3, 1}}, {{vL, 1}, {vC2, -1}},
+  const QM m1 = equations(12, {{{pL, 1}, {vL, -c.l}},
+                               {{pC1, 1}},
+                               {{pC2, 1}},
+                               {{pC3, 1}},
+                               {{vL, 1}, {vC2, -1}},
                                {{vC1, 1}, {vC2, -1}, {vC3, 1}}});
   const QM m2 = vstack(m1, equations(12, {{{qC1, 1 / c.c1}, {qC3, -1 / c.c3}}}));
   const QM m3 = vstack(m2, equations(12, {{{vC1, 1 / c.c1}, {vC3, -1 / c.c3}}}));
@@ -210,11 +224,11 @@ TEST_P(FourPort, Section6_EquationsOfMotionOnM3) {
     EXPECT_EQ(dx[qC1], c.c1 / (c.l * s13) * x[pL]);
     EXPECT_EQ(dx[qC2], x[pL] / c.l);
     EXPECT_EQ(dx[pL], -x[qC1] / c.c1 - x[qC2] / c.c2);
-    for (Index i = 0; i < 4; ++i) EXPECT_EQ(dx[qL + i], x[vL + i]);                                     // (6.31)
-    EXPECT_EQ(dx[pL] + x[qC1] / c.c1 + dx[pC1] + x[qC2] / c.c2 + dx[pC2], Q(0));                         // (6.32)
-    EXPECT_EQ(dx[pL] + x[qC2] / c.c2 + dx[pC2] + x[qC3] / c.c3 + dx[pC3], Q(0));                         // (6.33)
-    EXPECT_EQ(x[pL], c.l * x[vL]);                                                                        // (6.34)
-    EXPECT_EQ(x[vL], x[vC2]);                                                                             // (6.35)
+    for (Index i = 0; i < 4; ++i) EXPECT_EQ(dx[qL + i], x[vL + i]);               // (6.31)
+    EXPECT_EQ(dx[pL] + x[qC1] / c.c1 + dx[pC1] + x[qC2] / c.c2 + dx[pC2], Q(0));  // (6.32)
+    EXPECT_EQ(dx[pL] + x[qC2] / c.c2 + dx[pC2] + x[qC3] / c.c3 + dx[pC3], Q(0));  // (6.33)
+    EXPECT_EQ(x[pL], c.l * x[vL]);                                                // (6.34)
+    EXPECT_EQ(x[vL], x[vC2]);                                                     // (6.35)
     EXPECT_EQ(x[vC1], x[vC2] - x[vC3]);
   }
 }
@@ -240,8 +254,8 @@ TEST_P(FourPort, Section6_LeafHamiltonianAndMotion) {
     EXPECT_EQ(energy, b * b / (2 * c.l) + a * a / 2 * k);  // H(q_L, p_L); g = 0 here
     const AffineSubspace<Q> vel = velocities(s, r, x);
     ASSERT_FALSE(vel.empty);
-    EXPECT_EQ(vel.point[qL], b / c.l);   // (6.43) ∂H/∂p_L
-    EXPECT_EQ(vel.point[pL], -a * k);    // (6.44) −∂H/∂q_L
+    EXPECT_EQ(vel.point[qL], b / c.l);               // (6.43) ∂H/∂p_L
+    EXPECT_EQ(vel.point[pL], -a * k);                // (6.44) −∂H/∂q_L
     EXPECT_TRUE(contains(r.tower[3].w, vel.point));  // the flow preserves the leaf
   }
 }
@@ -311,12 +325,26 @@ TEST_P(FourPort, Section7_DiracBracketMatrixAsPrinted) {
     const std::vector<Q> y = leaf_point(c, qa, pb);
     std::vector<Q> grad = (f.hessian * QM::column(y)).col(0);
     for (Index i = 0; i < 16; ++i) grad[i] += f.gradient[i];
-    const std::vector<Q> corrected = {0,     y[qC1] / c1, y[qC2] / c.c2, y[qC3] / c3, y[pL] - l * y[vL], y[pC1], y[pC2], y[pC3],
-                                      y[vL], y[vC1],      y[vC2],        y[vC3],      0,                 0,      0,      0};
+    const std::vector<Q> corrected = {0,
+                                      y[qC1] / c1,
+                                      y[qC2] / c.c2,
+                                      y[qC3] / c3,
+                                      y[pL] - l * y[vL],
+                                      y[pC1],
+                                      y[pC2],
+                                      y[pC3],
+                                      y[vL],
+                                      y[vC1],
+                                      y[vC2],
+                                      y[vC3],
+                                      0,
+                                      0,
+                                      0,
+                                      0};
     EXPECT_EQ(grad, corrected);
     const Q g = y[qC1] / c1 + y[qC2] / c.c2;
-    const std::vector<Q> x = {y[vL], y[vC1], y[vC2], y[vC3], -g / l, -c1 / s13 * g / l, -g / l, -c3 / s13 * g / l,
-                              -g,    0,      0,      0,      0,      0,                 0,      0};
+    const std::vector<Q> x = {
+        y[vL], y[vC1], y[vC2], y[vC3], -g / l, -c1 / s13 * g / l, -g / l, -c3 / s13 * g / l, -g, 0, 0, 0, 0, 0, 0, 0};
     EXPECT_EQ((cl.dirac_tensor * QM::column(grad)).col(0), x);
     std::vector<Q> misprinted = corrected;
     for (Index i = qC1; i <= qC3; ++i) misprinted[i] = -corrected[i];
@@ -355,8 +383,9 @@ TEST_P(FourPort, MultipliersAndVectorField) {
   std::vector<Q> x = (j * QM::column(de)).col(0);  // dE^♯ + λ^j X_{ε_j}, X_g = J dg
   const std::vector<Q> xe = (j * a.transpose() * QM::column(lambda)).col(0);
   for (Index i = 0; i < 16; ++i) x[i] += xe[i];
-  const std::vector<Q> printed = {y[vL], y[vC1], y[vC2], y[vC3], -f / c.l, -c.c1 / s13 * f / c.l, -f / c.l, -c.c3 / s13 * f / c.l,
-                                  -f, 0, 0, 0, 0, 0, 0, 0};
+  const std::vector<Q> printed = {
+      y[vL], y[vC1], y[vC2], y[vC3], -f / c.l, -c.c1 / s13 * f / c.l, -f / c.l, -c.c3 / s13 * f / c.l, -f, 0, 0,
+      0,     0,      0,      0,      0};
   EXPECT_EQ(x, printed);
 }
 
@@ -372,7 +401,7 @@ TEST_P(FourPort, YoshimuraMarsden6ReducedEquations) {
   PontryaginInput<Q> in;
   in.n = 4;
   in.k = QM(2, 4);
-  in.k(0, 0) = Q(-1), in.k(0, 2) = Q(1);                     // ω¹ = −dq_L + dq_C2
+  in.k(0, 0) = Q(-1), in.k(0, 2) = Q(1);                      // ω¹ = −dq_L + dq_C2
   in.k(1, 1) = Q(-1), in.k(1, 2) = Q(1), in.k(1, 3) = Q(-1);  // ω² = −dq_C1 + dq_C2 − dq_C3
   in.vv = QM(4, 4);
   in.vv(0, 0) = c.l;
@@ -392,8 +421,8 @@ TEST_P(FourPort, YoshimuraMarsden6ReducedEquations) {
     EXPECT_EQ(dx[q + C1], x[v + C2] - x[v + C3]);
     EXPECT_EQ(dx[q + C2], x[v + C2]);
     EXPECT_EQ(dx[q + C3], x[v + C3]);
-    EXPECT_EQ(x[p + C2] + x[p + L] + x[p + C1], c.l * x[v + C2]);                     // p̃_C2 = L f_C2
-    EXPECT_EQ(x[p + C3] - x[p + C1], Q(0));                                           // p̃_C3 = 0
+    EXPECT_EQ(x[p + C2] + x[p + L] + x[p + C1], c.l * x[v + C2]);                          // p̃_C2 = L f_C2
+    EXPECT_EQ(x[p + C3] - x[p + C1], Q(0));                                                // p̃_C3 = 0
     EXPECT_EQ(dx[p + C2] + dx[p + L] + dx[p + C1], -x[q + C1] / c.c1 - x[q + C2] / c.c2);  // d/dt p̃_C2
     EXPECT_EQ(-x[q + C3] / c.c3 + x[q + C1] / c.c1, Q(0));
     // matrix form: (ṗ_C2 + q_C2/C2, ṗ_C3 + q_C3/C3) = [[−1, −1], [0, 1]] (ṗ_L, ṗ_C1 + q_C1/C1)
@@ -408,5 +437,6 @@ TEST_P(FourPort, YoshimuraMarsden6ReducedEquations) {
 
 INSTANTIATE_TEST_SUITE_P(CEF6, FourPort,
                          testing::Values(Circuit{Q(2), Q(3), Q(5), Q(7)}, Circuit{Q(1), Q(1), Q(1), Q(1)},
-                                         Circuit{Q(1) / Q(1000), Q(22) / Q(1000000), Q(47) / Q(1000000000), Q(1) / Q(3)},
+                                         Circuit{Q(1) / Q(1000), Q(22) / Q(1000000), Q(47) / Q(1000000000),
+                                                 Q(1) / Q(3)},
                                          Circuit{Q(-2), Q(5), Q(-3), Q(4)}));

@@ -20,8 +20,8 @@
 
 namespace {
 
-using dcad::reference::Rational;
 using dcad::reference::parse_rational;
+using dcad::reference::Rational;
 
 /// An Arb ball as the exact rational interval [lo, hi] it stands for.
 struct Truth {
@@ -94,10 +94,12 @@ TEST(PrintedBalls, RadiusCoversTheMidpointsDecimals) {
   std::uniform_real_distribution<double> u(1.0, 2.0);
   std::uniform_int_distribution<int> e(-300, 300), re(-60, 0);
   for (int i = 0; i < 20000; ++i) {
-    const double mid = (i % 2 ? -1 : 1) * std::ldexp(u(rng), e(rng)), rad = i % 7 == 0 ? 0.0 : std::ldexp(u(rng), e(rng) / 10 + re(rng)) * std::abs(mid);
+    const double mid = (i % 2 ? -1 : 1) * std::ldexp(u(rng), e(rng)),
+                 rad = i % 7 == 0 ? 0.0 : std::ldexp(u(rng), e(rng) / 10 + re(rng)) * std::abs(mid);
     const double printed = dcad::io::printed_radius(mid, rad);
     char buf[64];
-    const std::string shortest(buf, std::to_chars(buf, buf + sizeof buf, mid).ptr), rad_text(buf, std::to_chars(buf, buf + sizeof buf, printed).ptr);
+    const std::string shortest(buf, std::to_chars(buf, buf + sizeof buf, mid).ptr),
+        rad_text(buf, std::to_chars(buf, buf + sizeof buf, printed).ptr);
     for (const std::string& m : {shortest, nlohmann::json(mid).dump(), dcad::io::float_text(mid)}) {
       const Rational pm = parse_rational(m), pr = parse_rational(rad_text), exact_mid(mid), exact_rad(rad);
       ASSERT_LE(pm - pr, exact_mid - exact_rad) << m << " ± " << rad_text << " for " << shortest << " ± " << rad;
@@ -123,7 +125,8 @@ TEST(PrintedBalls, AtGivenHoldsTheClosedForm) {
   };
   const auto cos_over = [&](const Rational& k) { return times(arb_cos, k); };
   const auto sin_over = [&](const Rational& k) { return times(arb_sin, k); };
-  const Outcome r = run("solve " + std::string(DCAD_SOURCE_DIR) + "/cases/rolling-disk-generic-angle.json --backend certified --json");
+  const Outcome r = run("solve " + std::string(DCAD_SOURCE_DIR) +
+                        "/cases/rolling-disk-generic-angle.json --backend certified --json");
   ASSERT_EQ(r.rc, 0) << r.err;
   const std::string point = r.out.substr(r.out.find("\"point\"")), velocity = r.out.substr(r.out.find("\"velocity\""));
   ASSERT_TRUE(nlohmann::json::parse(r.out)["at_given"]["certified"].get<bool>());
@@ -163,7 +166,8 @@ TEST(PrintedBalls, AtGivenHoldsTheClosedForm) {
 // q(t) = cos(t) (L = C = 1, IC = 1 V, uic) at the exact time k·step; and check's exact value at its worst
 // point, with exact_uncertainty, holds it too.
 TEST(PrintedBalls, EnclosureRowsAndCheckValuesHoldTheClosedForm) {
-  const std::string deck = write_temp("dcad_tank_truth.cir", "tank\nC1 1 0 1 IC=1\nL1 1 0 1\n.tran 0.125 20 uic\n.end\n");
+  const std::string deck =
+      write_temp("dcad_tank_truth.cir", "tank\nC1 1 0 1 IC=1\nL1 1 0 1\n.tran 0.125 20 uic\n.end\n");
   const Outcome sim = run("simulate " + deck + " --tstop 20 --step 0.125 --certified");
   ASSERT_EQ(sim.rc, 0) << sim.err;
   std::istringstream in(sim.out);
@@ -184,7 +188,8 @@ TEST(PrintedBalls, EnclosureRowsAndCheckValuesHoldTheClosedForm) {
   const Outcome chk = run("check " + write_temp("dcad_tank_truth.csv", csv) + " " + deck + " --json");
   ASSERT_EQ(chk.rc, 3) << chk.out << chk.err;  // the perturbed row is the worst point
   const std::string v = chk.out.substr(chk.out.find("\"vectors\""));
-  const std::regex exact("\"at\":\\s*([-+0-9.eE]+)[\\s\\S]*?\"exact\":\\s*([-+0-9.eE]+)[\\s\\S]*?\"exact_uncertainty\":\\s*([-+0-9.eE]+)");
+  const std::regex exact(
+      "\"at\":\\s*([-+0-9.eE]+)[\\s\\S]*?\"exact\":\\s*([-+0-9.eE]+)[\\s\\S]*?\"exact_uncertainty\":\\s*([-+0-9.eE]+)");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(v, m, exact)) << v;
   ASSERT_TRUE(nlohmann::json::parse(chk.out)["certified"].get<bool>()) << chk.out;

@@ -26,7 +26,8 @@ bool solves(const QM& w, const QM& h, const std::vector<Q>& g, const std::vector
 /// independent and span {Y ∈ T : Ω(Y, δx) = 0 ∀ δx ∈ tangent'} — the solution directions of (3.18)
 /// / (7.7) computed from the definition, not from the adapted constraints.
 template <class Field>
-bool parametrises_all(const Field& field, Index multipliers, const QM& w, const Subspace<Q>& t, const Subspace<Q>& tangent) {
+bool parametrises_all(const Field& field, Index multipliers, const QM& w, const Subspace<Q>& t,
+                      const Subspace<Q>& tangent) {
   const std::vector<Q> x0 = field(std::vector<Q>(multipliers, Q(0)));
   QM diffs(multipliers, w.rows());
   for (Index i = 0; i < multipliers; ++i) {
@@ -61,7 +62,9 @@ RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
   const Subspace<Q>& ts = db.tower.back().direction;
   RC_ASSERT(contains(ts, xdot));
   RC_ASSERT(solves(s.omega, s.hessian, s.gradient, x, xdot, kernel(gradients(s.primary))));
-  const auto field = [&](const std::vector<Q>& l) { return abridged_field(ad, db.constraints, s.hessian, s.gradient, x, l); };
+  const auto field = [&](const std::vector<Q>& l) {
+    return abridged_field(ad, db.constraints, s.hessian, s.gradient, x, l);
+  };
   RC_ASSERT(parametrises_all(field, ad.abridged.size(), s.omega, ts, kernel(gradients(s.primary))));
   // Lemma 3.23 / Remark 3.30: the Hamiltonian fields of first class constraints span ker ω_c
   const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);

@@ -9,7 +9,6 @@ using namespace dcad::test;
 
 namespace {
 
-
 void classify(const CadResult<Q>& r) {
   RC_CLASSIFY(!r.consistent, "inconsistent");
   RC_CLASSIFY(r.consistent && !r.unique(), "non-unique");
@@ -156,7 +155,8 @@ RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
   const LinearSystem<Q> s = any_system();
   const CadResult<Q> r = constraint_tower(s);
   const Subspace<Q> e = dirac_distribution(s.d);
-  const std::vector<Q> x0 = *rc::gen::arbitrary<bool>() && r.consistent ? some_point(r.final_step().m) : integer_vector(s.d.n);
+  const std::vector<Q> x0 =
+      *rc::gen::arbitrary<bool>() && r.consistent ? some_point(r.final_step().m) : integer_vector(s.d.n);
   // leaf coordinates y: x = x0 + Bᵀ y; ω_D and E pulled back; GN = CAD of the presymplectic D_ω.
   const QM& b = e.basis();
   const PresymplecticForm<Q> om = dirac_form(s.d);

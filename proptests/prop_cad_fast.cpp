@@ -55,9 +55,10 @@ RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
   const ref::ConstrainedSystem<Q> s = any_constrained_system();
   const ref::CadResult<Q> r = ref::gotay_nester(s);
   fast::Options opt = any_route_options();
-  const fast::CadResult f = fast::gotay_nester(
-      {to_double(s.omega, &opt), to_double(s.hessian, &opt), to_double(QM::column(s.gradient), &opt).col(0), to_double(s.primary, &opt)},
-      opt);
+  const fast::CadResult f =
+      fast::gotay_nester({to_double(s.omega, &opt), to_double(s.hessian, &opt),
+                          to_double(QM::column(s.gradient), &opt).col(0), to_double(s.primary, &opt)},
+                         opt);
   bool same_dims = f.tower.size() == r.tower.size();
   for (Index k = 0; same_dims && k < r.tower.size(); ++k) same_dims = f.tower[k].dim() == r.tower[k].dim();
   RC_ASSERT(!tally("GN dims of M_k", f.certain.yes(), same_dims));
@@ -87,7 +88,8 @@ RC_GTEST_PROP(FastVsReference, Cad, ()) {
   if (f.certain.unknown() || !same_dims) return;
   // M_c as a subspace: principal angle against the exact one
   const double bound = 1e6 * (s.d.n + 1) * 2.2e-16 * (1 + fast::norm2(fs.hessian));
-  RC_ASSERT(fast::largest_principal_angle_sin(f.final_step().m.direction, to_fast(r.final_step().m.direction)) <= bound);
+  RC_ASSERT(fast::largest_principal_angle_sin(f.final_step().m.direction, to_fast(r.final_step().m.direction)) <=
+            bound);
   // reduced equations in the reference's coordinates: F and f agree modulo G when unique
   if (!r.unique()) return;
   const ref::ReducedEquations<Q> rr = ref::reduced_equations(s, r);
@@ -111,7 +113,8 @@ RC_GTEST_PROP(FastVsReference, Velocities, ()) {
   RC_ASSERT(!rv.empty);  // Thm 5.4: solutions exist at every point of M_c
   RC_ASSERT(!tally("velocities exist", fv.certain.yes(), !fv.empty));
   if (fv.empty) return;
-  RC_ASSERT(!tally("velocities: dimension", fv.certain.yes(), static_cast<Index>(fv.direction.dim()) == rv.direction.dim()));
+  RC_ASSERT(
+      !tally("velocities: dimension", fv.certain.yes(), static_cast<Index>(fv.direction.dim()) == rv.direction.dim()));
   if (fv.certain.unknown()) return;
   const Eigen::VectorXd gap = to_double(QM::column(rv.point)).col(0) - fv.point;
   const Eigen::MatrixXd& dir = fv.direction.columns();
@@ -171,7 +174,8 @@ TEST(FastCertaintyFloor, PlantedTowers) {
   int certain = 0, total = 0;
   for (int rep = 0; rep < 25; ++rep) {
     for (int which = 0; which < 5; ++which) {
-      const families::Instance in = which < 4 ? families::tower(static_cast<Index>(which + 1), rng) : families::graded(1e2, rng);
+      const families::Instance in =
+          which < 4 ? families::tower(static_cast<Index>(which + 1), rng) : families::graded(1e2, rng);
       fast::Options opt;
       const fast::LinearSystem s{fast::dirac_from_presymplectic(to_double(in.omega, &opt)), to_double(in.hessian, &opt),
                                  to_double(in.gradient), 0.0};
@@ -182,7 +186,8 @@ TEST(FastCertaintyFloor, PlantedTowers) {
       std::vector<long> dims;
       for (const auto& st : r.tower) dims.push_back(st.dim());
       EXPECT_EQ(dims, in.dims) << in.family << "(" << in.param << ") rep " << rep;
-      EXPECT_EQ(static_cast<long>(r.solution_rank), in.solution_rank) << in.family << "(" << in.param << ") rep " << rep;
+      EXPECT_EQ(static_cast<long>(r.solution_rank), in.solution_rank)
+          << in.family << "(" << in.param << ") rep " << rep;
     }
   }
   std::printf("fast certain on %d of %d planted towers\n", certain, total);

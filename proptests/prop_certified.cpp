@@ -30,7 +30,9 @@ struct Discrete {
   std::vector<long> dims;
   long solution_rank = 0;
   bool consistent = true;
-  bool operator==(const Discrete& o) const { return dims == o.dims && solution_rank == o.solution_rank && consistent == o.consistent; }
+  bool operator==(const Discrete& o) const {
+    return dims == o.dims && solution_rank == o.solution_rank && consistent == o.consistent;
+  }
 };
 
 Discrete exact_run(const fam::Instance& in) {
@@ -43,7 +45,8 @@ Discrete exact_run(const fam::Instance& in) {
 }
 
 Discrete certified_run(const fam::Instance& in) {
-  const certified::CertifiedTower t = certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
+  const certified::CertifiedTower t =
+      certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
   return {t.dims, static_cast<long>(t.solution_rank), t.consistent};
 }
 
@@ -66,14 +69,16 @@ RC_GTEST_PROP(Certified, LibraryTowerIsTheExactTower, ()) {
   const reference::LinearSystem<Q> s = fam::system_over<Q>(in, [](const Q& q) { return q; });
   const certified::CertifiedTower t = certified::constraint_tower(s);
   const Discrete truth = exact_run(in);
-  RC_TAG(in.family + ": " + certified::route_name(t.route) + (t.word_bits ? " (" + std::to_string(t.word_bits) + " bits)" : ""));
+  RC_TAG(in.family + ": " + certified::route_name(t.route) +
+         (t.word_bits ? " (" + std::to_string(t.word_bits) + " bits)" : ""));
   RC_ASSERT(t.dims == truth.dims);
   RC_ASSERT(static_cast<long>(t.solution_rank) == truth.solution_rank);
   RC_ASSERT(t.consistent == truth.consistent);
   if (in.planted) RC_ASSERT(t.dims == in.dims && static_cast<long>(t.solution_rank) == in.solution_rank);
   RC_ASSERT(t.steps + 1 == t.dims.size());
   RC_ASSERT((t.route == certified::Route::machine_words) == (t.word_bits == 64 || t.word_bits == 128));
-  RC_ASSERT((t.route == certified::Route::machine_words && t.word_bits == 64) == t.why.empty());  // else: why it gave up
+  RC_ASSERT((t.route == certified::Route::machine_words && t.word_bits == 64) ==
+            t.why.empty());  // else: why it gave up
 }
 
 // Beyond 128 bits, the cascade reaches fmpq, says why, and still answers exactly: the perturbed family
@@ -86,7 +91,8 @@ RC_GTEST_PROP(Certified, BeyondTheWordsTheCascadeIsExactInFmpq, ()) {
                   Q(boost::multiprecision::pow(boost::multiprecision::mpz_int(7), *rc::gen::inRange(0, 4)));
   for (Index i = 0; i < in.omega.rows(); ++i)
     for (Index j = 0; j < in.omega.cols(); ++j) in.omega(i, j) *= scale;
-  const certified::CertifiedTower t = certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
+  const certified::CertifiedTower t =
+      certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
   RC_ASSERT(t.route == certified::Route::exact);
   RC_ASSERT(t.dims == in.dims);
   RC_ASSERT(static_cast<long>(t.solution_rank) == in.solution_rank);
@@ -112,7 +118,6 @@ TEST(Certified, InputRoundingIsDecidedForTheExactInput) {
   EXPECT_EQ(certified_run(in), exact_run(in));
 }
 
-
 namespace ex = reference::expr;
 
 /// The exact rational q lies in the ball [mid − rad, mid + rad] (compared exactly).
@@ -134,16 +139,19 @@ std::vector<std::vector<ex::Expr>> gradients_of(const std::vector<ex::Expr>& f, 
 RC_GTEST_PROP(Certified, KrawczykBallHoldsThePlantedZero, ()) {
   // F_k(x) = Σ_j a_kj (x_j − z_j) + b_k (x_i − z_i)(x_l − z_l): zero at the planted rational z; some
   // coordinates given at z exactly, the start z + 1e-9 noise.  Proved ⇒ every ball holds z exactly.
-  const std::size_t m = static_cast<std::size_t>(*rc::gen::inRange(2, 6)), k = static_cast<std::size_t>(*rc::gen::inRange<int>(1, static_cast<int>(m)));
+  const std::size_t m = static_cast<std::size_t>(*rc::gen::inRange(2, 6)),
+                    k = static_cast<std::size_t>(*rc::gen::inRange<int>(1, static_cast<int>(m)));
   std::vector<Q> z(m);
   for (Q& q : z) q = Q(*rc::gen::inRange(-50, 51), *rc::gen::inRange(1, 30));
   std::vector<ex::Expr> f;
   for (std::size_t r = 0; r < k; ++r) {
     ex::Expr e = ex::number(0);
     for (std::size_t j = 0; j < m; ++j)
-      e = ex::add(e, ex::mul(ex::number(Q(*rc::gen::inRange(-9, 10), *rc::gen::inRange(1, 5))), ex::sub(ex::variable(j), ex::number(z[j]))));
+      e = ex::add(e, ex::mul(ex::number(Q(*rc::gen::inRange(-9, 10), *rc::gen::inRange(1, 5))),
+                             ex::sub(ex::variable(j), ex::number(z[j]))));
     const std::size_t i = *rc::gen::inRange<std::size_t>(0, m), l = *rc::gen::inRange<std::size_t>(0, m);
-    e = ex::add(e, ex::mul(ex::number(*rc::gen::inRange(-3, 4)), ex::mul(ex::sub(ex::variable(i), ex::number(z[i])), ex::sub(ex::variable(l), ex::number(z[l])))));
+    e = ex::add(e, ex::mul(ex::number(*rc::gen::inRange(-3, 4)), ex::mul(ex::sub(ex::variable(i), ex::number(z[i])),
+                                                                         ex::sub(ex::variable(l), ex::number(z[l])))));
     f.push_back(e);
   }
   certified::ZeroProblem p;
@@ -154,7 +162,8 @@ RC_GTEST_PROP(Certified, KrawczykBallHoldsThePlantedZero, ()) {
   for (std::size_t j = 0; j < m; ++j) order[j] = j;
   for (std::size_t j = m - 1; j > 0; --j) std::swap(order[j], order[*rc::gen::inRange<std::size_t>(0, j + 1)]);
   for (std::size_t j = k; j < m; ++j) p.given[order[j]] = z[order[j]];
-  for (std::size_t j = 0; j < m; ++j) p.approx.push_back(z[j].convert_to<double>() * (1 + 1e-9 * *rc::gen::inRange(-5, 6)));
+  for (std::size_t j = 0; j < m; ++j)
+    p.approx.push_back(z[j].convert_to<double>() * (1 + 1e-9 * *rc::gen::inRange(-5, 6)));
   p.outputs = f;
   const certified::ZeroEnclosure e = certified::enclose_zero(p);
   RC_TAG(e.proved ? "proved" : "not proved");
@@ -178,9 +187,11 @@ TEST(Certified, KrawczykBallsOfSinAndADoubleZero) {
   certified::ZeroEnclosure e = certified::enclose_zero(p);
   ASSERT_TRUE(e.proved) << e.why;
   const long double s = std::sin(0.7L);
-  EXPECT_LE(std::fabs(static_cast<long double>(e.values[1].mid) - s), static_cast<long double>(e.values[1].rad) + 1e-18L);
+  EXPECT_LE(std::fabs(static_cast<long double>(e.values[1].mid) - s),
+            static_cast<long double>(e.values[1].rad) + 1e-18L);
   EXPECT_LE(e.values[1].rad, 1e-16);
-  EXPECT_LE(std::fabs(static_cast<long double>(e.outputs[0].mid) - s * s), static_cast<long double>(e.outputs[0].rad) + 1e-18L);
+  EXPECT_LE(std::fabs(static_cast<long double>(e.outputs[0].mid) - s * s),
+            static_cast<long double>(e.outputs[0].rad) + 1e-18L);
   // a condition that vanishes at the zero is not proved nonzero: not proved
   p.nonzero = {ex::sub(ex::variable(0), ex::number(Q(7, 10)))};
   EXPECT_FALSE(certified::enclose_zero(p).proved);

@@ -19,8 +19,9 @@ namespace ref = dcad::reference;
 
 namespace {
 
-ref::CadResult<Q> generic(const Circuit<Q>& c) { return ref::constraint_tower(ref::pontryagin_system(ref::circuit_lagrangian(c))); }
-
+ref::CadResult<Q> generic(const Circuit<Q>& c) {
+  return ref::constraint_tower(ref::pontryagin_system(ref::circuit_lagrangian(c)));
+}
 
 /// Every equation of the graph route up to M_k vanishes on the exact M_k (relative 1e-12).
 bool rows_vanish_on(const fast::CircuitTower& t, std::size_t k, const QSub& m) {
@@ -64,7 +65,8 @@ void check_against_generic(const Circuit<Q>& c, const std::string& family) {
 // (M_{c+1} = M_c), on random circuits with signed values and empty branches — every case of §6.
 RC_GTEST_PROP(CircuitClosedForm, EqualsGenericCad, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
-  RC_LOG() << "nodes " << c.nodes << "; branches {kind (0 L, 1 C, 2 empty), from, to, value}: ";  // a falsified circuit, to keep as a test
+  RC_LOG() << "nodes " << c.nodes
+           << "; branches {kind (0 L, 1 C, 2 empty), from, to, value}: ";  // a falsified circuit, to keep as a test
   for (const auto& b : c.branches)
     RC_LOG() << "{" << static_cast<int>(b.kind) << ", " << b.from << ", " << b.to << ", Q(\"" << b.value << "\")} ";
   const ref::CadResult<Q> r = generic(c);
@@ -82,18 +84,26 @@ TEST(CircuitClosedForm, CancellingCapacitorsTowerOfFive) {
   Circuit<Q> c;
   c.nodes = 3;
   using K = BranchKind;
-  c.branches = {{"E", K::empty, 0, -1, Q(0)}, {"L1", K::inductor, 1, -1, Q(1)}, {"L2", K::inductor, 2, -1, Q(1)},
-                {"C1", K::capacitor, 1, -1, Q(3)}, {"C2", K::capacitor, -1, 1, Q(-3)}};
+  c.branches = {{"E", K::empty, 0, -1, Q(0)},
+                {"L1", K::inductor, 1, -1, Q(1)},
+                {"L2", K::inductor, 2, -1, Q(1)},
+                {"C1", K::capacitor, 1, -1, Q(3)},
+                {"C2", K::capacitor, -1, 1, Q(-3)}};
   const ref::CadResult<Q> r = generic(c);
   EXPECT_EQ(r.steps, 5);
-  for (Index j = 1; j <= r.steps + 1; ++j) EXPECT_TRUE(ref::closed_form_m(c, j) == r.tower[std::min(j, r.steps)].m.direction) << j;
+  for (Index j = 1; j <= r.steps + 1; ++j)
+    EXPECT_TRUE(ref::closed_form_m(c, j) == r.tower[std::min(j, r.steps)].m.direction) << j;
 }
 
 // The graph route = the generic exact CAD: physical circuits (L, C > 0, empty branches) by
 // Theorems 6.4, 6.6, 6.8 and forests; signed values by loop coordinates.
-RC_GTEST_PROP(CircuitGraphRoute, PhysicalEqualsGenericCad, ()) { check_against_generic(random_circuit(true, false), "physical"); }
+RC_GTEST_PROP(CircuitGraphRoute, PhysicalEqualsGenericCad, ()) {
+  check_against_generic(random_circuit(true, false), "physical");
+}
 
-RC_GTEST_PROP(CircuitGraphRoute, SignedEqualsGenericCad, ()) { check_against_generic(random_circuit(true, true), "signed"); }
+RC_GTEST_PROP(CircuitGraphRoute, SignedEqualsGenericCad, ()) {
+  check_against_generic(random_circuit(true, true), "signed");
+}
 
 // The loops the report names are loops: each loop current satisfies KCL (K η = 0, so η ∈ Δ); purely
 // capacitive loops have a capacitor and no inductor; empty loops only empty branches; their counts
@@ -130,8 +140,10 @@ RC_GTEST_PROP(CircuitGraphRoute, EqualsGenericFastCad, ()) {
   const Circuit<Q> c = random_circuit(true, *rc::gen::arbitrary<bool>());
   const ref::PontryaginInput<Q> in = ref::circuit_lagrangian(c);
   fast::Options opt;
-  const fast::LinearSystem s = fast::pontryagin_system(
-      {in.n, to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt), to_double(in.qq, &opt), to_double(in.q), to_double(in.v)}, opt);
+  const fast::LinearSystem s =
+      fast::pontryagin_system({in.n, to_double(in.k, &opt), to_double(in.vv, &opt), to_double(in.qv, &opt),
+                               to_double(in.qq, &opt), to_double(in.q), to_double(in.v)},
+                              opt);
   const fast::CadResult f = fast::constraint_tower(s, opt);
   const fast::CircuitTower t = fast::circuit_tower(fast_graph(c));
   const bool certain = f.certain.yes() && t.certain.yes();

@@ -83,7 +83,8 @@ RC_GTEST_PROP(CircuitMotion, FastEqualsReference, ()) {
   const ref::ProductStep<Q> mc = ref::circuit_tower(c).back();
   RC_PRE(t.dims.back() == static_cast<long>(mc.dim()));  // the tower itself: prop_circuit_graph
   const fast::CircuitMotion f = fast::circuit_motion(g, t);
-  const ref::ReducedEquations<Q> r = ref::circuit_reduced_equations(c, mc, std::vector<Index>(f.coords.begin(), f.coords.end()));
+  const ref::ReducedEquations<Q> r =
+      ref::circuit_reduced_equations(c, mc, std::vector<Index>(f.coords.begin(), f.coords.end()));
   const Eigen::MatrixXd fr = to_double(r.f_matrix), gr = to_double(r.g);
   const bool same_rank = f.g.cols() == gr.cols();
   RC_ASSERT(!tally("circuit motion: solution rank", f.certain.yes(), same_rank));
@@ -97,14 +98,15 @@ RC_GTEST_PROP(CircuitMotion, FastEqualsReference, ()) {
   }
   const double scale = 1 + fr.cwiseAbs().maxCoeff();
   const bool f_ok = (proj * (f.f_matrix - fr)).cwiseAbs().maxCoeff() <= 1e-9 * scale * fr.rows();
-  const bool g_ok = gr.cols() == 0 || (proj * f.g).cwiseAbs().maxCoeff() <= 1e-9 * (1 + f.g.cwiseAbs().maxCoeff()) * fr.rows();
+  const bool g_ok =
+      gr.cols() == 0 || (proj * f.g).cwiseAbs().maxCoeff() <= 1e-9 * (1 + f.g.cwiseAbs().maxCoeff()) * fr.rows();
   RC_ASSERT(!tally("circuit motion: F modulo G", f.certain.yes(), f_ok));
   RC_ASSERT(!tally("circuit motion: span G", f.certain.yes(), g_ok));
 }
 
 // The coordinates a caller may give: as many as dim M_c (or none: the default ones), each a variable
-// of Q^{3n}, parametrizing M_c; anything else is refused (an index of 3n would read past the basis).  Killed by: the index bound
-// taken as ≤ 3n.
+// of Q^{3n}, parametrizing M_c; anything else is refused (an index of 3n would read past the basis).  Killed by: the
+// index bound taken as ≤ 3n.
 RC_GTEST_PROP(CircuitMotion, CoordinatesOutsideTheVariablesAreRefused, ()) {
   const Circuit<Q> c = random_circuit(true, false);
   const ref::ProductStep<Q> mc = ref::circuit_tower(c).back();

@@ -112,7 +112,8 @@ io::DaeCase as_case(const Planted& p, bool sources) {
   c.f.assign(p.e.rows(), ex::number(0));
   if (sources)
     for (auto& f : c.f)  // a polynomial in t
-      f = ex::add(ex::number(Q(*rc::gen::inRange(-3, 4))), ex::mul(ex::number(Q(*rc::gen::inRange(-3, 4))), ex::pow(ex::variable(0), *rc::gen::inRange(1, 3))));
+      f = ex::add(ex::number(Q(*rc::gen::inRange(-3, 4))),
+                  ex::mul(ex::number(Q(*rc::gen::inRange(-3, 4))), ex::pow(ex::variable(0), *rc::gen::inRange(1, 3))));
   return c;
 }
 
@@ -287,7 +288,12 @@ void certified_sparse_is_the_reference(const io::DaeCase& c) {
   const auto r = reference::pipeline::solve_dae(c);
   const auto s = certified::solve_dae_sparse(c);
   for (const auto* x : {&r, &s})
-    for (const auto& sc : x->source_conditions) RC_LOG() << (x == &r ? "reference: " : "sparse: ") << sc.text << " " << (sc.holds.yes() ? "holds" : sc.holds.no() ? "fails" : "undecided") << " (" << sc.evidence << ")\n";
+    for (const auto& sc : x->source_conditions)
+      RC_LOG() << (x == &r ? "reference: " : "sparse: ") << sc.text << " "
+               << (sc.holds.yes()  ? "holds"
+                   : sc.holds.no() ? "fails"
+                                   : "undecided")
+               << " (" << sc.evidence << ")\n";
   // the routes may find the conditions on the sources in other combinations, decidable or not: where one
   // is certified and the other is not nothing is compared (tagged); where both are, everything is
   RC_TAG(s.certified == r.certified ? "certified alike" : "certified differently");
@@ -339,7 +345,10 @@ io::DaeCase random_circuit(int nodes) {
   for (int k = 0; k < branches; ++k) {
     const int kind = *rc::gen::inRange(0, 5), a = *rc::gen::inRange(0, nodes + 1), b = *rc::gen::inRange(0, nodes + 1);
     if (a == b) continue;
-    const Q v = kind == 0 ? decade(-3, 6) : kind == 1 ? decade(-12, -3) : kind == 2 ? decade(-9, 0) : Q(*rc::gen::inRange(-3, 4));
+    const Q v = kind == 0   ? decade(-3, 6)
+                : kind == 1 ? decade(-12, -3)
+                : kind == 2 ? decade(-9, 0)
+                            : Q(*rc::gen::inRange(-3, 4));
     br.push_back({kind, a, b, v});
   }
   std::vector<int> extra;  // a current unknown per L and V
@@ -347,11 +356,12 @@ io::DaeCase random_circuit(int nodes) {
     if (br[k].kind == 2 || br[k].kind == 3) extra.push_back(static_cast<int>(k));
   const Index n = nodes + static_cast<Index>(extra.size());
   for (int i = 1; i <= nodes; ++i) c.variables.push_back("e" + std::to_string(i));
-  for (int k : extra) c.variables.push_back(std::string(br[static_cast<std::size_t>(k)].kind == 2 ? "iL" : "iV") + std::to_string(k));
+  for (int k : extra)
+    c.variables.push_back(std::string(br[static_cast<std::size_t>(k)].kind == 2 ? "iL" : "iV") + std::to_string(k));
   c.e = QM(n, n), c.a = QM(n, n);
   c.time_name = "t";
   c.f.assign(static_cast<std::size_t>(n), ex::number(0));
-  const auto node = [](int x) { return x - 1; };  // node 0 is ground
+  const auto node = [](int x) { return x - 1; };             // node 0 is ground
   const auto stamp = [&](QM& m, int a, int b, const Q& v) {  // v (x_a − x_b) into rows a, b
     if (a > 0) m(node(a), node(a)) += v;
     if (b > 0) m(node(b), node(b)) += v;
@@ -368,11 +378,18 @@ io::DaeCase random_circuit(int nodes) {
       if (b.kind == 2) c.e(j, j) = b.value;  // L j' = e_a − e_b
       if (b.a > 0) c.a(j, node(b.a)) += b.kind == 2 ? 1 : -1;
       if (b.b > 0) c.a(j, node(b.b)) -= b.kind == 2 ? 1 : -1;
-      if (b.kind == 3) c.f[static_cast<std::size_t>(j)] = b.value == 0 ? ex::number(0) : ex::mul(ex::number(b.value), ex::sin(ex::variable(0)));  // 0 = −(e_a − e_b) + V
+      if (b.kind == 3)
+        c.f[static_cast<std::size_t>(j)] =
+            b.value == 0 ? ex::number(0)
+                         : ex::mul(ex::number(b.value), ex::sin(ex::variable(0)));  // 0 = −(e_a − e_b) + V
     }
     if (b.kind == 4) {  // I out of a, into b
-      if (b.a > 0) c.f[static_cast<std::size_t>(node(b.a))] = ex::sub(c.f[static_cast<std::size_t>(node(b.a))], ex::number(b.value));
-      if (b.b > 0) c.f[static_cast<std::size_t>(node(b.b))] = ex::add(c.f[static_cast<std::size_t>(node(b.b))], ex::number(b.value));
+      if (b.a > 0)
+        c.f[static_cast<std::size_t>(node(b.a))] =
+            ex::sub(c.f[static_cast<std::size_t>(node(b.a))], ex::number(b.value));
+      if (b.b > 0)
+        c.f[static_cast<std::size_t>(node(b.b))] =
+            ex::add(c.f[static_cast<std::size_t>(node(b.b))], ex::number(b.value));
     }
   }
   return c;
@@ -428,8 +445,10 @@ io::LagrangianCase as_implicit(const io::DaeCase& d) {
   for (Index i = 0; i < d.e.rows(); ++i) {
     ex::Expr e = ex::neg(ex::substitute(d.f[static_cast<std::size_t>(i)], 0, ex::variable(s.t())));
     for (Index j = 0; j < d.e.cols(); ++j) {
-      if (d.e(i, j) != 0) e = ex::add(e, ex::mul(ex::number(d.e(i, j)), ex::variable(s.v(static_cast<std::size_t>(j)))));
-      if (d.a(i, j) != 0) e = ex::sub(e, ex::mul(ex::number(d.a(i, j)), ex::variable(s.q(static_cast<std::size_t>(j)))));
+      if (d.e(i, j) != 0)
+        e = ex::add(e, ex::mul(ex::number(d.e(i, j)), ex::variable(s.v(static_cast<std::size_t>(j)))));
+      if (d.a(i, j) != 0)
+        e = ex::sub(e, ex::mul(ex::number(d.a(i, j)), ex::variable(s.q(static_cast<std::size_t>(j)))));
     }
     s.constraints.push_back(e);
   }
@@ -490,7 +509,8 @@ io::LagrangianCase pulled_back(const io::DaeCase& d, std::vector<long>& c) {
     dphi[i] = ex::variable(s.v(i));
     if (c[i] != 0) {
       phi[i] = ex::add(phi[i], ex::mul(ex::number(c[i]), ex::pow(ex::variable(s.q(i - 1)), 2)));
-      dphi[i] = ex::add(dphi[i], ex::mul(ex::number(2 * c[i]), ex::mul(ex::variable(s.q(i - 1)), ex::variable(s.v(i - 1)))));
+      dphi[i] =
+          ex::add(dphi[i], ex::mul(ex::number(2 * c[i]), ex::mul(ex::variable(s.q(i - 1)), ex::variable(s.v(i - 1)))));
     }
   }
   s.constraints.clear();

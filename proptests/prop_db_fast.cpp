@@ -29,8 +29,8 @@ struct Twins {
 
 Twins any_twins() {
   Twins t{any_constrained_system(), any_route_options(), {}, {}, {}};
-  t.fs = {to_double(t.s.omega, &t.opt), to_double(t.s.hessian, &t.opt), to_double(QM::column(t.s.gradient), &t.opt).col(0),
-          to_double(t.s.primary, &t.opt)};
+  t.fs = {to_double(t.s.omega, &t.opt), to_double(t.s.hessian, &t.opt),
+          to_double(QM::column(t.s.gradient), &t.opt).col(0), to_double(t.s.primary, &t.opt)};
   t.r = ref::dirac_bergmann(t.s);
   t.f = fast::dirac_bergmann(t.fs, t.opt);
   return t;
@@ -42,7 +42,8 @@ RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
   const auto& [s, opt, fs, r, f] = any_twins();
   bool same = f.tower.size() == r.tower.size();
   for (Index k = 0; same && k < r.tower.size(); ++k)
-    same = (f.tower[k].empty ? -1 : f.tower[k].direction.dim()) == (r.tower[k].empty ? -1L : static_cast<long>(r.tower[k].direction.dim()));
+    same = (f.tower[k].empty ? -1 : f.tower[k].direction.dim()) ==
+           (r.tower[k].empty ? -1L : static_cast<long>(r.tower[k].direction.dim()));
   RC_ASSERT(!tally("DB dims of M_k", f.certain.yes(), same));
   RC_ASSERT(!tally("DB consistent", f.certain.yes(), f.consistent == r.consistent));
   if (!r.consistent || !f.consistent || f.certain.unknown() || !same) return;
@@ -53,13 +54,15 @@ RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
   const std::vector<Q> x = some_point(r.tower.back());
   const ref::AffineSubspace<Q> rl = ref::multipliers(s, r, x);
   const fast::AffineSubspace fl = fast::multipliers(fs, f, to_double(x), opt);
-  RC_ASSERT(!tally("dim Lambda^(c)", fl.certain.yes(), !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
+  RC_ASSERT(!tally("dim Lambda^(c)", fl.certain.yes(),
+                   !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
   if (fc.certain.unknown() || fl.empty || fl.certain.unknown()) return;
   // Lemma 3.23 (e) and the motion: J* skew, G J* = 0, J*(dE + λ·a) = J(dE + λ·a) on M_c
   const int n = static_cast<int>(fs.omega.rows());
   Truth nondegenerate = yes;
   const Eigen::MatrixXd j = fast::poisson_tensor(fs.omega, {}, nondegenerate);
-  const double scale = 1 + fast::norm2(j) * fast::norm2(j) * (1 + fast::norm2(fs.hessian) + fs.gradient.norm()) * (1 + fl.point.norm() + to_double(x).norm());
+  const double scale = 1 + fast::norm2(j) * fast::norm2(j) * (1 + fast::norm2(fs.hessian) + fs.gradient.norm()) *
+                               (1 + fl.point.norm() + to_double(x).norm());
   const double tol = 1e-8 * scale;
   RC_ASSERT((fc.dirac_tensor + fc.dirac_tensor.transpose()).norm() <= tol);
   RC_ASSERT((fc.second.leftCols(n) * fc.dirac_tensor).norm() <= tol);
@@ -90,10 +93,11 @@ RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
   const Eigen::MatrixXd h = to_double(s.hessian);
   const Eigen::VectorXd g = to_double(QM::column(s.gradient)).col(0);
   const Eigen::VectorXd xdot = fast::abridged_field(fa, cons, h, g, x, lambda);
-  const double tol = 1e-8 * (1 + fast::norm2(fa.dirac_tensor)) * (1 + fast::norm2(h) * x.norm() + g.norm() + lambda.norm() * fast::norm2(cons));
-  RC_ASSERT((cons.leftCols(n) * xdot).norm() <= tol);  // tangent to M_c
+  const double tol = 1e-8 * (1 + fast::norm2(fa.dirac_tensor)) *
+                     (1 + fast::norm2(h) * x.norm() + g.norm() + lambda.norm() * fast::norm2(cons));
+  RC_ASSERT((cons.leftCols(n) * xdot).norm() <= tol);                                        // tangent to M_c
   const Eigen::MatrixXd tsp = fast::kernel(to_double(ref::gradients(s.primary))).columns();  // T S'
-  RC_ASSERT((tsp.transpose() * (w.transpose() * xdot - (h * x + g))).norm() <= tol);  // (3.18)
+  RC_ASSERT((tsp.transpose() * (w.transpose() * xdot - (h * x + g))).norm() <= tol);         // (3.18)
 }
 
 // Λ^(c) at a point far along M_c (x = x0 + 10^k d, d in its direction, k = 6…12: the charges of a
@@ -115,5 +119,6 @@ RC_GTEST_PROP(FastVsReference, MultipliersFarAlongMc, ()) {
   RC_LOG() << case_json(s) << "x = " << json_vector(x) << "\nexact dim Lambda " << rl.direction.dim() << ", fast "
            << (fl.empty ? -1 : fl.direction.dim()) << (fl.certain.yes() ? " (certain)" : " (uncertain)") << "\n";
   RC_ASSERT(!rl.empty);
-  RC_ASSERT(!tally("dim Lambda^(c) far along M_c", fl.certain.yes(), !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
+  RC_ASSERT(!tally("dim Lambda^(c) far along M_c", fl.certain.yes(),
+                   !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
 }

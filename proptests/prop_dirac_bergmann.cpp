@@ -10,9 +10,7 @@
 using namespace dcad::reference;
 using namespace dcad::test;
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 // §2: the Dirac–Bergmann and the Gotay–Nester algorithms produce the same M_k.
 RC_GTEST_PROP(DiracBergmann, SameTowerAsGotayNester, ()) {

@@ -21,7 +21,8 @@ reference::LagrangianSystem rolling_disk(const Q& m, const Q& inertia, const Q& 
   s.n = 4;
   s.names = {"x", "y", "theta", "phi"};
   const auto v = [](Index i) { return ex::variable(4 + i); };
-  s.lagrangian = ex::add(ex::add(ex::mul(ex::number(m / 2), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(ex::number(inertia / 2), ex::pow(v(2), 2))),
+  s.lagrangian = ex::add(ex::add(ex::mul(ex::number(m / 2), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))),
+                                 ex::mul(ex::number(inertia / 2), ex::pow(v(2), 2))),
                          ex::mul(ex::number(jj / 2), ex::pow(v(3), 2)));
   s.constraints = {ex::sub(v(0), ex::mul(ex::mul(ex::number(rr), ex::cos(ex::variable(3))), v(2))),
                    ex::sub(v(1), ex::mul(ex::mul(ex::number(rr), ex::sin(ex::variable(3))), v(2)))};
@@ -73,7 +74,8 @@ TEST(Ehresmann, RollingDiskOfYM6) {
     EXPECT_EQ(-pk, -m * rr * (qv[4] * s - qv[5] * c));
     EXPECT_NE(pk, 0) << "here the printed sign, +p_b K^b_12, would pass too";
     // on Δ (v_x = R cos phi v_theta, v_y = R sin phi v_theta) it vanishes: harmless in YM's example
-    EXPECT_EQ(m * rr * c * qv[6] * at_angle(k[0][0][1], qv, c, s) + m * rr * s * qv[6] * at_angle(k[1][0][1], qv, c, s), 0);
+    EXPECT_EQ(m * rr * c * qv[6] * at_angle(k[0][0][1], qv, c, s) + m * rr * s * qv[6] * at_angle(k[1][0][1], qv, c, s),
+              0);
     ++checked;
   }
   EXPECT_EQ(checked, 7);
@@ -89,7 +91,8 @@ TEST(Ehresmann, LcCircuitOfYM6) {
   const auto q = [](Index i) { return ex::variable(i); };
   const auto v = [](Index i) { return ex::variable(4 + i); };
   const Q l(2), c1(3), c2(5), c3(7);
-  lc.lagrangian = ex::sub(ex::sub(ex::sub(ex::mul(ex::number(l / 2), ex::pow(v(0), 2)), ex::mul(ex::number(1 / (2 * c1)), ex::pow(q(1), 2))),
+  lc.lagrangian = ex::sub(ex::sub(ex::sub(ex::mul(ex::number(l / 2), ex::pow(v(0), 2)),
+                                          ex::mul(ex::number(1 / (2 * c1)), ex::pow(q(1), 2))),
                                   ex::mul(ex::number(1 / (2 * c2)), ex::pow(q(2), 2))),
                           ex::mul(ex::number(1 / (2 * c3)), ex::pow(q(3), 2)));
   lc.constraints = {ex::add(ex::neg(v(0)), v(2)), ex::sub(ex::add(ex::neg(v(1)), v(2)), v(3))};
@@ -104,7 +107,8 @@ TEST(Ehresmann, LcCircuitOfYM6) {
     for (const auto& row : kb)
       for (const auto& e : row) EXPECT_TRUE(ex::is_number(e, 0)) << ex::to_text(e, lc.variable_names());
   const std::vector<Q> pt{Q(1), Q(2), Q(3), Q(4), Q(9), Q(9), Q(5), Q(-2), Q(0)};
-  EXPECT_EQ(reference::value_at(reference::constrained_lagrangian(lc, conn), pt), l / 2 * 25 - 4 / (2 * c1) - 9 / (2 * c2) - 16 / (2 * c3));
+  EXPECT_EQ(reference::value_at(reference::constrained_lagrangian(lc, conn), pt),
+            l / 2 * 25 - 4 / (2 * c1) - 9 / (2 * c2) - 16 / (2 * c3));
 }
 
 // YM Thm 5.6: along the motion of the CAD (exact pointwise route) at a point of M_c, the implicit
@@ -120,13 +124,15 @@ RC_GTEST_PROP(Ehresmann, ImplicitLagrangeDAlembertHoldAlongTheCadMotion, ()) {
   const PointMap phi = random_map(in.n);
   const reference::LagrangianSystem s = pulled_back(in, phi);
   std::vector<Q> start = phi.inverse(std::vector<Q>(x0.begin(), x0.begin() + static_cast<long>(in.n)));
-  const std::vector<Q> big_v = (reference::inverse(phi.jacobian(start)) *
-                                QM::column(std::vector<Q>(x0.begin() + static_cast<long>(in.n), x0.begin() + static_cast<long>(2 * in.n))))
-                                   .col(0);
+  const std::vector<Q> big_v =
+      (reference::inverse(phi.jacobian(start)) *
+       QM::column(std::vector<Q>(x0.begin() + static_cast<long>(in.n), x0.begin() + static_cast<long>(2 * in.n))))
+          .col(0);
   start.insert(start.end(), big_v.begin(), big_v.end());
   start.push_back(0);
   reference::ExactDecisions<Q> d;
-  const auto r = reference::pointwise_cad<Q>(s, start, std::vector<bool>(start.size(), true), d, [](const Q& c) { return c; });
+  const auto r =
+      reference::pointwise_cad<Q>(s, start, std::vector<bool>(start.size(), true), d, [](const Q& c) { return c; });
   RC_LOG() << "pointwise: " << r.why << "\nL = " << ex::to_text(s.lagrangian, s.variable_names()) << "\n";
   for (const auto& c : s.constraints) RC_LOG() << "constraint " << ex::to_text(c, s.variable_names()) << "\n";
   for (const Q& v : start) RC_LOG() << v.str() << " ";
@@ -152,8 +158,15 @@ RC_GTEST_PROP(Ehresmann, ImplicitLagrangeDAlembertHoldAlongTheCadMotion, ()) {
 RC_GTEST_PROP(Ehresmann, RollingDiskMomentaAreConserved, ()) {
   const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
   const reference::LagrangianSystem disk = rolling_disk(pos(), pos(), pos(), pos());
-  std::vector<Q> start{Q(*rc::gen::inRange(-5, 6)), Q(*rc::gen::inRange(-5, 6)), Q(*rc::gen::inRange(-5, 6)), Q(0), Q(0), Q(0),
-                       Q(*rc::gen::inRange(-5, 6)), Q(*rc::gen::inRange(-5, 6)), Q(0)};
+  std::vector<Q> start{Q(*rc::gen::inRange(-5, 6)),
+                       Q(*rc::gen::inRange(-5, 6)),
+                       Q(*rc::gen::inRange(-5, 6)),
+                       Q(0),
+                       Q(0),
+                       Q(0),
+                       Q(*rc::gen::inRange(-5, 6)),
+                       Q(*rc::gen::inRange(-5, 6)),
+                       Q(0)};
   std::vector<bool> fixed(9, true);
   fixed[4] = fixed[5] = false;
   reference::ExactDecisions<Q> d;

@@ -29,10 +29,10 @@ namespace {
 namespace fam = dcad::families;
 namespace ref = dcad::reference;
 namespace fast = dcad::fast;
-using fam::Index;
-using fam::Q;
 using dcad::test::tally;
 using dcad::test::to_double;
+using fam::Index;
+using fam::Q;
 
 /// A backend's answer: the discrete results, its own certainty, and (when it gives them) orthonormal
 /// bases of T M_0 … T M_c as rows in double — both twins' orientation.
@@ -69,7 +69,8 @@ struct Reference {
 struct Certified {
   static constexpr const char* name = "certified";
   static Answer answer(const fam::Instance& in) {
-    const dcad::certified::CertifiedTower t = dcad::certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
+    const dcad::certified::CertifiedTower t =
+        dcad::certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
     Answer a;
     a.dims = t.dims;
     a.consistent = t.consistent;
@@ -85,11 +86,13 @@ struct Fast {
     fast::LinearSystem s;
     if (in.pontryagin) {
       const auto& p = in.circuit;
-      s = fast::pontryagin_system(fast::PontryaginInput{p.n, to_double(p.k, &opt), to_double(p.vv, &opt), to_double(p.qv, &opt),
-                                                        to_double(p.qq, &opt), to_double(p.q), to_double(p.v)},
-                                  opt);
+      s = fast::pontryagin_system(
+          fast::PontryaginInput{p.n, to_double(p.k, &opt), to_double(p.vv, &opt), to_double(p.qv, &opt),
+                                to_double(p.qq, &opt), to_double(p.q), to_double(p.v)},
+          opt);
     } else {
-      s = {fast::dirac_from_presymplectic(to_double(in.omega, &opt)), to_double(in.hessian, &opt), to_double(in.gradient, &opt), 0.0};
+      s = {fast::dirac_from_presymplectic(to_double(in.omega, &opt)), to_double(in.hessian, &opt),
+           to_double(in.gradient, &opt), 0.0};
     }
     const fast::CadResult r = fast::constraint_tower(s, opt);
     Answer a;
@@ -154,7 +157,8 @@ void certain_answers_are_the_planted_ones() {
   RC_TAG(a.certain ? "certain" : "uncertain");
   if (std::string(B::name) != "fast") RC_ASSERT(a.certain);
   RC_ASSERT(!tally(std::string(B::name) + ": dims (" + in.family + ")", a.certain, a.dims == in.dims));
-  RC_ASSERT(!tally(std::string(B::name) + ": solution rank (" + in.family + ")", a.certain, a.solution_rank == in.solution_rank));
+  RC_ASSERT(!tally(std::string(B::name) + ": solution rank (" + in.family + ")", a.certain,
+                   a.solution_rank == in.solution_rank));
 }
 
 }  // namespace
@@ -163,6 +167,10 @@ RC_GTEST_PROP(EveryBackendReference, TowerDecreasesAndNests, ()) { tower_decreas
 RC_GTEST_PROP(EveryBackendCertified, TowerDecreasesAndNests, ()) { tower_decreases_and_nests<Certified>(); }
 RC_GTEST_PROP(EveryBackendFast, TowerDecreasesAndNests, ()) { tower_decreases_and_nests<Fast>(); }
 
-RC_GTEST_PROP(EveryBackendReference, CertainAnswersAreThePlantedOnes, ()) { certain_answers_are_the_planted_ones<Reference>(); }
-RC_GTEST_PROP(EveryBackendCertified, CertainAnswersAreThePlantedOnes, ()) { certain_answers_are_the_planted_ones<Certified>(); }
+RC_GTEST_PROP(EveryBackendReference, CertainAnswersAreThePlantedOnes, ()) {
+  certain_answers_are_the_planted_ones<Reference>();
+}
+RC_GTEST_PROP(EveryBackendCertified, CertainAnswersAreThePlantedOnes, ()) {
+  certain_answers_are_the_planted_ones<Certified>();
+}
 RC_GTEST_PROP(EveryBackendFast, CertainAnswersAreThePlantedOnes, ()) { certain_answers_are_the_planted_ones<Fast>(); }

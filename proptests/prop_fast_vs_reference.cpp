@@ -15,7 +15,7 @@ namespace ref = dcad::reference;
 
 namespace {
 
-#define DCAD_COMPARE(what, certain, fast_value, ref_value)                                            \
+#define DCAD_COMPARE(what, certain, fast_value, ref_value) \
   RC_ASSERT(!tally(what, certain, (fast_value) == (ref_value)));
 
 void compare_subspace(const std::string& what, const fast::Subspace& f, const QSub& r, double bound) {
@@ -39,7 +39,8 @@ RC_GTEST_PROP(FastVsReference, Symplectic, ()) {
   compare_subspace("V^Omega", comp, ref::symplectic_complement(p.w, p.v), bound);
   const fast::PresymplecticForm om = fast::restrict_form(w, v);
   const fast::RankDecision rk = fast::form_rank(om);
-  DCAD_COMPARE("rank Omega|V", rk.certain.yes(), static_cast<Index>(rk.rank), ref::form_rank(ref::restrict_form(p.w, p.v)));
+  DCAD_COMPARE("rank Omega|V", rk.certain.yes(), static_cast<Index>(rk.rank),
+               ref::form_rank(ref::restrict_form(p.w, p.v)));
   compare_subspace("V^omega", fast::form_kernel(om), ref::form_kernel(ref::restrict_form(p.w, p.v)), bound);
   const fast::NormalFormBasis nf = fast::normal_form_basis(w, v);
   DCAD_COMPARE("Lemma 3.1 s", nf.certain.yes(), static_cast<Index>(nf.s), ref::normal_form_basis(p.w, p.v).s);
@@ -60,7 +61,8 @@ RC_GTEST_PROP(FastVsReference, Symplectic, ()) {
   const auto fs = fast::solve_restricted(w, v, to_double(beta));
   DCAD_COMPARE("Lemma 3.5 solvable", fs.x.certain.yes(), !fs.x.empty, !rs.x.empty);
   if (!rs.x.empty && fs.x.certain.yes() && !fs.x.empty) {
-    DCAD_COMPARE("Lemma 3.6 solution dim", fs.x.certain.yes(), static_cast<Index>(fs.x.direction.dim()), rs.x.direction.dim());
+    DCAD_COMPARE("Lemma 3.6 solution dim", fs.x.certain.yes(), static_cast<Index>(fs.x.direction.dim()),
+                 rs.x.direction.dim());
     // the fast point solves i_X ω = β|_V up to rounding
     const Eigen::VectorXd resid = v.basis() * (w.transpose() * fs.x.point - to_double(beta));
     RC_ASSERT(resid.norm() <= bound * (1 + to_double(beta).norm()) * 1e3);
@@ -129,8 +131,10 @@ RC_GTEST_PROP(FastVsReference, NearDegenerate, ()) {
   const fast::RankDecision d = fast::decide_rank(wd, -1, opt);
   RC_CLASSIFY(exact != 2 * p.h, "rank moved by 2^-k");
   RC_CLASSIFY(d.certain.unknown(), "fast uncertain");
-  RC_ASSERT(!tally("near-degenerate rank (2^-" + std::to_string(k) + ")", d.certain.yes(), static_cast<Index>(d.rank) == exact));
-  const fast::Subspace ker = fast::form_kernel(fast::restrict_form(wd, fast::Subspace::whole(static_cast<int>(p.n))), opt);
+  RC_ASSERT(!tally("near-degenerate rank (2^-" + std::to_string(k) + ")", d.certain.yes(),
+                   static_cast<Index>(d.rank) == exact));
+  const fast::Subspace ker =
+      fast::form_kernel(fast::restrict_form(wd, fast::Subspace::whole(static_cast<int>(p.n))), opt);
   const Index exact_kernel = ref::form_kernel(ref::restrict_form(w, QSub::whole(p.n))).dim();
   RC_ASSERT(!tally("near-degenerate kernel dim", ker.certain().yes(), static_cast<Index>(ker.dim()) == exact_kernel));
 }
@@ -145,7 +149,8 @@ RC_GTEST_PROP(FastVsReference, Graded, ()) {
   for (Index i = 0; i < p.n; ++i)
     for (Index j = 0; j < p.n; ++j) {
       const int e = g[i] + g[j];
-      const Q s = e >= 0 ? Q(boost::multiprecision::mpz_int(1) << e) : Q(1) / Q(boost::multiprecision::mpz_int(1) << -e);
+      const Q s =
+          e >= 0 ? Q(boost::multiprecision::mpz_int(1) << e) : Q(1) / Q(boost::multiprecision::mpz_int(1) << -e);
       w(i, j) *= s;
     }
   fast::Options opt = any_route_options();

@@ -67,9 +67,12 @@ std::string deck(const ref::RlcCircuit<Q>& c) {
   std::string out;
   const char* letter = "LCRVIW";
   for (const auto& b : c.branches)
-    out += std::string(1, letter[static_cast<int>(b.kind)]) + b.name + " " + std::to_string(b.from + 1) + " " + std::to_string(b.to + 1) + " " +
-           (b.kind == RlcKind::voltage || b.kind == RlcKind::current ? "s" + std::to_string(b.source) : b.value.str()) + "\n";
-  for (const auto& mu : c.mutuals) out += "K " + c.branches[mu.a].name + " " + c.branches[mu.b].name + " M=" + mu.m.str() + "\n";
+    out += std::string(1, letter[static_cast<int>(b.kind)]) + b.name + " " + std::to_string(b.from + 1) + " " +
+           std::to_string(b.to + 1) + " " +
+           (b.kind == RlcKind::voltage || b.kind == RlcKind::current ? "s" + std::to_string(b.source) : b.value.str()) +
+           "\n";
+  for (const auto& mu : c.mutuals)
+    out += "K " + c.branches[mu.a].name + " " + c.branches[mu.b].name + " M=" + mu.m.str() + "\n";
   return out;
 }
 
@@ -81,7 +84,8 @@ std::vector<Q> point_of_mc(const ref::ForcedResult<Q>& r, Index n, const std::ve
     RC_PRE(s == 0);
   }
   const QM ex = r.equations.block(0, r.equations.rows(), 0, n);
-  std::vector<Q> rhs = ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
+  std::vector<Q> rhs =
+      ref::evaluate_rows(r.equations.block(0, r.equations.rows(), n, r.equations.cols()), std::vector<Q>(), u);
   for (Q& x : rhs) x = -x;
   return some_point(ref::solve(ex, rhs));
 }
@@ -153,7 +157,7 @@ RC_GTEST_PROP(ForcedTower, FastEqualsReference, ()) {
   const auto with_conditions = [m](const Eigen::MatrixXd& eq, const Eigen::MatrixXd& cond) {
     std::vector<Eigen::VectorXd> rows;  // the conditions [1 | σ⁽⁰⁾ …] and their derivatives within the jet
     for (Eigen::Index i = 0; i < cond.rows(); ++i)
-      for (Eigen::VectorXd c = cond.row(i).transpose(); c.tail(c.size() - 1).norm() > 0; ) {
+      for (Eigen::VectorXd c = cond.row(i).transpose(); c.tail(c.size() - 1).norm() > 0;) {
         rows.push_back(c);
         if (c.tail(m).norm() > 0) break;  // σ of the top order: its derivative is outside the jet
         Eigen::VectorXd d = Eigen::VectorXd::Zero(c.size());
@@ -162,7 +166,8 @@ RC_GTEST_PROP(ForcedTower, FastEqualsReference, ()) {
       }
     Eigen::MatrixXd out = Eigen::MatrixXd::Zero(eq.rows() + static_cast<Eigen::Index>(rows.size()), eq.cols());
     out.topRows(eq.rows()) = eq;
-    for (std::size_t k = 0; k < rows.size(); ++k) out.row(eq.rows() + static_cast<Eigen::Index>(k)).tail(cond.cols()) = rows[k].transpose();
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      out.row(eq.rows() + static_cast<Eigen::Index>(k)).tail(cond.cols()) = rows[k].transpose();
     return out;
   };
   within(g.conditions, to_double(r.conditions));
@@ -186,7 +191,9 @@ RC_GTEST_PROP(ImplicitLagrangian, CadVelocitiesSolveLagrangeDAlembertPontryagin,
   // L and F of the circuit: F(q, v) = −R v
   ref::Matrix<Q> ki, ri;
   ref::affine_kcl(c, ki, ri);
-  ref::PontryaginInput<Q> in{static_cast<Index>(nb), ki, ref::rlc_inductance(c), QM(nb, nb), QM(nb, nb), std::vector<Q>(nb), std::vector<Q>(nb)};
+  ref::PontryaginInput<Q> in{
+      static_cast<Index>(nb), ki, ref::rlc_inductance(c), QM(nb, nb), QM(nb, nb), std::vector<Q>(nb),
+      std::vector<Q>(nb)};
   QM fv(nb, nb);
   for (Index b = 0; b < nb; ++b) {
     if (c.branches[b].kind == RlcKind::capacitor) in.qq(b, b) = -Q(1) / c.branches[b].value;
@@ -224,8 +231,10 @@ Index cycle_rank_of(const ref::RlcCircuit<Q>& c, const std::function<bool(RlcKin
   for (const auto& b : c.branches) {
     if (!keep(b.kind)) continue;
     const long u = find(b.from + 1), v = find(b.to + 1);
-    if (u == v) ++cycles;
-    else parent[u] = v;
+    if (u == v)
+      ++cycles;
+    else
+      parent[u] = v;
   }
   return cycles;
 }
@@ -289,8 +298,8 @@ RC_GTEST_PROP(ImplicitLagrangian, DcSourcesObeyTheCircuitLaws, ()) {
   std::vector<Q> q(x.begin(), x.begin() + nb), v(x.begin() + nb, x.begin() + 2 * nb), p(x.begin() + 2 * nb, x.end());
   std::vector<Q> qd(xd.begin(), xd.begin() + nb), pd(xd.begin() + 2 * nb, xd.end());
   RC_ASSERT(qd == v);
-  RC_ASSERT((k * QM::column(v)).is_zero());                       // KCL
-  RC_ASSERT(p == (phi * QM::column(v)).col(0));                   // p = Φ v
+  RC_ASSERT((k * QM::column(v)).is_zero());      // KCL
+  RC_ASSERT(p == (phi * QM::column(v)).col(0));  // p = Φ v
   std::vector<Q> drop(nb);
   for (Index b = 0; b < nb; ++b) {
     const auto& br = c.branches[b];
@@ -300,7 +309,7 @@ RC_GTEST_PROP(ImplicitLagrangian, DcSourcesObeyTheCircuitLaws, ()) {
     if (br.kind == RlcKind::voltage) drop[b] += u[1 + br.source];  // F = −V: φ(n+) − φ(n−) = V
     if (br.kind == RlcKind::current) RC_ASSERT(v[b] == u[1 + br.source]);
   }
-  RC_ASSERT(ref::contains(QSub::span(ki), drop));                 // KVL, current sources free
+  RC_ASSERT(ref::contains(QSub::span(ki), drop));  // KVL, current sources free
 }
 
 // YM Thm 5.6, (a) ⇔ (c), for linear data with L regular on Δ: along a solution of the CAD the
@@ -330,7 +339,7 @@ RC_GTEST_PROP(ImplicitLagrangian, ConstrainedSystemByRestrictionIsTheCad, ()) {
   std::vector<Q> big_x(xd.begin(), xd.begin() + n);  // X = (q̇, ṗ)
   big_x.insert(big_x.end(), xd.begin() + 2 * n, xd.end());
   const QSub tp = ref::constraint_momentum_tangent(in);
-  RC_ASSERT(ref::contains(tp, big_x));  // tangent to P: X_V = 0
+  RC_ASSERT(ref::contains(tp, big_x));                               // tangent to P: X_V = 0
   RC_ASSERT(ref::dirac_defect(ref::constrained_dirac(in)).empty());  // D_P is Dirac (Prop. 5.2)
   const std::vector<Q> c = ref::constrained_part(in, big_x);
   // (5.11) T_P(T*Q) = T P ⊕ V: a planted part (0, η), η ∈ Δ°, is split off again and c is unchanged.
@@ -461,7 +470,8 @@ RC_GTEST_PROP(ForcedTower, GraphRouteHoldsThroughPositiveDefiniteCouplings, ()) 
       RC_ASSERT((v.transpose() * block * v)(0, 0) > 0);
     }
     std::vector<rlc::Branch> branches;
-    for (const auto& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+    for (const auto& b : c.branches)
+      branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
     const rlc::Tower t = rlc::tower(c.nodes, branches);
     RC_ASSERT(r.dims == t.dims);
     RC_ASSERT(static_cast<long>(r.solution_rank) == t.solution_rank);

@@ -60,8 +60,12 @@ std::vector<Q> push_forward(const PointMap& phi, const std::vector<Q>& qv, const
   std::vector<ex::Expr> q, v;
   phi.formulas(q, v);
   std::vector<Q> out;
-  for (const auto& e : q) out.push_back(ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).gradient(0));
-  for (const auto& e : v) out.push_back(ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).gradient(0));
+  for (const auto& e : q)
+    out.push_back(
+        ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).gradient(0));
+  for (const auto& e : v)
+    out.push_back(
+        ex::evaluate<reference::Jet<Q>>(e, args, [&](const Q& c) { return reference::Jet<Q>(sp, c); }).gradient(0));
   return out;
 }
 
@@ -98,8 +102,9 @@ reference::LagrangianSystem rolling_disk(const Q& m, const Q& inertia, const Q& 
   s.names = {"x", "y", "theta", "phi"};
   const auto v = [](Index i) { return ex::variable(4 + i); };
   const auto half = [](const Q& c) { return ex::number(c / 2); };
-  s.lagrangian = ex::add(ex::add(ex::mul(half(m), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(half(inertia), ex::pow(v(2), 2))),
-                         ex::mul(half(jj), ex::pow(v(3), 2)));
+  s.lagrangian = ex::add(
+      ex::add(ex::mul(half(m), ex::add(ex::pow(v(0), 2), ex::pow(v(1), 2))), ex::mul(half(inertia), ex::pow(v(2), 2))),
+      ex::mul(half(jj), ex::pow(v(3), 2)));
   s.constraints = {ex::sub(v(0), ex::mul(ex::mul(ex::number(rr), ex::cos(ex::variable(3))), v(2))),
                    ex::sub(v(1), ex::mul(ex::mul(ex::number(rr), ex::sin(ex::variable(3))), v(2)))};
   return s;
@@ -117,15 +122,17 @@ Planted planted(Index max_n) {
   p.in = random_pontryagin(pick_size(1, max_n));
   p.system = reference::pontryagin_system(p.in);
   p.linear = reference::constraint_tower(p.system);
-  if (!p.linear.consistent) {  // an empty M_k is seen locally only where it is a nonzero constant: drop a, b (then 0 ∈ M_c)
+  if (!p.linear
+           .consistent) {  // an empty M_k is seen locally only where it is a nonzero constant: drop a, b (then 0 ∈ M_c)
     p.in.q.assign(p.in.n, Q(0));
     p.in.v.assign(p.in.n, Q(0));
     p.system = reference::pontryagin_system(p.in);
     p.linear = reference::constraint_tower(p.system);
   }
   RC_TAG("c = " + std::to_string(p.linear.steps));
-  RC_LOG() << "linear system: A " << to_text(p.in.vv) << " B " << to_text(p.in.qv) << " C " << to_text(p.in.qq) << " K " << to_text(p.in.k)
-           << " a " << to_text(QM::from_rows({p.in.q}, p.in.n)) << " b " << to_text(QM::from_rows({p.in.v}, p.in.n)) << "\n";
+  RC_LOG() << "linear system: A " << to_text(p.in.vv) << " B " << to_text(p.in.qv) << " C " << to_text(p.in.qq) << " K "
+           << to_text(p.in.k) << " a " << to_text(QM::from_rows({p.in.q}, p.in.n)) << " b "
+           << to_text(QM::from_rows({p.in.v}, p.in.n)) << "\n";
   p.x0 = some_point(p.linear.final_step().m);
   return p;
 }
@@ -150,15 +157,16 @@ TEST(JetSpace, MonomialsAreBinomialsUpToTheStatedLimit) {
   EXPECT_EQ(s.size(), 2300u);  // C(25, 3)
   EXPECT_EQ(s.count_up_to(0), 1u);
   EXPECT_EQ(s.count_up_to(1), 4u);
-  EXPECT_EQ(s.count_up_to(2), 10u);  // C(5, 2)
-  EXPECT_EQ(s.count_up_to(21), 2024u);  // C(24, 3)
+  EXPECT_EQ(s.count_up_to(2), 10u);                             // C(5, 2)
+  EXPECT_EQ(s.count_up_to(21), 2024u);                          // C(24, 3)
   EXPECT_THROW(reference::JetSpace(6, 30), std::length_error);  // C(36, 6) = 1 947 792 monomials
 }
 
 RC_GTEST_PROP(Pointwise, LinearFormulasGiveTheLinearTower, ()) {
   const Planted p = planted(3);
   const PR r = exact_at(pulled_back(p.in, identity_map(p.in.n)), qvt_of(p.x0, p.in.n));
-  RC_LOG() << "pointwise dims" << to_text(r.dims) << " linear" << to_text(linear_dims(p.linear)) << " why " << r.why << "\n";
+  RC_LOG() << "pointwise dims" << to_text(r.dims) << " linear" << to_text(linear_dims(p.linear)) << " why " << r.why
+           << "\n";
   RC_ASSERT(r.regular);
   RC_ASSERT(r.consistent);
   RC_ASSERT(r.dims == linear_dims(p.linear));
@@ -188,10 +196,13 @@ RC_GTEST_PROP(Pointwise, PointTransformationsKeepTheTowerAndTheMotion, ()) {
   RC_ASSERT(r.solution_rank == p.linear.solution_rank);
   const reference::AffineSubspace<Q> vel = reference::velocities(p.system, p.linear, p.x0);
   const std::vector<Q> qv(start.begin(), start.begin() + static_cast<long>(2 * n));
-  RC_ASSERT(in_affine(push_forward(phi, qv, std::vector<Q>(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n))), vel, 2 * n));
+  RC_ASSERT(in_affine(
+      push_forward(phi, qv, std::vector<Q>(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n))), vel,
+      2 * n));
   // P = DΦᵀ p: the momenta are the linear ones pulled back
   const QM jac = phi.jacobian(std::vector<Q>(start.begin(), start.begin() + static_cast<long>(n)));
-  const std::vector<Q> big_p = (jac.transpose() * QM::column(std::vector<Q>(p.x0.begin() + static_cast<long>(2 * n), p.x0.end()))).col(0);
+  const std::vector<Q> big_p =
+      (jac.transpose() * QM::column(std::vector<Q>(p.x0.begin() + static_cast<long>(2 * n), p.x0.end()))).col(0);
   for (Index i = 0; i < n; ++i) RC_ASSERT(r.point[2 * n + i] == big_p[i]);
 }
 
@@ -205,7 +216,8 @@ RC_GTEST_PROP(Pointwise, FastEqualsReferenceOnPulledBackSystems, ()) {
   QM cm(n, n);
   for (Index i = 0; i < n; ++i)
     for (Index j = 0; j < n; ++j) cm(i, j) = phi.c[i][j];
-  RC_LOG() << "L1 " << to_text(phi.l1) << " L2 " << to_text(phi.l2) << " c " << to_text(cm) << " L " << ex::to_text(s.lagrangian, s.variable_names()) << "\n";
+  RC_LOG() << "L1 " << to_text(phi.l1) << " L2 " << to_text(phi.l2) << " c " << to_text(cm) << " L "
+           << ex::to_text(s.lagrangian, s.variable_names()) << "\n";
   const PR r = exact_at(s, start);
   std::vector<double> xd;
   for (const Q& x : start) xd.push_back(x.convert_to<double>());
@@ -222,16 +234,19 @@ RC_GTEST_PROP(Pointwise, FastEqualsReferenceOnPulledBackSystems, ()) {
     return;
   }
   const bool certain = d.certain.yes() && f.regular;
-  RC_LOG() << "exact dims" << to_text(r.dims) << " rank " << r.solution_rank << "; double dims" << to_text(f.dims) << " rank " << f.solution_rank
-           << " moves " << f.moves << " certain " << d.certain.text() << "\n";
-  for (Index i = 0; i < r.velocity.size() && i < f.velocity.size(); ++i) RC_LOG() << "  x " << (i < start.size() ? start[i].str() : "") << " exact " << r.velocity[i].convert_to<double>() << " double " << f.velocity[i] << "\n";
+  RC_LOG() << "exact dims" << to_text(r.dims) << " rank " << r.solution_rank << "; double dims" << to_text(f.dims)
+           << " rank " << f.solution_rank << " moves " << f.moves << " certain " << d.certain.text() << "\n";
+  for (Index i = 0; i < r.velocity.size() && i < f.velocity.size(); ++i)
+    RC_LOG() << "  x " << (i < start.size() ? start[i].str() : "") << " exact " << r.velocity[i].convert_to<double>()
+             << " double " << f.velocity[i] << "\n";
   RC_ASSERT(!tally("pointwise dims", certain, f.dims == r.dims));
   RC_ASSERT(!tally("pointwise solution rank", certain, f.solution_rank == r.solution_rank));
   if (certain && f.dims == r.dims && f.moves == 0) {  // same point: same velocity (modulo the gauge)
     double scale = 1, worst = 0;
     for (Index i = 0; i < 3 * n; ++i) scale = std::max(scale, std::abs(r.velocity[i].convert_to<double>()));
     if (r.gauge.empty())
-      for (Index i = 0; i < 3 * n; ++i) worst = std::max(worst, std::abs(f.velocity[i] - r.velocity[i].convert_to<double>()));
+      for (Index i = 0; i < 3 * n; ++i)
+        worst = std::max(worst, std::abs(f.velocity[i] - r.velocity[i].convert_to<double>()));
     // 1e-5 of the scale, not 1e-6: double's forward error is ε times the condition number, and pulled-back
     // points reach |q| ~ 2e4 (kinetic entries ~ 1e8). Counterexample under clang's ASan build (seed 662236186,
     // q = (-12, 147, 21744), v = (0, 0, 1)): certain, same dims, v-rates 0.99984 against 1 at scale 193785.
@@ -246,12 +261,13 @@ RC_GTEST_PROP(Pointwise, RollingDiskWithRandomParameters, ()) {
   const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
   const Q m = pos(), inertia = pos(), jj = pos(), rr = pos();
   const reference::LagrangianSystem s = rolling_disk(m, inertia, jj, rr);
-  const Q x = *rc::gen::inRange(-5, 6), y = *rc::gen::inRange(-5, 6), th = *rc::gen::inRange(-5, 6), vth = *rc::gen::inRange(-5, 6),
-          vph = *rc::gen::inRange(-5, 6);
+  const Q x = *rc::gen::inRange(-5, 6), y = *rc::gen::inRange(-5, 6), th = *rc::gen::inRange(-5, 6),
+          vth = *rc::gen::inRange(-5, 6), vph = *rc::gen::inRange(-5, 6);
   reference::ExactDecisions<Q> d;
   std::vector<bool> fixed(9, false);
   for (Index i : {0, 1, 2, 3, 6, 7}) fixed[i] = true;
-  const PR r = reference::pointwise_cad<Q>(s, {x, y, th, Q(0), Q(0), Q(0), vth, vph, Q(0)}, fixed, d, [](const Q& c) { return c; });
+  const PR r = reference::pointwise_cad<Q>(s, {x, y, th, Q(0), Q(0), Q(0), vth, vph, Q(0)}, fixed, d,
+                                           [](const Q& c) { return c; });
   RC_ASSERT(r.dims == (std::vector<long>{12, 6}));
   RC_ASSERT(r.solution_rank == 0u);
   RC_ASSERT(r.point[4] == rr * vth);  // v_x = R cos 0 v_theta
@@ -280,7 +296,8 @@ RC_GTEST_PROP(Pointwise, HeisenbergConstraint, ()) {
 // The time-dependent family of V §3.5: L = ½(v_x² + v_y²) + w (v_x + a t) + b z, constraint v_z = w:
 // M_2 = {v_x + a t = 0}, M_3 = {v_w = a}, dims [12, 7, 6, 5], unique, for every a, b (V (3.27)).
 RC_GTEST_PROP(Pointwise, VignoloFamily, ()) {
-  const Q a(*rc::gen::inRange(-5, 6), *rc::gen::inRange(1, 4)), b = *rc::gen::inRange(-5, 6), t0(*rc::gen::inRange(-5, 6), 2);
+  const Q a(*rc::gen::inRange(-5, 6), *rc::gen::inRange(1, 4)), b = *rc::gen::inRange(-5, 6),
+                                                                t0(*rc::gen::inRange(-5, 6), 2);
   reference::LagrangianSystem s;
   s.n = 4;
   s.has_time = true;
@@ -351,8 +368,10 @@ RC_GTEST_PROP(Chart, FormulasEqualTheExactPointwiseCad, ()) {
   std::vector<double> v;
   try {
     fast::ToleranceDecisions dd;
-    const reference::PointwiseResult<double> f = fast::pointwise_cad(s, doubles(at), std::vector<bool>(at.size(), true), dd);
-    if (f.regular && f.consistent && f.gauge.empty()) v.assign(f.velocity.begin(), f.velocity.begin() + static_cast<long>(2 * n));
+    const reference::PointwiseResult<double> f =
+        fast::pointwise_cad(s, doubles(at), std::vector<bool>(at.size(), true), dd);
+    if (f.regular && f.consistent && f.gauge.empty())
+      v.assign(f.velocity.begin(), f.velocity.begin() + static_cast<long>(2 * n));
   } catch (const std::exception&) {
   }
   if (v.empty() && r.gauge.empty()) {  // formulas() refuses an unchecked chart for a unique motion (api/formulas.cpp)
@@ -362,7 +381,8 @@ RC_GTEST_PROP(Chart, FormulasEqualTheExactPointwiseCad, ()) {
   fast::Chart ch;
   try {
     ch = fast::chart_near(s, doubles(at), r.dims, v.empty() ? nullptr : &v);
-  } catch (const fast::ChartFailure& e) {  // no formulas is not wrong formulas (the result says why); the tag shows how often
+  } catch (const fast::ChartFailure&
+               e) {  // no formulas is not wrong formulas (the result says why); the tag shows how often
     RC_TAG("no chart");
     RC_LOG() << e.what() << "\n";
     return;
@@ -377,8 +397,11 @@ RC_GTEST_PROP(Chart, FormulasEqualTheExactPointwiseCad, ()) {
   std::vector<Q> u(2 * n);
   for (Index i = 0; i < 2 * n; ++i) u[i] = exact_value(ch.rates[i], at);
   RC_TAG(r.solution_rank ? "not unique" : "unique");
-  RC_LOG() << "L " << ex::to_text(s.lagrangian, s.variable_names()) << "\ndims" << to_text(r.dims) << " chart dims" << to_text(ch.dims) << " rank " << r.solution_rank << "\n";
-  for (Index i = 0; i < 2 * n; ++i) RC_LOG() << "  " << s.variable_names()[i] << " = " << at[i].str() << ": chart " << u[i].str() << " reference " << r.velocity[i].str() << "\n";
+  RC_LOG() << "L " << ex::to_text(s.lagrangian, s.variable_names()) << "\ndims" << to_text(r.dims) << " chart dims"
+           << to_text(ch.dims) << " rank " << r.solution_rank << "\n";
+  for (Index i = 0; i < 2 * n; ++i)
+    RC_LOG() << "  " << s.variable_names()[i] << " = " << at[i].str() << ": chart " << u[i].str() << " reference "
+             << r.velocity[i].str() << "\n";
   if (r.gauge.empty()) {
     for (Index i = 0; i < 2 * n; ++i) RC_ASSERT(u[i] == r.velocity[i]);
   } else {  // u − velocity ∈ span(gauge) on the (q, v) coordinates
@@ -400,14 +423,15 @@ RC_GTEST_PROP(Chart, RollingDiskAtGenericAnglesIsTheClosedForm, ()) {
   const auto pos = [] { return Q(*rc::gen::inRange(1, 20), *rc::gen::inRange(1, 20)); };
   const Q m = pos(), inertia = pos(), jj = pos(), rr = pos();
   const reference::LagrangianSystem s = rolling_disk(m, inertia, jj, rr);
-  const double R = rr.convert_to<double>(), ph = *rc::gen::inRange(-300, 301) / 100.0, vth = *rc::gen::inRange(-50, 51) / 10.0,
-               vph = *rc::gen::inRange(-50, 51) / 10.0;
+  const double R = rr.convert_to<double>(), ph = *rc::gen::inRange(-300, 301) / 100.0,
+               vth = *rc::gen::inRange(-50, 51) / 10.0, vph = *rc::gen::inRange(-50, 51) / 10.0;
   const std::vector<double> x0{0.5, -1.25, 0.75, ph, R * std::cos(ph) * vth, R * std::sin(ph) * vth, vth, vph, 0};
   const fast::Chart ch = fast::chart_near(s, x0, {12, 6});
   const fast::ChartField f(ch);
   std::vector<double> u(8);
   f.rates(x0.data(), 0, u.data());
-  RC_LOG() << "phi " << ph << " v_theta " << vth << " v_phi " << vph << " rates " << u[4] << " " << u[5] << " " << u[6] << " " << u[7] << "\n";
+  RC_LOG() << "phi " << ph << " v_theta " << vth << " v_phi " << vph << " rates " << u[4] << " " << u[5] << " " << u[6]
+           << " " << u[7] << "\n";
   const double scale = std::max(1.0, R * std::abs(vph * vth));
   RC_ASSERT(std::abs(u[4] + R * std::sin(ph) * vph * vth) <= 1e-12 * scale);
   RC_ASSERT(std::abs(u[5] - R * std::cos(ph) * vph * vth) <= 1e-12 * scale);
@@ -421,14 +445,16 @@ RC_GTEST_PROP(Chart, RollingDiskAtGenericAnglesIsTheClosedForm, ()) {
 // μ̈ = m(2|a|² + 2 v·ȧ − g a_y)/l² with ȧ = −(μ̇ x + μ v)/m: the chart's five-level tower and rates,
 // exactly.  (The index-3 reduction every DAE tool performs; derived here without the CAD.)
 RC_GTEST_PROP(Chart, CartesianPendulumIsTheHandReduction, ()) {
-  const Q m(*rc::gen::inRange(1, 10), *rc::gen::inRange(1, 4)), g(*rc::gen::inRange(1, 1000), 100), l(*rc::gen::inRange(1, 5), *rc::gen::inRange(1, 3)),
-      sp(*rc::gen::inRange(-20, 21), 4);
+  const Q m(*rc::gen::inRange(1, 10), *rc::gen::inRange(1, 4)), g(*rc::gen::inRange(1, 1000), 100),
+      l(*rc::gen::inRange(1, 5), *rc::gen::inRange(1, 3)), sp(*rc::gen::inRange(-20, 21), 4);
   reference::LagrangianSystem s;
   s.n = 3;
   s.names = {"x", "y", "mu"};
-  const ex::Expr x = ex::variable(0), y = ex::variable(1), mu = ex::variable(2), vx = ex::variable(3), vy = ex::variable(4);
-  s.lagrangian = ex::sub(ex::sub(ex::mul(ex::number(m / 2), ex::add(ex::pow(vx, 2), ex::pow(vy, 2))), ex::mul(ex::number(m * g), y)),
-                         ex::mul(ex::mul(ex::number(Q(1, 2)), mu), ex::sub(ex::add(ex::pow(x, 2), ex::pow(y, 2)), ex::number(l * l))));
+  const ex::Expr x = ex::variable(0), y = ex::variable(1), mu = ex::variable(2), vx = ex::variable(3),
+                 vy = ex::variable(4);
+  s.lagrangian = ex::sub(
+      ex::sub(ex::mul(ex::number(m / 2), ex::add(ex::pow(vx, 2), ex::pow(vy, 2))), ex::mul(ex::number(m * g), y)),
+      ex::mul(ex::mul(ex::number(Q(1, 2)), mu), ex::sub(ex::add(ex::pow(x, 2), ex::pow(y, 2)), ex::number(l * l))));
   const Q px = Q(3, 5) * l, py = Q(-4, 5) * l, vxx = sp * Q(4, 5) * l, vyy = sp * Q(3, 5) * l;
   const Q muv = m * (vxx * vxx + vyy * vyy - g * py) / (l * l);
   const Q ax = -muv * px / m, ay = -g - muv * py / m;

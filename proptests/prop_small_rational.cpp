@@ -127,7 +127,8 @@ bool cad_is_the_mpq_cad(const ref::LinearSystem<Q>& s) {
       RC_ASSERT(a.tower[k].m.empty == b.tower[k].m.empty);
       if (b.tower[k].m.empty) continue;
       RC_ASSERT(value(a.tower[k].m.direction.basis()) == b.tower[k].m.direction.basis());
-      for (std::size_t i = 0; i < b.tower[k].m.point.size(); ++i) RC_ASSERT(a.tower[k].m.point[i].value() == b.tower[k].m.point[i]);
+      for (std::size_t i = 0; i < b.tower[k].m.point.size(); ++i)
+        RC_ASSERT(a.tower[k].m.point[i].value() == b.tower[k].m.point[i]);
     }
     if (!b.consistent) return true;
     RC_ASSERT(a.solution_rank == b.solution_rank);
@@ -214,7 +215,8 @@ TEST(Fmpq, DivisionByZeroThrows) {
 // Fmpq on operands of up to 200 bits (FLINT keeps up to 62 bits in the word, beyond in GMP: both sides
 // of that line and the moves between them).
 RC_GTEST_PROP(Fmpq, ArithmeticIsMpq, ()) {
-  const ref::Rational a = any_fraction(*rc::gen::element(8, 62, 64, 200)), b = any_fraction(*rc::gen::element(8, 62, 64, 200));
+  const ref::Rational a = any_fraction(*rc::gen::element(8, 62, 64, 200)),
+                      b = any_fraction(*rc::gen::element(8, 62, 64, 200));
   fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x + y; });
   fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x - y; });
   fmpq_same_as_mpq(a, b, [](const auto& x, const auto& y) { return x * y; });

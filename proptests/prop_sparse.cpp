@@ -41,10 +41,12 @@ Table read_csv(const std::string& text) {
       if (c == std::string::npos) break;
       s = c + 1;
     }
-    if (first) t.header = f, first = false;
+    if (first)
+      t.header = f, first = false;
     else {
       std::vector<double> r;
-      for (const std::string& x : f) r.push_back(std::strtod(x.c_str(), nullptr));  // subnormals too (stod refuses them)
+      for (const std::string& x : f)
+        r.push_back(std::strtod(x.c_str(), nullptr));  // subnormals too (stod refuses them)
       t.rows.push_back(r);
     }
   }
@@ -56,9 +58,11 @@ Table read_csv(const std::string& text) {
 std::string random_deck(double& step, bool& uic, double& r_unit, double& t_unit, bool wide = false) {
   const std::vector<std::string> r0{"50m", "1", "1k", "1meg"}, t0{"1n", "1u", "1m"};
   const std::vector<double> r0v{50e-3, 1, 1e3, 1e6}, t0v{1e-9, 1e-6, 1e-3};
-  const std::size_t ri = *rc::gen::inRange<std::size_t>(0, r0.size()), ti = *rc::gen::inRange<std::size_t>(0, t0.size());
+  const std::size_t ri = *rc::gen::inRange<std::size_t>(0, r0.size()),
+                    ti = *rc::gen::inRange<std::size_t>(0, t0.size());
   const double R0 = r0v[ri], T0 = t0v[ti];
-  const std::vector<double> mult = wide ? std::vector<double>{1e-3, 0.02, 0.5, 1, 3.3, 10, 300, 1e3} : std::vector<double>{0.5, 1, 2, 3.3, 10};
+  const std::vector<double> mult =
+      wide ? std::vector<double>{1e-3, 0.02, 0.5, 1, 3.3, 10, 300, 1e3} : std::vector<double>{0.5, 1, 2, 3.3, 10};
   const long nodes = *rc::gen::inRange<long>(1, 5), branches = *rc::gen::inRange<long>(2, 9);
   std::ostringstream d;
   d.precision(17);
@@ -103,16 +107,21 @@ std::string random_deck(double& step, bool& uic, double& r_unit, double& t_unit,
         switch (*rc::gen::inRange(0, wide ? 3 : 6)) {
           case 0: d << "DC " << amp * *rc::gen::inRange(-2, 3) << "\n"; break;
           case 1: d << "SIN(0 " << amp << " " << 1 / (T0 * *rc::gen::elementOf(mult)) << ")\n"; break;
-          case 2: d << "PULSE(0 " << amp << " " << T0 << " " << T0 << " " << T0 << " " << 3 * T0 << " " << 10 * T0 << ")\n"; break;
-          case 3: {  // EXP: σ' jumps at TD1 and TD2 by closed forms (a jump read off TD ± δ was 3e-10 off).  TAU >= T0/2:
+          case 2:
+            d << "PULSE(0 " << amp << " " << T0 << " " << T0 << " " << T0 << " " << 3 * T0 << " " << 10 * T0 << ")\n";
+            break;
+          case 3: {  // EXP: σ' jumps at TD1 and TD2 by closed forms (a jump read off TD ± δ was 3e-10 off).  TAU >=
+                     // T0/2:
             // the corners, written in 17 digits, lie ~1e-25 s off the rows, and the double route's exosystem
             // takes its pieces at double times — an error of that offset / TAU, below the estimate's 4ε only so
             const std::vector<double> slow{0.5, 1, 3.3, 10};
-            d << "EXP(0 " << amp << " " << T0 << " " << T0 * *rc::gen::elementOf(slow) << " " << 3 * T0 << " " << T0 * *rc::gen::elementOf(slow) << ")\n";
+            d << "EXP(0 " << amp << " " << T0 << " " << T0 * *rc::gen::elementOf(slow) << " " << 3 * T0 << " "
+              << T0 * *rc::gen::elementOf(slow) << ")\n";
             break;
           }
           case 4:  // a delayed, damped sine: its derivatives start at TD
-            d << "SIN(" << amp / 2 << " " << amp << " " << 1 / (T0 * *rc::gen::elementOf(mult)) << " " << 2 * T0 << " " << 0.1 / T0 << ")\n";
+            d << "SIN(" << amp / 2 << " " << amp << " " << 1 / (T0 * *rc::gen::elementOf(mult)) << " " << 2 * T0 << " "
+              << 0.1 / T0 << ")\n";
             break;
           case 5:  // a triangle repeated from R=0 (ngspice): at its last point the right limit is the rise again (an
             // enclosure that took the last point's hold there certified a wrong flow)
@@ -123,7 +132,10 @@ std::string random_deck(double& step, bool& uic, double& r_unit, double& t_unit,
     }
   }
   if (inductors.size() >= 2 && *rc::gen::arbitrary<bool>())
-    d << "K1 " << inductors[0] << " " << inductors[1] << " " << *rc::gen::elementOf(wide ? std::vector<double>{0.3, -0.9, 0.99, -0.999, 0.9999} : std::vector<double>{0.3, -0.5, 0.9}) << "\n";
+    d << "K1 " << inductors[0] << " " << inductors[1] << " "
+      << *rc::gen::elementOf(wide ? std::vector<double>{0.3, -0.9, 0.99, -0.999, 0.9999}
+                                  : std::vector<double>{0.3, -0.5, 0.9})
+      << "\n";
   step = T0 / 4;
   r_unit = R0;
   t_unit = T0;
@@ -135,12 +147,16 @@ std::string random_deck(double& step, bool& uic, double& r_unit, double& t_unit,
 /// Whether random_deck's sources have corners (PULSE, EXP, a delayed SIN, the repeated PWL), and the rows they
 /// fall on: PULSE's 4, 8, 20, 24 (+ 40·m), EXP's 4 and 12, the SIN's 8, the triangle's every 4th.
 bool has_corners(const std::string& text) {
-  if (text.find("PULSE") != std::string::npos || text.find("EXP") != std::string::npos || text.find("PWL") != std::string::npos) return true;
+  if (text.find("PULSE") != std::string::npos || text.find("EXP") != std::string::npos ||
+      text.find("PWL") != std::string::npos)
+    return true;
   for (std::size_t at = text.find("SIN("); at != std::string::npos; at = text.find("SIN(", at + 1))
     if (text.compare(at, 6, "SIN(0 ") != 0) return true;  // the delayed sine has an offset, the other none
   return false;
 }
-bool corner_row(std::size_t i) { return i % 40 == 4 || i % 40 == 8 || i % 40 == 12 || i % 40 == 16 || i % 40 == 20 || i % 40 == 24; }
+bool corner_row(std::size_t i) {
+  return i % 40 == 4 || i % 40 == 8 || i % 40 == 12 || i % 40 == 16 || i % 40 == 20 || i % 40 == 24;
+}
 
 }  // namespace
 
@@ -203,9 +219,11 @@ RC_GTEST_PROP(SparseSimulate, IsTheDenseRoute, ()) {
   // zero in exact arithmetic compares with rounding, not with its own rounding
   std::map<std::string, double> largest;
   for (std::size_t j = 1; j < a.header.size(); ++j)
-    for (const auto& r : a.rows) largest[a.header[j].substr(0, 2)] = std::max(largest[a.header[j].substr(0, 2)], std::abs(r[j]));
-  const std::map<std::string, double> scale{
-      {"q_", std::max(largest["q_"], t0 / r0)}, {"v_", std::max(largest["v_"], 1 / r0)}, {"p_", std::max(largest["p_"], t0)}};
+    for (const auto& r : a.rows)
+      largest[a.header[j].substr(0, 2)] = std::max(largest[a.header[j].substr(0, 2)], std::abs(r[j]));
+  const std::map<std::string, double> scale{{"q_", std::max(largest["q_"], t0 / r0)},
+                                            {"v_", std::max(largest["v_"], 1 / r0)},
+                                            {"p_", std::max(largest["p_"], t0)}};
   // currents around loops of voltage sources are free (solution rank > 0): each route takes its own
   // particular solution, so the sources' q and v are compared only where the solution is unique
   const bool unique = sparse_log.str().find("not unique") == std::string::npos;
@@ -219,7 +237,8 @@ RC_GTEST_PROP(SparseSimulate, IsTheDenseRoute, ()) {
     for (std::size_t i = 0; i < a.rows.size(); ++i) {
       if (corners && a.header[j].rfind("v_", 0) == 0 && corner_row(i)) continue;
       const double e = std::abs(a.rows[i][j] - b.rows[i][j]);
-      if (!(e <= 1e-8 * sc)) RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", sparse " << b.rows[i][j] << "\n";
+      if (!(e <= 1e-8 * sc))
+        RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", sparse " << b.rows[i][j] << "\n";
       RC_ASSERT(e <= 1e-8 * sc);
     }
   }
@@ -236,10 +255,12 @@ sr::Network network_of(const dcad::io::Netlist& d) {
   c.sources = static_cast<std::size_t>(d.rlc.sources);
   c.node_names = d.node_names;
   for (const auto& b : d.rlc.branches) {
-    c.branches.push_back({dcad::reference::graph_kind(b.kind), b.from, b.to, b.value.convert_to<double>(), static_cast<long>(b.source)});
+    c.branches.push_back(
+        {dcad::reference::graph_kind(b.kind), b.from, b.to, b.value.convert_to<double>(), static_cast<long>(b.source)});
     c.branch_names.push_back(b.name);
   }
-  for (const auto& mu : d.rlc.mutuals) c.mutuals.push_back({static_cast<std::size_t>(mu.a), static_cast<std::size_t>(mu.b), mu.m.convert_to<double>()});
+  for (const auto& mu : d.rlc.mutuals)
+    c.mutuals.push_back({static_cast<std::size_t>(mu.a), static_cast<std::size_t>(mu.b), mu.m.convert_to<double>()});
   return c;
 }
 
@@ -257,12 +278,14 @@ RC_GTEST_PROP(SparseSimulate, ModelIsTheExactStateEquations, ()) {
   RC_LOG() << text;
   const dcad::io::Problem p = dcad::io::parse_netlist(text, "random.cir");
   if (!dcad::reference::pipeline::graph_route_holds(p.netlist.rlc)) RC_DISCARD("outside the graph route");
-  const dcad::StateEquations<dcad::reference::Rational> exact = dcad::reference::pipeline::deck_state_equations<dcad::reference::Rational>(p.netlist);
+  const dcad::StateEquations<dcad::reference::Rational> exact =
+      dcad::reference::pipeline::deck_state_equations<dcad::reference::Rational>(p.netlist);
   const sr::Model model(network_of(p.netlist));
   const sr::Model::Matrices& m = model.matrices();
-  const std::map<std::string, const sr::SpMat*> fast{{"C_ww", &m.Cww}, {"G_ww", &m.Gww}, {"G_wr", &m.Gwr}, {"G_rr", &m.Grr}, {"L_w", &m.Lw},
-                                                     {"L_r", &m.Lr},   {"L_e", &m.Le},   {"Phi", &m.phi},  {"H_w", &m.Hw},  {"H_wd", &m.Hwd},
-                                                     {"H_r", &m.Hr},   {"I_e", &m.Ie},   {"O_L", &m.Ol}};
+  const std::map<std::string, const sr::SpMat*> fast{
+      {"C_ww", &m.Cww}, {"G_ww", &m.Gww}, {"G_wr", &m.Gwr}, {"G_rr", &m.Grr}, {"L_w", &m.Lw},
+      {"L_r", &m.Lr},   {"L_e", &m.Le},   {"Phi", &m.phi},  {"H_w", &m.Hw},   {"H_wd", &m.Hwd},
+      {"H_r", &m.Hr},   {"I_e", &m.Ie},   {"O_L", &m.Ol}};
   RC_ASSERT(exact.blocks.size() == fast.size());
   RC_ASSERT(exact.w.size() + exact.i.size() == model.state_size());
   for (const auto& [name, b] : exact.blocks) {
@@ -274,7 +297,8 @@ RC_GTEST_PROP(SparseSimulate, ModelIsTheExactStateEquations, ()) {
     for (Eigen::Index i = 0; i < x.rows() && x.cols() > 0; ++i) {
       const double row = x.row(i).cwiseAbs().maxCoeff();
       for (Eigen::Index j = 0; j < x.cols(); ++j) {
-        if (!(std::abs(f(i, j) - x(i, j)) <= 1e-13 * row)) RC_LOG() << name << "(" << i << ", " << j << "): fast " << f(i, j) << ", exact " << x(i, j) << "\n";
+        if (!(std::abs(f(i, j) - x(i, j)) <= 1e-13 * row))
+          RC_LOG() << name << "(" << i << ", " << j << "): fast " << f(i, j) << ", exact " << x(i, j) << "\n";
         RC_ASSERT(std::abs(f(i, j) - x(i, j)) <= 1e-13 * row);
       }
     }
@@ -306,7 +330,8 @@ RC_GTEST_PROP(Enclosures, HoldTheDenseRoute, ()) {
     const std::string why = e.what();
     // what the enclosure refuses and the dense route takes: a start through π (a SIN's derivative at 0),
     // non-unique solutions (a loop of sources), or a coupling k√(L_a L_b) that is irrational (rounded)
-    RC_ASSERT(why.find("involves pi") != std::string::npos || why.find("not unique") != std::string::npos || why.find("irrational") != std::string::npos);
+    RC_ASSERT(why.find("involves pi") != std::string::npos || why.find("not unique") != std::string::npos ||
+              why.find("irrational") != std::string::npos);
     RC_DISCARD("not enclosed: " + why);
   }
   const Table a = read_csv(dense_csv.str()), b = read_csv(enc_csv.str());
@@ -314,10 +339,13 @@ RC_GTEST_PROP(Enclosures, HoldTheDenseRoute, ()) {
   RC_ASSERT(b.header.size() == a.header.size() + 3);  // rad_q, rad_v, rad_p
   std::map<std::string, double> largest;
   for (std::size_t j = 1; j < a.header.size(); ++j)
-    for (const auto& r : a.rows) largest[a.header[j].substr(0, 2)] = std::max(largest[a.header[j].substr(0, 2)], std::abs(r[j]));
-  const std::map<std::string, double> scale{
-      {"q_", std::max(largest["q_"], t0 / r0)}, {"v_", std::max(largest["v_"], 1 / r0)}, {"p_", std::max(largest["p_"], t0)}};
-  const std::map<std::string, std::size_t> rad_col{{"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
+    for (const auto& r : a.rows)
+      largest[a.header[j].substr(0, 2)] = std::max(largest[a.header[j].substr(0, 2)], std::abs(r[j]));
+  const std::map<std::string, double> scale{{"q_", std::max(largest["q_"], t0 / r0)},
+                                            {"v_", std::max(largest["v_"], 1 / r0)},
+                                            {"p_", std::max(largest["p_"], t0)}};
+  const std::map<std::string, std::size_t> rad_col{
+      {"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
   // the sources' corners — PULSE's T0·{1, 2, 5, 6} + 10·T0·m, EXP's TD1 = T0 and TD2 = 3·T0, a delayed SIN's
   // TD = 2·T0 — fall on rows (step T0/4) to within an ulp: currents that jump there (a capacitor across a
   // source) are one-sided, and the two routes may take different sides — the dense route's corners are
@@ -330,7 +358,8 @@ RC_GTEST_PROP(Enclosures, HoldTheDenseRoute, ()) {
       if (pulse && kind == "v_" && corner_row(i)) continue;
       const double rad = b.rows[i][rad_col.at(kind)], e = std::abs(a.rows[i][j] - b.rows[i][j]);
       if (!(e <= rad + 1e-9 * sc && rad <= 1e-12 * sc))
-        RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", enclosure " << b.rows[i][j] << " ± " << rad << "\n";
+        RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", enclosure " << b.rows[i][j]
+                 << " ± " << rad << "\n";
       RC_ASSERT(rad <= 1e-12 * sc);
       RC_ASSERT(e <= rad + 1e-9 * sc);
     }
@@ -342,7 +371,8 @@ RC_GTEST_PROP(Enclosures, HoldTheDenseRoute, ()) {
 // to the largest magnitude of each variable's kind" and `check` holds its own values to E times that
 // magnitude: over random decks with time scales 10⁶ apart and couplings to 0.9999, every value of the
 // default (dense) route lies within E·(its kind's largest |value|, at least the state's size in natural
-// units) of the certified enclosure, widened by the enclosure's radius.  An estimate that is not a bound would let `check` decide a vector it cannot.
+// units) of the certified enclosure, widened by the enclosure's radius.  An estimate that is not a bound would let
+// `check` decide a vector it cannot.
 RC_GTEST_PROP(Estimate, BoundsTheDenseRoutesError, ()) {
   DenseRun d;
   d.wide = true;
@@ -366,15 +396,18 @@ RC_GTEST_PROP(Estimate, BoundsTheDenseRoutesError, ()) {
   if (d.log.str().find("not unique") != std::string::npos) RC_DISCARD("free currents around source loops");
   std::map<std::string, double> largest;
   for (std::size_t j = 1; j < a.header.size(); ++j)
-    for (const auto& r : b.rows) largest[a.header[j].substr(0, 2)] = std::max(largest[a.header[j].substr(0, 2)], std::abs(r[j]));
+    for (const auto& r : b.rows)
+      largest[a.header[j].substr(0, 2)] = std::max(largest[a.header[j].substr(0, 2)], std::abs(r[j]));
   // "… at least the state's size in the circuit's natural units": the largest |value| / natural scale
   // over the variables and rows, times the variable's natural scale (its kind's largest may be ~0)
-  const std::vector<long double> natural = dcad::io::units_of(d.p.netlist).variable_scales(d.p.netlist.circuit.branches.size(), false);
+  const std::vector<long double> natural =
+      dcad::io::units_of(d.p.netlist).variable_scales(d.p.netlist.circuit.branches.size(), false);
   RC_ASSERT(natural.size() + 1 == a.header.size());
   long double state = 0;
   for (std::size_t j = 1; j < a.header.size(); ++j)
     for (const auto& r : b.rows) state = std::max(state, std::abs(static_cast<long double>(r[j])) / natural[j - 1]);
-  const std::map<std::string, std::size_t> rad_col{{"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
+  const std::map<std::string, std::size_t> rad_col{
+      {"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
   const bool pulse = has_corners(d.text);  // one-sided currents at the corners, as above
   double worst = 0;
   for (std::size_t j = 1; j < a.header.size(); ++j) {
@@ -385,8 +418,8 @@ RC_GTEST_PROP(Estimate, BoundsTheDenseRoutesError, ()) {
       const double bound = rad + estimate * std::max(largest.at(kind), static_cast<double>(state * natural[j - 1]));
       if (e > 0) worst = std::max(worst, e / std::max(bound, std::numeric_limits<double>::min()));
       if (!(e <= bound))
-        RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", enclosure " << b.rows[i][j] << " ± " << rad << ", estimate "
-                 << estimate << " × " << largest.at(kind) << "\n";
+        RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", enclosure " << b.rows[i][j]
+                 << " ± " << rad << ", estimate " << estimate << " × " << largest.at(kind) << "\n";
       RC_ASSERT(e <= bound);
     }
   }
@@ -438,7 +471,9 @@ RC_GTEST_PROP(Enclosures, StateEquationModelIsTheDenseModel, ()) {
     for (std::size_t j = 1; j <= n; ++j) {
       const std::size_t r = rad_col.at(a.header[j].substr(0, 2));
       const double e = std::abs(a.rows[i][j] - b.rows[i][j]), rad = a.rows[i][r] + b.rows[i][r];
-      if (!(e <= rad)) RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", state equations " << b.rows[i][j] << " (radii " << rad << ")\n";
+      if (!(e <= rad))
+        RC_LOG() << a.header[j] << " at row " << i << ": dense " << a.rows[i][j] << ", state equations " << b.rows[i][j]
+                 << " (radii " << rad << ")\n";
       RC_ASSERT(e <= rad);
     }
   RC_TAG(d.uic ? "uic" : "operating point");
@@ -453,7 +488,8 @@ TEST(Enclosures, BeyondTheDenseSizeHoldTheSparseRoute) {
   std::ostringstream deck;
   deck << "RLC ladder, 25 sections\nV1 n0 0 PULSE(0 1 1n 1n 1n 20n 50n)\n";
   for (int k = 0; k < 25; ++k)
-    deck << "R" << k << " n" << k << " m" << k << " 1\nL" << k << " m" << k << " n" << k + 1 << " 10n\nC" << k << " n" << k + 1 << " 0 1p\n";
+    deck << "R" << k << " n" << k << " m" << k << " 1\nL" << k << " m" << k << " n" << k + 1 << " 10n\nC" << k << " n"
+         << k + 1 << " 0 1p\n";
   deck << ".end\n";
   const dcad::io::Problem p = dcad::io::parse_netlist(deck.str(), "ladder76.cir");
   ASSERT_EQ(p.netlist.rlc.branches.size(), 76u);
@@ -473,8 +509,10 @@ TEST(Enclosures, BeyondTheDenseSizeHoldTheSparseRoute) {
   ASSERT_EQ(b.header.size(), a.header.size() + 3);
   std::map<std::string, double> scale;
   for (std::size_t j = 1; j < a.header.size(); ++j)
-    for (const auto& r : a.rows) scale[a.header[j].substr(0, 2)] = std::max(scale[a.header[j].substr(0, 2)], std::abs(r[j]));
-  const std::map<std::string, std::size_t> rad_col{{"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
+    for (const auto& r : a.rows)
+      scale[a.header[j].substr(0, 2)] = std::max(scale[a.header[j].substr(0, 2)], std::abs(r[j]));
+  const std::map<std::string, std::size_t> rad_col{
+      {"q_", a.header.size()}, {"v_", a.header.size() + 1}, {"p_", a.header.size() + 2}};
   // rows on a PULSE corner (1, 2, 21, 22, 51, 52 ns) are one-sided for the capacitor currents: skipped
   const auto corner = [](std::size_t i) { return i == 2 || i == 4 || i == 42 || i == 44 || i == 102 || i == 104; };
   for (std::size_t j = 1; j < a.header.size(); ++j) {
@@ -483,7 +521,8 @@ TEST(Enclosures, BeyondTheDenseSizeHoldTheSparseRoute) {
       if (kind == "v_" && corner(i)) continue;
       const double rad = b.rows[i][rad_col.at(kind)], e = std::abs(a.rows[i][j] - b.rows[i][j]);
       EXPECT_LE(rad, 1e-12 * scale.at(kind)) << a.header[j] << " at row " << i;
-      EXPECT_LE(e, rad + 1e-9 * scale.at(kind)) << a.header[j] << " at row " << i << ": sparse " << a.rows[i][j] << ", enclosure " << b.rows[i][j];
+      EXPECT_LE(e, rad + 1e-9 * scale.at(kind))
+          << a.header[j] << " at row " << i << ": sparse " << a.rows[i][j] << ", enclosure " << b.rows[i][j];
     }
   }
 }
@@ -493,7 +532,8 @@ TEST(Enclosures, BeyondTheDenseSizeHoldTheSparseRoute) {
 // every row).  Both routes to 1e-12 of the amplitude; the sparse route was 1.6e-7 off when its exosystem's
 // scale took a fixed 1 ohm for the missing resistance.
 TEST(SparseSimulate, SineCurrentIntoFemtofarad) {
-  const dcad::io::Problem p = dcad::io::read_problem(DCAD_SOURCE_DIR "/cases/regression-sparse-sine-current-femtofarad.cir");
+  const dcad::io::Problem p =
+      dcad::io::read_problem(DCAD_SOURCE_DIR "/cases/regression-sparse-sine-current-femtofarad.cir");
   const double amp = 9.9999999999999995e-07, w = 2 * M_PI * 1999999999.9999998;
   for (const dcad::api::Route route : {dcad::api::Route::dense, dcad::api::Route::sparse}) {
     dcad::api::SimulateOptions opt;
@@ -507,7 +547,8 @@ TEST(SparseSimulate, SineCurrentIntoFemtofarad) {
     ASSERT_EQ(t.rows.size(), 21u);
     ASSERT_EQ(t.header[1], "q_I0");
     for (const auto& r : t.rows)
-      EXPECT_NEAR(r[1], amp / w * (1 - std::cos(w * r[0])), 1e-12 * 2 * amp / w) << "t = " << r[0] << (route == dcad::api::Route::sparse ? " (sparse)" : " (dense)");
+      EXPECT_NEAR(r[1], amp / w * (1 - std::cos(w * r[0])), 1e-12 * 2 * amp / w)
+          << "t = " << r[0] << (route == dcad::api::Route::sparse ? " (sparse)" : " (dense)");
   }
 }
 
@@ -516,7 +557,8 @@ TEST(SparseSimulate, SineCurrentIntoFemtofarad) {
 // and flux linkages (continuous through a corner) lie within 1e-9 of their kind's scale of the enclosure
 // on every row; its flow and the jets it read at the row took different sides of the corner, 1.6e-7 off.
 TEST(Enclosures, RepeatedPwlCornerOnTheLastRow) {
-  const dcad::io::Problem p = dcad::io::read_problem(DCAD_SOURCE_DIR "/cases/regression-dense-repeated-pwl-corner-at-tstop.cir");
+  const dcad::io::Problem p =
+      dcad::io::read_problem(DCAD_SOURCE_DIR "/cases/regression-dense-repeated-pwl-corner-at-tstop.cir");
   dcad::api::SimulateOptions opt;
   opt.step = 2.5000000000000002e-10;
   opt.tstop = 5.0000000000000001e-09;

@@ -95,7 +95,8 @@ RC_GTEST_PROP(Symplectic, Lemma3_5_3_6_Corollary3_7, ()) {
   for (Index i = 0; i < sol.x.direction.dim(); ++i)
     for (Index k = 0; k < n; ++k) x[k] += Q(static_cast<int>(i) + 1) * sol.x.direction.basis()(i, k);
   RC_ASSERT(contains(p.v, x));
-  for (Index j = 0; j < p.v.dim(); ++j) RC_ASSERT(form_value(p.w, x, p.v.basis().row(j)) == dot(beta, p.v.basis().row(j)));
+  for (Index j = 0; j < p.v.dim(); ++j)
+    RC_ASSERT(form_value(p.w, x, p.v.basis().row(j)) == dot(beta, p.v.basis().row(j)));
 }
 
 // Lemma 4.2: ω^♭(W) = (W^ω)° for a presymplectic ω on V (as subspaces of (Q^n)* containing V°),

@@ -4,8 +4,8 @@
 // must then say unknown.  Run for
 // every decision of fast::solve on random problems of every kind (linear Dirac systems in each form,
 // constrained systems, Pontryagin systems, LC circuits with signed values, RLC circuits with sources and
-// couplings), on the corpus' expression-form cases, and of fast::inspect, this holds every place that combines verdicts to the rule "an
-// uncertain input on either side gives an uncertain result": a combination that drops one side (an
+// couplings), on the corpus' expression-form cases, and of fast::inspect, this holds every place that combines verdicts
+// to the rule "an uncertain input on either side gives an uncertain result": a combination that drops one side (an
 // `||` for an `&&`, a forgotten `&=`) leaves a certified result over an injected uncertainty, and fails.
 #include "dcad/fast/adapted.hpp"
 #include "dcad/fast/circuit_motion.hpp"
@@ -52,8 +52,10 @@ void every_decision_reaches_the_verdict(const io::Problem& p, const std::string&
     const fast::Solution si = fast::solve(p, {}, o);
     RC_ASSERT(si.dims() == s.dims());  // the same answers (a verdict may skip what rests on it: fewer decisions)
     if (!si.certified.unknown()) {
-      RC_LOG() << what << ": decision " << i << " of " << count.made << " reported uncertain, and the result is still certified\n"
-               << "note: " << si.note << "\ninput:\n" << text << "\n";
+      RC_LOG() << what << ": decision " << i << " of " << count.made
+               << " reported uncertain, and the result is still certified\n"
+               << "note: " << si.note << "\ninput:\n"
+               << text << "\n";
       RC_FAIL("an uncertain decision did not reach the result's verdict");
     }
   }
@@ -69,7 +71,8 @@ std::string lc_deck(const ref::Circuit<Q>& c) {
   for (std::size_t i = 0; i < c.branches.size(); ++i) {
     const auto& b = c.branches[i];
     const char kind = b.kind == BranchKind::inductor ? 'L' : b.kind == BranchKind::capacitor ? 'C' : 'V';
-    out += std::string(1, kind) + std::to_string(i + 1) + " " + std::to_string(b.from + 1) + " " + std::to_string(b.to + 1) + " " +
+    out += std::string(1, kind) + std::to_string(i + 1) + " " + std::to_string(b.from + 1) + " " +
+           std::to_string(b.to + 1) + " " +
            (b.kind == BranchKind::empty ? std::string("0") : "{" + b.value.str() + "}") + "\n";
   }
   return out + ".end\n";
@@ -105,10 +108,11 @@ RC_GTEST_PROP(Uncertainty, LinearDiracSystems, ()) {
 /// A `dirac` member in one of the CONTRACT's other forms, with an energy of the right size.
 std::string form_case(const std::string& form, const QM& m, const QM& distribution, Index n) {
   const QM h = symmetric_matrix(n, pick_size(0, n));
-  const std::string data = form == "distribution" ? "\"distribution\": " + json_matrix(distribution) + ", \"form\": " + json_matrix(m)
-                                                   : "\"" + form + "\": " + json_matrix(m);
-  return "{\"dcad\": 1, \"dirac\": {" + data + "}, \"energy\": {\"hessian\": " + json_matrix(h) + ", \"gradient\": " +
-         json_vector(integer_vector(n)) + "}}";
+  const std::string data = form == "distribution"
+                               ? "\"distribution\": " + json_matrix(distribution) + ", \"form\": " + json_matrix(m)
+                               : "\"" + form + "\": " + json_matrix(m);
+  return "{\"dcad\": 1, \"dirac\": {" + data + "}, \"energy\": {\"hessian\": " + json_matrix(h) +
+         ", \"gradient\": " + json_vector(integer_vector(n)) + "}}";
 }
 
 RC_GTEST_PROP(Uncertainty, LinearDiracSystemsInEveryForm, ()) {
@@ -129,7 +133,8 @@ RC_GTEST_PROP(Uncertainty, LinearDiracSystemsInEveryForm, ()) {
       text = form_case("poisson", p.w, QM(), p.n);
     }
   }
-  every_decision_reaches_the_verdict(io::parse_case(text, "generated.json"), "dirac (" + text.substr(text.find("dirac") + 10, 8) + ")", text);
+  every_decision_reaches_the_verdict(io::parse_case(text, "generated.json"),
+                                     "dirac (" + text.substr(text.find("dirac") + 10, 8) + ")", text);
 }
 
 RC_GTEST_PROP(Uncertainty, ConstrainedSystems, ()) {
@@ -195,7 +200,7 @@ TEST(Uncertainty, ExpressionFormCasesOfTheCorpus) {
                                           << " reported uncertain, and the result is still certified";
     }
   }
-  EXPECT_GE(cases, 6);      // the corpus has 7 (a moved directory must not pass this vacuously)
+  EXPECT_GE(cases, 6);  // the corpus has 7 (a moved directory must not pass this vacuously)
   RecordProperty("certified", static_cast<int>(certified));
   EXPECT_GE(certified, 3);  // and fast certifies most of them
 }
@@ -214,7 +219,9 @@ RC_GTEST_PROP(Uncertainty, Inspection, ()) {
     o.probe = &inject;
     const Inspection ri = fast::inspect(p.linear, o);
     if (!ri.certified.unknown()) {
-      RC_LOG() << "decision " << i << " of " << count.made << " reported uncertain, and the inspection is still certified\ninput:\n" << text << "\n";
+      RC_LOG() << "decision " << i << " of " << count.made
+               << " reported uncertain, and the inspection is still certified\ninput:\n"
+               << text << "\n";
       RC_FAIL("an uncertain decision did not reach the inspection's verdict");
     }
   }
@@ -241,7 +248,8 @@ void every_decision_reaches(const std::string& what, Run run) {
     fast::Options o;
     o.probe = &inject;
     if (!run(o).unknown()) {
-      RC_LOG() << what << ": decision " << i << " of " << count.made << " reported uncertain, and the result is still certain\n";
+      RC_LOG() << what << ": decision " << i << " of " << count.made
+               << " reported uncertain, and the result is still certain\n";
       RC_FAIL("an uncertain decision did not reach the result's verdict");
     }
   }
@@ -256,21 +264,27 @@ RC_GTEST_PROP(Uncertainty, SymplecticAlgebra, ()) {
   const Eigen::MatrixXd w = to_double(p.w), vb = to_double(p.v.basis());
   const Eigen::VectorXd beta = vec(integer_vector(2 * p.m));
   const auto v_of = [&](const fast::Options& o) { return fast::Subspace::span(vb, -1, o); };
-  every_decision_reaches("symplectic_complement", [&](const fast::Options& o) { return fast::symplectic_complement(w, v_of(o), o).certain(); });
-  every_decision_reaches("normal_form_basis", [&](const fast::Options& o) { return fast::normal_form_basis(w, v_of(o), o).certain; });
+  every_decision_reaches("symplectic_complement",
+                         [&](const fast::Options& o) { return fast::symplectic_complement(w, v_of(o), o).certain(); });
+  every_decision_reaches("normal_form_basis",
+                         [&](const fast::Options& o) { return fast::normal_form_basis(w, v_of(o), o).certain; });
   every_decision_reaches("solve_restricted", [&](const fast::Options& o) {
     const fast::RestrictedSolution r = fast::solve_restricted(w, v_of(o), beta, o);
     return r.lambda.certain & r.x.certain & r.x.direction.certain();
   });
   const auto form = [&](const fast::Options& o) { return fast::restrict_form(w, v_of(o)); };
   every_decision_reaches("form_rank", [&](const fast::Options& o) { return fast::form_rank(form(o), o).certain; });
-  every_decision_reaches("form_kernel", [&](const fast::Options& o) { return fast::form_kernel(form(o), o).certain(); });
-  every_decision_reaches("flat of a subspace", [&](const fast::Options& o) { return fast::flat(form(o), v_of(o), o).certain(); });
+  every_decision_reaches("form_kernel",
+                         [&](const fast::Options& o) { return fast::form_kernel(form(o), o).certain(); });
+  every_decision_reaches("flat of a subspace",
+                         [&](const fast::Options& o) { return fast::flat(form(o), v_of(o), o).certain(); });
   every_decision_reaches("solve_on_subspace", [&](const fast::Options& o) {
     const fast::AffineSubspace x = fast::solve_on_subspace(form(o), beta, o);
     return x.certain & x.direction.certain();
   });
-  every_decision_reaches("contains", [&](const fast::Options& o) { return fast::contains(fast::symplectic_complement(w, v_of(o), o), v_of(o), o).known() ? yes : unknown; });
+  every_decision_reaches("contains", [&](const fast::Options& o) {
+    return fast::contains(fast::symplectic_complement(w, v_of(o), o), v_of(o), o).known() ? yes : unknown;
+  });
 }
 
 RC_GTEST_PROP(Uncertainty, DiracStructures, ()) {
@@ -279,13 +293,22 @@ RC_GTEST_PROP(Uncertainty, DiracStructures, ()) {
   const QSub w = random_subspace_of(reference::dirac_distribution(rd));
   const Eigen::MatrixXd wb = w.dim() ? to_double(w.basis()) : Eigen::MatrixXd(0, rd.n);
   const auto d_of = [&](const fast::Options& o) { return fast::dirac_from_basis(basis, o); };
-  const auto w_of = [&](const fast::Options& o) { return w.dim() ? fast::Subspace::span(wb, -1, o) : fast::Subspace::zero(static_cast<int>(rd.n)); };
-  every_decision_reaches("dirac_distribution", [&](const fast::Options& o) { return fast::dirac_distribution(d_of(o), o).certain(); });
-  every_decision_reaches("dirac_form", [&](const fast::Options& o) { return fast::dirac_form(d_of(o), o).space.certain(); });
-  every_decision_reaches("dirac_flat of a subspace", [&](const fast::Options& o) { return fast::dirac_flat(d_of(o), w_of(o), o).certain(); });
-  every_decision_reaches("dirac_orthogonal", [&](const fast::Options& o) { return fast::dirac_orthogonal(d_of(o), w_of(o), o).certain(); });
-  every_decision_reaches("is_presymplectic", [&](const fast::Options& o) { return fast::is_presymplectic(d_of(o), o).known() ? yes : unknown; });
-  every_decision_reaches("is_poisson", [&](const fast::Options& o) { return fast::is_poisson(d_of(o), o).known() ? yes : unknown; });
+  const auto w_of = [&](const fast::Options& o) {
+    return w.dim() ? fast::Subspace::span(wb, -1, o) : fast::Subspace::zero(static_cast<int>(rd.n));
+  };
+  every_decision_reaches("dirac_distribution",
+                         [&](const fast::Options& o) { return fast::dirac_distribution(d_of(o), o).certain(); });
+  every_decision_reaches("dirac_form",
+                         [&](const fast::Options& o) { return fast::dirac_form(d_of(o), o).space.certain(); });
+  every_decision_reaches("dirac_flat of a subspace",
+                         [&](const fast::Options& o) { return fast::dirac_flat(d_of(o), w_of(o), o).certain(); });
+  every_decision_reaches("dirac_orthogonal",
+                         [&](const fast::Options& o) { return fast::dirac_orthogonal(d_of(o), w_of(o), o).certain(); });
+  every_decision_reaches("is_presymplectic", [&](const fast::Options& o) {
+    return fast::is_presymplectic(d_of(o), o).known() ? yes : unknown;
+  });
+  every_decision_reaches("is_poisson",
+                         [&](const fast::Options& o) { return fast::is_poisson(d_of(o), o).known() ? yes : unknown; });
 }
 
 RC_GTEST_PROP(Uncertainty, VelocitiesAndInitialPoints, ()) {
@@ -294,7 +317,8 @@ RC_GTEST_PROP(Uncertainty, VelocitiesAndInitialPoints, ()) {
   RC_PRE(r.consistent);
   const std::vector<Q> x = some_point(r.final_step().m);
   const auto system = [&](const fast::Options& o) {
-    return fast::LinearSystem{fast::dirac_from_basis(to_double(s.d.d.basis()), o), to_double(s.hessian), vec(s.gradient), 0.0};
+    return fast::LinearSystem{fast::dirac_from_basis(to_double(s.d.d.basis()), o), to_double(s.hessian),
+                              vec(s.gradient), 0.0};
   };
   every_decision_reaches("velocities", [&](const fast::Options& o) {
     const fast::LinearSystem fs = system(o);

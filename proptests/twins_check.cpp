@@ -26,14 +26,16 @@ std::set<std::string> public_names(const std::vector<fs::path>& dirs) {
   static const std::regex type(R"(^(?:(?:struct|class|enum class|enum) (\w+)|using (\w+) =))");
   std::set<std::string> out;
   for (const fs::path& dir : dirs)
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.path().extension() != ".hpp") continue;
-    std::ifstream in(e.path());
-    std::smatch m;
-    for (std::string line; std::getline(in, line);)
-      if (std::regex_search(line, m, function)) out.insert(m[1]);
-      else if (std::regex_search(line, m, type)) out.insert(m[1].matched ? m[1] : m[2]);
-  }
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+      if (e.path().extension() != ".hpp") continue;
+      std::ifstream in(e.path());
+      std::smatch m;
+      for (std::string line; std::getline(in, line);)
+        if (std::regex_search(line, m, function))
+          out.insert(m[1]);
+        else if (std::regex_search(line, m, type))
+          out.insert(m[1].matched ? m[1] : m[2]);
+    }
   return out;
 }
 
@@ -56,7 +58,9 @@ Listed read_list(const fs::path& file) {
     words >> side;
     EXPECT_TRUE(side == "reference-only" || side == "fast-only") << file << ":" << number << ": side " << side;
     auto& target = side == "fast-only" ? out.fast_only : out.reference_only;
-    while (words >> name) EXPECT_TRUE(target.emplace(name, line.substr(colon + 3)).second) << file << ":" << number << ": " << name << " twice";
+    while (words >> name)
+      EXPECT_TRUE(target.emplace(name, line.substr(colon + 3)).second)
+          << file << ":" << number << ": " << name << " twice";
   }
   return out;
 }
@@ -66,23 +70,27 @@ Listed read_list(const fs::path& file) {
 TEST(Twins, PublicNamesDifferOnlyAsListed) {
   const fs::path root(DCAD_SOURCE_DIR);
   // the reference twin: the literal algorithms and, beside them, its pipelines (reference::solve)
-  const std::set<std::string> ref = public_names({root / "reference/include/dcad/reference", root / "reference/solve/include/dcad/reference"});
+  const std::set<std::string> ref =
+      public_names({root / "reference/include/dcad/reference", root / "reference/solve/include/dcad/reference"});
   // the fast twin: dcad::fast, and beside it dcad::fast_nonlinear and dcad::fast_exact (same namespace)
-  const std::set<std::string> fast = public_names(
-      {root / "fast/include/dcad/fast", root / "fast/nonlinear/include/dcad/fast", root / "fast/exact/include/dcad/fast"});
+  const std::set<std::string> fast =
+      public_names({root / "fast/include/dcad/fast", root / "fast/nonlinear/include/dcad/fast",
+                    root / "fast/exact/include/dcad/fast"});
   const Listed listed = read_list(root / "proptests/twins.txt");
   ASSERT_GE(ref.size(), 100u);  // the scan sees the headers
   ASSERT_GE(fast.size(), 60u);
   for (const std::string& n : {"constraint_tower", "gotay_nester", "foliated_tower", "velocities", "dirac_bergmann",
-                               "classify_constraints", "adapted_to_primary", "reduced_equations", "pointwise_cad", "pontryagin_system",
-                               "tangent_cotangent_embedding", "PontryaginInput"})
+                               "classify_constraints", "adapted_to_primary", "reduced_equations", "pointwise_cad",
+                               "pontryagin_system", "tangent_cotangent_embedding", "PontryaginInput"})
     EXPECT_TRUE(ref.count(n) && fast.count(n)) << n << " must be in both twins";
   for (const std::string& n : ref)
     if (!fast.count(n)) EXPECT_TRUE(listed.reference_only.count(n)) << "reference-only and not in twins.txt: " << n;
   for (const std::string& n : fast)
     if (!ref.count(n)) EXPECT_TRUE(listed.fast_only.count(n)) << "fast-only and not in twins.txt: " << n;
   for (const auto& [n, why] : listed.reference_only)
-    EXPECT_TRUE(ref.count(n) && !fast.count(n)) << "twins.txt lists " << n << " as reference-only; it is not (" << why << ")";
+    EXPECT_TRUE(ref.count(n) && !fast.count(n))
+        << "twins.txt lists " << n << " as reference-only; it is not (" << why << ")";
   for (const auto& [n, why] : listed.fast_only)
-    EXPECT_TRUE(fast.count(n) && !ref.count(n)) << "twins.txt lists " << n << " as fast-only; it is not (" << why << ")";
+    EXPECT_TRUE(fast.count(n) && !ref.count(n))
+        << "twins.txt lists " << n << " as fast-only; it is not (" << why << ")";
 }

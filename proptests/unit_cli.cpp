@@ -95,7 +95,8 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   }
   EXPECT_EQ(wave("12 AC 1").p[0], Rational(12));
   EXPECT_EQ(wave("DC=3").p[0], Rational(3));
-  for (const char* spec : {"AC 1 SIN(0 1 1000)", "SIN 0 1 1000", "sin(0, 1, 1000) ac 1", "dc 5 sin(0 1 1000)", "SIN(0 1 1000) AC 1 0"}) {
+  for (const char* spec :
+       {"AC 1 SIN(0 1 1000)", "SIN 0 1 1000", "sin(0, 1, 1000) ac 1", "dc 5 sin(0 1 1000)", "SIN(0 1 1000) AC 1 0"}) {
     const Waveform w = wave(spec);
     EXPECT_EQ(w.kind, Waveform::Kind::sin) << spec;
     EXPECT_EQ(w.p[2], Rational(1000)) << spec;
@@ -112,10 +113,10 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   Waveform np = wave("PULSE(0 1 0 1 1 1 4 2)");  // two pulses, then V1
   np.complete(Rational(1), Rational(20));
   EXPECT_EQ(np.pulses, 2);
-  EXPECT_EQ(np.value(5.5, 0), 1.0);   // inside the second pulse
-  EXPECT_EQ(np.value(9.5, 0), 0.0);   // where a third would rise
+  EXPECT_EQ(np.value(5.5, 0), 1.0);                       // inside the second pulse
+  EXPECT_EQ(np.value(9.5, 0), 0.0);                       // where a third would rise
   EXPECT_FALSE(np.next_corner(Rational(8)).has_value());  // nothing moves after the last pulse
-  Waveform cut = wave("PULSE(0 1 0 1 1 3 5.5)");  // a pause at V1 between pulses, then the next rise
+  Waveform cut = wave("PULSE(0 1 0 1 1 3 5.5)");          // a pause at V1 between pulses, then the next rise
   cut.complete(Rational(1), Rational(10));
   EXPECT_EQ(cut.value(6, 0), 0.5);  // rising again, not falling
   // EXP as ngspice evaluates it (vsrcload.c), and its defaults from TSTEP
@@ -130,7 +131,8 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   Waveform short_exp = wave("EXP(0 1)");
   EXPECT_THROW(short_exp.complete(std::nullopt, Rational(1)), std::invalid_argument);  // TD1 = TSTEP: none
   short_exp.complete(Rational(1, 10), Rational(1));
-  EXPECT_EQ(short_exp.p, (std::vector<Rational>{0, 1, Rational(1, 10), Rational(1, 10), Rational(2, 10), Rational(1, 10)}));
+  EXPECT_EQ(short_exp.p,
+            (std::vector<Rational>{0, 1, Rational(1, 10), Rational(1, 10), Rational(2, 10), Rational(1, 10)}));
   // PWL's TD= and R= (ngspice): shifted, then repeated from the point R to the last
   const Waveform r = wave("PWL(0 0 1 1 2 0) TD=1 R=0");
   EXPECT_EQ(r.p, (std::vector<Rational>{1, 0, 2, 1, 3, 0}));
@@ -147,8 +149,8 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1"), std::invalid_argument);  // repeats 1 → 0 with a step: an ideal jump
   Waveform cut_jump = wave("PULSE(0 1 0 1 1 1 2)");  // PER < TR + PW + TF, cut at 2: a step 1 → 0 there
   cut_jump.complete(Rational(1), Rational(10));
-  EXPECT_NO_THROW(cut_jump.breakpoints(1.5));                           // a run that ends before the step
-  EXPECT_THROW(cut_jump.breakpoints(10), std::invalid_argument);        // one that reaches it: refused, named
+  EXPECT_NO_THROW(cut_jump.breakpoints(1.5));                     // a run that ends before the step
+  EXPECT_THROW(cut_jump.breakpoints(10), std::invalid_argument);  // one that reaches it: refused, named
   EXPECT_THROW(cut_jump.next_corner(Rational(3, 2)), std::invalid_argument);
   EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1.5"), std::invalid_argument);  // not a time point
   EXPECT_THROW(wave("AM(1 0 100 1k)"), std::invalid_argument);
@@ -167,7 +169,8 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   e.complete(Rational(1, 1000000000), Rational(20, 1000000000));
   Waveform spice = wave("EXP(0 1 0 5e-9 10e-9 5e-9)");
   EXPECT_EQ(e.kind, Waveform::Kind::exp);
-  EXPECT_EQ(e.p, (std::vector<Rational>{0, 1, 0, Rational(5, 1000000000), Rational(10, 1000000000), Rational(5, 1000000000)}));
+  EXPECT_EQ(e.p, (std::vector<Rational>{0, 1, 0, Rational(5, 1000000000), Rational(10, 1000000000),
+                                        Rational(5, 1000000000)}));
   EXPECT_EQ(spice.p[2], Rational(0));  // as written; ngspice's complete() would make it TSTEP
   const Waveform s = wave("SIN(freq=1000 ampl=2 peak zero) ac 1");
   EXPECT_EQ(s.kind, Waveform::Kind::sin);
@@ -177,12 +180,14 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   EXPECT_EQ(s2.p, (std::vector<Rational>{1, 3, 100000000, Rational(1, 1000000000), 2, 0}));
   EXPECT_NEAR(s2.value(2e-9, 0), 1 + 3 * std::sin(2 * 3.141592653589793 * 1e8 * 1e-9) * std::exp(-2e-9), 1e-12);
   EXPECT_EQ(s2.value(0.5e-9, 0), 1.0);  // offset before the delay, as gnucap
-  const Waveform f = wave("SFFM  offset= 0.  amplitude= 1.  carrier=10000  modindex=.1  signal=1000 nozero nopeak");  // bm_sffm.cc
+  const Waveform f =
+      wave("SFFM  offset= 0.  amplitude= 1.  carrier=10000  modindex=.1  signal=1000 nozero nopeak");  // bm_sffm.cc
   EXPECT_EQ(f.kind, Waveform::Kind::sffm);
   EXPECT_EQ(f.p, (std::vector<Rational>{0, 1, 10000, Rational(1, 10), 1000}));
-  EXPECT_THROW(wave("sffm offset=0 amplitude=1 carrier=10000"), std::invalid_argument);  // no modindex, signal: no default
-  EXPECT_THROW(wave("sin(d=1 freq=1000)"), std::invalid_argument);          // "d": delay or damping?
-  EXPECT_THROW(wave("sin(amplitude=1)"), std::invalid_argument);          // the analysis' frequency
+  EXPECT_THROW(wave("sffm offset=0 amplitude=1 carrier=10000"),
+               std::invalid_argument);                              // no modindex, signal: no default
+  EXPECT_THROW(wave("sin(d=1 freq=1000)"), std::invalid_argument);  // "d": delay or damping?
+  EXPECT_THROW(wave("sin(amplitude=1)"), std::invalid_argument);    // the analysis' frequency
   EXPECT_THROW(wave("exp iv=0 pv=1 tau1=1 tau2=1 period=5"), std::invalid_argument);
   EXPECT_THROW(wave("exp iv=0 pv=1 td1=2 tau1=1 tau2=1"), std::invalid_argument);  // td2 = 0 < td1
   EXPECT_THROW(wave("exp iv=0 pv=1 td1=0 td2=1 tau2=1"), std::invalid_argument);   // tau1 = 0: a step
@@ -199,16 +204,24 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
 // repeated rise starting from init, offset not added, the repeat at the period instead of delay + period.
 TEST(Waveform, GnucapGeneratorIsItsPrintedPulse) {
   dcad::io::Generator g;
-  for (const auto& [k, v] : std::vector<std::pair<std::string, Rational>>{
-           {"max", 7}, {"min", -5}, {"rise", 3}, {"fall", 2}, {"width", 10}, {"delay", 2}, {"offset", 100}, {"init", 2}, {"period", 20}})
+  for (const auto& [k, v] : std::vector<std::pair<std::string, Rational>>{{"max", 7},
+                                                                          {"min", -5},
+                                                                          {"rise", 3},
+                                                                          {"fall", 2},
+                                                                          {"width", 10},
+                                                                          {"delay", 2},
+                                                                          {"offset", 100},
+                                                                          {"init", 2},
+                                                                          {"period", 20}})
     ASSERT_TRUE(g.set(k, v)) << k;
   const auto generator = [&](const std::string& spec) {
-    return parse_waveform(spec, [](const std::string& s) { return dcad::reference::parse_rational(s); }, g);
+    return parse_waveform(
+        spec, [](const std::string& s) { return dcad::reference::parse_rational(s); }, g);
   };
   const Waveform v1 = generator("generator(1)"), v2 = generator("dc generator(2) ac 1");
-  const std::vector<std::pair<double, double>> printed = {{0, 2},    {1, 2},     {2, 2},    {2.5, 19.5}, {3, 37},   {5, 107},
-                                                          {15, 107}, {15.5, 104}, {17, 95}, {22, 95},    {22.5, 97}, {25, 107},
-                                                          {35.5, 104}, {42.5, 97}, {44, 103}, {50, 107}};
+  const std::vector<std::pair<double, double>> printed = {
+      {0, 2},   {1, 2},   {2, 2},     {2.5, 19.5}, {3, 37},     {5, 107},   {15, 107}, {15.5, 104},
+      {17, 95}, {22, 95}, {22.5, 97}, {25, 107},   {35.5, 104}, {42.5, 97}, {44, 103}, {50, 107}};
   for (const auto& [t, v] : printed) {
     EXPECT_NEAR(v1.value(t), v, 1e-12) << "t = " << t;
     EXPECT_NEAR(v2.value(t), 2 * v, 1e-12) << "t = " << t;
@@ -216,7 +229,7 @@ TEST(Waveform, GnucapGeneratorIsItsPrintedPulse) {
   EXPECT_EQ(v1.repeat, std::optional<Rational>(22));
   const Waveform standard = wave("generator");  // gnucap's defaults
   EXPECT_EQ(standard.p, (std::vector<Rational>{0, 0, Rational(1, 1000000000000LL), 1}));
-  EXPECT_TRUE(g.set("fa", 0) && g.fall == 0 && g.freq == 0);  // "fa" is fall, "f" frequency (gnucap's order)
+  EXPECT_TRUE(g.set("fa", 0) && g.fall == 0 && g.freq == 0);       // "fa" is fall, "f" frequency (gnucap's order)
   EXPECT_THROW(generator("generator(1)"), std::invalid_argument);  // fall = 0: a step
   g.fall = 2, g.period = 14;
   EXPECT_THROW(generator("generator(1)"), std::invalid_argument);  // 3 + 10 + 2 > 14: the fall is cut
@@ -252,11 +265,13 @@ TEST(Waveform, SffmDerivativesAreTheChainRules) {
   ASSERT_TRUE(w.is_sffm());
   const double pi = 3.141592653589793, wc = 2 * pi * 1e4, ws = 2 * pi * 1e3, m = 3;
   for (double t : {0.0, 1.234e-4, 7.77e-4, 2.5e-3}) {
-    const double ph = wc * t + m * std::sin(ws * t), d1 = wc + m * ws * std::cos(ws * t), d2 = -m * ws * ws * std::sin(ws * t),
-                 d3 = -m * ws * ws * ws * std::cos(ws * t);
-    const double want[4] = {0.5 + 2 * std::sin(ph), 2 * std::cos(ph) * d1, 2 * (std::cos(ph) * d2 - std::sin(ph) * d1 * d1),
+    const double ph = wc * t + m * std::sin(ws * t), d1 = wc + m * ws * std::cos(ws * t),
+                 d2 = -m * ws * ws * std::sin(ws * t), d3 = -m * ws * ws * ws * std::cos(ws * t);
+    const double want[4] = {0.5 + 2 * std::sin(ph), 2 * std::cos(ph) * d1,
+                            2 * (std::cos(ph) * d2 - std::sin(ph) * d1 * d1),
                             2 * (std::cos(ph) * (d3 - d1 * d1 * d1) - 3 * std::sin(ph) * d1 * d2)};
-    for (int k = 0; k < 4; ++k) EXPECT_NEAR(w.value(t, k), want[k], 2e-11 * std::pow(wc + m * ws, k)) << "t = " << t << ", order " << k;
+    for (int k = 0; k < 4; ++k)
+      EXPECT_NEAR(w.value(t, k), want[k], 2e-11 * std::pow(wc + m * ws, k)) << "t = " << t << ", order " << k;
   }
   EXPECT_EQ(w.exact_at_zero(0), std::optional<Rational>(Rational(1, 2)));
   EXPECT_FALSE(w.exact_at_zero(1));
@@ -278,9 +293,7 @@ TEST(Waveform, PwlTimesNotValuesMustBeNonnegative) {
 // counted in the column sum (a large diagonal then hides a 10^8 imbalance).
 TEST(Balancing, EqualisesOffDiagonalSumsByPowersOfTwo) {
   Eigen::MatrixXd a(3, 3);
-  a << 100, 1e4, 0,
-       1e-4, 100, 1e3,
-       0, 1e-3, -50;
+  a << 100, 1e4, 0, 1e-4, 100, 1e3, 0, 1e-3, -50;
   const std::vector<double> d = dcad::api::balancing(a);
   ASSERT_EQ(d.size(), 3u);
   Eigen::MatrixXd b = a;  // D⁻¹ A D
@@ -329,7 +342,8 @@ TEST(ConvertFast, RoundingVoidsCertaintyAboveTheHeightBound) {
   EXPECT_TRUE(exact_after(1 / (two26 - 1)));
   EXPECT_FALSE(exact_after(1 / (two26 + 1)));
   EXPECT_FALSE(exact_after(dcad::reference::parse_rational("1.00000000000000001")));
-  EXPECT_TRUE(exact_after(1 + 1 / (two26 * two26)));  // 1 + 2^-52 is a double: not rounded (its span is the other flag's)
+  EXPECT_TRUE(
+      exact_after(1 + 1 / (two26 * two26)));  // 1 + 2^-52 is a double: not rounded (its span is the other flag's)
   // ... the other flag: a value of height above 2^26 spans more digits than a decision tells apart, rounded
   // or not (3 + 3·2^-50 is a double; beside −3 it cancels to 2^-50 relative, and its circuit's tower was
   // certified two steps short); height 2^26 − 1 and less does not.
@@ -391,7 +405,8 @@ TEST(ConvertFast, ElementValuesSpan) {
 // (0/0 is NaN, and a rounding speck over 0 would be infinite). Killed by: the skip test mag == 1
 // (seed-26 survivor [200]: a variable whose largest magnitude is exactly 1 lost its say).
 TEST(Simulate, ErrorEstimateIsTheWorstRelativeError) {
-  const dcad::api::Simulated s = dcad::api::summarize(11, {1e-15L, 1e-16L, 1e-300L}, {1.0L, 1000.0L, 0.0L}, {"q_C1", "v_L1", "p_C1"});
+  const dcad::api::Simulated s =
+      dcad::api::summarize(11, {1e-15L, 1e-16L, 1e-300L}, {1.0L, 1000.0L, 0.0L}, {"q_C1", "v_L1", "p_C1"});
   EXPECT_EQ(s.rows, 11);
   EXPECT_EQ(s.worst_variable, "q_C1");
   EXPECT_DOUBLE_EQ(s.error_estimate, 1e-15);
@@ -406,7 +421,8 @@ TEST(Simulate, ErrorEstimateIsTheWorstRelativeError) {
 // and a second analysis's header still ends the table.
 TEST(Traces, GnucapMessagesInsideTheTableAreSkippedNotTheEnd) {
   const std::string text =
-      "Gnucap banner\n#Time       v(a)\n 0.          1.\n 1.n         2.\nzero time step\nnewtime=4.66e-10  rejectedtime=4.65e-10\n"
+      "Gnucap banner\n#Time       v(a)\n 0.          1.\n 1.n         2.\nzero time step\nnewtime=4.66e-10  "
+      "rejectedtime=4.65e-10\n"
       " 2.n         3.\n 3.n         4.\n#Time       v(a)\n 0.          9.\n";
   const dcad::io::Traces t = dcad::io::parse_traces(text, "run.txt");
   ASSERT_EQ(t.time.size(), 4u);

@@ -76,7 +76,7 @@ TEST(DecideRank, PivotedQrBracketsTheCut) {
   EXPECT_FALSE(s.by_qr);
   EXPECT_EQ(s.rank, d.rank);
   EXPECT_NEAR(s.scale, d.scale, 1e-5 * s.scale);  // norm2 by power iteration (σ₂/σ₁ = 0.96 here)
-  EXPECT_LE(d.scale, s.scale * (1 + 1e-12));         // … and a lower bound
+  EXPECT_LE(d.scale, s.scale * (1 + 1e-12));      // … and a lower bound
 }
 
 // A singular value inside the band (τ0, τ1] is uncertain on the QR route too: the route says so
@@ -116,7 +116,7 @@ TEST(RankRevealing, RangeCorangeAndMinimumNormSolutions) {
     const MatrixXd x = f.min_norm_transposed(a.transpose() * xs);
     EXPECT_LE((a.transpose() * x - a.transpose() * xs).norm(), 1e-11 * (1 + xs.norm()));
     EXPECT_LE((c.transpose() * x).norm(), 1e-11 * (1 + xs.norm()));  // minimum norm: no part in ker Aᵀ
-    EXPECT_LE((x - xs).norm(), 1e-10 * (1 + xs.norm()));  // the unique such X in im A
+    EXPECT_LE((x - xs).norm(), 1e-10 * (1 + xs.norm()));             // the unique such X in im A
   }
 }
 

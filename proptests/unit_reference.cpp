@@ -75,18 +75,29 @@ TEST(BadInput, MessagesNameFunctionExpectedFound) {
             "symplectic_complement: expected a square matrix, found 2x3");
   EXPECT_EQ(message([&] { dirac_from_presymplectic(nonskew); }),
             "dirac_from_presymplectic: expected a skew matrix (W = -Wᵀ), found a matrix that is not skew");
-  EXPECT_EQ(message([&] { sharp(degenerate, std::vector<Q>{1, 0}); }),
+  EXPECT_EQ(message([&] {
+              sharp(degenerate, std::vector<Q>{1, 0});
+            }),
             "sharp: expected a nondegenerate form (rank 2), found rank 0");
   EXPECT_EQ(message([&] { sum(Subspace<Q>::zero(2), Subspace<Q>::zero(3)); }),
             "sum: expected subspaces of the same space, found Q^2 and Q^3");
-  EXPECT_EQ(message([&] { dirac_from_basis(m({{1, 0, 0, 1}, {0, 1, 1, 0}})); }),
+  EXPECT_EQ(message([&] {
+              dirac_from_basis(m({{1, 0, 0, 1}, {0, 1, 1, 0}}));
+            }),
             "dirac_from_basis: expected a Dirac structure (Lemma 4.1), found D is not isotropic: <<e1, e2>> != 0 for "
             "basis vectors e of D");
-  EXPECT_EQ(message([&] { dirac_from_basis(m({{1, 0, 0, 0}})); }),
-            "dirac_from_basis: expected a Dirac structure (Lemma 4.1), found dim D = 1 (a Dirac structure on Q^2 has dim 2)");
-  EXPECT_EQ(message([&] { dirac_from_basis(m({{1, 0, 0}})); }),
+  EXPECT_EQ(
+      message([&] {
+        dirac_from_basis(m({{1, 0, 0, 0}}));
+      }),
+      "dirac_from_basis: expected a Dirac structure (Lemma 4.1), found dim D = 1 (a Dirac structure on Q^2 has dim 2)");
+  EXPECT_EQ(message([&] {
+              dirac_from_basis(m({{1, 0, 0}}));
+            }),
             "dirac_from_basis: expected rows (v, α) of even length 2n, found 1x3");
-  EXPECT_EQ(message([&] { restrict_form(m({{0, 1}, {-1, 0}}), Subspace<Q>::zero(3)); }),
+  EXPECT_EQ(message([&] {
+              restrict_form(m({{0, 1}, {-1, 0}}), Subspace<Q>::zero(3));
+            }),
             "restrict_form: expected a form on Q^3, found a 2x2 matrix");
 }
 
@@ -169,8 +180,10 @@ TEST(YoshimuraMarsden, LcCircuitImplicitLagrangianEquations) {
 TEST(YoshimuraMarsden, LcCircuitForcedTowerIsCefs) {
   RlcCircuit<Q> c;
   c.nodes = 2;
-  c.branches = {{"L", RlcKind::inductor, 0, 1, Q(2)}, {"C1", RlcKind::capacitor, 1, -1, Q(3)},
-                {"C2", RlcKind::capacitor, -1, 0, Q(5)}, {"C3", RlcKind::capacitor, 1, -1, Q(7)}};
+  c.branches = {{"L", RlcKind::inductor, 0, 1, Q(2)},
+                {"C1", RlcKind::capacitor, 1, -1, Q(3)},
+                {"C2", RlcKind::capacitor, -1, 0, Q(5)},
+                {"C3", RlcKind::capacitor, 1, -1, Q(7)}};
   const ForcedResult<Q> r = forced_tower(rlc_system(c));
   EXPECT_EQ(r.dims, (std::vector<long>{12, 6, 5, 4}));
   EXPECT_EQ(r.solution_rank, 0);

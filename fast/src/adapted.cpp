@@ -42,19 +42,22 @@ AdaptedConstraints adapted_constraints(const MatrixXd& w, const MatrixXd& constr
   if (static_cast<int>(out.chi.size()) != 2 * out.s) out.certain = unknown;
   MatrixXd g(out.chi.size(), n);
   for (std::size_t p = 0; p < out.chi.size(); ++p) g.row(p) = a.row(out.chi[p]);
-  out.dirac_tensor = g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;
+  out.dirac_tensor =
+      g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;
   return out;
 }
 
 VectorXd abridged_field(const AdaptedConstraints& ad, const MatrixXd& constraints, const MatrixXd& hessian,
                         const VectorXd& gradient, const VectorXd& x, const VectorXd& lambda) {
   VectorXd d = hessian * x + gradient;
-  for (std::size_t k = 0; k < ad.abridged.size(); ++k) d += lambda(k) * constraints.row(ad.abridged[k]).head(d.size()).transpose();
+  for (std::size_t k = 0; k < ad.abridged.size(); ++k)
+    d += lambda(k) * constraints.row(ad.abridged[k]).head(d.size()).transpose();
   return ad.dirac_tensor * d;
 }
 
 FoliatedEmbedding tangent_cotangent_embedding(const PontryaginInput& in, const Options& /*opt: nothing is decided*/) {
-  const LinearSystem s = pontryagin_energy(in);  // as the reference: E on TQ ⊕ T*Q (Δ is not needed: K gives the leaves)
+  const LinearSystem s =
+      pontryagin_energy(in);  // as the reference: E on TQ ⊕ T*Q (Δ is not needed: K gives the leaves)
   const MatrixXd& k = in.k;
   const int n = static_cast<int>(s.hessian.rows() / 3), m = 4 * n;
   FoliatedEmbedding f;
@@ -86,8 +89,8 @@ CadResult foliated_tower(const FoliatedEmbedding& f, const Options& opt_in) {
   return constraint_tower(foliated_system(f, opt), opt, f.primary);
 }
 
-AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary, const MatrixXd& leaf,
-                                    const Options& opt_in) {
+AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary,
+                                    const MatrixXd& leaf, const Options& opt_in) {
   const Options opt = assessed(opt_in, {w, primary, secondary, leaf});
   AdaptedToPrimary out;
   out.constraints.resize(primary.rows() + secondary.rows() + leaf.rows(), primary.cols());

@@ -11,8 +11,10 @@ LinearSystem pontryagin_energy(const PontryaginInput& in) {
   const MatrixXd &k = in.k, &vv = in.vv, &qv = in.qv, &qq = in.qq;
   const VectorXd &q = in.q, &v = in.v;
   const int n = static_cast<int>(vv.rows());
-  if (in.n != vv.rows() || qq.rows() != n || qv.rows() != n || q.size() != n || v.size() != n || (k.rows() && k.cols() != n))
-    throw std::invalid_argument("pontryagin_system: expected n = " + std::to_string(in.n) + " rows in vv, qv, qq, q, v and columns in k");
+  if (in.n != vv.rows() || qq.rows() != n || qv.rows() != n || q.size() != n || v.size() != n ||
+      (k.rows() && k.cols() != n))
+    throw std::invalid_argument("pontryagin_system: expected n = " + std::to_string(in.n) +
+                                " rows in vv, qv, qq, q, v and columns in k");
   for (const MatrixXd* m : {&k, &vv, &qv, &qq}) require_finite(*m, "pontryagin_system");
   if (vv != vv.transpose() || qq != qq.transpose())
     throw std::invalid_argument("pontryagin_system: expected symmetric vv and qq, found an asymmetric one");
@@ -139,7 +141,7 @@ Frame frame_of(const DiracStructure& d, const Options& opt, CadResult& out) {
 /// the data's scale (1 for R, Ω's for Ω W).  Also dim(ker ω_D ∩ T M_k) = dim ker(Ω W_k) = dim W_k −
 /// rank(Ω W_k) (Thm 5.4(b)), from the same decision.
 struct DOrthogonal {
-  MatrixXd basis;  ///< W_k^D, orthonormal columns in E's coordinates
+  MatrixXd basis;      ///< W_k^D, orthonormal columns in E's coordinates
   int kernel_dim = 0;  ///< dim(ker ω_D ∩ W_k)
 };
 
@@ -183,8 +185,8 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt_in, const M
   if (s.hessian != s.hessian.transpose())
     throw std::invalid_argument("constraint_tower: expected a symmetric Hessian, found an asymmetric one");
   if (initial.rows() && initial.cols() != n + 1)
-    throw std::invalid_argument("constraint_tower: expected initial equations [a | b] of width " + std::to_string(n + 1) +
-                                ", found width " + std::to_string(initial.cols()));
+    throw std::invalid_argument("constraint_tower: expected initial equations [a | b] of width " +
+                                std::to_string(n + 1) + ", found width " + std::to_string(initial.cols()));
   CadResult out;
   const Frame frame = frame_of(s.d, opt, out);
   const double hscale = std::max(norm2(s.hessian), s.gradient.norm());
@@ -212,7 +214,8 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt_in, const M
   };
   // M_0: R^n, or {initial} (Gotay–Nester), whose rows go through the same reduction as the steps
   if (initial.rows()) {
-    if (absorb(initial.leftCols(n), initial.col(n), std::max(norm2(initial.leftCols(n)), 1e-300), initial.col(n).norm()) < 0) {
+    if (absorb(initial.leftCols(n), initial.col(n), std::max(norm2(initial.leftCols(n)), 1e-300),
+               initial.col(n).norm()) < 0) {
       push_empty();
       out.steps = 0;
       return out;
@@ -245,7 +248,8 @@ CadResult constraint_tower(const LinearSystem& s, const Options& opt_in, const M
   return out;
 }
 
-ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords, const Options& opt_in) {
+ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, std::vector<int> coords,
+                                   const Options& opt_in) {
   const Options opt = assessed(opt_in, {dirac_data(s.d), s.hessian, s.gradient});
   if (!r.consistent) throw std::invalid_argument("reduced_equations: expected a consistent system, found M_c empty");
   const int n = s.d.n;
@@ -272,7 +276,9 @@ ReducedEquations reduced_equations(const LinearSystem& s, const CadResult& r, st
   for (int i = 0; i < m; ++i) sel(i, coords[i]) = 1;
   const MatrixXd t = sel * b;
   const RankDecision dt = decide_rank(t, 1.0, opt);
-  if (dt.rank < m) throw std::invalid_argument("reduced_equations: expected coordinates that parametrize M_c, found variables that do not");
+  if (dt.rank < m)
+    throw std::invalid_argument(
+        "reduced_equations: expected coordinates that parametrize M_c, found variables that do not");
   red.certain &= dt.certain;
   const MatrixXd tinv = m ? MatrixXd(t.fullPivLu().inverse()) : MatrixXd(0, 0);  // M_c may be a point
   const VectorXd x0 = r.final_step().m.point;
@@ -327,7 +333,8 @@ AffineSubspace velocities(const LinearSystem& s, const CadResult& r, const Vecto
   return out;
 }
 
-InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt_in) {
+InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given,
+                                      const Options& opt_in) {
   const Options opt = assessed_given(opt_in, given);
   const int n = static_cast<int>(given.size());
   std::vector<int> rows_of_level;  // equations of the tower, level by level

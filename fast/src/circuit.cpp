@@ -12,14 +12,14 @@ namespace dcad::fast {
 
 namespace {
 
-
 void validate(const CircuitGraph& g) {
   for (std::size_t b = 0; b < g.branches.size(); ++b) {
     const CircuitBranch& br = g.branches[b];
     const long n = static_cast<long>(g.nodes);
     if (br.from < -1 || br.from >= n || br.to < -1 || br.to >= n)
       throw std::invalid_argument("circuit_tower: branch " + std::to_string(b + 1) + ": expected nodes in [-1, " +
-                                  std::to_string(n) + "), found " + std::to_string(br.from) + ", " + std::to_string(br.to));
+                                  std::to_string(n) + "), found " + std::to_string(br.from) + ", " +
+                                  std::to_string(br.to));
     if (br.kind != BranchKind::empty && (!std::isfinite(br.value) || br.value == 0))
       throw std::invalid_argument("circuit_tower: branch " + std::to_string(b + 1) +
                                   ": expected a finite nonzero L or C in double, found " + std::to_string(br.value));
@@ -37,7 +37,8 @@ SparseRow sparse(const Eigen::RowVectorXd& row, std::size_t offset) {
 /// The closed form with each rank decided: q-constraints aq (rows of S^⊥), v-constraints av (Δ_k^⊥).
 void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
   const std::size_t n = g.branches.size();
-  const std::vector<Loop> loops = graph::fundamental_loops(g.nodes, lc::edges(g.branches), std::vector<bool>(n, true), std::vector<bool>(n, false));
+  const std::vector<Loop> loops =
+      graph::fundamental_loops(g.nodes, lc::edges(g.branches), std::vector<bool>(n, true), std::vector<bool>(n, false));
   const Eigen::Index m = static_cast<Eigen::Index>(loops.size()), nn = static_cast<Eigen::Index>(n);
   MatrixXd bl = MatrixXd::Zero(m, nn);  // rows: loop currents, a basis of Δ
   for (Eigen::Index i = 0; i < m; ++i)

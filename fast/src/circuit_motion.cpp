@@ -21,7 +21,8 @@ MatrixXd block_rows(const CircuitTower& t, std::size_t n, std::size_t block) {
       if (!r.empty() && r.front().var / n == block) rows.push_back(&r);
   MatrixXd m = MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < rows.size(); ++i)
-    for (const Term& term : *rows[i]) m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(term.var - block * n)) += term.coeff;
+    for (const Term& term : *rows[i])
+      m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(term.var - block * n)) += term.coeff;
   return m;
 }
 
@@ -32,12 +33,14 @@ void record(CircuitMotion& out, const RankDecision& d) {
 
 }  // namespace
 
-CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::vector<int> coords, const Options& opt_in) {
+CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::vector<int> coords,
+                             const Options& opt_in) {
   const Options opt = assessed_values(opt_in, g);
   const std::size_t n = g.branches.size();
   const Eigen::Index ni = static_cast<Eigen::Index>(n);
   CircuitMotion out;
-  MatrixXd k = MatrixXd::Zero(static_cast<Eigen::Index>(g.nodes), ni), phi = MatrixXd::Zero(ni, ni), psi = MatrixXd::Zero(ni, ni);
+  MatrixXd k = MatrixXd::Zero(static_cast<Eigen::Index>(g.nodes), ni), phi = MatrixXd::Zero(ni, ni),
+           psi = MatrixXd::Zero(ni, ni);
   for (std::size_t b = 0; b < n; ++b) {
     const CircuitBranch& br = g.branches[b];
     const Eigen::Index bi = static_cast<Eigen::Index>(b);
@@ -46,7 +49,8 @@ CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::
     if (br.kind == BranchKind::inductor) phi(bi, bi) = br.value;
     if (br.kind == BranchKind::capacitor) psi(bi, bi) = 1 / br.value;
   }
-  const Subspace s = Subspace::solutions(block_rows(t, n, 0), -1, opt), v = Subspace::solutions(block_rows(t, n, 1), -1, opt);
+  const Subspace s = Subspace::solutions(block_rows(t, n, 0), -1, opt),
+                 v = Subspace::solutions(block_rows(t, n, 1), -1, opt);
   const Subspace delta = kernel(k, opt);
   for (const Subspace* sub : {&s, &v, &delta}) record(out, sub->evidence());
   const MatrixXd &bs = s.columns(), &bv = v.columns(), &bd = delta.columns();
@@ -79,15 +83,19 @@ CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::
     std::sort(coords.begin(), coords.end());
   }
   if (static_cast<Eigen::Index>(coords.size()) != m)
-    throw std::invalid_argument("circuit_motion: expected " + std::to_string(m) + " coordinates (dim M_c), found " + std::to_string(coords.size()));
+    throw std::invalid_argument("circuit_motion: expected " + std::to_string(m) + " coordinates (dim M_c), found " +
+                                std::to_string(coords.size()));
   MatrixXd tm(m, m);
   for (Eigen::Index i = 0; i < m; ++i) {
-    if (coords[i] < 0 || coords[i] >= 3 * ni) throw std::invalid_argument("circuit_motion: expected variable indices below 3n");
+    if (coords[i] < 0 || coords[i] >= 3 * ni)
+      throw std::invalid_argument("circuit_motion: expected variable indices below 3n");
     tm.row(i) = b.row(coords[i]);
   }
   const RankDecision dt = decide_rank(tm, 1.0, opt);
   record(out, dt);
-  if (dt.rank < m) throw std::invalid_argument("circuit_motion: expected coordinates that parametrize M_c, found variables that do not");
+  if (dt.rank < m)
+    throw std::invalid_argument(
+        "circuit_motion: expected coordinates that parametrize M_c, found variables that do not");
   out.coords = coords;
   out.f_matrix = m ? MatrixXd(tm * fy * tm.fullPivLu().inverse()) : MatrixXd(0, 0);
   out.g = tm * gy;

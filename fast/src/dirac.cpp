@@ -22,7 +22,7 @@ DiracCheck dirac_defect(const DiracStructure& d, const Options& opt_in) {
   if (d.d.ambient() != 2 * d.n) return {no, "a subspace of R^" + std::to_string(2 * d.n)};
   if (d.d.dim() != d.n)
     return {Truth::decided(false, d.d.certain()), "dim D = " + std::to_string(d.d.dim()) + " (a Dirac structure on R^" +
-                                        std::to_string(d.n) + " has dim " + std::to_string(d.n) + ")"};
+                                                      std::to_string(d.n) + " has dim " + std::to_string(d.n) + ")"};
   // ⟨⟨a, b⟩⟩ = α_a·v_b + α_b·v_a: Gram matrix Aᵀ V + Vᵀ A in the orthonormal basis.
   const MatrixXd g = d.alpha_part().transpose() * d.v_part() + d.v_part().transpose() * d.alpha_part();
   const RankDecision r = decide_rank(g, d.d.conditioning(), opt);
@@ -97,7 +97,8 @@ AffineSubspace dirac_flat(const DiracStructure& d, const VectorXd& x, const Opti
   AffineSubspace out;
   out.empty = c.empty;
   out.certain = c.certain & d.d.certain();
-  out.direction = Subspace::span_columns(d.alpha_part() * c.direction.columns(), 1.0, opt).and_certain(c.direction.certain() & d.d.certain());
+  out.direction = Subspace::span_columns(d.alpha_part() * c.direction.columns(), 1.0, opt)
+                      .and_certain(c.direction.certain() & d.d.certain());
   if (!c.empty) out.point = d.alpha_part() * c.point;
   return out;
 }
@@ -126,7 +127,8 @@ PresymplecticForm dirac_form(const DiracStructure& d, const Options& opt_in) {
 Subspace dirac_orthogonal(const DiracStructure& d, const Subspace& w, const Options& opt_in) {
   const Options opt = assessed(opt_in, {dirac_data(d)});
   const Subspace c = preimage(d.v_part(), w, opt, 1.0);
-  return Subspace::solutions((d.alpha_part() * c.columns()).transpose(), 1.0, opt).and_certain(c.certain() & d.d.certain());
+  return Subspace::solutions((d.alpha_part() * c.columns()).transpose(), 1.0, opt)
+      .and_certain(c.certain() & d.d.certain());
 }
 
 Truth is_presymplectic(const DiracStructure& d, const Options& opt_in) {

@@ -13,13 +13,12 @@ MatrixXd poisson_tensor(const MatrixXd& w, const Options& opt_in, Truth& certain
   return w.transpose().fullPivLu().inverse();
 }
 
-
 DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt_in) {
   const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});
   const int n = static_cast<int>(s.omega.rows());
   if (s.primary.cols() != n + 1)
-    throw std::invalid_argument("dirac_bergmann: expected primary constraint rows [a | b] of width " + std::to_string(n + 1) +
-                                ", found width " + std::to_string(s.primary.cols()));
+    throw std::invalid_argument("dirac_bergmann: expected primary constraint rows [a | b] of width " +
+                                std::to_string(n + 1) + ", found width " + std::to_string(s.primary.cols()));
   DiracBergmannResult out;
   const MatrixXd j = poisson_tensor(s.omega, opt, out.certain);
   const MatrixXd p = s.primary.leftCols(n);
@@ -59,11 +58,13 @@ DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& op
   return out;
 }
 
-AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt_in) {
+AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x,
+                           const Options& opt_in) {
   const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});  // x: a point of M_c, not data
   const int n = static_cast<int>(s.omega.rows());
   Truth nondegenerate = yes;
-  const MatrixXd j = poisson_tensor(s.omega, opt, nondegenerate), a = r.constraints.leftCols(n), p = s.primary.leftCols(n);
+  const MatrixXd j = poisson_tensor(s.omega, opt, nondegenerate), a = r.constraints.leftCols(n),
+                 p = s.primary.leftCols(n);
   const MatrixXd c = a * j * p.transpose();
   // each side at the scale of its factors: −A J (H x + g) is exactly 0 off im C on M_c, and its rounding
   // grows with ‖H‖‖x‖ (at ‖x‖ = 10^7 the residue was decided a certain inconsistency against ‖J‖ alone)
@@ -96,13 +97,15 @@ ConstraintClasses classify_constraints(const MatrixXd& w, const MatrixXd& constr
   out.first = sc.v.rightCols(c.cols() - ds.rank).transpose() * basis;
   out.second = sc.v.leftCols(ds.rank).transpose() * basis;
   const MatrixXd g = out.second.leftCols(n);
-  out.dirac_tensor = g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;
+  out.dirac_tensor =
+      g.rows() ? MatrixXd(j - j * g.transpose() * (g * j * g.transpose()).fullPivLu().inverse() * g * j) : j;
   return out;
 }
 
 LinearSystem gotay_nester_system(const ConstrainedSystem& s, const Options& opt_in) {
   const Options opt = assessed(opt_in, {s.omega, s.hessian, s.gradient, s.primary});
-  return {dirac_from_distribution(kernel(s.primary.leftCols(s.omega.rows()), opt), s.omega), s.hessian, s.gradient, 0.0};
+  return {dirac_from_distribution(kernel(s.primary.leftCols(s.omega.rows()), opt), s.omega), s.hessian, s.gradient,
+          0.0};
 }
 
 CadResult gotay_nester(const ConstrainedSystem& s, const Options& opt_in) {

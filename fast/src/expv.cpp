@@ -34,8 +34,9 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
   const long budget = products_ + opt_.max_products;
   while (t_now < tau) {
     if (products_ > budget)
-      throw std::runtime_error("the Krylov integrator needed more than " + std::to_string(opt_.max_products) + " operator products for a step of " +
-                               std::to_string(tau) + " s (reached " + std::to_string(t_now) + " s): the operator is stiff against the step");
+      throw std::runtime_error("the Krylov integrator needed more than " + std::to_string(opt_.max_products) +
+                               " operator products for a step of " + std::to_string(tau) + " s (reached " +
+                               std::to_string(t_now) + " s): the operator is stiff against the step");
     double beta = w.norm();
     if (beta == 0) {  // exp(sA)·0 = 0: nothing moves, nothing flows
       t_now = tau;
@@ -48,8 +49,8 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
     int mb = 0;
     bool happy = false;
     double err = 0, xm = 1.0 / m, avnorm = 0, anorm = 0;
-    Vec f;      // β exp(τH) e₁ on the basis
-    Vec fint;   // β ∫ exp(sH) e₁ ds on the basis
+    Vec f;                             // β exp(τH) e₁ on the basis
+    Vec fint;                          // β ∫ exp(sH) e₁ ds on the basis
     const auto exps = [&](int size) {  // [[τH, τe₁], [0, 0]] of the leading `size` block
       Mat aug = Mat::Zero(size + 1, size + 1);
       aug.topLeftCorner(size, size) = t_step * h.topLeftCorner(size, size);
@@ -85,7 +86,9 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
           exps(mb);
         }
         if (!(f.allFinite() && fint.allFinite()))
-          throw std::runtime_error("the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing source)");
+          throw std::runtime_error(
+              "the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing "
+              "source)");
         err = 0;
         break;
       }
@@ -104,12 +107,18 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
       for (int reject = 0; reject < 50; ++reject) {
         exps(k + 2);
         const double phi1 = std::abs(f(k)), phi2 = std::abs(f(k + 1)) * avnorm;
-        if (phi1 > 10 * phi2) err = phi2, xm = 1.0 / k;
-        else if (phi1 > phi2) err = phi1 * phi2 / (phi1 - phi2), xm = 1.0 / k;
-        else err = phi1, xm = 1.0 / (k - 1);
-        if (!std::isfinite(err) || !f.allFinite() || !fint.allFinite()) {  // too long a step for a stiff H: a shorter one
+        if (phi1 > 10 * phi2)
+          err = phi2, xm = 1.0 / k;
+        else if (phi1 > phi2)
+          err = phi1 * phi2 / (phi1 - phi2), xm = 1.0 / k;
+        else
+          err = phi1, xm = 1.0 / (k - 1);
+        if (!std::isfinite(err) || !f.allFinite() ||
+            !fint.allFinite()) {  // too long a step for a stiff H: a shorter one
           if (reject == 49 || !(t_step / 8 > 0))
-            throw std::runtime_error("the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing source)");
+            throw std::runtime_error(
+                "the exponential of the Krylov matrix is not finite (coefficients out of double's range, or a growing "
+                "source)");
           t_step /= 8;
           continue;
         }
@@ -119,8 +128,9 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
         }
         if (k < m) break;  // a longer basis first
         if (reject == 49)
-          throw std::runtime_error("the Krylov step was rejected 50 times at " + std::to_string(t_now) + " s (local error " + std::to_string(err) +
-                                   " against " + std::to_string(delta * t_step * opt_.tol) + ")");
+          throw std::runtime_error("the Krylov step was rejected 50 times at " + std::to_string(t_now) +
+                                   " s (local error " + std::to_string(err) + " against " +
+                                   std::to_string(delta * t_step * opt_.tol) + ")");
         t_step = round_step(gamma * t_step * std::pow(t_step * opt_.tol / err, xm));
         t_step = std::min(t_step, tau - t_now);
         if (!(t_step > 0)) throw std::runtime_error("the Krylov step length is not positive");
@@ -143,9 +153,12 @@ void KrylovExp::advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integra
     // the truncation estimate, at least the rounding of H = VᵀAV itself: ε‖A‖ per unit time (Expokit's
     // rndoff) — on a stiff operator (‖A‖·τ ≫ 1) that is what bounds the accuracy, and what is reported
     error_ += std::max(err, eps * std::max(anorm, avnorm) * t_step * beta);
-    if (!happy && err > 0) suggestion_ = round_step(gamma * t_step * std::pow(t_step * opt_.tol / err, xm));
-    else if (happy) suggestion_ = std::max(suggestion_, t_step);
-    else suggestion_ = 2 * t_step;
+    if (!happy && err > 0)
+      suggestion_ = round_step(gamma * t_step * std::pow(t_step * opt_.tol / err, xm));
+    else if (happy)
+      suggestion_ = std::max(suggestion_, t_step);
+    else
+      suggestion_ = 2 * t_step;
   }
 }
 

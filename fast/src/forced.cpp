@@ -28,7 +28,8 @@ struct Absorbed {
 
 /// Adds candidate jet rows to (eq, cond): x-parts projected off eq's orthonormal x-parts; the new
 /// directions join eq (orthonormal); what vanishes on x is a source condition (or 0 = 1).
-Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, double scale, const Options& opt, ForcedResult& r) {
+Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, double scale, const Options& opt,
+                ForcedResult& r) {
   Absorbed out;
   const MatrixXd ex = eq.leftCols(n);
   const MatrixXd coef = cand.leftCols(n) * ex.transpose();
@@ -38,8 +39,8 @@ Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, doubl
   // equilibration cross-check of decide_rank, can make a clear gap look uncertain) and on
   // [old; candidates] minus the old rows (no cancellation, but computed rows near the old span).
   // Both routes are decided; a verdict that either one certifies and both agree on is certain.
-  RankDecision d = decide_rank_either(vcat(ex, cand.leftCols(n)), static_cast<int>(eq.rows()), std::max(scale, 1.0), res.leftCols(n),
-                                      sv.sigma, scale, opt);
+  RankDecision d = decide_rank_either(vcat(ex, cand.leftCols(n)), static_cast<int>(eq.rows()), std::max(scale, 1.0),
+                                      res.leftCols(n), sv.sigma, scale, opt);
   const int room = n - static_cast<int>(eq.rows());
   if (d.rank < 0 || d.rank > room) {
     d.rank = std::clamp(d.rank, 0, room);
@@ -77,7 +78,8 @@ Absorbed absorb(MatrixXd& eq, MatrixXd& cond, const MatrixXd& cand, int n, doubl
 }  // namespace
 
 ForcedResult forced_tower(const ForcedSystem& f, const Options& opt_in) {
-  const Options opt = assessed(opt_in, {dirac_data(f.s.d), f.s.hessian, f.s.gradient, f.force, f.source_force, f.shift, f.given_conditions});
+  const Options opt = assessed(
+      opt_in, {dirac_data(f.s.d), f.s.hessian, f.s.gradient, f.force, f.source_force, f.shift, f.given_conditions});
   const int n = f.s.d.n, m = f.sources;
   if (f.source_force.rows() != n || f.source_force.cols() != m || f.shift.rows() != n || f.shift.cols() != m)
     throw std::invalid_argument("forced_tower: expected B and Z of shape N×m, found other shapes");

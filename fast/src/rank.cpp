@@ -85,7 +85,6 @@ double zero_threshold(int rows, int cols, double scale, const Options& opt) {
   return opt.zero_factor * std::max(rows, cols) * std::numeric_limits<double>::epsilon() * scale;
 }
 
-
 namespace {
 
 /// Every decision leaves through here once (DecisionProbe: testing).
@@ -203,8 +202,8 @@ RankDecision decide_rank(const MatrixXd& a, const VectorXd& s, double scale, con
   return counted(d, opt);
 }
 
-RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b, const VectorXd& sigma_b,
-                                double scale_b, const Options& opt_in) {
+RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b,
+                                const VectorXd& sigma_b, double scale_b, const Options& opt_in) {
   const Options opt = assessed(opt_in, {a, b});
   RankDecision d = RankRevealing(a, scale_a, opt, false).decision();
   d.rank -= offset;
@@ -228,7 +227,8 @@ RankRevealing::RankRevealing(const MatrixXd& a, double scale, const Options& opt
 void RankRevealing::decide(const MatrixXd& a, double scale, const Options& opt) {
   const Eigen::Index m = a.rows(), p = std::min(m, a.cols());
   if (p > opt.qr_from && scale >= 0) {  // σ₁ ≤ ‖A‖_F ≤ τ0: rank 0 with nothing to factor
-    const double frobenius = a.norm(), tau0 = zero_threshold(static_cast<int>(m), static_cast<int>(a.cols()), scale, opt);
+    const double frobenius = a.norm(),
+                 tau0 = zero_threshold(static_cast<int>(m), static_cast<int>(a.cols()), scale, opt);
     if (frobenius <= tau0) {
       d_.rows = static_cast<int>(m);
       d_.cols = static_cast<int>(a.cols());
@@ -357,7 +357,7 @@ namespace {
 /// The value of x's lowest nonzero binary digit (x ≠ 0, finite): 1 + 2^-40 → 2^-40.
 double lowest_digit(double x) {
   int e = 0;
-  const double m = std::frexp(std::abs(x), &e);  // x = m · 2^e, m ∈ [1/2, 1)
+  const double m = std::frexp(std::abs(x), &e);                         // x = m · 2^e, m ∈ [1/2, 1)
   const auto mantissa = static_cast<std::uint64_t>(std::ldexp(m, 53));  // exact: 53 bits
   return std::ldexp(1.0, e - 53 + __builtin_ctzll(mantissa));
 }

@@ -27,16 +27,19 @@ SpMat build(Eigen::Index rows, Eigen::Index cols, const Triplets& t) {
 
 std::string Model::name(long node) const {
   if (node < 0) return "0";
-  return static_cast<std::size_t>(node) < c_.node_names.size() ? c_.node_names[static_cast<std::size_t>(node)] : "n" + std::to_string(node);
+  return static_cast<std::size_t>(node) < c_.node_names.size() ? c_.node_names[static_cast<std::size_t>(node)]
+                                                               : "n" + std::to_string(node);
 }
 
 Model::Model(const Network& c) : c_(c) {
   const std::size_t n = c.branches.size(), nv = c.nodes + 1, ms = c.sources;
   for (std::size_t b = 0; b < n; ++b) {
     const Element& br = c.branches[b];
-    if ((br.kind == Kind::capacitor || br.kind == Kind::resistor || br.kind == Kind::inductor) && !(br.value > 0 && std::isfinite(br.value)))
+    if ((br.kind == Kind::capacitor || br.kind == Kind::resistor || br.kind == Kind::inductor) &&
+        !(br.value > 0 && std::isfinite(br.value)))
       throw std::invalid_argument("branch " + std::to_string(b) + ": expected a positive finite value");
-    if ((br.kind == Kind::voltage || br.kind == Kind::current) && (br.source < 0 || static_cast<std::size_t>(br.source) >= ms))
+    if ((br.kind == Kind::voltage || br.kind == Kind::current) &&
+        (br.source < 0 || static_cast<std::size_t>(br.source) >= ms))
       throw std::invalid_argument("branch " + std::to_string(b) + ": source index out of range");
   }
   // 1.–3. the contractions (dcad/rlc_state.hpp)
@@ -79,10 +82,23 @@ Model::Model(const Network& c) : c_(c) {
       if (z >= 0) t.emplace_back(z, col, -1.0);
     };
     switch (br.kind) {
-      case Kind::capacitor: add(tc, cidx_.size()); cidx_.push_back(b); break;
-      case Kind::resistor: add(tr, ridx_.size()); ridx_.push_back(b); break;
-      case Kind::inductor: add(tl, lidx_.size()); lof_[b] = static_cast<long>(lidx_.size()); lidx_.push_back(b); break;
-      case Kind::current: add(ti, iidx_.size()); iidx_.push_back(b); break;
+      case Kind::capacitor:
+        add(tc, cidx_.size());
+        cidx_.push_back(b);
+        break;
+      case Kind::resistor:
+        add(tr, ridx_.size());
+        ridx_.push_back(b);
+        break;
+      case Kind::inductor:
+        add(tl, lidx_.size());
+        lof_[b] = static_cast<long>(lidx_.size());
+        lidx_.push_back(b);
+        break;
+      case Kind::current:
+        add(ti, iidx_.size());
+        iidx_.push_back(b);
+        break;
       default: break;
     }
     if (br.kind != Kind::capacitor) qx_.push_back(b);
@@ -96,7 +112,8 @@ Model::Model(const Network& c) : c_(c) {
   cdiag_.resize(static_cast<Eigen::Index>(cidx_.size()));
   for (std::size_t k = 0; k < cidx_.size(); ++k) cdiag_(static_cast<Eigen::Index>(k)) = c.branches[cidx_[k]].value;
   rdiag_g_.resize(static_cast<Eigen::Index>(ridx_.size()));
-  for (std::size_t k = 0; k < ridx_.size(); ++k) rdiag_g_(static_cast<Eigen::Index>(k)) = 1.0 / c.branches[ridx_[k]].value;
+  for (std::size_t k = 0; k < ridx_.size(); ++k)
+    rdiag_g_(static_cast<Eigen::Index>(k)) = 1.0 / c.branches[ridx_[k]].value;
 
   wv_.assign(nsup_, -1);
   {
@@ -110,9 +127,11 @@ Model::Model(const Network& c) : c_(c) {
     }
     m_.T = build(ns, static_cast<Eigen::Index>(nw_ + nr_ + ne_), t);
   }
-  const SpMat Tw = m_.T.leftCols(static_cast<Eigen::Index>(nw_)), Tr = m_.T.middleCols(static_cast<Eigen::Index>(nw_), static_cast<Eigen::Index>(nr_)),
+  const SpMat Tw = m_.T.leftCols(static_cast<Eigen::Index>(nw_)),
+              Tr = m_.T.middleCols(static_cast<Eigen::Index>(nw_), static_cast<Eigen::Index>(nr_)),
               Te = m_.T.rightCols(static_cast<Eigen::Index>(ne_));
-  const SpMat Cn = AC_ * cdiag_.asDiagonal() * SpMat(AC_.transpose()), Gn = AR_ * rdiag_g_.asDiagonal() * SpMat(AR_.transpose());
+  const SpMat Cn = AC_ * cdiag_.asDiagonal() * SpMat(AC_.transpose()),
+              Gn = AR_ * rdiag_g_.asDiagonal() * SpMat(AR_.transpose());
   m_.Cww = SpMat(Tw.transpose()) * Cn * Tw;
   m_.Gww = SpMat(Tw.transpose()) * Gn * Tw;
   m_.Gwr = SpMat(Tw.transpose()) * Gn * Tr;
@@ -143,7 +162,8 @@ Model::Model(const Network& c) : c_(c) {
     std::vector<std::pair<std::size_t, std::size_t>> mends;
     std::vector<bool> all;
     for (const Coupling& mu : c.mutuals) {
-      if (lof_.at(mu.a) < 0 || lof_.at(mu.b) < 0) throw std::invalid_argument("a coupling between branches that are not inductors");
+      if (lof_.at(mu.a) < 0 || lof_.at(mu.b) < 0)
+        throw std::invalid_argument("a coupling between branches that are not inductors");
       t.emplace_back(lof_[mu.a], lof_[mu.b], mu.m);
       t.emplace_back(lof_[mu.b], lof_[mu.a], mu.m);
       mends.emplace_back(static_cast<std::size_t>(lof_[mu.a]), static_cast<std::size_t>(lof_[mu.b]));
@@ -159,7 +179,8 @@ Model::Model(const Network& c) : c_(c) {
       if (g.empty()) continue;
       Eigen::MatrixXd blk(g.size(), g.size());
       for (std::size_t i = 0; i < g.size(); ++i)
-        for (std::size_t j = 0; j < g.size(); ++j) blk(i, j) = m_.phi.coeff(static_cast<Eigen::Index>(g[i]), static_cast<Eigen::Index>(g[j]));
+        for (std::size_t j = 0; j < g.size(); ++j)
+          blk(i, j) = m_.phi.coeff(static_cast<Eigen::Index>(g[i]), static_cast<Eigen::Index>(g[j]));
       Eigen::LLT<Eigen::MatrixXd> llt(blk);
       if (llt.info() != Eigen::Success) throw std::invalid_argument("the inductance matrix is not positive definite");
       const Eigen::MatrixXd inv = llt.solve(Eigen::MatrixXd::Identity(g.size(), g.size()));
@@ -172,13 +193,16 @@ Model::Model(const Network& c) : c_(c) {
   grr_.compute(m_.Grr);
   const SpMat schur = m_.Le * phi_inv_ * SpMat(m_.Le.transpose());
   schur_.compute(schur);
-  if ((nw_ && cww_.info() != Eigen::Success) || (nr_ && grr_.info() != Eigen::Success) || (ne_ && schur_.info() != Eigen::Success))
+  if ((nw_ && cww_.info() != Eigen::Success) || (nr_ && grr_.info() != Eigen::Success) ||
+      (ne_ && schur_.info() != Eigen::Success))
     throw std::invalid_argument("a reduced matrix is not positive definite (a value out of double's range?)");
 }
 
-void Model::rate(const double* x, const double* sigma, const double* dsigma, double* xdot, double* current, Vec* potentials) const {
+void Model::rate(const double* x, const double* sigma, const double* dsigma, double* xdot, double* current,
+                 Vec* potentials) const {
   const auto ms = static_cast<Eigen::Index>(c_.sources);
-  const Eigen::Map<const Vec> w(x, static_cast<Eigen::Index>(nw_)), i(x + nw_, static_cast<Eigen::Index>(nl_)), s(sigma, ms), ds(dsigma, ms);
+  const Eigen::Map<const Vec> w(x, static_cast<Eigen::Index>(nw_)), i(x + nw_, static_cast<Eigen::Index>(nl_)),
+      s(sigma, ms), ds(dsigma, ms);
   Vec rho(static_cast<Eigen::Index>(nr_)), e(static_cast<Eigen::Index>(ne_));
   if (nr_) rho = -grr_.solve(m_.Gwr.transpose() * w + m_.Lr * i + m_.Hr * s);
   Vec ul = m_.Lw.transpose() * w + m_.Ol * s;
@@ -205,8 +229,12 @@ void Model::rate(const double* x, const double* sigma, const double* dsigma, dou
   const Vec ur = AR_.transpose() * E;
   const Vec ic = nw_ ? Vec(Crow_ * wdot) : Vec::Zero(static_cast<Eigen::Index>(cidx_.size()));
   std::vector<double> ib(n, 0.0);
-  for (std::size_t k = 0; k < ridx_.size(); ++k) ib[ridx_[k]] = (ur(static_cast<Eigen::Index>(k)) + ob(static_cast<Eigen::Index>(ridx_[k]))) * rdiag_g_(static_cast<Eigen::Index>(k));
-  for (std::size_t k = 0; k < cidx_.size(); ++k) ib[cidx_[k]] = ic(static_cast<Eigen::Index>(k)) + cdiag_(static_cast<Eigen::Index>(k)) * obd(static_cast<Eigen::Index>(cidx_[k]));
+  for (std::size_t k = 0; k < ridx_.size(); ++k)
+    ib[ridx_[k]] = (ur(static_cast<Eigen::Index>(k)) + ob(static_cast<Eigen::Index>(ridx_[k]))) *
+                   rdiag_g_(static_cast<Eigen::Index>(k));
+  for (std::size_t k = 0; k < cidx_.size(); ++k)
+    ib[cidx_[k]] = ic(static_cast<Eigen::Index>(k)) +
+                   cdiag_(static_cast<Eigen::Index>(k)) * obd(static_cast<Eigen::Index>(cidx_[k]));
   for (std::size_t k = 0; k < nl_; ++k) ib[lidx_[k]] = i(static_cast<Eigen::Index>(k));
   for (std::size_t k = 0; k < iidx_.size(); ++k) ib[iidx_[k]] = s(c_.branches[iidx_[k]].source);
   source_currents(ib);
@@ -230,9 +258,11 @@ BranchValues Model::values(const double* x, const double* qx, const double* sigm
   for (std::size_t b = 0; b < n; ++b) {
     const long a = c_.branches[b].from < 0 ? -1 : sup_[static_cast<std::size_t>(c_.branches[b].from)];
     const long z = c_.branches[b].to < 0 ? -1 : sup_[static_cast<std::size_t>(c_.branches[b].to)];
-    v.u(static_cast<Eigen::Index>(b)) = (a >= 0 ? E(a) : 0.0) - (z >= 0 ? E(z) : 0.0) + ob(static_cast<Eigen::Index>(b));
+    v.u(static_cast<Eigen::Index>(b)) =
+        (a >= 0 ? E(a) : 0.0) - (z >= 0 ? E(z) : 0.0) + ob(static_cast<Eigen::Index>(b));
   }
-  const Vec ic = nw_ ? Vec(Crow_ * Eigen::Map<const Vec>(xdot.data(), static_cast<Eigen::Index>(nw_))) : Vec::Zero(static_cast<Eigen::Index>(cidx_.size()));
+  const Vec ic = nw_ ? Vec(Crow_ * Eigen::Map<const Vec>(xdot.data(), static_cast<Eigen::Index>(nw_)))
+                     : Vec::Zero(static_cast<Eigen::Index>(cidx_.size()));
   for (std::size_t k = 0; k < cidx_.size(); ++k) {
     const auto b = static_cast<Eigen::Index>(cidx_[k]), kk = static_cast<Eigen::Index>(k);
     v.q(b) = cdiag_(kk) * v.u(b);
@@ -251,7 +281,8 @@ void Model::source_currents(std::vector<double>& ib) const {
     net[static_cast<std::size_t>(c_.branches[b].from + 1)] += ib[b];
     net[static_cast<std::size_t>(c_.branches[b].to + 1)] -= ib[b];
   }
-  for (auto it = vtree_.rbegin(); it != vtree_.rend(); ++it) {  // leaves first: KCL at the child gives its source's current
+  for (auto it = vtree_.rbegin(); it != vtree_.rend();
+       ++it) {  // leaves first: KCL at the child gives its source's current
     const Element& br = c_.branches[it->branch];
     const std::size_t ch = static_cast<std::size_t>(it->node + 1), pa = static_cast<std::size_t>(it->parent + 1);
     const double cur = br.from == it->node ? -net[ch] : net[ch];
@@ -281,9 +312,12 @@ Vec Model::node_potentials(const double* x, const double* sigma, const double* d
 
 Vec Model::energy_scale() const {
   Vec d(static_cast<Eigen::Index>(nw_ + nl_));
-  for (std::size_t k = 0; k < nw_; ++k) d(static_cast<Eigen::Index>(k)) = std::sqrt(m_.Cww.coeff(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
+  for (std::size_t k = 0; k < nw_; ++k)
+    d(static_cast<Eigen::Index>(k)) =
+        std::sqrt(m_.Cww.coeff(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
   for (std::size_t k = 0; k < nl_; ++k)
-    d(static_cast<Eigen::Index>(nw_ + k)) = std::sqrt(m_.phi.coeff(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
+    d(static_cast<Eigen::Index>(nw_ + k)) =
+        std::sqrt(m_.phi.coeff(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
   return d;
 }
 
@@ -294,11 +328,14 @@ Vec Model::from_charges(const Vec& q_before, const Vec& i_before, const double* 
     Vec qc(static_cast<Eigen::Index>(cidx_.size()));
     const Vec ob = ob_ * s;
     for (std::size_t k = 0; k < cidx_.size(); ++k)
-      qc(static_cast<Eigen::Index>(k)) = q_before(static_cast<Eigen::Index>(cidx_[k])) - cdiag_(static_cast<Eigen::Index>(k)) * ob(static_cast<Eigen::Index>(cidx_[k]));
-    x.head(static_cast<Eigen::Index>(nw_)) = cww_.solve(Vec(SpMat(m_.T.leftCols(static_cast<Eigen::Index>(nw_)).transpose()) * (AC_ * qc)));
+      qc(static_cast<Eigen::Index>(k)) = q_before(static_cast<Eigen::Index>(cidx_[k])) -
+                                         cdiag_(static_cast<Eigen::Index>(k)) * ob(static_cast<Eigen::Index>(cidx_[k]));
+    x.head(static_cast<Eigen::Index>(nw_)) =
+        cww_.solve(Vec(SpMat(m_.T.leftCols(static_cast<Eigen::Index>(nw_)).transpose()) * (AC_ * qc)));
   }
   Vec il(static_cast<Eigen::Index>(nl_));
-  for (std::size_t k = 0; k < nl_; ++k) il(static_cast<Eigen::Index>(k)) = i_before(static_cast<Eigen::Index>(lidx_[k]));
+  for (std::size_t k = 0; k < nl_; ++k)
+    il(static_cast<Eigen::Index>(k)) = i_before(static_cast<Eigen::Index>(lidx_[k]));
   if (ne_) il -= phi_inv_ * (SpMat(m_.Le.transpose()) * schur_.solve(Vec(m_.Le * il + m_.Ie * s)));
   x.tail(static_cast<Eigen::Index>(nl_)) = il;
   return x;
@@ -312,15 +349,19 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
   std::vector<bool> all(nl_, true);
   std::vector<long> rep(nv, -1);  // a node of each supernode, for messages
   for (std::size_t k = 0; k < c_.nodes; ++k)
-    if (rep[static_cast<std::size_t>(sup_[k] + 1)] < 0) rep[static_cast<std::size_t>(sup_[k] + 1)] = static_cast<long>(k);
-  const auto sv = [&](long node) { return static_cast<std::size_t>((node < 0 ? -1 : sup_[static_cast<std::size_t>(node)]) + 1); };
+    if (rep[static_cast<std::size_t>(sup_[k] + 1)] < 0)
+      rep[static_cast<std::size_t>(sup_[k] + 1)] = static_cast<long>(k);
+  const auto sv = [&](long node) {
+    return static_cast<std::size_t>((node < 0 ? -1 : sup_[static_cast<std::size_t>(node)]) + 1);
+  };
   for (std::size_t k = 0; k < nl_; ++k) ends[k] = {sv(c_.branches[lidx_[k]].from), sv(c_.branches[lidx_[k]].to)};
   const rlc::Forest fl = rlc::forest(nv, ends, all);
   const Vec ol = m_.Ol * s, obs = ob_ * s;
   for (std::size_t k = 0; k < nl_; ++k)
     if (!fl.in_tree[k])
       throw std::domain_error("the DC operating point is not unique: " + c_.branch_names.at(lidx_[k]) +
-                              " closes a loop of inductors, voltage sources and wires, whose current DC leaves free (ngspice: singular matrix)");
+                              " closes a loop of inductors, voltage sources and wires, whose current DC leaves free "
+                              "(ngspice: singular matrix)");
   std::vector<double> t(nv, 0.0);
   for (const rlc::Forest::Edge& e : fl.tree) {  // E_child = E_parent ± (−o_L σ)
     const double d = -ol(static_cast<Eigen::Index>(e.edge));
@@ -338,8 +379,9 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
     const bool ground = r == fl.root[0];
     const double known = ground ? 0.0 : fixed[r];
     if ((ground || is_fixed[r]) && std::abs(known - p) > 1e-12 * std::max({1.0, std::abs(p), std::abs(known)}))
-      throw std::domain_error(".ic v(" + name(node) + ") = " + std::to_string(value) +
-                              " contradicts ground or another .ic through voltage sources, wires and inductors (shorts at DC)");
+      throw std::domain_error(
+          ".ic v(" + name(node) + ") = " + std::to_string(value) +
+          " contradicts ground or another .ic through voltage sources, wires and inductors (shorts at DC)");
     if (ground) continue;  // already what ground's sources make it
     is_fixed[r] = true;
     fixed[r] = p;
@@ -348,8 +390,11 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
   std::vector<long> dc(nv, -1);
   std::size_t ndc = 0;
   for (std::size_t v = 0; v < nv; ++v)
-    if (fl.root[v] != fl.root[0] && !is_fixed[fl.root[v]] && dc[fl.root[v]] < 0) dc[fl.root[v]] = static_cast<long>(ndc++);
-  const auto level = [&](std::size_t root) { return is_fixed[root] ? fixed[root] : 0.0; };  // a known root level (0: ground's)
+    if (fl.root[v] != fl.root[0] && !is_fixed[fl.root[v]] && dc[fl.root[v]] < 0)
+      dc[fl.root[v]] = static_cast<long>(ndc++);
+  const auto level = [&](std::size_t root) {
+    return is_fixed[root] ? fixed[root] : 0.0;
+  };  // a known root level (0: ground's)
   std::vector<std::pair<std::size_t, std::size_t>> rends;
   std::vector<bool> rall;
   Triplets tg;
@@ -363,7 +408,8 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
     const double g = rdiag_g_(static_cast<Eigen::Index>(k));
     const long da = dc[fl.root[a]], dz = dc[fl.root[z]];
     // known levels (held or ground) move to the right-hand side with the offsets
-    const double o = obs(static_cast<Eigen::Index>(ridx_[k])) + t[a] - t[z] + (da < 0 ? level(fl.root[a]) : 0.0) - (dz < 0 ? level(fl.root[z]) : 0.0);
+    const double o = obs(static_cast<Eigen::Index>(ridx_[k])) + t[a] - t[z] + (da < 0 ? level(fl.root[a]) : 0.0) -
+                     (dz < 0 ? level(fl.root[z]) : 0.0);
     // i = g (P_a − P_z + o)
     if (da >= 0) {
       tg.emplace_back(da, da, g);
@@ -391,16 +437,19 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
   const rlc::Forest fr = rlc::forest(nv, rends, rall);
   for (std::size_t v = 1; v < nv; ++v)
     if (fr.root[fl.root[v]] != fr.root[fl.root[0]])
-      throw std::domain_error("the DC operating point is not unique: node " + name(rep[v]) +
-                              " has no path of resistors, inductors, voltage sources or wires to ground (ngspice: singular matrix)");
+      throw std::domain_error(
+          "the DC operating point is not unique: node " + name(rep[v]) +
+          " has no path of resistors, inductors, voltage sources or wires to ground (ngspice: singular matrix)");
   Vec pot = Vec::Zero(static_cast<Eigen::Index>(ndc));
   if (ndc) {
     Eigen::SimplicialLLT<SpMat> llt(build(static_cast<Eigen::Index>(ndc), static_cast<Eigen::Index>(ndc), tg));
-    if (llt.info() != Eigen::Success) throw std::domain_error("the DC conductance matrix is not positive definite in double");
+    if (llt.info() != Eigen::Success)
+      throw std::domain_error("the DC conductance matrix is not positive definite in double");
     pot = llt.solve(rhs);
   }
   Vec E(static_cast<Eigen::Index>(nsup_));
-  for (std::size_t v = 1; v < nv; ++v) E(static_cast<Eigen::Index>(v - 1)) = (dc[fl.root[v]] >= 0 ? pot(dc[fl.root[v]]) : level(fl.root[v])) + t[v];
+  for (std::size_t v = 1; v < nv; ++v)
+    E(static_cast<Eigen::Index>(v - 1)) = (dc[fl.root[v]] >= 0 ? pot(dc[fl.root[v]]) : level(fl.root[v])) + t[v];
   // inductor currents: KCL along the inductor forest, leaves first
   for (std::size_t k = 0; k < ridx_.size(); ++k) {
     const Element& br = c_.branches[ridx_[k]];

@@ -90,14 +90,16 @@ Truth contains(const Subspace& u, const Subspace& w, const Options& opt_in) {
 Truth contains(const Subspace& u, const VectorXd& x, const Options& opt_in) {
   const Options opt = assessed(opt_in, {x});
   if (x.size() != u.ambient())
-    throw std::invalid_argument("contains: expected a vector of R^" + std::to_string(u.ambient()) +
-                                ", found length " + std::to_string(x.size()));
+    throw std::invalid_argument("contains: expected a vector of R^" + std::to_string(u.ambient()) + ", found length " +
+                                std::to_string(x.size()));
   const double nx = x.norm();
   if (nx == 0) return Truth::decided(true, u.certain());
   return contains(u, Subspace::from_orthonormal_columns(x / nx, yes), opt);
 }
 
-Truth equal(const Subspace& u, const Subspace& w, const Options& opt) { return contains(u, w, opt) & contains(w, u, opt); }
+Truth equal(const Subspace& u, const Subspace& w, const Options& opt) {
+  return contains(u, w, opt) & contains(w, u, opt);
+}
 
 double largest_principal_angle_sin(const Subspace& u, const Subspace& w) {
   if (u.ambient() != w.ambient() || u.dim() != w.dim()) return 1.0;

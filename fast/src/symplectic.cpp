@@ -13,7 +13,8 @@ void require_skew(const MatrixXd& w, const std::string& fn) {
   if (w.rows() != w.cols())
     throw std::invalid_argument(fn + ": expected a square matrix, found " + std::to_string(w.rows()) + "x" +
                                 std::to_string(w.cols()));
-  if (w != -w.transpose()) throw std::invalid_argument(fn + ": expected a skew matrix (W = -Wᵀ), found one that is not");
+  if (w != -w.transpose())
+    throw std::invalid_argument(fn + ": expected a skew matrix (W = -Wᵀ), found one that is not");
 }
 
 Truth is_symplectic(const MatrixXd& w, const Options& opt_in) {
@@ -26,7 +27,9 @@ Truth is_symplectic(const MatrixXd& w, const Options& opt_in) {
 Truth require_symplectic(const MatrixXd& w, const std::string& fn, const Options& opt_in) {
   const Options opt = assessed(opt_in, {w});
   const Truth nondegenerate = is_symplectic(w, opt);
-  if (nondegenerate.no()) throw std::invalid_argument(fn + ": expected a nondegenerate form, found " + decide_rank(w, -1, Options()).describe());
+  if (nondegenerate.no())
+    throw std::invalid_argument(fn + ": expected a nondegenerate form, found " +
+                                decide_rank(w, -1, Options()).describe());
   return nondegenerate;
 }
 
@@ -34,7 +37,8 @@ VectorXd flat(const MatrixXd& w, const VectorXd& x) { return w.transpose() * x; 
 
 VectorXd sharp(const MatrixXd& w, const VectorXd& alpha) {
   if (!require_symplectic(w, "sharp").yes())
-    throw std::invalid_argument("sharp: expected a certainly nondegenerate form, found " + decide_rank(w, -1, Options()).describe());
+    throw std::invalid_argument("sharp: expected a certainly nondegenerate form, found " +
+                                decide_rank(w, -1, Options()).describe());
   return w.transpose().fullPivLu().solve(alpha);
 }
 
@@ -55,7 +59,8 @@ PresymplecticForm restrict_form(const MatrixXd& w, const Subspace& v) {
 PresymplecticForm restrict_form(const PresymplecticForm& f, const Subspace& u, const Options& opt_in) {
   const Options opt = assessed(opt_in, {f.matrix});
   const Truth in = contains(f.space, u, opt);
-  if (in.no()) throw std::invalid_argument("restrict_form: expected a subspace of the form's domain, found one outside it");
+  if (in.no())
+    throw std::invalid_argument("restrict_form: expected a subspace of the form's domain, found one outside it");
   PresymplecticForm g{u, f.matrix, f.scale};
   g.space.and_certain(in);
   return g;
@@ -90,7 +95,7 @@ NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Op
   const Options opt = assessed(opt_in, {w});
   const Truth nondegenerate = require_symplectic(w, "normal_form_basis", opt);
   const Subspace comp = symplectic_complement(w, v, opt);
-  MatrixXd rest = comp.columns();  // columns
+  MatrixXd rest = comp.columns();                                   // columns
   const double scale = norm2(w), tol = opt.nonzero_factor * scale;  // pairs below τ1 are not split off
   NormalFormBasis out;
   out.certain = comp.certain() & nondegenerate;
@@ -100,7 +105,8 @@ NormalFormBasis normal_form_basis(const MatrixXd& w, const Subspace& v, const Op
     Eigen::Index i = 0, j = 0;
     const double big = g.cwiseAbs().maxCoeff(&i, &j);
     if (big <= tol) {
-      if (big > zero_threshold(static_cast<int>(g.rows()), static_cast<int>(g.cols()), scale, opt)) out.certain = unknown;  // neither zero nor clearly not
+      if (big > zero_threshold(static_cast<int>(g.rows()), static_cast<int>(g.cols()), scale, opt))
+        out.certain = unknown;  // neither zero nor clearly not
       break;
     }
     const VectorXd e = rest.col(i), f = rest.col(j) / g(i, j);
@@ -129,9 +135,9 @@ RestrictedSolution solve_restricted(const MatrixXd& w, const Subspace& v, const 
   const Options opt = assessed(opt_in, {w, beta});
   const Truth nondegenerate = require_symplectic(w, "solve_restricted", opt);
   require_finite(beta, "solve_restricted");
-  const MatrixXd gamma = annihilator(v).columns();                // columns γ_i
-  const MatrixXd y = w.transpose().fullPivLu().solve(gamma);    // columns Y_i = γ_i^♯
-  const MatrixXd coeff = (gamma.transpose() * y).transpose();   // (i, j) = γ_j(Y_i)
+  const MatrixXd gamma = annihilator(v).columns();             // columns γ_i
+  const MatrixXd y = w.transpose().fullPivLu().solve(gamma);   // columns Y_i = γ_i^♯
+  const MatrixXd coeff = (gamma.transpose() * y).transpose();  // (i, j) = γ_j(Y_i)
   RestrictedSolution out;
   out.lambda = solve(coeff, -(y.transpose() * beta), opt, norm2(y));  // coeff may vanish exactly
   out.lambda.certain &= v.certain() & nondegenerate;
@@ -149,7 +155,8 @@ AffineSubspace solve_on_subspace(const PresymplecticForm& f, const VectorXd& bet
   AffineSubspace out;
   out.empty = c.empty;
   out.certain = c.certain & f.space.certain();
-  out.direction = Subspace::from_orthonormal_columns(q * c.direction.columns(), c.direction.certain() & f.space.certain());
+  out.direction =
+      Subspace::from_orthonormal_columns(q * c.direction.columns(), c.direction.certain() & f.space.certain());
   if (!c.empty) out.point = q * c.point;
   return out;
 }

@@ -56,10 +56,10 @@ TEST(MyNetlist, SolveADeckGivenAsAString) {
   EXPECT_TRUE(s.certified.yes());
   EXPECT_EQ(s.dims(), (std::vector<long>{9, 5, 4, 3}));  // CEF Thm 6.6: a capacitive loop, so c = 3
   ASSERT_TRUE(s.circuit.has_value());
-  EXPECT_EQ(s.circuit->pc_loop_branches.size(), 1u);         // the loop C1, C2 by name
+  EXPECT_EQ(s.circuit->pc_loop_branches.size(), 1u);  // the loop C1, C2 by name
   ASSERT_TRUE(s.motion.has_value());
-  EXPECT_EQ(s.motion->f_matrix.size(), 3u);                  // ż = F z on the 3-dimensional M_c
-  EXPECT_TRUE(s.motion->f_matrix[0][0].exact);               // exact numbers: no rounding anywhere
+  EXPECT_EQ(s.motion->f_matrix.size(), 3u);                              // ż = F z on the 3-dimensional M_c
+  EXPECT_TRUE(s.motion->f_matrix[0][0].exact);                           // exact numbers: no rounding anywhere
   const std::string json = dcad::io::result_json(dcad::io::printed(s));  // what `dcad solve --json` prints
   EXPECT_NE(json.find("\"dims\""), std::string::npos);
   std::ostringstream report;
@@ -71,9 +71,10 @@ TEST(MyNetlist, SolveADeckGivenAsAString) {
 TEST(MyTool, ResultAgreesWithTheReference) {
   const dcad::io::Problem p = dcad::io::parse_netlist("tank\nL1 1 0 1m\nC1 1 0 1u\n.end\n", "tank.cir");
   const dcad::io::Printed mine = dcad::api::printed(dcad::api::solve(p, dcad::api::Backend::fast, dcad::Parts::none()));
-  EXPECT_EQ(mine.dims(), (std::vector<long>{6, 3}));  // CEF Thm 6.6: no capacitive loop, c = 1
+  EXPECT_EQ(mine.dims(), (std::vector<long>{6, 3}));                          // CEF Thm 6.6: no capacitive loop, c = 1
   EXPECT_TRUE(dcad::api::check_text(dcad::io::result_json(mine), p).agrees);  // or your tool's JSON text
-  const dcad::api::Checked wrong = dcad::api::check_text(R"({"dims": [6, 2], "steps": 1, "consistent": true, "solution_rank": 0})", p);
+  const dcad::api::Checked wrong =
+      dcad::api::check_text(R"({"dims": [6, 2], "steps": 1, "consistent": true, "solution_rank": 0})", p);
   EXPECT_FALSE(wrong.agrees);  // dim M_1 is 3, not 2: the disagreement is named
   ASSERT_FALSE(wrong.disagreements.empty());
   EXPECT_NE(wrong.disagreements[0].find("dims"), std::string::npos);

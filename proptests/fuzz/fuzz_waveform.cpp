@@ -46,7 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!parsed || time != t.time || s->names() != t.names || s->points() != t.time.size()) std::abort();
     for (std::size_t k = 0; k < values.size(); ++k)
       for (std::size_t i = 0; i < time.size(); ++i)
-        if (!(values[k][i] == t.values[k][i] || (values[k][i] != values[k][i] && t.values[k][i] != t.values[k][i]))) std::abort();  // NaN is NaN
+        if (!(values[k][i] == t.values[k][i] || (values[k][i] != values[k][i] && t.values[k][i] != t.values[k][i])))
+          std::abort();  // NaN is NaN
   } catch (const std::invalid_argument&) {
     if (parsed) std::abort();
   }

@@ -43,15 +43,17 @@ inline std::string case_json(const reference::LinearSystem<Q>& s) {
 /// `pontryagin` (an LC circuit, CEF §6).
 inline std::string case_json(const reference::PontryaginInput<Q>& p) {
   return "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"pontryagin\": {\"Q\": " + std::to_string(p.n) +
-         ", \"constraints\": " + json_matrix(p.k) + ", \"lagrangian\": {\"vv\": " + json_matrix(p.vv) + ", \"qv\": " + json_matrix(p.qv) +
-         ", \"qq\": " + json_matrix(p.qq) + ", \"q\": " + json_vector(p.q) + ", \"v\": " + json_vector(p.v) + "}}}\n";
+         ", \"constraints\": " + json_matrix(p.k) + ", \"lagrangian\": {\"vv\": " + json_matrix(p.vv) +
+         ", \"qv\": " + json_matrix(p.qv) + ", \"qq\": " + json_matrix(p.qq) + ", \"q\": " + json_vector(p.q) +
+         ", \"v\": " + json_vector(p.v) + "}}}\n";
 }
 
 /// `constrained` (N, Ω, E, M) with M = {a·x = b} (CEF §2), and `energy`.
 inline std::string case_json(const reference::ConstrainedSystem<Q>& s) {
-  return "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"constrained\": {\"symplectic\": " + json_matrix(s.omega) +
-         ", \"primary\": " + json_matrix(s.primary) + "}, \"energy\": {\"hessian\": " + json_matrix(s.hessian) +
-         ", \"gradient\": " + json_vector(s.gradient) + "}}\n";
+  return "dcad case: {\"dcad\": 1, \"name\": \"counterexample\", \"constrained\": {\"symplectic\": " +
+         json_matrix(s.omega) + ", \"primary\": " + json_matrix(s.primary) +
+         "}, \"energy\": {\"hessian\": " + json_matrix(s.hessian) + ", \"gradient\": " + json_vector(s.gradient) +
+         "}}\n";
 }
 
 }  // namespace dcad::test

@@ -42,7 +42,9 @@ inline reference::Circuit<Q> random_circuit(bool empty, bool signed_values) {
     const Branch<Q> base = c.branches[*rc::gen::inRange<std::size_t>(0, c.branches.size())];
     Branch<Q> wire{"W" + std::to_string(c.branches.size() + 1), BranchKind::empty, base.from, base.to, Q(0)};
     c.branches.push_back(wire);
-    if (*rc::gen::arbitrary<bool>()) c.branches.push_back(Branch<Q>{"W" + std::to_string(c.branches.size() + 1), BranchKind::empty, base.to, base.from, Q(0)});
+    if (*rc::gen::arbitrary<bool>())
+      c.branches.push_back(
+          Branch<Q>{"W" + std::to_string(c.branches.size() + 1), BranchKind::empty, base.to, base.from, Q(0)});
   }
   return c;
 }
@@ -56,7 +58,8 @@ inline fast::CircuitGraph fast_graph(const Circuit<Q>& c, fast::Options* opt = n
   const std::vector<double> d = fast::to_double_values(values, opt ? *opt : ignored);
   fast::CircuitGraph g;
   g.nodes = c.nodes;
-  for (std::size_t i = 0; i < c.branches.size(); ++i) g.branches.push_back({c.branches[i].kind, c.branches[i].from, c.branches[i].to, d[i]});
+  for (std::size_t i = 0; i < c.branches.size(); ++i)
+    g.branches.push_back({c.branches[i].kind, c.branches[i].from, c.branches[i].to, d[i]});
   return g;
 }
 

@@ -88,7 +88,8 @@ struct BadCase {
 };
 
 /// Bad input: exit 1, and stderr names the file, contains `needle`, and says expected/found.
-inline void expect_input_error(const Outcome& r, const std::string& file, const std::string& needle, const std::string& label) {
+inline void expect_input_error(const Outcome& r, const std::string& file, const std::string& needle,
+                               const std::string& label) {
   EXPECT_EQ(r.rc, 1) << label << "\n" << r.out << r.err;
   EXPECT_NE(r.err.find(file), std::string::npos) << label << ": " << r.err;
   EXPECT_NE(r.err.find(needle), std::string::npos) << label << ": " << r.err;
@@ -107,8 +108,8 @@ inline std::string expect_same_simulation(const std::string& deck, const std::st
 
 /// Two decks that are the same circuit: `dcad solve --json ARGS` gives the same `keys` for both (exit 0);
 /// the deck's outcome (its warnings on err).
-inline Outcome expect_same_solution(const std::string& deck, const std::string& twin, std::initializer_list<const char*> keys,
-                                    const std::string& args = "") {
+inline Outcome expect_same_solution(const std::string& deck, const std::string& twin,
+                                    std::initializer_list<const char*> keys, const std::string& args = "") {
   const Outcome a = run("solve " + deck + " --json " + args), b = run("solve " + twin + " --json " + args);
   EXPECT_EQ(a.rc, 0) << deck << ": " << a.err;
   EXPECT_EQ(b.rc, 0) << twin << ": " << b.err;
@@ -119,7 +120,8 @@ inline Outcome expect_same_solution(const std::string& deck, const std::string& 
 }
 
 /// `dcad simulate DECK ARGS` as rows of named numbers (the CSV header names the columns); exit 0 expected.
-inline std::vector<std::map<std::string, double>> simulate_rows(const std::string& deck, const std::string& args, std::string* err = nullptr) {
+inline std::vector<std::map<std::string, double>> simulate_rows(const std::string& deck, const std::string& args,
+                                                                std::string* err = nullptr) {
   const Outcome r = run("simulate " + deck + " " + args);
   EXPECT_EQ(r.rc, 0) << r.err;
   if (err) *err = r.err;

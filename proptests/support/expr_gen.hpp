@@ -32,7 +32,8 @@ inline std::vector<ex::Expr> times(const QM& m, const std::vector<ex::Expr>& x) 
 }
 
 /// L(q, v) = ½ vᵀ A v + qᵀ B v + ½ qᵀ C q + aᵀ q + bᵀ v for expressions q, v  [CONTRACT `pontryagin`].
-inline ex::Expr lagrangian_formula(const reference::PontryaginInput<Q>& in, const std::vector<ex::Expr>& q, const std::vector<ex::Expr>& v) {
+inline ex::Expr lagrangian_formula(const reference::PontryaginInput<Q>& in, const std::vector<ex::Expr>& q,
+                                   const std::vector<ex::Expr>& v) {
   const auto half = ex::number(Q(1, 2));
   ex::Expr l = ex::number(0);
   const std::vector<ex::Expr> av = times(in.vv, v), bv = times(in.qv, v), cq = times(in.qq, q);
@@ -49,8 +50,8 @@ inline ex::Expr lagrangian_formula(const reference::PontryaginInput<Q>& in, cons
 /// The system with coordinates Q: L(Φ(Q), DΦ(Q)V), constraints K DΦ(Q) V = 0 (Φ = identity if `phi`
 /// is null).
 struct PointMap {
-  QM l1, l2;                     ///< unimodular
-  std::vector<std::vector<Q>> c; ///< c[i][j], j < i
+  QM l1, l2;                      ///< unimodular
+  std::vector<std::vector<Q>> c;  ///< c[i][j], j < i
   Index n() const { return l1.rows(); }
 
   /// q = Φ(Q) and v = DΦ(Q) V as formulas in the variables Q_i = i, V_i = n + i.
@@ -91,7 +92,9 @@ struct PointMap {
   }
 };
 
-inline PointMap identity_map(Index n) { return {QM::identity(n), QM::identity(n), std::vector<std::vector<Q>>(n, std::vector<Q>(n, Q(0)))}; }
+inline PointMap identity_map(Index n) {
+  return {QM::identity(n), QM::identity(n), std::vector<std::vector<Q>>(n, std::vector<Q>(n, Q(0)))};
+}
 
 /// A random Φ (RapidCheck choices; shrinks toward the identity).
 inline PointMap random_map(Index n) {
@@ -126,7 +129,8 @@ inline reference::PontryaginInput<Q> random_pontryagin(Index n, Index min_m = 0)
   in.v = affine ? integer_vector(n, 1) : std::vector<Q>(n, Q(0));
   const Index m = *rc::gen::inRange<Index>(std::min(min_m, n - 1), n);
   in.k = (integer_matrix(m, n, 1) + QM::identity(n).block(0, m, 0, n)) * unimodular(n);  // rank m: [B + (I 0)] U, B
-  if (reference::rank(in.k) < m) in.k = QM::identity(n).block(0, m, 0, n) * unimodular(n);  // small, else the identity rows
+  if (reference::rank(in.k) < m)
+    in.k = QM::identity(n).block(0, m, 0, n) * unimodular(n);  // small, else the identity rows
   return in;
 }
 
@@ -143,7 +147,8 @@ inline Heisenberg heisenberg_system(Index ix, Index iy, Index iz) {
   h.s.names[ix] = "x";
   h.s.names[iy] = "y";
   h.s.names[iz] = "z";
-  const std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)}, v{ex::variable(3), ex::variable(4), ex::variable(5)};
+  const std::vector<ex::Expr> q{ex::variable(0), ex::variable(1), ex::variable(2)},
+      v{ex::variable(3), ex::variable(4), ex::variable(5)};
   const QM k = symmetric_matrix(3, pick_size(0, 3));
   ex::Expr l = ex::number(0);
   for (Index i = 0; i < 3; ++i) l = ex::add(l, ex::mul(ex::number(Q(1, 2)), ex::pow(v[i], 2)));

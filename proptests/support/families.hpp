@@ -34,12 +34,12 @@ using reference::Index;
 /// The exact input of one instance: a presymplectic (ω, H, g) or a Pontryagin (circuit) system.
 struct Instance {
   std::string family;
-  double param = 0;            ///< κ, k, c, span, d or N, as the family says
+  double param = 0;  ///< κ, k, c, span, d or N, as the family says
   bool pontryagin = false;
-  QM omega, hessian;           ///< presymplectic form and ∂²E (when !pontryagin)
+  QM omega, hessian;  ///< presymplectic form and ∂²E (when !pontryagin)
   std::vector<Q> gradient;
   reference::PontryaginInput<Q> circuit;  ///< when pontryagin
-  bool planted = false;        ///< dims/solution_rank below are known by construction
+  bool planted = false;                   ///< dims/solution_rank below are known by construction
   std::vector<long> dims;
   long solution_rank = 0;
   Index n() const { return pontryagin ? 3 * circuit.n : omega.rows(); }
@@ -62,7 +62,8 @@ inline QM shears(Index n, std::mt19937_64& rng, int count) {
 inline QM grading(Index n, double kappa, std::mt19937_64& rng) {
   const double top = 0.5 * std::log2(std::max(kappa, 1.0));
   std::vector<long> e(n);
-  for (Index i = 0; i < n; ++i) e[i] = n > 1 ? std::lround(top * static_cast<double>(i) / static_cast<double>(n - 1)) : 0;
+  for (Index i = 0; i < n; ++i)
+    e[i] = n > 1 ? std::lround(top * static_cast<double>(i) / static_cast<double>(n - 1)) : 0;
   std::shuffle(e.begin(), e.end(), rng);
   QM g(n, n);
   for (Index i = 0; i < n; ++i) g(i, i) = Q(1) / Q(boost::multiprecision::pow(boost::multiprecision::mpz_int(2), e[i]));
@@ -156,8 +157,8 @@ inline Instance lc(double span, std::mt19937_64& rng) {
   in.param = span;
   in.pontryagin = true;
   const double lo = -span;
-  in.circuit = reference::circuit_lagrangian(
-      four_port(decimal_value(lo, 3, rng), decimal_value(lo, 3, rng), decimal_value(lo, 3, rng), decimal_value(lo, 3, rng)));
+  in.circuit = reference::circuit_lagrangian(four_port(decimal_value(lo, 3, rng), decimal_value(lo, 3, rng),
+                                                       decimal_value(lo, 3, rng), decimal_value(lo, 3, rng)));
   in.planted = true;
   in.dims = {12, 6, 5, 4};
   in.solution_rank = 0;
@@ -172,7 +173,8 @@ inline Instance cancel(int d, std::mt19937_64& rng) {
   const Q c1 = decimal_value(-1, 1, rng);
   Q tiny = 1;
   for (int i = 0; i < d; ++i) tiny /= Q(10);
-  in.circuit = reference::circuit_lagrangian(four_port(decimal_value(-1, 1, rng), c1, decimal_value(-1, 1, rng), -c1 * (Q(1) - tiny)));
+  in.circuit = reference::circuit_lagrangian(
+      four_port(decimal_value(-1, 1, rng), c1, decimal_value(-1, 1, rng), -c1 * (Q(1) - tiny)));
   in.planted = false;  // the reference decides
   return in;
 }
@@ -194,7 +196,8 @@ reference::LinearSystem<T> system_over(const Instance& in, Lift lift) {
   };
   if (in.pontryagin) {
     const auto& p = in.circuit;
-    return ref::pontryagin_system(ref::PontryaginInput<T>{p.n, lm(p.k), lm(p.vv), lm(p.qv), lm(p.qq), lv(p.q), lv(p.v)});
+    return ref::pontryagin_system(
+        ref::PontryaginInput<T>{p.n, lm(p.k), lm(p.vv), lm(p.qv), lm(p.qq), lv(p.q), lv(p.v)});
   }
   return {ref::dirac_from_presymplectic(lm(in.omega)), lm(in.hessian), lv(in.gradient), T(0)};
 }

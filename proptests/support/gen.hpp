@@ -242,7 +242,8 @@ inline reference::LinearSystem<Q> any_system(Index max_n = 8) {
   s.d = any_dirac(max_n);
   const Index n = s.d.n;
   s.hessian = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
-  s.gradient = *rc::gen::arbitrary<bool>() ? (s.hessian * QM::column(integer_vector(n, 2))).col(0) : integer_vector(n, 2);
+  s.gradient =
+      *rc::gen::arbitrary<bool>() ? (s.hessian * QM::column(integer_vector(n, 2))).col(0) : integer_vector(n, 2);
   return s;
 }
 
@@ -256,8 +257,10 @@ inline reference::LinearSystem<Q> change_coordinates(const reference::LinearSyst
       t(i, j) = ainv(i, j);
       t(n + i, n + j) = a(j, i);
     }
-  return {{n, QSub::span(s.d.d.basis() * t.transpose())}, a.transpose() * s.hessian * a,
-          (a.transpose() * QM::column(s.gradient)).col(0), s.constant};
+  return {{n, QSub::span(s.d.d.basis() * t.transpose())},
+          a.transpose() * s.hessian * a,
+          (a.transpose() * QM::column(s.gradient)).col(0),
+          s.constant};
 }
 
 /// A planted tower of full length c = N = 2m+1: coordinates (q_1..q_m, p_1..p_m, z), ω = Σ dq_i∧dp_i
@@ -313,6 +316,5 @@ inline QSub random_subspace_of(const QSub& u) {
   const Index k = *rc::gen::inRange<Index>(0, u.dim() + 1);
   return QSub::span(integer_matrix(k, u.dim()) * u.basis());
 }
-
 
 }  // namespace dcad::test

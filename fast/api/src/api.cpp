@@ -31,11 +31,18 @@ Parts parts_named(const std::string& list) {
   for (;;) {
     const std::size_t comma = list.find(',', start);
     const std::string w = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (w == "final") p.final_constraints = true;
-    else if (w == "reduced") p.reduced = true;
-    else if (w == "classes") p.classes = true;
-    else if (w == "adapted") p.adapted = true;
-    else throw UsageError("--with: expected all, none or a comma-separated list of final, reduced, classes, adapted; found '" + w + "'");
+    if (w == "final")
+      p.final_constraints = true;
+    else if (w == "reduced")
+      p.reduced = true;
+    else if (w == "classes")
+      p.classes = true;
+    else if (w == "adapted")
+      p.adapted = true;
+    else
+      throw UsageError(
+          "--with: expected all, none or a comma-separated list of final, reduced, classes, adapted; found '" + w +
+          "'");
     if (comma == std::string::npos) return p;
     start = comma + 1;
   }
@@ -49,12 +56,14 @@ certified::Solution not_certified(const io::Problem& p, const reference::NotExac
   const fast::Solution f = p.form == io::Form::implicit ? fast::solve_implicit(p.expression)
                            : p.form == io::Form::dae    ? fast::solve(p)
                                                         : fast::solve_expression(p.expression);
-  certified::Solution s =
-      map_numbers<certified::Number>(f, [](double x) { return certified::Number{false, reference::Rational(0), x, HUGE_VAL}; });  // no enclosure
+  certified::Solution s = map_numbers<certified::Number>(f, [](double x) {
+    return certified::Number{false, reference::Rational(0), x, HUGE_VAL};
+  });  // no enclosure
   s.backend = "certified";
   s.exact = false;
   s.certified = unknown;
-  s.note = std::string("the exact route cannot run here (") + e.what() + "): double precision" + (f.note.empty() ? "" : "; " + f.note);
+  s.note = std::string("the exact route cannot run here (") + e.what() + "): double precision" +
+           (f.note.empty() ? "" : "; " + f.note);
   return s;
 }
 
@@ -73,7 +82,9 @@ void attach_formulas(const io::Problem& p, Backend backend, Solved& s) {
         if (auto* ok = std::get_if<Charted>(&f)) {
           r.pointwise->formulas = formulas_of(p.expression, ok->chart);
           const bool elsewhere = !r.pointwise->place.empty() || !r.exact;
-          if (backend == Backend::certified && p.expression.has_initial && elsewhere) r.pointwise->at_given = at_given(p.expression, *ok, !r.pointwise->place.empty(), r.certified.yes() || ok->fast_certain);
+          if (backend == Backend::certified && p.expression.has_initial && elsewhere)
+            r.pointwise->at_given =
+                at_given(p.expression, *ok, !r.pointwise->place.empty(), r.certified.yes() || ok->fast_certain);
         } else {
           r.pointwise->formulas_why = std::get<std::string>(f);
         }
@@ -84,13 +95,9 @@ void attach_formulas(const io::Problem& p, Backend backend, Solved& s) {
 Solved solve_form(const io::Problem& p, Backend backend, const Parts& parts) {
   return guarded(p, [&]() -> Solved {
     switch (backend) {
-      case Backend::reference:
-        return reference::solve(p, parts);
-      case Backend::fast:
-        return fast::solve(p, parts);
-      case Backend::certified:
-        try {
-          return certified::solve(p, parts);
+      case Backend::reference: return reference::solve(p, parts);
+      case Backend::fast: return fast::solve(p, parts);
+      case Backend::certified: try { return certified::solve(p, parts);
         } catch (const reference::NotExactHere& e) {
           return not_certified(p, e);
         }
@@ -103,7 +110,11 @@ Solved solve_form(const io::Problem& p, Backend backend, const Parts& parts) {
 
 Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
   Solved s = solve_form(p, backend, parts);
-  if (p.form == io::Form::expression) guarded(p, [&]() { attach_formulas(p, backend, s); return 0; });
+  if (p.form == io::Form::expression)
+    guarded(p, [&]() {
+      attach_formulas(p, backend, s);
+      return 0;
+    });
   return s;
 }
 

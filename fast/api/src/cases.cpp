@@ -37,7 +37,8 @@ std::string slurp(const fs::path& p) {
 
 std::vector<fs::path> corpus() {
   std::vector<fs::path> files;
-  if (!fs::is_directory(cases_dir())) throw io::InputError(cases_dir() + ": expected the case directory (set DCAD_CASES), found none");
+  if (!fs::is_directory(cases_dir()))
+    throw io::InputError(cases_dir() + ": expected the case directory (set DCAD_CASES), found none");
   for (const auto& e : fs::directory_iterator(cases_dir()))
     if (e.path().extension() == ".json" || io::is_netlist_file(e.path().string())) files.push_back(e.path());
   std::sort(files.begin(), files.end());
@@ -78,7 +79,10 @@ ordered expectations(const json& result) {
   for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique"}) e[key] = result[key];
   if (result.contains("circuit"))
     e["circuit"] = {{"pc_loops", result["circuit"]["pc_loops"]}, {"empty_loops", result["circuit"]["empty_loops"]}};
-  if (result.contains("reduced")) e["reduced"] = {{"coordinates", result["reduced"]["coordinates"]}, {"F", result["reduced"]["F"]}, {"f", result["reduced"]["f"]}};
+  if (result.contains("reduced"))
+    e["reduced"] = {{"coordinates", result["reduced"]["coordinates"]},
+                    {"F", result["reduced"]["F"]},
+                    {"f", result["reduced"]["f"]}};
   return e;
 }
 
@@ -94,8 +98,8 @@ std::string freeze(const std::string& from_file, const std::string& wanted) {
   const fs::path to = fs::path(cases_dir()) / (name + (netlist ? from.extension().string() : ".json"));
   if (fs::exists(to)) throw io::InputError(to.string() + ": expected a new case name, found an existing case");
   // a file of this process's own (two freezes at once must not read each other's), removed however we leave
-  const fs::path tmp = fs::temp_directory_path() /
-                       ("dcad_freeze_" + std::to_string(::getpid()) + std::string(netlist ? from.extension().string() : ".json"));
+  const fs::path tmp = fs::temp_directory_path() / ("dcad_freeze_" + std::to_string(::getpid()) +
+                                                    std::string(netlist ? from.extension().string() : ".json"));
   struct Removed {
     fs::path path;
     ~Removed() {
@@ -121,14 +125,15 @@ std::string freeze(const std::string& from_file, const std::string& wanted) {
     std::istringstream in(text);
     std::string title;
     std::getline(in, title);
-    o << title << "\n* dcad cases freeze " << from.string() << ": expectations by the reference backend\n* expect: "
-      << expectations(result).dump() << "\n";
+    o << title << "\n* dcad cases freeze " << from.string()
+      << ": expectations by the reference backend\n* expect: " << expectations(result).dump() << "\n";
     for (std::string line; std::getline(in, line);)
       if (line.rfind("* expect:", 0) != 0) o << line << "\n";
   } else {
     ordered c = ordered::parse(text);
     c["name"] = name;
-    if (!c.contains("description")) c["description"] = "regression case frozen from " + from.string() + " by `dcad cases freeze`";
+    if (!c.contains("description"))
+      c["description"] = "regression case frozen from " + from.string() + " by `dcad cases freeze`";
     c["expect"] = expectations(result);
     o << c.dump(2) << "\n";
   }
@@ -159,7 +164,8 @@ int export_cases(const std::string& dir_name) {
     std::ofstream(dir / (p.stem().string() + ".expected.json")) << reference_result(p).dump(2) << "\n";
     ++n;
   }
-  fs::copy_file(fs::path(cases_dir()) / "schema" / "result.schema.json", dir / "result.schema.json", fs::copy_options::overwrite_existing);
+  fs::copy_file(fs::path(cases_dir()) / "schema" / "result.schema.json", dir / "result.schema.json",
+                fs::copy_options::overwrite_existing);
   return n;
 }
 
@@ -174,12 +180,14 @@ int export_waveforms(const std::string& dir_name, std::ostream& log) {
     const io::Problem prob = io::read_problem(p.string());
     const io::Netlist& deck = prob.netlist;
     if (!deck.tran_step || !deck.tran_stop || !(*deck.tran_step > 0) || *deck.tran_stop < 0)
-      throw io::InputError(p.string() + ": expected a .tran TSTEP TSTOP card with numbers for its waveforms, found none");
+      throw io::InputError(p.string() +
+                           ": expected a .tran TSTEP TSTOP card with numbers for its waveforms, found none");
     const double step = deck.tran_step->convert_to<double>(), stop = deck.tran_stop->convert_to<double>();
     std::vector<std::string> names;
     for (const std::string& n : deck.node_names) names.push_back("v(" + n + ")");
     for (std::size_t b = 0; b < deck.rlc.branches.size(); ++b)
-      if (deck.rlc.branches[b].kind == reference::RlcKind::inductor || deck.rlc.branches[b].kind == reference::RlcKind::voltage) {
+      if (deck.rlc.branches[b].kind == reference::RlcKind::inductor ||
+          deck.rlc.branches[b].kind == reference::RlcKind::voltage) {
         std::string name = deck.rlc.branches[b].name;
         for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
         names.push_back("i(" + name + ")");
@@ -193,7 +201,9 @@ int export_waveforms(const std::string& dir_name, std::ostream& log) {
     std::string how;
     if (enc.ok) {
       for (std::size_t k = 0; k < names.size(); ++k)
-        for (std::size_t i = 0; i < times.size(); ++i) value[k][i] = enc.right[k][i].mid, radius[k][i] = io::printed_radius(enc.right[k][i].mid, enc.right[k][i].rad);
+        for (std::size_t i = 0; i < times.size(); ++i)
+          value[k][i] = enc.right[k][i].mid,
+          radius[k][i] = io::printed_radius(enc.right[k][i].mid, enc.right[k][i].rad);
       how = "enclosures (certified), radii in " + p.stem().string() + ".bounds.csv";
     } else {
       std::ostringstream quiet;
@@ -205,10 +215,12 @@ int export_waveforms(const std::string& dir_name, std::ostream& log) {
         std::size_t k = 0;
         for (; k < deck.node_names.size(); ++k) value[k][i] = e(static_cast<Eigen::Index>(k));
         for (std::size_t b = 0; b < deck.rlc.branches.size(); ++b)
-          if (deck.rlc.branches[b].kind == reference::RlcKind::inductor || deck.rlc.branches[b].kind == reference::RlcKind::voltage)
+          if (deck.rlc.branches[b].kind == reference::RlcKind::inductor ||
+              deck.rlc.branches[b].kind == reference::RlcKind::voltage)
             value[k++][i] = v.i(static_cast<Eigen::Index>(b));
       }
-      how = "the double flow, error estimate " + io::float_text(flow.error_estimate()) + " of the state (no enclosure: " + enc.why + ")";
+      how = "the double flow, error estimate " + io::float_text(flow.error_estimate()) +
+            " of the state (no enclosure: " + enc.why + ")";
     }
     fs::copy_file(p, dir / p.filename(), fs::copy_options::overwrite_existing);
     for (int file = 0; file < (enc.ok ? 2 : 1); ++file) {

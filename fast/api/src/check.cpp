@@ -21,7 +21,8 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void bad(const std::string& file, const std::string& path, const std::string& expected, const std::string& found) {
+[[noreturn]] void bad(const std::string& file, const std::string& path, const std::string& expected,
+                      const std::string& found) {
   throw io::InputError(file + ": " + path + ": expected " + expected + ", found " + found);
 }
 
@@ -94,8 +95,8 @@ void compare_matrix(Checker& k, const std::string& key, const Rows<io::Rational>
   const double tol = matrix_tolerance(want.size() * (want.empty() ? 0 : want[0].size()));
   for (std::size_t i = 0; i < want.size(); ++i) {
     if (!found[i].is_array() || found[i].size() != want[i].size()) {
-      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(want[i].size()) + " entries, found " +
-                                    shown(found[i]));
+      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(want[i].size()) +
+                                    " entries, found " + shown(found[i]));
       continue;
     }
     for (std::size_t j = 0; j < want[i].size(); ++j) {
@@ -103,8 +104,9 @@ void compare_matrix(Checker& k, const std::string& key, const Rows<io::Rational>
       std::replace(path.begin(), path.end(), '.', '/');
       const Number f = number(k.file, path, found[i][j]);
       if (!close(f, want[i][j], tol, scale))
-        k.out.disagreements.push_back(key + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: expected " + want[i][j].str() + ", found " +
-                                      shown(found[i][j]) + " (tolerance " + std::to_string(tol * scale) + ")");
+        k.out.disagreements.push_back(key + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: expected " +
+                                      want[i][j].str() + ", found " + shown(found[i][j]) + " (tolerance " +
+                                      std::to_string(tol * scale) + ")");
     }
   }
 }
@@ -113,8 +115,8 @@ io::Rational exact_value(const Number& x) { return x.exact ? x.q : io::Rational(
 
 /// The result's matrix at `path` (rows × cols of numbers) with the exact value of every entry as
 /// given; nullopt (and a disagreement) if its shape is not rows × cols.
-std::optional<io::QMatrix> found_matrix(Checker& k, const std::string& key, const json& found, std::size_t rows, std::size_t cols,
-                                        std::vector<std::vector<Number>>& numbers) {
+std::optional<io::QMatrix> found_matrix(Checker& k, const std::string& key, const json& found, std::size_t rows,
+                                        std::size_t cols, std::vector<std::vector<Number>>& numbers) {
   if (!found.is_array() || found.size() != rows) {
     k.out.disagreements.push_back(key + ": expected " + std::to_string(rows) + " rows, found " + shown(found));
     return std::nullopt;
@@ -123,7 +125,8 @@ std::optional<io::QMatrix> found_matrix(Checker& k, const std::string& key, cons
   numbers.assign(rows, {});
   for (std::size_t i = 0; i < rows; ++i) {
     if (!found[i].is_array() || found[i].size() != cols) {
-      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(cols) + " entries, found " + shown(found[i]));
+      k.out.disagreements.push_back(key + "[" + std::to_string(i) + "]: expected " + std::to_string(cols) +
+                                    " entries, found " + shown(found[i]));
       return std::nullopt;
     }
     for (std::size_t j = 0; j < cols; ++j) {
@@ -174,10 +177,12 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
   const auto f_found = found_matrix(k, "reduced.F", red.value("F", json()), m, m, nf);
   const auto v_found = found_matrix(k, "reduced.f", fv_json, m, 1, nv);
   // G: m rows of g numbers; [] stands for no free multipliers
-  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty() ? json(std::vector<json>(m, json::array()))
-                                                                                    : red.value("G", json());
+  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty()
+                          ? json(std::vector<json>(m, json::array()))
+                          : red.value("G", json());
   const std::size_t g_cols = g_json.is_array() && !g_json.empty() && g_json[0].is_array() ? g_json[0].size() : 0;
-  const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>();
+  const auto g_found =
+      red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>();
   const auto exact_all = [](const std::vector<std::vector<Number>>& x) {
     for (const auto& row : x)
       for (const Number& v : row)
@@ -192,9 +197,10 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
     for (std::size_t i = 0; i < d.rows(); ++i)
       for (std::size_t j = 0; j < d.cols(); ++j)
         if (std::abs(d(i, j).convert_to<double>()) > tol || (exact && d(i, j) != 0)) {
-          k.out.disagreements.push_back(key + ": differs from the reference" + modulo + " (component " + std::to_string(i) + "," +
-                                        std::to_string(j) + " of the difference, projected off span(G): " +
-                                        io::float_text(d(i, j).convert_to<double>()) + ", tolerance " + io::float_text(tol) + ")");
+          k.out.disagreements.push_back(
+              key + ": differs from the reference" + modulo + " (component " + std::to_string(i) + "," +
+              std::to_string(j) + " of the difference, projected off span(G): " +
+              io::float_text(d(i, j).convert_to<double>()) + ", tolerance " + io::float_text(tol) + ")");
           return;
         }
   };
@@ -203,12 +209,15 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
   if (!mo.source_columns.empty()) {  // the forced route: the sources' terms S over the jet columns
     const json& src = red.value("sources", json());
     if (!src.is_object() || src.value("columns", json()) != json(mo.source_columns)) {
-      k.out.disagreements.push_back("reduced.sources: expected columns " + json(mo.source_columns).dump() + " and S, found " +
+      k.out.disagreements.push_back("reduced.sources: expected columns " + json(mo.source_columns).dump() +
+                                    " and S, found " +
                                     (src.is_object() ? src.value("columns", json()).dump() : std::string("none")));
     } else {
       std::vector<std::vector<Number>> ns;
-      const auto s_found = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, mo.source_columns.size(), ns);
-      if (s_found) same_modulo("reduced.sources.S", exact_matrix(mo.s, mo.source_columns.size()), *s_found, exact_all(ns));
+      const auto s_found =
+          found_matrix(k, "reduced.sources.S", src.value("S", json()), m, mo.source_columns.size(), ns);
+      if (s_found)
+        same_modulo("reduced.sources.S", exact_matrix(mo.s, mo.source_columns.size()), *s_found, exact_all(ns));
     }
   }
   if (!red.contains("G")) {
@@ -219,12 +228,14 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
   if (!g_found) return;
   const long rank = static_cast<long>(reference::rref(*g_found).pivots.size());
   if (g_cols != g || rank != static_cast<long>(g)) {
-    k.out.disagreements.push_back("reduced.G: expected " + std::to_string(g) + " independent free directions (solution rank), found " +
-                                  std::to_string(rank) + " among " + std::to_string(g_cols) + " columns");
+    k.out.disagreements.push_back("reduced.G: expected " + std::to_string(g) +
+                                  " independent free directions (solution rank), found " + std::to_string(rank) +
+                                  " among " + std::to_string(g_cols) + " columns");
     return;
   }
   const io::QMatrix ngf = n * *g_found;
-  const double tol = exact_all(ng) ? 0 : matrix_tolerance(m * g) * std::max(1.0, max_abs(n)) * std::max(1.0, max_abs(*g_found));
+  const double tol =
+      exact_all(ng) ? 0 : matrix_tolerance(m * g) * std::max(1.0, max_abs(n)) * std::max(1.0, max_abs(*g_found));
   for (std::size_t i = 0; i < ngf.rows(); ++i)
     for (std::size_t j = 0; j < ngf.cols(); ++j)
       if (std::abs(ngf(i, j).convert_to<double>()) > tol || (tol == 0 && ngf(i, j) != 0)) {
@@ -237,16 +248,20 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
 /// Compared as affine subspaces: same dimension, and every equation holds on M_c (exact point and
 /// directions) to within 1e-9·κ(A)·‖row‖ (κ = condition of the result's rows: rounding in a
 /// well-posed computation moves the subspace by about ε·κ).
-void compare_final_constraints(Checker& k, const json& found, const io::QMatrix& basis, const std::vector<io::Rational>& point, long dim) {
+void compare_final_constraints(Checker& k, const json& found, const io::QMatrix& basis,
+                               const std::vector<io::Rational>& point, long dim) {
   k.out.compared.push_back("final_constraints");
   const std::size_t n = basis.cols();
   if (!found.is_array()) bad(k.file, "/final_constraints", "an array of rows [a_1, …, a_N, b]", shown(found));
   std::vector<std::vector<Number>> rows;
   for (std::size_t i = 0; i < found.size(); ++i) {
     if (!found[i].is_array() || found[i].size() != n + 1)
-      bad(k.file, "/final_constraints/" + std::to_string(i), "a row of " + std::to_string(n + 1) + " numbers [a…, b]", shown(found[i]));
+      bad(k.file, "/final_constraints/" + std::to_string(i), "a row of " + std::to_string(n + 1) + " numbers [a…, b]",
+          shown(found[i]));
     rows.emplace_back();
-    for (std::size_t j = 0; j <= n; ++j) rows.back().push_back(number(k.file, "/final_constraints/" + std::to_string(i) + "/" + std::to_string(j), found[i][j]));
+    for (std::size_t j = 0; j <= n; ++j)
+      rows.back().push_back(
+          number(k.file, "/final_constraints/" + std::to_string(i) + "/" + std::to_string(j), found[i][j]));
   }
   // rank of the result's rows (their dimension claim) by exact elimination on the numbers as given
   io::QMatrix a(rows.size(), n);
@@ -254,8 +269,8 @@ void compare_final_constraints(Checker& k, const json& found, const io::QMatrix&
     for (std::size_t j = 0; j < n; ++j) a(i, j) = rows[i][j].exact ? rows[i][j].q : io::Rational(rows[i][j].d);
   const long claimed = static_cast<long>(n) - static_cast<long>(reference::rref(a).pivots.size());
   if (claimed != dim) {
-    k.out.disagreements.push_back("final_constraints: expected equations of a " + std::to_string(dim) + "-dimensional M_c, found " +
-                                  std::to_string(claimed) + "-dimensional");
+    k.out.disagreements.push_back("final_constraints: expected equations of a " + std::to_string(dim) +
+                                  "-dimensional M_c, found " + std::to_string(claimed) + "-dimensional");
     return;
   }
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -275,23 +290,26 @@ void compare_final_constraints(Checker& k, const json& found, const io::QMatrix&
       }
       ok = std::abs(s) <= tol * std::max(1.0, sz);
     }
-    if (!ok) k.out.disagreements.push_back("final_constraints[" + std::to_string(i) + "]: does not hold on the reference M_c");
+    if (!ok)
+      k.out.disagreements.push_back("final_constraints[" + std::to_string(i) + "]: does not hold on the reference M_c");
   }
 }
-
 
 /// RESULT read (exactly, depth-limited) with its required keys and their types checked: io::InputError
 /// (exit 1, naming the JSON path) otherwise.
 json read_result(const std::string& result_file, const std::string* text) {
-  const json r = text ? io::parse_json_exact(*text, result_file) : io::read_json_file(result_file);  // floats kept as text; depth limited
+  const json r = text ? io::parse_json_exact(*text, result_file)
+                      : io::read_json_file(result_file);  // floats kept as text; depth limited
   if (!r.is_object()) bad(result_file, "/", "a JSON object (the result of CONTRACT `dcad solve --json`)", shown(r));
   if (r.contains("dcad") && r["dcad"] != 1) bad(result_file, "/dcad", "1", shown(r["dcad"]));
   if (r.contains("formulas") && !r.contains("dims")) return r;  // formulas only (check_formulas reads them)
   for (const char* key : {"dims", "steps", "consistent", "solution_rank"})
-    if (!r.contains(key)) bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\"", "nothing");
+    if (!r.contains(key))
+      bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\"", "nothing");
   if (!r["dims"].is_array()) bad(result_file, "/dims", "an array of integers", shown(r["dims"]));
   for (std::size_t i = 0; i < r["dims"].size(); ++i)
-    if (!r["dims"][i].is_number_integer()) bad(result_file, "/dims/" + std::to_string(i), "an integer", shown(r["dims"][i]));
+    if (!r["dims"][i].is_number_integer())
+      bad(result_file, "/dims/" + std::to_string(i), "an integer", shown(r["dims"][i]));
   if (!r["steps"].is_number_integer()) bad(result_file, "/steps", "an integer", shown(r["steps"]));
   if (!r["consistent"].is_boolean() && !r["consistent"].is_null())  // null: undecided at a singular point (dcad's own)
     bad(result_file, "/consistent", "true, false or null (undecided at a singular point)", shown(r["consistent"]));
@@ -311,7 +329,8 @@ json printed_json(const dcad::Solution<N>& s) {
 /// The reference's solution of a linear case or netlist: the structured circuit route (exact), or above
 /// certified::kDenseBranches with L, C > 0 the graph route (a theorem's answer, exact too).
 reference::Solution truth_of(const io::Problem& p) {
-  if (p.form == io::Form::netlist && !p.netlist.forced && p.netlist.circuit.branches.size() > certified::kDenseBranches) {
+  if (p.form == io::Form::netlist && !p.netlist.forced &&
+      p.netlist.circuit.branches.size() > certified::kDenseBranches) {
     const certified::Solution c = certified::solve(p);
     return map_numbers<io::Rational>(c, [](const certified::Number& x) {
       if (!x.exact) throw InternalError("check: the certified graph route gave an inexact number");
@@ -323,12 +342,18 @@ reference::Solution truth_of(const io::Problem& p) {
 
 Checked check_linear(const std::string& result_file, const json& r, const io::Problem& p_in) {
   const io::CaseFile& c_in = p_in.linear;
-  for (const char* key : {"dims", "steps", "consistent", "solution_rank"})  // formulas alone are for the expression form
-    if (!r.contains(key)) bad(result_file, std::string("/") + key, std::string("the required key \"") + key + "\" (formulas are compared for expression-form cases only)", "nothing");
+  for (const char* key :
+       {"dims", "steps", "consistent", "solution_rank"})  // formulas alone are for the expression form
+    if (!r.contains(key))
+      bad(result_file, std::string("/") + key,
+          std::string("the required key \"") + key + "\" (formulas are compared for expression-form cases only)",
+          "nothing");
   if (r.contains("name") && r["name"] != c_in.name)
-    bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")", shown(r["name"]) + ": a result for another case");
+    bad(result_file, "/name", "the name of " + c_in.file + " (\"" + c_in.name + "\")",
+        shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(c_in.variables))
-    bad(result_file, "/variables", "the variables of " + c_in.file, shown(r["variables"]) + ": a result for another case");
+    bad(result_file, "/variables", "the variables of " + c_in.file,
+        shown(r["variables"]) + ": a result for another case");
   io::Problem p = p_in;
   io::CaseFile& c = p.linear;
   if (r.contains("reduced")) {  // the reference's reduced equations in the result's coordinates
@@ -336,23 +361,28 @@ Checked check_linear(const std::string& result_file, const json& r, const io::Pr
     if (!coords.is_array()) bad(result_file, "/reduced/coordinates", "an array of variable names", shown(coords));
     c.coordinates.clear();
     for (std::size_t i = 0; i < coords.size(); ++i) {
-      const auto it = std::find(c.variables.begin(), c.variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
-      if (it == c.variables.end()) bad(result_file, "/reduced/coordinates/" + std::to_string(i), "a variable of " + c.file, shown(coords[i]));
+      const auto it =
+          std::find(c.variables.begin(), c.variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
+      if (it == c.variables.end())
+        bad(result_file, "/reduced/coordinates/" + std::to_string(i), "a variable of " + c.file, shown(coords[i]));
       c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
     }
   }
-  const bool forced = (p.form == io::Form::netlist && p.netlist.forced) || (p.form == io::Form::linear && c.has_pontryagin && c.pontryagin.has_forces);
+  const bool forced = (p.form == io::Form::netlist && p.netlist.forced) ||
+                      (p.form == io::Form::linear && c.has_pontryagin && c.pontryagin.has_forces);
   if (forced) {  // the forced route's exact tower
     const reference::Solution fr = reference::solve(p_in);
     const json want = printed_json(fr);
     Checker k{result_file, {}};
     for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
     if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
-    if (r.contains("final_constraints")) k.out.not_compared.push_back("final_constraints (not yet for systems with forces or sources)");
+    if (r.contains("final_constraints"))
+      k.out.not_compared.push_back("final_constraints (not yet for systems with forces or sources)");
     if (r.contains("reduced") && fr.motion) {
       const json coords = r["reduced"].value("coordinates", json());
       if (coords != want["reduced"]["coordinates"])
-        k.out.not_compared.push_back("reduced (in coordinates other than the reference's " + want["reduced"]["coordinates"].dump() +
+        k.out.not_compared.push_back("reduced (in coordinates other than the reference's " +
+                                     want["reduced"]["coordinates"].dump() +
                                      ": not yet for systems with forces or sources)");
       else
         compare_reduced(k, fr, r["reduced"]);
@@ -370,12 +400,13 @@ Checked check_linear(const std::string& result_file, const json& r, const io::Pr
   if (r.contains("constraint_classes") && want.contains("constraint_classes"))
     for (const char* key : {"first_class", "second_class"})
       if (r["constraint_classes"].contains(key))
-        k.compare(std::string("constraint_classes.") + key, want["constraint_classes"][key], r["constraint_classes"][key]);
+        k.compare(std::string("constraint_classes.") + key, want["constraint_classes"][key],
+                  r["constraint_classes"][key]);
   if (r.contains("reduced")) {
     if (!truth.motion) {
       k.out.compared.push_back("reduced");
-      k.out.disagreements.push_back("reduced: expected none (no equations of motion: " + std::string(truth.consistent ? "too large" : "inconsistent") +
-                                    "), found some");
+      k.out.disagreements.push_back("reduced: expected none (no equations of motion: " +
+                                    std::string(truth.consistent ? "too large" : "inconsistent") + "), found some");
     } else {
       compare_reduced(k, truth, r["reduced"]);
     }
@@ -391,21 +422,23 @@ Checked check_linear(const std::string& result_file, const json& r, const io::Pr
   if (r.contains("final_constraints")) {
     if (!truth.final_exact || !truth.consistent) {
       k.out.compared.push_back("final_constraints");
-      if (truth.consistent) k.out.disagreements.push_back("final_constraints: the reference has no exact M_c here (use a case of at most " +
-                                                          std::to_string(certified::kDenseBranches) + " branches)");
-      else if (!r["final_constraints"].is_null()) k.out.disagreements.push_back("final_constraints: expected null (M_c is empty), found some");
+      if (truth.consistent)
+        k.out.disagreements.push_back("final_constraints: the reference has no exact M_c here (use a case of at most " +
+                                      std::to_string(certified::kDenseBranches) + " branches)");
+      else if (!r["final_constraints"].is_null())
+        k.out.disagreements.push_back("final_constraints: expected null (M_c is empty), found some");
     } else {
-      compare_final_constraints(k, r["final_constraints"], exact_matrix(truth.final_exact->basis, c.n), truth.final_exact->point, truth.tower.back().dim);
+      compare_final_constraints(k, r["final_constraints"], exact_matrix(truth.final_exact->basis, c.n),
+                                truth.final_exact->point, truth.tower.back().dim);
     }
   }
   return k.out;
 }
 
-
 /// found − want ∈ span(gauge): exactly if every number is exact, else the residual of the least-
 /// squares projection (Gram–Schmidt in double) within 1e-9 × N × the largest magnitude.
-bool equal_modulo(const std::vector<Number>& found, const std::vector<std::string>& want, const std::vector<std::vector<std::string>>& gauge,
-                  bool exact) {
+bool equal_modulo(const std::vector<Number>& found, const std::vector<std::string>& want,
+                  const std::vector<std::vector<std::string>>& gauge, bool exact) {
   const std::size_t n = want.size();
   if (exact) {
     io::QMatrix g(gauge.size() + 1, n);
@@ -451,11 +484,13 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   const io::LagrangianCase& c = p.expression;
   const std::vector<std::string> st = c.system.state_names();
   if (r.contains("name") && r["name"] != c.name)
-    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
+        shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(st))
     bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
   Checker k{result_file, {}};
-  if (r.contains("formulas") && r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
+  if (r.contains("formulas") &&
+      r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
     k.out.not_compared.push_back("formulas (null in the result)");
   } else if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
     check_formulas(result_file, r["formulas"], p, points, k.out);
@@ -465,7 +500,8 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
   if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
   if (!r.contains("point") || !r.contains("velocity")) {
-    if (r.contains("velocity") || r.contains("point")) k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
+    if (r.contains("velocity") || r.contains("point"))
+      k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
     return k.out;
   }
   // the velocity at the result's own point: the reference there (exact if the point is), modulo the gauge
@@ -484,27 +520,32 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   const std::vector<std::size_t> angle_coordinates = reference::pipeline::angle_coordinates(c.system);
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i == c.system.t() && !c.system.has_time) continue;
-    if (!pt.contains(names[i])) bad(result_file, "/point/" + names[i], "a value for every coordinate and velocity (and the time)", "nothing");
+    if (!pt.contains(names[i]))
+      bad(result_file, "/point/" + names[i], "a value for every coordinate and velocity (and the time)", "nothing");
     const std::string text = pt[names[i]].is_string() ? pt[names[i]].get<std::string>() : "";
     if (text.rfind("2*atan(", 0) == 0) {  // 2*atan(t), or 2*atan(t) + N*pi with N even (whole turns)
       const std::string path = "/point/" + names[i];
       if (std::find(angle_coordinates.begin(), angle_coordinates.end(), i) == angle_coordinates.end())
-        bad(result_file, path, "2*atan(t) only for an angle (a coordinate that occurs only in sin and cos)", shown(pt[names[i]]));
+        bad(result_file, path, "2*atan(t) only for an angle (a coordinate that occurs only in sin and cos)",
+            shown(pt[names[i]]));
       reference::pipeline::PlacedAngle g;
       g.q = i;
       const std::size_t close = text.find(')');
       const std::string rest = close == std::string::npos ? "" : text.substr(close + 1);
       bool ok = close != std::string::npos;
       if (ok && !rest.empty()) {  // " + N*pi" / " - N*pi", N even
-        ok = rest.size() > 6 && (rest.rfind(" + ", 0) == 0 || rest.rfind(" - ", 0) == 0) && rest.substr(rest.size() - 3) == "*pi";
+        ok = rest.size() > 6 && (rest.rfind(" + ", 0) == 0 || rest.rfind(" - ", 0) == 0) &&
+             rest.substr(rest.size() - 3) == "*pi";
         const std::string digits = ok ? rest.substr(3, rest.size() - 6) : "";
-        ok = ok && !digits.empty() && digits.size() < 18 && digits.find_first_not_of("0123456789") == std::string::npos && (digits.back() - '0') % 2 == 0;
+        ok = ok && !digits.empty() && digits.size() < 18 &&
+             digits.find_first_not_of("0123456789") == std::string::npos && (digits.back() - '0') % 2 == 0;
       }
       try {
         if (!ok) throw std::invalid_argument(text);
         g.tan_half = reference::parse_rational(text.substr(7, close - 7));
       } catch (const std::exception&) {
-        bad(result_file, path, "2*atan(t), or 2*atan(t) + N*pi with N even, t an exact rational such as \"-3/7\"", shown(pt[names[i]]));
+        bad(result_file, path, "2*atan(t), or 2*atan(t) + N*pi with N even, t an exact rational such as \"-3/7\"",
+            shown(pt[names[i]]));
       }
       g.cos = (1 - g.tan_half * g.tan_half) / (1 + g.tan_half * g.tan_half);
       g.sin = 2 * g.tan_half / (1 + g.tan_half * g.tan_half);
@@ -521,7 +562,8 @@ Checked check_expression(const std::string& result_file, const json& r, const io
     at.system = reference::pipeline::translate_angles(at.system, angles);  // a translation of Q: the same velocities
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (pt.contains("p_" + c.system.names[i])) at.initial_p[i] = exact_value(number(result_file, "/point/p_" + c.system.names[i], pt["p_" + c.system.names[i]]));
+    if (pt.contains("p_" + c.system.names[i]))
+      at.initial_p[i] = exact_value(number(result_file, "/point/p_" + c.system.names[i], pt["p_" + c.system.names[i]]));
   std::vector<Number> found;
   for (std::size_t i = 0; i < st.size(); ++i) {
     if (!vel.contains(st[i])) bad(result_file, "/velocity/" + st[i], "d/dt of every variable", "nothing");
@@ -546,8 +588,10 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   if (!equal_modulo(found, truth.velocity, truth.gauge, exact)) {
     std::string w;
     for (std::size_t i = 0; i < st.size(); ++i) w += (i ? ", " : "") + st[i] + "' = " + truth.velocity[i];
-    k.out.disagreements.push_back("velocity: expected (" + w + ")" + (truth.gauge.empty() ? "" : " modulo " + std::to_string(truth.gauge.size()) + " gauge directions") +
-                                  " at the result's point, found " + shown(vel));
+    k.out.disagreements.push_back(
+        "velocity: expected (" + w + ")" +
+        (truth.gauge.empty() ? "" : " modulo " + std::to_string(truth.gauge.size()) + " gauge directions") +
+        " at the result's point, found " + shown(vel));
   }
   return k.out;
 }
@@ -562,8 +606,10 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
     k.out.not_compared.push_back("final_constraints (the reference left a condition on the sources undecided)");
     return;
   }
-  if (truth.final_constraints && static_cast<double>(truth.final_constraints->size()) * static_cast<double>(n + truth.jets.size()) > 4e6) {
-    k.out.not_compared.push_back("final_constraints (" + std::to_string(truth.final_constraints->size()) + " rows over " + std::to_string(n) +
+  if (truth.final_constraints &&
+      static_cast<double>(truth.final_constraints->size()) * static_cast<double>(n + truth.jets.size()) > 4e6) {
+    k.out.not_compared.push_back("final_constraints (" + std::to_string(truth.final_constraints->size()) +
+                                 " rows over " + std::to_string(n) +
                                  " variables: beyond the dense subspace comparison's 4e6 entries)");
     return;
   }
@@ -574,25 +620,30 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
   }
   // dcad's own form: rows over (x, the sources' jets `source_jets`, b) — compared as a subspace of (x, u)
   const std::size_t jets = truth.jets.size();
-  if (jets > 0 && r.contains("source_jets") && found.is_array() && !found.empty() && found[0].is_array() && found[0].size() == n + jets + 1) {
+  if (jets > 0 && r.contains("source_jets") && found.is_array() && !found.empty() && found[0].is_array() &&
+      found[0].size() == n + jets + 1) {
     k.out.compared.push_back("source_jets");
     if (r["source_jets"] != json(truth.jets)) {
-      k.out.disagreements.push_back("source_jets: expected " + json(truth.jets).dump() + " (the columns after the variables), found " + shown(r["source_jets"]));
+      k.out.disagreements.push_back("source_jets: expected " + json(truth.jets).dump() +
+                                    " (the columns after the variables), found " + shown(r["source_jets"]));
       return;
     }
     io::QMatrix cu(truth.final_constraints->size(), n + jets);
     for (std::size_t i = 0; i < truth.final_constraints->size(); ++i)
       for (const auto& [j, v] : (*truth.final_constraints)[i].terms) cu(i, j) = v;
     const io::QMatrix kernel = reference::nullspace(cu);
-    compare_final_constraints(k, found, kernel, std::vector<io::Rational>(n + jets, io::Rational(0)), static_cast<long>(kernel.rows()));
+    compare_final_constraints(k, found, kernel, std::vector<io::Rational>(n + jets, io::Rational(0)),
+                              static_cast<long>(kernel.rows()));
     return;
   }
   io::QMatrix c(truth.final_constraints->size(), n);
   bool sources = false;
   for (std::size_t i = 0; i < truth.final_constraints->size(); ++i)
     for (const auto& [j, v] : (*truth.final_constraints)[i].terms) {
-      if (j < n) c(i, j) = v;
-      else if (v != 0) sources = true;
+      if (j < n)
+        c(i, j) = v;
+      else if (v != 0)
+        sources = true;
     }
   const io::QMatrix kernel = reference::nullspace(c);  // rows: a basis of ker C
   json rows = found;
@@ -600,7 +651,10 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
     for (auto& row : rows)
       if (row.is_array() && !row.empty()) row.back() = 0;
   compare_final_constraints(k, rows, kernel, std::vector<io::Rational>(n, io::Rational(0)), truth.tower.back().dim);
-  if (sources) k.out.not_compared.push_back("final_constraints' right sides (M_c(t) = {C x = G u(t)} moves with the sources' jets: its directions were compared)");
+  if (sources)
+    k.out.not_compared.push_back(
+        "final_constraints' right sides (M_c(t) = {C x = G u(t)} moves with the sources' jets: its directions were "
+        "compared)");
 }
 
 /// A linear DAE's equations of motion on M_c, claimed in the result's own coordinates z = P x (a subset of
@@ -611,7 +665,8 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
 /// span(G) is no more than the free directions P·gauge.  Compared exactly on a basis of the consistent
 /// (x, u) (the kernel of M_c's rows) and at a point of it; within 1e-9 × entries × scale for floats.  F
 /// itself is not unique where z does not parametrize M_c: any F that gives the right ż passes.
-void compare_dae_reduced(Checker& k, const json& red, const reference::Solution& truth, const std::vector<std::string>& variables) {
+void compare_dae_reduced(Checker& k, const json& red, const reference::Solution& truth,
+                         const std::vector<std::string>& variables) {
   const std::string key = "reduced";
   if (!truth.certified.yes()) {
     k.out.not_compared.push_back("reduced (the reference left a condition on the sources undecided)");
@@ -621,7 +676,8 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
     k.out.not_compared.push_back("reduced (dcad forms no equations of motion at this size: dense N x N)");
     return;
   }
-  k.out.compared.push_back("reduced (on the consistent states and sources' jets" + std::string(truth.jets.empty() ? "" : ", " + json(truth.jets).dump()) + ")");
+  k.out.compared.push_back("reduced (on the consistent states and sources' jets" +
+                           std::string(truth.jets.empty() ? "" : ", " + json(truth.jets).dump()) + ")");
   if (!truth.consistent || !truth.motion || !truth.final_constraints) {
     k.out.disagreements.push_back("reduced: expected none (M_c is empty), found some");
     return;
@@ -631,10 +687,13 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
   if (!coords.is_array()) bad(k.file, "/reduced/coordinates", "an array of variable names", shown(coords));
   std::vector<std::size_t> z;
   for (std::size_t i = 0; i < coords.size(); ++i) {
-    const auto it = std::find(variables.begin(), variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
-    if (it == variables.end()) bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable of the case", shown(coords[i]));
+    const auto it =
+        std::find(variables.begin(), variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
+    if (it == variables.end())
+      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable of the case", shown(coords[i]));
     if (std::find(z.begin(), z.end(), static_cast<std::size_t>(it - variables.begin())) != z.end())
-      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable not named before in the list", shown(coords[i]));
+      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable not named before in the list",
+          shown(coords[i]));
     z.push_back(static_cast<std::size_t>(it - variables.begin()));
   }
   const std::size_t m = z.size();
@@ -645,22 +704,33 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
     return col;
   }();
   const auto f_found = found_matrix(k, "reduced.F", red.value("F", json()), m, m, nf);
-  const auto v_found = red.contains("f") ? found_matrix(k, "reduced.f", fv_json, m, 1, nv) : std::optional<io::QMatrix>(io::QMatrix(m, 1));
-  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty() ? json(std::vector<json>(m, json::array())) : red.value("G", json());
+  const auto v_found = red.contains("f") ? found_matrix(k, "reduced.f", fv_json, m, 1, nv)
+                                         : std::optional<io::QMatrix>(io::QMatrix(m, 1));
+  const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty()
+                          ? json(std::vector<json>(m, json::array()))
+                          : red.value("G", json());
   const std::size_t g_cols = g_json.is_array() && !g_json.empty() && g_json[0].is_array() ? g_json[0].size() : 0;
-  const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>(io::QMatrix(m, 0));
+  const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng)
+                                         : std::optional<io::QMatrix>(io::QMatrix(m, 0));
   io::QMatrix s_found(m, nj);  // over dcad's jet columns (a column the result does not name: 0)
   if (red.contains("sources")) {
     const json& src = red["sources"];
     const json& cols = src.is_object() ? src.value("columns", json()) : json();
-    if (!cols.is_array()) bad(k.file, "/reduced/sources/columns", "an array of the sources' jets as dcad names them (source_jets)", shown(cols));
+    if (!cols.is_array())
+      bad(k.file, "/reduced/sources/columns", "an array of the sources' jets as dcad names them (source_jets)",
+          shown(cols));
     const auto sm = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, cols.size(), ns);
     if (!sm) return;
     for (std::size_t c = 0; c < cols.size(); ++c) {
-      const auto it = std::find(truth.jets.begin(), truth.jets.end(), cols[c].is_string() ? cols[c].get<std::string>() : "");
-      if (it == truth.jets.end()) bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "one of " + json(truth.jets).dump(), shown(cols[c]));
+      const auto it =
+          std::find(truth.jets.begin(), truth.jets.end(), cols[c].is_string() ? cols[c].get<std::string>() : "");
+      if (it == truth.jets.end())
+        bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "one of " + json(truth.jets).dump(),
+            shown(cols[c]));
       for (std::size_t c2 = 0; c2 < c; ++c2)
-        if (cols[c2] == cols[c]) bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "a jet not named before in the list", shown(cols[c]));
+        if (cols[c2] == cols[c])
+          bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "a jet not named before in the list",
+              shown(cols[c]));
       for (std::size_t i = 0; i < m; ++i) s_found(i, static_cast<std::size_t>(it - truth.jets.begin())) += (*sm)(i, c);
     }
   }
@@ -707,23 +777,28 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
   for (std::size_t a = 0; a < off.rows(); ++a)
     for (std::size_t c = 0; c < off.cols(); ++c)
       if (nonzero(off(a, c))) {
-        k.out.disagreements.push_back("reduced: d/dt of the coordinates " + coords.dump() + " differs from the DAE's on M_c" +
-                                      (c + 1 == off.cols() ? " at its point" : " along a consistent direction of (x, u)") + " (component " + std::to_string(a) +
-                                      " of the difference, off span(G): " + io::float_text(off(a, c).convert_to<double>()) + ")");
+        k.out.disagreements.push_back(
+            "reduced: d/dt of the coordinates " + coords.dump() + " differs from the DAE's on M_c" +
+            (c + 1 == off.cols() ? " at its point" : " along a consistent direction of (x, u)") + " (component " +
+            std::to_string(a) + " of the difference, off span(G): " + io::float_text(off(a, c).convert_to<double>()) +
+            ")");
         return;
       }
   for (std::size_t a = 0; a < free_off.rows(); ++a)
     for (std::size_t c = 0; c < free_off.cols(); ++c)
       if (nonzero(free_off(a, c))) {
-        k.out.disagreements.push_back("reduced.G: the DAE leaves a direction of d/dt " + coords.dump() + " free that span(G) does not contain (solution rank " +
+        k.out.disagreements.push_back("reduced.G: the DAE leaves a direction of d/dt " + coords.dump() +
+                                      " free that span(G) does not contain (solution rank " +
                                       std::to_string(pg.cols()) + ")");
         return;
       }
-  const io::QMatrix n_pg = reference::annihilator(reference::Subspace<io::Rational>::span(pg.transpose())).basis(), extra = n_pg * *g_found;
+  const io::QMatrix n_pg = reference::annihilator(reference::Subspace<io::Rational>::span(pg.transpose())).basis(),
+                    extra = n_pg * *g_found;
   for (std::size_t a = 0; a < extra.rows(); ++a)
     for (std::size_t c = 0; c < extra.cols(); ++c)
       if (nonzero(extra(a, c))) {
-        k.out.disagreements.push_back("reduced.G: column " + std::to_string(c) + " frees a direction the DAE determines");
+        k.out.disagreements.push_back("reduced.G: column " + std::to_string(c) +
+                                      " frees a direction the DAE determines");
         return;
       }
 }
@@ -735,7 +810,8 @@ Checked check_dae(const std::string& result_file, const json& r, const io::Probl
   const io::DaeCase& c = p.dae;
   if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
   if (r.contains("name") && r["name"] != c.name)
-    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
+        shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(c.variables))
     bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
   // beyond the dense reference's size, the certified sparse route's exact tower (certified/dae_sparse.hpp)
@@ -748,15 +824,19 @@ Checked check_dae(const std::string& result_file, const json& r, const io::Probl
       any = true;
       // a condition on the sources the reference left undecided: what depends on it is not judged
       if (!truth.certified.yes() && std::string(key) != "regular_pencil") {
-        k.out.not_compared.push_back(std::string(key) + " (the reference left a condition on the sources undecided: dcad solve lists it)");
+        k.out.not_compared.push_back(std::string(key) +
+                                     " (the reference left a condition on the sources undecided: dcad solve lists it)");
         continue;
       }
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
-  if (!any) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, regular_pencil, index", "none of them");
+  if (!any)
+    bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, regular_pencil, index",
+        "none of them");
   if (r.contains("final_constraints")) compare_dae_final_constraints(k, r, truth, c.variables.size());
   if (r.contains("reduced")) {
-    if (!r["reduced"].is_object()) bad(result_file, "/reduced", "an object (coordinates, F, f, G, sources)", shown(r["reduced"]));
+    if (!r["reduced"].is_object())
+      bad(result_file, "/reduced", "an object (coordinates, F, f, G, sources)", shown(r["reduced"]));
     compare_dae_reduced(k, r["reduced"], truth, c.variables);
   }
   if (r.contains("tower")) k.out.not_compared.push_back("tower (not yet for the dae form)");
@@ -770,7 +850,8 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
   const io::LagrangianCase& c = p.expression;
   if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
   if (r.contains("name") && r["name"] != c.name)
-    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")", shown(r["name"]) + ": a result for another case");
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
+        shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(c.system.names))
     bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
   const reference::Solution truth = reference::solve(p);
@@ -784,14 +865,21 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
   const bool formulas = r.contains("formulas") && !r["formulas"].is_null();
-  if (!any && !formulas) bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index, or formulas", "none of them");
+  if (!any && !formulas)
+    bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index, or formulas",
+        "none of them");
   if (!truth.certified.yes())  // nothing judged is no agreement
     k.out.disagreements.push_back("no claim could be judged: the reference is not certified at its point (" +
-                                  (truth.note.empty() ? truth.pointwise->why : truth.note) + "); give `initial` at a regular point of M_c");
-  if (r.contains("formulas") && r["formulas"].is_null()) k.out.not_compared.push_back("formulas (null in the result)");
-  else if (formulas && truth.certified.yes()) check_formulas(result_file, r["formulas"], p, points, k.out);  // their constraints and equations of motion
+                                  (truth.note.empty() ? truth.pointwise->why : truth.note) +
+                                  "); give `initial` at a regular point of M_c");
+  if (r.contains("formulas") && r["formulas"].is_null())
+    k.out.not_compared.push_back("formulas (null in the result)");
+  else if (formulas && truth.certified.yes())
+    check_formulas(result_file, r["formulas"], p, points, k.out);  // their constraints and equations of motion
   for (const char* key : {"tower", "final_constraints", "reduced"})
-    if (r.contains(key)) k.out.not_compared.push_back(std::string(key) + " (not yet for the implicit form: give the constraints and equations as `formulas`)");
+    if (r.contains(key))
+      k.out.not_compared.push_back(
+          std::string(key) + " (not yet for the implicit form: give the constraints and equations as `formulas`)");
   return k.out;
 }
 
@@ -800,9 +888,9 @@ Checked checked(const std::string& result_file, const std::string* text, const i
     io::validate(p);
     const json r = read_result(result_file, text);
     Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points)
-                : p.form == io::Form::dae        ? check_dae(result_file, r, p)
-                : p.form == io::Form::implicit   ? check_implicit(result_file, r, p, points)
-                                                 : check_linear(result_file, r, p);
+                : p.form == io::Form::dae      ? check_dae(result_file, r, p)
+                : p.form == io::Form::implicit ? check_implicit(result_file, r, p, points)
+                                               : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     // every top-level key of the result that nothing above compared is named, never ignored in silence
     std::string quiet;
@@ -810,8 +898,12 @@ Checked checked(const std::string& result_file, const std::string* text, const i
       for (const auto& item : r.items()) {
         const std::string& key = item.key();
         if (key == "dcad") continue;  // the format's version, checked by read_result
-        const auto covers = [&](const std::string& c) { return c == key || c.rfind(key + ".", 0) == 0 || c.rfind(key + " ", 0) == 0; };
-        if (std::any_of(o.compared.begin(), o.compared.end(), covers) || std::any_of(o.not_compared.begin(), o.not_compared.end(), covers)) continue;
+        const auto covers = [&](const std::string& c) {
+          return c == key || c.rfind(key + ".", 0) == 0 || c.rfind(key + " ", 0) == 0;
+        };
+        if (std::any_of(o.compared.begin(), o.compared.end(), covers) ||
+            std::any_of(o.not_compared.begin(), o.not_compared.end(), covers))
+          continue;
         quiet += (quiet.empty() ? "" : ", ") + key;
       }
     if (!quiet.empty()) o.not_compared.push_back(quiet + " (keys dcad check does not compare)");
@@ -821,7 +913,9 @@ Checked checked(const std::string& result_file, const std::string* text, const i
 
 }  // namespace
 
-Checked check(const std::string& result_file, const io::Problem& p, std::size_t points) { return checked(result_file, nullptr, p, points); }
+Checked check(const std::string& result_file, const io::Problem& p, std::size_t points) {
+  return checked(result_file, nullptr, p, points);
+}
 
 Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name, std::size_t points) {
   return checked(name, &result_json, p, points);

@@ -36,7 +36,11 @@ std::size_t rank_of(std::vector<std::vector<double>> m) {
   // rows, then columns, to a largest entry of 1 by powers of two (exact; the rank is unchanged): constraints
   // x5 − 2 x4² beside x1 + x2 − 4 x3 at x4 = 5.7e6 are graded, not dependent (an unscaled threshold at 1e-9 of
   // the largest entry took their rank one short)
-  const auto unit = [](double mx) { int e = 0; std::frexp(mx, &e); return mx > 0 && std::isfinite(mx) ? std::ldexp(1.0, -e) : 1.0; };
+  const auto unit = [](double mx) {
+    int e = 0;
+    std::frexp(mx, &e);
+    return mx > 0 && std::isfinite(mx) ? std::ldexp(1.0, -e) : 1.0;
+  };
   for (auto& row : m) {
     double mx = 0;
     for (double x : row) mx = std::max(mx, std::abs(x));
@@ -67,7 +71,8 @@ std::size_t rank_of(std::vector<std::vector<double>> m) {
 
 std::string point_text(const std::vector<std::string>& names, const std::vector<double>& at, std::size_t width) {
   std::string s;
-  for (std::size_t i = 0; i < width && i < at.size(); ++i) s += (i ? ", " : "") + names[i] + " = " + io::float_text(at[i]);
+  for (std::size_t i = 0; i < width && i < at.size(); ++i)
+    s += (i ? ", " : "") + names[i] + " = " + io::float_text(at[i]);
   return s;
 }
 
@@ -78,7 +83,8 @@ struct Theirs {
 };
 
 /// `formulas` read: `rated` are the variables an equation may give d/dt of (by index).
-Theirs read_theirs(const std::string& file, const nlohmann::json& f, const io::LagrangianCase& c, const std::vector<std::size_t>& rated) {
+Theirs read_theirs(const std::string& file, const nlohmann::json& f, const io::LagrangianCase& c,
+                   const std::vector<std::size_t>& rated) {
   const std::vector<std::string> names = c.system.variable_names();
   const auto fail = [&](const std::string& path, const std::string& expected, const nlohmann::json& found) {
     throw io::InputError(file + ": " + path + ": expected " + expected + ", found " + found.dump());
@@ -86,7 +92,8 @@ Theirs read_theirs(const std::string& file, const nlohmann::json& f, const io::L
   if (!f.is_object()) fail("/formulas", "an object {constraints: [...], equations: {name: formula}}", f);
   Theirs t;
   if (f.contains("constraints")) {
-    if (!f["constraints"].is_array()) fail("/formulas/constraints", "an array of formulas (each = 0 on M_c)", f["constraints"]);
+    if (!f["constraints"].is_array())
+      fail("/formulas/constraints", "an array of formulas (each = 0 on M_c)", f["constraints"]);
     for (std::size_t i = 0; i < f["constraints"].size(); ++i) {
       const std::string path = "/formulas/constraints/" + std::to_string(i);
       if (!f["constraints"][i].is_string()) fail(path, "a formula as a string", f["constraints"][i]);
@@ -95,7 +102,8 @@ Theirs read_theirs(const std::string& file, const nlohmann::json& f, const io::L
   }
   if (f.contains("equations")) {
     const std::string what = c.system.implicit ? "a coordinate" : "a coordinate or velocity";
-    if (!f["equations"].is_object()) fail("/formulas/equations", "an object {" + what + ": d/dt of it}", f["equations"]);
+    if (!f["equations"].is_object())
+      fail("/formulas/equations", "an object {" + what + ": d/dt of it}", f["equations"]);
     for (const auto& [name, e] : f["equations"].items()) {
       const std::string path = "/formulas/equations/" + name;
       std::optional<std::size_t> k;
@@ -113,12 +121,12 @@ Theirs read_theirs(const std::string& file, const nlohmann::json& f, const io::L
 /// dcad's side of the comparison, in the variables of LagrangianSystem (the time last, at `width`… the
 /// point's last entry): the state columns compared are 0 … width−1.
 struct Ours {
-  std::size_t width = 0;                  ///< state columns: (q, v) for the expression form, q for the implicit form
-  long dim = 0;                           ///< dim M_c
-  std::vector<double> at;                 ///< dcad's point of M_c (width values, then the time)
-  std::vector<char> free;                 ///< per state column: its rate is free on M_c
-  std::vector<ex::Expr> constraints;      ///< dcad's constraints of M_c, in order of the levels
-  std::vector<long> levels;               ///< the M_k each cuts out
+  std::size_t width = 0;              ///< state columns: (q, v) for the expression form, q for the implicit form
+  long dim = 0;                       ///< dim M_c
+  std::vector<double> at;             ///< dcad's point of M_c (width values, then the time)
+  std::vector<char> free;             ///< per state column: its rate is free on M_c
+  std::vector<ex::Expr> constraints;  ///< dcad's constraints of M_c, in order of the levels
+  std::vector<long> levels;           ///< the M_k each cuts out
   std::vector<std::vector<ex::Expr>> gradients;  ///< ∂/∂(state columns) of each
   /// y (width values) moved onto M_c at time t, and dcad's formulas valid there; false if not reached.
   std::function<bool(std::vector<double>& y, double t)> onto;
@@ -128,8 +136,8 @@ struct Ours {
 
 /// The comparison at `points` points of M_c: how many were reached.
 /// A rank of their constraints short in double goes to `rank_short` (settled with the exact rank, settle_rank).
-std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool has_time, std::size_t points, Checked& out,
-                              std::string& rank_short) {
+std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool has_time,
+                              std::size_t points, Checked& out, std::string& rank_short) {
   const std::size_t w = us.width;
   // their formulas and their gradients over the state columns, compiled (variables indexed as in the case:
   // a point is padded to the time's index)
@@ -161,7 +169,8 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
     std::vector<double> x(t_index + 1, 0.0);
     std::copy(y.begin(), y.end(), x.begin());
     x[t_index] = t;
-    const std::string where = point_text(names, x, w) + (has_time ? ", " + names[t_index] + " = " + io::float_text(t) : "");
+    const std::string where =
+        point_text(names, x, w) + (has_time ? ", " + names[t_index] + " = " + io::float_text(t) : "");
     double scale = 1;
     for (double v : y) scale = std::max(scale, std::abs(v));
     if (!th.constraints.empty()) {
@@ -174,8 +183,8 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
         for (std::size_t j = 0; j < w; ++j) gn = std::max(gn, std::abs(jac[i][j] = g[i * w + j]));
         if (!con_bad && !(std::abs(phi[i]) <= 1e-8 * std::max(gn * scale, 1e-300) + 1e-300)) {
           con_bad = true;
-          out.disagreements.push_back("formulas.constraints[" + std::to_string(i) + "]: expected 0 on M_c, found " + io::float_text(phi[i]) +
-                                      " at the point of M_c " + where);
+          out.disagreements.push_back("formulas.constraints[" + std::to_string(i) + "]: expected 0 on M_c, found " +
+                                      io::float_text(phi[i]) + " at the point of M_c " + where);
         }
       }
       const std::size_t r = rank_of(jac);
@@ -195,8 +204,10 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
             break;
           }
         }
-        rank_short = "formulas.constraints: expected " + std::to_string(needed) + " independent constraints (dim M_c = " + std::to_string(us.dim) + " in " +
-                     std::to_string(w) + " state columns), found rank " + std::to_string(r) + " at " + where + (missing.empty() ? "" : "; not implied: " + missing);
+        rank_short = "formulas.constraints: expected " + std::to_string(needed) +
+                     " independent constraints (dim M_c = " + std::to_string(us.dim) + " in " + std::to_string(w) +
+                     " state columns), found rank " + std::to_string(r) + " at " + where +
+                     (missing.empty() ? "" : "; not implied: " + missing);
       }
     }
     if (!th.equations.empty()) {
@@ -210,8 +221,9 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
         if (us.free[k2] || eq_bad[i]) continue;
         if (!(std::abs(theirs_v[i] - ours[k2]) <= 1e-8 * rscale)) {
           eq_bad[i] = 1;
-          out.disagreements.push_back("formulas.equations." + names[k2] + ": expected d/dt " + names[k2] + " = " + io::float_text(ours[k2]) + ", found " +
-                                      io::float_text(theirs_v[i]) + " at the point of M_c " + where);
+          out.disagreements.push_back("formulas.equations." + names[k2] + ": expected d/dt " + names[k2] + " = " +
+                                      io::float_text(ours[k2]) + ", found " + io::float_text(theirs_v[i]) +
+                                      " at the point of M_c " + where);
         }
       }
     }
@@ -224,8 +236,10 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
 /// state column), in rationals.  False if a formula is irrational there (nothing compared exactly).
 /// `full_rank`: whether their constraints' gradients over the state columns have rank `needed` there, exactly
 /// (`exact_short` says so where not; settle_rank reports it).
-bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>& x, const std::vector<reference::Rational>* v, const std::vector<std::string>& names,
-                       std::size_t width, std::size_t needed, std::optional<bool>& full_rank, std::string& exact_short, Checked& out) {
+bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>& x,
+                       const std::vector<reference::Rational>* v, const std::vector<std::string>& names,
+                       std::size_t width, std::size_t needed, std::optional<bool>& full_rank, std::string& exact_short,
+                       Checked& out) {
   std::string where;
   for (std::size_t i = 0; i < width; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
   try {
@@ -237,19 +251,21 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
       const std::size_t r = static_cast<std::size_t>(reference::rank(m));
       full_rank = r >= needed;
       if (r < needed)
-        exact_short = "expected " + std::to_string(needed) + " independent constraints, found rank " + std::to_string(r) + " exactly at the point of M_c " + where;
+        exact_short = "expected " + std::to_string(needed) + " independent constraints, found rank " +
+                      std::to_string(r) + " exactly at the point of M_c " + where;
     }
     for (std::size_t i = 0; i < th.constraints.size(); ++i) {
       const reference::Rational val = reference::pipeline::exact_value(th.constraints[i], x);
       if (val != 0)
-        out.disagreements.push_back("formulas.constraints/" + std::to_string(i) + ": expected 0 on M_c, found " + val.str() + " exactly at the point of M_c " + where);
+        out.disagreements.push_back("formulas.constraints/" + std::to_string(i) + ": expected 0 on M_c, found " +
+                                    val.str() + " exactly at the point of M_c " + where);
     }
     if (v)
       for (const auto& [k, e] : th.equations) {
         const reference::Rational val = reference::pipeline::exact_value(e, x);
         if (val != (*v)[k])
-          out.disagreements.push_back("formulas.equations." + names[k] + ": expected d/dt " + names[k] + " = " + (*v)[k].str() + ", found " + val.str() +
-                                      " exactly at the point of M_c " + where);
+          out.disagreements.push_back("formulas.equations." + names[k] + ": expected d/dt " + names[k] + " = " +
+                                      (*v)[k].str() + ", found " + val.str() + " exactly at the point of M_c " + where);
       }
   } catch (const reference::NotExactHere&) {
     return false;  // their formula is irrational there (sin(1/2)): the double points compare it
@@ -260,9 +276,13 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
 /// A rank short in double where the exact rank at the rational point is full: the double points were too
 /// ill-conditioned to tell (x5 − 2 x4² at x4 = 5.7e6 beside rows of order 1: condition 3e21), not a disagreement.
 /// Short exactly: a disagreement (the double points' message names a constraint of dcad's theirs do not imply).
-void settle_rank(const std::string& rank_short, const std::optional<bool>& full_rank, const std::string& exact_short, Checked& out) {
-  if (full_rank == false) out.disagreements.push_back(rank_short.empty() ? "formulas.constraints: " + exact_short : rank_short + " (and " + exact_short + ")");
-  else if (rank_short.empty()) return;
+void settle_rank(const std::string& rank_short, const std::optional<bool>& full_rank, const std::string& exact_short,
+                 Checked& out) {
+  if (full_rank == false)
+    out.disagreements.push_back(rank_short.empty() ? "formulas.constraints: " + exact_short
+                                                   : rank_short + " (and " + exact_short + ")");
+  else if (rank_short.empty())
+    return;
   else if (full_rank == true)
     out.not_compared.push_back("the rank of formulas.constraints in double (short at a point: " + rank_short +
                                "; full exactly at the reference's rational point — ill-conditioned in double)");
@@ -271,14 +291,20 @@ void settle_rank(const std::string& rank_short, const std::optional<bool>& full_
 }
 
 /// What was compared, and what not, once the points are done.
-void summarize(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool exactly, std::size_t used, std::size_t points, Checked& out) {
-  const std::string how = std::string(exactly ? " (exactly at the reference's rational point of M_c, and at " : " (at ") + std::to_string(used) +
-                          " points of M_c in double: 1e-8 relative)";
+void summarize(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool exactly, std::size_t used,
+               std::size_t points, Checked& out) {
+  const std::string how =
+      std::string(exactly ? " (exactly at the reference's rational point of M_c, and at " : " (at ") +
+      std::to_string(used) + " points of M_c in double: 1e-8 relative)";
   if (!th.constraints.empty()) out.compared.push_back("formulas.constraints" + how);
   if (!th.equations.empty()) out.compared.push_back("formulas.equations" + how);
   for (const auto& [k, e] : th.equations)
-    if (us.free[k]) out.not_compared.push_back("formulas.equations." + names[k] + " (its rate is free on M_c: solutions are not unique)");
-  if (used < points) out.not_compared.push_back("formulas at " + std::to_string(points - used) + " of the " + std::to_string(points) + " points asked (no more points of M_c in dcad's chart were reached)");
+    if (us.free[k])
+      out.not_compared.push_back("formulas.equations." + names[k] +
+                                 " (its rate is free on M_c: solutions are not unique)");
+  if (used < points)
+    out.not_compared.push_back("formulas at " + std::to_string(points - used) + " of the " + std::to_string(points) +
+                               " points asked (no more points of M_c in dcad's chart were reached)");
   for (std::size_t i = 0; i < us.width; ++i) {
     bool given = false;
     for (const auto& [k2, e] : th.equations) given = given || k2 == i;
@@ -300,7 +326,8 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
     return;
   }
   if (!near.consistent || !near.pointwise || !near.pointwise->regular) {
-    out.not_compared.push_back("formulas (the case has no regular point of M_c here: " + (near.pointwise ? near.pointwise->why : std::string()) + ")");
+    out.not_compared.push_back("formulas (the case has no regular point of M_c here: " +
+                               (near.pointwise ? near.pointwise->why : std::string()) + ")");
     return;
   }
   Ours us;
@@ -310,7 +337,8 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
   us.at.push_back(near.pointwise->time);
   fast::Chart ch;
   try {
-    const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
+    const std::vector<double> v(near.pointwise->velocity.begin(),
+                                near.pointwise->velocity.begin() + static_cast<long>(2 * n));
     ch = fast::chart_near(s, us.at, near.dims(), near.pointwise->gauge.empty() ? &v : nullptr);
   } catch (const fast::ChartFailure& e) {
     out.not_compared.push_back(std::string("formulas (dcad has no chart of M_c here: ") + e.what() + ")");
@@ -323,7 +351,9 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
   us.gradients = ch.gradients;
   for (std::size_t k = 0; k < ch.levels.size(); ++k)
     for (std::size_t i = 0; i < ch.levels[k].size(); ++i) us.levels.push_back(static_cast<long>(k + 1));
-  us.onto = [&ch, field](std::vector<double>& y, double t) { return fast::project_onto(ch.constraints, ch.gradients, y, t, 1e-14) && field->margin(y, t) >= 1e-6; };
+  us.onto = [&ch, field](std::vector<double>& y, double t) {
+    return fast::project_onto(ch.constraints, ch.gradients, y, t, 1e-14) && field->margin(y, t) >= 1e-6;
+  };
   us.rates = [field, n](const std::vector<double>& y, double t, std::vector<double>& r) {
     r.assign(2 * n, 0.0);
     field->rates(y.data(), t, r.data());
@@ -338,10 +368,12 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
     p.expression = c;
     const dcad::Solution<reference::Rational> r = reference::solve(p);
     if (r.pointwise && r.consistent && r.pointwise->regular && r.pointwise->point_text.empty()) {
-      std::vector<reference::Rational> x(r.pointwise->point.begin(), r.pointwise->point.begin() + static_cast<long>(2 * n));
+      std::vector<reference::Rational> x(r.pointwise->point.begin(),
+                                         r.pointwise->point.begin() + static_cast<long>(2 * n));
       x.push_back(r.pointwise->time);
       const bool unique = r.solution_rank && *r.solution_rank == 0;
-      exactly = exact_point_check(th, x, unique ? &r.pointwise->velocity : nullptr, names, 2 * n, 2 * n - static_cast<std::size_t>(us.dim), full_rank, exact_short, out);
+      exactly = exact_point_check(th, x, unique ? &r.pointwise->velocity : nullptr, names, 2 * n,
+                                  2 * n - static_cast<std::size_t>(us.dim), full_rank, exact_short, out);
     }
   } catch (const std::exception&) {  // no exact point (the double points still compare)
   }
@@ -351,7 +383,8 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
 
 /// The implicit form: dcad's formulas are the exact route's on formulas (`dcad solve --json`'s `formulas`,
 /// read back: what is printed is what is compared), decided at its exact point of M_c.
-void check_implicit_formulas(const std::string& file, const Theirs& th, const io::Problem& p, std::size_t points, Checked& out) {
+void check_implicit_formulas(const std::string& file, const Theirs& th, const io::Problem& p, std::size_t points,
+                             Checked& out) {
   const io::LagrangianCase& c = p.expression;
   const reference::LagrangianSystem& s = c.system;
   const std::size_t n = s.n;
@@ -365,19 +398,25 @@ void check_implicit_formulas(const std::string& file, const Theirs& th, const io
   }
   if (r.certified.yes() && !r.consistent) {  // formulas of a nonempty M_c for a system that has none
     out.compared.push_back("formulas");
-    out.disagreements.push_back("formulas: expected none (M_c is empty: " + (r.pointwise ? r.pointwise->why : std::string()) + "), found " +
-                                std::to_string(th.constraints.size()) + " constraints and " + std::to_string(th.equations.size()) + " equations of motion");
+    out.disagreements.push_back(
+        "formulas: expected none (M_c is empty: " + (r.pointwise ? r.pointwise->why : std::string()) + "), found " +
+        std::to_string(th.constraints.size()) + " constraints and " + std::to_string(th.equations.size()) +
+        " equations of motion");
     return;
   }
   if (!r.certified.yes() || !r.pointwise || !r.pointwise->formulas) {
     // nothing judged is no agreement (check.cpp's rule for a result whose every claim went uncompared)
-    out.disagreements.push_back("formulas: not judged — dcad has none for this case (" +
-                                (r.pointwise && !r.pointwise->formulas_why.empty() ? r.pointwise->formulas_why : std::string("the exact route is not certified here")) +
-                                "); give `initial` where the exact route runs on formulas, or compare dims, steps and index");
+    out.disagreements.push_back(
+        "formulas: not judged — dcad has none for this case (" +
+        (r.pointwise && !r.pointwise->formulas_why.empty() ? r.pointwise->formulas_why
+                                                           : std::string("the exact route is not certified here")) +
+        "); give `initial` where the exact route runs on formulas, or compare dims, steps and index");
     return;
   }
   const Formulas& f = *r.pointwise->formulas;
-  const auto parse = [&](const std::string& text, const std::string& what) { return io::parse_case_formula(c, text, file + " (dcad's own " + what + ")", ""); };
+  const auto parse = [&](const std::string& text, const std::string& what) {
+    return io::parse_case_formula(c, text, file + " (dcad's own " + what + ")", "");
+  };
   Ours us;
   us.width = n;
   us.dim = r.dims().back();
@@ -437,22 +476,26 @@ void check_implicit_formulas(const std::string& file, const Theirs& th, const io
   std::vector<reference::Rational> v(n);
   for (std::size_t i = 0; i < n; ++i) v[i] = r.pointwise->velocity[i];
   const bool unique = r.solution_rank && *r.solution_rank == 0;
-  const bool exactly = exact_point_check(th, x0, unique ? &v : nullptr, names, n, n - static_cast<std::size_t>(us.dim), full_rank, exact_short, out);
+  const bool exactly = exact_point_check(th, x0, unique ? &v : nullptr, names, n, n - static_cast<std::size_t>(us.dim),
+                                         full_rank, exact_short, out);
   settle_rank(rank_short, full_rank, exact_short, out);
   summarize(th, us, names, exactly, used, points, out);
 }
 
 }  // namespace
 
-void check_formulas(const std::string& file, const nlohmann::json& f, const io::Problem& p, std::size_t points, Checked& out) {
+void check_formulas(const std::string& file, const nlohmann::json& f, const io::Problem& p, std::size_t points,
+                    Checked& out) {
   const io::LagrangianCase& c = p.expression;
   const std::size_t n = c.system.n;
   std::vector<std::size_t> rated;  // what an equation may give d/dt of: (q, v), or q for the implicit form
   for (std::size_t i = 0; i < (c.system.implicit ? n : 2 * n); ++i) rated.push_back(i);
   const Theirs th = read_theirs(file, f, c, rated);
   if (points == 0) throw io::InputError(file + ": --points: expected at least 1 point, found 0");
-  if (c.system.implicit) check_implicit_formulas(file, th, p, points, out);
-  else check_expression_formulas(th, c, points, out);
+  if (c.system.implicit)
+    check_implicit_formulas(file, th, p, points, out);
+  else
+    check_expression_formulas(th, c, points, out);
 }
 
 }  // namespace dcad::api

@@ -42,13 +42,13 @@ std::string without_spaces(const std::string& s) {
 /// A vector as a function of the circuit's values: e_a − e_b (nodes, −1 ground), or a branch's q, i or p.
 struct Functional {
   enum Kind { potential, charge, current, flux } kind = potential;
-  long a = -1, b = -1;    ///< nodes (potential)
+  long a = -1, b = -1;     ///< nodes (potential)
   std::size_t branch = 0;  ///< (the others)
   std::string meaning;
 };
 
 struct Names {
-  std::map<std::string, long> nodes;           ///< lower-case name → index (ground −1)
+  std::map<std::string, long> nodes;            ///< lower-case name → index (ground −1)
   std::map<std::string, std::size_t> branches;  ///< lower-case name → branch
   std::vector<std::string> node_list, branch_list;
 };
@@ -94,7 +94,10 @@ Functional functional(const std::string& name, const Names& n, const io::Netlist
   // dcad's own variable names: q_X, v_X (the current), p_X
   if (s.size() > 2 && s[1] == '_' && (s[0] == 'q' || s[0] == 'v' || s[0] == 'p') && branch(s.substr(2), f.branch)) {
     f.kind = s[0] == 'q' ? Functional::charge : s[0] == 'v' ? Functional::current : Functional::flux;
-    f.meaning = std::string(s[0] == 'q' ? "charge" : s[0] == 'v' ? "current" : "flux linkage") + " of " + deck.rlc.branches[f.branch].name;
+    f.meaning = std::string(s[0] == 'q'   ? "charge"
+                            : s[0] == 'v' ? "current"
+                                          : "flux linkage") +
+                " of " + deck.rlc.branches[f.branch].name;
     return f;
   }
   // v(a) and v(a,b): node voltages; a bare node name as older raw files write it
@@ -114,10 +117,14 @@ Functional functional(const std::string& name, const Names& n, const io::Netlist
   }
   // i(x), x#branch: the current through element x from its n+ to its n− (ngspice's and dcad's sign)
   std::string el;
-  if (s.size() > 3 && s.rfind("i(", 0) == 0 && s.back() == ')') el = s.substr(2, s.size() - 3);
-  else if (s.size() > 7 && s.compare(s.size() - 7, 7, "#branch") == 0) el = s.substr(0, s.size() - 7);
-  if (el.size() > 4 && el[0] == '@' && el.compare(el.size() - 3, 3, "[i]") == 0) el = el.substr(1, el.size() - 4);  // .options savecurrents
-  else if (s.size() > 4 && s[0] == '@' && s.compare(s.size() - 3, 3, "[i]") == 0) el = s.substr(1, s.size() - 4);
+  if (s.size() > 3 && s.rfind("i(", 0) == 0 && s.back() == ')')
+    el = s.substr(2, s.size() - 3);
+  else if (s.size() > 7 && s.compare(s.size() - 7, 7, "#branch") == 0)
+    el = s.substr(0, s.size() - 7);
+  if (el.size() > 4 && el[0] == '@' && el.compare(el.size() - 3, 3, "[i]") == 0)
+    el = el.substr(1, el.size() - 4);  // .options savecurrents
+  else if (s.size() > 4 && s[0] == '@' && s.compare(s.size() - 3, 3, "[i]") == 0)
+    el = s.substr(1, s.size() - 4);
   // gnucap's hierarchical element x1.l1 is ngspice's (and dcad's) l.x1.l1
   if (!el.empty() && el.find('.') != std::string::npos && !branch(el, f.branch)) {
     const std::string leaf = el.substr(el.rfind('.') + 1);
@@ -128,8 +135,10 @@ Functional functional(const std::string& name, const Names& n, const io::Netlist
     f.meaning = "current of " + deck.rlc.branches[f.branch].name + " (n+ to n- through it)";
     return f;
   }
-  throw io::InputError(file + ": vector '" + name + "': expected v(node), v(node,node), i(element), element#branch or q_/v_/p_ names of " +
-                       deck.file + " (nodes: " + listed(n.node_list) + "; elements: " + listed(n.branch_list) + "), found none that names them");
+  throw io::InputError(file + ": vector '" + name +
+                       "': expected v(node), v(node,node), i(element), element#branch or q_/v_/p_ names of " +
+                       deck.file + " (nodes: " + listed(n.node_list) + "; elements: " + listed(n.branch_list) +
+                       "), found none that names them");
 }
 
 double value(const Functional& f, const sr::BranchValues& bv, const Vec& e) {
@@ -146,7 +155,8 @@ double value(const Functional& f, const sr::BranchValues& bv, const Vec& e) {
 
 /// The smallest enclosure (rounded outward) of two.
 certified::Enclosure hull(const certified::Enclosure& a, const certified::Enclosure& b) {
-  const double lo = std::nextafter(std::min(a.mid - a.rad, b.mid - b.rad), -HUGE_VAL), hi = std::nextafter(std::max(a.mid + a.rad, b.mid + b.rad), HUGE_VAL);
+  const double lo = std::nextafter(std::min(a.mid - a.rad, b.mid - b.rad), -HUGE_VAL),
+               hi = std::nextafter(std::max(a.mid + a.rad, b.mid + b.rad), HUGE_VAL);
   certified::Enclosure h;
   h.mid = lo / 2 + hi / 2;
   h.rad = std::nextafter(std::max(h.mid - lo, hi - h.mid), HUGE_VAL);
@@ -168,11 +178,12 @@ std::vector<certified::Functional::Term> branch_voltage(const io::Netlist& deck,
   const auto& br = deck.rlc.branches[b];
   const std::size_t nb = deck.rlc.branches.size();
   switch (br.kind) {
-    case reference::RlcKind::capacitor: return {T{Of::x, b, io::Rational(1) / br.value}};           // q / C
-    case reference::RlcKind::resistor: return {T{Of::x, nb + b, br.value}};                         // R i
-    case reference::RlcKind::inductor: return {T{Of::xdot, 2 * nb + b, io::Rational(1)}};           // dp/dt
-    case reference::RlcKind::voltage: return {T{Of::u, 1 + static_cast<std::size_t>(br.source), io::Rational(1)}};  // V(t)
-    default: return {};                                                                             // a wire
+    case reference::RlcKind::capacitor: return {T{Of::x, b, io::Rational(1) / br.value}};  // q / C
+    case reference::RlcKind::resistor: return {T{Of::x, nb + b, br.value}};                // R i
+    case reference::RlcKind::inductor: return {T{Of::xdot, 2 * nb + b, io::Rational(1)}};  // dp/dt
+    case reference::RlcKind::voltage:
+      return {T{Of::u, 1 + static_cast<std::size_t>(br.source), io::Rational(1)}};  // V(t)
+    default: return {};                                                             // a wire
   }
 }
 
@@ -181,7 +192,8 @@ std::vector<certified::Functional::Term> branch_voltage(const io::Netlist& deck,
 /// read as that corner and given both one-sided values.
 class Encloser {
  public:
-  Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision, double first, double last);
+  Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step,
+           long precision, double first, double last);
   bool ok() const { return why_.empty(); }
   const std::string& why() const { return why_; }
   /// The enclosures of every vector at t (`r`), and the other side's at a corner (`l`, else `r`); false
@@ -197,8 +209,8 @@ class Encloser {
   std::string why_;
 };
 
-Encloser::Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision, double first,
-                   double last) {
+Encloser::Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step,
+                   long precision, double first, double last) {
   const io::Netlist& deck = p.netlist;
   const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
   try {
@@ -239,7 +251,8 @@ Encloser::Encloser(const io::Problem& p, const std::vector<Functional>& fs, cons
       for (long node : {f.a, f.b}) {
         const auto& path = pot[static_cast<std::size_t>(node + 1)];
         if (!path) {
-          why_ = "node " + deck.node_names[static_cast<std::size_t>(node)] + " reaches ground only through current sources: its potential is not enclosed";
+          why_ = "node " + deck.node_names[static_cast<std::size_t>(node)] +
+                 " reaches ground only through current sources: its potential is not enclosed";
           return;
         }
         for (auto term : *path) {
@@ -256,9 +269,11 @@ Encloser::Encloser(const io::Problem& p, const std::vector<Functional>& fs, cons
   // summed in double) is read as that corner and compared with its two one-sided values
   near_ = 1e-13 * std::max(std::abs(last), std::abs(first));
   try {
-    const std::vector<io::Rational> all = cm_.flow->corners(certified::rational_of(last + 2 * near_), kEnclosedCorners + 1);
+    const std::vector<io::Rational> all =
+        cm_.flow->corners(certified::rational_of(last + 2 * near_), kEnclosedCorners + 1);
     if (all.size() > kEnclosedCorners) {
-      why_ = "the sources have more than " + std::to_string(kEnclosedCorners) + " corners in the run (each is crossed exactly)";
+      why_ = "the sources have more than " + std::to_string(kEnclosedCorners) +
+             " corners in the run (each is crossed exactly)";
       return;
     }
     for (const io::Rational& c : all) corners_.emplace(c.convert_to<double>(), c);
@@ -319,7 +334,8 @@ bool more_bits(long precision, bool finite, double seconds, double widest, doubl
 }
 
 /// Enclosures at 256 bits, then at twice the precision while more_bits says so.
-Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step) {
+Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<Functional>& fs,
+                 const WaveformOptions& opt, double step) {
   Enclosed e;
   double before = HUGE_VAL;
   for (long precision = 256;; precision *= 2) {
@@ -344,21 +360,25 @@ Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<F
       for (std::size_t k = 0; k < fs.size(); ++k) {
         e.right[k][i] = r[k], e.left[k][i] = l[k];
         finite = finite && std::isfinite(r[k].rad);
-        scale[k] = std::max({scale[k], std::abs(r[k].mid), std::abs(l[k].mid)}), rad[k] = std::max({rad[k], r[k].rad, l[k].rad});
+        scale[k] = std::max({scale[k], std::abs(r[k].mid), std::abs(l[k].mid)}),
+        rad[k] = std::max({rad[k], r[k].rad, l[k].rad});
       }
     }
     e.ok = true;
     e.restarts = enc.restarts();
     double widest = 0;
-    for (std::size_t k = 0; k < fs.size(); ++k) widest = std::max(widest, rad[k] <= std::ldexp(1.0, -1000) ? 0.0 : scale[k] > 0 ? rad[k] / scale[k] : HUGE_VAL);
-    if (!more_bits(precision, finite, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), widest, before)) return e;
+    for (std::size_t k = 0; k < fs.size(); ++k)
+      widest = std::max(widest, rad[k] <= std::ldexp(1.0, -1000) ? 0.0 : scale[k] > 0 ? rad[k] / scale[k] : HUGE_VAL);
+    if (!more_bits(precision, finite, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                   widest, before))
+      return e;
   }
 }
 
 }  // namespace
 
-WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names, const std::vector<double>& times, Initial initial,
-                                     double step) {
+WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names,
+                                     const std::vector<double>& times, Initial initial, double step) {
   io::Traces tr;
   tr.file = p.netlist.file;
   tr.names = names;
@@ -377,27 +397,32 @@ namespace {
 /// One vector against one source of exact values (the enclosures, or the double flow with its radius
 /// added at the end), reduced over the points as they stream by: what the verdict needs of them.
 struct Reduced {
-  double own = 0, own_lo = 0, own_hi = 0;  ///< the largest |exact|, and its bounds with the radii
+  double own = 0, own_lo = 0, own_hi = 0;         ///< the largest |exact|, and its bounds with the radii
   double max_hi = -HUGE_VAL, max_lo = -HUGE_VAL;  ///< the largest upper and lower bounds on |found − exact|
   bool hi_nan = false;
-  double unc = 0;                          ///< the largest radius that counts (the other side's at a corner)
-  double widest_rad = 0, widest_mid = 0;   ///< over both sides (the wide test, the precision loop)
-  bool finite = true;                      ///< every right radius finite
+  double unc = 0;                         ///< the largest radius that counts (the other side's at a corner)
+  double widest_rad = 0, widest_mid = 0;  ///< over both sides (the wide test, the precision loop)
+  bool finite = true;                     ///< every right radius finite
   bool first = true, nonfinite = false, at_corner = false;
   double max_error = 0, at = 0, exact = 0, found = 0;
   long skipped = 0;
   std::vector<double> kept;  ///< with keep_exact: the exact value at each point (the side nearer the file's)
 };
 
-void reduce(Reduced& a, double t, double found, double right, double left, double rad_r, double rad_l, bool two_sided, bool touched, bool keep) {
+void reduce(Reduced& a, double t, double found, double right, double left, double rad_r, double rad_l, bool two_sided,
+            bool touched, bool keep) {
   constexpr double u = std::numeric_limits<double>::epsilon();
   a.own = std::max({a.own, std::abs(right), std::abs(left)});
   a.own_hi = std::max({a.own_hi, std::abs(right) + rad_r, std::abs(left) + rad_l});
   a.own_lo = std::max({a.own_lo, std::abs(right) - rad_r, std::abs(left) - rad_l});
   a.unc = std::max({a.unc, rad_r, two_sided ? rad_l : 0.0});
-  a.widest_rad = std::max({a.widest_rad, rad_r, rad_l}), a.widest_mid = std::max({a.widest_mid, std::abs(right), std::abs(left)});
+  a.widest_rad = std::max({a.widest_rad, rad_r, rad_l}),
+  a.widest_mid = std::max({a.widest_mid, std::abs(right), std::abs(left)});
   a.finite = a.finite && std::isfinite(rad_r);
-  if (keep) a.kept.push_back(std::abs(found - left) < std::abs(found - right) ? left : right);  // the side the simulator is nearer at a corner
+  if (keep)
+    a.kept.push_back(std::abs(found - left) < std::abs(found - right)
+                         ? left
+                         : right);  // the side the simulator is nearer at a corner
   if (a.nonfinite) return;
   if (!std::isfinite(found)) {
     a.nonfinite = true;
@@ -416,8 +441,10 @@ void reduce(Reduced& a, double t, double found, double right, double left, doubl
   const double hi_r = er * (1 + 2 * u) + rad_r, lo_r = er * (1 - 2 * u) - rad_r;
   const double hi_l = el * (1 + 2 * u) + rad_l, lo_l = el * (1 - 2 * u) - rad_l;
   const double hi = two_sided ? std::min(hi_r, hi_l) : hi_r, lo = two_sided ? std::min(lo_r, lo_l) : lo_r;
-  if (std::isnan(hi)) a.hi_nan = true;
-  else a.max_hi = std::max(a.max_hi, hi);
+  if (std::isnan(hi))
+    a.hi_nan = true;
+  else
+    a.max_hi = std::max(a.max_hi, hi);
   if (lo > a.max_lo) a.max_lo = lo;
   if (a.first || err > a.max_error) {
     a.first = false;
@@ -439,7 +466,8 @@ Reduced with_radius(Reduced a, double rad) {
 }
 
 /// One vector's verdict from its reductions and its kind's scale bounds [klo, khi] over the run.
-WaveformVector verdict(const Reduced& a, const std::string& name, const std::string& meaning, double klo, double khi, const WaveformOptions& opt) {
+WaveformVector verdict(const Reduced& a, const std::string& name, const std::string& meaning, double klo, double khi,
+                       const WaveformOptions& opt) {
   constexpr double u = std::numeric_limits<double>::epsilon();
   WaveformVector v;
   v.name = name;
@@ -453,9 +481,11 @@ WaveformVector verdict(const Reduced& a, const std::string& name, const std::str
     scale_lo = std::min(a.own_lo, klo), scale_hi = std::max(a.own_hi, khi);
   }
   v.exact_uncertainty = a.unc;
-  const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u), tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
+  const double tol_lo = (opt.atol + opt.rtol * scale_lo) * (1 - 4 * u),
+               tol_hi = (opt.atol + opt.rtol * scale_hi) * (1 + 4 * u);
   v.skipped_at_jump = a.skipped;
-  if (!a.first || a.nonfinite) v.max_error = a.max_error, v.at = a.at, v.exact = a.exact, v.found = a.found, v.at_corner = a.at_corner;
+  if (!a.first || a.nonfinite)
+    v.max_error = a.max_error, v.at = a.at, v.exact = a.exact, v.found = a.found, v.at_corner = a.at_corner;
   // agreement needs every point within the tolerance with dcad's own uncertainty, a disagreement one
   // point beyond it with the uncertainty; between the two dcad cannot tell
   const bool within = !a.nonfinite && !a.hi_nan && a.max_hi <= tol_lo, beyond = a.nonfinite || a.max_lo > tol_hi;
@@ -471,8 +501,11 @@ std::vector<std::string> exact_jumps(const io::Problem& p, Initial initial, std:
   if (nb_of(deck) > reference::pipeline::kForcedBranches) return flow_jumped;
   namespace pl = reference::pipeline;
   try {
-    const pl::InitialState st = pl::initial_state(
-        deck, initial == Initial::op ? pl::InitialRule::op : initial == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck, p.linear.variables);
+    const pl::InitialState st = pl::initial_state(deck,
+                                                  initial == Initial::op    ? pl::InitialRule::op
+                                                  : initial == Initial::uic ? pl::InitialRule::uic
+                                                                            : pl::InitialRule::deck,
+                                                  p.linear.variables);
     if (!st.computed) return flow_jumped;
     std::vector<std::string> jumped;
     for (const pl::Jump& j : st.jumps) jumped.push_back(j.variable);
@@ -484,7 +517,8 @@ std::vector<std::string> exact_jumps(const io::Problem& p, Initial initial, std:
 
 /// The vectors a jump at t = 0 moves: a jumped charge, current or flux linkage by its branch; potentials and
 /// the currents of other branches (functions of the whole state) whenever anything jumps.
-std::vector<bool> touched_by(const std::vector<Functional>& fs, const io::Netlist& deck, const std::vector<std::string>& jumped) {
+std::vector<bool> touched_by(const std::vector<Functional>& fs, const io::Netlist& deck,
+                             const std::vector<std::string>& jumped) {
   std::vector<bool> touched(fs.size(), false);
   for (std::size_t k = 0; k < fs.size() && !jumped.empty(); ++k) {
     if (fs[k].kind == Functional::potential) {
@@ -501,14 +535,17 @@ std::vector<bool> touched_by(const std::vector<Functional>& fs, const io::Netlis
 
 /// The double flow's values of the vectors at t (right, and left where the flow has a corner or t = 0),
 /// and the largest potential, charge, current and flux linkage so far in `kind_scale`.
-void flow_values(SparseFlow& flow, const std::vector<Functional>& fs, double t, bool sided, std::vector<double>& right, std::vector<double>& left,
-                 double* kind_scale) {
+void flow_values(SparseFlow& flow, const std::vector<Functional>& fs, double t, bool sided, std::vector<double>& right,
+                 std::vector<double>& left, double* kind_scale) {
   flow.advance_to(t);
   const sr::BranchValues bv = flow.values();
   const Vec e = flow.node_potentials();
-  kind_scale[Functional::potential] = std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
-  kind_scale[Functional::charge] = std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
-  kind_scale[Functional::current] = std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
+  kind_scale[Functional::potential] =
+      std::max(kind_scale[Functional::potential], e.size() ? e.cwiseAbs().maxCoeff() : 0.0);
+  kind_scale[Functional::charge] =
+      std::max(kind_scale[Functional::charge], bv.q.size() ? bv.q.cwiseAbs().maxCoeff() : 0.0);
+  kind_scale[Functional::current] =
+      std::max(kind_scale[Functional::current], bv.i.size() ? bv.i.cwiseAbs().maxCoeff() : 0.0);
   kind_scale[Functional::flux] = std::max(kind_scale[Functional::flux], bv.p.size() ? bv.p.cwiseAbs().maxCoeff() : 0.0);
   for (std::size_t k = 0; k < fs.size(); ++k) right[k] = left[k] = value(fs[k], bv, e);
   if (!sided) return;
@@ -523,9 +560,9 @@ constexpr std::size_t kChunk = 4096;
 /// One pass over the stream: every point of every vector reduced against the double flow (`run_flow`: the
 /// graph route's first pass; `flow` also gives the corners in every pass) and against the enclosures of
 /// `enc` (if any).  False when the enclosures failed on the way (enc->why()); the flow's reductions go on.
-bool stream_pass(io::TraceStream& tr, const std::vector<Functional>& fs, const std::vector<bool>& touched, bool keep, SparseFlow* flow, bool run_flow,
-                 std::vector<Reduced>& flow_acc, double* kind_scale, Encloser* enc, std::vector<Reduced>& enc_acc, double& enc_seconds,
-                 double& first_after_zero) {
+bool stream_pass(io::TraceStream& tr, const std::vector<Functional>& fs, const std::vector<bool>& touched, bool keep,
+                 SparseFlow* flow, bool run_flow, std::vector<Reduced>& flow_acc, double* kind_scale, Encloser* enc,
+                 std::vector<Reduced>& enc_acc, double& enc_seconds, double& first_after_zero) {
   const std::size_t nv = fs.size();
   run_flow = run_flow && flow;
   std::vector<double> t, right(nv), left(nv);
@@ -539,11 +576,14 @@ bool stream_pass(io::TraceStream& tr, const std::vector<Functional>& fs, const s
     // order), whoever implements it
     bool sized = vals.size() == nv;
     for (std::size_t k = 0; k < vals.size() && sized; ++k) sized = vals[k].size() == t.size();
-    if (!sized) throw io::InputError(tr.file() + ": expected " + std::to_string(nv) + " values per time point from the stream, found another count");
+    if (!sized)
+      throw io::InputError(tr.file() + ": expected " + std::to_string(nv) +
+                           " values per time point from the stream, found another count");
     for (std::size_t i = 0; i < t.size(); ++i) {
       const double ti = t[i];
       if (!(ti >= previous) || !std::isfinite(ti))
-        throw io::InputError(tr.file() + ": expected finite, nondecreasing times from the stream, found " + io::float_text(ti) + " after " + io::float_text(previous));
+        throw io::InputError(tr.file() + ": expected finite, nondecreasing times from the stream, found " +
+                             io::float_text(ti) + " after " + io::float_text(previous));
       previous = ti;
       if (ti > 0 && first_after_zero == 0) first_after_zero = ti;
       const bool flow_sided = flow && (ti == 0 || flow->corner(ti));
@@ -552,13 +592,15 @@ bool stream_pass(io::TraceStream& tr, const std::vector<Functional>& fs, const s
       if (enclosing) {
         const auto t0 = std::chrono::steady_clock::now();
         enclosing = enc->at(ti, r, l);
-        for (std::size_t k = 0; k < nv && enclosing; ++k) enc_sided = enc_sided || l[k].mid != r[k].mid || l[k].rad != r[k].rad;
+        for (std::size_t k = 0; k < nv && enclosing; ++k)
+          enc_sided = enc_sided || l[k].mid != r[k].mid || l[k].rad != r[k].rad;
         enc_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       }
       const bool sided = flow_sided || enc_sided;
       for (std::size_t k = 0; k < nv; ++k) {
         if (run_flow) reduce(flow_acc[k], ti, vals[k][i], right[k], left[k], 0.0, 0.0, sided, touched[k], keep);
-        if (enclosing) reduce(enc_acc[k], ti, vals[k][i], r[k].mid, l[k].mid, r[k].rad, l[k].rad, sided, touched[k], keep);
+        if (enclosing)
+          reduce(enc_acc[k], ti, vals[k][i], r[k].mid, l[k].mid, r[k].rad, l[k].rad, sided, touched[k], keep);
       }
     }
   }
@@ -570,8 +612,9 @@ bool stream_pass(io::TraceStream& tr, const std::vector<Functional>& fs, const s
 namespace {
 
 /// The enclosures at `precision` bits (null with `why` when there are none), the time it took in `seconds`.
-std::unique_ptr<Encloser> enclosures(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step, long precision,
-                                     const io::TraceStream& tr, std::string& why, double& seconds) {
+std::unique_ptr<Encloser> enclosures(const io::Problem& p, const std::vector<Functional>& fs,
+                                     const WaveformOptions& opt, double step, long precision, const io::TraceStream& tr,
+                                     std::string& why, double& seconds) {
   const auto start = std::chrono::steady_clock::now();
   auto enc = std::make_unique<Encloser>(p, fs, opt, step, precision, tr.first_time(), tr.last_time());
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -583,21 +626,27 @@ std::unique_ptr<Encloser> enclosures(const io::Problem& p, const std::vector<Fun
 /// The problem and the file held to what a waveform check needs (a netlist, a positive definite
 /// inductance matrix, tolerances >= 0, a vector and a point), the simulator's skipped messages noted, and
 /// each vector as a functional of the circuit's motion.
-std::vector<Functional> functionals_of(const io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+std::vector<Functional> functionals_of(const io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt,
+                                       std::ostream& log) {
   io::validate(p);
   const std::vector<std::string>& skipped = tr.skipped();
-  for (std::size_t k = 0; k < skipped.size() && k < 5; ++k) log << "note: skipped a simulator's message inside the table at " << skipped[k] << "\n";
+  for (std::size_t k = 0; k < skipped.size() && k < 5; ++k)
+    log << "note: skipped a simulator's message inside the table at " << skipped[k] << "\n";
   if (skipped.size() > 5) log << "note: … and " << skipped.size() - 5 << " more messages skipped\n";
   if (p.form != io::Form::netlist)
-    throw io::InputError(p.netlist.file.empty() ? tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file"
-                                                : p.netlist.file + ": check: expected a netlist for a waveform");
+    throw io::InputError(p.netlist.file.empty()
+                             ? tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file"
+                             : p.netlist.file + ": check: expected a netlist for a waveform");
   const io::Netlist& deck = p.netlist;
   if (!deck.indefinite_inductance.empty())
-    throw io::InputError(deck.indefinite_inductance + "; check: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
+    throw io::InputError(
+        deck.indefinite_inductance +
+        "; check: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
   if (!(opt.rtol >= 0) || !(opt.atol >= 0)) throw UsageError("--rtol and --atol: expected numbers >= 0");
   if (tr.names().empty())
-    throw io::InputError(tr.file() + ": expected at least one vector besides time (" + tr.format() + "), found none: nothing to check" +
-                         (tr.format() == "gnucap" ? " (gnucap runs .tran as it reads it: put .print before .tran)" : ""));
+    throw io::InputError(
+        tr.file() + ": expected at least one vector besides time (" + tr.format() + "), found none: nothing to check" +
+        (tr.format() == "gnucap" ? " (gnucap runs .tran as it reads it: put .print before .tran)" : ""));
   if (tr.points() == 0) throw io::InputError(tr.file() + ": expected at least one time point, found none");
   const Names names = names_of(deck);
   std::vector<Functional> fs;
@@ -612,7 +661,9 @@ double widest_of(const std::vector<Reduced>& acc, bool& finite) {
   finite = true;
   for (const Reduced& a : acc) {
     finite = finite && a.finite;
-    widest = std::max(widest, a.widest_rad <= std::ldexp(1.0, -1000) ? 0.0 : a.widest_mid > 0 ? a.widest_rad / a.widest_mid : HUGE_VAL);
+    widest = std::max(widest, a.widest_rad <= std::ldexp(1.0, -1000) ? 0.0
+                              : a.widest_mid > 0                     ? a.widest_rad / a.widest_mid
+                                                                     : HUGE_VAL);
   }
   return widest;
 }
@@ -620,21 +671,24 @@ double widest_of(const std::vector<Reduced>& acc, bool& finite) {
 /// Which exact values decide each vector: the enclosures (if `enc_ok`), unless (`test_width`) an
 /// enclosure is wider than the double flow's own uncertainty (a stiff circuit, wrapping) — then the double
 /// flow with that uncertainty as its radius, and the vector is named in `wide`.
-std::vector<Reduced> chosen(std::vector<Reduced>& enc_acc, std::vector<Reduced>& flow_acc, const std::vector<double>& uncertainty, bool test_width,
-                            bool enc_ok, const std::vector<std::string>& names, std::string& wide) {
+std::vector<Reduced> chosen(std::vector<Reduced>& enc_acc, std::vector<Reduced>& flow_acc,
+                            const std::vector<double>& uncertainty, bool test_width, bool enc_ok,
+                            const std::vector<std::string>& names, std::string& wide) {
   std::vector<Reduced> acc(flow_acc.size());
   for (std::size_t k = 0; k < acc.size(); ++k) {
     // (a vector that is 0 over the whole run has uncertainty 0: radii of 1e-308 are not wider than it)
     const bool too_wide = test_width && !(enc_acc[k].widest_rad <= std::max(uncertainty[k], 1e-300));
-    if (too_wide) wide += std::string(wide.empty() ? "" : ", ") + names[k] + " (radius " + io::float_text(enc_acc[k].widest_rad) + ")";
+    if (too_wide)
+      wide +=
+          std::string(wide.empty() ? "" : ", ") + names[k] + " (radius " + io::float_text(enc_acc[k].widest_rad) + ")";
     acc[k] = enc_ok && !too_wide ? std::move(enc_acc[k]) : with_radius(std::move(flow_acc[k]), uncertainty[k]);
   }
   return acc;
 }
 
 /// Every vector's verdict into `out` (its agree, exact values with keep_exact, the worst vector).
-void add_verdicts(WaveformChecked& out, std::vector<Reduced>& acc, const std::vector<Functional>& fs, const std::vector<std::string>& names,
-                  const double* kind_scale, const WaveformOptions& opt) {
+void add_verdicts(WaveformChecked& out, std::vector<Reduced>& acc, const std::vector<Functional>& fs,
+                  const std::vector<std::string>& names, const double* kind_scale, const WaveformOptions& opt) {
   const std::size_t nv = acc.size();
   // the CONTRACT's scale of each vector (its largest |exact|) lies in [lo, hi]; a vector whose largest |exact|
   // is below 1e-12 of the largest of its kind (0 by symmetry, or without a source) is held to its kind's
@@ -649,22 +703,27 @@ void add_verdicts(WaveformChecked& out, std::vector<Reduced>& acc, const std::ve
     out.agree = out.agree && out.vectors.back().agree;
     if (opt.keep_exact) out.exact.push_back(std::move(acc[k].kept));
   }
-  const auto rel = [&](std::size_t k) { return out.vectors[k].scale > 0 ? out.vectors[k].max_error / out.vectors[k].scale : out.vectors[k].max_error; };
+  const auto rel = [&](std::size_t k) {
+    return out.vectors[k].scale > 0 ? out.vectors[k].max_error / out.vectors[k].scale : out.vectors[k].max_error;
+  };
   for (std::size_t k = 1; k < out.vectors.size(); ++k)
     if (rel(k) > rel(out.worst)) out.worst = k;
 }
 
 }  // namespace
 
-WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const WaveformOptions& opt,
+                               std::ostream& log) {
   const std::unique_ptr<io::TraceStream> stream = io::stream_of(tr);  // validates tr
   return check_waveform(*stream, p, opt, log);
 }
 
-WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt, std::ostream& log) {
+WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt,
+                               std::ostream& log) {
   if (const auto which = io::without_exosystem(p.netlist.waveforms))
-    throw io::InputError(p.file + ": check: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which +
-                         ", frequency modulated: dcad has no exact flow for it; write the waveform as PWL(t1 v1 t2 v2 …)");
+    throw io::InputError(
+        p.file + ": check: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which +
+        ", frequency modulated: dcad has no exact flow for it; write the waveform as PWL(t1 v1 t2 v2 …)");
   const std::vector<Functional> fs = functionals_of(tr, p, opt, log);
   const io::Netlist& deck = p.netlist;
   WaveformChecked out;
@@ -678,10 +737,15 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
   double enc_seconds = 0;
   std::string enc_why = "not asked for (WaveformOptions::enclose false)";
   long precision = 256;
-  std::unique_ptr<Encloser> enc = opt.enclose ? enclosures(p, fs, opt, step, precision, tr, enc_why, enc_seconds) : nullptr;
+  std::unique_ptr<Encloser> enc =
+      opt.enclose ? enclosures(p, fs, opt, step, precision, tr, enc_why, enc_seconds) : nullptr;
   const auto refuse_without_enclosures = [&] {
-    throw io::InputError(deck.file + ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, couplings |k| < 1, "
-                         "or up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches for the enclosures on the dense model), found another: " + enc_why);
+    throw io::InputError(deck.file +
+                         ": check: expected a circuit whose exact flow dcad evaluates at any time (every R, L, C > 0, "
+                         "couplings |k| < 1, "
+                         "or up to " +
+                         std::to_string(reference::pipeline::kForcedBranches) +
+                         " branches for the enclosures on the dense model), found another: " + enc_why);
   };
   if (!graph && !enc) refuse_without_enclosures();
   // the start and the jump at t = 0 (which vectors it moves), before any point is compared
@@ -704,7 +768,8 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
   double before = HUGE_VAL;
   for (bool first_pass = true;; first_pass = false) {
     enc_acc.assign(nv, Reduced{});
-    if (!stream_pass(tr, fs, touched, opt.keep_exact, flow.get(), first_pass, flow_acc, kind_scale, enc.get(), enc_acc, enc_seconds, out.first_after_zero)) {
+    if (!stream_pass(tr, fs, touched, opt.keep_exact, flow.get(), first_pass, flow_acc, kind_scale, enc.get(), enc_acc,
+                     enc_seconds, out.first_after_zero)) {
       enc_why = enc->why();
       enc.reset();
       if (!graph) refuse_without_enclosures();
@@ -726,49 +791,67 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
   if (graph) {
     out.error_estimate = flow->error_estimate();
     for (std::size_t k = 0; k < nv; ++k)
-      uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
-                       (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
+      uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) *
+                       kind_scale[fs[k].kind] * (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
   }
   std::string wide;
   std::vector<Reduced> acc = chosen(enc_acc, flow_acc, uncertainty, enc_ok && graph, enc_ok, tr.names(), wide);
   out.jumped = jumped;
   out.certified = enc_ok && wide.empty();
-  out.certified_reason =
-      out.certified ? std::string()
-      : enc_ok      ? "the enclosures of " + wide + " are wider than the double flow's own uncertainty: those vectors are decided by the double flow (estimated error " +
-                     io::float_text(out.error_estimate) + " of the state), not proved"
-                    : "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " + io::float_text(out.error_estimate) +
-                          " of the state): values, not enclosures; no enclosure because " + enc_why;
+  out.certified_reason = out.certified ? std::string()
+                         : enc_ok      ? "the enclosures of " + wide +
+                                        " are wider than the double flow's own uncertainty: those vectors are decided "
+                                        "by the double flow (estimated error " +
+                                        io::float_text(out.error_estimate) + " of the state), not proved"
+                                  : "the exact flow is evaluated in double (Krylov exponential action on the state "
+                                    "equations, estimated error " +
+                                        io::float_text(out.error_estimate) +
+                                        " of the state): values, not enclosures; no enclosure because " + enc_why;
   add_verdicts(out, acc, fs, tr.names(), kind_scale, opt);
   return out;
 }
 
-std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file, const WaveformOptions& o) {
+std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file,
+                          const WaveformOptions& o) {
   std::ostringstream s;
-  s << "dcad check: " << waveform_file << " (" << c.format << ", " << c.points << " time points) against the exact flow of " << deck_file
-    << (c.agree ? ": agrees" : std::any_of(c.vectors.begin(), c.vectors.end(), [](const WaveformVector& v) { return v.decided && !v.agree; }) ? ": DISAGREES" : ": UNDECIDED")
+  s << "dcad check: " << waveform_file << " (" << c.format << ", " << c.points
+    << " time points) against the exact flow of " << deck_file
+    << (c.agree ? ": agrees"
+        : std::any_of(c.vectors.begin(), c.vectors.end(), [](const WaveformVector& v) { return v.decided && !v.agree; })
+            ? ": DISAGREES"
+            : ": UNDECIDED")
     << " (--rtol " << io::float_text(o.rtol) << " --atol " << io::float_text(o.atol)
     << " of each vector's largest |exact|)\n";
   std::size_t wide = 6;
   for (const WaveformVector& v : c.vectors) wide = std::max(wide, v.name.size());
   for (const WaveformVector& v : c.vectors) {
-    s << "  " << (v.agree ? "agrees    " : v.decided ? "DISAGREES " : "UNDECIDED ") << v.name << std::string(wide - v.name.size() + 1, ' ') << "largest error "
-      << io::float_text(v.max_error) << " (" << io::float_text(v.scale > 0 ? v.max_error / v.scale : 0.0) << " of " << io::float_text(v.scale) << (v.kind_scale ? ", its kind's largest: the vector is 0 or nearly" : "")
-      << ") at t = " << io::float_text(v.at) << ": exact " << io::float_text(v.exact) << ", found " << io::float_text(v.found)
+    s << "  "
+      << (v.agree     ? "agrees    "
+          : v.decided ? "DISAGREES "
+                      : "UNDECIDED ")
+      << v.name << std::string(wide - v.name.size() + 1, ' ') << "largest error " << io::float_text(v.max_error) << " ("
+      << io::float_text(v.scale > 0 ? v.max_error / v.scale : 0.0) << " of " << io::float_text(v.scale)
+      << (v.kind_scale ? ", its kind's largest: the vector is 0 or nearly" : "") << ") at t = " << io::float_text(v.at)
+      << ": exact " << io::float_text(v.exact) << ", found " << io::float_text(v.found)
       << (v.at_corner ? " (a source corner or t = 0: either one-sided value allowed)" : "") << "\n";
     if (!v.decided)
       s << "    dcad's own value is uncertain by " << io::float_text(v.exact_uncertainty)
-        << (c.certified ? " (the largest radius of its enclosures)" : " (its error estimate times the largest value of this kind)")
-        << ": it cannot tell this difference from the tolerance; not a proof either way (--atol above the uncertainty decides it)\n";
+        << (c.certified ? " (the largest radius of its enclosures)"
+                        : " (its error estimate times the largest value of this kind)")
+        << ": it cannot tell this difference from the tolerance; not a proof either way (--atol above the uncertainty "
+           "decides it)\n";
     if (!v.agree && !c.jumped.empty() && v.at > 0 && v.at == c.first_after_zero)
       s << "    the state jumps at t = 0 (" << c.jumped.front() << (c.jumped.size() > 1 ? ", …" : "")
-        << "): a simulator that smears the impulse over its first step shows it here; the exact waveform has no such step\n";
+        << "): a simulator that smears the impulse over its first step shows it here; the exact waveform has no such "
+           "step\n";
     if (v.skipped_at_jump)
       s << "    t = 0 not compared (" << v.skipped_at_jump << (v.skipped_at_jump == 1 ? " point" : " points")
-        << "): the state jumps onto M_c at t = 0 (decided on the exact model) and a simulator shows the state before it there\n";
+        << "): the state jumps onto M_c at t = 0 (decided on the exact model) and a simulator shows the state before "
+           "it there\n";
   }
   if (c.format == "gnucap" && o.rtol < 1e-4)
-    s << "  note: gnucap prints 5 significant digits unless told otherwise (.options numdgt=12): below --rtol 1e-4 its rounding alone may disagree\n";
+    s << "  note: gnucap prints 5 significant digits unless told otherwise (.options numdgt=12): below --rtol 1e-4 its "
+         "rounding alone may disagree\n";
   s << "  certified: " << (c.certified ? "yes" : "no, " + c.certified_reason) << "\n";
   return s.str();
 }
@@ -776,12 +859,29 @@ std::string waveform_text(const WaveformChecked& c, const std::string& waveform_
 std::string waveform_json(const WaveformChecked& c, const WaveformOptions& o) {
   nlohmann::json vs = nlohmann::json::array();
   for (const WaveformVector& v : c.vectors)
-    vs.push_back({{"name", v.name},   {"meaning", v.meaning}, {"max_error", v.max_error}, {"at", v.at},
-                  {"exact", v.exact}, {"found", v.found},     {"scale", v.scale},         {"kind_scale", v.kind_scale}, {"agree", v.agree},
-                  {"at_corner", v.at_corner}, {"not_compared_at_jump", v.skipped_at_jump}, {"exact_uncertainty", io::printed_radius(v.exact, v.exact_uncertainty)}, {"decided", v.decided}});
-  nlohmann::json j = {{"agree", c.agree},   {"certified", c.certified}, {"certified_reason", c.certified_reason},
-                      {"format", c.format}, {"points", c.points},       {"rtol", o.rtol},
-                      {"atol", o.atol},     {"error_estimate", c.error_estimate}, {"jumped_at_zero", c.jumped}, {"vectors", vs}};
+    vs.push_back({{"name", v.name},
+                  {"meaning", v.meaning},
+                  {"max_error", v.max_error},
+                  {"at", v.at},
+                  {"exact", v.exact},
+                  {"found", v.found},
+                  {"scale", v.scale},
+                  {"kind_scale", v.kind_scale},
+                  {"agree", v.agree},
+                  {"at_corner", v.at_corner},
+                  {"not_compared_at_jump", v.skipped_at_jump},
+                  {"exact_uncertainty", io::printed_radius(v.exact, v.exact_uncertainty)},
+                  {"decided", v.decided}});
+  nlohmann::json j = {{"agree", c.agree},
+                      {"certified", c.certified},
+                      {"certified_reason", c.certified_reason},
+                      {"format", c.format},
+                      {"points", c.points},
+                      {"rtol", o.rtol},
+                      {"atol", o.atol},
+                      {"error_estimate", c.error_estimate},
+                      {"jumped_at_zero", c.jumped},
+                      {"vectors", vs}};
   return j.dump(2);
 }
 

@@ -22,7 +22,8 @@ inline void exo_state_for(const io::Waveform& wf, double t, double stop, long do
     wf.exo_state(t >= td || mid < td ? t : mid, w);
     if (mid >= td && t < td) {  // started within: back along the sine
       const std::complex<long double> z =
-          std::complex<long double>(w[1], w[2]) * std::exp(std::complex<long double>(wf.decay(), wf.omega()) * static_cast<long double>(t - mid));
+          std::complex<long double>(w[1], w[2]) *
+          std::exp(std::complex<long double>(wf.decay(), wf.omega()) * static_cast<long double>(t - mid));
       w[1] = z.real();
       w[2] = z.imag();
     }
@@ -57,8 +58,9 @@ inline void exo_state_for_ld(const io::Waveform& wf, double t, double stop, long
   const long double phi = wf.p[5].convert_to<long double>() * pi / 180;
   // started within the substep (t < TD <= mid): the state the sine would have at t, carried back from TD
   const std::complex<long double> z =
-      wf.p[1].convert_to<long double>() * std::exp(std::complex<long double>(decay_ld(wf), omega_ld(wf)) * (static_cast<long double>(t) - td) +
-                                                    std::complex<long double>(0, phi));
+      wf.p[1].convert_to<long double>() *
+      std::exp(std::complex<long double>(decay_ld(wf), omega_ld(wf)) * (static_cast<long double>(t) - td) +
+               std::complex<long double>(0, phi));
   w[0] = wf.p[0].convert_to<long double>();
   w[1] = z.real();
   w[2] = z.imag();

@@ -21,14 +21,16 @@ std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const 
   } catch (const std::exception& e) {
     return std::string("the double route reaches no point of M_c: ") + e.what();
   }
-  if (!near.consistent || !near.pointwise || !near.pointwise->regular) return std::string("the double route reaches no regular point of M_c");
+  if (!near.consistent || !near.pointwise || !near.pointwise->regular)
+    return std::string("the double route reaches no regular point of M_c");
   const std::size_t n = c.system.n;
   Charted out;
   out.fast_certain = near.certified.yes();
   out.point.assign(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
   out.point.push_back(near.pointwise->time);
   try {
-    const std::vector<double> v(near.pointwise->velocity.begin(), near.pointwise->velocity.begin() + static_cast<long>(2 * n));
+    const std::vector<double> v(near.pointwise->velocity.begin(),
+                                near.pointwise->velocity.begin() + static_cast<long>(2 * n));
     out.chart = fast::chart_near(c.system, out.point, dims, near.pointwise->gauge.empty() ? &v : nullptr);
   } catch (const std::exception& e) {
     return std::string(e.what());
@@ -86,7 +88,9 @@ AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_pl
   const certified::ZeroEnclosure e = certified::enclose_zero(z);
   AtGiven a;
   a.proved = e.proved && tower_certain;
-  a.why = !e.proved ? e.why : tower_certain ? "" : "the balls rest on a tower decided in double that is not certain (`note`)";
+  a.why = !e.proved       ? e.why
+          : tower_certain ? ""
+                          : "the balls rest on a tower decided in double that is not certain (`note`)";
   if (!e.proved) {  // no proof: no balls (a failed box is no enclosure) and no claim
     a.claim = "not proved: " + e.why;
     return a;
@@ -99,19 +103,26 @@ AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_pl
       if (!(mid - rad <= g && g <= mid + rad)) a.moved.push_back(names[i]);
     }
   }
-  for (std::size_t i = 0; i < 2 * n && i < e.values.size(); ++i) a.point.push_back({names[i], e.values[i].mid, e.values[i].rad});
-  for (std::size_t i = 0; i < n; ++i) a.point.push_back({"p_" + c.system.names[i], e.outputs[2 * n + i].mid, e.outputs[2 * n + i].rad});
+  for (std::size_t i = 0; i < 2 * n && i < e.values.size(); ++i)
+    a.point.push_back({names[i], e.values[i].mid, e.values[i].rad});
+  for (std::size_t i = 0; i < n; ++i)
+    a.point.push_back({"p_" + c.system.names[i], e.outputs[2 * n + i].mid, e.outputs[2 * n + i].rad});
   for (std::size_t i = 0; i < 2 * n; ++i) a.velocity.push_back({names[i], e.outputs[i].mid, e.outputs[i].rad});
   std::string held;
   for (std::size_t i = 0; i < 2 * n; ++i)
-    if (!c.initial[i] && std::find(e.solved.begin(), e.solved.end(), i) == e.solved.end()) held += (held.empty() ? "" : ", ") + names[i];
-  a.claim = "proved in Arb's balls (Krawczyk's test): the chart's constraint formulas (`formulas`) have exactly one zero in these balls with "
-            "the given values held exactly" + std::string(a.moved.empty() ? "" : " (except those in `moved`, whose decimals miss M_c)") +
-            (held.empty() ? "" : " and " + held + " (not given) held at the double route's values, exactly as printed") +
-            "; the chart's conditions (`valid_where`) are nonzero there, and the velocity is the chart's equations of motion there; that this "
-            "chart is M_c's near the given values rests on " +
-            (at_place ? std::string("the tower decided exactly at the rational place (`place`), generic on the component")
-                      : std::string("the tower decided in double (`note`)"));
+    if (!c.initial[i] && std::find(e.solved.begin(), e.solved.end(), i) == e.solved.end())
+      held += (held.empty() ? "" : ", ") + names[i];
+  a.claim =
+      "proved in Arb's balls (Krawczyk's test): the chart's constraint formulas (`formulas`) have exactly one zero in "
+      "these balls with "
+      "the given values held exactly" +
+      std::string(a.moved.empty() ? "" : " (except those in `moved`, whose decimals miss M_c)") +
+      (held.empty() ? "" : " and " + held + " (not given) held at the double route's values, exactly as printed") +
+      "; the chart's conditions (`valid_where`) are nonzero there, and the velocity is the chart's equations of motion "
+      "there; that this "
+      "chart is M_c's near the given values rests on " +
+      (at_place ? std::string("the tower decided exactly at the rational place (`place`), generic on the component")
+                : std::string("the tower decided in double (`note`)"));
   return a;
 }
 

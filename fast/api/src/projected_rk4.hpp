@@ -111,8 +111,9 @@ inline Summary summary(long rows, const Richardson& r, long evaluations, const s
   sum.rows = rows;
   sum.error_estimate = r.estimate;
   sum.worst_variable = "(Richardson: m and 2m RK4 substeps)";
-  log << "simulate: " << sum.rows << " rows, " << r.substeps << " RK4 substeps, " << evaluations << " evaluations of " << what
-      << "; estimated error " << io::float_text(r.estimate) << " per output step (relative), largest projection onto M_c " << io::float_text(r.drift)
+  log << "simulate: " << sum.rows << " rows, " << r.substeps << " RK4 substeps, " << evaluations << " evaluations of "
+      << what << "; estimated error " << io::float_text(r.estimate)
+      << " per output step (relative), largest projection onto M_c " << io::float_text(r.drift)
       << " (relative: the drift RK4 made and the projection removed)";
   return sum;
 }

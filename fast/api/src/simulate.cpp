@@ -73,7 +73,6 @@ Mat<S> to(const QM& m) {
   return d;
 }
 
-
 /// What the integration needs from the exact CAD: the equations each M_k adds (levels[k], rows
 /// [a | b]; levels[0] those of M_0, none), a basis of T M_c (rows) and the reduced equations.
 struct ExactModel {
@@ -94,17 +93,21 @@ std::vector<ref::Index> integration_coordinates(const QM& basis) {
   const Eigen::MatrixXd u = orth.householderQ() * Eigen::MatrixXd::Identity(basis.cols(), basis.rows());
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u.transpose());
   std::vector<ref::Index> coords;
-  for (ref::Index i = 0; i < basis.rows(); ++i) coords.push_back(static_cast<ref::Index>(qr.colsPermutation().indices()(i)));
+  for (ref::Index i = 0; i < basis.rows(); ++i)
+    coords.push_back(static_cast<ref::Index>(qr.colsPermutation().indices()(i)));
   std::sort(coords.begin(), coords.end());
   return coords;
 }
 
 /// The generic CAD on the case's `pontryagin` system.
 ExactModel generic_model(const io::CaseFile& c) {
-  const ref::LinearSystem<Q> s = ref::pontryagin_system(ref::PontryaginInput<Q>{
-      c.pontryagin.n, c.pontryagin.k, c.pontryagin.vv, c.pontryagin.qv, c.pontryagin.qq, c.pontryagin.q, c.pontryagin.v});
+  const ref::LinearSystem<Q> s =
+      ref::pontryagin_system(ref::PontryaginInput<Q>{c.pontryagin.n, c.pontryagin.k, c.pontryagin.vv, c.pontryagin.qv,
+                                                     c.pontryagin.qq, c.pontryagin.q, c.pontryagin.v});
   const ref::CadResult<Q> r = ref::constraint_tower(s);
-  if (!r.consistent) throw io::InputError(c.file + ": simulate: expected a consistent system, found M_" + std::to_string(r.steps) + " empty");
+  if (!r.consistent)
+    throw io::InputError(c.file + ": simulate: expected a consistent system, found M_" + std::to_string(r.steps) +
+                         " empty");
   ExactModel m;
   for (const auto& st : r.tower) m.levels.push_back(st.equations);
   m.basis = r.final_step().m.direction.basis();
@@ -123,16 +126,19 @@ ExactModel circuit_model(const io::Netlist& deck, const io::CaseFile& c) {
   return m;
 }
 
-std::vector<Q> initial_point(const ExactModel& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c, bool netlist) {
+std::vector<Q> initial_point(const ExactModel& r, const std::vector<std::optional<Q>>& initial, const io::CaseFile& c,
+                             bool netlist) {
   const ref::InitialPoint<Q> p = ref::consistent_initial_point(r.levels, initial);
   if (!p.consistent)
-    throw io::InputError(c.file + ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
-                         io::equation_text(io::printed_equation(reference::pipeline::row_equation(p.violated, 0)), c.variables) +
-                         " (a constraint of M_" + std::to_string(p.level) + ")" +
-                         (netlist && c.n / 3 > reference::pipeline::kForcedBranches
-                              ? "; a netlist's jump onto M_c at t = 0 is computed up to " + std::to_string(reference::pipeline::kForcedBranches) +
-                                    " branches only: give IC= values on M_c"
-                              : std::string()));
+    throw io::InputError(
+        c.file +
+        ": initial condition: expected a point of the final constraint submanifold M_c, found one that violates " +
+        io::equation_text(io::printed_equation(reference::pipeline::row_equation(p.violated, 0)), c.variables) +
+        " (a constraint of M_" + std::to_string(p.level) + ")" +
+        (netlist && c.n / 3 > reference::pipeline::kForcedBranches
+             ? "; a netlist's jump onto M_c at t = 0 is computed up to " +
+                   std::to_string(reference::pipeline::kForcedBranches) + " branches only: give IC= values on M_c"
+             : std::string()));
   return p.point;
 }
 
@@ -160,7 +166,8 @@ std::vector<double> balancing(const Eigen::MatrixXd& a) {
         // step cost the scaling and squaring six squarings and 2.5e-16 in long double (60 ulps)
         f = std::ldexp(1.0, -static_cast<int>(std::ceil(std::log2(c))));
       } else if (r > 1 && c == 0) {
-        f = std::ldexp(1.0, static_cast<int>(std::ceil(std::log2(r))));  // fed by others, feeding none: its row at most 1
+        f = std::ldexp(1.0,
+                       static_cast<int>(std::ceil(std::log2(r))));  // fed by others, feeding none: its row at most 1
       } else {
         continue;
       }
@@ -181,8 +188,8 @@ template <class S>
 struct Flow {
   Mat<S> p, lift;  ///< P; L D restricted to the first m coordinates
   Vec<S> z, z0, x0;
-  Flow(const QM& a, const std::vector<double>& d, const QM& lift_q, const std::vector<Q>& x0q, const std::vector<Q>& z0q, double h,
-       long stride) {
+  Flow(const QM& a, const std::vector<double>& d, const QM& lift_q, const std::vector<Q>& x0q,
+       const std::vector<Q>& z0q, double h, long stride) {
     const Eigen::Index m = a.rows() - 1;
     Mat<S> ab = to<S>(a);
     for (Eigen::Index i = 0; i <= m; ++i)
@@ -204,7 +211,8 @@ struct Flow {
 /// "\rsimulate: 42% …" on stderr, only on a terminal and only once the run has taken a second.
 class Progress {
  public:
-  explicit Progress(long total) : total_(total), start_(std::chrono::steady_clock::now()), tty_(isatty(STDERR_FILENO) == 1) {}
+  explicit Progress(long total)
+      : total_(total), start_(std::chrono::steady_clock::now()), tty_(isatty(STDERR_FILENO) == 1) {}
   void at(long k) {
     if (!tty_ || (k & 255) != 0) return;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -234,8 +242,10 @@ std::vector<std::optional<io::Rational>> netlist_initial(const io::Netlist& n) {
   for (std::size_t i = 0; i < b; ++i) {
     if (!n.initial[i]) continue;
     const auto& br = n.circuit.branches[i];
-    if (br.kind == ref::BranchKind::capacitor) x[i] = br.value * *n.initial[i];  // q = C · voltage
-    else x[b + i] = *n.initial[i];                                              // v = current
+    if (br.kind == ref::BranchKind::capacitor)
+      x[i] = br.value * *n.initial[i];  // q = C · voltage
+    else
+      x[b + i] = *n.initial[i];  // v = current
   }
   return x;
 }
@@ -246,21 +256,25 @@ void require_times(const SimulateOptions& opt) {
                          io::float_text(opt.step) + ", tstop " + io::float_text(opt.tstop));
 }
 
-Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
-                         const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
+                        const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                        std::ostream& out, std::ostream& log) {
   require_times(opt);
   if (c.has_pontryagin && c.pontryagin.has_forces)
     throw std::invalid_argument("a case with `forces` is simulated by simulate_forced_case, not this function");
   if (!c.has_pontryagin && !deck)
-    throw io::InputError(c.file + ": simulate: expected an LC netlist or a `pontryagin` case, found another form (not supported yet)");
+    throw io::InputError(
+        c.file + ": simulate: expected an LC netlist or a `pontryagin` case, found another form (not supported yet)");
   if (deck && deck->circuit.branches.size() > kSimulateBranches)
-    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(kSimulateBranches) + " branches, found " +
-                         std::to_string(deck->circuit.branches.size()) +
-                         " (the flow is integrated with a dense matrix exponential; sparse integration is not supported yet)");
+    throw io::InputError(
+        c.file + ": simulate: expected at most " + std::to_string(kSimulateBranches) + " branches, found " +
+        std::to_string(deck->circuit.branches.size()) +
+        " (the flow is integrated with a dense matrix exponential; sparse integration is not supported yet)");
   const ExactModel model = deck ? circuit_model(*deck, c) : generic_model(c);
   const std::vector<Q> x0q = initial_point(model, initial, c, deck != nullptr);
   const ref::ReducedEquations<Q>& red = model.red;
-  if (red.g.cols() > 0) log << "note: solutions are not unique (" << red.g.cols() << " free multipliers); simulating lambda = 0\n";
+  if (red.g.cols() > 0)
+    log << "note: solutions are not unique (" << red.g.cols() << " free multipliers); simulating lambda = 0\n";
   // coordinates z = S x; x = x0 + Bᵀ T⁻¹ (z − S x0) with T = S Bᵀ (= I for default coordinates)
   const ref::Index m = red.coords.size(), n = c.n;
   const QM& b = model.basis;
@@ -280,8 +294,9 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
       for (ref::Index j = 0; j < q.cols(); ++j) {
         const double x = q(i, j).convert_to<double>();
         if (!std::isfinite(x) || (x == 0 && q(i, j) != 0))
-          throw io::InputError(c.file + ": simulate: expected " + what + " within double's range (1e-308 ... 1e308), found " +
-                               q(i, j).str().substr(0, 40) + (q(i, j).str().size() > 40 ? "..." : ""));
+          throw io::InputError(c.file + ": simulate: expected " + what +
+                               " within double's range (1e-308 ... 1e308), found " + q(i, j).str().substr(0, 40) +
+                               (q(i, j).str().size() > 40 ? "..." : ""));
       }
   };
   require_range(a, "equations of motion with coefficients");
@@ -314,7 +329,8 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
         mag[i] = std::max(mag[i], std::abs(xl(i)));
       }
       shadow.advance();
-      if (stride == 1) x = xl.cast<double>();  // every row has the long-double flow: print it (the double one is its estimate)
+      if (stride == 1)
+        x = xl.cast<double>();  // every row has the long-double flow: print it (the double one is its estimate)
     }
     line.clear();
     put(static_cast<double>(k) * opt.step);
@@ -327,8 +343,11 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const st
     flow.advance();
     progress.at(k);
   }
-  Summary out_sum = summarize(sum.rows, err, mag, c.variables, deck ? io::units_of(*deck).variable_scales(deck->circuit.branches.size(), false) : std::vector<long double>());
-  out_sum.error_estimate = std::max(out_sum.error_estimate, 4 * std::numeric_limits<double>::epsilon());  // the rows' own rounding
+  Summary out_sum = summarize(
+      sum.rows, err, mag, c.variables,
+      deck ? io::units_of(*deck).variable_scales(deck->circuit.branches.size(), false) : std::vector<long double>());
+  out_sum.error_estimate =
+      std::max(out_sum.error_estimate, 4 * std::numeric_limits<double>::epsilon());  // the rows' own rounding
   return out_sum;
 }
 
@@ -340,7 +359,7 @@ std::string kind_of(const std::string& name) {
 }
 
 Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
-                          const std::vector<std::string>& names, const std::vector<long double>& natural) {
+                  const std::vector<std::string>& names, const std::vector<long double>& natural) {
   Summary sum;
   sum.rows = rows;
   // the scale of a variable: the largest magnitude over the run among the variables of its kind (a

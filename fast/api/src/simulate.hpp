@@ -25,18 +25,20 @@ void require_times(const SimulateOptions& opt);
 /// Throws io::InputError for an initial condition off M_c (naming the violated constraint).
 /// `deck`: the netlist `c` stands for (then the structured circuit route builds the model; `c` need
 /// only carry the variable names), or nullptr for a `pontryagin` case.
-Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck, const std::vector<std::optional<io::Rational>>& initial,
-                        const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
+                        const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                        std::ostream& out, std::ostream& log);
 
 /// As simulate_linear, for a deck with resistors, sources or couplings; `energy` (optional) receives the
 /// energy-balance CSV t,E,P_forces,P_sources,P_constraints,W_… (YM §4: dE/dt = ⟨F x + Bσ, q̇⟩ + the work
 /// of the reactions of affine constraints; for circuits −P_forces is what the resistors dissipate).
-Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
-                        const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy);
+Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c,
+                        const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                        std::ostream& out, std::ostream& log, std::ostream* energy);
 /// The sparse route for netlists at any size (simulate_sparse.cpp): its own initial state (opt.initial),
 /// opt.columns honoured; every R, L, C > 0 and |k| < 1 (InputError otherwise).
-Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log,
-                        std::ostream* energy);
+Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out,
+                        std::ostream& log, std::ostream* energy);
 /// Whether the sparse route takes the deck (every R, L, C positive, Φ positive definite).
 bool sparse_route_takes(const io::Netlist& deck);
 /// The Krylov integrator's local error per output step, relative to the state's norm in energy units.
@@ -47,16 +49,18 @@ constexpr double kSparseWarn = 1e-9;
 constexpr double kSparseRefuse = 1e-3;
 
 /// As simulate_forced, for a `pontryagin` case with `forces` (no sources).
-Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                             std::ostream& out, std::ostream& log, std::ostream* energy);
+Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                             const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy);
 
 /// The expression form: RK4 on the pointwise CAD's vector field, projected onto M_c at every
 /// evaluation, with Richardson step doubling per output step (simulate_lagrangian.cpp).
-Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out,
+                            std::ostream& log);
 /// The linear DAE form: the exact velocities on M_c from the start completed onto M_c(t0), Dormand–Prince
 /// (simulate_dae.cpp).
 /// The implicit form: RK4 on the pointwise CEF (1.6) in double, projected onto M_c (simulate_implicit.cpp).
-Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out,
+                          std::ostream& log);
 Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
 
 /// The summary of a run: rows, and the worst of err[i]/scale[i] (the long-double shadow's difference
@@ -65,8 +69,8 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
 /// the dimensionless twin, x = S x̃, dcad/units.hpp) floors each scale at the size of the whole state
 /// in those units, so a kind that is zero in exact arithmetic (no current at an operating point) is
 /// measured against the state, not against its own rounding.
-Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag, const std::vector<std::string>& names,
-                  const std::vector<long double>& natural = {});
+Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
+                  const std::vector<std::string>& names, const std::vector<long double>& natural = {});
 
 /// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
 constexpr std::size_t kSimulateBranches = 400;
@@ -94,11 +98,13 @@ constexpr std::size_t kCertifiedBranches = 200;
 /// check encloses runs through at most this many source corners (each is crossed exactly).
 constexpr std::size_t kEnclosedCorners = 100000;
 enum class EnclosureModel { automatic, dense, state };
-CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision = 256,
-                                 EnclosureModel model = EnclosureModel::automatic, std::ostream* log = nullptr);
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step,
+                                 long precision = 256, EnclosureModel model = EnclosureModel::automatic,
+                                 std::ostream* log = nullptr);
 /// `simulate --certified`: the rows are the midpoints of the enclosures, with the largest radius of each
 /// kind (rad_q, rad_v, rad_p) per row.
-Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log);
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out,
+                          std::ostream& log);
 /// Enclosures of the vectors `names` (ngspice's or dcad's names) of a netlist at `times` (ascending),
 /// from the start `initial` (check's and the waveform export's certified tier); ok false and `why` when
 /// dcad cannot build them.  InputError for a name the deck does not have.
@@ -107,11 +113,13 @@ struct WaveformEnclosures {
   std::string why;
   std::vector<std::vector<certified::Enclosure>> right, left;  ///< [vector][time]
 };
-WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names, const std::vector<double>& times, Initial initial,
-                                     double step);
+WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names,
+                                     const std::vector<double>& times, Initial initial, double step);
 
 /// The state a netlist starts from (SPICE's rule, the jump onto M_c), told on `log`, as per-variable values.
-std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule, std::ostream& log, long* jumps = nullptr,
+std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck,
+                                                       const std::vector<std::string>& variables, Initial rule,
+                                                       std::ostream& log, long* jumps = nullptr,
                                                        std::vector<std::string>* jumped = nullptr);
 
 }  // namespace dcad::api

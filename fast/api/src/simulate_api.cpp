@@ -20,11 +20,16 @@ std::vector<std::string> simulate_columns(const io::Problem& p) {
 
 /// The state a netlist starts from (SPICE's rule, the jump onto M_c), told on `log`; as per-variable
 /// values: charges, flux linkages and inductor currents fixed, the other currents left to M_c.
-std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck, const std::vector<std::string>& variables, Initial rule,
-                                                       std::ostream& log, long* jumps, std::vector<std::string>* jumped) {
+std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck,
+                                                       const std::vector<std::string>& variables, Initial rule,
+                                                       std::ostream& log, long* jumps,
+                                                       std::vector<std::string>* jumped) {
   namespace pl = reference::pipeline;
-  const pl::InitialState st =
-      pl::initial_state(deck, rule == Initial::op ? pl::InitialRule::op : rule == Initial::uic ? pl::InitialRule::uic : pl::InitialRule::deck, variables);
+  const pl::InitialState st = pl::initial_state(deck,
+                                                rule == Initial::op    ? pl::InitialRule::op
+                                                : rule == Initial::uic ? pl::InitialRule::uic
+                                                                       : pl::InitialRule::deck,
+                                                variables);
   log << "initial state: " << st.rule << "\n";
   if (jumps) *jumps = static_cast<long>(st.jumps.size());
   if (jumped)
@@ -51,7 +56,8 @@ namespace {
 /// variable; --vars picks some).  The header line maps the names; UsageError for one not in it.
 class ColumnFilter : public std::streambuf {
  public:
-  ColumnFilter(std::ostream& out, std::vector<std::string> names, std::string file) : out_(out), names_(std::move(names)), file_(std::move(file)) {}
+  ColumnFilter(std::ostream& out, std::vector<std::string> names, std::string file)
+      : out_(out), names_(std::move(names)), file_(std::move(file)) {}
 
  protected:
   int overflow(int ch) override {
@@ -109,11 +115,14 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 
 }  // namespace
 
-Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy) {
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log,
+                   std::ostream* energy) {
   return guarded(p, [&] {
     io::validate(p);
     if (p.form == io::Form::netlist && !p.netlist.indefinite_inductance.empty())
-      throw io::InputError(p.netlist.indefinite_inductance + "; simulate: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
+      throw io::InputError(
+          p.netlist.indefinite_inductance +
+          "; simulate: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
     if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
       std::vector<std::string> all = simulate_columns(p);
       if (options.enclose) all.insert(all.end(), {"rad_q", "rad_v", "rad_p"});
@@ -125,22 +134,29 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
     std::ostream filtered(&filter);
     std::ostream& rows = options.columns.empty() ? csv : filtered;
     if (p.form == io::Form::dae) {  // the exact velocities on M_c, Dormand–Prince
-      if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the dae form");
-      if (options.route == Route::sparse || options.enclose) throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the dae form");
+      if (energy)
+        throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the dae form");
+      if (options.route == Route::sparse || options.enclose)
+        throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the dae form");
       const Summary sum = simulate_dae(p.dae, options, rows, log);
       rows.flush();
       return sum;
     }
     if (p.form == io::Form::implicit) {  // RK4 on the pointwise CEF (1.6), projected onto M_c
-      if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the implicit form");
-      if (options.route == Route::sparse || options.enclose) throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the implicit form");
+      if (energy)
+        throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the implicit form");
+      if (options.route == Route::sparse || options.enclose)
+        throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the implicit form");
       const Summary sum = simulate_implicit(p.expression, options, rows, log);
       rows.flush();
       return sum;
     }
     if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
-      if (energy) throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the expression form");
-      if (options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
+      if (energy)
+        throw UsageError(p.file +
+                         ": --energy: expected a netlist with resistors or sources, found the expression form");
+      if (options.route == Route::sparse)
+        throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
       const Summary sum = simulate_lagrangian(p.expression, options, rows, log);
       rows.flush();
       return sum;
@@ -148,21 +164,31 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
     const bool netlist = p.form == io::Form::netlist;
     if (netlist)
       if (const auto which = io::without_exosystem(p.netlist.waveforms))
-        throw io::InputError(p.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which +
-                             ", frequency modulated: solve decides its circuit; write the waveform as PWL(t1 v1 t2 v2 …) to simulate it");
+        throw io::InputError(p.file +
+                             ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " +
+                             *which +
+                             ", frequency modulated: solve decides its circuit; write the waveform as PWL(t1 v1 t2 v2 "
+                             "…) to simulate it");
     const io::CaseFile& c = p.linear;
-    const bool forced_deck = netlist && p.netlist.forced, forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;
+    const bool forced_deck = netlist && p.netlist.forced,
+               forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;
     if (energy && !forced_deck && !forced_case && !(netlist && sparse_netlist(p.netlist, options)))
-      throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)");
+      throw UsageError(
+          p.file +
+          ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)");
     for (const std::string& w : p.warnings()) log << "warning: " << w << "\n";
-    if (!netlist && options.route == Route::sparse) throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
+    if (!netlist && options.route == Route::sparse)
+      throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
     if (netlist && sparse_netlist(p.netlist, options) && !options.enclose) {
       const Summary sum = simulate_sparse(p.netlist, c, options, csv, log, energy);
-      log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " (" << sum.estimate_kind << ")\n";
+      log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " ("
+          << sum.estimate_kind << ")\n";
       return sum;
     }
     if (options.enclose) {
-      if (!netlist) throw UsageError(p.file + ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
+      if (!netlist)
+        throw UsageError(p.file +
+                         ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
       if (energy) throw UsageError(p.file + ": --certified and --energy: expected one of them");
       const Summary sum = simulate_enclosed(p.netlist, c, options, rows, log);
       rows.flush();
@@ -177,7 +203,9 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
                                       : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, rows, log);
     rows.flush();
     log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate)
-        << " relative to the largest magnitude of each variable's kind, at least the state's size in the circuit's natural units (worst " << sum.worst_variable << "; difference from the same exact flow in long double)\n";
+        << " relative to the largest magnitude of each variable's kind, at least the state's size in the circuit's "
+           "natural units (worst "
+        << sum.worst_variable << "; difference from the same exact flow in long double)\n";
     return sum;
   });
 }

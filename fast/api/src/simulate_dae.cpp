@@ -36,7 +36,8 @@ std::vector<ex::Expr> jet_formulas(const io::DaeCase& c, const std::vector<std::
   for (const std::string& name : names) {
     const std::size_t open = name.find('(');
     std::size_t k = 2, i = 0;
-    while (k < open && std::isdigit(static_cast<unsigned char>(name[k]))) i = 10 * i + static_cast<std::size_t>(name[k++] - '0');
+    while (k < open && std::isdigit(static_cast<unsigned char>(name[k])))
+      i = 10 * i + static_cast<std::size_t>(name[k++] - '0');
     ex::Expr e = c.f.at(i - 1);
     for (; k < open && name[k] == '\''; ++k) e = ex::diff(e, 0);
     out.push_back(e);
@@ -51,7 +52,8 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
   using Eigen::VectorXd;
   const dcad::Solution<reference::Rational> s = reference::pipeline::solve_dae(c);
   if (!s.consistent)
-    throw io::InputError(c.file + ": simulate: expected a consistent DAE, found M_" + std::to_string(s.steps) + " empty (dcad solve says why)");
+    throw io::InputError(c.file + ": simulate: expected a consistent DAE, found M_" + std::to_string(s.steps) +
+                         " empty (dcad solve says why)");
   if (s.certified.unknown())
     log << "warning: a condition on the sources was not decided (dcad solve lists it); the motion assumes it holds\n";
   const std::size_t n = c.variables.size(), nj = s.jets.size();
@@ -68,14 +70,20 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
   MatrixXd gm = MatrixXd::Zero(static_cast<Eigen::Index>(fin.size()), static_cast<Eigen::Index>(nj));
   for (std::size_t i = 0; i < fin.size(); ++i)
     for (const auto& [col, q] : fin[i].terms) {
-      if (col < n) cm(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(col)) = q.convert_to<double>();
-      else gm(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(col - n)) = -q.convert_to<double>();  // C x − G u = 0
+      if (col < n)
+        cm(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(col)) = q.convert_to<double>();
+      else
+        gm(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(col - n)) =
+            -q.convert_to<double>();  // C x − G u = 0
     }
   const Motion<reference::Rational>& mo = *s.motion;
-  MatrixXd xr(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)), wr = MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(nj));
+  MatrixXd xr(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)),
+      wr = MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(nj));
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) xr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = mo.f_matrix[i][j].convert_to<double>();
-    for (std::size_t j = 0; j < nj; ++j) wr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = mo.s[i][j].convert_to<double>();
+    for (std::size_t j = 0; j < n; ++j)
+      xr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = mo.f_matrix[i][j].convert_to<double>();
+    for (std::size_t j = 0; j < nj; ++j)
+      wr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = mo.s[i][j].convert_to<double>();
   }
   // the start: given values held, the others solved for on M_c(t0)
   const double t0 = c.initial_time ? c.initial_time->convert_to<double>() : 0.0;
@@ -111,16 +119,19 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
           eq += (eq.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + names[col];
         }
         for (const std::string& f : s.source_names) eq += "; " + f;
-        throw io::InputError(c.file + ": /initial: expected values on M_c at t = " + io::float_text(t0) + ", found the constraint " + eq +
-                             " = 0 violated by " + io::float_text(res(i)) + " (the given values fix it)");
+        throw io::InputError(c.file + ": /initial: expected values on M_c at t = " + io::float_text(t0) +
+                             ", found the constraint " + eq + " = 0 violated by " + io::float_text(res(i)) +
+                             " (the given values fix it)");
       }
   }
   log << "simulate: the start on M_c at t = " << io::float_text(t0) << ":";
   for (std::size_t i = 0; i < n; ++i)
-    log << " " << c.variables[i] << " = " << io::float_text(x0(static_cast<Eigen::Index>(i))) << (c.initial[i] ? " (given)" : " (completed)");
+    log << " " << c.variables[i] << " = " << io::float_text(x0(static_cast<Eigen::Index>(i)))
+        << (c.initial[i] ? " (given)" : " (completed)");
   log << "\n";
   if (s.solution_rank && *s.solution_rank > 0)
-    log << "simulate: the solution is not unique (solution rank " << *s.solution_rank << "): the free directions are set to 0\n";
+    log << "simulate: the solution is not unique (solution rank " << *s.solution_rank
+        << "): the free directions are set to 0\n";
   out << "t";
   for (const std::string& v : c.variables) out << "," << v;
   out << "\n";
@@ -151,7 +162,8 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
     }
   };
   odeint::integrate_const(stepper, field, x, t0, t0 + opt.tstop, opt.step, row);
-  log << "simulate: " << rows << " rows; largest drift off M_c " << io::float_text(drift) << " (relative to the state)\n";
+  log << "simulate: " << rows << " rows; largest drift off M_c " << io::float_text(drift)
+      << " (relative to the state)\n";
   Summary sum;
   sum.rows = rows;
   sum.error_estimate = drift;

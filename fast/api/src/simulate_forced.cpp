@@ -62,7 +62,7 @@ Mat<double> to_d(const QM& m) {
 struct ForcedModel {
   std::size_t n = 0, m = 0, dm = 0;
   std::size_t free = 0;  ///< solution rank: free multipliers (the flow takes the particular solution)
-  long orders = 1;  ///< u has σ⁽⁰⁾ … σ^{(orders−1)}; u_ext one more
+  long orders = 1;       ///< u has σ⁽⁰⁾ … σ^{(orders−1)}; u_ext one more
   QM eq, basis, x0, ay, au, vy, vu;
   ref::ForcedSystem<Q> f;
 };
@@ -72,12 +72,15 @@ ForcedModel forced_model(const ForcedScene& deck) {
   fm.f = deck.f;
   const ref::ForcedResult<Q> r = ref::forced_tower(fm.f);
   for (ref::Index i = 0; i < r.conditions.rows(); ++i) {
-    const SourceCondition v = reference::pipeline::decide_condition(r.conditions.block(i, i + 1, 0, r.conditions.cols()), deck.waveforms);
+    const SourceCondition v =
+        reference::pipeline::decide_condition(r.conditions.block(i, i + 1, 0, r.conditions.cols()), deck.waveforms);
     if (v.holds.no() || !r.consistent)
-      throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " + v.text + " violated (" +
-                           v.evidence + ")");
+      throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " +
+                           v.text + " violated (" + v.evidence + ")");
   }
-  if (!r.consistent) throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found M_" + std::to_string(r.steps) + " empty");
+  if (!r.consistent)
+    throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found M_" + std::to_string(r.steps) +
+                         " empty");
   fm.n = fm.f.s.d.n;
   fm.m = fm.f.sources;
   fm.orders = static_cast<long>(r.orders);
@@ -99,7 +102,9 @@ ForcedModel forced_model(const ForcedScene& deck) {
 /// i(L1) 3.3e-6 wrong, and the long-double shadow, fed the same rounded product, could not see it).
 using Wide = boost::multiprecision::cpp_bin_float_quad;
 
-Wide wide(const Q& q) { return Wide(boost::multiprecision::numerator(q).str()) / Wide(boost::multiprecision::denominator(q).str()); }
+Wide wide(const Q& q) {
+  return Wide(boost::multiprecision::numerator(q).str()) / Wide(boost::multiprecision::denominator(q).str());
+}
 
 Mat<Wide> to_wide(const QM& m) {
   Mat<Wide> w(m.rows(), m.cols());
@@ -113,11 +118,11 @@ Mat<Wide> to_wide(const QM& m) {
 /// the double flow is on (its breakpoints are doubles), so that X0 u and the flow's y jump together.
 Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
   switch (w.kind) {
-    case io::Waveform::Kind::dc:
-      return order == 0 ? wide(w.p[0]) : Wide(0);
+    case io::Waveform::Kind::dc: return order == 0 ? wide(w.p[0]) : Wide(0);
     case io::Waveform::Kind::sin: {
       const Wide pi = boost::math::constants::pi<Wide>(), phi = wide(w.p[5]) * pi / 180, va = wide(w.p[1]);
-      if (t < w.p[3].convert_to<double>()) return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // the piece as the flow's corners
+      if (t < w.p[3].convert_to<double>())
+        return order == 0 ? wide(w.p[0]) + va * sin(phi) : Wide(0);  // the piece as the flow's corners
       const Wide tau = wide(tq - w.p[3]), omega = 2 * pi * wide(w.p[2]), decay = -wide(w.p[4]);
       // Im(VA s^order e^{s τ + iφ}), s = decay + iω = r e^{iα}
       const Wide r = sqrt(decay * decay + omega * omega), alpha = atan2(omega, decay);
@@ -128,14 +133,19 @@ Wide jet_wide(const io::Waveform& w, double t, const Q& tq, int order) {
       const Wide v1 = wide(w.p[0]), v2 = wide(w.p[1]);
       const Wide r1 = -1 / wide(w.p[3]), r2 = -1 / wide(w.p[5]);
       Wide c = v1, e1 = 0, e2 = 0;
-      if (t >= w.p[2].convert_to<double>()) {  // the pieces as the flow's corners (double times), the values at the exact time
+      if (t >=
+          w.p[2]
+              .convert_to<double>()) {  // the pieces as the flow's corners (double times), the values at the exact time
         e1 = (v1 - v2) * exp(r1 * wide(tq - w.p[2]));
-        if (t < w.p[4].convert_to<double>()) c = v2;
-        else e2 = (v2 - v1) * exp(r2 * wide(tq - w.p[4]));
+        if (t < w.p[4].convert_to<double>())
+          c = v2;
+        else
+          e2 = (v2 - v1) * exp(r2 * wide(tq - w.p[4]));
       }
       return (order == 0 ? c : Wide(0)) + e1 * pow(r1, order) + e2 * pow(r2, order);
     }
-    default:  // PULSE, PWL: the pieces as the double route reads them (the side of a corner at a double time), values exact enough
+    default:  // PULSE, PWL: the pieces as the double route reads them (the side of a corner at a double time), values
+              // exact enough
       return Wide(w.value(t, order));
   }
 }
@@ -204,7 +214,8 @@ Mat<S> exo_generator(const ForcedScene& deck) {
       s(c + 1, c + 1) = std::is_same_v<S, double> ? S(w.rate1()) : S(-1 / w.p[3].convert_to<long double>());
       s(c + 2, c + 2) = std::is_same_v<S, double> ? S(w.rate2()) : S(-1 / w.p[5].convert_to<long double>());
     } else if (w.is_sine()) {
-      const S omega = std::is_same_v<S, double> ? S(w.omega()) : S(omega_ld(w)), decay = std::is_same_v<S, double> ? S(w.decay()) : S(decay_ld(w));
+      const S omega = std::is_same_v<S, double> ? S(w.omega()) : S(omega_ld(w)),
+              decay = std::is_same_v<S, double> ? S(w.decay()) : S(decay_ld(w));
       s(c + 1, c + 1) = s(c + 2, c + 2) = decay;
       s(c + 1, c + 2) = -omega;
       s(c + 2, c + 1) = omega;
@@ -217,10 +228,10 @@ Mat<S> exo_generator(const ForcedScene& deck) {
 
 template <class S>
 struct ForcedFlow {
-  Mat<S> g;                 ///< balanced generator D⁻¹ G D
-  std::vector<double> d;    ///< balancing
+  Mat<S> g;               ///< balanced generator D⁻¹ G D
+  std::vector<double> d;  ///< balancing
   std::map<long double, Mat<S>> cache;
-  Vec<S> s;                 ///< balanced state [y; 1; w]
+  Vec<S> s;  ///< balanced state [y; 1; w]
   std::size_t dm = 0;
   const Mat<S>& step(long double h) {
     auto it = cache.find(h);
@@ -238,8 +249,10 @@ struct ForcedFlow {
     s(dm) = S(1) / static_cast<S>(d[dm]);
     for (std::size_t j = 0; j < m; ++j) {
       long double w[3];
-      if (std::is_same_v<S, double>) exo_state_for(deck.waveforms[j], t, stop, w);
-      else exo_state_for_ld(deck.waveforms[j], t, stop, w);
+      if (std::is_same_v<S, double>)
+        exo_state_for(deck.waveforms[j], t, stop, w);
+      else
+        exo_state_for_ld(deck.waveforms[j], t, stop, w);
       for (int k = 0; k < 3; ++k) s(dm + 1 + 3 * j + k) = static_cast<S>(w[k]) / static_cast<S>(d[dm + 1 + 3 * j + k]);
     }
   }
@@ -280,7 +293,8 @@ struct ForcedStart {
   bool exact = true;
 };
 
-ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial) {
+ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const io::CaseFile& c,
+                         const std::vector<std::optional<io::Rational>>& initial) {
   const std::size_t n = fm.n, m = fm.m, wu = 1 + m * fm.orders;
   // initial point: the file's values, M_c(0), then 0 where M_c(0) allows
   const Vec<double> u0 = jets(deck, 0.0, fm.orders);
@@ -295,7 +309,8 @@ ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const i
   // M_c(0) at C = 1u too (with the jet in double, q_C = 1e-6 missed 1/1000000 and was refused)
   std::vector<std::optional<Q>> u0q(wu);
   u0q[0] = Q(1);
-  for (std::size_t k = 1; k < wu; ++k) u0q[k] = deck.waveforms[(k - 1) % m].exact_at_zero(static_cast<int>((k - 1) / m));
+  for (std::size_t k = 1; k < wu; ++k)
+    u0q[k] = deck.waveforms[(k - 1) % m].exact_at_zero(static_cast<int>((k - 1) / m));
   std::vector<bool> inexact(static_cast<std::size_t>(fm.eq.rows()), false);  // rows through an irrational jet (π)
   for (ref::Index i = 0; i < fm.eq.rows(); ++i) {
     QM row(1, n + 1);
@@ -304,8 +319,10 @@ ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const i
     for (std::size_t j = 0; j < wu; ++j) {
       if (fm.eq(i, n + j) == 0) continue;
       rhs -= fm.eq(i, n + j).convert_to<double>() * u0(j);
-      if (u0q[j]) exact -= fm.eq(i, n + j) * *u0q[j];
-      else inexact[static_cast<std::size_t>(i)] = true;
+      if (u0q[j])
+        exact -= fm.eq(i, n + j) * *u0q[j];
+      else
+        inexact[static_cast<std::size_t>(i)] = true;
     }
     for (std::size_t j = 0; j < n; ++j) row(0, j) = fm.eq(i, j);
     row(0, n) = inexact[static_cast<std::size_t>(i)] ? Q(rhs) : exact;
@@ -325,11 +342,15 @@ ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const i
         for (std::size_t j = 0; j < fm.eq.cols(); ++j)
           if (j != n && fm.eq(i, j) != 0) e.terms.emplace_back(j < n ? j : j - 1, fm.eq(i, j).str());
         e.rhs = Q(-fm.eq(i, n)).str();
-        throw io::InputError(c.file + ": initial condition: expected a point of M_c(0), found one that violates " + io::equation_text(e, names) +
-                             " at t = 0" + (inexact[static_cast<std::size_t>(i)] ? " (a source's jet at 0 involves pi: checked with it rounded to double)" : ""));
+        throw io::InputError(c.file + ": initial condition: expected a point of M_c(0), found one that violates " +
+                             io::equation_text(e, names) + " at t = 0" +
+                             (inexact[static_cast<std::size_t>(i)]
+                                  ? " (a source's jet at 0 involves pi: checked with it rounded to double)"
+                                  : ""));
       }
   }
-  const ref::AffineSubspace<Q> with_defaults = ref::affine_from_augmented(ref::vstack(ref::vstack(given, cons), defaults));
+  const ref::AffineSubspace<Q> with_defaults =
+      ref::affine_from_augmented(ref::vstack(ref::vstack(given, cons), defaults));
   ForcedStart out;
   out.x0q = with_defaults.empty ? start.point : with_defaults.point;
   out.exact = std::none_of(inexact.begin(), inexact.end(), [](bool b) { return b; });
@@ -338,29 +359,37 @@ ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const i
 
 }  // namespace
 
-Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
-                               const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
+                       const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                       std::ostream& out, std::ostream& log, std::ostream* energy) {
   require_times(opt);
   const ForcedModel fm = forced_model(deck);
   if (fm.free > 0)
-    log << "note: solutions are not unique (" << fm.free << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";
+    log << "note: solutions are not unique (" << fm.free
+        << " free multipliers, e.g. a loop of equal sources); simulating one particular solution\n";
   const std::size_t n = fm.n, m = fm.m, dm = fm.dm, wu = 1 + m * fm.orders;
   const std::vector<Q> x0q = forced_start(deck, fm, c, initial).x0q;
   const Vec<double> u0 = jets(deck, 0.0, fm.orders);
   Vec<double> x0(n);
   for (std::size_t i = 0; i < n; ++i) x0(i) = x0q[i].convert_to<double>();
-  const Mat<double> X0 = to_d(fm.x0), B = to_d(fm.basis), P = to_d(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis);
+  const Mat<double> X0 = to_d(fm.x0), B = to_d(fm.basis),
+                    P = to_d(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis);
   const Mat<double> Ay = to_d(fm.ay), Au = to_d(fm.au), Vy = to_d(fm.vy), Vu = to_d(fm.vu);
   for (const Mat<double>* mtx : {&X0, &B, &Ay, &Au, &Vy, &Vu})
-    if (!mtx->allFinite()) throw io::InputError(c.file + ": simulate: expected equations of motion within double's range, found larger coefficients");
+    if (!mtx->allFinite())
+      throw io::InputError(c.file +
+                           ": simulate: expected equations of motion within double's range, found larger coefficients");
   const Vec<double> y0 = P * (x0 - X0 * u0.head(wu));
   // impulses: a corner of a piecewise-linear source (σ' jumps) feeds A_u's σ'' column; deeper is refused
   for (std::size_t j = 0; j < m; ++j) {
-    if (deck.waveforms[j].constant() || deck.waveforms[j].breakpoints(std::min(opt.tstop, deck.waveforms[j].horizon())).empty()) continue;
+    if (deck.waveforms[j].constant() ||
+        deck.waveforms[j].breakpoints(std::min(opt.tstop, deck.waveforms[j].horizon())).empty())
+      continue;
     for (long d = deck.waveforms[j].is_sine() ? 2 : 3; d <= fm.orders; ++d)
       if (Au.col(1 + d * m + j).cwiseAbs().maxCoeff() > 0)
-        throw io::InputError(c.file + ": simulate: " + deck.waveforms[j].element + " has breakpoints and the motion needs its derivative of order " +
-                             std::to_string(d) + " (a derivative of a Dirac delta): smooth it (finite TR/TF) or use SIN");
+        throw io::InputError(c.file + ": simulate: " + deck.waveforms[j].element +
+                             " has breakpoints and the motion needs its derivative of order " + std::to_string(d) +
+                             " (a derivative of a Dirac delta): smooth it (finite TR/TF) or use SIN");
   }
   const Mat<double> S = exo_generator(deck);
   const Mat<Wide> coupling = to_wide(fm.au) * exo_output_wide(deck, fm.orders);  // A_u W: its terms cancel
@@ -380,23 +409,28 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   // the shadow's start from the exact data in 113 bits (the double start's rounding is part of what it measures)
   Vec<Wide> x0w(n);
   for (std::size_t i = 0; i < n; ++i) x0w(i) = wide(x0q[i]);
-  const Vec<Wide> y0w = to_wide(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis) * (x0w - x0_wide * jets_wide(deck, 0.0, Q(0), fm.orders, wu));
-  for (std::size_t i = 0; i < dm; ++i) flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0w(i)) / bal[i];
+  const Vec<Wide> y0w = to_wide(ref::inverse(fm.basis * fm.basis.transpose()) * fm.basis) *
+                        (x0w - x0_wide * jets_wide(deck, 0.0, Q(0), fm.orders, wu));
+  for (std::size_t i = 0; i < dm; ++i)
+    flow.s(i) = y0(i) / bal[i], shadow.s(i) = static_cast<long double>(y0w(i)) / bal[i];
 
   std::vector<double> breaks;
   std::vector<std::vector<double>> own(m);  // each source's own corners: only they jump there
   for (std::size_t j = 0; j < m; ++j) try {
-      own[j] = deck.waveforms[j].breakpoints(opt.tstop + opt.step);  // and a corner an ulp after the last row: applied with it
+      own[j] = deck.waveforms[j].breakpoints(opt.tstop +
+                                             opt.step);  // and a corner an ulp after the last row: applied with it
       for (double b : own[j]) breaks.push_back(b);
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
+      throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) +
+                           " source periods, found " + e.what());
     }
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   // energy: E(x) = ½ xᵀHx (+ gᵀx), and the power of the forces ⟨F x, q̇⟩, of the sources ⟨Bσ, q̇⟩ (the
   // q-rows: the force one-form is horizontal, YM §4) and, from the balance, of the reactions of the
   // affine constraints (current sources): dE/dt = ⟨F x + Bσ, q̇⟩ + P_constraints.
-  const Mat<double> H = to_d(fm.f.s.hessian), F = to_d(fm.f.force.rows() ? fm.f.force : QM(n, n)), Bs = to_d(fm.f.source_force);
+  const Mat<double> H = to_d(fm.f.s.hessian), F = to_d(fm.f.force.rows() ? fm.f.force : QM(n, n)),
+                    Bs = to_d(fm.f.source_force);
   const Vec<double> grad = to_d(QM::column(fm.f.s.gradient));
   const std::size_t nq = n / 3;
   bool has_i = false;
@@ -430,7 +464,8 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
     const Vec<Wide> x0u = x0_wide * jets_wide(deck, t_pick, hq * Q(k), fm.orders, wu);  // X0 u: its terms cancel too
     const Vec<double> x = x0u.cast<double>() + B.transpose() * y;
     if (!x.allFinite())
-      throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(t) + " s (a growing source or values beyond double's range)");
+      throw io::InputError(c.file + ": simulate: expected a finite state, found an overflow at t = " +
+                           io::float_text(t) + " s (a growing source or values beyond double's range)");
     const Vec<long double> xl = x0u.cast<long double>() + basis_l.transpose() * shadow.y();
     for (std::size_t i = 0; i < n; ++i) {
       err[i] = std::max(err[i], std::abs(xl(i) - static_cast<long double>(x(i))));
@@ -469,12 +504,14 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
       *energy << line << "\n";
     }
     if (k == steps) {
-      log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t) << ") = " << io::float_text(en) << "; work of the forces "
-          << io::float_text(wr) << " (dissipated " << io::float_text(-wr) << "), of the sources " << io::float_text(wv)
-          << (has_i ? ", of the affine constraints (current sources) " + io::float_text(wi) : "") << " (trapezoid on the output rows)";
+      log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t)
+          << ") = " << io::float_text(en) << "; work of the forces " << io::float_text(wr) << " (dissipated "
+          << io::float_text(-wr) << "), of the sources " << io::float_text(wv)
+          << (has_i ? ", of the affine constraints (current sources) " + io::float_text(wi) : "")
+          << " (trapezoid on the output rows)";
       if (!has_i)
-        log << "; balance dE/dt = <F, qdot> holds to " << io::float_text(power_scale > 0 ? worst_balance / power_scale : 0.0)
-            << " relative at the rows";
+        log << "; balance dE/dt = <F, qdot> holds to "
+            << io::float_text(power_scale > 0 ? worst_balance / power_scale : 0.0) << " relative at the rows";
       log << "\n";
       break;
     }
@@ -484,7 +521,8 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
     const double to = static_cast<double>(k + 1) * opt.step;
     const long double to_exact = static_cast<long double>(k + 1) * static_cast<long double>(opt.step);
     while (true) {
-      const double stop = next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
+      const double stop =
+          next_break < breaks.size() && breaks[next_break] < to - 1e-12 * opt.step ? breaks[next_break] : to;
       const long double stop_exact = stop == to ? to_exact : static_cast<long double>(stop);
       const bool whole = at == t && stop == to;
       const long double h = whole ? static_cast<long double>(opt.step) : stop_exact - at_exact;
@@ -493,7 +531,9 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
       flow.shift_exo(at_exact - static_cast<long double>(at));
       shadow.shift_exo(at_exact - static_cast<long double>(at));
       if (h > 0) {
-        flow.s = flow.step(whole ? static_cast<long double>(opt.step) : static_cast<long double>(static_cast<double>(h))) * flow.s;
+        flow.s =
+            flow.step(whole ? static_cast<long double>(opt.step) : static_cast<long double>(static_cast<double>(h))) *
+            flow.s;
         shadow.s = shadow.step(h) * shadow.s;
       }
       at = stop;
@@ -507,8 +547,12 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
           for (long d = 1; d <= fm.orders && std::binary_search(own[j].begin(), own[j].end(), tb); ++d) {
             const io::Waveform& wf = deck.waveforms[j];
             // σ^{(d−1)} across the corner; σ itself is continuous for PULSE/PWL, its slope is read off the pieces
-            const std::optional<double> closed = wf.corner_jump(tb, static_cast<int>(d - 1));  // EXP, SIN: exact, not read off tb ± delta
-            const double jump = closed ? *closed : d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1)) : 0.0;
+            const std::optional<double> closed =
+                wf.corner_jump(tb, static_cast<int>(d - 1));  // EXP, SIN: exact, not read off tb ± delta
+            const double jump =
+                closed  ? *closed
+                : d > 1 ? wf.value(after, static_cast<int>(d - 1)) - wf.value(before, static_cast<int>(d - 1))
+                        : 0.0;
             if (jump != 0) dy += Au.col(1 + d * m + j) * jump;
           }
         flow.add_to_y(dy);
@@ -524,21 +568,26 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c, const std
   return sum;
 }
 
-Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
-                                const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c,
+                        const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
+                        std::ostream& out, std::ostream& log, std::ostream* energy) {
   if (const auto which = io::without_exosystem(deck.waveforms))
-    throw io::InputError(c.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which);
+    throw io::InputError(
+        c.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which);
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
-    throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
-                         " branches for a circuit with resistors, sources or couplings, found " + std::to_string(deck.rlc.branches.size()));
+    throw io::InputError(c.file + ": simulate: expected at most " +
+                         std::to_string(reference::pipeline::kForcedBranches) +
+                         " branches for a circuit with resistors, sources or couplings, found " +
+                         std::to_string(deck.rlc.branches.size()));
   return simulate_scene(ForcedScene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms,
                                     io::units_of(deck).variable_scales(deck.rlc.branches.size(), false)},
                         c, initial, opt, out, log, energy);
 }
 
-Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                                     std::ostream& out, std::ostream& log, std::ostream* energy) {
-  return simulate_scene(ForcedScene{c.file, reference::pipeline::forced_system(c), {}}, c, initial, opt, out, log, energy);
+Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
+                             const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+  return simulate_scene(ForcedScene{c.file, reference::pipeline::forced_system(c), {}}, c, initial, opt, out, log,
+                        energy);
 }
 
 }  // namespace dcad::api
@@ -550,12 +599,14 @@ namespace dcad::api {
 namespace {
 
 /// The engine's data and start on the model both routes end in: balanced by the double generator.
-CertifiedMotion enclose(certified::ForcedMotionData data, const std::vector<Q>& y, const ForcedScene& scene, double step, long precision) {
+CertifiedMotion enclose(certified::ForcedMotionData data, const std::vector<Q>& y, const ForcedScene& scene,
+                        double step, long precision) {
   CertifiedMotion out;
   const std::size_t m = data.waveforms.size(), dm = static_cast<std::size_t>(data.ay.rows());
   const long orders = data.orders;
   const Mat<double> W = exo_output(scene, orders), S = exo_generator(scene);
-  Mat<double> gen = Mat<double>::Zero(static_cast<Eigen::Index>(dm + 1 + 3 * m), static_cast<Eigen::Index>(dm + 1 + 3 * m));
+  Mat<double> gen =
+      Mat<double>::Zero(static_cast<Eigen::Index>(dm + 1 + 3 * m), static_cast<Eigen::Index>(dm + 1 + 3 * m));
   gen.topLeftCorner(dm, dm) = to_d(data.ay);
   gen.topRightCorner(dm, 1 + 3 * m) = to_d(data.au) * W;
   gen.bottomRightCorner(1 + 3 * m, 1 + 3 * m) = S;
@@ -569,16 +620,19 @@ CertifiedMotion enclose(certified::ForcedMotionData data, const std::vector<Q>& 
 }
 
 /// The dense route: the forced tower's model, from netlist_start's exact start.
-CertifiedMotion dense_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision, std::ostream& log) {
+CertifiedMotion dense_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision,
+                             std::ostream& log) {
   CertifiedMotion out;
-  if (reference::pipeline::rounded_coupling(deck.rlc)) {  // the model is the rounded circuit's: its balls need not hold the deck's motion
+  if (reference::pipeline::rounded_coupling(
+          deck.rlc)) {  // the model is the rounded circuit's: its balls need not hold the deck's motion
     out.why = reference::pipeline::kRoundedCoupling;
     return out;
   }
   const ForcedScene scene{deck.file, ref::rlc_system(deck.rlc), deck.waveforms, {}};
   const ForcedModel fm = forced_model(scene);
   if (fm.free > 0) {
-    out.why = "the circuit's solutions are not unique (" + std::to_string(fm.free) + " free multipliers): the flow takes one particular solution";
+    out.why = "the circuit's solutions are not unique (" + std::to_string(fm.free) +
+              " free multipliers): the flow takes one particular solution";
     return out;
   }
   const std::vector<std::optional<io::Rational>> initial = netlist_start(deck, c.variables, rule, log);
@@ -592,8 +646,8 @@ CertifiedMotion dense_motion(const io::Netlist& deck, const io::CaseFile& c, Ini
     if (!used) continue;
     const std::optional<Q> v = deck.waveforms[(k - 1) % m].exact_at_zero(static_cast<int>((k - 1) / m));
     if (!v) {
-      out.why = "the state at t = 0 depends on " + deck.waveforms[(k - 1) % m].element + "'s derivative of order " + std::to_string((k - 1) / m) +
-                " at 0, which involves pi (the start is not an exact rational)";
+      out.why = "the state at t = 0 depends on " + deck.waveforms[(k - 1) % m].element + "'s derivative of order " +
+                std::to_string((k - 1) / m) + " at 0, which involves pi (the start is not an exact rational)";
       return out;
     }
     u0[k] = *v;
@@ -629,8 +683,10 @@ CertifiedMotion state_motion(const io::Netlist& deck, Initial rule, double step,
     out.why = e.what();
     return out;
   }
-  log << "initial state: " << (op ? "the DC operating point at t = 0, exact on the state equations"
-                                  : "uic: IC= values, everything else 0, moved onto M_c(0+) keeping every C-component's charge (exact, on the state equations)")
+  log << "initial state: "
+      << (op ? "the DC operating point at t = 0, exact on the state equations"
+             : "uic: IC= values, everything else 0, moved onto M_c(0+) keeping every C-component's charge (exact, on "
+               "the state equations)")
       << "\n";
   certified::ForcedMotionData data;
   data.x0 = sm.x0, data.basis = sm.bt.transpose(), data.ay = sm.ay, data.au = sm.au, data.vy = sm.vy, data.vu = sm.vu;
@@ -643,8 +699,8 @@ CertifiedMotion state_motion(const io::Netlist& deck, Initial rule, double step,
 
 }  // namespace
 
-CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step, long precision, EnclosureModel model,
-                                 std::ostream* log) {
+CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step,
+                                 long precision, EnclosureModel model, std::ostream* log) {
   CertifiedMotion out;
   if (const auto which = io::without_exosystem(deck.waveforms)) {
     out.why = "a source without a finite exosystem, " + *which;
@@ -657,22 +713,25 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
   const std::size_t limit = model == EnclosureModel::dense ? reference::pipeline::kForcedBranches : kCertifiedBranches;
   if (nb > limit) {  // before the exact start (gigabytes at 10^4 branches)
     out.why = model == EnclosureModel::dense
-                  ? "the dense model is built up to " + std::to_string(reference::pipeline::kForcedBranches) + " branches; this circuit has " +
-                        std::to_string(nb)
-                  : "enclosures are built up to " + std::to_string(kCertifiedBranches) + " branches (the dense model up to " +
-                        std::to_string(reference::pipeline::kForcedBranches) + ", the state equations beyond); this circuit has " + std::to_string(nb);
+                  ? "the dense model is built up to " + std::to_string(reference::pipeline::kForcedBranches) +
+                        " branches; this circuit has " + std::to_string(nb)
+                  : "enclosures are built up to " + std::to_string(kCertifiedBranches) +
+                        " branches (the dense model up to " + std::to_string(reference::pipeline::kForcedBranches) +
+                        ", the state equations beyond); this circuit has " + std::to_string(nb);
     return out;
   }
   // the start (the operating point, the jump at 0) is computed from the sources' values at 0 in double
   // where they involve π: exact only when every one is rational
   for (const io::Waveform& w : deck.waveforms)
     if (!w.exact_at_zero(0)) {
-      out.why = "the state at t = 0 depends on " + w.element + "'s value at 0, which involves pi (the start is not an exact rational)";
+      out.why = "the state at t = 0 depends on " + w.element +
+                "'s value at 0, which involves pi (the start is not an exact rational)";
       return out;
     }
   std::ostringstream quiet;
   std::ostream& to = log ? *log : quiet;
-  CertifiedMotion r = model == EnclosureModel::dense ? dense_motion(deck, c, rule, step, precision, to) : state_motion(deck, rule, step, precision, to);
+  CertifiedMotion r = model == EnclosureModel::dense ? dense_motion(deck, c, rule, step, precision, to)
+                                                     : state_motion(deck, rule, step, precision, to);
   r.model = out.model;
   // automatic: where the dense model refuses (a start through a source's derivative that involves π) the
   // state equations, which need only σ(0), may not
@@ -688,12 +747,17 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
   return r;
 }
 
-Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out,
+                          std::ostream& log) {
   require_times(opt);
   // --route picks the exact model: dense (the forced tower) or sparse (the state equations)
-  const EnclosureModel model = opt.route == Route::dense ? EnclosureModel::dense : opt.route == Route::sparse ? EnclosureModel::state : EnclosureModel::automatic;
+  const EnclosureModel model = opt.route == Route::dense    ? EnclosureModel::dense
+                               : opt.route == Route::sparse ? EnclosureModel::state
+                                                            : EnclosureModel::automatic;
   CertifiedMotion cm = certified_motion(deck, c, opt.initial, opt.step, 256, model, &log);
-  if (!cm.flow) throw io::InputError(deck.file + ": simulate --certified: expected a circuit whose motion dcad encloses, found: " + cm.why);
+  if (!cm.flow)
+    throw io::InputError(deck.file +
+                         ": simulate --certified: expected a circuit whose motion dcad encloses, found: " + cm.why);
   const std::size_t nb = deck.rlc.branches.size(), n = 3 * nb;
   out << "t";
   for (const std::string& v : c.variables) out << "," << v;
@@ -717,7 +781,8 @@ Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const 
     for (std::size_t i = 0; i < n; ++i) {
       line += ',';
       put(x[i].mid);
-      rad[i / nb] = std::max(rad[i / nb], io::printed_radius(x[i].mid, x[i].rad));  // the printed decimals hold the value
+      rad[i / nb] =
+          std::max(rad[i / nb], io::printed_radius(x[i].mid, x[i].rad));  // the printed decimals hold the value
       scale[i / nb] = std::max(scale[i / nb], std::abs(x[i].mid));
     }
     for (int kind = 0; kind < 3; ++kind) {
@@ -730,13 +795,17 @@ Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const 
   }
   Summary sum;
   sum.rows = steps + 1;
-  sum.estimate_kind = "rigorous: the largest enclosure radius relative to the largest value of its kind (charges, currents, flux linkages)";
+  sum.estimate_kind =
+      "rigorous: the largest enclosure radius relative to the largest value of its kind (charges, currents, flux "
+      "linkages)";
   for (int kind = 0; kind < 3; ++kind) {
     const double r = scale[kind] > 0 ? worst[kind] / scale[kind] : worst[kind];
-    if (r >= sum.error_estimate) sum.error_estimate = r, sum.worst_variable = kind == 0 ? "q_" : kind == 1 ? "v_" : "p_";
+    if (r >= sum.error_estimate)
+      sum.error_estimate = r, sum.worst_variable = kind == 0 ? "q_" : kind == 1 ? "v_" : "p_";
   }
-  log << "simulate --certified: every value is the midpoint of a rigorous enclosure (Arb balls on the exact " << cm.model << " model); radii rad_q, rad_v, rad_p per row; "
-      << cm.flow->exponentials() << " matrix exponentials, " << cm.flow->restarts() << " restarts against wrapping\n";
+  log << "simulate --certified: every value is the midpoint of a rigorous enclosure (Arb balls on the exact "
+      << cm.model << " model); radii rad_q, rad_v, rad_p per row; " << cm.flow->exponentials()
+      << " matrix exponentials, " << cm.flow->restarts() << " restarts against wrapping\n";
   return sum;
 }
 

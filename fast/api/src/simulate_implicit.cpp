@@ -57,17 +57,20 @@ struct ImplicitField {
     } catch (const std::range_error& e) {
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
     } catch (const reference::PointwiseNoPoint& e) {
-      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": expected the motion to stay near M_c, found " + e.what());
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
+                           ": expected the motion to stay near M_c, found " + e.what());
     }
     if (!r.consistent || !r.regular)
-      throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " + r.why);
+      throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " +
+                           io::float_text(t) + ": " + r.why);
     return {r.point, r.velocity};
   }
 };
 
 }  // namespace
 
-Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out,
+                          std::ostream& log) {
   require_times(opt);
   // the start: the pointwise algorithm in double from the given values (held) at the case's time, as
   // every evaluation of the field is (fast's own answer, the derivative array, decides at a generic time)
@@ -79,18 +82,23 @@ Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& op
     fast::ToleranceDecisions d;
     return fast::pointwise_cad(c.system, x0, fixed, d);
   });
-  if (!at.consistent || !at.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
+  if (!at.consistent || !at.regular)
+    throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
   for (std::size_t i = 0; i < c.system.n; ++i)
-    if (c.initial[i] && std::abs(at.point[i] - c.initial[i]->convert_to<double>()) > 1e-9 * (1 + std::abs(c.initial[i]->convert_to<double>())))
-      throw io::InputError(c.file + ": /initial/" + c.system.names[i] + ": expected a value on M_c, found " + c.initial[i]->str() +
-                           " (the constraints give " + io::float_text(at.point[i]) + ")");
+    if (c.initial[i] && std::abs(at.point[i] - c.initial[i]->convert_to<double>()) >
+                            1e-9 * (1 + std::abs(c.initial[i]->convert_to<double>())))
+      throw io::InputError(c.file + ": /initial/" + c.system.names[i] + ": expected a value on M_c, found " +
+                           c.initial[i]->str() + " (the constraints give " + io::float_text(at.point[i]) + ")");
   if (at.solution_rank > 0)
-    log << "note: solutions are not unique (solution rank " << at.solution_rank << "); simulating the one of least norm in the free directions\n";
+    log << "note: solutions are not unique (solution rank " << at.solution_rank
+        << "); simulating the one of least norm in the free directions\n";
   const std::size_t n = c.system.n;
   log << "start on M_c (dims";
   for (long d : at.dims) log << " " << d;
   log << ", index " << (at.solution_rank == 0 ? std::to_string(at.steps) : std::string("none: not unique")) << "):";
-  for (std::size_t i = 0; i < n; ++i) log << " " << c.system.names[i] << " = " << io::float_text(at.point[i]) << (c.initial[i] ? " (given)" : " (completed)");
+  for (std::size_t i = 0; i < n; ++i)
+    log << " " << c.system.names[i] << " = " << io::float_text(at.point[i])
+        << (c.initial[i] ? " (given)" : " (completed)");
   log << "\n";
   ImplicitField f{c, 0, {}};
   std::vector<double> y = at.point;
@@ -99,10 +107,14 @@ Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& op
   for (const std::string& s : c.system.names) out << "," << s;
   out << "\n";
   auto last = std::chrono::steady_clock::now();
-  const auto row = [&](double time, const std::vector<double>& x) { projected::write_row(out, log, time, x, opt.tstop, last); };
+  const auto row = [&](double time, const std::vector<double>& x) {
+    projected::write_row(out, log, time, x, opt.tstop, last);
+  };
   row(t, y);
   const double t0 = t;
-  if (opt.tstop < t0) throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) + ", found " + io::float_text(opt.tstop));
+  if (opt.tstop < t0)
+    throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) +
+                         ", found " + io::float_text(opt.tstop));
   const long steps = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
   projected::Richardson rich;
   for (long k = 1; k <= steps; ++k) {

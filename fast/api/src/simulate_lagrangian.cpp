@@ -54,8 +54,10 @@ struct Field {
     reference::PointwiseResult<double> r;
     try {
       try {
-        r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d, plan.empty() ? nullptr : &plan);
-      } catch (const reference::PointwiseNoPoint&) {  // the plan's choices degenerate here (a rest point): choose afresh
+        r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d,
+                                plan.empty() ? nullptr : &plan);
+      } catch (
+          const reference::PointwiseNoPoint&) {  // the plan's choices degenerate here (a rest point): choose afresh
         if (plan.empty()) throw;
         fast::ToleranceDecisions d2;
         r = fast::pointwise_cad(c.system, start, std::vector<bool>(start.size(), false), d2);
@@ -64,7 +66,8 @@ struct Field {
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
     }
     if (!r.consistent || !r.regular)
-      throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " + r.why);
+      throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " +
+                           io::float_text(t) + ": " + r.why);
     return {r.point, std::vector<double>(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n))};
   }
 };
@@ -86,7 +89,8 @@ bool conservative(const reference::LagrangianSystem& s) {
 namespace {
 
 /// The pointwise route (the CAD at every evaluation): where no chart of formulas could be built.
-Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& opt, const fast::Solution& first, std::ostream& out, std::ostream& log) {
+Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& opt, const fast::Solution& first,
+                           std::ostream& out, std::ostream& log) {
   const std::size_t n = c.system.n;
   const Pointwise<double>& at = *first.pointwise;
   Field f{c, n, 0, {}};
@@ -101,7 +105,9 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
   // or a pipe, sees them as they come — before, a redirected run showed 0 bytes for minutes), with a
   // progress line on the log every 2 s
   auto last = std::chrono::steady_clock::now();
-  const auto row = [&](double time, const std::vector<double>& x) { projected::write_row(out, log, time, x, opt.tstop, last); };
+  const auto row = [&](double time, const std::vector<double>& x) {
+    projected::write_row(out, log, time, x, opt.tstop, last);
+  };
   Field::At now = f(t, y);
   row(t, now.x);
   const auto energy = [&](const std::vector<double>& x) {  // E = p·v − L
@@ -111,15 +117,18 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
     std::vector<reference::Jet<double>> v;
     for (std::size_t i = 0; i < 2 * n; ++i) v.emplace_back(sp, x[i]);
     v.emplace_back(sp, t);
-    return e - reference::expr::evaluate<reference::Jet<double>>(c.system.lagrangian, v, [&](const reference::Rational& q) {
-                 return reference::Jet<double>(sp, q.convert_to<double>());
-               }).value();
+    return e -
+           reference::expr::evaluate<reference::Jet<double>>(c.system.lagrangian, v, [&](const reference::Rational& q) {
+             return reference::Jet<double>(sp, q.convert_to<double>());
+           }).value();
   };
   const double e0 = energy(now.x);
   double emax = 0;
   projected::Richardson rich;
   const double t0 = t;  // rows at t0 + k·step up to the final time --tstop
-  if (opt.tstop < t0) throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) + ", found " + io::float_text(opt.tstop));
+  if (opt.tstop < t0)
+    throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) +
+                         ", found " + io::float_text(opt.tstop));
   const long steps = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
   for (long k = 1; k <= steps; ++k) {
     const double t1 = t0 + static_cast<double>(k) * opt.step;
@@ -142,8 +151,8 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
 /// scale), an upper estimate of the tighter run's error.  After each row both runs are projected onto
 /// M_c when their drift exceeds 1e-10 (relative); the chart is rebuilt where a valid_where formula
 /// fell below 1e-3 of its value where the chart was built.
-Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& opt, const std::vector<double>& start, fast::Chart chart, std::ostream& out,
-                          std::ostream& log) {
+Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& opt, const std::vector<double>& start,
+                          fast::Chart chart, std::ostream& out, std::ostream& log) {
   namespace odeint = boost::numeric::odeint;
   using State = std::vector<double>;
   const std::size_t n = c.system.n;
@@ -176,11 +185,14 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
         std::vector<double> at(q);
         at.push_back(time);
         const auto [path, what] = fast::nonfinite_formula(c.system, at);
-        throw io::InputError(c.file + ": simulate: at t = " + io::float_text(time) + ": the motion left double's range" +
+        throw io::InputError(c.file + ": simulate: at t = " + io::float_text(time) +
+                             ": the motion left double's range" +
                              (path.empty() ? std::string() : " (" + path + ": " + what + ")"));
       }
   };
-  const auto row = [&](double time, const std::vector<double>& x) { projected::write_row(out, log, time, x, opt.tstop, last); };
+  const auto row = [&](double time, const std::vector<double>& x) {
+    projected::write_row(out, log, time, x, opt.tstop, last);
+  };
   const auto energy = [&](const std::vector<double>& x, double time) {  // E = p·v − L
     std::vector<double> at(x.begin(), x.begin() + static_cast<long>(2 * n));
     at.push_back(time);
@@ -196,7 +208,9 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
   long steps_taken = 0, projections = 0, charts = 1;
   std::vector<double> scale(2 * n, 0);
   const double t0 = t;
-  if (opt.tstop < t0) throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) + ", found " + io::float_text(opt.tstop));
+  if (opt.tstop < t0)
+    throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) +
+                         ", found " + io::float_text(opt.tstop));
   const long rows = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
   fine.initialize(y, t, opt.step / 16);
   coarse.initialize(z, t, opt.step / 16);
@@ -210,8 +224,8 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
     } catch (const io::InputError&) {
       throw;
     } catch (const std::exception& e) {  // odeint's step-size control gave up
-      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(stepper.current_time()) + ": the integrator failed (" + e.what() +
-                           "): the motion is too stiff or leaves the chart");
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(stepper.current_time()) +
+                           ": the integrator failed (" + e.what() + "): the motion is too stiff or leaves the chart");
     }
     stepper.calc_state(t1, s);
   };
@@ -231,7 +245,9 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
       if (d > 1e-10) {
         ++projections;
         restart = true;
-        if (!field->project(*s, t, 1e-14)) throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": the motion could not be projected back onto M_c (drift " + io::float_text(d) + ")");
+        if (!field->project(*s, t, 1e-14))
+          throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
+                               ": the motion could not be projected back onto M_c (drift " + io::float_text(d) + ")");
       }
     }
     if (field->margin(y, t) < 1e-3) {  // a pivot or the chart's Jacobian nears zero: a new chart here
@@ -240,16 +256,19 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
       // a singular point of the tower (a rank drops: every chart's conditions vanish) is reported, never crossed
       const auto singular = [&](const std::string& otherwise) {
         fast::ToleranceDecisions d;
-        const reference::PointwiseResult<double> r = fast::pointwise_cad(c.system, here, std::vector<bool>(here.size(), false), d);
-        throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " +
-                             (!r.consistent || !r.regular ? r.why : otherwise));
+        const reference::PointwiseResult<double> r =
+            fast::pointwise_cad(c.system, here, std::vector<bool>(here.size(), false), d);
+        throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " +
+                             io::float_text(t) + ": " + (!r.consistent || !r.regular ? r.why : otherwise));
       };
       try {
         std::vector<double> v;  // the pointwise CAD's velocity here: the new chart must agree with it
         try {
           fast::ToleranceDecisions d;
-          const reference::PointwiseResult<double> r = fast::pointwise_cad(c.system, here, std::vector<bool>(here.size(), true), d);
-          if (r.consistent && r.regular && r.gauge.empty()) v.assign(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n));
+          const reference::PointwiseResult<double> r =
+              fast::pointwise_cad(c.system, here, std::vector<bool>(here.size(), true), d);
+          if (r.consistent && r.regular && r.gauge.empty())
+            v.assign(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n));
         } catch (const std::exception&) {
         }
         chart = fast::chart_near(c.system, here, chart.dims, v.empty() ? nullptr : &v);
@@ -260,9 +279,9 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
       std::size_t weakest = 0;
       if (field->margin(y, t, &weakest) < 1e-8) {
         const fast::Chart::Condition& w = chart.valid_where[weakest];
-        throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " + io::float_text(t) + ": " +
-                             reference::expr::to_text(w.formula, c.system.variable_names()) + " vanishes here in every chart found (" + w.what +
-                             "): a rank of the tower drops");
+        throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " +
+                             io::float_text(t) + ": " + reference::expr::to_text(w.formula, c.system.variable_names()) +
+                             " vanishes here in every chart found (" + w.what + "): a rank of the tower drops");
       }
       ++charts;
       restart = true;
@@ -280,23 +299,28 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
   sum.rows = rows + 1;
   sum.error_estimate = estimate;
   sum.worst_variable = "(two runs: tolerance 1e-12 and 1e-10)";
-  log << "simulate: " << sum.rows << " rows on a chart of formulas (" << charts << (charts == 1 ? " chart" : " charts") << "), Dormand–Prince 5(4) with dense output at tolerances "
-      << io::float_text(tight) << " and " << io::float_text(loose) << ": " << steps_taken << " steps, " << evaluations
-      << " evaluations of the field; estimated error " << io::float_text(estimate) << " (relative, the looser run's difference from the rows'); largest drift from M_c "
-      << io::float_text(drift) << " (relative; " << projections << " projections); energy p·v − L varied by " << io::float_text(emax) << " from "
+  log << "simulate: " << sum.rows << " rows on a chart of formulas (" << charts << (charts == 1 ? " chart" : " charts")
+      << "), Dormand–Prince 5(4) with dense output at tolerances " << io::float_text(tight) << " and "
+      << io::float_text(loose) << ": " << steps_taken << " steps, " << evaluations
+      << " evaluations of the field; estimated error " << io::float_text(estimate)
+      << " (relative, the looser run's difference from the rows'); largest drift from M_c " << io::float_text(drift)
+      << " (relative; " << projections << " projections); energy p·v − L varied by " << io::float_text(emax) << " from "
       << io::float_text(e0) << (conservative(c.system) ? " (conserved by the exact motion)" : "") << "\n";
   return sum;
 }
 
 }  // namespace
 
-Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out,
+                            std::ostream& log) {
   require_times(opt);
   const fast::Solution first = fast::solve_expression(c);  // the initial point on M_c (given values checked)
   const Pointwise<double>& at = *first.pointwise;
-  if (!first.consistent || !at.regular) throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
+  if (!first.consistent || !at.regular)
+    throw io::InputError(c.file + ": simulate: expected a regular consistent system, found: " + at.why);
   if (first.solution_rank.value_or(0) > 0)
-    log << "note: solutions are not unique (solution rank " << *first.solution_rank << "); simulating the one with the free directions set to 0\n";
+    log << "note: solutions are not unique (solution rank " << *first.solution_rank
+        << "); simulating the one with the free directions set to 0\n";
   std::vector<double> start(at.point.begin(), at.point.begin() + static_cast<long>(2 * c.system.n));
   start.push_back(at.time);
   std::optional<fast::Chart> chart;

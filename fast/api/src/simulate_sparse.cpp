@@ -54,7 +54,8 @@ sr::Network circuit_of(const io::Netlist& d) {
     c.branches.push_back({kind_of(b.kind), b.from, b.to, b.value.convert_to<double>(), static_cast<long>(b.source)});
     c.branch_names.push_back(b.name);
   }
-  for (const auto& mu : d.rlc.mutuals) c.mutuals.push_back({static_cast<std::size_t>(mu.a), static_cast<std::size_t>(mu.b), mu.m.convert_to<double>()});
+  for (const auto& mu : d.rlc.mutuals)
+    c.mutuals.push_back({static_cast<std::size_t>(mu.a), static_cast<std::size_t>(mu.b), mu.m.convert_to<double>()});
   return c;
 }
 
@@ -147,33 +148,43 @@ std::vector<bool> jump_places(const sr::Network& c) {
 
 bool sparse_route_takes(const io::Netlist& deck) { return reference::pipeline::graph_route_holds(deck.rlc); }
 
-SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial initial, double step, double horizon, std::ostream& log)
+SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial initial, double step, double horizon,
+                       std::ostream& log)
     : deck_(deck), file_(file), step_(step) {
   namespace pl = reference::pipeline;
   if (const auto which = io::without_exosystem(deck.waveforms))
-    throw io::InputError(file + ": expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP) for the exact flow, found " + *which);
+    throw io::InputError(
+        file + ": expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP) for the exact flow, found " +
+        *which);
   if (!pl::graph_route_holds(deck.rlc))
-    throw io::InputError(file + ": simulate: expected every R, L and C positive, the couplings |k| < 1 and at most 200 inductors per coupled group "
+    throw io::InputError(file +
+                         ": simulate: expected every R, L and C positive, the couplings |k| < 1 and at most 200 "
+                         "inductors per coupled group "
                          "for the sparse route, found another circuit"
-                         " (the dense route takes it up to " + std::to_string(pl::kForcedBranches) + " branches)");
+                         " (the dense route takes it up to " +
+                         std::to_string(pl::kForcedBranches) + " branches)");
   const pl::GraphForced g = pl::graph_forced(deck);
   for (const SourceCondition& v : g.conditions)
     if (v.holds.no())
-      throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " + v.text + " violated (" + v.evidence + ")");
+      throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found the source condition " +
+                           v.text + " violated (" + v.evidence + ")");
   if (!g.consistent) throw io::InputError(deck.file + ": simulate: expected a consistent circuit, found M_c empty");
   if (g.solution_rank > 0)
     log << "note: solutions are not unique (" << g.solution_rank
-        << " free currents around loops of voltage sources and wires); simulating the one with no current around them\n";
+        << " free currents around loops of voltage sources and wires); simulating the one with no current around "
+           "them\n";
   circ_ = circuit_of(deck);
   try {
     model_ = std::make_unique<sr::Model>(circ_);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(file + ": simulate: expected values within double's range for the sparse route, found " + e.what());
+    throw io::InputError(file + ": simulate: expected values within double's range for the sparse route, found " +
+                         e.what());
   }
   const std::size_t n = circ_.branches.size(), m = circ_.sources;
   nx_ = model_->state_size();
   const std::size_t nq = model_->charge_size(), ny = nx_ + 3 * m;
-  log << "simulate: sparse route (" << nx_ << " states, " << model_->islands() << " LI cutsets; Krylov exponential action, Expokit's error control)\n";
+  log << "simulate: sparse route (" << nx_ << " states, " << model_->islands()
+      << " LI cutsets; Krylov exponential action, Expokit's error control)\n";
   // sources at 0 (right limits)
   std::vector<double> s0(m), ds0(m);
   for (std::size_t j = 0; j < m; ++j) s0[j] = deck.waveforms[j].value(0, 0), ds0[j] = deck.waveforms[j].value(0, 1);
@@ -184,27 +195,33 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
   if (op) {
     std::vector<std::pair<long, double>> held;
     for (const auto& [node, value] : deck.node_ic) held.emplace_back(node, value.convert_to<double>());
-    log << "initial state: op: the DC operating point at t = 0 (capacitors open, inductors shorted), by contraction on the sparse route"
+    log << "initial state: op: the DC operating point at t = 0 (capacitors open, inductors shorted), by contraction on "
+           "the sparse route"
         << (held.empty() ? "" : ", the .ic node voltages held as ngspice holds them") << "\n";
     try {
       try {
         x = model_->operating_point(s0.data(), held);
       } catch (const std::domain_error& e) {
         if (held.empty() || std::string(e.what()).rfind(".ic", 0) != 0) throw;
-        log << "note: " << e.what() << ": the operating point does not hold the .ic node voltages (as the dense route)\n";
+        log << "note: " << e.what()
+            << ": the operating point does not hold the .ic node voltages (as the dense route)\n";
         x = model_->operating_point(s0.data());
       }
     } catch (const std::domain_error& e) {
-      throw io::InputError(file + ": initial state: expected a unique DC operating point, found " + e.what() + "; use --initial uic");
+      throw io::InputError(file + ": initial state: expected a unique DC operating point, found " + e.what() +
+                           "; use --initial uic");
     }
   } else {
-    log << "initial state: uic: IC= values, everything else 0; moved onto M_c(0+) keeping every supernode's charge and the flux linkages "
+    log << "initial state: uic: IC= values, everything else 0; moved onto M_c(0+) keeping every supernode's charge and "
+           "the flux linkages "
            "outside cutsets of inductors and current sources\n";
     Vec qb = Vec::Zero(static_cast<Eigen::Index>(n)), ib = Vec::Zero(static_cast<Eigen::Index>(n));
     for (std::size_t b = 0; b < n; ++b) {
       if (!deck.initial[b]) continue;
-      if (circ_.branches[b].kind == rlc::Kind::capacitor) qb(static_cast<Eigen::Index>(b)) = (deck.rlc.branches[b].value * *deck.initial[b]).convert_to<double>();
-      if (circ_.branches[b].kind == rlc::Kind::inductor) ib(static_cast<Eigen::Index>(b)) = deck.initial[b]->convert_to<double>();
+      if (circ_.branches[b].kind == rlc::Kind::capacitor)
+        qb(static_cast<Eigen::Index>(b)) = (deck.rlc.branches[b].value * *deck.initial[b]).convert_to<double>();
+      if (circ_.branches[b].kind == rlc::Kind::inductor)
+        ib(static_cast<Eigen::Index>(b)) = deck.initial[b]->convert_to<double>();
     }
     x = model_->from_charges(qb, ib, s0.data());
     // the jumps, each named with the kind of constraint that forced it
@@ -213,30 +230,37 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
     double qscale = 0, iscale = 0;
     for (std::size_t b = 0; b < n; ++b) {
       const auto bb = static_cast<Eigen::Index>(b);
-      if (circ_.branches[b].kind == rlc::Kind::capacitor) qscale = std::max({qscale, std::abs(qb(bb)), std::abs(after.q(bb))});
-      if (circ_.branches[b].kind == rlc::Kind::inductor) iscale = std::max({iscale, std::abs(ib(bb)), std::abs(after.i(bb))});
+      if (circ_.branches[b].kind == rlc::Kind::capacitor)
+        qscale = std::max({qscale, std::abs(qb(bb)), std::abs(after.q(bb))});
+      if (circ_.branches[b].kind == rlc::Kind::inductor)
+        iscale = std::max({iscale, std::abs(ib(bb)), std::abs(after.i(bb))});
     }
     long told = 0;
-    const std::vector<bool> movable = jump_places(circ_);  // a branch no loop or cutset can move keeps its value exactly
+    const std::vector<bool> movable =
+        jump_places(circ_);  // a branch no loop or cutset can move keeps its value exactly
     for (std::size_t b = 0; b < n; ++b) {
       const auto bb = static_cast<Eigen::Index>(b);
-      const bool cap = circ_.branches[b].kind == rlc::Kind::capacitor, ind = circ_.branches[b].kind == rlc::Kind::inductor;
+      const bool cap = circ_.branches[b].kind == rlc::Kind::capacitor,
+                 ind = circ_.branches[b].kind == rlc::Kind::inductor;
       if ((!cap && !ind) || !movable[b]) continue;
       const double from = cap ? qb(bb) : ib(bb), to = cap ? after.q(bb) : after.i(bb), scale = cap ? qscale : iscale;
       if (std::abs(to - from) <= 1e-12 * scale) continue;
       ++jumps_;
       jumped_.push_back((cap ? "q_" : "v_") + circ_.branch_names[b]);
       if (told++ < 20)
-        log << "jump at t = 0: " << (cap ? "q_" : "v_") << circ_.branch_names[b] << " from " << io::float_text(from) << " to " << io::float_text(to)
-            << ", forced by " << (cap ? "KVL around a loop of capacitors and voltage sources (the charge of each node is kept)"
-                                      : "KCL over a cutset of inductors and current sources (the flux linkages move only by impulses at its level)")
+        log << "jump at t = 0: " << (cap ? "q_" : "v_") << circ_.branch_names[b] << " from " << io::float_text(from)
+            << " to " << io::float_text(to) << ", forced by "
+            << (cap ? "KVL around a loop of capacitors and voltage sources (the charge of each node is kept)"
+                    : "KCL over a cutset of inductors and current sources (the flux linkages move only by impulses at "
+                      "its level)")
             << "\n";
     }
     if (jumps_ > told) log << "jump at t = 0: … and " << (jumps_ - told) << " more values\n";
     q_ = model_->impulse_charges(qb, after.q);  // what the impulsive currents carried through the sources
   }
   // scales of the Krylov state: √energy for the circuit, the sources' values in the same units
-  const double ctyp = typical(circ_, rlc::Kind::capacitor), ltyp = typical(circ_, rlc::Kind::inductor), rtyp = typical(circ_, rlc::Kind::resistor);
+  const double ctyp = typical(circ_, rlc::Kind::capacitor), ltyp = typical(circ_, rlc::Kind::inductor),
+               rtyp = typical(circ_, rlc::Kind::resistor);
   // a circuit without inductors (or capacitors) takes the missing kind from its resistance, or without
   // resistors from the output step (R = step/C, L = step²/C): a fixed 1 Ω would put a current source
   // driving a 1 fF capacitor 10⁷ below the charge it moves in a step, and the error control (relative to
@@ -251,7 +275,8 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
   for (std::size_t j = 0; j < m; ++j) {
     const double sc = std::sqrt(current[j] ? ls : cs);
     d_(static_cast<Eigen::Index>(nx_ + 3 * j)) = sc;
-    d_(static_cast<Eigen::Index>(nx_ + 3 * j + 1)) = deck.waveforms[j].is_sine() || deck.waveforms[j].is_exp() ? sc : sc * step;
+    d_(static_cast<Eigen::Index>(nx_ + 3 * j + 1)) =
+        deck.waveforms[j].is_sine() || deck.waveforms[j].is_exp() ? sc : sc * step;
     d_(static_cast<Eigen::Index>(nx_ + 3 * j + 2)) = sc;
   }
   for (Eigen::Index i = 0; i < d_.size(); ++i)
@@ -273,7 +298,8 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
   for (const io::Waveform& w : deck.waveforms) try {
       for (double b : w.breakpoints(horizon)) breaks_.push_back(b);
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) + " source periods, found " + e.what());
+      throw io::InputError(file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) +
+                           " source periods, found " + e.what());
     }
   std::sort(breaks_.begin(), breaks_.end());
   breaks_.erase(std::unique(breaks_.begin(), breaks_.end()), breaks_.end());
@@ -301,7 +327,8 @@ void SparseFlow::sources(double t, bool left, std::vector<double>& sig, std::vec
     // holds V2 at t = PER itself, value(t) is the next period's start)
     sig[j] = left && before < t ? w.value(before, 0) + dsig[j] * (t - before) : w.value(t, 0);
   }
-  if (left && t <= 0) std::fill(dsig.begin(), dsig.end(), 0.0);  // before t = 0 the circuit rests at the sources' values at 0
+  if (left && t <= 0)
+    std::fill(dsig.begin(), dsig.end(), 0.0);  // before t = 0 the circuit rests at the sources' values at 0
 }
 
 sr::BranchValues SparseFlow::values(bool left) const {
@@ -318,7 +345,9 @@ Vec SparseFlow::node_potentials(bool left) const {
   return model_->node_potentials(xs.data(), sig.data(), dsig.data());
 }
 
-Vec SparseFlow::state() const { return y_.head(static_cast<Eigen::Index>(nx_)).cwiseProduct(dinv_.head(static_cast<Eigen::Index>(nx_))); }
+Vec SparseFlow::state() const {
+  return y_.head(static_cast<Eigen::Index>(nx_)).cwiseProduct(dinv_.head(static_cast<Eigen::Index>(nx_)));
+}
 
 bool SparseFlow::corner(double t) const {
   const auto it = std::lower_bound(breaks_.begin(), breaks_.end(), t - 1e-12 * std::max(step_, std::abs(t)));
@@ -330,11 +359,14 @@ void SparseFlow::advance_to(double to) {
   double at = t_;
   while (at < to) {
     while (next_break_ < breaks_.size() && breaks_[next_break_] <= at + 1e-12 * step_) ++next_break_;
-    const double stop = next_break_ < breaks_.size() && breaks_[next_break_] < to - 1e-12 * step_ ? breaks_[next_break_] : to;
+    const double stop =
+        next_break_ < breaks_.size() && breaks_[next_break_] < to - 1e-12 * step_ ? breaks_[next_break_] : to;
     for (std::size_t j = 0; j < m; ++j) {
       long double w[3];
       exo_state_for(deck_.waveforms[j], at, stop, w);
-      for (int q = 0; q < 3; ++q) y_(static_cast<Eigen::Index>(nx_ + 3 * j + q)) = static_cast<double>(w[q]) * d_(static_cast<Eigen::Index>(nx_ + 3 * j + q));
+      for (int q = 0; q < 3; ++q)
+        y_(static_cast<Eigen::Index>(nx_ + 3 * j + q)) =
+            static_cast<double>(w[q]) * d_(static_cast<Eigen::Index>(nx_ + 3 * j + q));
     }
     const double norm = y_.norm();
     max_norm_ = std::max(max_norm_, norm);
@@ -342,18 +374,22 @@ void SparseFlow::advance_to(double to) {
     try {
       krylov_->advance(stop - at, y_, q_);
     } catch (const std::runtime_error& e) {
-      throw io::InputError(file_ + ": simulate: expected a circuit the sparse route integrates in double, found none at t = " + io::float_text(at) +
-                           " s: " + e.what() + " (time scales far below --step, or values beyond double's range; the dense route takes up to " +
-                           std::to_string(reference::pipeline::kForcedBranches) + " branches)");
+      throw io::InputError(
+          file_ + ": simulate: expected a circuit the sparse route integrates in double, found none at t = " +
+          io::float_text(at) + " s: " + e.what() +
+          " (time scales far below --step, or values beyond double's range; the dense route takes up to " +
+          std::to_string(reference::pipeline::kForcedBranches) + " branches)");
     }
     if (krylov_->error_estimate() > kSparseRefuse * max_norm_)
-      throw io::InputError(file_ + ": simulate: expected an error estimate below " + io::float_text(kSparseRefuse) + " of the state, found " +
-                           io::float_text(krylov_->error_estimate() / max_norm_) + " at t = " + io::float_text(at) +
-                           " s: the circuit is stiff against --step (eps*|A|*step per step); the dense route takes up to " +
-                           std::to_string(reference::pipeline::kForcedBranches) + " branches");
+      throw io::InputError(
+          file_ + ": simulate: expected an error estimate below " + io::float_text(kSparseRefuse) +
+          " of the state, found " + io::float_text(krylov_->error_estimate() / max_norm_) +
+          " at t = " + io::float_text(at) +
+          " s: the circuit is stiff against --step (eps*|A|*step per step); the dense route takes up to " +
+          std::to_string(reference::pipeline::kForcedBranches) + " branches");
     if (!y_.allFinite() || !q_.allFinite())
-      throw io::InputError(file_ + ": simulate: expected a finite state, found an overflow at t = " + io::float_text(at) +
-                           " s (a growing source or values beyond double's range)");
+      throw io::InputError(file_ + ": simulate: expected a finite state, found an overflow at t = " +
+                           io::float_text(at) + " s (a growing source or values beyond double's range)");
     at = stop;
   }
   t_ = std::max(t_, to);
@@ -363,8 +399,8 @@ double SparseFlow::error_estimate() const { return max_norm_ > 0 ? krylov_->erro
 long SparseFlow::products() const { return krylov_->products(); }
 long SparseFlow::substeps() const { return krylov_->substeps(); }
 
-Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log,
-                        std::ostream* energy) {
+Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out,
+                        std::ostream& log, std::ostream* energy) {
   require_times(opt);
   SparseFlow flow(deck, c.file, opt.initial, opt.step, opt.tstop, log);
   const sr::Network& circ = flow.network();
@@ -378,7 +414,8 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
     for (std::size_t i = 0; i < c.variables.size(); ++i) index[c.variables[i]] = i;
     for (const std::string& name : opt.columns) {
       const auto it = index.find(name);
-      if (it == index.end()) throw UsageError("--vars: expected variables of " + c.file + " (q_*, v_*, p_*), found " + name);
+      if (it == index.end())
+        throw UsageError("--vars: expected variables of " + c.file + " (q_*, v_*, p_*), found " + name);
       cols.push_back(it->second);
     }
   }
@@ -434,22 +471,28 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
       *energy << line << "\n";
     }
     if (k == steps)
-      log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t) << ") = " << io::float_text(en) << "; work of the forces "
-          << io::float_text(wr) << " (dissipated " << io::float_text(-wr) << "), of the sources " << io::float_text(wv)
-          << ", of the current sources " << io::float_text(wi) << " (trapezoid on the output rows); Tellegen's sum of u·i over the branches is "
-          << io::float_text(power_scale > 0 ? worst_balance / power_scale : 0.0) << " of the largest branch power at the rows\n";
+      log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t)
+          << ") = " << io::float_text(en) << "; work of the forces " << io::float_text(wr) << " (dissipated "
+          << io::float_text(-wr) << "), of the sources " << io::float_text(wv) << ", of the current sources "
+          << io::float_text(wi) << " (trapezoid on the output rows); Tellegen's sum of u·i over the branches is "
+          << io::float_text(power_scale > 0 ? worst_balance / power_scale : 0.0)
+          << " of the largest branch power at the rows\n";
   }
   if (flow.error_estimate() > kSparseWarn)
     log << "warning: the sparse route's error estimate is " << io::float_text(flow.error_estimate())
-        << " of the state: the circuit is stiff against --step (the Krylov matrix's rounding, eps*|A|*step, dominates); "
+        << " of the state: the circuit is stiff against --step (the Krylov matrix's rounding, eps*|A|*step, "
+           "dominates); "
            "small variables may be far off — compare with --route dense (up to "
         << reference::pipeline::kForcedBranches << " branches)\n";
   Summary s;
   s.rows = steps + 1;
   s.error_estimate = flow.error_estimate();
   s.worst_variable = "the state";
-  s.estimate_kind = "the Krylov integrator's local error estimates summed over the run (Expokit), relative to the largest norm of the state in "
-                    "energy units; " + std::to_string(flow.products()) + " operator products in " + std::to_string(flow.substeps()) + " substeps";
+  s.estimate_kind =
+      "the Krylov integrator's local error estimates summed over the run (Expokit), relative to the largest norm of "
+      "the state in "
+      "energy units; " +
+      std::to_string(flow.products()) + " operator products in " + std::to_string(flow.substeps()) + " substeps";
   return s;
 }
 

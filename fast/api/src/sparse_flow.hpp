@@ -30,7 +30,8 @@ class SparseFlow {
   /// From the deck's initial state (`initial`; its rule and every jump at t = 0 go to `log`).  `step` is
   /// the typical distance between evaluations (the error control's unit), `horizon` the last time asked.
   /// Bad input (outside the graph route, no unique operating point, an inconsistent circuit): InputError.
-  SparseFlow(const io::Netlist& deck, const std::string& file, Initial initial, double step, double horizon, std::ostream& log);
+  SparseFlow(const io::Netlist& deck, const std::string& file, Initial initial, double step, double horizon,
+             std::ostream& log);
   ~SparseFlow();
 
   /// Advances to `t` ≥ time(), cut at the sources' breakpoints.  InputError when the route cannot (stiff,

@@ -15,7 +15,8 @@
 namespace dcad::fast {
 
 Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& options);
-Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& options);
+Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts,
+                           const Options& options);
 
 namespace {
 
@@ -28,7 +29,8 @@ CircuitGraph graph_of(const io::Netlist& n, Options& opt) {
   CircuitGraph g;
   g.nodes = n.circuit.nodes;
   std::size_t next = 0;
-  for (const auto& b : n.circuit.branches) g.branches.push_back({b.kind, b.from, b.to, b.kind == BranchKind::empty ? 0.0 : v[next++]});
+  for (const auto& b : n.circuit.branches)
+    g.branches.push_back({b.kind, b.from, b.to, b.kind == BranchKind::empty ? 0.0 : v[next++]});
   return g;
 }
 
@@ -38,9 +40,10 @@ CircuitGraph graph_of(const io::Netlist& n, Options& opt) {
 double in_units(long double x, const char* what) {
   const double r = static_cast<double>(x);
   if (x != 0 && (r == 0 || !std::isfinite(r)))
-    throw std::invalid_argument(std::string("expected the circuit's ") + what +
-                                " within double's range for the fast backend, found one beyond it (the circuit's scales reach "
-                                "past 1e±308): the exact backends (--backend reference or certified) take any value");
+    throw std::invalid_argument(
+        std::string("expected the circuit's ") + what +
+        " within double's range for the fast backend, found one beyond it (the circuit's scales reach "
+        "past 1e±308): the exact backends (--backend reference or certified) take any value");
   return r;
 }
 
@@ -100,7 +103,8 @@ std::string extreme_elements(const io::Netlist& deck) {
     if (digits > 300 || digits < -300) return std::string("about 1e") + std::to_string(digits);
     return io::float_text(v.convert_to<double>());
   };
-  return " (the circuit's extremes: " + hi->name + " = " + shown(hi->value) + ", " + lo->name + " = " + shown(lo->value) + ")";
+  return " (the circuit's extremes: " + hi->name + " = " + shown(hi->value) + ", " + lo->name + " = " +
+         shown(lo->value) + ")";
 }
 }  // namespace
 
@@ -114,7 +118,8 @@ Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Part
   }
 }
 
-Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts, const Options& options) {
+Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts,
+                           const Options& options) {
   // the twin without units: double sees values near 1 whatever the circuit's units (fF … kH)
   const Units units = io::units_of(deck);
   const io::Netlist n = io::dimensionless(deck, units);
@@ -147,15 +152,18 @@ Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, c
     out.tower.push_back(level);
   }
   if (dense && parts.reduced) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
-    const CircuitMotion mo = circuit_motion(graph_of(n, opt), t, std::vector<int>(names.coordinates.begin(), names.coordinates.end()), opt);
+    const CircuitMotion mo =
+        circuit_motion(graph_of(n, opt), t, std::vector<int>(names.coordinates.begin(), names.coordinates.end()), opt);
     out.certified &= mo.certain;
     out.decisions.float_tests += static_cast<long>(mo.decisions.size());
     Motion<double> m;
     m.coordinates.assign(mo.coords.begin(), mo.coords.end());
-    const double tiny = 1e-13 * (1 + (mo.f_matrix.size() ? mo.f_matrix.cwiseAbs().maxCoeff() : 0.0));  // display: rounding-level as 0
+    const double tiny =
+        1e-13 * (1 + (mo.f_matrix.size() ? mo.f_matrix.cwiseAbs().maxCoeff() : 0.0));  // display: rounding-level as 0
     for (Eigen::Index i = 0; i < mo.f_matrix.rows(); ++i) {
       m.f_matrix.emplace_back();
-      for (Eigen::Index j = 0; j < mo.f_matrix.cols(); ++j) m.f_matrix.back().push_back(std::abs(mo.f_matrix(i, j)) <= tiny ? 0.0 : mo.f_matrix(i, j));
+      for (Eigen::Index j = 0; j < mo.f_matrix.cols(); ++j)
+        m.f_matrix.back().push_back(std::abs(mo.f_matrix(i, j)) <= tiny ? 0.0 : mo.f_matrix(i, j));
       m.f.push_back(0);  // no sources: f = 0
       m.g.emplace_back();
       for (Eigen::Index j = 0; j < mo.g.cols(); ++j) m.g.back().push_back(mo.g(i, j));
@@ -163,19 +171,21 @@ Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, c
     out.motion = m;
   }
   to_circuit_units(out, units, branches);
-  if (parts.reduced && reference::pipeline::graph_route_holds(deck.rlc)) out.state = reference::pipeline::deck_state_equations<double>(deck);
+  if (parts.reduced && reference::pipeline::graph_route_holds(deck.rlc))
+    out.state = reference::pipeline::deck_state_equations<double>(deck);
   out.decisions.float_tests += static_cast<long>(t.decisions.size());
   out.certified &= t.certain;
   std::string how = t.physical ? "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision)"
                                : "graph route (CEF §6 closed form in loop coordinates, signed values)";
-  how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" + std::to_string(units.b) + ", time unit 1e" +
-         std::to_string(units.m()) + " s)";
+  how += "; computed on the dimensionless twin (L / 1e" + std::to_string(units.a) + ", C / 1e" +
+         std::to_string(units.b) + ", time unit 1e" + std::to_string(units.m()) + " s)";
   if (!dense)
-    how += "; the motion in (q, v, p) omitted above " + std::to_string(kDenseBranches) + " branches (dense): the state equations hold it at any size";
+    how += "; the motion in (q, v, p) omitted above " + std::to_string(kDenseBranches) +
+           " branches (dense): the state equations hold it at any size";
   const std::string caveat = input_caveat(opt);
   out.note = how + (out.certified.yes() ? ""
-                    : !caveat.empty()    ? "; " + caveat
-                                         : "; a rank decision fell between the zero and nonzero thresholds");
+                    : !caveat.empty()   ? "; " + caveat
+                                        : "; a rank decision fell between the zero and nonzero thresholds");
   return out;
 }
 

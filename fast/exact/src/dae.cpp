@@ -148,7 +148,8 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
   out.decisions.float_tests = decisions;
   out.certified = certain;
   const std::string caveat = input_caveat(opt);
-  out.note = note + (caveat.empty() ? "" : "; " + caveat) + (certain.yes() ? "" : "; a rank decision was not certain (uncertain result)");
+  out.note = note + (caveat.empty() ? "" : "; " + caveat) +
+             (certain.yes() ? "" : "; a rank decision was not certain (uncertain result)");
   return out;
 }
 

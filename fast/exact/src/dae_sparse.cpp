@@ -49,7 +49,7 @@ namespace dcad::fast {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-using Row = std::vector<std::pair<int, double>>;  // (column, value), columns ascending
+using Row = std::vector<std::pair<int, double>>;          // (column, value), columns ascending
 using Combination = std::vector<std::pair<int, double>>;  // Σ z_i (row i): (row, z_i), rows distinct
 constexpr double eps = std::numeric_limits<double>::epsilon();
 /// What this route takes as zero relative to the data it came from (an entry of a null vector against
@@ -90,7 +90,8 @@ SpMat columns_of(const SpMat& m, const std::vector<int>& keep) {
   SpMat out(m.rows(), static_cast<Eigen::Index>(keep.size()));
   std::vector<Eigen::Triplet<double>> t;
   for (std::size_t k = 0; k < keep.size(); ++k)
-    for (SpMat::InnerIterator it(m, keep[k]); it; ++it) t.emplace_back(static_cast<int>(it.row()), static_cast<int>(k), it.value());
+    for (SpMat::InnerIterator it(m, keep[k]); it; ++it)
+      t.emplace_back(static_cast<int>(it.row()), static_cast<int>(k), it.value());
   out.setFromTriplets(t.begin(), t.end());
   out.makeCompressed();
   return out;
@@ -111,7 +112,8 @@ std::vector<int> diagonal_first(const SpMat& m) {
     int best = -1;
     double big = 0;
     for (SpMat::InnerIterator it(m, l); it; ++it)
-      if (row_at[static_cast<std::size_t>(it.row())] < 0 && std::abs(it.value()) > big) big = std::abs(it.value()), best = static_cast<int>(it.row());
+      if (row_at[static_cast<std::size_t>(it.row())] < 0 && std::abs(it.value()) > big)
+        big = std::abs(it.value()), best = static_cast<int>(it.row());
     if (best >= 0) row_at[static_cast<std::size_t>(best)] = next++;
   }
   for (int& r : row_at)
@@ -154,7 +156,8 @@ struct CleanQr {
         if (qr.rank() == static_cast<Eigen::Index>(alive.size())) break;
         const auto& idx = qr.colsPermutation().indices();  // (A P).col(p) = A.col(indices(p))
         std::vector<char> dead(alive.size(), 0);
-        for (Eigen::Index p = qr.rank(); p < static_cast<Eigen::Index>(alive.size()); ++p) dead[static_cast<std::size_t>(idx(p))] = 1;
+        for (Eigen::Index p = qr.rank(); p < static_cast<Eigen::Index>(alive.size()); ++p)
+          dead[static_cast<std::size_t>(idx(p))] = 1;
         std::vector<int> next;
         for (std::size_t j = 0; j < alive.size(); ++j) (dead[j] ? removed : next).push_back(alive[j]);
         alive = std::move(next);
@@ -188,8 +191,10 @@ struct CleanQr {
 template <class Ordering>
 void record(const CleanQr<Ordering>& c, double tau, double largest, Evidence& ev) {
   ev.decisions += c.factorizations;
-  if (!c.kept.empty()) ev.kept(c.smallest_pivot, largest, tau);
-  else ev.threshold = std::max(ev.threshold, tau / largest);
+  if (!c.kept.empty())
+    ev.kept(c.smallest_pivot, largest, tau);
+  else
+    ev.threshold = std::max(ev.threshold, tau / largest);
   ev.largest_dropped = std::max(ev.largest_dropped, c.largest_dropped / largest);
 }
 
@@ -217,7 +222,8 @@ std::vector<double> equilibrate(SpMat& s) {
     for (double& c : col) c = factor(c);
     if (balanced) break;
     for (int j = 0; j < s.outerSize(); ++j)
-      for (SpMat::InnerIterator it(s, j); it; ++it) it.valueRef() *= row[static_cast<std::size_t>(it.row())] * col[static_cast<std::size_t>(j)];
+      for (SpMat::InnerIterator it(s, j); it; ++it)
+        it.valueRef() *= row[static_cast<std::size_t>(it.row())] * col[static_cast<std::size_t>(j)];
     for (std::size_t i = 0; i < row.size(); ++i) scale_r[i] *= row[i];
   }
   return scale_r;
@@ -233,14 +239,16 @@ std::vector<double> equilibrate(SpMat& s) {
 /// constraint row, as E's null vectors give where E has no diagonal, never enters a sparse QR).
 class EFactor {
  public:
-  EFactor(const SpMat& e, const std::vector<double>& col_scale, Evidence& ev) : m_(static_cast<int>(e.rows())), col_scale_(col_scale) {
+  EFactor(const SpMat& e, const std::vector<double>& col_scale, Evidence& ev)
+      : m_(static_cast<int>(e.rows())), col_scale_(col_scale) {
     const int n = static_cast<int>(e.cols());
     std::vector<int> at(static_cast<std::size_t>(m_), -1);
     std::vector<double> largest_in_row(static_cast<std::size_t>(m_), 0.0);
     for (int j = 0; j < e.outerSize(); ++j)
       for (SpMat::InnerIterator it(e, j); it; ++it)
         largest_in_row[static_cast<std::size_t>(it.row())] =
-            std::max(largest_in_row[static_cast<std::size_t>(it.row())], std::abs(it.value()) * col_scale[static_cast<std::size_t>(j)]);
+            std::max(largest_in_row[static_cast<std::size_t>(it.row())],
+                     std::abs(it.value()) * col_scale[static_cast<std::size_t>(j)]);
     for (int i = 0; i < m_; ++i)
       if (largest_in_row[static_cast<std::size_t>(i)] > 0) {
         at[static_cast<std::size_t>(i)] = static_cast<int>(live_.size());
@@ -284,7 +292,7 @@ class EFactor {
   }
 
   std::vector<Combination> null_of_e;  ///< z with zᵀ E = 0
-  long rank = 0;                           ///< rank E
+  long rank = 0;                       ///< rank E
 
   /// The z_E of a basis of S_k's left null vectors beyond E's own; `extra` = rank S_k − rank E.
   /// The part outside E's row space is factored densely (an SVD) where it is small or dense, by a sparse
@@ -300,7 +308,8 @@ class EFactor {
       std::vector<std::pair<int, double>> at;
       double norm2 = 0;
       for (const auto& [j, x] : r) {
-        at.emplace_back(row_at_.empty() ? j : row_at_[static_cast<std::size_t>(j)], x * col_scale_[static_cast<std::size_t>(j)]);
+        at.emplace_back(row_at_.empty() ? j : row_at_[static_cast<std::size_t>(j)],
+                        x * col_scale_[static_cast<std::size_t>(j)]);
         norm2 += at.back().second * at.back().second;
       }
       std::sort(at.begin(), at.end());
@@ -310,12 +319,15 @@ class EFactor {
     }
     const Eigen::Index below = n - rank;
     std::vector<Eigen::Triplet<double>> t;  // the part of each y outside E's row space
-    Eigen::VectorXd yi(n), q(n);  // reused across the constraints
+    Eigen::VectorXd yi(n), q(n);            // reused across the constraints
     for (Eigen::Index i = 0; i < k; ++i) {
       yi.setZero();
-      for (Eigen::SparseVector<double>::InnerIterator it(y[static_cast<std::size_t>(i)]); it; ++it) yi(it.index()) = it.value();
-      if (qr_) q.noalias() = qr_->qr.matrixQ().transpose() * yi;
-      else q = yi;
+      for (Eigen::SparseVector<double>::InnerIterator it(y[static_cast<std::size_t>(i)]); it; ++it)
+        yi(it.index()) = it.value();
+      if (qr_)
+        q.noalias() = qr_->qr.matrixQ().transpose() * yi;
+      else
+        q = yi;
       for (Eigen::Index r = 0; r < below; ++r)
         if (q(rank + r) != 0) t.emplace_back(static_cast<int>(r), static_cast<int>(i), q(rank + r));
     }
@@ -326,7 +338,9 @@ class EFactor {
       for (Eigen::Index i = 0; i < k; ++i) out.push_back(z_of(y, {{static_cast<int>(i), 1.0}}));
       return out;
     }
-    if (sparse_qr_from == 0 || (k >= sparse_qr_from && static_cast<double>(t.size()) <= 0.05 * static_cast<double>(below) * static_cast<double>(k))) {
+    if (sparse_qr_from == 0 ||
+        (k >= sparse_qr_from &&
+         static_cast<double>(t.size()) <= 0.05 * static_cast<double>(below) * static_cast<double>(k))) {
       SpMat outside(below, k);
       outside.setFromTriplets(t.begin(), t.end());
       outside.makeCompressed();
@@ -345,7 +359,8 @@ class EFactor {
           const Eigen::VectorXd x = clean.qr.solve(Eigen::VectorXd(outside.col(j)));
           const double top = x.size() ? x.cwiseAbs().maxCoeff() : 0;
           for (std::size_t l = 0; l < clean.kept.size(); ++l)
-            if (std::abs(x(static_cast<Eigen::Index>(l))) > kRelative * top) u.emplace_back(clean.kept[l], -x(static_cast<Eigen::Index>(l)));
+            if (std::abs(x(static_cast<Eigen::Index>(l))) > kRelative * top)
+              u.emplace_back(clean.kept[l], -x(static_cast<Eigen::Index>(l)));
         }
         out.push_back(z_of(y, u));
       }
@@ -377,7 +392,8 @@ class EFactor {
     if (!qr_) return z;
     Eigen::VectorXd sum = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(col_scale_.size()));
     for (const auto& [i, ui] : u)
-      for (Eigen::SparseVector<double>::InnerIterator it(y[static_cast<std::size_t>(i)]); it; ++it) sum(it.index()) += ui * it.value();
+      for (Eigen::SparseVector<double>::InnerIterator it(y[static_cast<std::size_t>(i)]); it; ++it)
+        sum(it.index()) += ui * it.value();
     add_kept(z, -Eigen::VectorXd(qr_->qr.solve(sum)));
     return z;
   }
@@ -406,19 +422,22 @@ class EFactor {
 /// pivoted QR of [kept; candidates]ᵀ in its natural order: a row whose remainder falls below the
 /// threshold is dependent).  Each row is scaled by the size of what produced it (`sizes`: Σ |z_i| ‖A_i‖,
 /// so a row that cancelled to rounding residue stays small and is dropped).
-std::vector<std::size_t> independent(const std::vector<Row>& kept, const std::vector<Row>& candidates, const std::vector<double>& sizes,
-                                     const std::vector<double>& col_scale, Evidence& ev) {
+std::vector<std::size_t> independent(const std::vector<Row>& kept, const std::vector<Row>& candidates,
+                                     const std::vector<double>& sizes, const std::vector<double>& col_scale,
+                                     Evidence& ev) {
   const int n = static_cast<int>(col_scale.size());
   const std::size_t c = kept.size() + candidates.size();
   std::vector<Eigen::Triplet<double>> t;
   // in the variables' units (col_scale: from the data, never from these rows, whose entries at rounding
   // level must stay small)
   const auto add = [&](const Row& r, std::size_t j, double size) {
-    for (const auto& [i, x] : r) t.emplace_back(i, static_cast<int>(j), x * col_scale[static_cast<std::size_t>(i)] / size);
+    for (const auto& [i, x] : r)
+      t.emplace_back(i, static_cast<int>(j), x * col_scale[static_cast<std::size_t>(i)] / size);
   };
   for (std::size_t j = 0; j < kept.size(); ++j) {
     double size = 0;
-    for (const auto& e : kept[j]) size = std::max(size, std::abs(e.second * col_scale[static_cast<std::size_t>(e.first)]));
+    for (const auto& e : kept[j])
+      size = std::max(size, std::abs(e.second * col_scale[static_cast<std::size_t>(e.first)]));
     add(kept[j], j, size);
   }
   // a candidate by the size of what it combines (Σ |z_i| ‖A_i‖): a row that is mostly cancellation
@@ -462,7 +481,8 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   // E and A in double, from the entries (or from the dense matrices of a case built in code)
   std::vector<Eigen::Triplet<double>> te, ta;
   std::vector<double> values;
-  const auto convert = [&](const std::vector<io::DaeCase::Entry>& entries, const io::QMatrix& dense, std::vector<Eigen::Triplet<double>>& t) {
+  const auto convert = [&](const std::vector<io::DaeCase::Entry>& entries, const io::QMatrix& dense,
+                           std::vector<Eigen::Triplet<double>>& t) {
     if (!entries.empty() || !c.dense) {
       for (const auto& e : entries) {
         t.emplace_back(static_cast<int>(e.row), static_cast<int>(e.col), to_double(e.value, opt));
@@ -501,19 +521,22 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   std::vector<double> a_row_size(static_cast<std::size_t>(m), 0.0);  // ‖A_i‖_∞ in the variables' units
   for (int j = 0; j < a.outerSize(); ++j)
     for (SpMat::InnerIterator it(a, j); it; ++it)
-      a_row_size[static_cast<std::size_t>(it.row())] = std::max(a_row_size[static_cast<std::size_t>(it.row())], std::abs(it.value()) * col_scale[static_cast<std::size_t>(j)]);
+      a_row_size[static_cast<std::size_t>(it.row())] =
+          std::max(a_row_size[static_cast<std::size_t>(it.row())],
+                   std::abs(it.value()) * col_scale[static_cast<std::size_t>(j)]);
 
   Evidence ev;
-  std::vector<Row> constraints;          // C_k, independent rows
+  std::vector<Row> constraints;  // C_k, independent rows
   std::vector<long> dims{n};
-  std::vector<std::vector<Row>> cut;     // the rows each step added
-  long last_rank = 0;                    // rank [E; C_c]
+  std::vector<std::vector<Row>> cut;  // the rows each step added
+  long last_rank = 0;                 // rank [E; C_c]
   const EFactor ef(e, col_scale, ev);
   Eigen::VectorXd acc = Eigen::VectorXd::Zero(n);
   std::vector<char> hit(static_cast<std::size_t>(n), 0);
   for (int step = 0; step <= n; ++step) {
     long extra = 0;
-    const std::vector<Combination> zs = step == 0 ? ef.null_of_e : ef.with(constraints, extra, ev, opt_in.dae_sparse_qr_from);
+    const std::vector<Combination> zs =
+        step == 0 ? ef.null_of_e : ef.with(constraints, extra, ev, opt_in.dae_sparse_qr_from);
     last_rank = ef.rank + extra;
     std::vector<Row> candidates;
     std::vector<double> sizes;
@@ -522,11 +545,12 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
       long terms = 0;
       for (const auto& [i, zi] : ze)
         if (zi != 0) size += std::abs(zi) * a_row_size[static_cast<std::size_t>(i)], ++terms;
-      if (size == 0) continue;  // a combination of the constraints alone: nothing new
+      if (size == 0) continue;   // a combination of the constraints alone: nothing new
       std::vector<int> touched;  // Σ z_i A_i, on the columns it touches (acc is all zero between rows)
       for (const auto& [i, zi] : ze)
         for (SpMat::InnerIterator it(at, i); it; ++it) {
-          if (!hit[static_cast<std::size_t>(it.row())]) hit[static_cast<std::size_t>(it.row())] = 1, touched.push_back(static_cast<int>(it.row()));
+          if (!hit[static_cast<std::size_t>(it.row())])
+            hit[static_cast<std::size_t>(it.row())] = 1, touched.push_back(static_cast<int>(it.row()));
           acc(it.row()) += zi * it.value();
         }
       std::sort(touched.begin(), touched.end());
@@ -539,7 +563,8 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
       candidates.push_back(std::move(r));
       sizes.push_back(size);
     }
-    const std::vector<std::size_t> fresh = candidates.empty() ? std::vector<std::size_t>{} : independent(constraints, candidates, sizes, col_scale, ev);
+    const std::vector<std::size_t> fresh =
+        candidates.empty() ? std::vector<std::size_t>{} : independent(constraints, candidates, sizes, col_scale, ev);
     if (fresh.empty()) break;
     std::vector<Row> added;
     for (std::size_t k : fresh) added.push_back(candidates[k]);
@@ -573,17 +598,22 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   std::ostringstream note;
   note << "sparse route: the constraints' rows C_{k+1} = [C_k; Z^T A], Z the left null space of [E; C_k] by sparse QR "
           "(fast/exact/src/dae_sparse.cpp); rank decisions by a threshold on the remainders (the smallest pivot kept "
-       << ev.smallest_pivot << ", the largest remainder taken as zero " << ev.largest_dropped << ", the threshold " << ev.threshold
-       << ", relative to their matrices), which bounds no singular value: not certified";
+       << ev.smallest_pivot << ", the largest remainder taken as zero " << ev.largest_dropped << ", the threshold "
+       << ev.threshold << ", relative to their matrices), which bounds no singular value: not certified";
   if (ev.smallest_pivot < 1e3 * ev.threshold || ev.largest_dropped > 1e-3 * ev.threshold)
     note << " (and a decision fell within a factor 1000 of the threshold: graded data this route may misjudge)";
   const bool regular = out.regular_pencil && *out.regular_pencil;
   if (has_f && !regular) {  // conditions on the sources: the exact route decides them, where it runs
     if (!c.dense)
-      throw std::invalid_argument(std::string(m == n ? "a pencil this route does not find regular (singular, or a threshold decision on graded data: it is not certified either way)"
-                                                     : "a rectangular pencil") +
-                                  " with sources at this size: the conditions on the sources are decided by the exact route, which takes at most " +
-                                  std::to_string(io::DaeCase::dense_limit) + " entries of E (m·N = " + std::to_string(static_cast<long>(m) * n) + ") and " + std::to_string(io::DaeCase::dense_side) + " rows or columns");
+      throw std::invalid_argument(std::string(m == n
+                                                  ? "a pencil this route does not find regular (singular, or a "
+                                                    "threshold decision on graded data: it is not certified either way)"
+                                                  : "a rectangular pencil") +
+                                  " with sources at this size: the conditions on the sources are decided by the exact "
+                                  "route, which takes at most " +
+                                  std::to_string(io::DaeCase::dense_limit) +
+                                  " entries of E (m·N = " + std::to_string(static_cast<long>(m) * n) + ") and " +
+                                  std::to_string(io::DaeCase::dense_side) + " rows or columns");
     exact_source_conditions(c, out);  // not certified either way
     note << "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";
   }

@@ -22,15 +22,18 @@ io::Rational height(const io::Rational& x) {
   return io::Rational(std::max(odd_part(numerator(x)), odd_part(denominator(x))));
 }
 
-double resolution(const io::Rational& x) { return x == 0 ? 0.0 : io::Rational(abs(x) / height(x)).convert_to<double>(); }
+double resolution(const io::Rational& x) {
+  return x == 0 ? 0.0 : io::Rational(abs(x) / height(x)).convert_to<double>();
+}
 
 double to_double(const io::Rational& x, Options& opt) {
   opt.input_assessed = true;  // this conversion is the assessment (of the exact values)
   const double d = x.convert_to<double>();
   if (!std::isfinite(d) || (d == 0 && x != 0))
-    throw std::invalid_argument("expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +
-                                std::string(x > 0 ? "" : "-") + (d == 0 ? "a nonzero value below it" : "a value above it") +
-                                "; the exact backends (--backend reference or certified) take any rational");
+    throw std::invalid_argument(
+        "expected numbers within double's range for the fast backend (1e-323 ... 1.8e308 in magnitude), found " +
+        std::string(x > 0 ? "" : "-") + (d == 0 ? "a nonzero value below it" : "a value above it") +
+        "; the exact backends (--backend reference or certified) take any rational");
   // a value of large height spans more digits than a decision can tell apart (3 + 3·2^-50, a double, beside
   // −3 cancels to 2^-50 relative), as fast::assess_input reads one entry; rounded, it also lost them
   if (height(x) * io::Rational(opt.nonzero_factor) > 1) {
@@ -74,7 +77,9 @@ Eigen::VectorXd to_double(const std::vector<io::Rational>& v, Options& opt) {
 std::string input_caveat(const Options& opt) {
   const std::string bound = std::to_string(std::lround(1 / opt.nonzero_factor));
   std::string s;
-  if (!opt.input_exact) s = "a value that double rounds has height above " + bound + " (the digits rounding drops may be what a decision turns on)";
+  if (!opt.input_exact)
+    s = "a value that double rounds has height above " + bound +
+        " (the digits rounding drops may be what a decision turns on)";
   if (!opt.input_well_scaled)
     s += (s.empty() ? "" : "; ") + std::string("the input's magnitudes and digits span more than ") + bound +
          " (graded values, or a value of more digits, such as 1 + 2^-40)";
@@ -93,7 +98,13 @@ DiracStructure to_fast(const io::DiracInput& in, Options& opt) {
 }
 
 PontryaginInput to_fast(const io::PontryaginInput& p, Options& opt) {
-  return {p.n, to_double(p.k, opt), to_double(p.vv, opt), to_double(p.qv, opt), to_double(p.qq, opt), to_double(p.q, opt), to_double(p.v, opt)};
+  return {p.n,
+          to_double(p.k, opt),
+          to_double(p.vv, opt),
+          to_double(p.qv, opt),
+          to_double(p.qq, opt),
+          to_double(p.q, opt),
+          to_double(p.v, opt)};
 }
 
 }  // namespace dcad::fast

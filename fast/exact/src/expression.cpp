@@ -21,11 +21,13 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
     Options opt = options;
     ToleranceDecisions decide;
     reference::PointwiseResult<double> r;
-    for (int seed = 0; seed < pl::kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
+    for (int seed = 0; seed < pl::kStartSeeds;
+         ++seed) {  // a default point that is singular is not the generic answer: another one
       const std::vector<reference::Rational> start = pl::start_point(c, fixed, seed);
       std::vector<double> x;
       for (const reference::Rational& q : start) x.push_back(to_double(q, opt));
-      decide.probe = opt.probe;  // one decision object over the attempts: an uncertain one before a retry stays on record
+      decide.probe =
+          opt.probe;  // one decision object over the attempts: an uncertain one before a retry stays on record
       try {
         r = pointwise_cad(c.system, x, fixed, decide);
       } catch (const reference::PointwiseNoPoint&) {
@@ -35,7 +37,8 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
         if (z.empty()) throw;
         try {
           r = pointwise_cad(c.system, z, fixed, decide);
-        } catch (const reference::PointwiseNoPoint&) {  // its Newton still does not settle: every value held (z is on M_c to rounding)
+        } catch (const reference::PointwiseNoPoint&) {  // its Newton still does not settle: every value held (z is on
+                                                        // M_c to rounding)
           r = pointwise_cad(c.system, z, std::vector<bool>(z.size(), true), decide);
         }
       }
@@ -53,8 +56,10 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
     // a point that rounding moved (a value of large height) may sit off the locus the exact point is on
     const Truth point = opt.input_exact ? yes : unknown;
     out.certified = decide.certain & (r.regular ? yes : unknown) & point;
-    if (decide.certain.unknown()) out.note = "not certified: " + decide.evidence;
-    else if (point.unknown()) out.note = "not certified: the point was rounded to double (" + input_caveat(opt) + ")";
+    if (decide.certain.unknown())
+      out.note = "not certified: " + decide.evidence;
+    else if (point.unknown())
+      out.note = "not certified: the point was rounded to double (" + input_caveat(opt) + ")";
     return out;
   });
 }
@@ -110,8 +115,10 @@ Solution solve_implicit(const io::LagrangianCase& c, const Options& options) {
     out.backend = "fast";
     const Truth point = opt.input_exact ? yes : unknown;
     out.certified = r.certain & point;
-    if (!r.certain.yes()) out.note = "not certified: " + r.evidence;
-    else if (point.unknown()) out.note = "not certified: the case's numbers were rounded to double (" + input_caveat(opt) + ")";
+    if (!r.certain.yes())
+      out.note = "not certified: " + r.evidence;
+    else if (point.unknown())
+      out.note = "not certified: the case's numbers were rounded to double (" + input_caveat(opt) + ")";
     if (!r.certain.yes() || point.unknown()) out.certified = unknown;
     return out;
   });

@@ -33,7 +33,8 @@ MatrixXd rounded(const reference::Matrix<Q>& m) {
 Options circuit_options(const reference::RlcCircuit<Q>& c, const Options& options) {
   std::vector<Q> values;
   for (const auto& b : c.branches)
-    if (b.kind == reference::RlcKind::inductor || b.kind == reference::RlcKind::capacitor || b.kind == reference::RlcKind::resistor)
+    if (b.kind == reference::RlcKind::inductor || b.kind == reference::RlcKind::capacitor ||
+        b.kind == reference::RlcKind::resistor)
       values.push_back(b.value);
   for (const auto& mu : c.mutuals) values.push_back(mu.m);
   Options opt = options;
@@ -71,25 +72,30 @@ Solution forced_tower_of(const reference::ForcedSystem<Q>& f, const Options& opt
   if (r.certain.unknown() && caveat.empty())
     for (std::size_t i = 0; i < r.decisions.size(); ++i)
       if (r.decisions[i].certain.unknown()) {
-        s.note += "; rank decision " + std::to_string(i + 1) + " of " + std::to_string(r.decisions.size()) + " was uncertain (" +
-                  r.decisions[i].describe() + "): use --backend certified";
+        s.note += "; rank decision " + std::to_string(i + 1) + " of " + std::to_string(r.decisions.size()) +
+                  " was uncertain (" + r.decisions[i].describe() + "): use --backend certified";
         break;
       }
   if (r.conditions.rows())
-    s.note += "; " + std::to_string(r.conditions.rows()) +
-              " source condition(s) that the fast backend does not decide against the waveforms: use --backend certified";
+    s.note +=
+        "; " + std::to_string(r.conditions.rows()) +
+        " source condition(s) that the fast backend does not decide against the waveforms: use --backend certified";
   return s;
 }
 
 }  // namespace
 
-Solution solve_forced_netlist(const io::Netlist& deck, const std::vector<std::string>& variables, const Options& options) {
+Solution solve_forced_netlist(const io::Netlist& deck, const std::vector<std::string>& variables,
+                              const Options& options) {
   if (reference::pipeline::graph_route_holds(deck.rlc))  // any size, deciding nothing: certified by construction
     return reference::pipeline::graph_solution<double>(
-        deck, variables, "forced graph route (cycle ranks of subgraphs: C, R > 0 and a positive definite inductance matrix decide nothing), certified by construction");
+        deck, variables,
+        "forced graph route (cycle ranks of subgraphs: C, R > 0 and a positive definite inductance matrix decide "
+        "nothing), certified by construction");
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
     throw io::InputError(deck.file + ": expected at most " + std::to_string(reference::pipeline::kForcedBranches) +
-                         " branches for a circuit with a non-positive R or C or an inductance matrix that is not positive definite (k = 1, negative L), found " +
+                         " branches for a circuit with a non-positive R or C or an inductance matrix that is not "
+                         "positive definite (k = 1, negative L), found " +
                          std::to_string(deck.rlc.branches.size()) +
                          " (the fast route for those is dense; the others take the graph route at any size)");
   const io::Netlist twin = io::dimensionless(deck, io::units_of(deck));  // the dimensionless twin: same tower

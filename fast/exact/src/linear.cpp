@@ -24,10 +24,13 @@ LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_unc
   if (c.has_constrained) {
     const MatrixXd w = to_double(c.constrained.w, opt), prim = to_double(c.constrained.primary, opt);
     const Truth symplectic = is_symplectic(w, opt);  // degenerate: bad input; undecided: the result says so
-    if (symplectic.no()) throw std::invalid_argument("solve: expected a nondegenerate form, found " + decide_rank(w, -1, opt).describe());
+    if (symplectic.no())
+      throw std::invalid_argument("solve: expected a nondegenerate form, found " + decide_rank(w, -1, opt).describe());
     if (symplectic.unknown())
-      why_uncertain = "whether the symplectic form is nondegenerate is uncertain (" + decide_rank(w, -1, opt).describe() + ")";
-    LinearSystem s = gotay_nester_system({w, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), prim}, opt);
+      why_uncertain =
+          "whether the symplectic form is nondegenerate is uncertain (" + decide_rank(w, -1, opt).describe() + ")";
+    LinearSystem s =
+        gotay_nester_system({w, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), prim}, opt);
     s.constant = energy_constant(c);
     return s;
   }
@@ -49,8 +52,8 @@ Equation<double> display_row(const MatrixXd& rows, Eigen::Index i) {
 }
 
 /// Theorem 3.28 on (W, [primary; secondary; leaf]).
-Adapted<double> adapted_of(const MatrixXd& w, const MatrixXd& prim, const MatrixXd& secondary, const MatrixXd& leaf, const Options& opt,
-                           Truth& certain) {
+Adapted<double> adapted_of(const MatrixXd& w, const MatrixXd& prim, const MatrixXd& secondary, const MatrixXd& leaf,
+                           const Options& opt, Truth& certain) {
   const AdaptedToPrimary to = adapted_to_primary(w, prim, secondary, leaf, opt);
   const AdaptedConstraints& ad = to.adapted;
   certain &= ad.certain;
@@ -58,7 +61,8 @@ Adapted<double> adapted_of(const MatrixXd& w, const MatrixXd& prim, const Matrix
   out.s_prime = ad.s_prime;
   for (int i : ad.chi) out.chi.push_back(display_row(to.constraints, i));
   for (int k : ad.abridged) out.abridged.push_back(display_row(to.constraints, k));
-  out.secondary_first_class = static_cast<long>(to.constraints.rows()) - 2 * ad.s - static_cast<long>(ad.abridged.size());
+  out.secondary_first_class =
+      static_cast<long>(to.constraints.rows()) - 2 * ad.s - static_cast<long>(ad.abridged.size());
   return out;
 }
 
@@ -112,8 +116,8 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
     out.classes = k;
   }
   if (c.has_constrained && r.consistent && parts.adapted && invertible) {  // Theorem 3.28 on N
-    Adapted<double> a = adapted_of(to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_constraints(r), MatrixXd(0, c.n + 1), opt,
-                                   out.certified);
+    Adapted<double> a = adapted_of(to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_constraints(r),
+                                   MatrixXd(0, c.n + 1), opt, out.certified);
     a.setting = "N";
     a.variables = c.variables;
     out.adapted = a;
@@ -132,7 +136,8 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
     }
   }
   if (r.consistent && parts.reduced) {
-    const ReducedEquations red = reduced_equations(s, r, std::vector<int>(c.coordinates.begin(), c.coordinates.end()), opt);
+    const ReducedEquations red =
+        reduced_equations(s, r, std::vector<int>(c.coordinates.begin(), c.coordinates.end()), opt);
     out.certified &= red.certain;
     Motion<double> m;
     m.coordinates.assign(red.coords.begin(), red.coords.end());
@@ -147,7 +152,8 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
   }
   if (!why_uncertain.empty()) {
     out.certified = unknown;
-    if (c.has_constrained && (parts.classes || parts.adapted)) why_uncertain += "; constraint classes and adapted constraints not computed";
+    if (c.has_constrained && (parts.classes || parts.adapted))
+      why_uncertain += "; constraint classes and adapted constraints not computed";
   }
   const std::string caveat = input_caveat(opt);
   if (out.certified.unknown())

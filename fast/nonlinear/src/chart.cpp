@@ -122,7 +122,8 @@ std::size_t nodes(const Expr& e) {
   return seen.size();
 }
 
-Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Values& val, std::vector<Expr>& vanishing) {
+Elimination eliminate(std::vector<std::vector<Expr>> r, std::vector<Expr> h, Values& val,
+                      std::vector<Expr>& vanishing) {
   Elimination e;
   const std::size_t rows = r.size(), cols = rows ? r[0].size() : 0;
   std::vector<double> scale(rows, 0);
@@ -327,7 +328,8 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
     if (level > 2 * n + 2) throw ChartFailure("the tower did not end within 2n + 2 steps");
     // a bound on the work (the formulas of a deep tower can grow fast): no formulas rather than no answer
     if (d.size() > kMaxDerivatives)
-      throw ChartFailure("the formulas grow beyond " + std::to_string(kMaxDerivatives) + " derivative nodes by M_" + std::to_string(level));
+      throw ChartFailure("the formulas grow beyond " + std::to_string(kMaxDerivatives) + " derivative nodes by M_" +
+                         std::to_string(level));
     std::vector<std::vector<Expr>> r = dyn_r;
     std::vector<Expr> h = dyn_h;
     std::vector<std::string> rows;
@@ -343,9 +345,11 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
       if (off(e.h[i])) offs.push_back(e.h[i]);
     if (!offs.empty()) throw not_on(offs, "the point is not on M_" + std::to_string(level + 1));
     for (std::size_t i : e.left)
-      if (indep.add(gradient(e.h[i]))) found.push_back(e.h[i]);
-      else if (!ex::is_number(e.h[i])) ch.vanishing.push_back(e.h[i]);  // implied by the constraints so far
-    if (found.empty()) {  // M_c = M_k: back substitution, free unknowns 0
+      if (indep.add(gradient(e.h[i])))
+        found.push_back(e.h[i]);
+      else if (!ex::is_number(e.h[i]))
+        ch.vanishing.push_back(e.h[i]);  // implied by the constraints so far
+    if (found.empty()) {                 // M_c = M_k: back substitution, free unknowns 0
       std::vector<Expr> u(w, ex::number(0));
       std::vector<char> pivoted(w, 0);
       for (const auto& pc : e.pivots) pivoted[pc.second] = 1;
@@ -362,7 +366,9 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
         if (!pivoted[i]) ch.free.push_back(s.v(i));
       }
       for (const auto& [p, c] : e.pivots)
-        ch.valid_where.push_back({"pivot of the system on M_c: row " + rows[p] + ", column " + (c < n ? "d/dt v_" + s.names[c] : "lambda_" + std::to_string(c - n + 1)), e.r[p][c]});
+        ch.valid_where.push_back({"pivot of the system on M_c: row " + rows[p] + ", column " +
+                                      (c < n ? "d/dt v_" + s.names[c] : "lambda_" + std::to_string(c - n + 1)),
+                                  e.r[p][c]});
       break;
     }
     for (const auto& [p, c] : e.pivots)  // the new constraints divide by these
@@ -396,12 +402,14 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
   }
   ch.momenta = der.dl_dv;
   // a pivot that is a nonzero number holds everywhere: not a condition
-  ch.valid_where.erase(std::remove_if(ch.valid_where.begin(), ch.valid_where.end(), [](const Chart::Condition& c) { return ex::is_number(c.formula); }),
+  ch.valid_where.erase(std::remove_if(ch.valid_where.begin(), ch.valid_where.end(),
+                                      [](const Chart::Condition& c) { return ex::is_number(c.formula); }),
                        ch.valid_where.end());
   return ch;
 }
 
-Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims, const std::vector<double>* velocity) {
+Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
+                 const std::vector<double>* velocity) {
   const auto dims_text = [](const std::vector<long>& d) {
     std::string t;
     for (long x : d) t += (t.empty() ? "" : " ") + std::to_string(x);
@@ -433,14 +441,15 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
       for (std::size_t i = 0; i < 2 * s.n; ++i) scale = std::max(scale, std::abs((*velocity)[i]));
       for (std::size_t i = 0; i < 2 * s.n; ++i) worst = std::max(worst, std::abs(u[i] - (*velocity)[i]));
       if (!(worst <= 1e-7 * scale)) {
-        why = "the chart's equations disagree with the pointwise CAD at the given point (by " + std::to_string(worst / scale) + " relative)";
+        why = "the chart's equations disagree with the pointwise CAD at the given point (by " +
+              std::to_string(worst / scale) + " relative)";
         return false;
       }
     }
     std::size_t weakest = 0;
     if (f.margin(y, near.back(), &weakest) < 1e-6) {
-      why = "the condition " + ex::to_text(c.valid_where[weakest].formula, s.variable_names()) + " != 0 (" + c.valid_where[weakest].what +
-            ") fails at the given point";
+      why = "the condition " + ex::to_text(c.valid_where[weakest].formula, s.variable_names()) + " != 0 (" +
+            c.valid_where[weakest].what + ") fails at the given point";
       return false;
     }
     return true;
@@ -491,8 +500,8 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
   throw ChartFailure("no generic point of M_c was reached near the given one: " + why);
 }
 
-bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::vector<Expr>>& gradients, std::vector<double>& y, double t, double tol,
-                  const std::vector<bool>* held) {
+bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::vector<Expr>>& gradients,
+                  std::vector<double>& y, double t, double tol, const std::vector<bool>* held) {
   std::vector<Expr> g;
   for (const auto& row : gradients) g.insert(g.end(), row.begin(), row.end());
   const Tape phi_tape(constraints), jac_tape(g);
@@ -522,14 +531,16 @@ bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::v
     for (std::size_t i = 0; i < k; ++i)
       for (std::size_t j = 0; j < w; ++j) J(i, j) = held && j < held->size() && (*held)[j] ? 0.0 : jac[i * w + j];
     const Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(phi.data(), static_cast<long>(k));
-    const Eigen::VectorXd dy = J.completeOrthogonalDecomposition().solve(r);  // least norm (held columns 0: they do not move)
+    const Eigen::VectorXd dy =
+        J.completeOrthogonalDecomposition().solve(r);  // least norm (held columns 0: they do not move)
     if (!dy.allFinite()) return false;
     for (std::size_t j = 0; j < w; ++j) y[j] -= dy[static_cast<long>(j)];
   }
   return false;
 }
 
-std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start, const std::vector<bool>& held) {
+std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start,
+                                      const std::vector<bool>& held) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   for (double size : {0.1, 0.01, 0.3}) {
@@ -573,8 +584,13 @@ std::vector<Expr> formulas(const std::vector<Chart::Condition>& v) {
 }  // namespace
 
 ChartField::ChartField(const Chart& c)
-    : n_(c.rates.size() / 2), rates_(c.rates), constraints_(c.constraints), jacobian_(flat(c.gradients)), momenta_(c.momenta),
-      valid_(formulas(c.valid_where)), k_(c.constraints.size()) {
+    : n_(c.rates.size() / 2),
+      rates_(c.rates),
+      constraints_(c.constraints),
+      jacobian_(flat(c.gradients)),
+      momenta_(c.momenta),
+      valid_(formulas(c.valid_where)),
+      k_(c.constraints.size()) {
   buf_.resize(2 * n_ + 1);
   valid0_.resize(c.valid_where.size());
   if (!valid0_.empty()) valid_.evaluate(c.point.data(), valid0_.data());

@@ -76,7 +76,10 @@ double value(const ex::Expr& e, const std::vector<double>& z, std::unordered_map
     case ex::ExprOp::Exp: r = std::exp(sub(e->a)); break;
     case ex::ExprOp::Sqrt: r = std::sqrt(sub(e->a)); break;
   }
-  if (!std::isfinite(r)) throw std::domain_error("a value that is not finite in double (a division by 0, a root of a negative number, an overflow) at the point");
+  if (!std::isfinite(r))
+    throw std::domain_error(
+        "a value that is not finite in double (a division by 0, a root of a negative number, an overflow) at the "
+        "point");
   memo.emplace(e.get(), r);
   return r;
 }
@@ -87,7 +90,8 @@ struct Values {
 };
 
 Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, std::size_t cols) {
-  Values v{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(eqs.size())), Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(eqs.size()), static_cast<Eigen::Index>(cols))};
+  Values v{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(eqs.size())),
+           Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(eqs.size()), static_cast<Eigen::Index>(cols))};
   std::unordered_map<const ex::ExprNode*, double> memo;
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     v.f(static_cast<Eigen::Index>(i)) = value(eqs[i].e, z, memo);
@@ -133,12 +137,14 @@ std::string text(double x) {
 /// Gauss–Newton with minimum-norm steps on the free columns: the residual it ends at, and its scale.
 struct Newton {
   double residual = 0, scale = 1;
-  double relative = HUGE_VAL;  ///< at the best iterate: max_i |F_i| / Σ_j |∂F_i/∂z_j · z_j| (each row against its own terms)
+  double relative =
+      HUGE_VAL;  ///< at the best iterate: max_i |F_i| / Σ_j |∂F_i/∂z_j · z_j| (each row against its own terms)
   bool zero() const { return residual <= 1e-12 * scale || relative <= 1e-10; }
 };
 /// `ceiling`: the largest scale a residual may be judged against (2^10 × the problem's own, at the case's
 /// point): a diverging iterate, or a start that is an earlier level's wild zero, never excuses one.
-Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols, const std::vector<bool>& held, double ceiling) {
+Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols,
+                    const std::vector<bool>& held, double ceiling) {
   Newton out;
   std::vector<Eigen::Index> free;
   for (std::size_t c = 0; c < cols; ++c)
@@ -172,8 +178,10 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
     }
     const Eigen::VectorXd step = colscale.asDiagonal() * jf.completeOrthogonalDecomposition().solve(-v.f);
     if (!step.allFinite()) break;
-    for (std::size_t k = 0; k < free.size(); ++k) z[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
-    if ((step.size() ? step.cwiseAbs().maxCoeff() : 0.0) <= 1e-16 * zmax && r > 0) {  // a stationary point of the residual
+    for (std::size_t k = 0; k < free.size(); ++k)
+      z[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
+    if ((step.size() ? step.cwiseAbs().maxCoeff() : 0.0) <= 1e-16 * zmax &&
+        r > 0) {  // a stationary point of the residual
       const Values w = evaluate_array(eqs, z, cols);
       const double r2 = w.f.size() ? w.f.cwiseAbs().maxCoeff() : 0.0;
       if (r2 < best) best = r2, best_z = z, best_scale = out.scale;
@@ -197,8 +205,8 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
 
 }  // namespace
 
-DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start, const std::vector<bool>& fixed,
-                                       const Options& opt) {
+DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start,
+                                       const std::vector<bool>& fixed, const Options& opt) {
   const std::size_t n = sys.n, kcap = std::min<std::size_t>(n + 1, 12);
   const std::size_t time = (kcap + 2) * n;  // x^(j)_l at j n + l (so x = q, x' = v of the system), then t
   DerivativeArrayResult out;
@@ -211,7 +219,8 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
   bool any_held = false;
   for (std::size_t i = 0; i < n; ++i) held[i] = fixed[sys.q(i)], any_held = any_held || held[i];
   std::vector<ArrayEquation> eqs;
-  for (const ex::Expr& c : sys.constraints) eqs.push_back(equation(ex::substitute(c, sys.t(), ex::variable(time)), time));
+  for (const ex::Expr& c : sys.constraints)
+    eqs.push_back(equation(ex::substitute(c, sys.t(), ex::variable(time)), time));
   const auto uncertain = [&](const std::string& why) {
     if (out.certain.yes()) out.evidence = why;
     out.certain = unknown;
@@ -219,7 +228,7 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
   const auto decided = [&](const RankDecision& d, const std::string& what) {
     if (!d.certain.yes()) uncertain(what + ": " + d.describe());
   };
-  std::size_t block = 0;  // eqs[block…] are the last derivatives added
+  std::size_t block = 0;      // eqs[block…] are the last derivatives added
   double ceiling = HUGE_VAL;  // 2^10 × the scale of F_0 at the case's point (gauss_newton)
   for (std::size_t k = 0; k <= kcap; ++k) {
     if (k > 0) {
@@ -271,18 +280,23 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
           std::string given;
           for (std::size_t i = 0; i < n; ++i)
             if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
-          throw reference::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) +
-                                            " (the derivative array F_" + std::to_string(k) + " has a zero without them, none with them: residual " +
-                                            text(nw.residual) + ")");
+          throw reference::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" +
+                                            std::to_string(k + 1) + " (the derivative array F_" + std::to_string(k) +
+                                            " has a zero without them, none with them: residual " + text(nw.residual) +
+                                            ")");
         }
       }
       out.consistent = false;
       out.dims.push_back(-1);
       out.steps = static_cast<long>(k + 1);
-      out.why = "the derivative array F_" + std::to_string(k) + " has no zero near the point (Gauss–Newton's least residual " + text(nw.residual) +
-                "): M_" + std::to_string(k + 1) + " is empty";
-      if (nw.residual <= 1e-6 * nw.scale) uncertain("F_" + std::to_string(k) + "'s least residual " + text(nw.residual) + " is small against its scale " + text(nw.scale) + ": a zero missed by rounding?");
-      else if (!affine()) uncertain("F_" + std::to_string(k) + " is nonlinear: Gauss–Newton from one start proves no emptiness");
+      out.why = "the derivative array F_" + std::to_string(k) +
+                " has no zero near the point (Gauss–Newton's least residual " + text(nw.residual) + "): M_" +
+                std::to_string(k + 1) + " is empty";
+      if (nw.residual <= 1e-6 * nw.scale)
+        uncertain("F_" + std::to_string(k) + "'s least residual " + text(nw.residual) + " is small against its scale " +
+                  text(nw.scale) + ": a zero missed by rounding?");
+      else if (!affine())
+        uncertain("F_" + std::to_string(k) + " is nonlinear: Gauss–Newton from one start proves no emptiness");
       break;
     }
     if (eqs.empty()) {  // no equation: every velocity is free
@@ -313,7 +327,8 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
           std::vector<double> a = z, b = z;
           a[c] += h;
           b[c] += 2 * h;
-          const double da = std::abs(evaluate_array(eqs, a, cols).f(i) - f0), db = std::abs(evaluate_array(eqs, b, cols).f(i) - f0);
+          const double da = std::abs(evaluate_array(eqs, a, cols).f(i) - f0),
+                       db = std::abs(evaluate_array(eqs, b, cols).f(i) - f0);
           if (db > 3 * da && db > 0) return true;
         }
         return false;
@@ -324,7 +339,8 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
         if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax &&
             (v.j.row(i).cwiseAbs().maxCoeff() == 0 || superlinear(i))) {
           uncertain("equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) +
-                    " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)");
+                    " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a "
+                    "singular point)");
           break;
         }
     }
@@ -338,7 +354,8 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
       double lo = HUGE_VAL, hi = 0;
       for (std::size_t c = 0; c < cols; ++c)
         if (std::isfinite(z[c])) hi = std::max(hi, std::abs(z[c]));
-      for (std::size_t c = 0; c < cols; ++c) {  // values at rounding level beside the largest (and 1) are zeros, not grading
+      for (std::size_t c = 0; c < cols;
+           ++c) {  // values at rounding level beside the largest (and 1) are zeros, not grading
         const double x = std::abs(z[c]);
         if (x > 1e-12 * std::max(1.0, hi) && std::isfinite(x)) lo = std::min(lo, x);
       }
@@ -355,17 +372,21 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
                           jr = v.j.rightCols(static_cast<Eigen::Index>(cols) - 2 * nn);
     const RankRevealing rd(jd, scale, opt);
     decided(rd.decision(), "rank of dF_" + std::to_string(k) + "/d(x', ...)");
-    if (out.certain.yes()) {  // the rank at the point is the rank near it (x v_x = u at x = 0 drops it: a singular point)
+    if (out.certain
+            .yes()) {  // the rank at the point is the rank near it (x v_x = u at x = 0 drops it: a singular point)
       std::vector<double> near = z;
-      for (std::size_t i = 0; i < n; ++i) near[i] += 1e-3 * std::max(1.0, std::abs(z[i])) * (1 + 0.37 * static_cast<double>(i % 5));
+      for (std::size_t i = 0; i < n; ++i)
+        near[i] += 1e-3 * std::max(1.0, std::abs(z[i])) * (1 + 0.37 * static_cast<double>(i % 5));
       Values w = evaluate_array(eqs, near, cols);
       Eigen::VectorXd rs2;
       equilibrate(w.j, rs2);
-      Options quiet = opt;  // a probe of the neighbourhood, not one of the result's decisions (their uncertainty is tested, prop_uncertainty.cpp)
+      Options quiet = opt;  // a probe of the neighbourhood, not one of the result's decisions (their uncertainty is
+                            // tested, prop_uncertainty.cpp)
       quiet.probe = nullptr;
       const RankRevealing rn(w.j.rightCols(static_cast<Eigen::Index>(cols) - nn), w.j.norm(), quiet);
       if (rn.rank() != rd.rank())
-        uncertain("the rank of dF_" + std::to_string(k) + "/d(x', ...) is " + std::to_string(rd.rank()) + " at the point and " + std::to_string(rn.rank()) +
+        uncertain("the rank of dF_" + std::to_string(k) + "/d(x', ...) is " + std::to_string(rd.rank()) +
+                  " at the point and " + std::to_string(rn.rank()) +
                   " beside it (x moved by 1e-3 relative): a point where it drops, singular");
     }
     const Eigen::MatrixXd g = rd.corange().transpose() * jx;  // the constraints' gradients in x
@@ -389,9 +410,10 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
           moved[j] += 1e-2 * std::max(1.0, std::abs(z[j]));
           const double val = y.col(w).dot(evaluate_array(eqs, moved, cols).f);
           if (std::abs(val) > 1e-9 * y.col(w).cwiseAbs().sum() * fscale)
-            uncertain("a combination of the constraints of M_" + std::to_string(k + 1) + " vanishes with its differential at the point but is " + text(val) +
-                      " at " + sys.names[j] + " + " + text(1e-2 * std::max(1.0, std::abs(z[j]))) + " (not a generic point: M_" + std::to_string(k + 1) +
-                      " may be smaller here than its rank says)");
+            uncertain("a combination of the constraints of M_" + std::to_string(k + 1) +
+                      " vanishes with its differential at the point but is " + text(val) + " at " + sys.names[j] +
+                      " + " + text(1e-2 * std::max(1.0, std::abs(z[j]))) + " (not a generic point: M_" +
+                      std::to_string(k + 1) + " may be smaller here than its rank says)");
         }
     }
     const long dim = static_cast<long>(n) - rg;
@@ -412,13 +434,16 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
     out.velocity.assign(z.begin() + static_cast<std::ptrdiff_t>(n), z.begin() + static_cast<std::ptrdiff_t>(2 * n));
     if (out.solution_rank > 0) {  // ker J_d's x' part, orthonormal
       const RankRevealing kt(jd.transpose(), scale, opt, false);
-      const Eigen::MatrixXd kernel = kt.corange();  // ker J_d
+      const Eigen::MatrixXd kernel = kt.corange();                                       // ker J_d
       const Eigen::MatrixXd top = cs.segment(nn, nn).asDiagonal() * kernel.topRows(nn);  // back to x' (unscaled)
       if (top.cols() > 0) {
         const RankRevealing tr(top, -1, opt, false);
         const Eigen::MatrixXd basis = tr.range();
-        if (basis.cols() != out.solution_rank) uncertain("the free velocities' directions have rank " + std::to_string(basis.cols()) + ", the ranks say " + std::to_string(out.solution_rank));
-        for (Eigen::Index c = 0; c < basis.cols(); ++c) out.gauge.emplace_back(basis.col(c).data(), basis.col(c).data() + nn);
+        if (basis.cols() != out.solution_rank)
+          uncertain("the free velocities' directions have rank " + std::to_string(basis.cols()) + ", the ranks say " +
+                    std::to_string(out.solution_rank));
+        for (Eigen::Index c = 0; c < basis.cols(); ++c)
+          out.gauge.emplace_back(basis.col(c).data(), basis.col(c).data() + nn);
       }
     }
     return out;

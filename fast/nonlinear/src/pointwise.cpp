@@ -21,7 +21,8 @@ void ToleranceDecisions::step_data(const std::vector<Tracked>& data) {
 
 bool ToleranceDecisions::probed(bool answer) {
   if (probe && probe->made++ == probe->uncertain_at) {
-    if (certain.yes()) evidence = "decision " + std::to_string(probe->uncertain_at) + " reported uncertain (DecisionProbe)";
+    if (certain.yes())
+      evidence = "decision " + std::to_string(probe->uncertain_at) + " reported uncertain (DecisionProbe)";
     certain = unknown;
   }
   return answer;
@@ -38,8 +39,9 @@ bool ToleranceDecisions::zero(const Tracked& x) {
     std::ostringstream s;
     s << "a value " << x.v << " with a rounding-error bound " << x.e
       << (a > zero_factor * x.e + tiny ? " (between 8 and 64 times it: rounding or not?)"
-          : !well_scaled              ? " on graded data (the step's nonzero data span more than 1/sqrt(eps)): zero or a small nonzero?"
-                                      : " too large against the step's data scale " + std::to_string(scale) + ": zero or a small nonzero?");
+          : !well_scaled
+              ? " on graded data (the step's nonzero data span more than 1/sqrt(eps)): zero or a small nonzero?"
+              : " too large against the step's data scale " + std::to_string(scale) + ": zero or a small nonzero?");
     evidence = s.str();
   }
   certain = unknown;
@@ -111,7 +113,9 @@ reference::PointwiseResult<double> to_double(const reference::PointwiseResult<Tr
 
 /// Every number of the result is finite.
 bool finite(const reference::PointwiseResult<double>& r) {
-  const auto all = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+  const auto all = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
   bool ok = all(r.point) && all(r.velocity) && std::isfinite(r.time);
   for (const auto& g : r.gauge) ok = ok && all(g);
   for (const auto& g : r.tangent) ok = ok && all(g);
@@ -127,8 +131,8 @@ bool finite(const reference::PointwiseResult<double>& r) {
 
 /// The value of e at `at` in double; `bad` gets the first subexpression (post-order) that is not
 /// finite while its operands are.
-double value_of(const reference::expr::Expr& e, const std::vector<double>& at, const std::vector<std::string>& names, std::string& bad,
-                std::unordered_map<const reference::expr::ExprNode*, double>& memo) {
+double value_of(const reference::expr::Expr& e, const std::vector<double>& at, const std::vector<std::string>& names,
+                std::string& bad, std::unordered_map<const reference::expr::ExprNode*, double>& memo) {
   using reference::expr::ExprOp;
   if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
   const auto sub = [&](const reference::expr::Expr& x) { return value_of(x, at, names, bad, memo); };
@@ -148,14 +152,18 @@ double value_of(const reference::expr::Expr& e, const std::vector<double>& at, c
     case ExprOp::Sqrt: r = std::sqrt(a); break;
   }
   if (!std::isfinite(r) && std::isfinite(a) && std::isfinite(b) && bad.empty())
-    bad = reference::expr::to_text(e, names) + " = " + (std::isnan(r) ? std::string("NaN") : r > 0 ? std::string("inf") : std::string("-inf"));
+    bad = reference::expr::to_text(e, names) + " = " +
+          (std::isnan(r) ? std::string("NaN")
+           : r > 0       ? std::string("inf")
+                         : std::string("-inf"));
   memo.emplace(e.get(), r);
   return r;
 }
 
 }  // namespace
 
-std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys, const std::vector<double>& at) {
+std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys,
+                                                      const std::vector<double>& at) {
   const std::vector<std::string> names = sys.variable_names();
   std::vector<double> x(at);
   x.resize(2 * sys.n + 1, 0.0);
@@ -174,21 +182,26 @@ std::pair<std::string, std::string> nonfinite_formula(const reference::Lagrangia
     if (found.first.empty()) found = check(d.dl_dv[i], "/lagrangian/L (its derivative in " + names[sys.v(i)] + ")");
   }
   for (std::size_t a = 0; a < sys.m() && found.first.empty(); ++a)
-    found = check(sys.constraints[a], (sys.implicit ? "/implicit/equations/" : "/lagrangian/constraints/") + std::to_string(a));
-  for (std::size_t i = 0; i < sys.forces.size() && found.first.empty(); ++i) found = check(sys.forces[i], "/lagrangian/forces/" + std::to_string(i));
+    found = check(sys.constraints[a],
+                  (sys.implicit ? "/implicit/equations/" : "/lagrangian/constraints/") + std::to_string(a));
+  for (std::size_t i = 0; i < sys.forces.size() && found.first.empty(); ++i)
+    found = check(sys.forces[i], "/lagrangian/forces/" + std::to_string(i));
   return found;
 }
 
-reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
-                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide,
+reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys,
+                                                 const std::vector<double>& start, const std::vector<bool>& fixed,
+                                                 ToleranceDecisions& decide,
                                                  const std::vector<std::vector<std::size_t>>* plan) {
   std::vector<Tracked> x;
   for (double v : start) x.push_back(Tracked::input(v));
   reference::PointwiseResult<double> r = to_double(reference::pointwise_cad<Tracked>(
-      sys, x, fixed, decide, [](const reference::Rational& q) { return Tracked::input(q.convert_to<double>()); }, 3, 60, plan));
+      sys, x, fixed, decide, [](const reference::Rational& q) { return Tracked::input(q.convert_to<double>()); }, 3, 60,
+      plan));
   if (finite(r)) return r;
   // name the overflow: at the point reached (the given one if the CAD stopped before moving it)
-  std::vector<double> at(r.point.begin(), r.point.begin() + static_cast<std::ptrdiff_t>(std::min(r.point.size(), 2 * sys.n)));
+  std::vector<double> at(r.point.begin(),
+                         r.point.begin() + static_cast<std::ptrdiff_t>(std::min(r.point.size(), 2 * sys.n)));
   at.resize(2 * sys.n, 0.0);
   at.push_back(r.time);
   std::string where;
@@ -201,10 +214,13 @@ reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSyst
   }
   const auto [path, text] = nonfinite_formula(sys, at);
   if (!path.empty())
-    throw std::range_error(path + ": expected formulas whose values at the point are within double's range (the fast route computes in double), found " +
+    throw std::range_error(path +
+                           ": expected formulas whose values at the point are within double's range (the fast route "
+                           "computes in double), found " +
                            text + " at " + where);
-  throw std::range_error(std::string(sys.implicit ? "/implicit" : "/lagrangian") + ": expected a pointwise CAD within double's range at " + where +
-                         ", found a value that overflowed in the elimination (every formula is finite there): rescale the case");
+  throw std::range_error(
+      std::string(sys.implicit ? "/implicit" : "/lagrangian") + ": expected a pointwise CAD within double's range at " +
+      where + ", found a value that overflowed in the elimination (every formula is finite there): rescale the case");
 }
 
 }  // namespace dcad::fast

@@ -57,7 +57,8 @@ struct ModElimination {
 /// Rows in order, each reduced by the pivots so far (a pivot row has zeros at the pivot columns taken
 /// before it, so reducing by them in the order they were taken never refills one); a row left nonzero
 /// takes a pivot (its entry in the column that fewest rows touch, `weight`), one left zero is dependent.
-ModElimination eliminate(const std::vector<QRow>& rows, std::size_t cols, const Zp& z, const std::vector<long>& weight, double& work) {
+ModElimination eliminate(const std::vector<QRow>& rows, std::size_t cols, const Zp& z, const std::vector<long>& weight,
+                         double& work) {
   ModElimination out;
   struct Pivot {
     long col;
@@ -72,7 +73,8 @@ ModElimination eliminate(const std::vector<QRow>& rows, std::size_t cols, const 
   std::vector<long> touched;
   std::vector<std::size_t> ctouched;
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    std::priority_queue<long, std::vector<long>, std::greater<long>> heap;  // pivot slots to reduce by, first taken first
+    std::priority_queue<long, std::vector<long>, std::greater<long>>
+        heap;  // pivot slots to reduce by, first taken first
     for (const auto& [c, q] : rows[r]) {
       u64 v = 0;
       if (!z.of(q, v)) {
@@ -106,7 +108,8 @@ ModElimination eliminate(const std::vector<QRow>& rows, std::size_t cols, const 
       }
       work += static_cast<double>(pv.row.size() + pv.comb.size());
       if (work > kWork)
-        throw reference::NotExactHere("the modular elimination outgrew its budget (" + std::to_string(static_cast<long>(kWork)) + " operations): fill-in");
+        throw reference::NotExactHere("the modular elimination outgrew its budget (" +
+                                      std::to_string(static_cast<long>(kWork)) + " operations): fill-in");
     }
     std::vector<std::pair<long, u64>> left;
     long best = -1;
@@ -177,7 +180,8 @@ constexpr int kPrimes = 96;  ///< at most this many primes (~6,000 bits of modul
 
 /// The left null space of `rows` (over `cols` columns), exactly: every vector verified; NotExactHere
 /// where no lifting verified within kPrimes primes.  `rank` gets rank_Q(rows) (= rank_p: see the header).
-std::vector<NullVector> left_null(const std::vector<QRow>& rows, std::size_t cols, std::size_t& rank, const std::string& what, long& verified) {
+std::vector<NullVector> left_null(const std::vector<QRow>& rows, std::size_t cols, std::size_t& rank,
+                                  const std::string& what, long& verified) {
   std::vector<long> weight(cols, 0);  // how many rows touch each column: pivots in the least touched first (less fill)
   for (const QRow& r : rows)
     for (const auto& e : r) ++weight[static_cast<std::size_t>(e.first)];
@@ -200,13 +204,14 @@ std::vector<NullVector> left_null(const std::vector<QRow>& rows, std::size_t col
         for (const auto& [r, c] : e.combination[d]) fmpz_set_ui(residue[d][r].v, c);
     } else if (e.rank < base->rank || e.dependent != base->dependent) {
       continue;  // this prime is unlucky
-    } else {  // one more residue of every coefficient (CRT); a coefficient 0 mod p is absent from its combination
+    } else {     // one more residue of every coefficient (CRT); a coefficient 0 mod p is absent from its combination
       for (std::size_t d = 0; d < e.dependent.size(); ++d) {
         std::map<std::size_t, u64> now(e.combination[d].begin(), e.combination[d].end());
         for (const auto& [r, c] : now) residue[d].try_emplace(r);
         for (auto& [r, x] : residue[d]) {
           const auto it = now.find(r);
-          fmpz_CRT_ui(x.v, x.v, modulus.v, it == now.end() ? 0 : it->second, p, 0);  // in [0, M): reconstruction's range
+          fmpz_CRT_ui(x.v, x.v, modulus.v, it == now.end() ? 0 : it->second, p,
+                      0);  // in [0, M): reconstruction's range
         }
       }
       fmpz_mul_ui(modulus.v, modulus.v, p);
@@ -240,8 +245,8 @@ std::vector<NullVector> left_null(const std::vector<QRow>& rows, std::size_t col
       return out;
     }
   }
-  throw reference::NotExactHere("the left null space of " + what + " did not lift to rationals that verify within " + std::to_string(kPrimes) + " primes (about " +
-                                std::to_string(kPrimes * 62) + " bits)");
+  throw reference::NotExactHere("the left null space of " + what + " did not lift to rationals that verify within " +
+                                std::to_string(kPrimes) + " primes (about " + std::to_string(kPrimes * 62) + " bits)");
 }
 
 /// A constraint row: x-part · x = g(u), g over the jets (key d·m + i: d/dt^d f_i).
@@ -266,7 +271,8 @@ QRow combine(const std::vector<std::pair<const QRow*, Rational>>& terms) {
 dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
   const std::size_t n = c.variables.size(), m = c.equations();
   std::vector<QRow> erows(m), arows(m);
-  const auto fill = [&](const std::vector<io::DaeCase::Entry>& entries, const io::QMatrix& dense, std::vector<QRow>& rows) {
+  const auto fill = [&](const std::vector<io::DaeCase::Entry>& entries, const io::QMatrix& dense,
+                        std::vector<QRow>& rows) {
     if (!entries.empty() || !c.dense) {
       for (const auto& e : entries)
         if (e.value != 0) rows[static_cast<std::size_t>(e.row)].emplace_back(e.col, e.value);
@@ -325,7 +331,8 @@ dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
     for (const Constraint& k : cons) t.push_back(k.x);
     for (const Constraint& k : cand) t.push_back(k.x);
     std::size_t trank = 0;
-    const std::vector<NullVector> zs = left_null(t, n, trank, "[C_" + std::to_string(step) + "; its candidates]", verified);
+    const std::vector<NullVector> zs =
+        left_null(t, n, trank, "[C_" + std::to_string(step) + "; its candidates]", verified);
     std::vector<char> dependent(cand.size(), 0);
     for (const NullVector& zv : zs) {
       if (zv.own < cons.size()) throw std::logic_error("certified::solve_dae_sparse: the constraints found dependent");
@@ -351,7 +358,8 @@ dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
     for (const auto& [cond, at] : conditions) {
       if (at != step) continue;
       std::string text;
-      std::map<std::string, std::pair<Rational, ex::Expr>> same;  // identical formulas (two equal sources) summed first, as the reference does
+      std::map<std::string, std::pair<Rational, ex::Expr>>
+          same;  // identical formulas (two equal sources) summed first, as the reference does
       for (const auto& [key, q] : cond) {
         const std::size_t i = static_cast<std::size_t>(key % ml);
         const long d = key / ml;
@@ -367,7 +375,9 @@ dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
         if (term.first != 0) g = ex::add(g, ex::mul(ex::number(term.first), term.second));
       SourceCondition sc;
       sc.text = text + " = 0";
-      if (std::any_of(out.source_conditions.begin(), out.source_conditions.end(), [&](const SourceCondition& o) { return o.text == sc.text; })) continue;
+      if (std::any_of(out.source_conditions.begin(), out.source_conditions.end(),
+                      [&](const SourceCondition& o) { return o.text == sc.text; }))
+        continue;
       sc.holds = reference::pipeline::vanishes_identically(g, sc.evidence);
       if (sc.holds.yes() && ex::is_number(g, 0) && !same.empty()) sc.evidence = "identical formulas cancel";
       sc.evidence = "found for M_" + std::to_string(step + 1) + "; " + sc.evidence;
@@ -407,7 +417,9 @@ dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
   for (std::size_t s = 0; s < added.size(); ++s)
     for (std::size_t k : added[s]) out.tower[s + 1].constraints.push_back(equation(cons[k]));
   for (std::size_t i = 0; i < m; ++i)
-    if (has_f[i]) out.source_names.push_back(io::source_name(i, 0) + " = " + ex::to_text(c.f[i], {c.time_name.empty() ? "t" : c.time_name}));
+    if (has_f[i])
+      out.source_names.push_back(io::source_name(i, 0) + " = " +
+                                 ex::to_text(c.f[i], {c.time_name.empty() ? "t" : c.time_name}));
   const bool certain = !undecided;
   if (out.consistent) {
     out.solution_rank = static_cast<long>(n) - last_rank;
@@ -428,8 +440,10 @@ dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
   out.decisions.exact_verifications = verified;
   out.certified = certain ? yes : unknown;
   std::ostringstream note;
-  note << "certified sparse route (certified/dae_sparse.hpp): the constraints' rows C_{k+1} = [C_k; y_E^T A], every left null space found "
-          "modulo primes near 2^62, lifted to rationals and verified exactly (" << verified << " null vectors); no equations of motion at this size (dense N x N)";
+  note << "certified sparse route (certified/dae_sparse.hpp): the constraints' rows C_{k+1} = [C_k; y_E^T A], every "
+          "left null space found "
+          "modulo primes near 2^62, lifted to rationals and verified exactly ("
+       << verified << " null vectors); no equations of motion at this size (dense N x N)";
   if (!out.consistent && m == n) note << "; regular_pencil from the same tower without the sources";
   if (!certain) note << "; a condition on the sources was not decided (source_conditions)";
   out.note = note.str();

@@ -22,7 +22,8 @@ using namespace detail;
 
 void set_qm(BallMat& out, const QM& q, slong prec) {
   for (reference::Index i = 0; i < q.rows(); ++i)
-    for (reference::Index j = 0; j < q.cols(); ++j) set_q(out.at(static_cast<slong>(i), static_cast<slong>(j)), q(i, j), prec);
+    for (reference::Index j = 0; j < q.cols(); ++j)
+      set_q(out.at(static_cast<slong>(i), static_cast<slong>(j)), q(i, j), prec);
 }
 
 }  // namespace
@@ -36,12 +37,14 @@ struct MotionEnclosure::Impl {
   ForcedMotionData data;
   slong prec = 256;
   std::size_t n = 0, m = 0, dm = 0, nz = 0, nu = 0;
-  BallMat g{0, 0};               ///< balanced generator D⁻¹ G D
+  BallMat g{0, 0};                                             ///< balanced generator D⁻¹ G D
   BallMat x0{0, 0}, bt{0, 0}, vy{0, 0}, vu{0, 0}, wout{0, 0};  ///< exact data; W: exosystem → u_ext
-  BallMat z{0, 0}, z_left{0, 0}, z_piece{0, 0};  ///< balanced states (columns) now, before a corner's jump, at the piece's start
-  std::vector<Q> dual;           ///< D (exact powers of two)
+  BallMat z{0, 0}, z_left{0, 0},
+      z_piece{0, 0};    ///< balanced states (columns) now, before a corner's jump, at the piece's start
+  std::vector<Q> dual;  ///< D (exact powers of two)
   Q t = 0, piece = 0;
   bool corner = false;
+  bool zero = false;  ///< the motion is identically 0, proved exactly (zero_motion)
   std::map<Q, std::unique_ptr<BallMat>> cache;
   long restarts = 0, exps = 0;
 
@@ -56,7 +59,8 @@ struct MotionEnclosure::Impl {
     arb_ptr w0 = out.at(static_cast<slong>(dm + 1 + 3 * j), 0), w1 = out.at(static_cast<slong>(dm + 2 + 3 * j), 0),
             w2 = out.at(static_cast<slong>(dm + 3 + 3 * j), 0);
     arb_zero(w0), arb_zero(w1), arb_zero(w2);
-    if (w.is_exp()) {  // EXP(V1 V2 TD1 TAU1 TD2 TAU2), right limit: (V1, 0, 0) before TD1; from it e1 = (V1 − V2) e^{−(s−TD1)/TAU1}
+    if (w.is_exp()) {  // EXP(V1 V2 TD1 TAU1 TD2 TAU2), right limit: (V1, 0, 0) before TD1; from it e1 = (V1 − V2)
+                       // e^{−(s−TD1)/TAU1}
       const Q &v1 = w.p[0], &v2 = w.p[1], &td1 = w.p[2], &tau1 = w.p[3], &td2 = w.p[4], &tau2 = w.p[5];
       set_q(w0, v1, prec);
       if (s < td1) return;
@@ -68,7 +72,8 @@ struct MotionEnclosure::Impl {
         arb_mul(out, out, e.v, prec);
       };
       decayed(w1, v1 - v2, td1, tau1);
-      if (s < td2) {  // V2 + (V1 − V2) e^{…} up to TD2, then V1 + … + (V2 − V1) e^{−(s−TD2)/TAU2} (ngspice's vsrcload.c)
+      if (s <
+          td2) {  // V2 + (V1 − V2) e^{…} up to TD2, then V1 + … + (V2 − V1) e^{−(s−TD2)/TAU2} (ngspice's vsrcload.c)
         set_q(w0, v2, prec);
         return;
       }
@@ -172,7 +177,8 @@ struct MotionEnclosure::Impl {
       }
       ok = k < 400;
       if (ok) {
-        BallMat term(static_cast<slong>(nz), 1), next(static_cast<slong>(nz), 1), sum(static_cast<slong>(nz), 1), gd(static_cast<slong>(nz), static_cast<slong>(nz));
+        BallMat term(static_cast<slong>(nz), 1), next(static_cast<slong>(nz), 1), sum(static_cast<slong>(nz), 1),
+            gd(static_cast<slong>(nz), static_cast<slong>(nz));
         arb_mat_scalar_mul_arb(gd.m, g.m, d.v, prec);
         arb_mat_set(term.m, z.m);
         arb_mat_set(sum.m, z.m);
@@ -210,7 +216,7 @@ struct MotionEnclosure::Impl {
   bool by_binary_powers(const Q& delta, BallMat& v) {
     using boost::multiprecision::mpz_int;
     const mpz_int num = boost::multiprecision::numerator(delta), den = boost::multiprecision::denominator(delta);
-    if (num <= 0 || (den & (den - 1)) != 0) return false;  // not dyadic
+    if (num <= 0 || (den & (den - 1)) != 0) return false;                   // not dyadic
     const long shift = static_cast<long>(boost::multiprecision::msb(den));  // δ = num · 2^-shift
     std::vector<long> exps;
     for (long bit = 0; bit <= static_cast<long>(boost::multiprecision::msb(num)); ++bit)
@@ -302,7 +308,8 @@ struct MotionEnclosure::Impl {
       for (std::size_t k = 0; left != 0; ++k, left >>= 1) {
         if (k == pw.size()) {
           pw.push_back(std::make_unique<BallMat>(static_cast<slong>(nz), static_cast<slong>(nz)));
-          exp_of(*pw[k], delta * Q(boost::multiprecision::mpz_int(1) << k));  // not by squaring: that widens geometrically too
+          exp_of(*pw[k],
+                 delta * Q(boost::multiprecision::mpz_int(1) << k));  // not by squaring: that widens geometrically too
         }
         if ((left & 1) != 0) {
           arb_mat_mul(next.m, pw[k]->m, acc.m, prec);
@@ -344,7 +351,8 @@ struct MotionEnclosure::Impl {
         arb_mul(exo.at(static_cast<slong>(i), 0), z.at(static_cast<slong>(dm + i), 0), d.v, prec);
       }
     };
-    BallMat exo_b(static_cast<slong>(1 + 3 * m), 1), exo_a(static_cast<slong>(1 + 3 * m), 1), ub(static_cast<slong>(nu), 1), ua(static_cast<slong>(nu), 1);
+    BallMat exo_b(static_cast<slong>(1 + 3 * m), 1), exo_a(static_cast<slong>(1 + 3 * m), 1),
+        ub(static_cast<slong>(nu), 1), ua(static_cast<slong>(nu), 1);
     unbalanced_exo(exo_b);  // the left exosystem state is the flow's own
     reset_exo(t);
     unbalanced_exo(exo_a);
@@ -355,9 +363,11 @@ struct MotionEnclosure::Impl {
       if (!own || *own != t) continue;
       for (long d = 3; d <= data.orders; ++d)
         for (std::size_t i = 0; i < dm; ++i)
-          if (data.au(static_cast<reference::Index>(i), static_cast<reference::Index>(1 + static_cast<std::size_t>(d) * m + j)) != 0)
-            throw std::invalid_argument(data.waveforms[j].element + " has corners and the motion needs its derivative of order " + std::to_string(d) +
-                                        " (a derivative of a Dirac delta)");
+          if (data.au(static_cast<reference::Index>(i),
+                      static_cast<reference::Index>(1 + static_cast<std::size_t>(d) * m + j)) != 0)
+            throw std::invalid_argument(data.waveforms[j].element +
+                                        " has corners and the motion needs its derivative of order " +
+                                        std::to_string(d) + " (a derivative of a Dirac delta)");
       if (data.orders < 2) continue;
       Ball jump;
       arb_sub(jump.v, ua.at(static_cast<slong>(1 + m + j), 0), ub.at(static_cast<slong>(1 + m + j), 0), prec);
@@ -379,7 +389,57 @@ struct MotionEnclosure::Impl {
   }
 };
 
-MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector<Q>& y0, long precision) : impl_(std::make_unique<Impl>()) {
+namespace {
+
+/// σ ≡ 0: every value the waveform takes is 0 (its levels, amplitudes and points).
+bool identically_zero(const io::Waveform& w) {
+  switch (w.kind) {
+    case io::Waveform::Kind::dc: return w.p[0] == 0;
+    case io::Waveform::Kind::pwl:
+      for (std::size_t i = 1; i < w.p.size(); i += 2)
+        if (w.p[i] != 0) return false;
+      return true;
+    default: return w.p.size() >= 2 && w.p[0] == 0 && w.p[1] == 0;  // SIN, SFFM (VO, VA); PULSE, EXP (V1, V2)
+  }
+}
+
+/// Whether the motion is identically 0, decided exactly: y' = A_y y + A_u u, x = X0 u + Bᵀ y,
+/// ẋ = V_y y + V_u u with u = (1, σ, σ', …) = (1, 0, 0, …) when every source is identically 0, so y ≡ 0
+/// (the linear equation's unique solution from y(0) = 0 when A_u's constant column is 0) and x ≡ ẋ ≡ 0
+/// when X0's and V_u's constant columns are 0 too.  Then every value is 0 with radius 0, not a ball
+/// of rounding around it (dcad check: "a vector that is exactly 0 and found exactly 0 agrees").
+bool zero_motion(const ForcedMotionData& data, const std::vector<Q>& y0) {
+  for (const Q& v : y0)
+    if (v != 0) return false;
+  for (const io::Waveform& w : data.waveforms)
+    if (!identically_zero(w)) return false;
+  for (const QM* m : {&data.x0, &data.au, &data.vu})
+    for (reference::Index i = 0; i < m->rows(); ++i)
+      if (m->cols() > 0 && (*m)(i, 0) != 0) return false;
+  return true;
+}
+
+/// The sources whose exosystem the enclosure carries; throws std::invalid_argument naming the one it does not.
+void require_enclosable(const std::vector<io::Waveform>& waveforms) {
+  for (const io::Waveform& w : waveforms) {
+    if (w.kind == io::Waveform::Kind::pulse && (w.p[3] <= 0 || w.p[4] <= 0))
+      throw std::invalid_argument(w.element + ": a PULSE with TR or TF = 0 jumps; its enclosure is not built");
+    if (w.is_sffm())
+      throw std::invalid_argument(
+          w.element + ": an SFFM source (frequency modulated: no finite exosystem); its enclosure is not built");
+    if (w.is_exp() && (w.p[3] == 0 || w.p[5] == 0))  // validate() refuses it before: a step, no exosystem
+      throw std::invalid_argument(w.element + ": an EXP with TAU1 or TAU2 = 0 (a step); its enclosure is not built");
+    if (w.is_sine() && w.p[2] == 0)
+      throw std::invalid_argument(
+          w.element +
+          ": a SIN with FREQ = 0 (ngspice reads it as 1/TSTOP, dcad as a constant); its enclosure is not built");
+  }
+}
+
+}  // namespace
+
+MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector<Q>& y0, long precision)
+    : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.data = data;
   s.prec = precision;
@@ -388,18 +448,12 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
   s.dm = static_cast<std::size_t>(data.basis.rows());
   s.nz = s.dm + 1 + 3 * s.m;
   s.nu = 1 + s.m * static_cast<std::size_t>(data.orders + 1);
-  if (y0.size() != s.dm || static_cast<std::size_t>(data.ay.rows()) != s.dm || static_cast<std::size_t>(data.au.cols()) != s.nu ||
-      static_cast<std::size_t>(data.vu.cols()) != s.nu || (!data.balance.empty() && data.balance.size() != s.nz))
+  if (y0.size() != s.dm || static_cast<std::size_t>(data.ay.rows()) != s.dm ||
+      static_cast<std::size_t>(data.au.cols()) != s.nu || static_cast<std::size_t>(data.vu.cols()) != s.nu ||
+      (!data.balance.empty() && data.balance.size() != s.nz))
     throw std::invalid_argument("MotionEnclosure: inconsistent shapes");
-  for (const io::Waveform& w : data.waveforms) {
-    if (w.kind == io::Waveform::Kind::pulse && (w.p[3] <= 0 || w.p[4] <= 0))
-      throw std::invalid_argument(w.element + ": a PULSE with TR or TF = 0 jumps; its enclosure is not built");
-    if (w.is_sffm()) throw std::invalid_argument(w.element + ": an SFFM source (frequency modulated: no finite exosystem); its enclosure is not built");
-    if (w.is_exp() && (w.p[3] == 0 || w.p[5] == 0))  // validate() refuses it before: a step, no exosystem
-      throw std::invalid_argument(w.element + ": an EXP with TAU1 or TAU2 = 0 (a step); its enclosure is not built");
-    if (w.is_sine() && w.p[2] == 0)
-      throw std::invalid_argument(w.element + ": a SIN with FREQ = 0 (ngspice reads it as 1/TSTOP, dcad as a constant); its enclosure is not built");
-  }
+  require_enclosable(data.waveforms);
+  s.zero = zero_motion(data, y0);
   s.dual.resize(s.nz, Q(1));
   for (std::size_t i = 0; i < data.balance.size(); ++i) s.dual[i] = rational_of(data.balance[i]);
   const slong p = s.prec, nz = static_cast<slong>(s.nz), dm = static_cast<slong>(s.dm), nu = static_cast<slong>(s.nu);
@@ -441,7 +495,8 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
         arb_mat_mul(tmp.m, mm.m, pw.m, p);
         arb_mat_swap(pw.m, tmp.m);
       }
-    } else if (w.is_exp()) {  // (c, e1, e2) with ė_k = −e_k / TAU_k; σ = c + e1 + e2, σ^{(d)} = (−1/TAU1)^d e1 + (−1/TAU2)^d e2
+    } else if (w.is_exp()) {  // (c, e1, e2) with ė_k = −e_k / TAU_k; σ = c + e1 + e2, σ^{(d)} = (−1/TAU1)^d e1 +
+                              // (−1/TAU2)^d e2
       const Q r1 = -1 / w.p[3], r2 = -1 / w.p[5];
       set_q(sgen.at(c + 1, c + 1), r1, p);
       set_q(sgen.at(c + 2, c + 2), r2, p);
@@ -467,8 +522,10 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
   for (slong i = 0; i < nz; ++i)
     for (slong j = 0; j < nz; ++j) {
       arb_ptr e = s.g.at(i, j);
-      if (i < dm) arb_set(e, j < dm ? arb_mat_entry(ay.m, i, j) : arb_mat_entry(auw.m, i, j - dm));
-      else if (j >= dm) arb_set(e, arb_mat_entry(sgen.m, i - dm, j - dm));
+      if (i < dm)
+        arb_set(e, j < dm ? arb_mat_entry(ay.m, i, j) : arb_mat_entry(auw.m, i, j - dm));
+      else if (j >= dm)
+        arb_set(e, arb_mat_entry(sgen.m, i - dm, j - dm));
       Ball r;
       set_q(r.v, s.dual[static_cast<std::size_t>(j)] / s.dual[static_cast<std::size_t>(i)], p);
       arb_mul(e, e, r.v, p);
@@ -540,6 +597,11 @@ std::vector<Q> MotionEnclosure::corners(const Q& until, std::size_t limit) const
 
 std::vector<Enclosure> MotionEnclosure::evaluate(const std::vector<Functional>& fs, bool left) const {
   const Impl& s = *impl_;
+  const auto constant = [](const Functional& f) {
+    return std::any_of(f.terms.begin(), f.terms.end(),
+                       [](const Functional::Term& t) { return t.of == Functional::Of::u && t.index == 0; });
+  };
+  if (s.zero && std::none_of(fs.begin(), fs.end(), constant)) return std::vector<Enclosure>(fs.size(), Enclosure{0, 0});
   const slong p = s.prec, dm = static_cast<slong>(s.dm), nz = static_cast<slong>(s.nz), n = static_cast<slong>(s.n);
   const BallMat& zb = left && s.corner ? s.z_left : s.z;
   BallMat y(dm, 1), w(static_cast<slong>(1 + 3 * s.m), 1), u(static_cast<slong>(s.nu), 1), x(n, 1), xd(n, 1), tmp(n, 1);
@@ -566,7 +628,8 @@ std::vector<Enclosure> MotionEnclosure::evaluate(const std::vector<Functional>& 
     for (const Functional::Term& term : f.terms) {
       set_q(c.v, term.coef, p);
       const BallMat& src = term.of == Functional::Of::x ? x : term.of == Functional::Of::xdot ? xd : u;
-      if (static_cast<slong>(term.index) >= src.rows()) throw std::invalid_argument("MotionEnclosure::evaluate: index out of range");
+      if (static_cast<slong>(term.index) >= src.rows())
+        throw std::invalid_argument("MotionEnclosure::evaluate: index out of range");
       arb_addmul(acc.v, c.v, arb_mat_entry(src.m, static_cast<slong>(term.index), 0), p);
     }
     out.push_back(enclosure_of(acc.v));

@@ -29,7 +29,9 @@ Solution exact_solution(const reference::Solution& s) {
   return out;
 }
 
-std::string joined(const std::string& note, const std::string& more) { return note.empty() ? more : note + "; " + more; }
+std::string joined(const std::string& note, const std::string& more) {
+  return note.empty() ? more : note + "; " + more;
+}
 
 /// The result of the cascade with its route in `decisions` and `note`.
 Solution from_cascade(const Cascaded<Solution>& c) {
@@ -37,11 +39,13 @@ Solution from_cascade(const Cascaded<Solution>& c) {
   if (c.route == Route::machine_words) {
     r.decisions.machine_words = 1;
     r.decisions.word_bits = c.word_bits;
-    r.note = joined(r.note, "the reference algorithm in exact " + std::to_string(c.word_bits) + "-bit rationals (every number fitted in machine words" +
+    r.note = joined(r.note, "the reference algorithm in exact " + std::to_string(c.word_bits) +
+                                "-bit rationals (every number fitted in machine words" +
                                 (c.word_bits > 64 ? ", once 64 bits gave up)" : ")"));
   } else {
     r.decisions.exact_recomputation = 1;
-    r.note = joined(r.note, "exact 128-bit rationals gave up (" + c.overflow + "): recomputed in FLINT's exact rationals (fmpq)");
+    r.note = joined(
+        r.note, "exact 128-bit rationals gave up (" + c.overflow + "): recomputed in FLINT's exact rationals (fmpq)");
   }
   r.exact = true;
   r.certified = yes;
@@ -52,17 +56,21 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
   namespace pl = reference::pipeline;
   return io::at_input(c, [&] {
     if (c.has_pontryagin && c.pontryagin.has_forces) return exact_solution(pl::solve_forced(c));
-    return from_cascade(cascade<Solution>(
-        [&](int& bits) { return exact_solution(pl::solve_linear_words(c, parts, bits)); },
-        [&] { return exact_solution(pl::solve_linear_fmpq(c, parts)); }));
+    return from_cascade(
+        cascade<Solution>([&](int& bits) { return exact_solution(pl::solve_linear_words(c, parts, bits)); },
+                          [&] { return exact_solution(pl::solve_linear_fmpq(c, parts)); }));
   });
 }
 
 /// A physical LC circuit by the graph route, exactly: CEF Thms 6.4, 6.6, 6.8 decide every step.
 Solution graph_route(const io::Netlist& deck, const std::vector<std::string>& variables) {
-  Solution s = reference::pipeline::lc_graph_solution<Number>(deck, variables, [](const Rational& q) { return exact_number(q); });
-  s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision), exact; the state equations at any size "
-           "(dcad/reference/rlc_state.hpp), the motion in (q, v, p) up to " + std::to_string(kDenseBranches) + " branches (dense)";
+  Solution s = reference::pipeline::lc_graph_solution<Number>(deck, variables,
+                                                              [](const Rational& q) { return exact_number(q); });
+  s.note =
+      "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8; no rank decision), exact; the state "
+      "equations at any size "
+      "(dcad/reference/rlc_state.hpp), the motion in (q, v, p) up to " +
+      std::to_string(kDenseBranches) + " branches (dense)";
   return s;
 }
 
@@ -72,10 +80,11 @@ Solution lc_circuit(const io::Problem& p, const Parts& parts) {
   const std::vector<lc::Branch<Rational>> graph = reference::pipeline::lc_graph_of(deck);
   const bool physical = lc::physical(graph);
   if (deck.circuit.branches.size() > kDenseBranches && physical) return graph_route(deck, p.linear.variables);
-  Solution s = from_cascade(cascade<Solution>(
-      [&](int& bits) { return exact_solution(pl::solve_lc_words(deck, p.linear, parts, bits)); },
-      [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear, parts)); }));
-  if (physical && lc::physical_tower(deck.circuit.nodes, graph).dims != s.dims())  // a theorem disagrees with a certified computation
+  Solution s = from_cascade(
+      cascade<Solution>([&](int& bits) { return exact_solution(pl::solve_lc_words(deck, p.linear, parts, bits)); },
+                        [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear, parts)); }));
+  if (physical && lc::physical_tower(deck.circuit.nodes, graph).dims !=
+                      s.dims())  // a theorem disagrees with a certified computation
     throw std::logic_error("graph route and certified CAD disagree on " + deck.file + "; please report it");
   return s;
 }
@@ -83,7 +92,8 @@ Solution lc_circuit(const io::Problem& p, const Parts& parts) {
 /// An LC circuit's state equations where the graph route holds (L, C > 0), exact.
 void add_state(Solution& s, const io::Netlist& deck, const Parts& parts) {
   if (parts.reduced && reference::pipeline::graph_route_holds(deck.rlc))
-    s.state = map_state<Number>(reference::pipeline::deck_state_equations<Rational>(deck), [](const Rational& q) { return exact_number(q); });
+    s.state = map_state<Number>(reference::pipeline::deck_state_equations<Rational>(deck),
+                                [](const Rational& q) { return exact_number(q); });
 }
 
 }  // namespace
@@ -92,17 +102,20 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   io::validate(p);
   Solution s;
   if (p.form == io::Form::expression) {
-    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
+    s = exact_solution(reference::pipeline::pointwise_input_errors(
+        p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
   } else if (p.form == io::Form::implicit) {  // CEF (1.6) at a point, exact: every decision an exact zero test
     s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] {
       try {
         return reference::pipeline::solve_implicit_exact(p.expression);
-      } catch (const std::length_error& e) {  // jets too large for the exact tier: no exact tier here (api falls back, not certified)
+      } catch (const std::length_error&
+                   e) {  // jets too large for the exact tier: no exact tier here (api falls back, not certified)
         throw reference::NotExactHere(std::string("the exact route's jets are too large (") + e.what() + ")");
       } catch (const reference::PointwiseNoPoint& e) {
         // no rational point of M_c reached (lam² = 8 on a pendulum whose multiplier enters squared): no exact
         // tier here either — fast's answer, not certified (given values that miss M_c are bad input there too)
-        throw reference::NotExactHere(std::string("the exact route reaches no rational point of M_c (") + e.what() + ")");
+        throw reference::NotExactHere(std::string("the exact route reaches no rational point of M_c (") + e.what() +
+                                      ")");
       }
     }));
   } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
@@ -125,7 +138,8 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   } else {
     s = linear(p.linear, parts);
   }
-  if (p.form == io::Form::netlist && !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+  if (p.form == io::Form::netlist &&
+      !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
     s.certified = unknown;
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
   }

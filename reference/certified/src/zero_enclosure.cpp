@@ -61,7 +61,8 @@ class Evaluator {
 /// among the columns not `held`, or where none is above 1e-10 of the matrix's size, among the held
 /// ones (`moved` then says so); empty if some row has none.
 std::vector<std::size_t> pivot_columns(std::vector<std::vector<double>> j, const std::vector<bool>& held, bool& moved) {
-  for (std::size_t c = 0; c < held.size(); ++c) {  // columns scaled to max-norm 1: rank is invariant, a small coordinate's column is not "zero"
+  for (std::size_t c = 0; c < held.size();
+       ++c) {  // columns scaled to max-norm 1: rank is invariant, a small coordinate's column is not "zero"
     double big = 0;
     for (const auto& row : j) big = std::max(big, std::abs(row[c]));
     if (big > 0)
@@ -104,8 +105,10 @@ ZeroEnclosure enclose_zero(const ZeroProblem& p, long precision) {
       out.why = "the approximate point is not finite";
       return out;
     }
-    if (p.given[i]) set_q(vars[i].v, *p.given[i], prec);
-    else arb_set_d(vars[i].v, p.approx[i]);
+    if (p.given[i])
+      set_q(vars[i].v, *p.given[i], prec);
+    else
+      arb_set_d(vars[i].v, p.approx[i]);
   }
   // The unknowns: coordinates that were not given, where the Jacobian at the approximate point allows;
   // else any (the given values alone miss the zero set: their rounding).
@@ -130,7 +133,8 @@ ZeroEnclosure enclose_zero(const ZeroProblem& p, long precision) {
     Evaluator ev(vars, prec);
     for (std::size_t r = 0; r < k; ++r) {
       arb_set(f.at(static_cast<slong>(r), 0), ev(p.equations[r]));
-      for (std::size_t c = 0; c < k; ++c) arb_set(jac.at(static_cast<slong>(r), static_cast<slong>(c)), ev(p.gradients[r][out.solved[c]]));
+      for (std::size_t c = 0; c < k; ++c)
+        arb_set(jac.at(static_cast<slong>(r), static_cast<slong>(c)), ev(p.gradients[r][out.solved[c]]));
     }
   };
   // Newton in the balls' midpoints at full precision: s̃ close enough that the box can be tiny.
@@ -167,7 +171,8 @@ ZeroEnclosure enclose_zero(const ZeroProblem& p, long precision) {
     double size = 0;  // the unknowns' common scale: a zero that is exactly 0 still gets a box of that scale's rounding
     for (std::size_t c = 0; c < k; ++c) size = std::max(size, std::abs(arf_get_d(arb_midref(mid[c].v), ARF_RND_NEAR)));
     for (std::size_t c = 0; c < k; ++c) {
-      const double yfc = enclosure_of(yf.at(static_cast<slong>(c), 0)).mid, s = std::abs(arf_get_d(arb_midref(mid[c].v), ARF_RND_NEAR));
+      const double yfc = enclosure_of(yf.at(static_cast<slong>(c), 0)).mid,
+                   s = std::abs(arf_get_d(arb_midref(mid[c].v), ARF_RND_NEAR));
       rad[c] = 4 * std::abs(yfc) + std::ldexp(s + 1e-12 * size, -static_cast<int>(prec) / 2) + 1e-300;
     }
     BallMat x(kk, 1), kx(kk, 1), ya(kk, kk), dx(kk, 1);
@@ -184,7 +189,8 @@ ZeroEnclosure enclose_zero(const ZeroProblem& p, long precision) {
       {
         Evaluator ev(vars, prec);
         for (std::size_t r = 0; r < k; ++r)
-          for (std::size_t c = 0; c < k; ++c) arb_set(jac.at(static_cast<slong>(r), static_cast<slong>(c)), ev(p.gradients[r][out.solved[c]]));
+          for (std::size_t c = 0; c < k; ++c)
+            arb_set(jac.at(static_cast<slong>(r), static_cast<slong>(c)), ev(p.gradients[r][out.solved[c]]));
       }
       arb_mat_mul(ya.m, y.m, jac.m, prec);  // I − Y F'(X)
       arb_mat_neg(ya.m, ya.m);
@@ -211,7 +217,9 @@ ZeroEnclosure enclose_zero(const ZeroProblem& p, long precision) {
   out.values.resize(m);
   for (std::size_t i = 0; i < m; ++i) out.values[i] = enclosure_of(vars[i].v);
   if (!inside) {
-    out.why = "Krawczyk's test failed: no box around the approximate point was proved to hold a unique zero of the constraints";
+    out.why =
+        "Krawczyk's test failed: no box around the approximate point was proved to hold a unique zero of the "
+        "constraints";
     return out;
   }
   Evaluator ev(vars, prec);

@@ -14,9 +14,10 @@ void require_symmetric_input(const QMatrix& w, const Where& at) {
   for (std::size_t i = 0; i < w.rows(); ++i)
     for (std::size_t k = 0; k < w.cols(); ++k)
       if (w(i, k) != w(k, i))
-        (at / i / k).fail("a symmetric matrix (entry (" + std::to_string(i) + "," + std::to_string(k) + ") = entry (" +
-                              std::to_string(k) + "," + std::to_string(i) + "))",
-                          w(i, k).str() + " vs " + w(k, i).str());
+        (at / i / k)
+            .fail("a symmetric matrix (entry (" + std::to_string(i) + "," + std::to_string(k) + ") = entry (" +
+                      std::to_string(k) + "," + std::to_string(i) + "))",
+                  w(i, k).str() + " vs " + w(k, i).str());
 }
 
 PontryaginInput read_pontryagin(const json& j, const Where& at) {
@@ -43,7 +44,8 @@ PontryaginInput read_pontryagin(const json& j, const Where& at) {
   p.fv = QMatrix(p.n, p.n);
   if (j.contains("forces")) {  // F(q, v) = F_q q + F_v v on δq (YM §4, (4.3)); a damper is F_v = −diag(c)
     const Where f = at / "forces";
-    if (!j["forces"].is_object()) f.fail("an object {q, v} of n×n matrices (F(q, v) = F_q q + F_v v)", describe(j["forces"]));
+    if (!j["forces"].is_object())
+      f.fail("an object {q, v} of n×n matrices (F(q, v) = F_q q + F_v v)", describe(j["forces"]));
     require_known_keys(j["forces"], f, {"q", "v"});
     if (j["forces"].contains("q")) p.fq = read_matrix(j["forces"]["q"], f / "q", n, n);
     if (j["forces"].contains("v")) p.fv = read_matrix(j["forces"]["v"], f / "v", n, n);
@@ -57,16 +59,21 @@ void require_skew_input(const QMatrix& w, const Where& at) {
   for (std::size_t i = 0; i < w.rows(); ++i)
     for (std::size_t k = 0; k < w.cols(); ++k)
       if (w(i, k) != -w(k, i))
-        (at / i / k).fail("a skew matrix (entry (" + std::to_string(i) + "," + std::to_string(k) + ") = -entry (" +
-                              std::to_string(k) + "," + std::to_string(i) + "))",
-                          w(i, k).str() + " vs " + w(k, i).str());
+        (at / i / k)
+            .fail("a skew matrix (entry (" + std::to_string(i) + "," + std::to_string(k) + ") = -entry (" +
+                      std::to_string(k) + "," + std::to_string(i) + "))",
+                  w(i, k).str() + " vs " + w(k, i).str());
 }
 
 DiracInput read_dirac(const json& j, const Where& at, long n) {
-  if (!j.is_object() || j.empty()) at.fail("an object with one of presymplectic, distribution+form, poisson, basis", describe(j));
+  if (!j.is_object() || j.empty())
+    at.fail("an object with one of presymplectic, distribution+form, poisson, basis", describe(j));
   require_known_keys(j, at, {"presymplectic", "distribution", "form", "poisson", "basis"});
-  const int forms = j.contains("presymplectic") + j.contains("distribution") + j.contains("poisson") + j.contains("basis");
-  if (forms > 1) at.fail("exactly one form (presymplectic, distribution + form, poisson or basis)", std::to_string(forms) + " forms");
+  const int forms =
+      j.contains("presymplectic") + j.contains("distribution") + j.contains("poisson") + j.contains("basis");
+  if (forms > 1)
+    at.fail("exactly one form (presymplectic, distribution + form, poisson or basis)",
+            std::to_string(forms) + " forms");
   if (j.contains("form") && !j.contains("distribution"))
     (at / "form").fail("`form` only next to `distribution`", "`form` without `distribution`");
   DiracInput d;
@@ -91,8 +98,7 @@ DiracInput read_dirac(const json& j, const Where& at, long n) {
     d.form = "basis";
     d.path = (at / "basis").path;
     d.g = read_matrix(j["basis"], at / "basis", n, n < 0 ? -1 : 2 * n);
-    if (n < 0 && d.g.cols() != 2 * d.g.rows())
-      (at / "basis").fail("N rows of length 2N", reference::shape(d.g));
+    if (n < 0 && d.g.cols() != 2 * d.g.rows()) (at / "basis").fail("N rows of length 2N", reference::shape(d.g));
   } else {
     at.fail("one of the forms presymplectic, distribution (+form), poisson, basis", "keys " + describe(j));
   }
@@ -109,10 +115,13 @@ CaseFile read_case(const json& j, const std::string& file) {
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
   if (j.contains("lagrangian") || j.contains("parameters"))
     (root / (j.contains("lagrangian") ? "lagrangian" : "parameters"))
-        .fail("a linear case (dirac, pontryagin or constrained) here; the expression form is taken by solve, check and simulate",
-              "the expression form");
-  require_known_keys(j, root, {"dcad", "name", "description", "variables", "dirac", "energy", "pontryagin", "constrained", "initial",
-                               "coordinates", "expect", "known_failures"});
+        .fail(
+            "a linear case (dirac, pontryagin or constrained) here; the expression form is taken by solve, check and "
+            "simulate",
+            "the expression form");
+  require_known_keys(j, root,
+                     {"dcad", "name", "description", "variables", "dirac", "energy", "pontryagin", "constrained",
+                      "initial", "coordinates", "expect", "known_failures"});
   if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1))
     (root / "dcad").fail("format version 1", describe(j["dcad"]));
   CaseFile c;
@@ -127,16 +136,20 @@ CaseFile read_case(const json& j, const std::string& file) {
     const json& v = j["variables"];
     if (!v.is_array()) (root / "variables").fail("an array of names", describe(v));
     for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!v[i].is_string() || v[i].get<std::string>().empty()) (root / "variables" / i).fail("a name (non-empty string)", describe(v[i]));
+      if (!v[i].is_string() || v[i].get<std::string>().empty())
+        (root / "variables" / i).fail("a name (non-empty string)", describe(v[i]));
       const auto seen = std::find(c.variables.begin(), c.variables.end(), v[i].get<std::string>());
       if (seen != c.variables.end())
-        (root / "variables" / i).fail("a new name", "\"" + *seen + "\", already variable " + std::to_string(seen - c.variables.begin()));
+        (root / "variables" / i)
+            .fail("a new name", "\"" + *seen + "\", already variable " + std::to_string(seen - c.variables.begin()));
       c.variables.push_back(v[i].get<std::string>());
     }
     n = static_cast<long>(v.size());
   }
   const int forms = j.contains("dirac") + j.contains("pontryagin") + j.contains("constrained");
-  if (forms > 1) root.fail("one of \"dirac\", \"pontryagin\", \"constrained\"", "both" + std::string(forms > 2 ? " (all three)" : ""));
+  if (forms > 1)
+    root.fail("one of \"dirac\", \"pontryagin\", \"constrained\"",
+              "both" + std::string(forms > 2 ? " (all three)" : ""));
   if (j.contains("constrained")) {
     const json& k = j["constrained"];
     const Where at = root / "constrained";
@@ -146,8 +159,9 @@ CaseFile read_case(const json& j, const std::string& file) {
     c.constrained.w = read_matrix(k["symplectic"], at / "symplectic", n, n);
     require_skew_input(c.constrained.w, at / "symplectic");
     c.n = c.constrained.w.rows();
-    c.constrained.primary =
-        k.contains("primary") ? read_matrix(k["primary"], at / "primary", -1, static_cast<long>(c.n) + 1) : QMatrix(0, c.n + 1);
+    c.constrained.primary = k.contains("primary")
+                                ? read_matrix(k["primary"], at / "primary", -1, static_cast<long>(c.n) + 1)
+                                : QMatrix(0, c.n + 1);
   } else if (j.contains("dirac")) {
     c.has_dirac = true;
     c.dirac = read_dirac(j["dirac"], root / "dirac", n);
@@ -158,9 +172,11 @@ CaseFile read_case(const json& j, const std::string& file) {
     c.pontryagin = read_pontryagin(j["pontryagin"], root / "pontryagin");
     c.n = 3 * c.pontryagin.n;
     if (n >= 0 && static_cast<std::size_t>(n) != c.n)
-      (root / "variables").fail(std::to_string(c.n) + " names (q, v, p for Q of dim " + std::to_string(c.pontryagin.n) + ")",
-                                std::to_string(n));
-    if (j.contains("energy")) (root / "energy").fail("no energy next to `pontryagin` (E = p·v − L)", describe(j["energy"]));
+      (root / "variables")
+          .fail(std::to_string(c.n) + " names (q, v, p for Q of dim " + std::to_string(c.pontryagin.n) + ")",
+                std::to_string(n));
+    if (j.contains("energy"))
+      (root / "energy").fail("no energy next to `pontryagin` (E = p·v − L)", describe(j["energy"]));
   } else if (!c.has_constrained) {
     root.fail("a \"dirac\", \"pontryagin\" or \"constrained\" member", "none");
   }

@@ -38,8 +38,10 @@ void lc_loops(const Netlist& n, CircuitFacts& f) {
   const auto& br = n.circuit.branches;
   const std::function<bool(BranchKind)> keep = [](BranchKind k) { return k != BranchKind::inductor; };
   const std::function<bool(BranchKind)> prefer = [](BranchKind k) { return k == BranchKind::empty; };
-  for (const graph::Loop& l : graph::fundamental_loops(n.circuit.nodes, edges_of(br), which(br, keep), which(br, prefer)))
-    (br[l.front().branch].kind == BranchKind::capacitor ? f.pc_loop_branches : f.empty_loop_branches).push_back(signed_names(br, l));
+  for (const graph::Loop& l :
+       graph::fundamental_loops(n.circuit.nodes, edges_of(br), which(br, keep), which(br, prefer)))
+    (br[l.front().branch].kind == BranchKind::capacitor ? f.pc_loop_branches : f.empty_loop_branches)
+        .push_back(signed_names(br, l));
 }
 
 std::function<bool(RlcKind)> is(std::initializer_list<RlcKind> ks) {
@@ -58,10 +60,12 @@ std::vector<std::vector<std::string>> rlc_loops(const Netlist& n, const std::fun
   return out;
 }
 
-std::vector<std::vector<std::string>> rlc_cutsets(const Netlist& n, const std::function<bool(RlcKind)>& in, const std::function<bool(RlcKind)>& must) {
+std::vector<std::vector<std::string>> rlc_cutsets(const Netlist& n, const std::function<bool(RlcKind)>& in,
+                                                  const std::function<bool(RlcKind)>& must) {
   const auto& br = n.rlc.branches;
   std::vector<std::vector<std::string>> out;
-  for (const graph::Cutset& c : graph::cutsets(n.rlc.nodes, edges_of(br), which(br, in), which(br, must))) out.push_back(signed_names(br, c));
+  for (const graph::Cutset& c : graph::cutsets(n.rlc.nodes, edges_of(br), which(br, in), which(br, must)))
+    out.push_back(signed_names(br, c));
   return out;
 }
 
@@ -74,13 +78,15 @@ CircuitFacts circuit_facts(const Netlist& n) {
     f.branches = static_cast<long>(n.rlc.branches.size());
     f.nodes = static_cast<long>(n.rlc.nodes) + 1;
     const auto wire = is({RlcKind::wire});
-    f.empty_loops = static_cast<long>(graph::cycle_rank(n.rlc.nodes, edges_of(n.rlc.branches), which(n.rlc.branches, wire)));
+    f.empty_loops =
+        static_cast<long>(graph::cycle_rank(n.rlc.nodes, edges_of(n.rlc.branches), which(n.rlc.branches, wire)));
     for (const auto& b : n.rlc.branches) {
       long* count[] = {&f.inductors, &f.capacitors, &f.resistors, &f.voltage_sources, &f.current_sources, &f.wires};
       ++*count[static_cast<int>(b.kind)];
     }
     f.couplings = static_cast<long>(n.rlc.mutuals.size());
-    f.cv_loops = rlc_loops(n, is({RlcKind::capacitor, RlcKind::voltage, RlcKind::wire}), is({RlcKind::voltage, RlcKind::wire}), RlcKind::capacitor);
+    f.cv_loops = rlc_loops(n, is({RlcKind::capacitor, RlcKind::voltage, RlcKind::wire}),
+                           is({RlcKind::voltage, RlcKind::wire}), RlcKind::capacitor);
     f.source_loops = rlc_loops(n, is({RlcKind::voltage, RlcKind::wire}), wire, RlcKind::voltage);
     f.li_cutsets = rlc_cutsets(n, is({RlcKind::inductor, RlcKind::current}), is({RlcKind::inductor}));
     f.source_cutsets = rlc_cutsets(n, is({RlcKind::current}), is({RlcKind::current}));
@@ -95,7 +101,9 @@ CircuitFacts circuit_facts(const Netlist& n) {
     if (b.value < 0) f.physical = false;
     if (b.kind == BranchKind::empty) f.has_empty_branch = true;
     f.branch_names.push_back(b.name);
-    f.branch_kinds.push_back(b.kind == BranchKind::inductor ? "inductive" : b.kind == BranchKind::capacitor ? "capacitive" : "empty");
+    f.branch_kinds.push_back(b.kind == BranchKind::inductor    ? "inductive"
+                             : b.kind == BranchKind::capacitor ? "capacitive"
+                                                               : "empty");
   }
   lc_loops(n, f);
   return f;

@@ -32,7 +32,8 @@ std::string text_at(const json& j, const Where& at, const std::string& what) {
 Rational read_entry(const json& x, const Where& at, const std::map<std::string, Rational>& parameters) {
   if (!x.is_string()) return read_number(x, at);
   const reference::expr::Expr e = parse_expression(x.get<std::string>(), {}, parameters, at);
-  if (!reference::expr::is_number(e)) at.fail("a number, or a formula in the parameters", "\"" + x.get<std::string>() + "\"");
+  if (!reference::expr::is_number(e))
+    at.fail("a number, or a formula in the parameters", "\"" + x.get<std::string>() + "\"");
   return e->value;
 }
 
@@ -41,7 +42,8 @@ Rational read_entry(const json& x, const Where& at, const std::map<std::string, 
 std::string not_an_index(const json& j) {
   if (j.is_string()) {
     const std::string t = j.get<std::string>();
-    if (!t.empty() && t.find_first_not_of("+-0123456789.eE") == std::string::npos && t.find_first_of("0123456789") != std::string::npos)
+    if (!t.empty() && t.find_first_not_of("+-0123456789.eE") == std::string::npos &&
+        t.find_first_of("0123456789") != std::string::npos)
       return "number " + t + " (not an integer)";
   }
   return describe(j);
@@ -66,7 +68,8 @@ Entries read_entries(const json& j, const Where& at, long rows, const std::vecto
       const json& r = j["rows"];
       if (!r.is_number_integer() || r.get<long>() < 0 || r.get<long>() > 1'000'000)
         (at / "rows").fail("a number of rows (an integer from 0 to 1,000,000)", not_an_index(r));
-      if (rows >= 0 && r.get<long>() != rows) (at / "rows").fail(std::to_string(rows) + " rows (as E)", std::to_string(r.get<long>()));
+      if (rows >= 0 && r.get<long>() != rows)
+        (at / "rows").fail(std::to_string(rows) + " rows (as E)", std::to_string(r.get<long>()));
       out.rows = r.get<long>();
     } else {
       out.rows = rows;
@@ -80,7 +83,8 @@ Entries read_entries(const json& j, const Where& at, long rows, const std::vecto
     for (std::size_t k = 0; k < es.size(); ++k) {
       const Where ek = at / "entries" / k;
       const json& e = es[k];
-      if (!e.is_array() || e.size() != 3) ek.fail("[row, column, value] (row and column from 0; the column may be a variable's name)", describe(e));
+      if (!e.is_array() || e.size() != 3)
+        ek.fail("[row, column, value] (row and column from 0; the column may be a variable's name)", describe(e));
       if (!e[0].is_number_integer() || e[0].get<long>() < 0 || e[0].get<long>() >= out.rows)
         (ek / 0).fail("a row from 0 to " + std::to_string(out.rows - 1), not_an_index(e[0]));
       long col = -1;
@@ -102,19 +106,23 @@ Entries read_entries(const json& j, const Where& at, long rows, const std::vecto
       const long row = e[0].get<long>();
       const auto [it, fresh] = seen.emplace(row * cols + col, k);
       if (!fresh)
-        ek.fail("each entry once", "row " + std::to_string(row) + ", column " + std::to_string(col) + " again (first at " + at.path + "/entries/" + std::to_string(it->second) + ")");
+        ek.fail("each entry once", "row " + std::to_string(row) + ", column " + std::to_string(col) +
+                                       " again (first at " + at.path + "/entries/" + std::to_string(it->second) + ")");
       Rational v = read_entry(e[2], ek / 2, parameters);
       if (v != 0) out.nonzeros.push_back({row, col, std::move(v)});
     }
     return out;
   }
-  if (!j.is_array()) at.fail("a matrix (array of rows, or {\"rows\": m, \"entries\": [[row, column, value], …]})", describe(j));
-  if (rows >= 0 && static_cast<long>(j.size()) != rows) at.fail(std::to_string(rows) + " rows", std::to_string(j.size()) + " rows");
+  if (!j.is_array())
+    at.fail("a matrix (array of rows, or {\"rows\": m, \"entries\": [[row, column, value], …]})", describe(j));
+  if (rows >= 0 && static_cast<long>(j.size()) != rows)
+    at.fail(std::to_string(rows) + " rows", std::to_string(j.size()) + " rows");
   out.rows = static_cast<long>(j.size());
   for (std::size_t i = 0; i < j.size(); ++i) {
     const Where ri = at / i;
     if (!j[i].is_array()) ri.fail("a row (array of numbers)", describe(j[i]));
-    if (static_cast<long>(j[i].size()) != cols) ri.fail("a row of length " + std::to_string(cols), "length " + std::to_string(j[i].size()));
+    if (static_cast<long>(j[i].size()) != cols)
+      ri.fail("a row of length " + std::to_string(cols), "length " + std::to_string(j[i].size()));
     for (std::size_t k = 0; k < j[i].size(); ++k) {
       Rational v = read_entry(j[i][k], ri / k, parameters);
       if (v != 0) out.nonzeros.push_back({static_cast<long>(i), static_cast<long>(k), std::move(v)});
@@ -162,9 +170,12 @@ double value_at(const reference::expr::Expr& e, double t) {
 
 DaeCase read_dae_case(const json& j, const std::string& file) {
   const Where root{file, ""};
-  require_known_keys(j, root, {"dcad", "name", "description", "variables", "parameters", "dae", "initial", "expect", "known_failures"});
+  require_known_keys(
+      j, root,
+      {"dcad", "name", "description", "variables", "parameters", "dae", "initial", "expect", "known_failures"});
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
-  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1)) (root / "dcad").fail("format version 1", describe(j["dcad"]));
+  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1))
+    (root / "dcad").fail("format version 1", describe(j["dcad"]));
   DaeCase c;
   c.file = file;
   if (j.contains("name")) c.name = text_at(j["name"], root / "name", "a string");
@@ -175,7 +186,8 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
   std::set<std::string> taken;
   for (std::size_t i = 0; i < vs.size(); ++i) {
     const std::string name = text_at(vs[i], root / "variables" / i, "a variable name");
-    if (!is_identifier(name)) (root / "variables" / i).fail("a name (a letter or _, then letters, digits, _)", "\"" + name + "\"");
+    if (!is_identifier(name))
+      (root / "variables" / i).fail("a name (a letter or _, then letters, digits, _)", "\"" + name + "\"");
     if (!taken.insert(name).second) (root / "variables" / i).fail("a name not used before", "\"" + name + "\" again");
     c.variables.push_back(name);
   }
@@ -195,7 +207,8 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
     const json& p = j["parameters"];
     if (!p.is_object()) (root / "parameters").fail("an object {name: exact value}", describe(p));
     for (const auto& [k, v] : p.items()) {
-      if (taken.count(k) || k == c.time_name) (root / "parameters" / k).fail("a name not used by a variable or the time", "\"" + k + "\"");
+      if (taken.count(k) || k == c.time_name)
+        (root / "parameters" / k).fail("a name not used by a variable or the time", "\"" + k + "\"");
       c.parameters[k] = read_number(v, root / "parameters" / k);
     }
   }
@@ -203,7 +216,8 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
   if (e.rows == 0) (w / "E").fail("at least one equation (row)", "none");
   Entries a = read_entries(d["A"], w / "A", e.rows, c.variables, c.parameters);
   c.rows = e.rows;
-  c.dense = e.rows * static_cast<long>(n) <= DaeCase::dense_limit && e.rows <= DaeCase::dense_side && static_cast<long>(n) <= DaeCase::dense_side;
+  c.dense = e.rows * static_cast<long>(n) <= DaeCase::dense_limit && e.rows <= DaeCase::dense_side &&
+            static_cast<long>(n) <= DaeCase::dense_side;
   if (c.dense) c.e = densely(e, static_cast<long>(n)), c.a = densely(a, static_cast<long>(n));
   c.e_entries = std::move(e.nonzeros);
   c.a_entries = std::move(a.nonzeros);
@@ -211,7 +225,8 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
   c.f.assign(m, reference::expr::number(0));
   if (d.contains("f")) {
     const json& f = d["f"];
-    if (!f.is_array() || f.size() != m) (w / "f").fail("an array of " + std::to_string(m) + " expressions in the time (one per equation)", describe(f));
+    if (!f.is_array() || f.size() != m)
+      (w / "f").fail("an array of " + std::to_string(m) + " expressions in the time (one per equation)", describe(f));
     std::map<std::string, std::size_t> vars;
     if (!c.time_name.empty()) vars[c.time_name] = 0;
     for (std::size_t i = 0; i < m; ++i) {
@@ -224,12 +239,14 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
         c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
       } catch (const InputError& e) {
         if (!c.time_name.empty()) throw;
-        throw InputError(std::string(e.what()) + " (a source that depends on the time needs its name in /dae/time, e.g. \"time\": \"t\")");
+        throw InputError(std::string(e.what()) +
+                         " (a source that depends on the time needs its name in /dae/time, e.g. \"time\": \"t\")");
       }
       bool defined = false;  // a source must be defined for generic t: 1/(t - t) or sqrt(-1 - t^2) is no function
       for (double t : {0.5, 1.0, 2.0, 3.7}) defined = defined || std::isfinite(value_at(c.f[i], t));
       if (!defined)
-        at.fail("a formula defined (finite and real) for generic t", "\"" + f[i].get<std::string>() + "\", undefined at t = 0.5, 1, 2 and 3.7");
+        at.fail("a formula defined (finite and real) for generic t",
+                "\"" + f[i].get<std::string>() + "\", undefined at t = 0.5, 1, 2 and 3.7");
     }
   }
   c.initial.assign(n, std::nullopt);
@@ -249,7 +266,8 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
         std::vector<std::string> known = c.variables;
         if (!c.time_name.empty()) known.push_back(c.time_name);
         const std::string best = nearest_name(k, known);
-        (wi / k).fail("a variable or the time", "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+        (wi / k).fail("a variable or the time",
+                      "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
       }
       c.initial[static_cast<std::size_t>(it - c.variables.begin())] = value;
     }

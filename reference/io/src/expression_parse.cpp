@@ -16,18 +16,19 @@ namespace ex = reference::expr;
 
 namespace {
 
-constexpr std::size_t kMaxDepth = 200;    // nesting of parentheses and unary signs
-constexpr long kMaxExponent = 64;         // x^k with |k| ≤ 64: larger ones only make huge derivatives
+constexpr std::size_t kMaxDepth = 200;  // nesting of parentheses and unary signs
+constexpr long kMaxExponent = 64;       // x^k with |k| ≤ 64: larger ones only make huge derivatives
 constexpr std::size_t kMaxLength = 100000;
 
 class Parser {
  public:
-  Parser(const std::string& text, const std::map<std::string, std::size_t>& vars, const std::map<std::string, Rational>& params,
-         const Where& at)
+  Parser(const std::string& text, const std::map<std::string, std::size_t>& vars,
+         const std::map<std::string, Rational>& params, const Where& at)
       : t_(text), vars_(vars), params_(params), at_(at) {}
 
   ex::Expr parse() {
-    if (t_.size() > kMaxLength) at_.fail("an expression of at most " + std::to_string(kMaxLength) + " characters", std::to_string(t_.size()));
+    if (t_.size() > kMaxLength)
+      at_.fail("an expression of at most " + std::to_string(kMaxLength) + " characters", std::to_string(t_.size()));
     skip();
     if (i_ == t_.size()) fail("an expression", "an empty string");
     ex::Expr e = sum();
@@ -38,8 +39,8 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& expected, const std::string& found) const {
-    throw InputError(at_.file + ": " + (at_.path.empty() ? std::string("/") : at_.path) + ": column " + std::to_string(i_ + 1) +
-                     ": expected " + expected + ", found " + found);
+    throw InputError(at_.file + ": " + (at_.path.empty() ? std::string("/") : at_.path) + ": column " +
+                     std::to_string(i_ + 1) + ": expected " + expected + ", found " + found);
   }
   std::string quote_here() const {
     if (i_ >= t_.size()) return "the end of the expression";
@@ -58,15 +59,19 @@ class Parser {
     return false;
   }
   void enter() {
-    if (++depth_ > kMaxDepth) fail("at most " + std::to_string(kMaxDepth) + " nested parentheses or signs", "deeper nesting");
+    if (++depth_ > kMaxDepth)
+      fail("at most " + std::to_string(kMaxDepth) + " nested parentheses or signs", "deeper nesting");
   }
 
   ex::Expr sum() {
     ex::Expr e = product();
     for (;;) {
-      if (eat('+')) e = ex::add(e, product());
-      else if (eat('-')) e = ex::sub(e, product());
-      else return e;
+      if (eat('+'))
+        e = ex::add(e, product());
+      else if (eat('-'))
+        e = ex::sub(e, product());
+      else
+        return e;
     }
   }
   ex::Expr product() {
@@ -127,7 +132,8 @@ class Parser {
     skip();
     if (i_ < t_.size() && t_[i_] == '^') fail("an operator other than a second ^ (write (a^b)^c)", quote_here());
     if (ex::is_number(base, 0) && k < 0) fail("a nonzero base for a negative power", "0^(" + std::to_string(k) + ")");
-    if (ex::is_number(base, 0) && k == 0) fail("a nonzero base for the power 0 (0^0 is undefined: dcad does not read it as 1)", "0^0");
+    if (ex::is_number(base, 0) && k == 0)
+      fail("a nonzero base for the power 0 (0^0 is undefined: dcad does not read it as 1)", "0^0");
     return ex::pow(base, k);
   }
   ex::Expr atom() {
@@ -210,7 +216,8 @@ const std::vector<std::string>& expression_functions() {
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 ex::Expr parse_expression(const std::string& text, const std::map<std::string, std::size_t>& variables,

@@ -67,8 +67,9 @@ class ExactBuilder {
       too_deep_ = true;
       return false;
     }
-    const std::string name =
-        stack_.empty() ? "" : stack_.back()->is_array() ? std::to_string(stack_.back()->size()) : key_;
+    const std::string name = stack_.empty()              ? ""
+                             : stack_.back()->is_array() ? std::to_string(stack_.back()->size())
+                                                         : key_;
     stack_.push_back(place(std::move(v)));
     names_.push_back(name);
     return true;
@@ -129,9 +130,12 @@ std::size_t opening_of_depth(const std::string& text, std::size_t depth) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char ch = text[i];
     if (in_string) {
-      if (escaped) escaped = false;
-      else if (ch == '\\') escaped = true;
-      else if (ch == '"') in_string = false;
+      if (escaped)
+        escaped = false;
+      else if (ch == '\\')
+        escaped = true;
+      else if (ch == '"')
+        in_string = false;
     } else if (ch == '"') {
       in_string = true;
     } else if (ch == '[' || ch == '{') {
@@ -150,10 +154,12 @@ json parse_json_exact(const std::string& text, const std::string& file) {
   ExactBuilder b(root);
   if (!json::sax_parse(text, &b)) {
     if (!b.duplicate_.empty())
-      throw InputError(file + ": " + b.where() + ": expected each key once in an object, found \"" + b.duplicate_ + "\" twice");
+      throw InputError(file + ": " + b.where() + ": expected each key once in an object, found \"" + b.duplicate_ +
+                       "\" twice");
     if (b.too_deep_) {
       b.error_pos_ = opening_of_depth(text, ExactBuilder::kMaxDepth + 1);
-      b.error_ = "nesting deeper than " + std::to_string(ExactBuilder::kMaxDepth) + " levels; no case needs more than 4";
+      b.error_ =
+          "nesting deeper than " + std::to_string(ExactBuilder::kMaxDepth) + " levels; no case needs more than 4";
     }
     std::size_t line = 1, col = 1;
     for (std::size_t i = 0; i + 1 < b.error_pos_ && i < text.size(); ++i) {
@@ -165,7 +171,8 @@ json parse_json_exact(const std::string& text, const std::string& file) {
       }
     }
     throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(col) +
-                     (b.too_deep_ ? ": expected JSON nested at most " + std::to_string(ExactBuilder::kMaxDepth) + " deep, found " + b.error_
+                     (b.too_deep_ ? ": expected JSON nested at most " + std::to_string(ExactBuilder::kMaxDepth) +
+                                        " deep, found " + b.error_
                                   : ": expected valid JSON, found a syntax error (" + b.error_ + ")"));
   }
   return root;
@@ -181,7 +188,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {  // Leve
     row[0] = i;
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1)});
+      row[j] =
+          std::min({row[j] + 1, row[j - 1] + 1, diag + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1)});
       diag = up;
     }
   }
@@ -209,14 +217,16 @@ void require_known_keys(const json& j, const Where& at, const std::vector<std::s
     std::string list;
     for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
     const std::string best = nearest_name(key, allowed);
-    (at / key).fail("one of the keys " + list, "unknown key \"" + key + "\"" + (!best.empty() ? " (did you mean \"" + best + "\"?)" : ""));
+    (at / key).fail("one of the keys " + list,
+                    "unknown key \"" + key + "\"" + (!best.empty() ? " (did you mean \"" + best + "\"?)" : ""));
   }
 }
 
 json read_json_file(const std::string& file) { return parse_json_exact(slurp(file), file); }
 
 Rational read_number(const json& j, const Where& at) {
-  if (j.is_number_integer()) return j.is_number_unsigned() ? Rational(j.get<std::uint64_t>()) : Rational(j.get<std::int64_t>());
+  if (j.is_number_integer())
+    return j.is_number_unsigned() ? Rational(j.get<std::uint64_t>()) : Rational(j.get<std::int64_t>());
   if (!j.is_string()) at.fail("a number (JSON number or exact string such as \"-2/7\")", describe(j));
   try {
     return reference::parse_rational(j.get<std::string>());
@@ -244,7 +254,8 @@ QMatrix read_matrix(const json& j, const Where& at, long rows, long cols) {
 
 std::vector<Rational> read_vector(const json& j, const Where& at, long size) {
   if (!j.is_array()) at.fail("an array of numbers", describe(j));
-  if (size >= 0 && static_cast<long>(j.size()) != size) at.fail(std::to_string(size) + " numbers", std::to_string(j.size()));
+  if (size >= 0 && static_cast<long>(j.size()) != size)
+    at.fail(std::to_string(size) + " numbers", std::to_string(j.size()));
   std::vector<Rational> v;
   for (std::size_t i = 0; i < j.size(); ++i) v.push_back(read_number(j[i], at / i));
   return v;

@@ -13,7 +13,9 @@ namespace dcad::io {
 using nlohmann::json;
 namespace ex = reference::expr;
 
-bool is_expression_case(const json& j) { return j.is_object() && (j.contains("lagrangian") || j.contains("parameters")); }
+bool is_expression_case(const json& j) {
+  return j.is_object() && (j.contains("lagrangian") || j.contains("parameters"));
+}
 
 bool is_expression_file(const std::string& file) {
   if (file.size() < 5 || file.compare(file.size() - 5, 5, ".json") != 0) return false;
@@ -33,16 +35,20 @@ std::string read_string(const json& j, const Where& at, const std::string& what)
 
 /// A new name for a coordinate, parameter or the time: an identifier not taken by anything else.
 void claim(const std::string& name, const Where& at, std::set<std::string>& taken, const std::string& what) {
-  if (!is_identifier(name)) at.fail(what + " that is a name (a letter or _, then letters, digits, _)", "\"" + name + "\"");
+  if (!is_identifier(name))
+    at.fail(what + " that is a name (a letter or _, then letters, digits, _)", "\"" + name + "\"");
   const auto& f = expression_functions();
-  if (std::find(f.begin(), f.end(), name) != f.end()) at.fail(what + " that is not a function name", "\"" + name + "\"");
-  if (!taken.insert(name).second) at.fail(what + " not used for anything else", "\"" + name + "\" given twice (or a velocity/momentum name)");
+  if (std::find(f.begin(), f.end(), name) != f.end())
+    at.fail(what + " that is not a function name", "\"" + name + "\"");
+  if (!taken.insert(name).second)
+    at.fail(what + " not used for anything else", "\"" + name + "\" given twice (or a velocity/momentum name)");
 }
 
 /// The format version, `name` and `description`.
 LagrangianCase read_header(const json& j, const Where& root, const std::string& file) {
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
-  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1)) (root / "dcad").fail("format version 1", describe(j["dcad"]));
+  if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1))
+    (root / "dcad").fail("format version 1", describe(j["dcad"]));
   LagrangianCase c;
   c.file = file;
   if (j.contains("name")) c.name = read_string(j["name"], root / "name", "a string");
@@ -52,12 +58,13 @@ LagrangianCase read_header(const json& j, const Where& root, const std::string& 
 
 /// The names both formula forms declare, in order: `coordinates` (each claiming v_<name>, and p_<name>
 /// when the form has momenta), the optional `time`, the case's `parameters`.
-void read_names(const json& j, const json& form, const Where& root, const Where& l, bool momenta, std::size_t most, LagrangianCase& c,
-                std::set<std::string>& taken) {
+void read_names(const json& j, const json& form, const Where& root, const Where& l, bool momenta, std::size_t most,
+                LagrangianCase& c, std::set<std::string>& taken) {
   reference::LagrangianSystem& s = c.system;
   const json& coords = form["coordinates"];
   if (!coords.is_array() || coords.empty()) (l / "coordinates").fail("a non-empty array of names", describe(coords));
-  if (coords.size() > most) (l / "coordinates").fail("at most " + std::to_string(most) + " coordinates", std::to_string(coords.size()));
+  if (coords.size() > most)
+    (l / "coordinates").fail("at most " + std::to_string(most) + " coordinates", std::to_string(coords.size()));
   for (std::size_t i = 0; i < coords.size(); ++i) {
     const std::string name = read_string(coords[i], l / "coordinates" / i, "a coordinate name");
     claim(name, l / "coordinates" / i, taken, "a coordinate name");
@@ -65,8 +72,11 @@ void read_names(const json& j, const json& form, const Where& root, const Where&
   }
   s.n = s.names.size();
   for (std::size_t i = 0; i < s.n; ++i) {
-    claim("v_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose velocity name v_" + s.names[i] + " is free");
-    if (momenta) claim("p_" + s.names[i], l / "coordinates" / i, taken, "a coordinate whose momentum name p_" + s.names[i] + " is free");
+    claim("v_" + s.names[i], l / "coordinates" / i, taken,
+          "a coordinate whose velocity name v_" + s.names[i] + " is free");
+    if (momenta)
+      claim("p_" + s.names[i], l / "coordinates" / i, taken,
+            "a coordinate whose momentum name p_" + s.names[i] + " is free");
   }
   if (form.contains("time")) {
     s.has_time = true;
@@ -98,7 +108,8 @@ std::map<std::string, std::size_t> formula_variables(const reference::Lagrangian
 
 LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   const Where root{file, ""};
-  require_known_keys(j, root, {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures"});
+  require_known_keys(
+      j, root, {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures"});
   if (!j.contains("lagrangian")) root.fail("the key \"lagrangian\" (the expression form)", "\"parameters\" without it");
   LagrangianCase c = read_header(j, root, file);
   const json& lag = j["lagrangian"];
@@ -118,27 +129,34 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   if (lag.contains("constraints")) {
     const json& k = lag["constraints"];
     if (!k.is_array()) (l / "constraints").fail("an array of expressions affine in the velocities", describe(k));
-    for (std::size_t a = 0; a < k.size(); ++a) s.constraints.push_back(parse(k[a], l / "constraints" / a, "a constraint as a string expression"));
+    for (std::size_t a = 0; a < k.size(); ++a)
+      s.constraints.push_back(parse(k[a], l / "constraints" / a, "a constraint as a string expression"));
     // affinity is decided after expanding and collecting terms ((v+1)^2 - v^2 - 2v is the constant 1):
     // a constraint that is affine only so is replaced by its form a(t, q)·v + b(t, q)
     std::vector<std::size_t> vs;
     for (std::size_t i = 0; i < s.n; ++i) vs.push_back(s.v(i));
     for (std::size_t bad; (bad = reference::first_non_affine_constraint(s)) < s.m();) {
-      const auto form = reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
+      const auto form =
+          reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
       if (!form)
-        (l / "constraints" / bad).fail("a constraint affine in the velocities, a(t, q)·v + b(t, q) (CONTRACT)",
-                                       "\"" + k[bad].get<std::string>() + "\", not affine in v (after expanding and collecting terms)");
+        (l / "constraints" / bad)
+            .fail("a constraint affine in the velocities, a(t, q)·v + b(t, q) (CONTRACT)",
+                  "\"" + k[bad].get<std::string>() + "\", not affine in v (after expanding and collecting terms)");
       reference::expr::Expr e = form->second;
-      for (std::size_t i = 0; i < s.n; ++i) e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
+      for (std::size_t i = 0; i < s.n; ++i)
+        e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
       s.constraints[bad] = e;
     }
-    if (s.m() > s.n) (l / "constraints").fail("at most as many constraints as coordinates (" + std::to_string(s.n) + ")", std::to_string(s.m()));
+    if (s.m() > s.n)
+      (l / "constraints")
+          .fail("at most as many constraints as coordinates (" + std::to_string(s.n) + ")", std::to_string(s.m()));
   }
   if (lag.contains("forces")) {
     const json& f = lag["forces"];
     if (!f.is_array() || f.size() != s.n)
       (l / "forces").fail("an array of " + std::to_string(s.n) + " expressions (one per coordinate)", describe(f));
-    for (std::size_t i = 0; i < s.n; ++i) s.forces.push_back(parse(f[i], l / "forces" / i, "a force component as a string expression"));
+    for (std::size_t i = 0; i < s.n; ++i)
+      s.forces.push_back(parse(f[i], l / "forces" / i, "a force component as a string expression"));
   }
   c.initial.assign(2 * s.n + 1, std::nullopt);
   c.initial_p.assign(s.n, std::nullopt);
@@ -156,7 +174,8 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
         c.initial[it->second] = value;
         continue;
       }
-      const auto p = std::find(s.names.begin(), s.names.end(), k.size() > 2 && k.compare(0, 2, "p_") == 0 ? k.substr(2) : std::string());
+      const auto p = std::find(s.names.begin(), s.names.end(),
+                               k.size() > 2 && k.compare(0, 2, "p_") == 0 ? k.substr(2) : std::string());
       if (p != s.names.end()) {
         c.initial_p[static_cast<std::size_t>(p - s.names.begin())] = value;
         continue;
@@ -169,13 +188,16 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   return c;
 }
 
-LagrangianCase read_lagrangian_case(const std::string& file) { return read_lagrangian_case(read_json_file(file), file); }
+LagrangianCase read_lagrangian_case(const std::string& file) {
+  return read_lagrangian_case(read_json_file(file), file);
+}
 
 bool is_implicit_case(const json& j) { return j.is_object() && j.contains("implicit"); }
 
 LagrangianCase read_implicit_case(const json& j, const std::string& file) {
   const Where root{file, ""};
-  require_known_keys(j, root, {"dcad", "name", "description", "parameters", "implicit", "initial", "expect", "known_failures"});
+  require_known_keys(j, root,
+                     {"dcad", "name", "description", "parameters", "implicit", "initial", "expect", "known_failures"});
   LagrangianCase c = read_header(j, root, file);
   const json& im = j["implicit"];
   const Where l = root / "implicit";
@@ -191,18 +213,24 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
   const std::map<std::string, std::size_t> vars = formula_variables(s);  // the arguments of the equations: t, x, v_x
   const json& k = im["equations"];
   const Where ke = l / "equations";
-  if (!k.is_array()) ke.fail("an array of equations phi(t, x, v_x) = 0 as string expressions, affine in the v_*", describe(k));
+  if (!k.is_array())
+    ke.fail("an array of equations phi(t, x, v_x) = 0 as string expressions, affine in the v_*", describe(k));
   for (std::size_t a = 0; a < k.size(); ++a)
-    s.constraints.push_back(parse_expression(read_string(k[a], ke / a, "an equation as a string expression"), vars, c.parameters, ke / a));
+    s.constraints.push_back(
+        parse_expression(read_string(k[a], ke / a, "an equation as a string expression"), vars, c.parameters, ke / a));
   std::vector<std::size_t> vs;
   for (std::size_t i = 0; i < s.n; ++i) vs.push_back(s.v(i));
-  for (std::size_t bad; (bad = reference::first_non_affine_constraint(s)) < s.m();) {  // as for constraints: affine after expanding
-    const auto form = reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
+  for (std::size_t bad;
+       (bad = reference::first_non_affine_constraint(s)) < s.m();) {  // as for constraints: affine after expanding
+    const auto form =
+        reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
     if (!form)
-      (ke / bad).fail("an equation affine in the derivatives v_*, E(t, x)·v + g(t, x) (CONTRACT)",
-                      "\"" + k[bad].get<std::string>() + "\", not affine in the v_* (after expanding and collecting terms)");
+      (ke / bad).fail(
+          "an equation affine in the derivatives v_*, E(t, x)·v + g(t, x) (CONTRACT)",
+          "\"" + k[bad].get<std::string>() + "\", not affine in the v_* (after expanding and collecting terms)");
     reference::expr::Expr e = form->second;
-    for (std::size_t i = 0; i < s.n; ++i) e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
+    for (std::size_t i = 0; i < s.n; ++i)
+      e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
     s.constraints[bad] = e;
   }
   c.initial.assign(2 * s.n + 1, std::nullopt);
@@ -229,7 +257,8 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
   return c;
 }
 
-reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file, const std::string& path) {
+reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file,
+                                         const std::string& path) {
   const std::map<std::string, std::size_t> vars = formula_variables(c.system);
   const Where at{file, path};
   return parse_expression(text, vars, c.parameters, at);

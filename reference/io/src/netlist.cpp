@@ -41,9 +41,9 @@ std::string shown(const Rational& v) {
 }  // namespace
 
 std::optional<Dialect> dialect_named(const std::string& name) {
-  static const std::vector<std::pair<std::string, Dialect>> names = {{"strict", Dialect::strict}, {"ngspice", Dialect::ngspice},
-                                                                     {"ngspice39", Dialect::ngspice39}, {"xyce", Dialect::xyce},
-                                                                     {"hspice", Dialect::hspice}, {"gnucap", Dialect::gnucap}};
+  static const std::vector<std::pair<std::string, Dialect>> names = {
+      {"strict", Dialect::strict}, {"ngspice", Dialect::ngspice}, {"ngspice39", Dialect::ngspice39},
+      {"xyce", Dialect::xyce},     {"hspice", Dialect::hspice},   {"gnucap", Dialect::gnucap}};
   for (const auto& [n, d] : names)
     if (n == lower(name)) return d;
   return std::nullopt;
@@ -55,7 +55,8 @@ Rational parse_spice_value(const std::string& text, std::string* ignored, Dialec
   if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
   while (i < t.size() && (std::isdigit(static_cast<unsigned char>(t[i])) || t[i] == '.')) ++i;
   if (i < t.size() && t[i] == 'e' && i + 1 < t.size() &&
-      (std::isdigit(static_cast<unsigned char>(t[i + 1])) || ((t[i + 1] == '+' || t[i + 1] == '-') && i + 2 < t.size()))) {
+      (std::isdigit(static_cast<unsigned char>(t[i + 1])) ||
+       ((t[i + 1] == '+' || t[i + 1] == '-') && i + 2 < t.size()))) {
     ++i;
     if (t[i] == '+' || t[i] == '-') ++i;
     while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i]))) ++i;
@@ -63,7 +64,8 @@ Rational parse_spice_value(const std::string& text, std::string* ignored, Dialec
   Rational v = reference::parse_rational(t.substr(0, i));
   std::string rest = t.substr(i);
   for (char ch : rest)
-    if (!std::isalpha(static_cast<unsigned char>(ch))) throw std::invalid_argument("expected a SPICE value such as 10u or 4.7nF, found \"" + text + "\"");
+    if (!std::isalpha(static_cast<unsigned char>(ch)))
+      throw std::invalid_argument("expected a SPICE value such as 10u or 4.7nF, found \"" + text + "\"");
   // ngspice's scale factors (mil before m); `a` and `x` differ between SPICEs (Dialect): read as the deck's
   // dialect reads them, refused in the strict one, never guessed.  Where `a` is atto it is atto before any
   // letters ("1amp" is 1e-18 and "mp" ignored, as gnucap's ap_convert.cc reads it); elsewhere it is a unit.
@@ -76,16 +78,24 @@ Rational parse_spice_value(const std::string& text, std::string* ignored, Dialec
     if (mega) v *= 1000000;
     rest = rest.substr(1);
   } else if (!rest.empty() && (rest[0] == 'a' || rest[0] == 'x'))
-    throw std::invalid_argument(std::string("'") + rest[0] + "' is " +
-                                (rest[0] == 'a' ? "atto (1e-18) in ngspice 40 and later, HSPICE and LTspice, and no scale factor in ngspice 39 and Xyce"
-                                                : "mega (1e6) in HSPICE and no scale factor in ngspice") +
-                                " (which read \"" + text + "\" as " + t.substr(0, i) + "): write the value without it, e.g. " + t.substr(0, i) +
-                                (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i) + ", or give the deck's dialect (--dialect ngspice, ngspice39, xyce, hspice or gnucap)");
-  static const std::vector<std::pair<std::string, Rational>> scales = {
-      {"meg", Rational(1000000)},     {"mil", Rational(254, 10000000)}, {"f", Rational(1, 1000000000000000LL)},
-      {"p", Rational(1, 1000000000000LL)}, {"n", Rational(1, 1000000000)},   {"u", Rational(1, 1000000)},
-      {"m", Rational(1, 1000)},       {"k", Rational(1000)},            {"g", Rational(1000000000)},
-      {"t", Rational(1000000000000LL)}};
+    throw std::invalid_argument(
+        std::string("'") + rest[0] + "' is " +
+        (rest[0] == 'a'
+             ? "atto (1e-18) in ngspice 40 and later, HSPICE and LTspice, and no scale factor in ngspice 39 and Xyce"
+             : "mega (1e6) in HSPICE and no scale factor in ngspice") +
+        " (which read \"" + text + "\" as " + t.substr(0, i) + "): write the value without it, e.g. " + t.substr(0, i) +
+        (rest[0] == 'a' ? "e-18" : "e6") + " or " + t.substr(0, i) +
+        ", or give the deck's dialect (--dialect ngspice, ngspice39, xyce, hspice or gnucap)");
+  static const std::vector<std::pair<std::string, Rational>> scales = {{"meg", Rational(1000000)},
+                                                                       {"mil", Rational(254, 10000000)},
+                                                                       {"f", Rational(1, 1000000000000000LL)},
+                                                                       {"p", Rational(1, 1000000000000LL)},
+                                                                       {"n", Rational(1, 1000000000)},
+                                                                       {"u", Rational(1, 1000000)},
+                                                                       {"m", Rational(1, 1000)},
+                                                                       {"k", Rational(1000)},
+                                                                       {"g", Rational(1000000000)},
+                                                                       {"t", Rational(1000000000000LL)}};
   for (const auto& [s, factor] : scales)
     if (rest.compare(0, s.size(), s) == 0) {
       v *= factor;
@@ -93,8 +103,9 @@ Rational parse_spice_value(const std::string& text, std::string* ignored, Dialec
       break;
     }
   // what follows is a unit, which SPICE ignores; other letters are ignored too, and said so
-  static const std::vector<std::string> units = {"",     "f",   "farad", "farads", "h",   "henry", "henries", "ohm", "ohms",
-                                                 "v",    "volt", "volts", "a",     "amp", "amps",  "s",       "sec", "hz"};
+  static const std::vector<std::string> units = {"",        "f",   "farad", "farads", "h",    "henry",
+                                                 "henries", "ohm", "ohms",  "v",      "volt", "volts",
+                                                 "a",       "amp", "amps",  "s",      "sec",  "hz"};
   if (std::find(units.begin(), units.end(), rest) == units.end() && ignored) *ignored = rest;
   return v;
 }
@@ -159,7 +170,8 @@ std::string strip_inline_comment(const std::string& text, Dialect dialect) {
 
 std::string unquote(const std::string& s) {  // "file", 'file' (which tokens() made {file}) or {file}
   if (s.size() >= 2 && s.front() == '{' && s.back() == '}') return s.substr(1, s.size() - 2);
-  return s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front() ? s.substr(1, s.size() - 2) : s;
+  return s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front() ? s.substr(1, s.size() - 2)
+                                                                                           : s;
 }
 
 std::string beside(const std::string& deck, const std::string& name) {  // relative to the including deck
@@ -174,11 +186,13 @@ std::string beside(const std::string& deck, const std::string& name) {  // relat
 /// they are.  A file that is missing, or a line that is not two numbers, is an InputError naming file and line.
 std::string pwl_from_file(const Line& l, const std::string& spec, Dialect dialect) {
   std::string low = spec;
-  std::transform(low.begin(), low.end(), low.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(low.begin(), low.end(), low.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const std::size_t pwl = low.find("pwl");
   if (pwl == std::string::npos) return spec;
   std::size_t i = low.find_first_not_of(" \t", pwl + 3);
-  if (i == std::string::npos || low.compare(i, 4, "file") != 0 || (i + 4 < low.size() && !std::isspace(static_cast<unsigned char>(low[i + 4]))))
+  if (i == std::string::npos || low.compare(i, 4, "file") != 0 ||
+      (i + 4 < low.size() && !std::isspace(static_cast<unsigned char>(low[i + 4]))))
     return spec;
   i = low.find_first_not_of(" \t", i + 4);
   if (i == std::string::npos) fail(l, "PWL FILE NAME", "no file name in \"" + spec + "\"");
@@ -195,7 +209,8 @@ std::string pwl_from_file(const Line& l, const std::string& spec, Dialect dialec
     name = spec.substr(i, end - i);
   }
   const std::string path = beside(l.file, name);
-  if (name.empty() || !std::filesystem::is_regular_file(path)) fail(l, "a regular file of PWL points", "\"" + name + "\" (no such file)");
+  if (name.empty() || !std::filesystem::is_regular_file(path))
+    fail(l, "a regular file of PWL points", "\"" + name + "\" (no such file)");
   std::ifstream in(path, std::ios::binary);
   std::string table, line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
@@ -207,11 +222,14 @@ std::string pwl_from_file(const Line& l, const std::string& spec, Dialect dialec
     std::string shown = line.substr(0, 40);
     for (char& ch : shown)
       if (!std::isprint(static_cast<unsigned char>(ch))) ch = '?';
-    if (w.size() != 2) throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE (PWL FILE of " + l.where() + "), found \"" + shown + "\"");
+    if (w.size() != 2)
+      throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE (PWL FILE of " + l.where() +
+                       "), found \"" + shown + "\"");
     for (const std::string& t : w) try {
         (void)parse_spice_value(t, nullptr, dialect);
       } catch (const std::exception&) {
-        throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE numbers (PWL FILE of " + l.where() + "), found \"" + shown + "\"");
+        throw InputError(path + ":" + std::to_string(number) + ": expected TIME VALUE numbers (PWL FILE of " +
+                         l.where() + "), found \"" + shown + "\"");
       }
     table += (table.empty() ? "" : " ") + w[0] + " " + w[1];
   }
@@ -223,22 +241,29 @@ std::string pwl_from_file(const Line& l, const std::string& spec, Dialect dialec
 /// as written — outside any loop or branch (`tran`, `op`, `run`, … at the script's top level) — in which
 /// case dcad's circuit is that first analysis' one, and a note says the script alters it afterwards.
 struct ControlScript {
-  int depth = 0;            ///< inside while/repeat/dowhile/foreach/if … end
-  std::string analysed;     ///< the first analysis at the top level, "" before one
+  int depth = 0;         ///< inside while/repeat/dowhile/foreach/if … end
+  std::string analysed;  ///< the first analysis at the top level, "" before one
   bool noted = false;
 
   void line(const Line& l, const std::string& head, std::vector<std::string>& warnings) {
     static const std::set<std::string> blocks = {"while", "repeat", "dowhile", "foreach", "if"};
-    static const std::set<std::string> analyses = {"tran", "op", "run", "ac", "dc", "noise", "pz", "sens", "tf", "disto", "sp", "pss"};
-    if (blocks.count(head)) ++depth;
-    else if (head == "end" && depth > 0) --depth;
-    else if (depth == 0 && analysed.empty() && analyses.count(head)) analysed = head;
+    static const std::set<std::string> analyses = {"tran", "op",   "run", "ac",    "dc", "noise",
+                                                   "pz",   "sens", "tf",  "disto", "sp", "pss"};
+    if (blocks.count(head))
+      ++depth;
+    else if (head == "end" && depth > 0)
+      --depth;
+    else if (depth == 0 && analysed.empty() && analyses.count(head))
+      analysed = head;
     if (head != "alter" && head != "altermod" && head != "mc_source" && head != "source") return;
     if (analysed.empty())
       fail(l, "a .control block that leaves the circuit as written (dcad reads the circuit, not the script)",
-           l.text.substr(0, l.text.find(' ')) + ", which changes it before any analysis at the script's top level runs: write the altered values in the deck");
+           l.text.substr(0, l.text.find(' ')) +
+               ", which changes it before any analysis at the script's top level runs: write the altered values in the "
+               "deck");
     if (!noted)
-      warnings.push_back(l.where() + ": the .control block's " + head + " changes the circuit after its first analysis (" + analysed +
+      warnings.push_back(l.where() + ": the .control block's " + head +
+                         " changes the circuit after its first analysis (" + analysed +
                          ") has run on it as written: dcad solves the circuit as written");
     noted = true;
   }
@@ -261,7 +286,8 @@ class Reader {
     if (depth > 16) fail(*from, "includes nested at most 16 deep", "deeper (an include cycle?)");
     std::error_code ec;
     if (from && !std::filesystem::is_regular_file(file, ec))  // not a device or a pipe: never a hang
-      fail(*from, "a regular file to include", "\"" + file + "\" (" + (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file") + ")");
+      fail(*from, "a regular file to include",
+           "\"" + file + "\" (" + (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file") + ")");
     std::ifstream opened;
     if (!text) {
       opened.open(file);
@@ -323,7 +349,9 @@ class Reader {
       }
       if (head == ".data") {
         skip_until = ".enddata";
-        warnings.push_back(here.where() + ": ignored .data block (a table for sweeps: dcad solves the circuit at the values as written)");
+        warnings.push_back(
+            here.where() +
+            ": ignored .data block (a table for sweeps: dcad solves the circuit at the values as written)");
         continue;
       }
       if (head == ".if") fail(here, "a netlist without conditionals (write the branch that applies)", ".if");
@@ -334,7 +362,8 @@ class Reader {
         continue;
       }
       if (text[0] == '+') {
-        if (lines.empty() || lines.back().file != file) fail(here, "an element line before a continuation '+'", "'+' first");
+        if (lines.empty() || lines.back().file != file)
+          fail(here, "an element line before a continuation '+'", "'+' first");
         lines.back().text += " " + text.substr(1);
         continue;
       }
@@ -355,7 +384,8 @@ class Reader {
       if (head == ".lib" && tok.size() == 2) {
         std::error_code ec;
         const std::string whole = locate(unquote(tok[1]));
-        if (std::filesystem::is_regular_file(whole, ec)) {  // .lib FILE: the whole file, as .include (Xyce, HSPICE without a section)
+        if (std::filesystem::is_regular_file(
+                whole, ec)) {  // .lib FILE: the whole file, as .include (Xyce, HSPICE without a section)
           read(whole, false, "", depth + 1, &here);
           if (ended) return;
           continue;
@@ -363,7 +393,8 @@ class Reader {
         skip_until = ".endl";  // .lib SECTION … .endl defined here and not asked for: skipped, as ngspice does
         continue;
       }
-      if (head == ".lib") fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
+      if (head == ".lib")
+        fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
       lines.push_back(here);
     }
     if (!section.empty() && !in_section && from) fail(*from, "a section .lib " + section + " in " + file, "none");
@@ -381,21 +412,23 @@ struct UserFunction {
 /// What evaluating the deck's expressions noted: values that are irrational (rounded to 80 significant
 /// digits) and statistical functions read at their nominal value.
 struct ExpressionNotes {
-  bool rounded = false;               ///< the last value read was rounded (irrational)
-  std::vector<std::string> nominal;   ///< "agauss(…)" read as its nominal value
+  bool rounded = false;              ///< the last value read was rounded (irrational)
+  std::vector<std::string> nominal;  ///< "agauss(…)" read as its nominal value
 };
 
 /// Arithmetic on .param expressions as ngspice's numparam and Xyce read them: numbers (SPICE suffixes),
 /// parameters, + - * / ( ), unary signs, ^ or ** (exact for an integer exponent), comparisons, && || !,
 /// c ? a : b, pi, and the functions decks use (sqrt abs exp log ln log10 pow pwr min max sin cos tan asin
-/// acos atan arctan atan2 sinh cosh tanh asinh acosh atanh sqr int floor ceil nint round sign if ternary_fcn), the user's .func functions, and the
-/// statistical ones (agauss gauss aunif unif limit) at their nominal value.  Exact where the value is
-/// rational; an irrational value (sqrt(2), exp(1), pi) is rounded to 80 significant digits and says so.
+/// acos atan arctan atan2 sinh cosh tanh asinh acosh atanh sqr int floor ceil nint round sign if ternary_fcn), the
+/// user's .func functions, and the statistical ones (agauss gauss aunif unif limit) at their nominal value.  Exact
+/// where the value is rational; an irrational value (sqrt(2), exp(1), pi) is rounded to 80 significant digits and says
+/// so.
 class Expression {
  public:
   using Functions = std::map<std::string, UserFunction>;
-  Expression(const std::string& text, const std::map<std::string, Rational>& params, const Functions* functions = nullptr,
-             ExpressionNotes* notes = nullptr, int depth = 0, Dialect dialect = Dialect::strict)
+  Expression(const std::string& text, const std::map<std::string, Rational>& params,
+             const Functions* functions = nullptr, ExpressionNotes* notes = nullptr, int depth = 0,
+             Dialect dialect = Dialect::strict)
       : s_(lower(text)), params_(params), functions_(functions), notes_(notes), depth_(depth), dialect_(dialect) {}
   Rational value() {
     if (depth_ > 32) throw std::invalid_argument("user functions nested more than 32 deep (a recursive .func?)");
@@ -422,15 +455,18 @@ class Expression {
   }
   /// An irrational value, rounded: 80 significant digits of its 100-digit float, noted.
   Rational rounded(const Float& x) {
-    if (!boost::multiprecision::isfinite(x)) throw std::invalid_argument("a value that is not finite (a function outside its real domain, or an overflow)");
+    if (!boost::multiprecision::isfinite(x))
+      throw std::invalid_argument("a value that is not finite (a function outside its real domain, or an overflow)");
     if (notes_) notes_->rounded = true;
     if (x == 0) return Rational(0);
     int e = 0;
     const Float m = boost::multiprecision::frexp(x, &e);  // x = m 2^e, |m| in [1/2, 1)
-    const boost::multiprecision::mpz_int n = boost::multiprecision::ldexp(m, 266).convert_to<boost::multiprecision::mpz_int>();  // 80 digits
+    const boost::multiprecision::mpz_int n =
+        boost::multiprecision::ldexp(m, 266).convert_to<boost::multiprecision::mpz_int>();  // 80 digits
     Rational r(n);
     const int shift = e - 266;
-    const Rational two = shift >= 0 ? Rational(boost::multiprecision::mpz_int(1) << shift) : Rational(1, boost::multiprecision::mpz_int(1) << -shift);
+    const Rational two = shift >= 0 ? Rational(boost::multiprecision::mpz_int(1) << shift)
+                                    : Rational(1, boost::multiprecision::mpz_int(1) << -shift);
     return r * two;
   }
   static Float as_float(const Rational& x) {
@@ -439,7 +475,8 @@ class Expression {
   static bool whole(const Rational& x) { return boost::multiprecision::denominator(x) == 1; }
   /// x^e for an integer e, exactly (bounded).
   static Rational ipow(const Rational& base, const Rational& e) {
-    if (boost::multiprecision::abs(e) > 64) throw std::invalid_argument("expected an integer exponent of at most 64, found " + e.str());
+    if (boost::multiprecision::abs(e) > 64)
+      throw std::invalid_argument("expected an integer exponent of at most 64, found " + e.str());
     Rational r(1);
     for (long k = 0; k < boost::multiprecision::abs(e); ++k) r *= base;
     if (e < 0) {
@@ -483,21 +520,31 @@ class Expression {
   Rational comparison() {
     Rational v = sum();
     for (;;) {
-      if (eat("==")) v = v == sum() ? 1 : 0;
-      else if (eat("!=")) v = v != sum() ? 1 : 0;
-      else if (eat("<=")) v = v <= sum() ? 1 : 0;
-      else if (eat(">=")) v = v >= sum() ? 1 : 0;
-      else if (eat("<")) v = v < sum() ? 1 : 0;
-      else if (eat(">")) v = v > sum() ? 1 : 0;
-      else return v;
+      if (eat("=="))
+        v = v == sum() ? 1 : 0;
+      else if (eat("!="))
+        v = v != sum() ? 1 : 0;
+      else if (eat("<="))
+        v = v <= sum() ? 1 : 0;
+      else if (eat(">="))
+        v = v >= sum() ? 1 : 0;
+      else if (eat("<"))
+        v = v < sum() ? 1 : 0;
+      else if (eat(">"))
+        v = v > sum() ? 1 : 0;
+      else
+        return v;
     }
   }
   Rational sum() {
     Rational v = product();
     for (;;) {
-      if (eat("+")) v += product();
-      else if (eat("-")) v -= product();
-      else return v;
+      if (eat("+"))
+        v += product();
+      else if (eat("-"))
+        v -= product();
+      else
+        return v;
     }
   }
   Rational product() {
@@ -546,14 +593,15 @@ class Expression {
     skip();
     const std::size_t start = i_;
     if (i_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_')) {
-      while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_' || s_[i_] == '.')) ++i_;
+      while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_' || s_[i_] == '.'))
+        ++i_;
       const std::string name = s_.substr(start, i_ - start);
       if (peek("(")) return call(name);
       const auto it = params_.find(name);
       if (it != params_.end()) return it->second;
       if (name == "pi") return rounded(boost::math::constants::pi<Float>());
       if (name == "exp") return rounded(boost::math::constants::e<Float>());  // Xyce: exp alone is e
-      if (name == "temper" || name == "temp") return Rational(27);  // ngspice's nominal temperature, °C
+      if (name == "temper" || name == "temp") return Rational(27);            // ngspice's nominal temperature, °C
       throw std::invalid_argument("unknown parameter \"" + name + "\"");
     }
     while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.' ||
@@ -579,7 +627,8 @@ class Expression {
       if (f != functions_->end()) {
         const std::vector<Rational> a = arguments(name);
         if (a.size() != f->second.args.size())
-          throw std::invalid_argument(name + ": expected " + std::to_string(f->second.args.size()) + " arguments, found " + std::to_string(a.size()));
+          throw std::invalid_argument(name + ": expected " + std::to_string(f->second.args.size()) +
+                                      " arguments, found " + std::to_string(a.size()));
         std::map<std::string, Rational> local = params_;
         for (std::size_t k = 0; k < a.size(); ++k) local[f->second.args[k]] = a[k];
         return Expression(f->second.body, local, functions_, notes_, depth_ + 1, dialect_).value();
@@ -589,10 +638,12 @@ class Expression {
     const std::vector<Rational> a = arguments(name);
     const auto want = [&](std::size_t lo, std::size_t hi) {
       if (a.size() < lo || a.size() > hi)
-        throw std::invalid_argument(name + ": expected " + std::to_string(lo) + (hi > lo ? " to " + std::to_string(hi) : "") + " arguments, found " +
+        throw std::invalid_argument(name + ": expected " + std::to_string(lo) +
+                                    (hi > lo ? " to " + std::to_string(hi) : "") + " arguments, found " +
                                     std::to_string(a.size()));
     };
-    const auto transcendental = [&](Float (*fn)(const Float&), const Rational& at_zero_arg, const Rational& at_zero_value) -> Rational {
+    const auto transcendental = [&](Float (*fn)(const Float&), const Rational& at_zero_arg,
+                                    const Rational& at_zero_value) -> Rational {
       want(1, 1);
       if (a[0] == at_zero_arg) return at_zero_value;
       return rounded(fn(as_float(a[0])));
@@ -622,21 +673,31 @@ class Expression {
     if (name == "sin") return transcendental([](const Float& x) { return Float(boost::multiprecision::sin(x)); }, 0, 0);
     if (name == "cos") return transcendental([](const Float& x) { return Float(boost::multiprecision::cos(x)); }, 0, 1);
     if (name == "tan") return transcendental([](const Float& x) { return Float(boost::multiprecision::tan(x)); }, 0, 0);
-    if ((name == "asin" || name == "acos") && a.size() == 1 && (a[0] < -1 || a[0] > 1)) throw std::invalid_argument(name + " outside its real domain");
-    if (name == "asin") return transcendental([](const Float& x) { return Float(boost::multiprecision::asin(x)); }, 0, 0);
-    if (name == "acos") return transcendental([](const Float& x) { return Float(boost::multiprecision::acos(x)); }, 1, 0);
-    if (name == "atan" || name == "arctan") return transcendental([](const Float& x) { return Float(boost::multiprecision::atan(x)); }, 0, 0);
-    if (name == "asinh") return transcendental([](const Float& x) { return Float(boost::multiprecision::asinh(x)); }, 0, 0);
+    if ((name == "asin" || name == "acos") && a.size() == 1 && (a[0] < -1 || a[0] > 1))
+      throw std::invalid_argument(name + " outside its real domain");
+    if (name == "asin")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::asin(x)); }, 0, 0);
+    if (name == "acos")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::acos(x)); }, 1, 0);
+    if (name == "atan" || name == "arctan")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::atan(x)); }, 0, 0);
+    if (name == "asinh")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::asinh(x)); }, 0, 0);
     if (name == "acosh" || name == "atanh") {  // ngspice's numparam functions (xpressn.c), real only
       want(1, 1);
-      if (name == "acosh" ? a[0] < 1 : a[0] <= -1 || a[0] >= 1) throw std::invalid_argument(name + " outside its real domain");
+      if (name == "acosh" ? a[0] < 1 : a[0] <= -1 || a[0] >= 1)
+        throw std::invalid_argument(name + " outside its real domain");
       if (a[0] == (name == "acosh" ? 1 : 0)) return Rational(0);
-      return rounded(name == "acosh" ? Float(boost::multiprecision::acosh(as_float(a[0]))) : Float(boost::multiprecision::atanh(as_float(a[0]))));
+      return rounded(name == "acosh" ? Float(boost::multiprecision::acosh(as_float(a[0])))
+                                     : Float(boost::multiprecision::atanh(as_float(a[0]))));
     }
     if (name == "sqr") return want(1, 1), a[0] * a[0];  // ngspice: x², not the square root
-    if (name == "sinh") return transcendental([](const Float& x) { return Float(boost::multiprecision::sinh(x)); }, 0, 0);
-    if (name == "cosh") return transcendental([](const Float& x) { return Float(boost::multiprecision::cosh(x)); }, 0, 1);
-    if (name == "tanh") return transcendental([](const Float& x) { return Float(boost::multiprecision::tanh(x)); }, 0, 0);
+    if (name == "sinh")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::sinh(x)); }, 0, 0);
+    if (name == "cosh")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::cosh(x)); }, 0, 1);
+    if (name == "tanh")
+      return transcendental([](const Float& x) { return Float(boost::multiprecision::tanh(x)); }, 0, 0);
     if (name == "atan2") {
       want(2, 2);
       if (a[0] == 0 && a[1] > 0) return Rational(0);
@@ -652,9 +713,12 @@ class Expression {
     if (name == "floor") return want(1, 1), floor_q(a[0]);
     if (name == "ceil") return want(1, 1), -floor_q(-a[0]);
     if (name == "int") return want(1, 1), a[0] >= 0 ? floor_q(a[0]) : -floor_q(-a[0]);  // toward zero
-    if (name == "nint" || name == "round") return want(1, 1), a[0] >= 0 ? floor_q(a[0] + Rational(1, 2)) : -floor_q(-a[0] + Rational(1, 2));
+    if (name == "nint" || name == "round")
+      return want(1, 1), a[0] >= 0 ? floor_q(a[0] + Rational(1, 2)) : -floor_q(-a[0] + Rational(1, 2));
     if ((name == "sign" || name == "sgn") && a.size() == 2)  // Xyce and HSPICE: sign(x, y) = sgn(y) |x|
-      return a[1] > 0 ? Rational(boost::multiprecision::abs(a[0])) : a[1] < 0 ? Rational(-boost::multiprecision::abs(a[0])) : Rational(0);
+      return a[1] > 0   ? Rational(boost::multiprecision::abs(a[0]))
+             : a[1] < 0 ? Rational(-boost::multiprecision::abs(a[0]))
+                        : Rational(0);
     if (name == "sign" || name == "sgn") return want(1, 1), Rational(a[0] > 0 ? 1 : a[0] < 0 ? -1 : 0);
     if (name == "if" || name == "ternary_fcn") return want(3, 3), a[0] != 0 ? a[1] : a[2];
     if (name == "agauss" || name == "gauss" || name == "aunif" || name == "unif" || name == "limit") {
@@ -677,13 +741,16 @@ class Expression {
 /// name=value pairs of a .param line or a subcircuit's params: list ("a=1 b={2*a}", spaces around
 /// '=' allowed), as written (the value's text without braces).  A name with arguments, f(x, y), is a
 /// user function (ngspice's `.param f(x) = {…}`).
-std::vector<std::pair<std::string, std::string>> param_pairs(const std::vector<std::string>& tok, std::size_t from, const Line& l) {
+std::vector<std::pair<std::string, std::string>> param_pairs(const std::vector<std::string>& tok, std::size_t from,
+                                                             const Line& l) {
   std::string joined;
   for (std::size_t k = from; k < tok.size(); ++k) joined += tok[k] + " ";
   std::vector<std::pair<std::string, std::string>> out;
   std::size_t i = 0;
   while (true) {
-    while (i < joined.size() && (std::isspace(static_cast<unsigned char>(joined[i])) || (joined[i] == ',' && !out.empty()))) ++i;  // Xyce: "a=1, b=2"
+    while (i < joined.size() &&
+           (std::isspace(static_cast<unsigned char>(joined[i])) || (joined[i] == ',' && !out.empty())))
+      ++i;  // Xyce: "a=1, b=2"
     if (i >= joined.size()) return out;
     const std::size_t eq = joined.find('=', i);
     if (eq == std::string::npos) fail(l, "NAME=VALUE", "\"" + joined.substr(i) + "\"");
@@ -704,8 +771,10 @@ std::vector<std::pair<std::string, std::string>> param_pairs(const std::vector<s
       end = joined.find_first_of(" \t", j);
     }
     std::string expr = joined.substr(j, end - j);
-    if (expr.front() == '{') expr = expr.substr(1, expr.size() - 2);
-    else if (expr.size() > 1 && expr.back() == ',' && std::count(expr.begin(), expr.end(), '(') == std::count(expr.begin(), expr.end(), ')'))
+    if (expr.front() == '{')
+      expr = expr.substr(1, expr.size() - 2);
+    else if (expr.size() > 1 && expr.back() == ',' &&
+             std::count(expr.begin(), expr.end(), '(') == std::count(expr.begin(), expr.end(), ')'))
       expr.pop_back();  // the comma between two assignments, not an argument's
     out.emplace_back(name, expr);
     i = end;
@@ -737,14 +806,14 @@ class Flattener {
   std::map<std::string, Subcircuit> subckts;  ///< by definition path (Subcircuit::key)
   std::map<std::string, Rational> node_ic;
   std::map<std::string, std::string> node_ic_where;  ///< the .ic line that set it
-  std::set<std::string> globals;  ///< .global nodes: the same node in every instance
+  std::set<std::string> globals;                     ///< .global nodes: the same node in every instance
   Expression::Functions functions;
   struct Coupling {
     Line line;
     std::string name, a, b;
     Rational k;
   };
-  std::vector<Coupling> couplings;  ///< K elements, resolved once every inductor is known
+  std::vector<Coupling> couplings;      ///< K elements, resolved once every inductor is known
   std::optional<Rational> temperature;  ///< .temp or .options temp=, if the deck sets one (read before the elements)
   Rational tnom = 27;                   ///< .options tnom=
   bool replace_ground = false;  ///< Xyce's `.preprocess replaceground true`: gnd!, ground, ground! are node 0 too
@@ -761,11 +830,16 @@ class Flattener {
       const std::vector<std::string> tok = tokens(lines[i].text);
       const std::string head = lower(tok[0]);
       if (head == ".tran" && !tran) tran = &lines[i];
-      if (head.size() >= 4 && std::string(".generator").compare(0, head.size(), head) == 0) {  // gnucap's command, in its order
+      if (head.size() >= 4 &&
+          std::string(".generator").compare(0, head.size(), head) == 0) {  // gnucap's command, in its order
         if (tran && tok.size() > 1)
-          fail(lines[i], "gnucap's .generator settings before the deck's first .tran (" + tran->where() + ", whose circuit dcad solves)", tok[0] + " after it");
+          fail(lines[i],
+               "gnucap's .generator settings before the deck's first .tran (" + tran->where() +
+                   ", whose circuit dcad solves)",
+               tok[0] + " after it");
         generator_lines.push_back(lines[i]);
-        out.warnings.push_back(lines[i].where() + ": " + tok[0] + ": read for the generator(SCALE) sources (gnucap's signal generator)");
+        out.warnings.push_back(lines[i].where() + ": " + tok[0] +
+                               ": read for the generator(SCALE) sources (gnucap's signal generator)");
       } else if (head == ".subckt") {
         i = define(lines, i, "");
       } else if (head == ".ends") {
@@ -774,13 +848,16 @@ class Flattener {
         param_lines.push_back(lines[i]);
       } else if (head == ".global") {
         for (std::size_t k = 1; k < tok.size(); ++k) globals.insert(lower(tok[k]));
-      } else if (head == ".temp" || head == ".options" || head == ".option" || head == ".opt") {  // before any element reads it
+      } else if (head == ".temp" || head == ".options" || head == ".option" ||
+                 head == ".opt") {  // before any element reads it
         top.push_back(lines[i]);
         temperature_lines.push_back(lines[i]);
-      } else if (head == ".preprocess" && tok.size() == 3 && lower(tok[1]) == "replaceground") {  // names, not devices: read
+      } else if (head == ".preprocess" && tok.size() == 3 &&
+                 lower(tok[1]) == "replaceground") {  // names, not devices: read
         replace_ground = lower(tok[2]) == "true" || tok[2] == "1";
-        out.warnings.push_back(lines[i].where() + ": .preprocess replaceground " + tok[2] + ": GND!, GROUND and GROUND! are " +
-                               (replace_ground ? "" : "not ") + "node 0 (GND and 0 always are, as in ngspice)");
+        out.warnings.push_back(lines[i].where() + ": .preprocess replaceground " + tok[2] +
+                               ": GND!, GROUND and GROUND! are " + (replace_ground ? "" : "not ") +
+                               "node 0 (GND and 0 always are, as in ngspice)");
       } else {
         top.push_back(lines[i]);
       }
@@ -793,11 +870,13 @@ class Flattener {
 
  private:
   static bool is_param_card(const std::string& head) {
-    return head == ".param" || head == ".params" || head == ".global_param" || head == ".parameter" || head == ".parameters" || head == ".csparam";
+    return head == ".param" || head == ".params" || head == ".global_param" || head == ".parameter" ||
+           head == ".parameters" || head == ".csparam";
   }
 
   /// .temp T [T2 …] (the first: a list is a sweep) and .options temp=T tnom=T.
-  void read_temperatures(const Line& l, const std::vector<std::string>& tok, const std::map<std::string, Rational>& params) {
+  void read_temperatures(const Line& l, const std::vector<std::string>& tok,
+                         const std::map<std::string, Rational>& params) {
     const auto value = [&](const std::string& t, const std::string& what) { return card_value(l, t, params, what); };
     if (lower(tok[0]) == ".temp") {
       if (tok.size() < 2) fail(l, ".temp TEMPERATURE", "none");
@@ -813,8 +892,9 @@ class Flattener {
 
   /// gnucap's conditional values (lib/bm_cond.cc): "r1 1 2 ac 1k dc 2k", a value per analysis.
   static bool gnucap_mode(const std::string& word) {
-    static const std::set<std::string> modes = {"ac", "op", "dc", "tran", "trans", "transi", "transie", "transien", "transient",
-                                                "four", "fouri", "fourie", "fourier", "else", "all"};
+    static const std::set<std::string> modes = {"ac",     "op",      "dc",       "tran",      "trans",
+                                                "transi", "transie", "transien", "transient", "four",
+                                                "fouri",  "fourie",  "fourier",  "else",      "all"};
     return modes.count(lower(word)) > 0;
   }
   /// The element's words with its conditional values replaced by the transient's, as gnucap picks it: TRAN,
@@ -826,8 +906,12 @@ class Flattener {
     std::size_t k = 3;
     for (; k + 1 < tok.size() && gnucap_mode(tok[k]); k += 2) {
       std::string mode = lower(tok[k]);
-      mode = mode.rfind("tran", 0) == 0 ? "tran" : mode.rfind("four", 0) == 0 ? "fourier" : mode == "all" ? "else" : mode;
-      if (by_mode.count(mode)) fail(l, "one value per analysis (gnucap's conditional form)", "a second " + tok[k] + " for " + name);
+      mode = mode.rfind("tran", 0) == 0   ? "tran"
+             : mode.rfind("four", 0) == 0 ? "fourier"
+             : mode == "all"              ? "else"
+                                          : mode;
+      if (by_mode.count(mode))
+        fail(l, "one value per analysis (gnucap's conditional form)", "a second " + tok[k] + " for " + name);
       by_mode[mode] = tok[k + 1];
     }
     const auto first = [&](std::initializer_list<const char*> modes) -> std::optional<std::string> {
@@ -835,23 +919,28 @@ class Flattener {
         if (by_mode.count(m)) return by_mode[m];
       return std::nullopt;
     };
-    const std::optional<std::string> tran = first({"tran", "else", "dc", "op"}), op = first({"op", "dc", "else", "tran"});
-    if (!tran) fail(l, "a value for the transient (gnucap's TRAN, ELSE, DC or OP)", "only " + tok[3] + " " + tok[4] + " for " + name + " (gnucap then takes 0)");
+    const std::optional<std::string> tran = first({"tran", "else", "dc", "op"}),
+                                     op = first({"op", "dc", "else", "tran"});
+    if (!tran)
+      fail(l, "a value for the transient (gnucap's TRAN, ELSE, DC or OP)",
+           "only " + tok[3] + " " + tok[4] + " for " + name + " (gnucap then takes 0)");
     if (number(*tran) != number(*op))
-      fail(l, "one value for the operating point and the transient", *op + " at the operating point and " + *tran + " in the transient for " + name);
+      fail(l, "one value for the operating point and the transient",
+           *op + " at the operating point and " + *tran + " in the transient for " + name);
     std::vector<std::string> out_tok(tok.begin(), tok.begin() + 3);
     out_tok.push_back(*tran);
     out_tok.insert(out_tok.end(), tok.begin() + static_cast<std::ptrdiff_t>(k), tok.end());
     std::string rest;
     for (const auto& [mode, value] : by_mode)
       if (value != *tran) rest += (rest.empty() ? "" : ", ") + mode + " " + value;
-    out.warnings.push_back(l.where() + ": " + name + ": gnucap's conditional value read as " + *tran + " (the transient's)" +
-                           (rest.empty() ? "" : "; ignored " + rest + " (other analyses)"));
+    out.warnings.push_back(l.where() + ": " + name + ": gnucap's conditional value read as " + *tran +
+                           " (the transient's)" + (rest.empty() ? "" : "; ignored " + rest + " (other analyses)"));
     return out_tok;
   }
 
   /// gnucap's `.generator KEY=VALUE …` (or `KEY VALUE`, as gnucap's Get reads it): settings that persist.
-  void read_generator(const Line& l, const std::vector<std::string>& tok, const std::map<std::string, Rational>& params) {
+  void read_generator(const Line& l, const std::vector<std::string>& tok,
+                      const std::map<std::string, Rational>& params) {
     for (std::size_t k = 1; k < tok.size(); ++k) {
       const std::size_t eq = tok[k].find('=');
       const std::string key = tok[k].substr(0, eq);
@@ -860,11 +949,13 @@ class Flattener {
       if (value.empty()) fail(l, "KEY=VALUE after " + tok[0], "\"" + tok[k] + "\"");
       const Rational v = card_value(l, value, params, key + "=VALUE");
       if (!generator.set(key, v))
-        fail(l, "gnucap's generator keys (freq ampl phase max min offset init rise fall delay width period)", "\"" + key + "\" in " + tok[0]);
+        fail(l, "gnucap's generator keys (freq ampl phase max min offset init rise fall delay width period)",
+             "\"" + key + "\" in " + tok[0]);
     }
   }
   /// A value on a card (.temp, .options, .generator): `{expression}` over the deck's parameters, or a SPICE number.
-  Rational card_value(const Line& l, const std::string& t, const std::map<std::string, Rational>& params, const std::string& what) {
+  Rational card_value(const Line& l, const std::string& t, const std::map<std::string, Rational>& params,
+                      const std::string& what) {
     if (t.size() > 1 && t.front() == '{') return evaluate(l, t.substr(1, t.size() - 2), params, what);
     try {
       return parse_spice_value(t, nullptr, dialect);
@@ -882,7 +973,8 @@ class Flattener {
       std::string rest;
       for (std::size_t k = 1; k < tok.size(); ++k) rest += tok[k] + " ";
       const std::size_t open = rest.find('('), close = rest.find(')');
-      if (open == std::string::npos || close == std::string::npos || close < open) fail(l, ".func NAME(ARGS) {EXPRESSION}", "\"" + l.text + "\"");
+      if (open == std::string::npos || close == std::string::npos || close < open)
+        fail(l, ".func NAME(ARGS) {EXPRESSION}", "\"" + l.text + "\"");
       std::string body = rest.substr(close + 1);
       body.erase(0, body.find_first_not_of(" \t="));
       body.erase(body.find_last_not_of(" \t") + 1);
@@ -924,7 +1016,8 @@ class Flattener {
   }
 
   /// An expression's value; an irrational one is recorded (rounded: the certified tier does not claim it).
-  Rational evaluate(const Line& l, const std::string& expr, const std::map<std::string, Rational>& params, const std::string& what) {
+  Rational evaluate(const Line& l, const std::string& expr, const std::map<std::string, Rational>& params,
+                    const std::string& what) {
     ExpressionNotes notes;
     Rational v;
     try {
@@ -933,9 +1026,11 @@ class Flattener {
       fail(l, what + " (numbers, parameters, + - * / ^, comparisons, ?:, pi, sqrt, exp, log, trig, min, max, .func)",
            "\"" + expr + "\" (" + e.what() + ")");
     }
-    if (notes.rounded) out.rounded.push_back(l.where() + ": {" + expr + "} is irrational: used to 80 significant digits");
+    if (notes.rounded)
+      out.rounded.push_back(l.where() + ": {" + expr + "} is irrational: used to 80 significant digits");
     for (const std::string& n : notes.nominal)
-      out.warnings.push_back(l.where() + ": " + n + " read as its nominal value (a statistical function: dcad solves the nominal circuit)");
+      out.warnings.push_back(l.where() + ": " + n +
+                             " read as its nominal value (a statistical function: dcad solves the nominal circuit)");
     return v;
   }
 
@@ -953,7 +1048,9 @@ class Flattener {
       if (!port.empty()) s.ports.push_back(port);
     }
     if (k < tok.size()) s.defaults = param_pairs(tok, lower(tok[k]) == "params:" ? k + 1 : k, l);
-    if (subckts.count(s.key)) fail(l, "a new subcircuit name in its scope", "a second .subckt " + tok[1] + (scope.empty() ? "" : " in .subckt " + scope.substr(scope.rfind('/') + 1)));
+    if (subckts.count(s.key))
+      fail(l, "a new subcircuit name in its scope",
+           "a second .subckt " + tok[1] + (scope.empty() ? "" : " in .subckt " + scope.substr(scope.rfind('/') + 1)));
     for (++i; i < lines.size(); ++i) {
       const std::string head = lower(tokens(lines[i].text)[0]);
       if (head == ".ends") {
@@ -971,10 +1068,12 @@ class Flattener {
 
   /// node name in an instance: ground and .global nodes are global, ports map to the caller's nodes,
   /// others get the prefix
-  std::string node_in(const std::string& n, const std::string& prefix, const std::map<std::string, std::string>& ports) const {
+  std::string node_in(const std::string& n, const std::string& prefix,
+                      const std::map<std::string, std::string>& ports) const {
     const std::string s = lower(n);
     if (s == "0" || s == "gnd") return "0";
-    if (replace_ground && (s == "gnd!" || s == "ground" || s == "ground!")) return "0";  // Xyce's .preprocess replaceground true
+    if (replace_ground && (s == "gnd!" || s == "ground" || s == "ground!"))
+      return "0";  // Xyce's .preprocess replaceground true
     const auto p = ports.find(s);
     if (p != ports.end()) return p->second;
     if (globals.count(s)) return s;
@@ -1002,17 +1101,20 @@ class Flattener {
   /// Cards of analyses and output: they do not change the circuit, and are skipped with a note.
   static bool analysis_card(const std::string& head) {
     static const std::set<std::string> cards = {
-        ".tran", ".ac", ".dc", ".op", ".options", ".option", ".opt", ".print", ".plot", ".probe", ".save", ".meas", ".measure",
-        ".four", ".fourier", ".width", ".title", ".nodeset", ".noise", ".disto", ".pz", ".sens", ".tf", ".fft", ".hb", ".list",
-        ".mor", ".status", ".dcop", ".tr", ".result", ".mpde", ".lin", ".sp", ".pss", ".shoot", ".objective", ".endl", ".end",
-        ".alter", ".graph", ".nodelist", ".nolist", ".protect", ".unprotect", ".csvprint", ".mem", ".tsave",
-        ".store", ".fanout",  // gnucap: waveforms kept for .measure, a listing of node connections
+        ".tran",    ".ac",          ".dc",     ".op",      ".options",   ".option",   ".opt",     ".print",
+        ".plot",    ".probe",       ".save",   ".meas",    ".measure",   ".four",     ".fourier", ".width",
+        ".title",   ".nodeset",     ".noise",  ".disto",   ".pz",        ".sens",     ".tf",      ".fft",
+        ".hb",      ".list",        ".mor",    ".status",  ".dcop",      ".tr",       ".result",  ".mpde",
+        ".lin",     ".sp",          ".pss",    ".shoot",   ".objective", ".endl",     ".end",     ".alter",
+        ".graph",   ".nodelist",    ".nolist", ".protect", ".unprotect", ".csvprint", ".mem",     ".tsave",
+        ".store",   ".fanout",         // gnucap: waveforms kept for .measure, a listing of node connections
         ".probe64", ".autoconverge"};  // PSpice: 64-bit probe data, convergence options
     return cards.count(head) > 0;
   }
   /// Sweeps and sampling: analyses run on the circuit at other values; dcad solves it as written.
   static bool sweep_card(const std::string& head) {
-    static const std::set<std::string> cards = {".step", ".sampling", ".embeddedsampling", ".pce", ".rol", ".data", ".mc", ".monte", ".sweep", ".stat"};
+    static const std::set<std::string> cards = {
+        ".step", ".sampling", ".embeddedsampling", ".pce", ".rol", ".data", ".mc", ".monte", ".sweep", ".stat"};
     return cards.count(head) > 0;
   }
 
@@ -1022,7 +1124,8 @@ class Flattener {
     if (head == ".ic" || head == ".dcvolt") {
       for (std::size_t k = 1; k < tok.size(); ++k) {
         std::string t = lower(tok[k]);
-        while (t.compare(0, 2, "v(") == 0 && t.find(')') == std::string::npos && k + 1 < tok.size()) t += lower(tok[++k]);  // "V(mid )=1"
+        while (t.compare(0, 2, "v(") == 0 && t.find(')') == std::string::npos && k + 1 < tok.size())
+          t += lower(tok[++k]);  // "V(mid )=1"
         const std::size_t eq = t.find('=');
         std::string node, value;
         if (t.compare(0, 2, "v(") == 0 && eq != std::string::npos && t[eq - 1] == ')') {
@@ -1049,59 +1152,78 @@ class Flattener {
         if (lower(tok[k]) != "uic") times.push_back(tok[k]);
       try {
         const auto time = [&](const std::string& t) {
-          return t.size() > 1 && t.front() == '{' ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value() : parse_spice_value(t, nullptr, dialect);
+          return t.size() > 1 && t.front() == '{'
+                     ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value()
+                     : parse_spice_value(t, nullptr, dialect);
         };
         if (times.size() >= 2) {
           out.tran_step = time(times[0]);
           out.tran_stop = time(times[1]);
         }
-      } catch (const std::invalid_argument&) {  // not needed by the circuit (only by sources' defaults, which then say so)
+      } catch (
+          const std::invalid_argument&) {  // not needed by the circuit (only by sources' defaults, which then say so)
       }
     }
     if (head == ".temp" || ((head == ".options" || head == ".option" || head == ".opt") && !prefix.empty() &&
-                            std::any_of(tok.begin(), tok.end(), [](const std::string& t) { return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0; }))) {
+                            std::any_of(tok.begin(), tok.end(), [](const std::string& t) {
+                              return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0;
+                            }))) {
       if (!prefix.empty())  // read_temperatures sees the top level only: the circuit's temperature is global
-        fail(l, "the circuit's temperature (.temp, .options temp= tnom=) at the deck's top level", tok[0] + " inside a .subckt");
+        fail(l, "the circuit's temperature (.temp, .options temp= tnom=) at the deck's top level",
+             tok[0] + " inside a .subckt");
     }
     if (head == ".temp") {
-      out.warnings.push_back(l.where() + ": " + tok[0] + ": read for the elements' TC1, TC2 (dcad's elements have no temperature dependence otherwise)" +
-                             (tok.size() > 2 ? ": a list of temperatures (a sweep): dcad solves at the first" : ""));
+      out.warnings.push_back(
+          l.where() + ": " + tok[0] +
+          ": read for the elements' TC1, TC2 (dcad's elements have no temperature dependence otherwise)" +
+          (tok.size() > 2 ? ": a list of temperatures (a sweep): dcad solves at the first" : ""));
       return;
     }
     if (analysis_card(head)) {
       const bool temps = (head == ".options" || head == ".option" || head == ".opt") &&
-                         std::any_of(tok.begin(), tok.end(), [](const std::string& t) { return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0; });
+                         std::any_of(tok.begin(), tok.end(), [](const std::string& t) {
+                           return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0;
+                         });
       out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (analysis or output card: the circuit is unchanged" +
-                             (head == ".tran" ? "; simulate reads its uic for the initial state)" : temps ? "; its temp= and tnom= are read for TC1, TC2)" : ")"));
+                             (head == ".tran" ? "; simulate reads its uic for the initial state)"
+                              : temps         ? "; its temp= and tnom= are read for TC1, TC2)"
+                                              : ")"));
       return;
     }
     if (sweep_card(head)) {
-      out.warnings.push_back(l.where() + ": ignored " + tok[0] + " (a sweep or sampling analysis: dcad solves the circuit at the values as written)");
+      out.warnings.push_back(l.where() + ": ignored " + tok[0] +
+                             " (a sweep or sampling analysis: dcad solves the circuit at the values as written)");
       return;
     }
     if (head == ".model") {  // no element dcad reads takes a model; an element that names one is refused where it is
-      out.warnings.push_back(l.where() + ": ignored .model " + (tok.size() > 1 ? tok[1] : std::string()) + " (no R, L, C, K, V or I element uses it)");
+      out.warnings.push_back(l.where() + ": ignored .model " + (tok.size() > 1 ? tok[1] : std::string()) +
+                             " (no R, L, C, K, V or I element uses it)");
       return;
     }
-    if (head == ".delete" || head == ".del" || head == ".modify" || head == ".mod" || head == ".fault" || head == ".unfault")
+    if (head == ".delete" || head == ".del" || head == ".modify" || head == ".mod" || head == ".fault" ||
+        head == ".unfault")
       fail(l, "the circuit as written", tok[0] + " (a command that changes the circuit; write the circuit it leaves)");
     if (head == ".preprocess")
-      fail(l, "cards that leave the circuit as written", ".preprocess (Xyce: it may add resistors or remove devices; write the circuit as it should be solved)");
+      fail(l, "cards that leave the circuit as written",
+           ".preprocess (Xyce: it may add resistors or remove devices; write the circuit as it should be solved)");
     if (head == ".lib")
       fail(l, ".lib FILE SECTION", "\"" + l.text + "\" (a library section is read where it is named)");
-    fail(l, "an R, L, C, V, I, K or X element, or a card dcad reads (.param, .func, .subckt, .include, .lib, .ic, .global, analysis and output cards)",
+    fail(l,
+         "an R, L, C, V, I, K or X element, or a card dcad reads (.param, .func, .subckt, .include, .lib, .ic, "
+         ".global, analysis and output cards)",
          "unknown card " + tok[0] + " (dcad cannot tell whether it changes the circuit: remove it if it does not)");
   }
 
   void instance(const Line& l, const std::vector<std::string>& tok_in, const std::string& prefix,
-                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params, int depth,
-                const std::string& scope) {
+                const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params,
+                int depth, const std::string& scope) {
     if (depth >= 32) fail(l, "subcircuits nested at most 32 deep", "deeper (a recursive .subckt?)");
     std::vector<std::string> tok;
     for (const std::string& t : tok_in) {  // "(a b)" node lists as gnucap writes them
       std::string u = t;
       if (&t != &tok_in.front() && !u.empty() && u.front() == '(') u.erase(0, 1);
-      if (!u.empty() && u.back() == ')' && u.find('(') == std::string::npos && u.find('{') == std::string::npos) u.pop_back();
+      if (!u.empty() && u.back() == ')' && u.find('(') == std::string::npos && u.find('{') == std::string::npos)
+        u.pop_back();
       if (!u.empty()) tok.push_back(u);
     }
     std::size_t k = tok.size();
@@ -1114,7 +1236,8 @@ class Flattener {
       it = subckts.find(sc + "/" + sub);
       if (it != subckts.end() || sc.empty()) break;
     }
-    if (it == subckts.end()) fail(l, "a subcircuit defined by .subckt", "unknown subcircuit \"" + tok[k - 1] + "\" in " + tok[0]);
+    if (it == subckts.end())
+      fail(l, "a subcircuit defined by .subckt", "unknown subcircuit \"" + tok[k - 1] + "\" in " + tok[0]);
     const Subcircuit& s = it->second;
     if (k - 2 != s.ports.size())
       fail(l, std::to_string(s.ports.size()) + " nodes for " + tok[k - 1] + " (" + s.where.where() + ")",
@@ -1133,16 +1256,19 @@ class Flattener {
       overridden.insert(name);
     }
     for (const Line& b : s.body)
-      if (is_param_card(lower(tokens(b.text)[0])) || lower(tokens(b.text)[0]) == ".func") read_params(b, local, &overridden);
+      if (is_param_card(lower(tokens(b.text)[0])) || lower(tokens(b.text)[0]) == ".func")
+        read_params(b, local, &overridden);
     for (const Line& b : s.body)
       if (lower(tokens(b.text)[0]) == ".global")
-        for (const std::string& g : tokens(b.text)) if (g[0] != '.') globals.insert(lower(g));
+        for (const std::string& g : tokens(b.text))
+          if (g[0] != '.') globals.insert(lower(g));
     expand(s.body, prefix + lower(tok[0]) + ".", inner, local, depth + 1, s.key);
   }
 
   /// An instance's overrides are written in the caller's scope; the subcircuit's defaults are visible too
   /// (ngspice evaluates `X1 … w={2*w0}` with the caller's parameters first).
-  static std::map<std::string, Rational> params_with(const std::map<std::string, Rational>& caller, const std::map<std::string, Rational>& local) {
+  static std::map<std::string, Rational> params_with(const std::map<std::string, Rational>& caller,
+                                                     const std::map<std::string, Rational>& local) {
     std::map<std::string, Rational> m = local;
     for (const auto& [k, v] : caller) m[k] = v;
     return m;
@@ -1152,7 +1278,8 @@ class Flattener {
   /// `td1=delay/10`); ngspice refuses it (it wants `{c+1}`), so reading it never changes a deck ngspice
   /// reads.  Only text that starts with a name (ngspice reads "2*p" as 2: refused as before) and has an
   /// operator, every name a parameter or a function; said in a note.
-  std::optional<Rational> bare_expression(const Line& l, const std::string& text, const std::map<std::string, Rational>& params, const std::string& name) {
+  std::optional<Rational> bare_expression(const Line& l, const std::string& text,
+                                          const std::map<std::string, Rational>& params, const std::string& name) {
     if (text.empty() || !(std::isalpha(static_cast<unsigned char>(text[0])) || text[0] == '_') ||
         text.find_first_of("+-*/^()") == std::string::npos || text.find_first_of("\"'{}") != std::string::npos)
       return std::nullopt;
@@ -1162,22 +1289,25 @@ class Flattener {
       return std::nullopt;
     }
     const Rational v = evaluate(l, text, params, "a value");  // its notes (irrational, nominal) as for {…}
-    out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as the expression {" + text + "} = " + shown(v) +
-                           " (gnucap's value without braces; ngspice wants {…})");
+    out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as the expression {" + text +
+                           "} = " + shown(v) + " (gnucap's value without braces; ngspice wants {…})");
     return v;
   }
 
   /// ngspice's restemp.c, captemp.c, indtemp.c (and Xyce's): the value at the device's temperature is
   /// V0 (1 + TC1 ΔT + TC2 ΔT²), ΔT = T − TNOM; T is the instance's TEMP=, else the circuit's (.temp, .options
   /// temp=; 27 °C) plus DTEMP=; TNOM the instance's, else .options tnom= (27 °C).  Exact; said in a note.
-  Rational temperature_factor(const Line& l, const std::string& name, const std::optional<Rational>& tc1, const std::optional<Rational>& tc2,
-                              const std::optional<Rational>& device_temp, const std::optional<Rational>& dtemp, const std::optional<Rational>& device_tnom) {
+  Rational temperature_factor(const Line& l, const std::string& name, const std::optional<Rational>& tc1,
+                              const std::optional<Rational>& tc2, const std::optional<Rational>& device_temp,
+                              const std::optional<Rational>& dtemp, const std::optional<Rational>& device_tnom) {
     const Rational t = device_temp ? *device_temp : temperature.value_or(Rational(27)) + dtemp.value_or(Rational(0));
     const Rational dt = t - device_tnom.value_or(tnom);
     const Rational factor = 1 + tc1.value_or(Rational(0)) * dt + tc2.value_or(Rational(0)) * dt * dt;
     if (factor <= 0)
-      fail(l, "a positive temperature factor 1 + TC1 dT + TC2 dT^2 for " + name, shown(factor) + " at dT = " + shown(dt) + " C");
-    out.warnings.push_back(l.where() + ": " + name + ": at " + shown(t) + " C (TNOM " + shown(t - dt) + " C) its temperature coefficients " +
+      fail(l, "a positive temperature factor 1 + TC1 dT + TC2 dT^2 for " + name,
+           shown(factor) + " at dT = " + shown(dt) + " C");
+    out.warnings.push_back(l.where() + ": " + name + ": at " + shown(t) + " C (TNOM " + shown(t - dt) +
+                           " C) its temperature coefficients " +
                            (dt == 0 ? "change nothing" : "scale its value by " + shown(factor)));
     return factor;
   }
@@ -1213,10 +1343,13 @@ class Flattener {
         fail(l, k == 0 ? "an element name without , ( ) = \" ' { }" : "a node name without , ( ) = \" ' { }",
              "\"" + tok[k] + "\" (ngspice reads these characters as separators or syntax: rename it)");
     // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
-    const auto hier = [&](const std::string& t) { return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t); };
+    const auto hier = [&](const std::string& t) {
+      return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t);
+    };
     const std::string name = hier(tok[0]);
     const std::string key = lower(name);
-    if (names.count(key)) fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
+    if (names.count(key))
+      fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
     const auto number = [&](const std::string& text, const std::string& what) {
       if (!text.empty() && text.front() == '{') {
         if (text.back() != '}') fail(l, what, "\"" + text + "\" (no closing '}')");
@@ -1229,7 +1362,8 @@ class Flattener {
         std::string ignored;
         const Rational v = parse_spice_value(text, &ignored, dialect);
         if (!ignored.empty())
-          out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as " + shown(v) + " (the letters \"" + ignored +
+          out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as " + shown(v) +
+                                 " (the letters \"" + ignored +
                                  "\" are neither a scale factor nor a unit; ngspice ignores them too)");
         return v;
       } catch (const std::invalid_argument& e) {
@@ -1241,11 +1375,14 @@ class Flattener {
       if (tok.size() < 4) fail(l, "KNAME LX LY COUPLING", "\"" + l.text + "\"");
       const Rational k = number(tok.back(), "a coupling coefficient");
       if (k < -1 || k > 1)
-        fail(l, "a coupling coefficient with |k| <= 1 for " + name + (prefix.empty() ? "" : " (instance " + prefix.substr(0, prefix.size() - 1) + ")"),
+        fail(l,
+             "a coupling coefficient with |k| <= 1 for " + name +
+                 (prefix.empty() ? "" : " (instance " + prefix.substr(0, prefix.size() - 1) + ")"),
              "k = " + shown(k) + (tok.back().front() == '{' ? " from " + tok.back() : std::string()));
       // K L1 L2 … k: every pair of the listed inductors (Xyce); two of them as in ngspice
       for (std::size_t a = 1; a + 1 < tok.size(); ++a)
-        for (std::size_t b = a + 1; b + 1 < tok.size(); ++b) couplings.push_back({l, name, lower(hier(tok[a])), lower(hier(tok[b])), k});
+        for (std::size_t b = a + 1; b + 1 < tok.size(); ++b)
+          couplings.push_back({l, name, lower(hier(tok[a])), lower(hier(tok[b])), k});
       names[key] = out_lines.size();
       out_lines.push_back(l.where());
       return;
@@ -1271,17 +1408,23 @@ class Flattener {
       for (std::size_t k = 3; k < tok.size(); ++k) spec += (k > 3 ? " " : "") + tok[k];
       Waveform w;
       try {
-        w = parse_waveform(pwl_from_file(l, spec, dialect), [&](const std::string& t) { return number(t, "a source value"); }, generator);
+        w = parse_waveform(
+            pwl_from_file(l, spec, dialect), [&](const std::string& t) { return number(t, "a source value"); },
+            generator);
       } catch (const std::invalid_argument& e) {
         throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
       }
       w.element = name;
-      if (!w.ignored.empty()) out.warnings.push_back(l.where() + ": " + name + ": not part of the transient, ignored: " + w.ignored);
-      if (w.is_sffm())  // SPICE3's VO + VA sin(2π FC t + MDI sin(2π FS t)); ngspice 43 on holds 0 up to TD = 0 and limits MDI
-        out.warnings.push_back(l.where() + ": " + name + ": SFFM read as SPICE3, ngspice 39 and Xyce read it (VO + VA sin(2 pi FC t + MDI sin(2 pi FS t)))" +
-                               (w.p[0] != 0 ? "; ngspice 43 on has 0, not VO, at t = 0 (its operating point differs)" : "") +
-                               (w.p[3] > w.p[2] / w.p[4] ? "; ngspice 43 on limits MDI to FC/FS" : "") +
-                               "; simulate and check refuse it (no finite exosystem)");
+      if (!w.ignored.empty())
+        out.warnings.push_back(l.where() + ": " + name + ": not part of the transient, ignored: " + w.ignored);
+      if (w.is_sffm())  // SPICE3's VO + VA sin(2π FC t + MDI sin(2π FS t)); ngspice 43 on holds 0 up to TD = 0 and
+                        // limits MDI
+        out.warnings.push_back(
+            l.where() + ": " + name +
+            ": SFFM read as SPICE3, ngspice 39 and Xyce read it (VO + VA sin(2 pi FC t + MDI sin(2 pi FS t)))" +
+            (w.p[0] != 0 ? "; ngspice 43 on has 0, not VO, at t = 0 (its operating point differs)" : "") +
+            (w.p[3] > w.p[2] / w.p[4] ? "; ngspice 43 on limits MDI to FC/FS" : "") +
+            "; simulate and check refuse it (no finite exosystem)");
       b.kind = reference::BranchKind::empty;
       if (kind == 'v' && w.kind == Waveform::Kind::dc && w.p[0] == 0) {
         rb.kind = reference::RlcKind::wire;  // a zero-volt source is a wire (an ammeter)
@@ -1298,13 +1441,15 @@ class Flattener {
       out.where.push_back(l.where());
       return;
     }
-    if (tok.size() > 4 && gnucap_mode(tok[3])) tok = transient_value(l, tok, name, [&](const std::string& t) { return number(t, "a value"); });
+    if (tok.size() > 4 && gnucap_mode(tok[3]))
+      tok = transient_value(l, tok, name, [&](const std::string& t) { return number(t, "a value"); });
     // the value: positional, or as a keyword (r=, c=, l=, value=); then IC=, a multiplier M= and temperature
     // coefficients, which change nothing at the nominal temperature
     const std::string value_key = kind == 'r' ? "r=" : kind == 'c' ? "c=" : "l=";
     std::optional<Rational> value;
     std::optional<Rational> ic, multiplier;
-    std::optional<Rational> tc1, tc2, device_temp, dtemp, device_tnom;  // ngspice's and Xyce's instance temperature parameters
+    std::optional<Rational> tc1, tc2, device_temp, dtemp,
+        device_tnom;  // ngspice's and Xyce's instance temperature parameters
     for (std::size_t k = 3; k < tok.size(); ++k) {
       const std::string t = lower(tok[k]);
       const std::size_t eq = t.find('=');
@@ -1324,13 +1469,22 @@ class Flattener {
         tc1 = number(list.substr(0, comma), "TC=TC1[,TC2]");
         if (comma != std::string::npos) tc2 = number(list.substr(comma + 1), "TC=TC1[,TC2]");
       } else if (key == "tc1=" || key == "tc2=" || key == "temp=" || key == "dtemp=" || key == "tnom=") {
-        std::optional<Rational>& slot = key == "tc1=" ? tc1 : key == "tc2=" ? tc2 : key == "temp=" ? device_temp : key == "dtemp=" ? dtemp : device_tnom;
+        std::optional<Rational>& slot = key == "tc1="     ? tc1
+                                        : key == "tc2="   ? tc2
+                                        : key == "temp="  ? device_temp
+                                        : key == "dtemp=" ? dtemp
+                                                          : device_tnom;
         slot = number(tok[k].substr(eq + 1), tok[k].substr(0, eq + 1) + "value");
-      } else if (kind == 'r' && (key == "ac=" || key == "noisy=")) {  // ngspice: the AC analysis' resistance, the noise switch
+      } else if (kind == 'r' &&
+                 (key == "ac=" || key == "noisy=")) {  // ngspice: the AC analysis' resistance, the noise switch
         number(tok[k].substr(eq + 1), key == "ac=" ? "AC=resistance" : "NOISY=0 or 1");
-        out.warnings.push_back(l.where() + ": " + name + ": " + tok[k] + " ignored (ngspice uses it in .ac or .noise only, not in the transient)");
+        out.warnings.push_back(l.where() + ": " + name + ": " + tok[k] +
+                               " ignored (ngspice uses it in .ac or .noise only, not in the transient)");
       } else {
-        fail(l, kind == 'r' ? "nothing, M=, TC1=, TC2=, AC=, NOISY= after the resistance" : "nothing, IC=, M= after the value", "\"" + tok[k] + "\"");
+        fail(l,
+             kind == 'r' ? "nothing, M=, TC1=, TC2=, AC=, NOISY= after the resistance"
+                         : "nothing, IC=, M= after the value",
+             "\"" + tok[k] + "\"");
       }
     }
     if (!value) fail(l, "a value (positional or " + value_key + "VALUE)", "none in \"" + l.text + "\"");
@@ -1340,11 +1494,14 @@ class Flattener {
     const Rational& value_ = v;
     rb.value = value_;
     if (kind == 'r') {
-      if (value_ < 0) out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
-      if (boost::multiprecision::abs(value_) < Rational(1, 1000000000000LL)) {  // as ngspice reads it (resparam.c: RESMIN)
+      if (value_ < 0)
+        out.warnings.push_back(l.where() + ": negative resistance " + name + " is not physical (it supplies energy)");
+      if (boost::multiprecision::abs(value_) <
+          Rational(1, 1000000000000LL)) {  // as ngspice reads it (resparam.c: RESMIN)
         const Rational floor_value = value_ < 0 ? Rational(-1, 1000000000000LL) : Rational(1, 1000000000000LL);
         out.warnings.push_back(l.where() + ": " + name + ": R = " + shown(value_) + " read as " + shown(floor_value) +
-                               " Ohm, as ngspice sets a resistance below 1e-12 (a resistor, not a wire: write a 0-volt V source for a wire)");
+                               " Ohm, as ngspice sets a resistance below 1e-12 (a resistor, not a wire: write a 0-volt "
+                               "V source for a wire)");
         rb.value = floor_value;
       }
       rb.kind = reference::RlcKind::resistor;
@@ -1354,13 +1511,15 @@ class Flattener {
       b.kind = reference::BranchKind::inductor;
       b.value = value_;
       rb.kind = reference::RlcKind::inductor;
-      if (value_ < 0) out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
+      if (value_ < 0)
+        out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
     } else {
       if (value_ == 0) fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + name);
       b.kind = reference::BranchKind::capacitor;
       b.value = value_;
       rb.kind = reference::RlcKind::capacitor;
-      if (value_ < 0) out.warnings.push_back(l.where() + ": negative capacitance " + name + " is not physical (CEF Remark 6.7)");
+      if (value_ < 0)
+        out.warnings.push_back(l.where() + ": negative capacitance " + name + " is not physical (CEF Remark 6.7)");
     }
     if (kind == 'l' && value_ == 0) {
       b.kind = reference::BranchKind::empty;  // L = 0: a wire
@@ -1373,7 +1532,7 @@ class Flattener {
   }
 
  public:
-  std::vector<Line> source_lines;  ///< the line of each waveform (for completing its defaults)
+  std::vector<Line> source_lines;      ///< the line of each waveform (for completing its defaults)
   std::vector<std::string> out_lines;  ///< file:line of each branch
 };
 
@@ -1433,9 +1592,11 @@ static void check_inductance(Netlist& out, const Flattener& f) {
     for (std::size_t i = 0; i < g; ++i) k[i][i] = 1;
     for (std::size_t c = 0; c < out.rlc.mutuals.size(); ++c) {
       const auto& mu = out.rlc.mutuals[c];
-      const auto ia = std::find(members.begin(), members.end(), mu.a), ib = std::find(members.begin(), members.end(), mu.b);
+      const auto ia = std::find(members.begin(), members.end(), mu.a),
+                 ib = std::find(members.begin(), members.end(), mu.b);
       if (ia == members.end() || !mu.k) continue;
-      const std::size_t a = static_cast<std::size_t>(ia - members.begin()), b = static_cast<std::size_t>(ib - members.begin());
+      const std::size_t a = static_cast<std::size_t>(ia - members.begin()),
+                        b = static_cast<std::size_t>(ib - members.begin());
       k[a][b] = k[b][a] = *mu.k;
       pairs.push_back(f.couplings[c].name + " = " + shown(*mu.k));
     }
@@ -1460,9 +1621,11 @@ static void check_inductance(Netlist& out, const Flattener& f) {
     for (std::size_t i : members) names += (names.empty() ? "" : ", ") + out.rlc.branches[i].name;
     std::string couplings;
     for (const std::string& p : pairs) couplings += (couplings.empty() ? "" : ", ") + p;
-    const std::string what = "the coupled inductors " + names + " have an inductance matrix that is not positive semidefinite (" + couplings +
+    const std::string what = "the coupled inductors " + names +
+                             " have an inductance matrix that is not positive semidefinite (" + couplings +
                              ": every |k| <= 1, yet the matrix of coupling coefficients has a negative eigenvalue" +
-                             ", its determinant " + shown(det) + ", the inductance matrix's " + shown(det * product_of_values(out, members)) +
+                             ", its determinant " + shown(det) + ", the inductance matrix's " +
+                             shown(det * product_of_values(out, members)) +
                              "): the magnetic energy is unbounded below, no physical transformer has these couplings";
     out.warnings.push_back(out.where[members.front()] + ": " + what);
     if (out.indefinite_inductance.empty()) out.indefinite_inductance = out.where[members.front()] + ": " + what;
@@ -1481,13 +1644,16 @@ static void resolve_couplings(Netlist& out, const Flattener& f) {
       for (std::size_t i = 0; i < out.rlc.branches.size(); ++i)
         if (lower(out.rlc.branches[i].name) == n) {
           if (out.rlc.branches[i].kind != reference::RlcKind::inductor)
-            throw InputError(c.line.where() + ": expected an inductor for " + c.name + ", found " + out.rlc.branches[i].name);
+            throw InputError(c.line.where() + ": expected an inductor for " + c.name + ", found " +
+                             out.rlc.branches[i].name);
           return i;
         }
-      throw InputError(c.line.where() + ": expected an inductor of the circuit for " + c.name + ", found \"" + written + "\"");
+      throw InputError(c.line.where() + ": expected an inductor of the circuit for " + c.name + ", found \"" + written +
+                       "\"");
     };
     const std::size_t a = find(c.a), b = find(c.b);
-    if (a == b) throw InputError(c.line.where() + ": expected two different inductors for " + c.name + ", found one twice");
+    if (a == b)
+      throw InputError(c.line.where() + ": expected two different inductors for " + c.name + ", found one twice");
     const Rational sq = c.k * c.k * out.rlc.branches[a].value * out.rlc.branches[b].value;
     using boost::multiprecision::mpz_int;
     const mpz_int num = boost::multiprecision::numerator(sq), den = boost::multiprecision::denominator(sq);
@@ -1498,15 +1664,19 @@ static void resolve_couplings(Netlist& out, const Flattener& f) {
       m = Rational(rn, rd);
     } else {
       const mpz_int scale = boost::multiprecision::pow(mpz_int(10), 80);
-      m = Rational(boost::multiprecision::sqrt(mpz_int(num * scale * scale / den)), scale);  // 80 digits after the point, truncated
-      out.warnings.push_back(c.line.where() + ": " + c.name + ": M = k*sqrt(Lx*Ly) is irrational; used it to 80 decimal places");
+      m = Rational(boost::multiprecision::sqrt(mpz_int(num * scale * scale / den)),
+                   scale);  // 80 digits after the point, truncated
+      out.warnings.push_back(c.line.where() + ": " + c.name +
+                             ": M = k*sqrt(Lx*Ly) is irrational; used it to 80 decimal places");
       rounded = true;
     }
     if (c.k < 0) m = -m;
     bool dup = false;
     for (auto& mu : out.rlc.mutuals)
       if ((mu.a == a && mu.b == b) || (mu.a == b && mu.b == a)) dup = true;
-    if (dup) throw InputError(c.line.where() + ": expected one coupling per pair of inductors, found a second one (" + c.name + ")");
+    if (dup)
+      throw InputError(c.line.where() + ": expected one coupling per pair of inductors, found a second one (" + c.name +
+                       ")");
     out.rlc.mutuals.push_back({a, b, m, c.k, rounded});
     out.forced = true;
   }
@@ -1531,7 +1701,8 @@ Netlist read_netlist(const std::string& file, const ReadOptions& options) {
   return flatten(file, reader, options.dialect);
 }
 
-Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory, const ReadOptions& options) {
+Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory,
+                          const ReadOptions& options) {
   if (text.empty()) throw InputError(name + ":1: expected a title line and LC elements, found an empty deck");
   std::istringstream in(text);
   Reader reader;
@@ -1550,7 +1721,8 @@ Netlist flatten(const std::string& file, Reader& reader, Dialect dialect) {
   Flattener f(out, dialect);
   f.run(reader.lines);
   if (out.circuit.branches.empty())
-    throw InputError(file + ":" + (reader.lines.empty() ? std::string("1") : reader.lines.back().where().substr(file.size() + 1)) +
+    throw InputError(file + ":" +
+                     (reader.lines.empty() ? std::string("1") : reader.lines.back().where().substr(file.size() + 1)) +
                      ": expected at least one L, C or V element, found none");
   out.circuit.nodes = out.node_names.size();
   out.rlc.nodes = out.circuit.nodes;
@@ -1575,8 +1747,10 @@ Netlist flatten(const std::string& file, Reader& reader, Dialect dialect) {
   }
   for (const auto& [node, v] : f.node_ic) {
     const auto at = std::find(out.node_names.begin(), out.node_names.end(), node);
-    if (node != "0" && at == out.node_names.end()) {  // ngspice: "IC on non-existent node - bleem, ignored"; Xyce warns too
-      out.warnings.push_back(f.node_ic_where.at(node) + ": .ic v(" + node + ") ignored: no such node in the circuit (ngspice and Xyce ignore it too)");
+    if (node != "0" &&
+        at == out.node_names.end()) {  // ngspice: "IC on non-existent node - bleem, ignored"; Xyce warns too
+      out.warnings.push_back(f.node_ic_where.at(node) + ": .ic v(" + node +
+                             ") ignored: no such node in the circuit (ngspice and Xyce ignore it too)");
       continue;
     }
     if (node != "0") out.node_ic.emplace_back(static_cast<long>(at - out.node_names.begin()), v);
@@ -1617,7 +1791,8 @@ double mean_exponent(const Netlist& n, reference::BranchKind kind) {
 }  // namespace
 
 Units units_of(const Netlist& n) {
-  return Units::nearest(mean_exponent(n, reference::BranchKind::inductor), mean_exponent(n, reference::BranchKind::capacitor));
+  return Units::nearest(mean_exponent(n, reference::BranchKind::inductor),
+                        mean_exponent(n, reference::BranchKind::capacitor));
 }
 
 Netlist dimensionless(const Netlist& n, const Units& u) {

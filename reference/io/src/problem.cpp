@@ -9,11 +9,16 @@
 namespace dcad::io {
 
 std::vector<std::string> Problem::variables() const {
-  return form == Form::expression || form == Form::implicit ? expression.system.state_names() : form == Form::dae ? dae.variables : linear.variables;
+  return form == Form::expression || form == Form::implicit ? expression.system.state_names()
+         : form == Form::dae                                ? dae.variables
+                                                            : linear.variables;
 }
 
 std::string Problem::name() const {
-  return form == Form::expression || form == Form::implicit ? expression.name : form == Form::dae ? dae.name : form == Form::netlist ? netlist.title : linear.name;
+  return form == Form::expression || form == Form::implicit ? expression.name
+         : form == Form::dae                                ? dae.name
+         : form == Form::netlist                            ? netlist.title
+                                                            : linear.name;
 }
 
 namespace {
@@ -67,10 +72,13 @@ Problem read_problem(const std::string& file, const ReadOptions& options) {
   return from_json(read_json_file(file), file);
 }
 
-Problem parse_netlist(const std::string& text, const std::string& name, const std::string& directory, const ReadOptions& options) {
+Problem parse_netlist(const std::string& text, const std::string& name, const std::string& directory,
+                      const ReadOptions& options) {
   return from_netlist(read_netlist_text(text, name, directory, options));
 }
 
-Problem parse_case(const std::string& text, const std::string& name) { return from_json(parse_json_exact(text, name), name); }
+Problem parse_case(const std::string& text, const std::string& name) {
+  return from_json(parse_json_exact(text, name), name);
+}
 
 }  // namespace dcad::io

@@ -62,7 +62,8 @@ namespace {
 bool is_zero_text(const std::string& x) { return x == "0" || x == "0.0"; }
 
 /// Σ coeff_j · name_j + constant, with empty coefficients left out (a row of the equations of motion).
-std::string row_text(const std::vector<std::string>& coeff, const std::vector<std::string>& names, const std::string& constant) {
+std::string row_text(const std::vector<std::string>& coeff, const std::vector<std::string>& names,
+                     const std::string& constant) {
   Eq e;
   for (std::size_t j = 0; j < coeff.size(); ++j)
     if (!coeff[j].empty()) e.terms.emplace_back(j, coeff[j]);
@@ -86,10 +87,12 @@ json state_json(const StateEquations<std::string>& q) {
   }
   std::vector<std::string> ds;
   for (const std::string& x : q.sources) ds.push_back(x.substr(0, x.size() - 3) + "'(t)");
-  return {{"form", "circuit state equations on M_c (dcad/reference/rlc_state.hpp): x = (w, i) differential, r and e algebraic; the charges of the branches that are not capacitors are the integrals of their currents"},
+  return {{"form",
+           "circuit state equations on M_c (dcad/reference/rlc_state.hpp): x = (w, i) differential, r and e algebraic; "
+           "the charges of the branches that are not capacitors are the integrals of their currents"},
           {"equations",
-           {"C_ww d/dt w = -(G_ww w + G_wr r + L_w i + H_w s + H_wd ds)", "0 = G_wr^T w + G_rr r + L_r i + H_r s", "0 = L_e i + I_e s",
-            "Phi d/dt i = L_w^T w + L_r^T r + L_e^T e + O_L s"}},
+           {"C_ww d/dt w = -(G_ww w + G_wr r + L_w i + H_w s + H_wd ds)", "0 = G_wr^T w + G_rr r + L_r i + H_r s",
+            "0 = L_e i + I_e s", "Phi d/dt i = L_w^T w + L_r^T r + L_e^T e + O_L s"}},
           {"w", q.w},
           {"i", q.i},
           {"r", q.r},
@@ -140,18 +143,30 @@ void state_text(const StateEquations<std::string>& q, std::ostream& o) {
     return equation_text(e, names);
   };
   for (std::size_t k = 0; k < q.w.size(); ++k)
-    o << "    " << row(static_cast<long>(k), {{"C_ww", &dw, false, false}, {"G_ww", &q.w, false, false}, {"G_wr", &q.r, false, false},
-                                          {"L_w", &q.i, false, false}, {"H_w", &q.sources, false, false}, {"H_wd", &ds, false, false}})
+    o << "    "
+      << row(static_cast<long>(k), {{"C_ww", &dw, false, false},
+                                    {"G_ww", &q.w, false, false},
+                                    {"G_wr", &q.r, false, false},
+                                    {"L_w", &q.i, false, false},
+                                    {"H_w", &q.sources, false, false},
+                                    {"H_wd", &ds, false, false}})
       << "\n";
   for (std::size_t k = 0; k < q.r.size(); ++k)
-    o << "    " << row(static_cast<long>(k), {{"G_wr", &q.w, true, false}, {"G_rr", &q.r, false, false}, {"L_r", &q.i, false, false},
-                                          {"H_r", &q.sources, false, false}})
+    o << "    "
+      << row(static_cast<long>(k), {{"G_wr", &q.w, true, false},
+                                    {"G_rr", &q.r, false, false},
+                                    {"L_r", &q.i, false, false},
+                                    {"H_r", &q.sources, false, false}})
       << "\n";
   for (std::size_t k = 0; k < q.e.size(); ++k)
     o << "    " << row(static_cast<long>(k), {{"L_e", &q.i, false, false}, {"I_e", &q.sources, false, false}}) << "\n";
   for (std::size_t k = 0; k < q.i.size(); ++k)
-    o << "    " << row(static_cast<long>(k), {{"Phi", &di, false, false}, {"L_w", &q.w, true, true}, {"L_r", &q.r, true, true},
-                                          {"L_e", &q.e, true, true}, {"O_L", &q.sources, false, true}})
+    o << "    "
+      << row(static_cast<long>(k), {{"Phi", &di, false, false},
+                                    {"L_w", &q.w, true, true},
+                                    {"L_r", &q.r, true, true},
+                                    {"L_e", &q.e, true, true},
+                                    {"O_L", &q.sources, false, true}})
       << "\n";
 }
 
@@ -167,7 +182,9 @@ std::string joined(const std::vector<std::string>& names) {
   return t;
 }
 
-std::string holds_text(Truth t) { return t.yes() ? "holds" : t.no() ? "FAILS — the circuit is inconsistent" : "UNDECIDED"; }
+std::string holds_text(Truth t) {
+  return t.yes() ? "holds" : t.no() ? "FAILS — the circuit is inconsistent" : "UNDECIDED";
+}
 
 json circuit_json(const Printed& s) {
   const CircuitFacts& f = *s.circuit;
@@ -197,33 +214,46 @@ json circuit_json(const Printed& s) {
           {"source_cutsets", f.source_cutsets}};
 }
 
-std::string circuit_text(const Printed& s, const std::vector<std::string>& branch_names, const std::vector<std::string>& branch_kinds) {
+std::string circuit_text(const Printed& s, const std::vector<std::string>& branch_names,
+                         const std::vector<std::string>& branch_kinds) {
   const CircuitFacts& f = *s.circuit;
   std::ostringstream o;
   if (f.forced) {
-    o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes << " nodes (ground included); " << f.inductors << " L, "
-      << f.capacitors << " C, " << f.resistors << " R, " << f.voltage_sources << " V, " << f.current_sources << " I, " << f.couplings << " K\n";
+    o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes << " nodes (ground included); "
+      << f.inductors << " L, " << f.capacitors << " C, " << f.resistors << " R, " << f.voltage_sources << " V, "
+      << f.current_sources << " I, " << f.couplings << " K\n";
     for (const auto& l : f.cv_loops)
-      o << "    CV loop " << joined(l) << ": KVL fixes its capacitor charges by the sources (Σ ±q/C = Σ ±V on M_2, the currents on M_3)\n";
-    for (const auto& l : f.source_loops) o << "    loop of voltage sources " << joined(l) << ": KVL is a condition on the sources alone (Σ ±V(t) = 0)\n";
+      o << "    CV loop " << joined(l)
+        << ": KVL fixes its capacitor charges by the sources (Σ ±q/C = Σ ±V on M_2, the currents on M_3)\n";
+    for (const auto& l : f.source_loops)
+      o << "    loop of voltage sources " << joined(l) << ": KVL is a condition on the sources alone (Σ ±V(t) = 0)\n";
     for (const auto& c : f.li_cutsets)
-      o << "    LI cutset " << joined(c) << ": KCL fixes its inductor currents by the current sources (Σ ±v_L = Σ ±I on M_1)\n";
-    for (const auto& c : f.source_cutsets) o << "    cutset of current sources " << joined(c) << ": KCL is a condition on the sources alone (Σ ±I(t) = 0)\n";
+      o << "    LI cutset " << joined(c)
+        << ": KCL fixes its inductor currents by the current sources (Σ ±v_L = Σ ±I on M_1)\n";
+    for (const auto& c : f.source_cutsets)
+      o << "    cutset of current sources " << joined(c) << ": KCL is a condition on the sources alone (Σ ±I(t) = 0)\n";
     for (const SourceCondition& v : s.source_conditions)
       o << "    source condition " << v.text << ": " << holds_text(v.holds) << " (" << v.evidence << ")\n";
     for (const std::string& w : s.warnings) o << "    warning: " << w << "\n";
     return o.str();
   }
-  o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes << " nodes (ground included)\n    branches:";
+  o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes
+    << " nodes (ground included)\n    branches:";
   for (std::size_t b = 0; b < branch_names.size(); ++b) o << " " << branch_names[b] << " (" << branch_kinds[b] << ")";
-  o << "\n    purely capacitive loops: " << pc_loops(s) << " independent KVLPC equation(s) on q (the M_2 constraints, CEF Thm 6.4)"
+  o << "\n    purely capacitive loops: " << pc_loops(s)
+    << " independent KVLPC equation(s) on q (the M_2 constraints, CEF Thm 6.4)"
     << "; graph count " << f.kvlpc_graph << "\n";
   for (std::size_t i = 0; i < f.pc_loop_branches.size(); ++i)
-    o << "      KVL loop " << i + 1 << ": " << joined(f.pc_loop_branches[i]) << "  (sum of ±q/C over its capacitors = 0 on M_2, ±v/C on M_3)\n";
-  o << "    empty loops: " << f.empty_loops << (f.empty_loops ? " (their loop currents are free: non-uniqueness, CEF Thm 6.8)" : "") << "\n";
-  for (std::size_t i = 0; i < f.empty_loop_branches.size(); ++i) o << "      empty loop " << i + 1 << ": " << joined(f.empty_loop_branches[i]) << "\n";
+    o << "      KVL loop " << i + 1 << ": " << joined(f.pc_loop_branches[i])
+      << "  (sum of ±q/C over its capacitors = 0 on M_2, ±v/C on M_3)\n";
+  o << "    empty loops: " << f.empty_loops
+    << (f.empty_loops ? " (their loop currents are free: non-uniqueness, CEF Thm 6.8)" : "") << "\n";
+  for (std::size_t i = 0; i < f.empty_loop_branches.size(); ++i)
+    o << "      empty loop " << i + 1 << ": " << joined(f.empty_loop_branches[i]) << "\n";
   if (f.physical && !f.has_empty_branch)
-    o << "    CEF Thm 6.6 (L, C > 0, no empty branch): c ∈ {1, 3}, c = 3 iff a purely capacitive loop exists — here c = " << s.steps << "\n";
+    o << "    CEF Thm 6.6 (L, C > 0, no empty branch): c ∈ {1, 3}, c = 3 iff a purely capacitive loop exists — here c "
+         "= "
+      << s.steps << "\n";
   if (f.physical)
     o << "    CEF Thm 6.8 (L ≥ 0, C > 0): the leaves x + W_c are symplectic iff there are no empty loops — here "
       << (f.empty_loops ? "not symplectic" : "symplectic") << "\n";
@@ -245,8 +275,8 @@ std::string radius_text(double r) {
 
 json cad_json(const Printed& r) {
   const std::vector<std::string> names = r.columns();
-  json j = {{"dcad", 1},           {"backend", r.backend},       {"certified", r.certified.yes()}, {"dims", r.dims()},
-            {"steps", r.steps},    {"consistent", r.consistent}, {"variables", r.variables}};
+  json j = {{"dcad", 1},        {"backend", r.backend},       {"certified", r.certified.yes()}, {"dims", r.dims()},
+            {"steps", r.steps}, {"consistent", r.consistent}, {"variables", r.variables}};
   j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   if (r.regular_pencil) {  // a square linear DAE: for a regular pencil, steps is the differentiation index
@@ -271,12 +301,14 @@ json cad_json(const Printed& r) {
       for (const auto& [var, coeff] : e.terms) entries.push_back(json::array({i, var, coeff}));
       rhs.push_back(e.rhs);
     }
-    j["final_constraints_sparse"] = {{"rows", r.final_constraints->size()}, {"columns", names}, {"entries", entries}, {"rhs", rhs}};
+    j["final_constraints_sparse"] = {
+        {"rows", r.final_constraints->size()}, {"columns", names}, {"entries", entries}, {"rhs", rhs}};
   } else if (r.final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
     json rows = json::array();
     for (const Eq& e : *r.final_constraints) {
       // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)
-      std::vector<std::string> row(names.size(), r.exact ? "0" : "0.0");  // the variables, then the sources' jets (if any)
+      std::vector<std::string> row(names.size(),
+                                   r.exact ? "0" : "0.0");  // the variables, then the sources' jets (if any)
       for (const auto& [var, coeff] : e.terms) row[var] = coeff;
       row.push_back(e.rhs);
       rows.push_back(row);
@@ -287,7 +319,8 @@ json cad_json(const Printed& r) {
     std::vector<std::string> coords;
     for (std::size_t i : r.motion->coordinates) coords.push_back(r.variables[i]);
     j["reduced"] = {{"coordinates", coords}, {"F", r.motion->f_matrix}, {"f", r.motion->f}, {"G", r.motion->g}};
-    if (!r.motion->source_columns.empty()) j["reduced"]["sources"] = {{"columns", r.motion->source_columns}, {"S", r.motion->s}};
+    if (!r.motion->source_columns.empty())
+      j["reduced"]["sources"] = {{"columns", r.motion->source_columns}, {"S", r.motion->s}};
   }
   if (r.state) j["state_equations"] = state_json(*r.state);
   if (r.classes) {
@@ -317,7 +350,9 @@ json cad_json(const Printed& r) {
   json conds = json::array();
   for (const SourceCondition& v : r.source_conditions)
     conds.push_back({{"condition", v.text},
-                     {"holds", v.holds.yes() ? json(true) : v.holds.no() ? json(false) : json(nullptr)},
+                     {"holds", v.holds.yes()  ? json(true)
+                               : v.holds.no() ? json(false)
+                                              : json(nullptr)},
                      {"evidence", v.evidence}});
   if (!r.source_names.empty() || !conds.empty()) j["sources"] = {{"names", r.source_names}, {"conditions", conds}};
   return j;
@@ -326,11 +361,14 @@ json cad_json(const Printed& r) {
 std::string cad_text(const Printed& r) {
   const std::vector<std::string> names = r.columns();
   std::ostringstream o;
-  const bool ide = r.regular_pencil.has_value() || r.algorithm == "CEF (1.6)";  // a DAE: the implicit-equation algorithm
-  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << (ide ? ": the constraint algorithm of CEF (1.6)" : ": CAD (CEF §5)") << ", backend " << r.backend
+  const bool ide =
+      r.regular_pencil.has_value() || r.algorithm == "CEF (1.6)";  // a DAE: the implicit-equation algorithm
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")")
+    << (ide ? ": the constraint algorithm of CEF (1.6)" : ": CAD (CEF §5)") << ", backend " << r.backend
     << (r.certified.yes() ? ", certified" : ", NOT certified") << "\n";
   for (std::size_t k = 0; k < r.tower.size(); ++k) {
-    o << "  M_" << k << ": " << (r.tower[k].dim < 0 ? std::string("empty") : "dim " + std::to_string(r.tower[k].dim)) << "\n";
+    o << "  M_" << k << ": " << (r.tower[k].dim < 0 ? std::string("empty") : "dim " + std::to_string(r.tower[k].dim))
+      << "\n";
     for (const Eq& e : r.tower[k].constraints) o << "      " << equation_text(e, names) << "\n";
   }
   if (!r.consistent) {
@@ -338,29 +376,38 @@ std::string cad_text(const Printed& r) {
   } else {
     const long rank = r.solution_rank.value_or(0);
     o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << r.tower.back().dim << "\n";
-    o << (ide ? "  solution rank dim{v in T M_c : E v = A x + f} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ") << rank << (rank == 0 ? " (unique)" : " (not unique)") << "\n";
+    o << (ide ? "  solution rank dim{v in T M_c : E v = A x + f} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ")
+      << rank << (rank == 0 ? " (unique)" : " (not unique)") << "\n";
   }
   if (r.regular_pencil)
-    o << "  pencil sE - A" << (r.certified.yes() ? "" : " (uncertain, as this result)") << ": " << (*r.regular_pencil ? "regular (det(sE - A) is not identically 0)" + std::string(r.consistent ? "; differentiation index " + std::to_string(r.steps) : "")
-                                                  : std::string("singular (det(sE - A) = 0 for every s): no unique solution for every f")) << "\n";
+    o << "  pencil sE - A" << (r.certified.yes() ? "" : " (uncertain, as this result)") << ": "
+      << (*r.regular_pencil ? "regular (det(sE - A) is not identically 0)" +
+                                  std::string(r.consistent ? "; differentiation index " + std::to_string(r.steps) : "")
+                            : std::string("singular (det(sE - A) = 0 for every s): no unique solution for every f"))
+      << "\n";
   if (ide)
     for (const std::string& f : r.source_names) o << "  source " << f << "\n";
   if (!r.circuit)
     for (const SourceCondition& v : r.source_conditions)
-      o << "  condition on the sources " << v.text << ": " << (v.holds.yes() ? "holds" : v.holds.no() ? "FAILS for generic t (an empty M_k)" : "UNDECIDED") << " ("
-        << v.evidence << ")\n";
+      o << "  condition on the sources " << v.text << ": "
+        << (v.holds.yes()  ? "holds"
+            : v.holds.no() ? "FAILS for generic t (an empty M_k)"
+                           : "UNDECIDED")
+        << " (" << v.evidence << ")\n";
   if (r.classes) {
-    o << "  constraints of M_c (CEF §2.1, Lemma 3.23): " << r.classes->first_class << " first class, " << r.classes->second_class
-      << " second class\n";
-    for (const Eq& e : r.classes->second_class_constraints) o << "      second class: " << equation_text(e, names) << "\n";
+    o << "  constraints of M_c (CEF §2.1, Lemma 3.23): " << r.classes->first_class << " first class, "
+      << r.classes->second_class << " second class\n";
+    for (const Eq& e : r.classes->second_class_constraints)
+      o << "      second class: " << equation_text(e, names) << "\n";
   }
   if (r.adapted) {
     const Adapted<std::string>& a = *r.adapted;
-    o << "  adapted to the primary constraints (CEF Thm 3.28" << (a.setting == "T*TQ" ? ", §7 on T*TQ" : "") << "): s' = " << a.s_prime << ", "
-      << a.chi.size() << " second class\n";
+    o << "  adapted to the primary constraints (CEF Thm 3.28" << (a.setting == "T*TQ" ? ", §7 on T*TQ" : "")
+      << "): s' = " << a.s_prime << ", " << a.chi.size() << " second class\n";
     for (const Eq& e : a.chi) o << "      chi: " << equation_text(e, a.variables) << "\n";
     o << "    E_AT = E";
-    for (std::size_t k = 0; k < a.abridged.size(); ++k) o << " + lambda" << k + 1 << "*(" << equation_text(a.abridged[k], a.variables) << ")";
+    for (std::size_t k = 0; k < a.abridged.size(); ++k)
+      o << " + lambda" << k + 1 << "*(" << equation_text(a.abridged[k], a.variables) << ")";
     o << "   (E_E adds " << a.secondary_first_class << " secondary first class constraints)\n";
   }
   if (r.motion) {
@@ -368,8 +415,10 @@ std::string cad_text(const Printed& r) {
     std::vector<std::string> coords;
     for (std::size_t i : m.coordinates) coords.push_back(r.variables[i]);
     std::vector<std::string> lambdas;
-    for (std::size_t k = 0; k < (m.g.empty() ? 0 : m.g[0].size()); ++k) lambdas.push_back("lambda" + std::to_string(k + 1));
-    o << (ide ? "  velocities on M_c (E v = A x + f, v tangent to M_c) in coordinates (" : "  equations of motion on M_c (CEF (5.12)) in coordinates (");
+    for (std::size_t k = 0; k < (m.g.empty() ? 0 : m.g[0].size()); ++k)
+      lambdas.push_back("lambda" + std::to_string(k + 1));
+    o << (ide ? "  velocities on M_c (E v = A x + f, v tangent to M_c) in coordinates ("
+              : "  equations of motion on M_c (CEF (5.12)) in coordinates (");
     for (std::size_t i = 0; i < coords.size(); ++i) o << (i ? ", " : "") << coords[i];
     o << "):\n";
     for (std::size_t i = 0; i < coords.size(); ++i) {
@@ -408,7 +457,8 @@ json pointwise_json(const Printed& r) {
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   // the implicit form: where ẋ is unique on M_c, steps is the index (Rabier–Rheinboldt's geometric
   // index, which is the differentiation index there); else none
-  if (r.algorithm == "CEF (1.6)") j["index"] = r.consistent && r.solution_rank && *r.solution_rank == 0 ? json(r.steps) : json(nullptr);
+  if (r.algorithm == "CEF (1.6)")
+    j["index"] = r.consistent && r.solution_rank && *r.solution_rank == 0 ? json(r.steps) : json(nullptr);
   if (!r.name.empty()) j["name"] = r.name;
   j["variables"] = r.variables;
   j["route"] = p.route;
@@ -465,8 +515,14 @@ json pointwise_json(const Printed& r) {
     json eq = json::object(), mo = json::object();
     for (const auto& [name, e] : f.equations) eq[name] = e;
     for (const auto& [name, e] : f.momenta) mo[name] = e;
-    j["formulas"] = {{"constraints", f.constraints}, {"levels", f.levels}, {"equations", eq}, {"momenta", mo}, {"free", f.free},
-                     {"chart", {{"kept", f.kept}, {"solved", f.solved}}}, {"valid_where", f.valid_where}, {"valid_where_why", f.valid_where_why},
+    j["formulas"] = {{"constraints", f.constraints},
+                     {"levels", f.levels},
+                     {"equations", eq},
+                     {"momenta", mo},
+                     {"free", f.free},
+                     {"chart", {{"kept", f.kept}, {"solved", f.solved}}},
+                     {"valid_where", f.valid_where},
+                     {"valid_where_why", f.valid_where_why},
                      {"decided", f.decided}};
   } else if (!p.formulas_why.empty()) {
     j["formulas"] = nullptr;
@@ -479,8 +535,8 @@ json pointwise_json(const Printed& r) {
       for (const AtGiven::Ball& b : bs) o[b.name] = {{"mid", b.mid}, {"rad", printed_radius(b.mid, b.rad)}};
       return o;
     };
-    json at = {{"certified", a.proved}, {"point", balls(a.point)}, {"velocity", balls(a.velocity)}, {"solved_for", a.solved},
-               {"moved", a.moved}, {"claim", a.claim}};
+    json at = {{"certified", a.proved},  {"point", balls(a.point)}, {"velocity", balls(a.velocity)},
+               {"solved_for", a.solved}, {"moved", a.moved},        {"claim", a.claim}};
     if (!a.why.empty()) at["why"] = a.why;
     j["at_given"] = at;
   }
@@ -505,53 +561,68 @@ std::string pointwise_text(const Printed& r) {
   const std::vector<std::string>& st = r.variables;
   std::ostringstream o;
   const bool ide = r.algorithm == "CEF (1.6)";
-  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << (ide ? ": the constraint algorithm of CEF (1.6) at a point, " : ": CAD (CEF §5) at a point, ") << p.route << ", backend " << r.backend << ", "
-    << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")")
+    << (ide ? ": the constraint algorithm of CEF (1.6) at a point, " : ": CAD (CEF §5) at a point, ") << p.route
+    << ", backend " << r.backend << ", " << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
   o << "  point" << (!p.time_name.empty() ? " at " + p.time_name + " = " + p.time : "") << ":";
   std::vector<std::string> shown = p.point;
   for (const auto& [i, text] : p.point_text) shown[i] = text;
-  for (std::size_t i = 0; i < shown.size(); ++i) o << (i % 6 == 0 ? "\n     " : "") << " " << st[i] << " = " << shown[i] << (i + 1 < shown.size() ? "," : "");
+  for (std::size_t i = 0; i < shown.size(); ++i)
+    o << (i % 6 == 0 ? "\n     " : "") << " " << st[i] << " = " << shown[i] << (i + 1 < shown.size() ? "," : "");
   o << "\n";
   if (!p.place.empty()) {
     o << "  the exact route ran at a rational place, not at the given values:\n";
     for (const std::string& l : p.place) o << "      " << l << "\n";
   }
-  if (p.moves > 0) o << "  (the given values were completed onto M_c by " << p.moves << " Newton step" << (p.moves > 1 ? "s" : "") << ")\n";
+  if (p.moves > 0)
+    o << "  (the given values were completed onto M_c by " << p.moves << " Newton step" << (p.moves > 1 ? "s" : "")
+      << ")\n";
   o << "  M_0: dim " << dims[0] << "\n";
   for (std::size_t k = 0; k < p.levels.size() && k + 1 < dims.size(); ++k) {
     o << "  M_" << k + 1 << ": dim " << dims[k + 1] << "\n";
     if (k == 0)
       for (const std::string& f : p.first_constraints) o << "      " << f << "\n";
-    for (const auto& cs : p.levels[k].constraints) o << "      " << tangent_text(cs) << "   (tangent at the point; solved for " << cs.solved_for << ")\n";
+    for (const auto& cs : p.levels[k].constraints)
+      o << "      " << tangent_text(cs) << "   (tangent at the point; solved for " << cs.solved_for << ")\n";
   }
   if (!r.consistent) o << "  M_" << dims.size() - 1 << " is empty: " << p.why << "\n";
   if (!p.regular) o << "  SINGULAR POINT: " << p.why << " (the tower is not decided here; try another point)\n";
   if (r.consistent && p.regular) {
     const long rank = r.solution_rank.value_or(0);
     if (p.route.rfind("derivative array", 0) == 0)
-      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (ranks of the derivative array F_" << p.order
-        << " at a zero of it)\n";
+      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back()
+        << " (ranks of the derivative array F_" << p.order << " at a zero of it)\n";
     else if (p.checked_order < 0)  // the formula route: every zero test an identity
-      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; every zero test an "
+      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back()
+        << " (regular at the point; every zero test an "
         << "identity of the formulas)\n";
     else
-      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back() << " (regular at the point; the last step's "
+      o << "  final constraint submanifold M_c, c = " << r.steps << ", dim " << dims.back()
+        << " (regular at the point; the last step's "
         << "constraints vanish on M_c to order " << p.checked_order << ")\n";
-    o << (ide ? "  solution rank dim{v in T M_c : phi(t, x, v) = 0} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ") << rank << (rank == 0 ? " (unique)" : "")
-      << (ide && rank == 0 ? "; index " + std::to_string(r.steps) : "") << "\n";
-    o << "  velocity at the point (one solution" << (rank ? " of a " + std::to_string(rank) + "-parameter family" : "") << "):";
-    for (std::size_t i = 0; i < p.velocity.size(); ++i) o << (i % 4 == 0 ? "\n     " : "") << " d/dt " << st[i] << " = " << p.velocity[i] << (i + 1 < p.velocity.size() ? "," : "");
+    o << (ide ? "  solution rank dim{v in T M_c : phi(t, x, v) = 0} = " : "  solution rank dim(ker omega_D ∩ T M_c) = ")
+      << rank << (rank == 0 ? " (unique)" : "") << (ide && rank == 0 ? "; index " + std::to_string(r.steps) : "")
+      << "\n";
+    o << "  velocity at the point (one solution" << (rank ? " of a " + std::to_string(rank) + "-parameter family" : "")
+      << "):";
+    for (std::size_t i = 0; i < p.velocity.size(); ++i)
+      o << (i % 4 == 0 ? "\n     " : "") << " d/dt " << st[i] << " = " << p.velocity[i]
+        << (i + 1 < p.velocity.size() ? "," : "");
     o << "\n";
   }
   if (p.formulas) {
     const Formulas& f = *p.formulas;
-    const auto shown = [](const std::string& e) { return e.size() <= 400 ? e : "(a formula of " + std::to_string(e.size()) + " characters: see --json)"; };
+    const auto shown = [](const std::string& e) {
+      return e.size() <= 400 ? e : "(a formula of " + std::to_string(e.size()) + " characters: see --json)";
+    };
     o << "  formulas on a chart (kept:";
     for (const std::string& k : f.kept) o << " " << k;
     o << "):\n";
-    for (std::size_t i = 0; i < f.constraints.size(); ++i) o << "      M_" << f.levels[i] << ": " << shown(f.constraints[i]) << " = 0\n";
+    for (std::size_t i = 0; i < f.constraints.size(); ++i)
+      o << "      M_" << f.levels[i] << ": " << shown(f.constraints[i]) << " = 0\n";
     for (const auto& [name, e] : f.equations) o << "      d/dt " << name << " = " << shown(e) << "\n";
-    for (std::size_t i = 0; i < f.valid_where.size(); ++i) o << "      valid where " << shown(f.valid_where[i]) << " != 0   (" << f.valid_where_why[i] << ")\n";
+    for (std::size_t i = 0; i < f.valid_where.size(); ++i)
+      o << "      valid where " << shown(f.valid_where[i]) << " != 0   (" << f.valid_where_why[i] << ")\n";
   } else if (!p.formulas_why.empty()) {
     o << "  no formulas: " << p.formulas_why << "\n";
   }
@@ -560,7 +631,8 @@ std::string pointwise_text(const Printed& r) {
     o << "  at the given values, in balls (" << (a.proved ? "proved" : "NOT proved: " + a.why) << "):";
     const auto show = [&o](const std::string& pre, const std::vector<AtGiven::Ball>& bs) {
       for (std::size_t i = 0; i < bs.size(); ++i)
-        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± " << radius_text(printed_radius(bs[i].mid, bs[i].rad)) << (i + 1 < bs.size() ? "," : "");
+        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± "
+          << radius_text(printed_radius(bs[i].mid, bs[i].rad)) << (i + 1 < bs.size() ? "," : "");
     };
     show("", a.point);
     show("d/dt ", a.velocity);
@@ -596,7 +668,8 @@ std::string report_text(const Printed& s) {
 }
 
 std::string inspection_json(const Inspection& r) {
-  json j = {{"dcad", 1}, {"backend", r.backend}, {"certified", r.certified.yes()}, {"n", r.n}, {"form", r.form}, {"valid", r.valid}};
+  json j = {{"dcad", 1}, {"backend", r.backend}, {"certified", r.certified.yes()},
+            {"n", r.n},  {"form", r.form},       {"valid", r.valid}};
   if (!r.valid) {
     j["why"] = r.why;
     return j.dump(2);
@@ -616,7 +689,8 @@ std::string inspection_json(const Inspection& r) {
 std::string inspection_text(const Inspection& r) {
   std::ostringstream o;
   const auto yes_no = [](bool b) { return b ? "yes" : "no"; };
-  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": D on R^" << r.n << " given as `" << r.form << "`, backend " << r.backend << "\n";
+  o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": D on R^" << r.n << " given as `" << r.form
+    << "`, backend " << r.backend << "\n";
   o << "  Dirac structure (CEF Lemma 4.1): " << yes_no(r.valid) << (r.valid ? "" : " -- " + r.why) << "\n";
   if (r.valid) {
     o << "  dim E_D          = " << r.dim_e << "\n";

@@ -54,11 +54,16 @@ std::vector<std::string> comma_fields(const std::string& l) {
   int depth = 0;
   bool quoted = false;
   for (char ch : l) {
-    if (ch == '"') quoted = !quoted;
-    else if (!quoted && ch == '(') ++depth, w.back() += ch;
-    else if (!quoted && ch == ')') --depth, w.back() += ch;
-    else if (!quoted && depth <= 0 && ch == ',') w.emplace_back();
-    else w.back() += ch;
+    if (ch == '"')
+      quoted = !quoted;
+    else if (!quoted && ch == '(')
+      ++depth, w.back() += ch;
+    else if (!quoted && ch == ')')
+      --depth, w.back() += ch;
+    else if (!quoted && depth <= 0 && ch == ',')
+      w.emplace_back();
+    else
+      w.back() += ch;
   }
   for (std::string& f : w) f = trim(f);
   return w;
@@ -93,10 +98,13 @@ struct Lines {
 /// Times t ≥ 0, nondecreasing; `line_of[i]` is point i's line in the file (tables), else the point's number is named.
 void check_times(const Traces& t, const std::vector<std::size_t>& line_of = {}) {
   if (t.time.empty()) bad(t.file, "at least one time point", "none");
-  const auto where = [&](std::size_t i) { return line_of.empty() ? t.file + ": point " + std::to_string(i + 1) : at_line(t.file, line_of[i]); };
+  const auto where = [&](std::size_t i) {
+    return line_of.empty() ? t.file + ": point " + std::to_string(i + 1) : at_line(t.file, line_of[i]);
+  };
   for (std::size_t i = 0; i < t.time.size(); ++i) {
     if (t.time[i] < 0) bad(where(i), "times t >= 0 (the flow starts at 0)", "t = " + float_text(t.time[i]));
-    if (i && t.time[i] < t.time[i - 1]) bad(where(i), "nondecreasing times", "t = " + float_text(t.time[i]) + " after " + float_text(t.time[i - 1]));
+    if (i && t.time[i] < t.time[i - 1])
+      bad(where(i), "nondecreasing times", "t = " + float_text(t.time[i]) + " after " + float_text(t.time[i - 1]));
   }
 }
 
@@ -122,11 +130,14 @@ Traces raw(const std::string& text, const std::string& file) {
       ++line_no;
       const std::string key = lower(trim(l.substr(0, l.find(':') == std::string::npos ? 0 : l.find(':') + 1)));
       const std::string val = l.find(':') == std::string::npos ? "" : trim(l.substr(l.find(':') + 1));
-      if (key == "plotname:") plotname = val;
-      else if (key == "flags:") flags = lower(val);
+      if (key == "plotname:")
+        plotname = val;
+      else if (key == "flags:")
+        flags = lower(val);
       else if (key == "no. variables:") {
         double count = 0;
-        if (!plain(val, count) || (nvars = std::atol(val.c_str())) < 1) bad(at_line(file, line_no), "a positive number of variables", shown(val));
+        if (!plain(val, count) || (nvars = std::atol(val.c_str())) < 1)
+          bad(at_line(file, line_no), "a positive number of variables", shown(val));
       } else if (key == "no. points:") {
         npoints = std::atol(val.c_str());
         if (npoints < 0) bad(at_line(file, line_no), "a number of points", shown(val));
@@ -134,7 +145,8 @@ Traces raw(const std::string& text, const std::string& file) {
         if (nvars < 1) bad(at_line(file, line_no), "'No. Variables:' before 'Variables:'", "none");
         for (long k = 0; k < nvars; ++k) {
           std::size_t e2 = text.find('\n', pos);
-          if (e2 == std::string::npos) bad(at_line(file, line_no + 1), std::to_string(nvars) + " variable lines", "the end of the file");
+          if (e2 == std::string::npos)
+            bad(at_line(file, line_no + 1), std::to_string(nvars) + " variable lines", "the end of the file");
           const std::vector<std::string> w = words(text.substr(pos, e2 - pos));
           pos = e2 + 1;
           ++line_no;
@@ -148,21 +160,27 @@ Traces raw(const std::string& text, const std::string& file) {
       }
     }
     if (!found_data) bad(file, "an ngspice raw file with 'Values:' or 'Binary:' after its header", "no data section");
-    if (npoints < 0 || names.empty()) bad(at_line(file, line_no), "'No. Points:' and 'Variables:' before the data", "neither");
+    if (npoints < 0 || names.empty())
+      bad(at_line(file, line_no), "'No. Points:' and 'Variables:' before the data", "neither");
     const bool complex = flags.find("complex") != std::string::npos;
     const bool transient = lower(plotname).find("transient") != std::string::npos;
     const std::size_t per = static_cast<std::size_t>(names.size()) * (complex ? 2 : 1);
     if (complex && transient) bad(file, "a real transient plot", "complex values (flags: " + flags + ")");
     std::vector<double> data;
     const std::size_t left = text.size() - std::min(pos, text.size());
-    if (static_cast<double>(npoints) * static_cast<double>(per) * (binary ? 8.0 : 2.0) > static_cast<double>(left))  // 2 bytes: a digit and a separator
-      bad(file, std::to_string(npoints) + " points of " + std::to_string(per) + " values after '" + (binary ? "Binary:" : "Values:") + "' (the header's count)",
+    if (static_cast<double>(npoints) * static_cast<double>(per) * (binary ? 8.0 : 2.0) >
+        static_cast<double>(left))  // 2 bytes: a digit and a separator
+      bad(file,
+          std::to_string(npoints) + " points of " + std::to_string(per) + " values after '" +
+              (binary ? "Binary:" : "Values:") + "' (the header's count)",
           std::to_string(left) + " bytes: the file is truncated");
     data.reserve(per * static_cast<std::size_t>(npoints));
     if (binary) {
       const std::size_t need = per * static_cast<std::size_t>(npoints) * sizeof(double);
       if (left < need)
-        bad(file, std::to_string(npoints) + " points of " + std::to_string(per) + " doubles (" + std::to_string(need) + " bytes) after 'Binary:'",
+        bad(file,
+            std::to_string(npoints) + " points of " + std::to_string(per) + " doubles (" + std::to_string(need) +
+                " bytes) after 'Binary:'",
             std::to_string(text.size() - std::min(pos, text.size())) + " bytes: the file is truncated");
       data.resize(per * static_cast<std::size_t>(npoints));
       if (need > 0) std::memcpy(data.data(), text.data() + pos, need);  // (no points: data() may be null)
@@ -172,7 +190,8 @@ Traces raw(const std::string& text, const std::string& file) {
         for (std::size_t k = 0; k < names.size(); ++k) {
           std::vector<std::string> w;
           while (w.empty()) {  // ngspice separates points by a blank line
-            if (pos >= text.size()) bad(file, std::to_string(npoints) + " points", std::to_string(p) + ": the file is truncated");
+            if (pos >= text.size())
+              bad(file, std::to_string(npoints) + " points", std::to_string(p) + ": the file is truncated");
             std::size_t e = text.find('\n', pos);
             if (e == std::string::npos) e = text.size();
             w = words(text.substr(pos, e - pos));
@@ -182,7 +201,8 @@ Traces raw(const std::string& text, const std::string& file) {
           if (k == 0) w.erase(w.begin());  // the point's index
           if (complex) bad(at_line(file, line_no), "a real (transient) plot", "a complex one");
           if (w.size() != 1)
-            bad(at_line(file, line_no), "one value of " + names[k], w.empty() ? "none" : shown(w[0]) + (w.size() > 1 ? " and more" : ""));
+            bad(at_line(file, line_no), "one value of " + names[k],
+                w.empty() ? "none" : shown(w[0]) + (w.size() > 1 ? " and more" : ""));
           double v = 0;
           if (!plain(w[0], v)) bad(at_line(file, line_no), "a number for " + names[k], shown(w[0]));
           data.push_back(v);
@@ -191,12 +211,15 @@ Traces raw(const std::string& text, const std::string& file) {
     }
     // after the points: nothing, or the next plot's header (the header's count is the truth of the data)
     const std::size_t next = text.find_first_not_of(" \t\r\n", std::min(pos, text.size()));
-    if (next != std::string::npos && lower(text.substr(next, 6)) != "title:" && lower(text.substr(next, 9)) != "plotname:")
+    if (next != std::string::npos && lower(text.substr(next, 6)) != "title:" &&
+        lower(text.substr(next, 9)) != "plotname:")
       bad(file, std::to_string(npoints) + " points as 'No. Points:' says, then the end of the file or another plot",
           "more data after them (" + std::to_string(text.size() - next) + " bytes)");
     if (!transient) continue;  // an operating point or another analysis before the transient plot
-    if (next != std::string::npos && lower(text.substr(std::min(pos, text.size()))).find("transient") != std::string::npos)
-      bad(file, "one transient plot (dcad checks one run against its deck)", "another transient plot after '" + plotname + "': write one plot per file");
+    if (next != std::string::npos &&
+        lower(text.substr(std::min(pos, text.size()))).find("transient") != std::string::npos)
+      bad(file, "one transient plot (dcad checks one run against its deck)",
+          "another transient plot after '" + plotname + "': write one plot per file");
     if (lower(names[0]) != "time") bad(file, "time as the raw file's first variable", shown(names[0]));
     t.format = binary ? "ngspice raw (binary)" : "ngspice raw (ascii)";
     t.names.assign(names.begin() + 1, names.end());
@@ -217,8 +240,8 @@ Traces raw(const std::string& text, const std::string& file) {
 using Parse = bool (*)(const std::string&, double&);
 
 /// Rows of numbers after a header line `head` (1-based line `first`), split by `split`.
-Traces table(const Lines& lines, std::size_t head, const std::vector<std::string>& header, const std::string& file, const std::string& format,
-             Parse number, bool commas, bool stop_at_text) {
+Traces table(const Lines& lines, std::size_t head, const std::vector<std::string>& header, const std::string& file,
+             const std::string& format, Parse number, bool commas, bool stop_at_text) {
   Traces t;
   t.file = file;
   t.format = format;
@@ -240,7 +263,8 @@ Traces table(const Lines& lines, std::size_t head, const std::vector<std::string
       bad(at_line(file, i + 1), std::to_string(header.size()) + " columns as in the header", std::to_string(w.size()));
     for (std::size_t k = 0; k < w.size(); ++k) {
       double v = 0;
-      if (!number(w[k], v)) bad(at_line(file, i + 1), "a number in column " + std::to_string(k + 1) + " (" + header[k] + ")", shown(w[k]));
+      if (!number(w[k], v))
+        bad(at_line(file, i + 1), "a number in column " + std::to_string(k + 1) + " (" + header[k] + ")", shown(w[k]));
       cols[k].push_back(v);
     }
     line_of.push_back(i + 1);
@@ -269,7 +293,9 @@ Traces wrdata(const Lines& lines, std::size_t head, const std::string& file) {
     if (k > 1) {  // the repeated time column must be the first one
       const std::vector<double>& again = all.values[k - 2];
       for (std::size_t i = 0; i < again.size(); ++i)
-        if (again[i] != t.time[i]) bad(at_line(file, head + 2 + i), "the same time in every (time, vector) pair", "t = " + std::to_string(again[i]) + " beside " + std::to_string(t.time[i]));
+        if (again[i] != t.time[i])
+          bad(at_line(file, head + 2 + i), "the same time in every (time, vector) pair",
+              "t = " + std::to_string(again[i]) + " beside " + std::to_string(t.time[i]));
     }
     t.names.push_back(h[k]);
     t.values.push_back(all.values[k - 1]);
@@ -288,18 +314,30 @@ bool parse_scaled(const std::string& text, double& value) {
   n = static_cast<std::size_t>(end - s);
   const std::string rest = text.substr(n);
   double scale = 1;
-  if (rest.empty()) scale = 1;
-  else if (rest == "a") scale = 1e-18;
-  else if (rest == "f") scale = 1e-15;
-  else if (rest == "p") scale = 1e-12;
-  else if (rest == "n") scale = 1e-9;
-  else if (rest == "u") scale = 1e-6;
-  else if (rest == "m") scale = 1e-3;
-  else if (rest == "K" || rest == "k") scale = 1e3;
-  else if (rest == "Meg" || rest == "MEG" || rest == "meg") scale = 1e6;
-  else if (rest == "G") scale = 1e9;
-  else if (rest == "T") scale = 1e12;
-  else return false;
+  if (rest.empty())
+    scale = 1;
+  else if (rest == "a")
+    scale = 1e-18;
+  else if (rest == "f")
+    scale = 1e-15;
+  else if (rest == "p")
+    scale = 1e-12;
+  else if (rest == "n")
+    scale = 1e-9;
+  else if (rest == "u")
+    scale = 1e-6;
+  else if (rest == "m")
+    scale = 1e-3;
+  else if (rest == "K" || rest == "k")
+    scale = 1e3;
+  else if (rest == "Meg" || rest == "MEG" || rest == "meg")
+    scale = 1e6;
+  else if (rest == "G")
+    scale = 1e9;
+  else if (rest == "T")
+    scale = 1e12;
+  else
+    return false;
   value = v * scale;
   return std::isfinite(value);
 }
@@ -307,7 +345,8 @@ bool parse_scaled(const std::string& text, double& value) {
 Traces parse_traces(const std::string& text, const std::string& file) {
   // raw files begin with "Title:" (binary data follows a text header: look at the header only)
   const std::size_t lead = text.find_first_not_of(" \t\r\n");
-  if (lead == std::string::npos) bad(file, "a simulator's output (ngspice raw or wrdata, gnucap .print, CSV)", "an empty file");
+  if (lead == std::string::npos)
+    bad(file, "a simulator's output (ngspice raw or wrdata, gnucap .print, CSV)", "an empty file");
   if (lower(text.substr(lead, 6)) == "title:") return raw(text, file);
   const bool complete = text.back() == '\n';  // ngspice's and gnucap's tables end every line
   const std::size_t binary_at = text.find("\nBinary:");
@@ -315,8 +354,10 @@ Traces parse_traces(const std::string& text, const std::string& file) {
   for (std::size_t i = 0; i < lines.text.size(); ++i) {
     const std::string l = trim(lines.text[i]);
     if (l.empty()) continue;
-    if (!complete && (lower(l.substr(0, 5)) == "#time" || lower(words(l)[0]) == "time") && l.find(',') == std::string::npos)
-      bad(file, "a table whose last line ends with a newline, as ngspice and gnucap write them", "a last line without one: the file is truncated");
+    if (!complete && (lower(l.substr(0, 5)) == "#time" || lower(words(l)[0]) == "time") &&
+        l.find(',') == std::string::npos)
+      bad(file, "a table whose last line ends with a newline, as ngspice and gnucap write them",
+          "a last line without one: the file is truncated");
     if (lower(l.substr(0, 5)) == "#time") {  // gnucap: "#Time  v(out) ...", after its banner
       std::vector<std::string> h = words(l);
       h[0] = "time";
@@ -330,18 +371,23 @@ Traces parse_traces(const std::string& text, const std::string& file) {
     }
     if (lower(w[0]) == "time") return wrdata(lines, i, file);
     if (plain(w[0], v))
-      bad(at_line(file, i + 1), "a header line naming the vectors (ngspice: `set wr_vecnames` before `wrdata`; CSV: a header row whose first column is time)",
+      bad(at_line(file, i + 1),
+          "a header line naming the vectors (ngspice: `set wr_vecnames` before `wrdata`; CSV: a header row whose first "
+          "column is time)",
           "numbers");
     // gnucap's banner and the deck's title come before its table
     if (i > 40) break;
   }
-  bad(file, "a simulator's output: an ngspice raw file (Title: …), a wrdata table with `set wr_vecnames`, gnucap's .print table (#Time …) or CSV with a time column",
+  bad(file,
+      "a simulator's output: an ngspice raw file (Title: …), a wrdata table with `set wr_vecnames`, gnucap's .print "
+      "table (#Time …) or CSV with a time column",
       "none of these");
 }
 
 Traces read_traces(const std::string& file) {
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw InputError(file + ": expected a simulator's output file, found a directory");
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(file + ": expected a simulator's output file, found a directory");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file + ": expected a readable file, found none");
   std::ostringstream s;
@@ -361,10 +407,12 @@ class MemoryStream final : public TraceStream {
   void rewind() override { pos_ = 0; }
   bool next(std::size_t max, std::vector<double>& t, std::vector<std::vector<double>>& v) override {
     const std::size_t n = std::min(max, points_ - std::min(pos_, points_));
-    t.assign(t_.time.begin() + static_cast<std::ptrdiff_t>(pos_), t_.time.begin() + static_cast<std::ptrdiff_t>(pos_ + n));
+    t.assign(t_.time.begin() + static_cast<std::ptrdiff_t>(pos_),
+             t_.time.begin() + static_cast<std::ptrdiff_t>(pos_ + n));
     v.resize(t_.values.size());
     for (std::size_t k = 0; k < v.size(); ++k)
-      v[k].assign(t_.values[k].begin() + static_cast<std::ptrdiff_t>(pos_), t_.values[k].begin() + static_cast<std::ptrdiff_t>(pos_ + n));
+      v[k].assign(t_.values[k].begin() + static_cast<std::ptrdiff_t>(pos_),
+                  t_.values[k].begin() + static_cast<std::ptrdiff_t>(pos_ + n));
     pos_ += n;
     return n > 0;
   }
@@ -378,7 +426,8 @@ class MemoryStream final : public TraceStream {
 /// An ngspice binary raw file's only plot, a real transient, read from disk `max` points at a time.
 class RawStream final : public TraceStream {
  public:
-  RawStream(const std::string& file, std::ifstream in, std::streamoff data, std::size_t per, std::size_t points, std::vector<std::string> names)
+  RawStream(const std::string& file, std::ifstream in, std::streamoff data, std::size_t per, std::size_t points,
+            std::vector<std::string> names)
       : in_(std::move(in)), data_(data), per_(per) {
     file_ = file, format_ = "ngspice raw (binary)", names_ = std::move(names), points_ = points;
     first_ = time_at(0), last_ = time_at(points - 1);
@@ -393,17 +442,21 @@ class RawStream final : public TraceStream {
   bool next(std::size_t max, std::vector<double>& t, std::vector<std::vector<double>>& v) override {
     const std::size_t n = std::min(max, points_ - pos_);
     buffer_.resize(n * per_);
-    if (n > 0 && !in_.read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(n * per_ * sizeof(double))))
-      bad(file_, std::to_string(points_) + " points after 'Binary:'", "a read error at point " + std::to_string(pos_ + 1));
+    if (n > 0 &&
+        !in_.read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(n * per_ * sizeof(double))))
+      bad(file_, std::to_string(points_) + " points after 'Binary:'",
+          "a read error at point " + std::to_string(pos_ + 1));
     t.resize(n);
     v.assign(per_ - 1, std::vector<double>(n));
     for (std::size_t i = 0; i < n; ++i) {
       const double* row = buffer_.data() + i * per_;
       // as read_traces: ngspice marks a breakpoint's time negative in some versions
-      if (!std::isfinite(row[0])) bad(file_, "finite times", "a non-finite time at point " + std::to_string(pos_ + i + 1));
+      if (!std::isfinite(row[0]))
+        bad(file_, "finite times", "a non-finite time at point " + std::to_string(pos_ + i + 1));
       t[i] = std::abs(row[0]);
       if (t[i] < previous_)
-        bad(file_ + ": point " + std::to_string(pos_ + i + 1), "nondecreasing times", "t = " + float_text(t[i]) + " after " + float_text(previous_));
+        bad(file_ + ": point " + std::to_string(pos_ + i + 1), "nondecreasing times",
+            "t = " + float_text(t[i]) + " after " + float_text(previous_));
       previous_ = t[i];
       for (std::size_t k = 1; k < per_; ++k) v[k - 1][i] = row[k];
     }
@@ -416,7 +469,8 @@ class RawStream final : public TraceStream {
     double x = 0;
     in_.clear();
     in_.seekg(data_ + static_cast<std::streamoff>(point * per_ * sizeof(double)));
-    if (!in_.read(reinterpret_cast<char*>(&x), sizeof x) || !std::isfinite(x)) bad(file_, "finite times", "a non-finite time at point " + std::to_string(point + 1));
+    if (!in_.read(reinterpret_cast<char*>(&x), sizeof x) || !std::isfinite(x))
+      bad(file_, "finite times", "a non-finite time at point " + std::to_string(point + 1));
     return std::abs(x);
   }
   std::ifstream in_;
@@ -439,14 +493,16 @@ std::unique_ptr<TraceStream> raw_stream(const std::string& file) {
     const std::size_t colon = line.find(':');
     const std::string key = lower(trim(line.substr(0, colon == std::string::npos ? 0 : colon + 1)));
     const std::string val = colon == std::string::npos ? "" : trim(line.substr(colon + 1));
-    if (key == "plotname:") plotname = lower(val);
-    else if (key == "flags:") flags = lower(val);
+    if (key == "plotname:")
+      plotname = lower(val);
+    else if (key == "flags:")
+      flags = lower(val);
     else if (key == "no. variables:") {
       double count = 0;
       if (!plain(val, count)) return nullptr;  // read_traces says what is wrong
       nvars = std::atol(val.c_str());
-    }
-    else if (key == "no. points:") npoints = std::atol(val.c_str());
+    } else if (key == "no. points:")
+      npoints = std::atol(val.c_str());
     else if (key == "variables:") {
       if (nvars < 1 || nvars > 1000000) return nullptr;
       for (long k = 0; k < nvars; ++k) {
@@ -461,15 +517,23 @@ std::unique_ptr<TraceStream> raw_stream(const std::string& file) {
       break;
     }
   }
-  if (!in || line.rfind("Binary:", 0) != 0 || npoints < 1 || names.size() < 2 || static_cast<long>(names.size()) != nvars) return nullptr;
-  if (plotname.find("transient") == std::string::npos || flags.find("complex") != std::string::npos || lower(names[0]) != "time") return nullptr;
+  if (!in || line.rfind("Binary:", 0) != 0 || npoints < 1 || names.size() < 2 ||
+      static_cast<long>(names.size()) != nvars)
+    return nullptr;
+  if (plotname.find("transient") == std::string::npos || flags.find("complex") != std::string::npos ||
+      lower(names[0]) != "time")
+    return nullptr;
   const std::streamoff data = in.tellg();
   std::error_code ec;
   const auto size = std::filesystem::file_size(file, ec);
   const std::size_t per = names.size();
-  if (ec || data < 0 || static_cast<double>(size) != static_cast<double>(data) + static_cast<double>(npoints) * static_cast<double>(per) * 8.0) return nullptr;
+  if (ec || data < 0 ||
+      static_cast<double>(size) !=
+          static_cast<double>(data) + static_cast<double>(npoints) * static_cast<double>(per) * 8.0)
+    return nullptr;
   names.erase(names.begin());
-  return std::make_unique<RawStream>(file, std::move(in), data, per, static_cast<std::size_t>(npoints), std::move(names));
+  return std::make_unique<RawStream>(file, std::move(in), data, per, static_cast<std::size_t>(npoints),
+                                     std::move(names));
 }
 
 }  // namespace

@@ -16,8 +16,10 @@ namespace dcad::io {
 
 namespace {
 
-[[noreturn]] void bad(const std::string& file, const std::string& field, const std::string& expected, const std::string& found) {
-  throw InputError((file.empty() ? std::string("<problem built in code>") : file) + ": " + field + ": expected " + expected + ", found " + found);
+[[noreturn]] void bad(const std::string& file, const std::string& field, const std::string& expected,
+                      const std::string& found) {
+  throw InputError((file.empty() ? std::string("<problem built in code>") : file) + ": " + field + ": expected " +
+                   expected + ", found " + found);
 }
 
 std::string n_of(std::size_t n) { return std::to_string(n); }
@@ -74,7 +76,8 @@ void linear(const CaseFile& c) {
   const std::string& f = c.file;
   if (!c.has_dirac && !c.has_pontryagin && !c.has_constrained)
     bad(f, "CaseFile", "one of has_dirac, has_pontryagin, has_constrained", "none set");
-  if (c.has_dirac + c.has_pontryagin + c.has_constrained > 1) bad(f, "CaseFile", "one form", "several of has_dirac, has_pontryagin, has_constrained");
+  if (c.has_dirac + c.has_pontryagin + c.has_constrained > 1)
+    bad(f, "CaseFile", "one form", "several of has_dirac, has_pontryagin, has_constrained");
   const std::size_t n = c.n;
   names(f, "CaseFile::variables", c.variables, n);
   if (c.has_pontryagin) {
@@ -114,7 +117,8 @@ void linear(const CaseFile& c) {
     }
   }
   for (std::size_t i = 0; i < c.coordinates.size(); ++i)
-    if (c.coordinates[i] >= n) bad(f, "CaseFile::coordinates[" + n_of(i) + "]", "a variable index below " + n_of(n), n_of(c.coordinates[i]));
+    if (c.coordinates[i] >= n)
+      bad(f, "CaseFile::coordinates[" + n_of(i) + "]", "a variable index below " + n_of(n), n_of(c.coordinates[i]));
   if (!c.initial.empty()) length(f, "CaseFile::initial", c.initial, n);
 }
 
@@ -127,12 +131,19 @@ void waveform(const std::string& f, const std::string& field, const Waveform& w)
                   : w.kind == Waveform::Kind::exp   ? k == 6
                   : w.kind == Waveform::Kind::sffm  ? k == 5
                                                     : false;
-  if (!ok) bad(f, field + ".p", "the parameters of its kind (DC 1, SIN 6, PULSE 7, PWL pairs, EXP 6, SFFM 5; Waveform::complete fills SIN's and PULSE's)", n_of(k) + " values");
-  if (w.kind == Waveform::Kind::sffm && !(w.p[2] > 0 && w.p[4] > 0 && w.p[3] >= 0)) bad(f, field + ".p", "SFFM with FC > 0, FS > 0, MDI >= 0", w.text);
+  if (!ok)
+    bad(f, field + ".p",
+        "the parameters of its kind (DC 1, SIN 6, PULSE 7, PWL pairs, EXP 6, SFFM 5; Waveform::complete fills SIN's "
+        "and PULSE's)",
+        n_of(k) + " values");
+  if (w.kind == Waveform::Kind::sffm && !(w.p[2] > 0 && w.p[4] > 0 && w.p[3] >= 0))
+    bad(f, field + ".p", "SFFM with FC > 0, FS > 0, MDI >= 0", w.text);
   if (w.kind == Waveform::Kind::pulse && !(w.p[3] > 0 && w.p[4] > 0 && w.p[5] >= 0 && w.p[6] > 0 && w.p[2] >= 0))
     bad(f, field + ".p", "PULSE with TD >= 0, TR > 0, TF > 0, PW >= 0, PER > 0", w.text);
-  if (w.kind == Waveform::Kind::exp && (w.p[3] == 0 || w.p[5] == 0)) bad(f, field + ".p", "EXP with TAU1 and TAU2 nonzero", w.text);
-  if (w.kind == Waveform::Kind::exp && w.p[4] < w.p[2] && w.p[0] != w.p[1]) bad(f, field + ".p", "EXP with TD2 >= TD1 (else a step at TD1)", w.text);
+  if (w.kind == Waveform::Kind::exp && (w.p[3] == 0 || w.p[5] == 0))
+    bad(f, field + ".p", "EXP with TAU1 and TAU2 nonzero", w.text);
+  if (w.kind == Waveform::Kind::exp && w.p[4] < w.p[2] && w.p[0] != w.p[1])
+    bad(f, field + ".p", "EXP with TD2 >= TD1 (else a step at TD1)", w.text);
   if (w.kind == Waveform::Kind::sin && w.p[2] < 0) bad(f, field + ".p", "SIN with FREQ >= 0", w.text);
 }
 
@@ -144,31 +155,39 @@ void netlist(const Problem& p) {
   length(f, "Netlist::circuit.branches", d.circuit.branches, nb);
   length(f, "Netlist::initial", d.initial, nb);
   if (d.circuit.nodes != d.rlc.nodes || d.node_names.size() != d.rlc.nodes)
-    bad(f, "Netlist::rlc.nodes", n_of(d.node_names.size()) + " (one per node name, as circuit.nodes)", n_of(d.rlc.nodes));
-  if (d.rlc.sources != d.waveforms.size()) bad(f, "Netlist::rlc.sources", n_of(d.waveforms.size()) + " (one per waveform)", n_of(d.rlc.sources));
+    bad(f, "Netlist::rlc.nodes", n_of(d.node_names.size()) + " (one per node name, as circuit.nodes)",
+        n_of(d.rlc.nodes));
+  if (d.rlc.sources != d.waveforms.size())
+    bad(f, "Netlist::rlc.sources", n_of(d.waveforms.size()) + " (one per waveform)", n_of(d.rlc.sources));
   const long nodes = static_cast<long>(d.rlc.nodes);
   for (std::size_t b = 0; b < nb; ++b) {
     const auto& r = d.rlc.branches[b];
     const std::string at = "Netlist::rlc.branches[" + n_of(b) + "]";
     if (r.from < -1 || r.from >= nodes || r.to < -1 || r.to >= nodes)
-      bad(f, at, "nodes in -1 (ground) ... " + n_of(d.rlc.nodes - 1), std::to_string(r.from) + " and " + std::to_string(r.to));
+      bad(f, at, "nodes in -1 (ground) ... " + n_of(d.rlc.nodes - 1),
+          std::to_string(r.from) + " and " + std::to_string(r.to));
     const auto& c = d.circuit.branches[b];
-    if (c.from != r.from || c.to != r.to) bad(f, "Netlist::circuit.branches[" + n_of(b) + "]", "the nodes of rlc.branches[" + n_of(b) + "]", "others");
+    if (c.from != r.from || c.to != r.to)
+      bad(f, "Netlist::circuit.branches[" + n_of(b) + "]", "the nodes of rlc.branches[" + n_of(b) + "]", "others");
     const bool source = r.kind == reference::RlcKind::voltage || r.kind == reference::RlcKind::current;
-    if (source && r.source >= d.waveforms.size()) bad(f, at + ".source", "a waveform index below " + n_of(d.waveforms.size()), n_of(r.source));
+    if (source && r.source >= d.waveforms.size())
+      bad(f, at + ".source", "a waveform index below " + n_of(d.waveforms.size()), n_of(r.source));
     if ((r.kind == reference::RlcKind::capacitor || r.kind == reference::RlcKind::resistor) && r.value == 0)
       bad(f, at + ".value", "a nonzero capacitance or resistance", "0");
   }
-  for (std::size_t j = 0; j < d.waveforms.size(); ++j) waveform(f, "Netlist::waveforms[" + n_of(j) + "]", d.waveforms[j]);
+  for (std::size_t j = 0; j < d.waveforms.size(); ++j)
+    waveform(f, "Netlist::waveforms[" + n_of(j) + "]", d.waveforms[j]);
   for (std::size_t m = 0; m < d.rlc.mutuals.size(); ++m) {
     const auto& mu = d.rlc.mutuals[m];
     if (mu.a >= nb || mu.b >= nb || mu.a == mu.b || d.rlc.branches[mu.a].kind != reference::RlcKind::inductor ||
         d.rlc.branches[mu.b].kind != reference::RlcKind::inductor)
-      bad(f, "Netlist::rlc.mutuals[" + n_of(m) + "]", "two different inductor branches", n_of(mu.a) + " and " + n_of(mu.b));
+      bad(f, "Netlist::rlc.mutuals[" + n_of(m) + "]", "two different inductor branches",
+          n_of(mu.a) + " and " + n_of(mu.b));
   }
   for (std::size_t i = 0; i < d.node_ic.size(); ++i)
     if (d.node_ic[i].first < 0 || d.node_ic[i].first >= nodes)
-      bad(f, "Netlist::node_ic[" + n_of(i) + "]", "a node index in 0 ... " + n_of(d.rlc.nodes - 1), std::to_string(d.node_ic[i].first));
+      bad(f, "Netlist::node_ic[" + n_of(i) + "]", "a node index in 0 ... " + n_of(d.rlc.nodes - 1),
+          std::to_string(d.node_ic[i].first));
   names(f, "Problem::linear.variables (q_, v_, p_ per branch)", p.linear.variables, 3 * nb);
 }
 
@@ -179,10 +198,13 @@ void expression(const LagrangianCase& c) {
   names(f, "LagrangianCase::system.names", s.names, n);
   if (s.time_name.empty()) bad(f, "LagrangianCase::system.time_name", "a name", "\"\"");
   if (!s.implicit) formula(f, "LagrangianCase::system.lagrangian", s.lagrangian, vars);
-  if (s.implicit && s.constraints.empty()) bad(f, "LagrangianCase::system.constraints", "at least one equation", "none");
-  for (std::size_t a = 0; a < s.constraints.size(); ++a) formula(f, "LagrangianCase::system.constraints[" + n_of(a) + "]", s.constraints[a], vars);
+  if (s.implicit && s.constraints.empty())
+    bad(f, "LagrangianCase::system.constraints", "at least one equation", "none");
+  for (std::size_t a = 0; a < s.constraints.size(); ++a)
+    formula(f, "LagrangianCase::system.constraints[" + n_of(a) + "]", s.constraints[a], vars);
   if (!s.forces.empty()) length(f, "LagrangianCase::system.forces", s.forces, n);
-  for (std::size_t i = 0; i < s.forces.size(); ++i) formula(f, "LagrangianCase::system.forces[" + n_of(i) + "]", s.forces[i], vars);
+  for (std::size_t i = 0; i < s.forces.size(); ++i)
+    formula(f, "LagrangianCase::system.forces[" + n_of(i) + "]", s.forces[i], vars);
   length(f, "LagrangianCase::initial (q, v, t)", c.initial, vars);
   if (!c.initial_p.empty()) length(f, "LagrangianCase::initial_p", c.initial_p, n);
 }
@@ -203,7 +225,8 @@ void dae(const DaeCase& c) {
         const DaeCase::Entry& e = (*es)[k];
         if (e.row < 0 || e.row >= c.rows || e.col < 0 || static_cast<std::size_t>(e.col) >= n)
           bad(f, std::string(es == &c.e_entries ? "DaeCase::e_entries[" : "DaeCase::a_entries[") + n_of(k) + "]",
-              "row < " + std::to_string(c.rows) + " and column < " + n_of(n), std::to_string(e.row) + ", " + std::to_string(e.col));
+              "row < " + std::to_string(c.rows) + " and column < " + n_of(n),
+              std::to_string(e.row) + ", " + std::to_string(e.col));
       }
   }
   length(f, "DaeCase::f (one per equation)", c.f, m);
@@ -220,7 +243,8 @@ void validate(const Problem& p) {
     case Form::expression:
     case Form::implicit:
       if (p.expression.system.implicit != (p.form == Form::implicit))
-        bad(p.expression.file, "LagrangianCase::system.implicit", p.form == Form::implicit ? "true for Form::implicit" : "false for Form::expression",
+        bad(p.expression.file, "LagrangianCase::system.implicit",
+            p.form == Form::implicit ? "true for Form::implicit" : "false for Form::expression",
             p.expression.system.implicit ? "true" : "false");
       return expression(p.expression);
     case Form::dae: return dae(p.dae);
@@ -234,12 +258,15 @@ void validate(const Traces& t) {
   for (std::size_t i = 0; i < t.time.size(); ++i) {
     if (!std::isfinite(t.time[i])) bad(f, "Traces::time[" + n_of(i) + "]", "a finite time", std::to_string(t.time[i]));
     if (i > 0 && t.time[i] < t.time[i - 1])
-      bad(f, "Traces::time[" + n_of(i) + "]", "nondecreasing times", std::to_string(t.time[i]) + " after " + std::to_string(t.time[i - 1]));
+      bad(f, "Traces::time[" + n_of(i) + "]", "nondecreasing times",
+          std::to_string(t.time[i]) + " after " + std::to_string(t.time[i - 1]));
   }
-  if (t.values.size() != t.names.size()) bad(f, "Traces::values", n_of(t.names.size()) + " vectors (one per name)", n_of(t.values.size()));
+  if (t.values.size() != t.names.size())
+    bad(f, "Traces::values", n_of(t.names.size()) + " vectors (one per name)", n_of(t.values.size()));
   for (std::size_t k = 0; k < t.values.size(); ++k)
     if (t.values[k].size() != t.time.size())
-      bad(f, "Traces::values[" + n_of(k) + "] (" + t.names[k] + ")", n_of(t.time.size()) + " values (one per time point)", n_of(t.values[k].size()));
+      bad(f, "Traces::values[" + n_of(k) + "] (" + t.names[k] + ")",
+          n_of(t.time.size()) + " values (one per time point)", n_of(t.values[k].size()));
 }
 
 }  // namespace dcad::io

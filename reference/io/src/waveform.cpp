@@ -33,7 +33,8 @@ std::vector<std::string> spec_words(const std::string& spec) {
   for (char ch : spec) {
     if (ch == '{') ++depth;
     if (ch == '}') --depth;
-    const bool sep = depth == 0 && (std::isspace(static_cast<unsigned char>(ch)) || ch == ',' || ch == '(' || ch == ')');
+    const bool sep =
+        depth == 0 && (std::isspace(static_cast<unsigned char>(ch)) || ch == ',' || ch == '(' || ch == ')');
     if (!sep) {
       t += ch;
       continue;
@@ -47,11 +48,14 @@ std::vector<std::string> spec_words(const std::string& spec) {
 }
 
 bool is_function(const std::string& w) {
-  static const std::vector<std::string> fns = {"sin", "pulse", "pwl", "exp", "sffm", "am", "trnoise", "trrandom", "pat", "generator", "file", "sine"};
+  static const std::vector<std::string> fns = {"sin",     "pulse",    "pwl", "exp",       "sffm", "am",
+                                               "trnoise", "trrandom", "pat", "generator", "file", "sine"};
   return std::find(fns.begin(), fns.end(), w) != fns.end();
 }
 
-bool readable(const std::string& fn) { return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp" || fn == "sffm" || fn == "generator"; }
+bool readable(const std::string& fn) {
+  return fn == "sin" || fn == "pulse" || fn == "pwl" || fn == "exp" || fn == "sffm" || fn == "generator";
+}
 
 bool is_keyword(const std::string& w) {
   static const std::vector<std::string> kw = {"dc", "ac", "distof1", "distof2", "portnum", "z0", "pwr", "freq"};
@@ -66,12 +70,16 @@ struct GnucapKey {
   std::size_t least;  ///< the mandatory prefix's length
 };
 const std::vector<GnucapKey>& gnucap_keys(const std::string& fn) {
-  static const std::vector<GnucapKey> sin = {{"offset", 1}, {"amplitude", 1}, {"frequency", 1}, {"delay", 2}, {"damping", 2},
-                                             {"samples", 2}, {"zero", 2},     {"peak", 2},      {"nozero", 6}, {"nopeak", 6}};
-  static const std::vector<GnucapKey> exp = {{"iv", 2}, {"pv", 2}, {"td1", 3}, {"tau1", 4}, {"td2", 3}, {"tau2", 4}, {"period", 6}};
-  static const std::vector<GnucapKey> pulse = {{"iv", 2}, {"pv", 2}, {"delay", 5}, {"rise", 4}, {"fall", 4}, {"width", 5}, {"period", 6}};
-  static const std::vector<GnucapKey> sffm = {{"offset", 6}, {"amplitude", 9}, {"carrier", 7}, {"modindex", 8}, {"signal", 6},
-                                              {"samples", 7}, {"zero", 4},   {"peak", 4},      {"nozero", 6},   {"nopeak", 6}};
+  static const std::vector<GnucapKey> sin = {{"offset", 1},  {"amplitude", 1}, {"frequency", 1}, {"delay", 2},
+                                             {"damping", 2}, {"samples", 2},   {"zero", 2},      {"peak", 2},
+                                             {"nozero", 6},  {"nopeak", 6}};
+  static const std::vector<GnucapKey> exp = {{"iv", 2},  {"pv", 2},   {"td1", 3},   {"tau1", 4},
+                                             {"td2", 3}, {"tau2", 4}, {"period", 6}};
+  static const std::vector<GnucapKey> pulse = {{"iv", 2},   {"pv", 2},    {"delay", 5}, {"rise", 4},
+                                               {"fall", 4}, {"width", 5}, {"period", 6}};
+  static const std::vector<GnucapKey> sffm = {{"offset", 6}, {"amplitude", 9}, {"carrier", 7}, {"modindex", 8},
+                                              {"signal", 6}, {"samples", 7},   {"zero", 4},    {"peak", 4},
+                                              {"nozero", 6}, {"nopeak", 6}};
   static const std::vector<GnucapKey> none;
   return fn == "sin" ? sin : fn == "exp" ? exp : fn == "pulse" ? pulse : fn == "sffm" ? sffm : none;
 }
@@ -89,28 +97,37 @@ std::optional<std::string> gnucap_key(const std::string& fn, const std::string& 
 /// when TD1 <= TD2 and no PERIOD; gnucap's defaults are its own (no TSTEP or TSTOP), so the form is literal.
 /// Throws where gnucap's meaning is not one dcad's exact flows take (a step, a repetition, a frequency taken
 /// from the analysis).  Returns the index after the form.
-std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& words, std::size_t from, const std::string& spec,
-                        const std::function<Rational(const std::string&)>& number, std::vector<Rational>& args, std::vector<std::string>& noted) {
+std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& words, std::size_t from,
+                        const std::string& spec, const std::function<Rational(const std::string&)>& number,
+                        std::vector<Rational>& args, std::vector<std::string>& noted) {
   std::vector<std::pair<std::string, Rational>> got;
   std::size_t j = from;
   for (; j < words.size() && words[j] != ")"; ++j) {
     if (words[j].find('=') == std::string::npos && is_keyword(lower(words[j]))) break;  // "… ac 1" after the form
     const std::optional<std::string> key = gnucap_key(fn, words[j]);
     const std::size_t eq = words[j].find('=');
-    if (!key) throw std::invalid_argument("expected gnucap's " + fn + " keys (" + [&] {
-      std::string all;
-      for (const GnucapKey& k : gnucap_keys(fn)) all += (all.empty() ? "" : " ") + std::string(k.name);
-      return all;
-    }() + "), found \"" + words[j] + "\" in \"" + spec + "\"");
-    if (*key == "zero" || *key == "peak" || *key == "samples" || *key == "nozero" || *key == "nopeak") {  // gnucap's time-step hints
+    if (!key)
+      throw std::invalid_argument("expected gnucap's " + fn + " keys (" +
+                                  [&] {
+                                    std::string all;
+                                    for (const GnucapKey& k : gnucap_keys(fn))
+                                      all += (all.empty() ? "" : " ") + std::string(k.name);
+                                    return all;
+                                  }() +
+                                  "), found \"" + words[j] + "\" in \"" + spec + "\"");
+    if (*key == "zero" || *key == "peak" || *key == "samples" || *key == "nozero" ||
+        *key == "nopeak") {  // gnucap's time-step hints
       noted.push_back(words[j] + " (gnucap's time-step hint)");
       continue;
     }
     std::string text = eq == std::string::npos ? "" : words[j].substr(eq + 1);
-    if (eq + 1 == words[j].size() && j + 1 < words.size() && words[j + 1] != ")") text = words[++j];  // "offset= 0." as spaced
-    if (text.empty()) throw std::invalid_argument("expected " + *key + "=VALUE, found \"" + words[j] + "\" in \"" + spec + "\"");
+    if (eq + 1 == words[j].size() && j + 1 < words.size() && words[j + 1] != ")")
+      text = words[++j];  // "offset= 0." as spaced
+    if (text.empty())
+      throw std::invalid_argument("expected " + *key + "=VALUE, found \"" + words[j] + "\" in \"" + spec + "\"");
     for (const auto& g : got)
-      if (g.first == *key) throw std::invalid_argument("expected " + *key + " once, found it twice in \"" + spec + "\"");
+      if (g.first == *key)
+        throw std::invalid_argument("expected " + *key + " once, found it twice in \"" + spec + "\"");
     got.emplace_back(*key, number(text));
   }
   const auto value = [&](const char* key) -> std::optional<Rational> {
@@ -119,12 +136,15 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
     return std::nullopt;
   };
   const auto refuse = [&](const std::string& why, const std::string& instead) {
-    throw std::invalid_argument("expected gnucap's " + fn + " in a form with an exact transient, found " + why + " in \"" + spec + "\": write " + instead);
+    throw std::invalid_argument("expected gnucap's " + fn + " in a form with an exact transient, found " + why +
+                                " in \"" + spec + "\": write " + instead);
   };
   if (fn == "sin") {
     if (!value("frequency")) refuse("no frequency (gnucap then takes the analysis' frequency)", "frequency=F");
-    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("frequency"), value("delay").value_or(0), value("damping").value_or(0), 0};
-    if (args[2] < 0) throw std::invalid_argument("expected frequency >= 0, found " + args[2].str() + " in \"" + spec + "\"");
+    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("frequency"),
+            value("delay").value_or(0),  value("damping").value_or(0),   0};
+    if (args[2] < 0)
+      throw std::invalid_argument("expected frequency >= 0, found " + args[2].str() + " in \"" + spec + "\"");
   } else if (fn == "exp") {
     if (!value("iv") || !value("pv")) refuse("no iv= or pv= (gnucap then takes a value of its own)", "iv=V1 pv=V2");
     if (value("period")) refuse("period= (a repeated exponential)", "EXP(V1 V2 TD1 TAU1 TD2 TAU2) once, or a PWL");
@@ -133,9 +153,12 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
     if (!(tau1 > 0) || !(tau2 > 0)) refuse("tau1 or tau2 not > 0 (a step)", "tau1 and tau2 > 0");
     if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
     args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
-  } else if (fn == "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
-    if (!value("carrier") || !value("modindex") || !value("signal")) refuse("no carrier=, modindex= or signal= (gnucap has no default)", "all three");
-    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("carrier"), *value("modindex"), *value("signal")};
+  } else if (fn ==
+             "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
+    if (!value("carrier") || !value("modindex") || !value("signal"))
+      refuse("no carrier=, modindex= or signal= (gnucap has no default)", "all three");
+    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("carrier"), *value("modindex"),
+            *value("signal")};
   } else {
     refuse("pulse's keyword form (gnucap's rise and fall default to 0: a step, and width and period to forever)",
            "PULSE(V1 V2 TD TR TF PW PER) with TR, TF > 0");
@@ -147,7 +170,8 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
 
 bool Generator::set(const std::string& key_in, const Rational& value) {
   const std::string key = lower(key_in);
-  // gnucap's order (c_genrat.cc's ONE_OF): "f" is frequency, "fa" fall; a key is a prefix at least as long as the mandatory part
+  // gnucap's order (c_genrat.cc's ONE_OF): "f" is frequency, "fa" fall; a key is a prefix at least as long as the
+  // mandatory part
   const std::vector<std::pair<GnucapKey, Rational Generator::*>> keys = {
       {{"frequency", 1}, &Generator::freq}, {{"amplitude", 1}, &Generator::ampl}, {{"phase", 1}, &Generator::phase},
       {{"max", 2}, &Generator::max},        {{"min", 2}, &Generator::min},        {{"offset", 1}, &Generator::offset},
@@ -163,8 +187,10 @@ bool Generator::set(const std::string& key_in, const Rational& value) {
 
 std::vector<Rational> Generator::pwl(std::optional<Rational>* repeat) const {
   const auto refuse = [](const std::string& found) {
-    throw std::invalid_argument("expected gnucap's generator as a continuous pulse (.generator freq=0, rise and fall > 0, period >= "
-                                "rise + width + fall), found " + found + ": write the waveform as PWL(t1 v1 t2 v2 …)");
+    throw std::invalid_argument(
+        "expected gnucap's generator as a continuous pulse (.generator freq=0, rise and fall > 0, period >= "
+        "rise + width + fall), found " +
+        found + ": write the waveform as PWL(t1 v1 t2 v2 …)");
   };
   if (freq != 0) refuse("freq=" + freq.str() + " (a sine times the pulse)");
   for (const Rational* x : {&rise, &fall, &delay, &width, &period})
@@ -181,11 +207,13 @@ std::vector<Rational> Generator::pwl(std::optional<Rational>* repeat) const {
   point(delay, init);
   point(delay + rise, hi);
   if (width == 0) {  // on for ever; with a period it steps from max back to min where each period ends
-    if (period > 0 && hi != lo) refuse("width=0 with period=" + period.str() + " (on until the period ends, then a step to min)");
+    if (period > 0 && hi != lo)
+      refuse("width=0 with period=" + period.str() + " (on until the period ends, then a step to min)");
     return p;
   }
   if (fall == 0) refuse("fall=0 (a step)");
-  if (period > 0 && rise + width + fall > period) refuse("period=" + period.str() + " < rise + width + fall (the pulse is cut: a step)");
+  if (period > 0 && rise + width + fall > period)
+    refuse("period=" + period.str() + " < rise + width + fall (the pulse is cut: a step)");
   for (int k = 0; k < (period > 0 ? 2 : 1); ++k) {  // the first pulse rises from init, the repeated ones from min
     const Rational t0 = delay + k * period;
     if (k == 1) {
@@ -227,27 +255,33 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
     const std::string word = lower(words[i]);
     const std::size_t eq = word.find('=');
     const std::string key = eq == std::string::npos ? word : word.substr(0, eq);
-    if (eq != std::string::npos && fn == "pwl" && (key == "td" || key == "r")) {  // PWL(…) TD=delay R=repeat (ngspice, Xyce)
+    if (eq != std::string::npos && fn == "pwl" &&
+        (key == "td" || key == "r")) {  // PWL(…) TD=delay R=repeat (ngspice, Xyce)
       const std::string value = words[i].substr(eq + 1);
-      if (value.empty()) throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+      if (value.empty())
+        throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
       (key == "td" ? pwl_td : pwl_r) = number(value);
       ++i;
       continue;
     }
-    if (eq != std::string::npos && (key == "dc" || key == "ac" || key == "acmag" || key == "acphase" || key == "portnum" || key == "z0" ||
-                                    key == "pwr" || key == "freq")) {
+    if (eq != std::string::npos && (key == "dc" || key == "ac" || key == "acmag" || key == "acphase" ||
+                                    key == "portnum" || key == "z0" || key == "pwr" || key == "freq")) {
       const std::string value = words[i].substr(eq + 1);
-      if (value.empty()) throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+      if (value.empty())
+        throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
       const Rational v = number(value);
-      if (key == "dc") dc = v;
-      else note(words[i]);
+      if (key == "dc")
+        dc = v;
+      else
+        note(words[i]);
       ++i;
       continue;
     }
     // the values after a keyword: at most `most`, while they are not keywords or parentheses
     const auto values = [&](std::size_t from, std::size_t most, std::vector<Rational>* into) {
       std::size_t j = from;
-      while (j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" && !is_keyword(lower(words[j]))) {
+      while (j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" &&
+             !is_keyword(lower(words[j]))) {
         const Rational v = number(words[j]);
         if (into) into->push_back(v);
         ++j;
@@ -269,9 +303,11 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
       i = j;
       continue;
     }
-    if (word == "ac" || word == "distof1" || word == "distof2" || word == "portnum" || word == "z0" || word == "pwr" || word == "freq") {
+    if (word == "ac" || word == "distof1" || word == "distof2" || word == "portnum" || word == "z0" || word == "pwr" ||
+        word == "freq") {
       const std::size_t j = values(i + 1, word == "ac" || word == "distof1" || word == "distof2" ? 2 : 1, nullptr);
-      if (j == i + 1 && word != "ac") throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+      if (j == i + 1 && word != "ac")
+        throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
       std::string said = words[i];
       for (std::size_t k = i + 1; k < j; ++k) said += " " + words[k];
       note(said);
@@ -279,14 +315,18 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
       continue;
     }
     if (is_function(word)) {
-      if (!fn.empty()) throw std::invalid_argument("expected one transient function, found " + fn + " and " + words[i] + " in \"" + spec + "\"");
+      if (!fn.empty())
+        throw std::invalid_argument("expected one transient function, found " + fn + " and " + words[i] + " in \"" +
+                                    spec + "\"");
       fn = word == "sine" ? "sin" : word;
       std::size_t j = i + 1;
       const std::size_t first = j < words.size() && words[j] == "(" ? j + 1 : j;
-      if (first < words.size() && words[first].find('=') != std::string::npos && gnucap_key(fn, words[first])) {  // gnucap's keyword form
+      if (first < words.size() && words[first].find('=') != std::string::npos &&
+          gnucap_key(fn, words[first])) {  // gnucap's keyword form
         j = gnucap_form(fn, words, first, spec, number, args, ignored);
         if (first > i + 1) {  // "(…)"
-          if (j == words.size() || words[j] != ")") throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
+          if (j == words.size() || words[j] != ")")
+            throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
           ++j;
         }
         literal = true;
@@ -296,13 +336,15 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
       if (j < words.size() && words[j] == "(") {
         ++j;
         while (j < words.size() && words[j] != ")") {
-          if (words[j] == "(") throw std::invalid_argument("expected " + words[i] + "(values), found a nested '(' in \"" + spec + "\"");
+          if (words[j] == "(")
+            throw std::invalid_argument("expected " + words[i] + "(values), found a nested '(' in \"" + spec + "\"");
           if (!readable(fn)) break;  // not read: said below, the values need not be numbers
           args.push_back(number(words[j]));
           ++j;
         }
         if (!readable(fn)) break;
-        if (j == words.size()) {  // "SIN(0 1 1k" at the end of the line: Xyce and ngspice read it to the end (Xyce's SENS/vsin.cir)
+        if (j == words.size()) {  // "SIN(0 1 1k" at the end of the line: Xyce and ngspice read it to the end (Xyce's
+                                  // SENS/vsin.cir)
           note("the missing ')' of " + words[i] + "(…) (its values read to the end of the line)");
           i = j;
           continue;
@@ -314,8 +356,10 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
       }
       continue;
     }
-    if (words[i] == "(" || words[i] == ")") throw std::invalid_argument("expected a value or a keyword, found '" + words[i] + "' in \"" + spec + "\"");
-    if (!fn.empty() && !dc && eq == std::string::npos && i > 0 && words[i - 1] == ")") {  // "pwl(…) 7": ngspice-39 ignores it (not even the DC)
+    if (words[i] == "(" || words[i] == ")")
+      throw std::invalid_argument("expected a value or a keyword, found '" + words[i] + "' in \"" + spec + "\"");
+    if (!fn.empty() && !dc && eq == std::string::npos && i > 0 &&
+        words[i - 1] == ")") {  // "pwl(…) 7": ngspice-39 ignores it (not even the DC)
       number(words[i]);
       note(words[i] + " after " + fn + "(…) (ngspice ignores a value after the function)");
       ++i;
@@ -323,8 +367,10 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
     }
     if (dc || !fn.empty()) {  // a second bare value
       if (eq != std::string::npos)
-        throw std::invalid_argument("expected DC, AC or a transient function, found \"" + words[i] + "\" (a keyword dcad does not read) in \"" + spec + "\"");
-      throw std::invalid_argument("expected one DC value, found another one, \"" + words[i] + "\", in \"" + spec + "\"");
+        throw std::invalid_argument("expected DC, AC or a transient function, found \"" + words[i] +
+                                    "\" (a keyword dcad does not read) in \"" + spec + "\"");
+      throw std::invalid_argument("expected one DC value, found another one, \"" + words[i] + "\", in \"" + spec +
+                                  "\"");
     }
     dc = number(words[i]);  // "[DC] value": DC is optional before the first value
     ++i;
@@ -333,12 +379,16 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
 }
 
 /// PWL's points (t1 v1 t2 v2 …) checked, shifted by TD= and repeated from R= as ngspice does (R = -1: none).
-void shape_pwl(Waveform& w, std::vector<Rational>& a, const std::optional<Rational>& pwl_td, const std::optional<Rational>& pwl_r) {
-  if (a.size() < 2 || a.size() % 2 != 0) throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) + " values");
+void shape_pwl(Waveform& w, std::vector<Rational>& a, const std::optional<Rational>& pwl_td,
+               const std::optional<Rational>& pwl_r) {
+  if (a.size() < 2 || a.size() % 2 != 0)
+    throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) +
+                                " values");
   if (pwl_td)
     for (std::size_t i = 0; i < a.size(); i += 2) a[i] += *pwl_td;  // TD= shifts the whole waveform
   for (std::size_t i = 2; i < a.size(); i += 2)
-    if (!(a[i] > a[i - 2])) throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
+    if (!(a[i] > a[i - 2]))
+      throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
   if (a[0] < 0) throw std::invalid_argument("expected PWL times >= 0, found " + a[0].str());
   w.kind = Waveform::Kind::pwl;
   if (pwl_r && *pwl_r >= 0) {  // R = -1: no repetition (ngspice); else a time point before the last
@@ -346,14 +396,16 @@ void shape_pwl(Waveform& w, std::vector<Rational>& a, const std::optional<Ration
     bool point = false;
     for (std::size_t i = 0; i < a.size(); i += 2) point = point || a[i] == r;
     if (!(r < a[a.size() - 2]) || !point)
-      throw std::invalid_argument("expected PWL's R= at one of its time points before the last (ngspice), found R = " + pwl_r->str());
+      throw std::invalid_argument("expected PWL's R= at one of its time points before the last (ngspice), found R = " +
+                                  pwl_r->str());
     w.repeat = r;
     Rational at_r = 0;
     for (std::size_t i = 0; i < a.size(); i += 2)
       if (a[i] == r) at_r = a[i + 1];
     if (at_r != a.back())
-      throw std::invalid_argument("expected PWL's repeated part to start where it ends (" + at_r.str() + " at R, " + a.back().str() +
-                                  " at the last point), found a step: dcad's exact flows take continuous sources (add a ramp)");
+      throw std::invalid_argument(
+          "expected PWL's repeated part to start where it ends (" + at_r.str() + " at R, " + a.back().str() +
+          " at the last point), found a step: dcad's exact flows take continuous sources (add a ramp)");
   }
 }
 
@@ -363,9 +415,10 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
   w.text = spec;
   if (r.fn == "am" || r.fn == "trnoise" || r.fn == "trrandom" || r.fn == "pat" || r.fn == "file")
     throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + r.fn +
-                                (r.fn == "trnoise" || r.fn == "trrandom" ? " (a random source: no exact transient exists)"
-                                 : r.fn == "file"                      ? " (values from outside the deck)"
-                                                                     : " (not read by dcad yet)") +
+                                (r.fn == "trnoise" || r.fn == "trrandom"
+                                     ? " (a random source: no exact transient exists)"
+                                 : r.fn == "file" ? " (values from outside the deck)"
+                                                  : " (not read by dcad yet)") +
                                 ": write the waveform as PWL(t1 v1 t2 v2 …)");
   for (std::size_t k = 0; k < r.ignored.size(); ++k) w.ignored += (k ? ", " : "") + r.ignored[k];
   if (r.fn.empty()) {
@@ -373,9 +426,13 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
     w.given = 1;
     return w;
   }
-  if (r.dc) w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "DC " + r.dc->str() + " (the operating point's value; the transient uses " + r.fn + ")";
+  if (r.dc)
+    w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "DC " + r.dc->str() +
+                 " (the operating point's value; the transient uses " + r.fn + ")";
   if (r.fn == "generator") {  // bm_generator.cc: SCALE (default 1) times the generator's value
-    if (r.args.size() > 1) throw std::invalid_argument("expected generator or generator(SCALE), found " + std::to_string(r.args.size()) + " values in \"" + spec + "\"");
+    if (r.args.size() > 1)
+      throw std::invalid_argument("expected generator or generator(SCALE), found " + std::to_string(r.args.size()) +
+                                  " values in \"" + spec + "\"");
     const Rational scale = r.args.empty() ? Rational(1) : r.args[0];
     w.p = generator.pwl(&w.repeat);
     for (std::size_t i = 1; i < w.p.size(); i += 2) w.p[i] *= scale;
@@ -388,54 +445,64 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
   w.given = a.size();
   if (r.fn == "sin") {
     if (a.size() < 2 || a.size() > 6)
-      throw std::invalid_argument("expected SIN(VO VA [FREQ [TD [THETA [PHASE]]]]), found " + std::to_string(a.size()) + " values");
+      throw std::invalid_argument("expected SIN(VO VA [FREQ [TD [THETA [PHASE]]]]), found " + std::to_string(a.size()) +
+                                  " values");
     if (a.size() > 2 && a[2] < 0) throw std::invalid_argument("expected FREQ >= 0 in SIN, found " + a[2].str());
     w.kind = Waveform::Kind::sin;
   } else if (r.fn == "pulse") {
     if (a.size() < 2 || a.size() > 8)
-      throw std::invalid_argument("expected PULSE(V1 V2 [TD [TR [TF [PW [PER [NP]]]]]]), found " + std::to_string(a.size()) + " values");
+      throw std::invalid_argument("expected PULSE(V1 V2 [TD [TR [TF [PW [PER [NP]]]]]]), found " +
+                                  std::to_string(a.size()) + " values");
     if (a.size() > 2 && a[2] < 0) throw std::invalid_argument("expected TD >= 0 in PULSE, found " + a[2].str());
     if (a.size() == 8) {
       if (a[7] < 0 || boost::multiprecision::denominator(a[7]) != 1 || a[7] > 1000000)
-        throw std::invalid_argument("expected PULSE's NP (number of pulses) a whole number in 0 … 10^6, found " + a[7].str());
+        throw std::invalid_argument("expected PULSE's NP (number of pulses) a whole number in 0 … 10^6, found " +
+                                    a[7].str());
       w.pulses = static_cast<long>(boost::multiprecision::numerator(a[7]).convert_to<long>());
       a.pop_back();
     }
     w.kind = Waveform::Kind::pulse;
   } else if (r.fn == "sffm") {  // all five: the defaults and a 6th value differ between ngspice versions
     if (a.size() != 5)
-      throw std::invalid_argument("expected SFFM(VO VA FC MDI FS) with the five values SPICE3, ngspice 39, ngspice 46 on and Xyce read alike "
-                                  "(their defaults for missing ones differ between ngspice versions, a 6th value is PHASEC in ngspice 39 and "
-                                  "TD in ngspice 43 on), found " + std::to_string(a.size()) + " values: write the five");
+      throw std::invalid_argument(
+          "expected SFFM(VO VA FC MDI FS) with the five values SPICE3, ngspice 39, ngspice 46 on and Xyce read alike "
+          "(their defaults for missing ones differ between ngspice versions, a 6th value is PHASEC in ngspice 39 and "
+          "TD in ngspice 43 on), found " +
+          std::to_string(a.size()) + " values: write the five");
     if (!(a[2] > 0) || !(a[4] > 0) || a[3] < 0)
-      throw std::invalid_argument("expected SFFM's FC > 0, FS > 0 and MDI >= 0, found FC = " + a[2].str() + ", MDI = " + a[3].str() + ", FS = " + a[4].str());
+      throw std::invalid_argument("expected SFFM's FC > 0, FS > 0 and MDI >= 0, found FC = " + a[2].str() +
+                                  ", MDI = " + a[3].str() + ", FS = " + a[4].str());
     w.kind = Waveform::Kind::sffm;
   } else if (r.fn == "exp") {
     if (a.size() < 2 || a.size() > 6)
-      throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) + " values");
+      throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) +
+                                  " values");
     w.kind = Waveform::Kind::exp;
   } else {
     shape_pwl(w, a, r.pwl_td, r.pwl_r);
   }
-  if ((r.pwl_td || r.pwl_r) && r.fn != "pwl") throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + r.fn);
+  if ((r.pwl_td || r.pwl_r) && r.fn != "pwl")
+    throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + r.fn);
   w.p = a;
   w.literal = r.literal;
   if (w.kind == Waveform::Kind::pwl) w.given = a.size();
-  if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0) w.p.resize(6, Rational(0));  // FREQ given: complete already
+  if (w.kind == Waveform::Kind::sin && a.size() > 2 && a[2] != 0)
+    w.p.resize(6, Rational(0));  // FREQ given: complete already
   return w;
 }
 
 }  // namespace
 
-Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number, const Generator& generator) {
+Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number,
+                        const Generator& generator) {
   return waveform_of(read_source_words(spec, number), spec, generator);
 }
 
 void Waveform::complete(const std::optional<Rational>& tstep, const std::optional<Rational>& tstop) {
   const auto need = [&](const std::optional<Rational>& x, const char* what, const char* why) -> Rational {
     if (!x || *x <= 0)
-      throw std::invalid_argument(std::string("expected a .tran card with ") + what + " for " + text + " (ngspice takes " + why +
-                                  "), found none: give .tran or the value");
+      throw std::invalid_argument(std::string("expected a .tran card with ") + what + " for " + text +
+                                  " (ngspice takes " + why + "), found none: give .tran or the value");
     return *x;
   };
   if (literal) return;  // gnucap's keyword form: its own defaults, already applied
@@ -455,16 +522,19 @@ void Waveform::complete(const std::optional<Rational>& tstep, const std::optiona
     if (n < 5 || p[4] == 0) p[4] = p[2] + need(tstep, "TSTEP", "TD2 = TD1 + TSTEP where TD2 is 0 or missing");
     if (n < 6 || p[5] == 0) p[5] = need(tstep, "TSTEP", "TAU2 = TSTEP where TAU2 is 0 or missing");
     if (p[4] < p[2] && p[0] != p[1])  // vsrcload.c: V1 up to TD1, then the third piece at once — a step there
-      throw std::invalid_argument("expected EXP's TD2 >= TD1 in " + text + ", found TD2 = " + p[4].str() + " < TD1 = " + p[2].str() +
-                                  ": ngspice's EXP then steps at TD1 (V1 before it, V1 + (V1 - V2)(1 - e^(-(TD1-TD2)/TAU2)) after); "
-                                  "dcad's exact flows take continuous sources");
+      throw std::invalid_argument(
+          "expected EXP's TD2 >= TD1 in " + text + ", found TD2 = " + p[4].str() + " < TD1 = " + p[2].str() +
+          ": ngspice's EXP then steps at TD1 (V1 before it, V1 + (V1 - V2)(1 - e^(-(TD1-TD2)/TAU2)) after); "
+          "dcad's exact flows take continuous sources");
   } else if (kind == Kind::pulse) {
     const std::size_t n = given > 7 ? 7 : given;
     p.resize(7, Rational(0));
     if (n < 4 || p[3] <= 0) p[3] = need(tstep, "TSTEP", "TR = TSTEP where TR is missing or <= 0");
     if (n < 5 || p[4] <= 0) p[4] = need(tstep, "TSTEP", "TF = TSTEP where TF is missing or <= 0");
-    if (n == 5) p[5] = 0;
-    else if (n < 6 || p[5] < 0) p[5] = need(tstop, "TSTOP", "PW = TSTOP where PW is missing or < 0");
+    if (n == 5)
+      p[5] = 0;
+    else if (n < 6 || p[5] < 0)
+      p[5] = need(tstop, "TSTOP", "PW = TSTOP where PW is missing or < 0");
     if (n < 7 || p[6] <= 0) p[6] = need(tstop, "TSTOP", "PER = TSTOP where PER is missing or <= 0");
   }
 }
@@ -506,9 +576,12 @@ double Waveform::rate2() const { return kind == Kind::exp ? -1 / d(p[5]) : 0.0; 
 
 namespace {
 /// EXP's exosystem state (c, e1, e2) at t (right limit), as ngspice's pieces (vsrcload.c): V1 up to TD1;
-/// then V2 + (V1 − V2) e^{-(t-TD1)/TAU1} up to TD2; then V1 + (V1 − V2) e^{-(t-TD1)/TAU1} + (V2 − V1) e^{-(t-TD2)/TAU2}.
+/// then V2 + (V1 − V2) e^{-(t-TD1)/TAU1} up to TD2; then V1 + (V1 − V2) e^{-(t-TD1)/TAU1} + (V2 − V1)
+/// e^{-(t-TD2)/TAU2}.
 void exp_state(const Waveform& w, double t, long double* x) {
-  const auto ld = [&](std::size_t i) { return w.p[i].convert_to<long double>(); };  // from the exact values: a long-double shadow sees double's roundings
+  const auto ld = [&](std::size_t i) {
+    return w.p[i].convert_to<long double>();
+  };  // from the exact values: a long-double shadow sees double's roundings
   const long double v1 = ld(0), v2 = ld(1), td1 = ld(2), tau1 = ld(3), td2 = ld(4), tau2 = ld(5);
   x[0] = v1, x[1] = 0, x[2] = 0;
   if (t < td1) return;  // at TD1 itself the right limit: the decay has started (σ' = (V2 − V1)/TAU1 there)
@@ -624,7 +697,9 @@ double sffm_value(const Waveform& w, double t, int order) {
   std::vector<double> a(n + 1), sn(n + 1), cs(n + 1);
   double fact = 1, wk = 1;
   for (std::size_t k = 0; k <= n; ++k, wk *= ws, fact *= static_cast<double>(std::max<std::size_t>(k, 1)))
-    a[k] = mdi * wk * std::sin(ws * t + static_cast<double>(k) * kPi / 2) / fact + (k == 0 ? wc * t : k == 1 ? wc : 0.0);
+    a[k] = mdi * wk * std::sin(ws * t + static_cast<double>(k) * kPi / 2) / fact + (k == 0   ? wc * t
+                                                                                    : k == 1 ? wc
+                                                                                             : 0.0);
   sn[0] = std::sin(a[0]), cs[0] = std::cos(a[0]);
   for (std::size_t k = 1; k <= n; ++k) {
     double s = 0, c = 0;
@@ -642,10 +717,8 @@ double sffm_value(const Waveform& w, double t, int order) {
 
 double Waveform::value(double t, int order) const {
   switch (kind) {
-    case Kind::sffm:
-      return sffm_value(*this, t, order);
-    case Kind::dc:
-      return order == 0 ? d(p[0]) : 0.0;
+    case Kind::sffm: return sffm_value(*this, t, order);
+    case Kind::dc: return order == 0 ? d(p[0]) : 0.0;
     case Kind::sin: {
       const double vo = d(p[0]), va = d(p[1]), td = d(p[3]), phi = d(p[5]) * kPi / 180;
       if (t < td) return order == 0 ? vo + va * std::sin(phi) : 0.0;  // ngspice: VO + VA sin(PHASE) before TD
@@ -658,7 +731,8 @@ double Waveform::value(double t, int order) const {
       long double x[3];
       exp_state(*this, t, x);
       if (order == 0) return static_cast<double>(x[0] + x[1] + x[2]);
-      return static_cast<double>(x[1] * std::pow(static_cast<long double>(rate1()), order) + x[2] * std::pow(static_cast<long double>(rate2()), order));
+      return static_cast<double>(x[1] * std::pow(static_cast<long double>(rate1()), order) +
+                                 x[2] * std::pow(static_cast<long double>(rate2()), order));
     }
     default: {
       double v, slope;
@@ -674,15 +748,14 @@ std::optional<Rational> Waveform::exact_at_zero(int order) const {
       if (p[1] == 0) return order == 0 ? p[0] : Rational(0);
       if (order == 0) return p[0];
       return std::nullopt;
-    case Kind::dc:
-      return order == 0 ? p[0] : Rational(0);
+    case Kind::dc: return order == 0 ? p[0] : Rational(0);
     case Kind::sin: {
       if (p[1] == 0) return order == 0 ? p[0] : Rational(0);  // no sine: VO
       if (order > 0) {
         if (p[3] > 0) return Rational(0);  // before TD the value is constant
         return std::nullopt;               // VA (−θ + iω)^order …: ω = 2π FREQ
       }
-      const Rational phase = p[5] - 360 * floor_of(Rational(p[5] / 360));         // VO + VA sin φ, rational at quarter turns
+      const Rational phase = p[5] - 360 * floor_of(Rational(p[5] / 360));  // VO + VA sin φ, rational at quarter turns
       // VO + VA sin φ, at t = 0 whether or not TD > 0 (ngspice holds it before TD)
       if (phase == 0 || phase == 180) return p[0];
       if (phase == 90) return p[0] + p[1];
@@ -707,20 +780,24 @@ std::optional<Rational> pulse_step(const Waveform& w) {
   if (w.kind != Waveform::Kind::pulse || w.p.size() < 7) return std::nullopt;
   const Rational &v1 = w.p[0], &v2 = w.p[1], &tr = w.p[3], &tf = w.p[4], &pw = w.p[5], &per = w.p[6];
   if (!(per < tr + pw + tf)) return std::nullopt;
-  const Rational end = per <= tr ? Rational(v1 + (v2 - v1) * per / tr) : per <= tr + pw ? v2 : Rational(v2 + (v1 - v2) * (per - tr - pw) / tf);
+  const Rational end = per <= tr        ? Rational(v1 + (v2 - v1) * per / tr)
+                       : per <= tr + pw ? v2
+                                        : Rational(v2 + (v1 - v2) * (per - tr - pw) / tf);
   if (end == v1) return std::nullopt;
   return end;
 }
 [[noreturn]] void refuse_step(const Waveform& w, const Rational& from, double at) {
-  throw std::invalid_argument(w.element + ": " + w.text + " steps from " + from.str() + " to V1 = " + w.p[0].str() + " at t = " +
-                              std::to_string(at) + " s (PER < TR + PW + TF cuts the pulse): dcad's exact flows take continuous sources; "
+  throw std::invalid_argument(w.element + ": " + w.text + " steps from " + from.str() + " to V1 = " + w.p[0].str() +
+                              " at t = " + std::to_string(at) +
+                              " s (PER < TR + PW + TF cuts the pulse): dcad's exact flows take continuous sources; "
                               "lengthen PER or end the run before it");
 }
 }  // namespace
 
 std::vector<double> Waveform::breakpoints(double tstop) const {
   std::vector<double> out;
-  if (const std::optional<Rational> step = pulse_step(*this)) {  // a step inside the run: refused where the run reaches it
+  if (const std::optional<Rational> step =
+          pulse_step(*this)) {  // a step inside the run: refused where the run reaches it
     const double first = d(p[2]) + d(p[6]);
     if (first < tstop && (pulses == 0 || pulses > 1)) refuse_step(*this, *step, first);
   }
@@ -737,7 +814,8 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
       for (long k = 1;; ++k) {
         if (end + period * static_cast<double>(k - 1) > tstop) break;
         if (k >= kMaxPeriods)
-          throw std::invalid_argument(element + ": " + text + " repeats more than " + std::to_string(kMaxPeriods) + " times before " + std::to_string(tstop) + " s");
+          throw std::invalid_argument(element + ": " + text + " repeats more than " + std::to_string(kMaxPeriods) +
+                                      " times before " + std::to_string(tstop) + " s");
         for (std::size_t i = 0; i < p.size(); i += 2)
           if (p[i] > *repeat) {  // the repeat point itself is the previous period's last corner, LAST + PERIOD·(k − 1)
             const double c = d(p[i]) + period * static_cast<double>(k);
@@ -755,8 +833,9 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
         break;
       }
       if (k >= kMaxPeriods)
-        throw std::invalid_argument(element + ": " + text + " has more than " + std::to_string(kMaxPeriods) + " periods before " +
-                                    std::to_string(tstop) + " s (each is four breakpoints of the exact integration)");
+        throw std::invalid_argument(element + ": " + text + " has more than " + std::to_string(kMaxPeriods) +
+                                    " periods before " + std::to_string(tstop) +
+                                    " s (each is four breakpoints of the exact integration)");
       for (double c : {base, base + tr, base + tr + pw, base + tr + pw + tf})
         if (c > 0 && c <= tstop) out.push_back(c);
       if (per <= 0) break;
@@ -779,7 +858,8 @@ void Waveform::exo_state(double t, long double* w) const {
     }
     const std::complex<long double> s(decay(), omega());
     const std::complex<long double> z =
-        static_cast<long double>(d(p[1])) * std::exp(s * static_cast<long double>(t - td) + std::complex<long double>(0, phi));
+        static_cast<long double>(d(p[1])) *
+        std::exp(s * static_cast<long double>(t - td) + std::complex<long double>(0, phi));
     w[1] = z.real();
     w[2] = z.imag();
     return;
@@ -797,7 +877,8 @@ void Waveform::exo_state(double t, long double* w) const {
 namespace dcad::io {
 
 void Waveform::exact_piece(const Rational& t, Rational& v, Rational& slope) const {
-  if (kind == Kind::sin || kind == Kind::exp || kind == Kind::sffm) throw std::invalid_argument(element + ": exact_piece of a SIN, EXP or SFFM source");
+  if (kind == Kind::sin || kind == Kind::exp || kind == Kind::sffm)
+    throw std::invalid_argument(element + ": exact_piece of a SIN, EXP or SFFM source");
   if (kind == Kind::dc) {
     v = p[0];
     slope = 0;
@@ -841,7 +922,8 @@ std::optional<Rational> Waveform::next_corner(const Rational& t) const {
         break;
       }
       if (k >= 1 && base > t && pulse_step(*this)) refuse_step(*this, *pulse_step(*this), d(base));
-      for (const Rational& c : {base, Rational(base + tr), Rational(base + tr + pw), Rational(base + tr + pw + tf)}) consider(c);
+      for (const Rational& c : {base, Rational(base + tr), Rational(base + tr + pw), Rational(base + tr + pw + tf)})
+        consider(c);
       if (per <= 0) break;
     }
   }

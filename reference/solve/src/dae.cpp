@@ -35,10 +35,12 @@ Truth vanishes_identically(const ex::Expr& g, std::string& evidence) {
         return no;
       }
     }
-    evidence = "a polynomial of degree at most " + std::to_string(d) + " in t that vanishes at t = 0…" + std::to_string(d);
+    evidence =
+        "a polynomial of degree at most " + std::to_string(d) + " in t that vanishes at t = 0…" + std::to_string(d);
     return yes;
   }
-  for (const Rational& at : {Rational(1), Rational(2), Rational(1, 2)}) {  // exact values where they are rational (1/t at t = 1)
+  for (const Rational& at :
+       {Rational(1), Rational(2), Rational(1, 2)}) {  // exact values where they are rational (1/t at t = 1)
     try {
       const Rational v = value_at(at);
       if (v != 0) {
@@ -58,12 +60,15 @@ Truth vanishes_identically(const ex::Expr& g, std::string& evidence) {
       break;  // not exact at 0 (or not defined there)
     }
     if (v != 0) {
-      evidence = k == 0 ? "at t = 0 it is " + v.str() : "its derivative of order " + std::to_string(k) + " at t = 0 is " + v.str();
+      evidence = k == 0 ? "at t = 0 it is " + v.str()
+                        : "its derivative of order " + std::to_string(k) + " at t = 0 is " + v.str();
       return no;
     }
     dk = ex::diff(dk, 0);
   }
-  evidence = "not decided: a formula that is not a polynomial in t, whose first derivatives vanish at t = 0 (or are not exact there)";
+  evidence =
+      "not decided: a formula that is not a polynomial in t, whose first derivatives vanish at t = 0 (or are not exact "
+      "there)";
   return unknown;
 }
 
@@ -71,9 +76,9 @@ namespace {
 
 /// The sources' jets as columns: u[d·s + k] = d^d/dt^d f_{rows[k]}, for the rows with f ≠ 0.
 struct Jets {
-  std::vector<std::size_t> rows;                 ///< the equations with a source
-  std::vector<std::vector<ex::Expr>> formulas;   ///< formulas[d][k]
-  std::vector<std::string> names;                ///< column names, u's order
+  std::vector<std::size_t> rows;                ///< the equations with a source
+  std::vector<std::vector<ex::Expr>> formulas;  ///< formulas[d][k]
+  std::vector<std::string> names;               ///< column names, u's order
   Jets(const io::DaeCase& c, Index orders) {
     for (std::size_t i = 0; i < c.f.size(); ++i)
       if (!ex::is_number(c.f[i], 0)) rows.push_back(i);
@@ -106,8 +111,10 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   if (!c.dense)
     throw std::invalid_argument("E and A are " + std::to_string(c.rows) + " × " + std::to_string(c.variables.size()) +
                                 ": the exact route (CEF (1.6) on dense rational matrices) takes at most " +
-                                std::to_string(io::DaeCase::dense_limit) + " entries (m·N) and " + std::to_string(io::DaeCase::dense_side) +
-                                " rows or columns; `dcad solve --backend fast` takes the sparse route (simulate and check need the exact tower)");
+                                std::to_string(io::DaeCase::dense_limit) + " entries (m·N) and " +
+                                std::to_string(io::DaeCase::dense_side) +
+                                " rows or columns; `dcad solve --backend fast` takes the sparse route (simulate and "
+                                "check need the exact tower)");
   const Index n = c.variables.size(), m = c.equations();
   const Jets probe(c, 0);
   const Index s = probe.rows.size();
@@ -136,7 +143,9 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   const Jets jets(c, orders);
 
   dcad::Solution<Rational> out = dae_result(c, "reference");
-  for (std::size_t k = 0; k < s; ++k) out.source_names.push_back(io::source_name(jets.rows[k], 0) + " = " + ex::to_text(c.f[jets.rows[k]], {c.time_name.empty() ? "t" : c.time_name}));
+  for (std::size_t k = 0; k < s; ++k)
+    out.source_names.push_back(io::source_name(jets.rows[k], 0) + " = " +
+                               ex::to_text(c.f[jets.rows[k]], {c.time_name.empty() ? "t" : c.time_name}));
   // the jet columns any output uses, in u's order
   const Index u = s * orders;
   std::vector<bool> used(u, false);
@@ -166,7 +175,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   std::set<std::string> seen;
   for (std::size_t k = 0; k < t.levels.size(); ++k) {
     const IdeLevel<Rational>& l = t.levels[k];
-    bool empty = false, open = false;  // a condition of this step fails; one is undecided
+    bool empty = false, open = false;                  // a condition of this step fails; one is undecided
     for (Index i = 0; i < l.conditions.rows(); ++i) {  // 0 = Σ c_j u_j(t): decided against f
       std::string text;
       std::map<std::string, std::pair<Rational, ex::Expr>> same;  // identical formulas (two equal sources) summed first
@@ -232,7 +241,8 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   }
   if (c.e.rows() == c.e.cols()) out.regular_pencil = regular_pencil(c.e, c.a);
   out.certified = certain ? yes : unknown;
-  out.note = "CEF (1.6) on E x' = A x + f(t), exact (reference/linear_ide.hpp): M_k(t) = {C x = G u(t)}, u the sources' jets";
+  out.note =
+      "CEF (1.6) on E x' = A x + f(t), exact (reference/linear_ide.hpp): M_k(t) = {C x = G u(t)}, u the sources' jets";
   if (!certain) out.note += "; a condition on the sources was not decided (source_conditions)";
   return out;
 }

@@ -114,7 +114,8 @@ struct Translator {
       case ExprOp::Variable: return e;
       case ExprOp::Sin:
       case ExprOp::Cos: {
-        // arg(φ₀ + φ') = Θ + arg(φ'), Θ = Σ k_j φ₀_j: sin(Θ + a) = sin Θ cos a + cos Θ sin a, cos(Θ + a) = cos Θ cos a − sin Θ sin a
+        // arg(φ₀ + φ') = Θ + arg(φ'), Θ = Σ k_j φ₀_j: sin(Θ + a) = sin Θ cos a + cos Θ sin a, cos(Θ + a) = cos Θ cos a
+        // − sin Θ sin a
         Rational c = 1, s = 0;
         for (const PlacedAngle& g : angles) {
           const auto k = linear_coefficient(e->a, g.q);
@@ -166,14 +167,17 @@ std::optional<Rational> rational_sqrt(const Rational& r) {
 /// quadratic in them: the second intersection of the line from a rational point R of the quadric
 /// through x; of the points found, the nearest to x in the `anchored` coordinates — the given ones —
 /// or in all of `vars` if none is).  The result is checked exactly; false if none is found.
-bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector<char>& anchored, std::vector<Rational>& x) {
+bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector<char>& anchored,
+          std::vector<Rational>& x) {
   std::vector<std::size_t> measured;
   for (std::size_t w : vars)
     if (anchored[w]) measured.push_back(w);
   if (measured.empty()) measured = vars;
   const auto distance = [&](const std::vector<Rational>& p) {
     double d = 0;
-    for (std::size_t w : measured) d = std::max(d, std::abs((p[w] - x[w]).convert_to<double>()) / std::max(1.0, std::abs(x[w].convert_to<double>())));
+    for (std::size_t w : measured)
+      d = std::max(d,
+                   std::abs((p[w] - x[w]).convert_to<double>()) / std::max(1.0, std::abs(x[w].convert_to<double>())));
     return d;
   };
   std::optional<std::vector<Rational>> best;
@@ -189,12 +193,14 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
       return true;
     }
   }
-  if (expr::degree_in(h, [&](std::size_t i) { return std::find(vars.begin(), vars.end(), i) != vars.end(); }) != 2) return false;
+  if (expr::degree_in(h, [&](std::size_t i) { return std::find(vars.begin(), vars.end(), i) != vars.end(); }) != 2)
+    return false;
   // candidate values for the coordinates not solved for: small numbers and the values at hand
   // (the values of the coordinates that stay: a circle about (x1, y1) has the point (x1 ± r, y1))
   std::vector<Rational> cand{0, 1, -1, 2, -2, Rational(1, 2), Rational(-1, 2), 3, -3};
   for (std::size_t i = 0; i < x.size(); ++i)
-    if (std::find(vars.begin(), vars.end(), i) == vars.end() && std::find(cand.begin(), cand.end(), x[i]) == cand.end()) cand.push_back(x[i]);
+    if (std::find(vars.begin(), vars.end(), i) == vars.end() && std::find(cand.begin(), cand.end(), x[i]) == cand.end())
+      cand.push_back(x[i]);
   for (std::size_t w : vars)  // the moving coordinates' values, simplified (x = 0.6000000000000001: 3/5, and y = ±4/5)
     for (long den = 10; den <= 1000000; den *= 10) {
       const Rational r = simplest_near(x[w], den);
@@ -236,7 +242,8 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
           if (abs(x[w] - rp[w]) > abs(x[big] - rp[big])) big = w;
         if (x[big] == rp[big]) continue;
         std::map<std::size_t, Rational> d;
-        for (std::size_t w : vars) d[w] = w == big ? Rational(1) : simplest_near((x[w] - rp[w]) / (x[big] - rp[big]), 10000);
+        for (std::size_t w : vars)
+          d[w] = w == big ? Rational(1) : simplest_near((x[w] - rp[w]) / (x[big] - rp[big]), 10000);
         const auto g = [&](const Rational& s) {
           std::vector<Rational> p = x;
           for (std::size_t w : vars) p[w] = rp[w] + s * d[w];
@@ -253,7 +260,7 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
         }
       }
       if (best_distance <= 1e-12) break;  // as near as the given decimals
-      std::size_t j = 0;  // the next assignment of the others
+      std::size_t j = 0;                  // the next assignment of the others
       while (j < pick.size() && ++pick[j] == nc) pick[j++] = 0;
       if (j == pick.size()) break;
     }
@@ -333,7 +340,8 @@ Rational simplest_near(const Rational& x, long max_den) {
   return k1 == 0 ? x : Rational(h1, k1);
 }
 
-std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given, std::string& why) {
+std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given,
+                                      std::string& why) {
   const LagrangianSystem& s = c.system;
   ExactPlace pl;
   pl.start = start;
@@ -375,9 +383,12 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
       if (start[i] == 0 || std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
       for (const Expr& e : all_expressions(s))
         if (inside_function(e, i)) {
-          pl.not_exact = s.variable_names()[i] + " = " + start[i].str() + " occurs inside sin, cos or exp other than as an angle (" +
-                         (i < s.n ? "an angle occurs only as integer multiples, at most 64, inside sin and cos" : "a velocity") +
-                         "): no rational value near it makes them rational (they are irrational at every nonzero rational, Lindemann)";
+          pl.not_exact =
+              s.variable_names()[i] + " = " + start[i].str() +
+              " occurs inside sin, cos or exp other than as an angle (" +
+              (i < s.n ? "an angle occurs only as integer multiples, at most 64, inside sin and cos" : "a velocity") +
+              "): no rational value near it makes them rational (they are irrational at every nonzero rational, "
+              "Lindemann)";
           break;
         }
       if (!pl.not_exact.empty()) break;
@@ -404,7 +415,8 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
       if (expr::depends_on(hs[k], s.q(i))) vars[k].push_back(s.q(i));
   std::vector<std::size_t> order(hs.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return vars[a].size() < vars[b].size(); });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return vars[a].size() < vars[b].size(); });
   const std::vector<std::string> names = s.variable_names();
   try {
     for (std::size_t k : order) {
@@ -417,10 +429,12 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
       if (value_at(hs[k], pl.start) != 0) {
         std::vector<char> anchored(pl.start.size(), 0);
         for (std::size_t i = 0; i < 2 * s.n; ++i) anchored[i] = given && c.initial[i].has_value();
-        const bool landed = (!ungiven.empty() && ungiven.size() < movable.size() && land(hs[k], ungiven, anchored, pl.start)) ||
-                            (!movable.empty() && land(hs[k], movable, anchored, pl.start));
+        const bool landed =
+            (!ungiven.empty() && ungiven.size() < movable.size() && land(hs[k], ungiven, anchored, pl.start)) ||
+            (!movable.empty() && land(hs[k], movable, anchored, pl.start));
         if (!landed) {
-          why = "no rational point of " + expr::to_text(hs[k], names) + " = 0 was found near the " + (given ? "given" : "default") + " positions";
+          why = "no rational point of " + expr::to_text(hs[k], names) + " = 0 was found near the " +
+                (given ? "given" : "default") + " positions";
           return std::nullopt;
         }
         pl.landed.push_back(expr::to_text(shown[k], names) + " = 0");
@@ -431,7 +445,8 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
     }
     for (const Expr& h : hs)  // a later landing may not undo an earlier one
       if (value_at(h, pl.start) != 0) {
-        why = "no rational point of the holonomic constraints together was found (" + expr::to_text(h, names) + " = 0 moved off)";
+        why = "no rational point of the holonomic constraints together was found (" + expr::to_text(h, names) +
+              " = 0 moved off)";
         return std::nullopt;
       }
   } catch (const NotExactHere& e) {

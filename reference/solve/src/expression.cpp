@@ -17,7 +17,8 @@ namespace dcad::reference::pipeline {
 
 namespace {
 
-PointwiseResult<Rational> run(const LagrangianSystem& s, const std::vector<Rational>& start, const std::vector<bool>& fixed) {
+PointwiseResult<Rational> run(const LagrangianSystem& s, const std::vector<Rational>& start,
+                              const std::vector<bool>& fixed) {
   ExactDecisions<Rational> decide;
   return pointwise_cad<Rational>(s, start, fixed, decide, [](const Rational& q) { return q; });
 }
@@ -25,10 +26,12 @@ PointwiseResult<Rational> run(const LagrangianSystem& s, const std::vector<Ratio
 /// The CAD at `start`, or, where the exact route cannot run there (an irrational value of a formula,
 /// given values that miss M_c by their rounding), at a rational place near it (exact_place.hpp).
 /// The first failure is what is thrown if no place is found; `placed` says where it ran.
-using Runner = std::function<PointwiseResult<Rational>(const LagrangianSystem&, const std::vector<Rational>&, const std::vector<bool>&)>;
+using Runner = std::function<PointwiseResult<Rational>(const LagrangianSystem&, const std::vector<Rational>&,
+                                                       const std::vector<bool>&)>;
 
-PointwiseResult<Rational> run_or_place(const io::LagrangianCase& c, const std::vector<Rational>& start, const std::vector<bool>& fixed, bool given,
-                                       std::optional<ExactPlace>& placed, const Runner& run = pipeline::run) {
+PointwiseResult<Rational> run_or_place(const io::LagrangianCase& c, const std::vector<Rational>& start,
+                                       const std::vector<bool>& fixed, bool given, std::optional<ExactPlace>& placed,
+                                       const Runner& run = pipeline::run) {
   std::exception_ptr first;
   std::string first_what;
   try {
@@ -81,7 +84,8 @@ std::string approx(double x) {
 
 /// The place as lines of the result; given values the CAD moved further than their rounding are not
 /// near (false: the caller reports the given values as off M_c).
-bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, const io::LagrangianCase& c, Pointwise<Rational>& p) {
+bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, const io::LagrangianCase& c,
+                    Pointwise<Rational>& p) {
   const std::vector<std::string> st = c.system.state_names();
   const std::size_t n = c.system.n;
   const auto near = [](const Rational& given, double found) {
@@ -90,12 +94,17 @@ bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, co
   };
   bool ok = true;
   for (const PlacedAngle& g : pl.angles) {
-    const double phi = 2 * std::atan(g.tan_half.convert_to<double>()) + 2 * std::acos(-1.0) * static_cast<double>(g.turns);
-    const std::string at = "2*atan(" + g.tan_half.str() + ")" + (g.turns == 0 ? "" : (g.turns > 0 ? " + " : " - ") + std::to_string(2 * std::labs(g.turns)) + "*pi");
+    const double phi =
+        2 * std::atan(g.tan_half.convert_to<double>()) + 2 * std::acos(-1.0) * static_cast<double>(g.turns);
+    const std::string at =
+        "2*atan(" + g.tan_half.str() + ")" +
+        (g.turns == 0 ? "" : (g.turns > 0 ? " + " : " - ") + std::to_string(2 * std::labs(g.turns)) + "*pi");
     p.point_text.emplace_back(g.q, at);
-    std::string line = st[g.q] + " = " + at + " = " + approx(phi) + "…: cos " + st[g.q] + " = " + g.cos.str() + ", sin " + st[g.q] + " = " + g.sin.str();
+    std::string line = st[g.q] + " = " + at + " = " + approx(phi) + "…: cos " + st[g.q] + " = " + g.cos.str() +
+                       ", sin " + st[g.q] + " = " + g.sin.str();
     if (c.initial[g.q]) {
-      line += " (given " + c.initial[g.q]->str() + ", moved by " + approx(std::abs(phi - c.initial[g.q]->convert_to<double>())) + ")";
+      line += " (given " + c.initial[g.q]->str() + ", moved by " +
+              approx(std::abs(phi - c.initial[g.q]->convert_to<double>())) + ")";
       ok = ok && near(*c.initial[g.q], phi);
     }
     p.place.push_back(line);
@@ -106,7 +115,8 @@ bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, co
     bool angle = false;
     for (const PlacedAngle& g : pl.angles) angle = angle || g.q == i;
     if (angle) return;
-    p.place.push_back(st[i] + ": given " + given.str() + ", here " + r.point[i].str() + " (moved by " + approx(std::abs((r.point[i] - given).convert_to<double>())) + ")");
+    p.place.push_back(st[i] + ": given " + given.str() + ", here " + r.point[i].str() + " (moved by " +
+                      approx(std::abs((r.point[i] - given).convert_to<double>())) + ")");
     ok = ok && near(given, r.point[i].convert_to<double>());
   };
   if (r.consistent && r.point.size() == 3 * n) {
@@ -121,7 +131,8 @@ bool describe_place(const ExactPlace& pl, const PointwiseResult<Rational>& r, co
 /// The implicit form's CEF (1.6) at `start`, exactly: on the formulas (ide_formulas.hpp) where they decide
 /// every step by identities, else on jets (pointwise.hpp), which settle what the formulas leave open (a
 /// singular point, a formula vanishing on M_k only) to their order.  `formulas` says which ran.
-PointwiseResult<Rational> run_implicit(const LagrangianSystem& s, const std::vector<Rational>& start, const std::vector<bool>& fixed, ImplicitRoute route,
+PointwiseResult<Rational> run_implicit(const LagrangianSystem& s, const std::vector<Rational>& start,
+                                       const std::vector<bool>& fixed, ImplicitRoute route,
                                        std::optional<IdeFormulas>& formulas, std::string& open) {
   formulas.reset();
   open.clear();
@@ -179,8 +190,10 @@ void attach_implicit_formulas(const IdeFormulas& f, const io::LagrangianCase& c,
     out.valid_where.push_back(expr::to_text(v.formula, names));
     out.valid_where_why.push_back(v.what);
   }
-  out.decided = "exactly at the point (the tower's): every pivot a nonzero rational there, every zero test an identity of the formulas; the "
-                "formulas hold near it on M_c wherever valid_where does not vanish";
+  out.decided =
+      "exactly at the point (the tower's): every pivot a nonzero rational there, every zero test an identity of the "
+      "formulas; the "
+      "formulas hold near it on M_c wherever valid_where does not vanish";
   p.formulas = out;
 }
 
@@ -201,7 +214,8 @@ bool affine_in_coordinates(const LagrangianSystem& s) {
 std::string second_look(const io::LagrangianCase& c, const PointwiseResult<Rational>& r) {
   const LagrangianSystem& s = c.system;
   std::vector<Rational> start(2 * s.n + 1, Rational(0));
-  for (std::size_t i = 0; i < s.n && i < r.point.size(); ++i) start[s.q(i)] = r.point[i] + Rational(1, static_cast<long>(7 + 2 * i));
+  for (std::size_t i = 0; i < s.n && i < r.point.size(); ++i)
+    start[s.q(i)] = r.point[i] + Rational(1, static_cast<long>(7 + 2 * i));
   start[s.t()] = r.time + (s.has_time ? Rational(1, 3) : Rational(0));
   PointwiseResult<Rational> o;
   try {
@@ -212,14 +226,15 @@ std::string second_look(const io::LagrangianCase& c, const PointwiseResult<Ratio
     return "";
   }
   if (!o.regular) return "";
-  if (o.dims == r.dims && o.consistent == r.consistent && (!r.consistent || o.solution_rank == r.solution_rank)) return "";
+  if (o.dims == r.dims && o.consistent == r.consistent && (!r.consistent || o.solution_rank == r.solution_rank))
+    return "";
   const auto dims = [](const std::vector<long>& d) {
     std::string t;
     for (long x : d) t += (t.empty() ? "" : ", ") + std::to_string(x);
     return "[" + t + "]";
   };
-  return "from a nearby point (every value and the time moved by 1/3 or less) the tower is " + dims(o.dims) + (o.consistent ? "" : " (inconsistent)") +
-         ", here " + dims(r.dims) + (r.consistent ? "" : " (inconsistent)") +
+  return "from a nearby point (every value and the time moved by 1/3 or less) the tower is " + dims(o.dims) +
+         (o.consistent ? "" : " (inconsistent)") + ", here " + dims(r.dims) + (r.consistent ? "" : " (inconsistent)") +
          ": a condition vanishes at this point only to the jets' order (not a generic point of its component)";
 }
 
@@ -229,7 +244,8 @@ dcad::Solution<Rational> solve_pointwise_exact(const io::LagrangianCase& c) {
   std::vector<bool> fixed;
   PointwiseResult<Rational> r;
   std::optional<ExactPlace> placed;
-  for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
+  for (int seed = 0; seed < kStartSeeds;
+       ++seed) {  // a default point that is singular is not the generic answer: another one
     const std::vector<Rational> start = start_point(c, fixed, seed);
     placed.reset();
     // dcad's own point is its choice: where the exact route cannot run there, a rational place near it
@@ -263,11 +279,14 @@ dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c)
   if (!describe_place(*placed, r, c, *out.pointwise)) {  // the given values are not M_c's rounded: as at them
     std::string lines;
     for (const std::string& l : out.pointwise->place) lines += (lines.empty() ? "" : "; ") + l;
-    throw PointwiseNoPoint("the nearest rational place of M_c moves given values by more than 1e-6 (relative): " + lines);
+    throw PointwiseNoPoint("the nearest rational place of M_c moves given values by more than 1e-6 (relative): " +
+                           lines);
   }
   out.certified = r.regular ? yes : unknown;
-  out.note = "exact at a rational place near the given values (`place`), not at them: the tower, steps and solution rank are generic on the "
-             "component (CEF §5), the point and velocity are the place's";
+  out.note =
+      "exact at a rational place near the given values (`place`), not at them: the tower, steps and solution rank are "
+      "generic on the "
+      "component (CEF §5), the point and velocity are the place's";
   return out;
 }
 
@@ -277,17 +296,20 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, Impli
   std::optional<IdeFormulas> formulas;
   std::optional<ExactPlace> placed;
   std::string open;  // what the formulas left open where the jets ran
-  const Runner implicit_run = [&](const LagrangianSystem& s, const std::vector<Rational>& start, const std::vector<bool>& held) {
+  const Runner implicit_run = [&](const LagrangianSystem& s, const std::vector<Rational>& start,
+                                  const std::vector<bool>& held) {
     return run_implicit(s, start, held, route, formulas, open);
   };
   try {
-    for (int seed = 0; seed < kStartSeeds; ++seed) {  // a default point that is singular is not the generic answer: another one
+    for (int seed = 0; seed < kStartSeeds;
+         ++seed) {  // a default point that is singular is not the generic answer: another one
       // without `initial` the point is dcad's choice: where no rational point of M_c is reached from it (x² + y² = 1
       // from a random rational point), a rational place of the same component (exact_place.hpp: positions put on
       // the equations without derivatives, angles on rational points of the circle)
       const std::vector<Rational> start = start_point(c, fixed, seed);
       placed.reset();
-      r = c.has_initial ? implicit_run(c.system, start, fixed) : run_or_place(c, start, fixed, false, placed, implicit_run);
+      r = c.has_initial ? implicit_run(c.system, start, fixed)
+                        : run_or_place(c, start, fixed, false, placed, implicit_run);
       if (r.regular || c.has_initial) break;
     }
   } catch (const NotExactHere&) {
@@ -302,17 +324,21 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, Impli
   check_given_implicit<Rational>(
       r, c, [](const Rational& a, const Rational& b) { return a == b; }, [](const Rational& q) { return q.str(); });
   dcad::Solution<Rational> out = implicit_solution(r, c, formulas ? "formulas exact" : "pointwise exact");
-  out.certified = r.regular ? yes : unknown;  // a singular point decides no tower
+  out.certified = r.regular ? yes : unknown;                  // a singular point decides no tower
   const bool translated = placed && !placed->angles.empty();  // the formulas are then in the translated angles
   if (placed) describe_place(*placed, r, c, *out.pointwise);
-  if (formulas && r.consistent && !translated) attach_implicit_formulas(*formulas, c, *out.pointwise);
+  if (formulas && r.consistent && !translated)
+    attach_implicit_formulas(*formulas, c, *out.pointwise);
   else if (r.consistent && r.regular)
-    out.pointwise->formulas_why = translated ? "the exact route ran at a rational place with its angles translated (`place`): no formulas"
-                                             : "the exact route ran on jets (the formulas left a decision open): no formulas";
+    out.pointwise->formulas_why =
+        translated ? "the exact route ran at a rational place with its angles translated (`place`): no formulas"
+                   : "the exact route ran on jets (the formulas left a decision open): no formulas";
   if (r.regular && !r.consistent && (!c.has_initial || r.moves > 0) && !affine_in_coordinates(c.system)) {
-    out.certified = unknown;  // x (1 − y) = 0 is two lines: the completion reached y = 1, where v_y = 1 fails; x = 0 has solutions
+    out.certified =
+        unknown;  // x (1 − y) = 0 is two lines: the completion reached y = 1, where v_y = 1 fails; x = 0 has solutions
     out.note = "not certified: inconsistent on the component of M_k that the completion reached from " +
-               std::string(c.has_initial ? "the given values" : "dcad's default point") + "; a nonlinear M_k may have other components";
+               std::string(c.has_initial ? "the given values" : "dcad's default point") +
+               "; a nonlinear M_k may have other components";
     return out;
   }
   if (r.regular && !formulas) {  // the formulas' decisions are identities and open conditions: they hold near the point
@@ -324,8 +350,8 @@ dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, Impli
       // what the formulas could not prove as an identity the jets took as zero to their order only: y^8 = 0,
       // x (exp(t) − its Taylor polynomial of degree 7) looked like 0 = 0 there (the review of issue 30)
       out.certified = unknown;
-      out.note = "not certified: a zero test no identity of the formulas settles (" + open + ") was taken by the jets to order " +
-                 std::to_string(r.checked_order) + " only";
+      out.note = "not certified: a zero test no identity of the formulas settles (" + open +
+                 ") was taken by the jets to order " + std::to_string(r.checked_order) + " only";
     }
   }
   return out;

@@ -20,7 +20,9 @@ std::vector<std::string> jet_names(const std::vector<io::Waveform>& waveforms, l
   for (long d = 0; d < orders; ++d)
     for (const io::Waveform& w : waveforms) {
       const std::string f = w.element;
-      out.push_back(d == 0 ? f + "(t)" : d <= 3 ? f + std::string(d, '\'') + "(t)" : "d" + std::to_string(d) + f + "/dt" + std::to_string(d) + "(t)");
+      out.push_back(d == 0   ? f + "(t)"
+                    : d <= 3 ? f + std::string(d, '\'') + "(t)"
+                             : "d" + std::to_string(d) + f + "/dt" + std::to_string(d) + "(t)");
     }
   return out;
 }
@@ -43,8 +45,8 @@ std::string row_text(const QM& row, const std::vector<std::string>& names) {
 
 /// The combination's largest deviation from 0 over sample times that show every feature of the
 /// waveforms (breakpoints, their midpoints, 97 times spread over the horizon), and its scale.
-void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders, double& worst, double& at, double& scale,
-            std::size_t& samples) {
+void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders, double& worst, double& at,
+            double& scale, std::size_t& samples) {
   const std::size_t m = waveforms.size();
   std::vector<bool> in_row(m, false);  // only the row's own sources set the sample times
   for (std::size_t j = 0; j < m; ++j)
@@ -155,7 +157,8 @@ Rows<Q> dense(const QM& m) {
 /// The exact forced CAD: the tower with its jet equations, the source conditions decided against the
 /// waveforms (the first M_k whose condition fails is empty), the equations of motion with the sources'
 /// jets.
-dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::Waveform>& waveforms, const std::vector<std::string>& variables) {
+dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::Waveform>& waveforms,
+                               const std::vector<std::string>& variables) {
   const ForcedResult<Q> r = forced_tower(f);
   dcad::Solution<Q> s;
   s.variables = variables;
@@ -168,7 +171,8 @@ dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::W
     const QM& ck = r.conditions_at[k];
     for (std::size_t i = 0; i < ck.rows(); ++i) {
       const SourceCondition v = decide_condition(ck.block(i, i + 1, 0, ck.cols()), waveforms);
-      const bool seen = std::any_of(s.source_conditions.begin(), s.source_conditions.end(), [&](const SourceCondition& o) { return o.text == v.text; });
+      const bool seen = std::any_of(s.source_conditions.begin(), s.source_conditions.end(),
+                                    [&](const SourceCondition& o) { return o.text == v.text; });
       if (!seen) s.source_conditions.push_back(v);
       if (v.holds.no() && empty_at < 0) empty_at = static_cast<long>(k);
       s.certified &= v.holds.known() ? yes : unknown;
@@ -214,8 +218,12 @@ dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::W
 ForcedSystem<Q> forced_system(const io::CaseFile& c) {
   const io::PontryaginInput& in = c.pontryagin;
   const std::size_t n = in.n;
-  ForcedSystem<Q> f{pontryagin_system(PontryaginInput<Q>{in.n, in.k, in.vv, in.qv, in.qq, in.q, in.v}), QM(3 * n, 3 * n), 0, QM(3 * n, 0),
-                    QM(3 * n, 0), QM(0, 1)};
+  ForcedSystem<Q> f{pontryagin_system(PontryaginInput<Q>{in.n, in.k, in.vv, in.qv, in.qq, in.q, in.v}),
+                    QM(3 * n, 3 * n),
+                    0,
+                    QM(3 * n, 0),
+                    QM(3 * n, 0),
+                    QM(0, 1)};
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       f.force(i, j) = in.fq(i, j);  // F(q, v)·δq: a horizontal one-form  [YM §4]
@@ -294,7 +302,8 @@ namespace {
 /// The condition Σ sign·σ_source(b)(t) = 0 over the sources of `path` (a loop or a cutset), decided on
 /// those sources alone (a row [0 | σ⁽⁰⁾] over them, its first coefficient made positive): the cost is
 /// the path's, not the deck's (N parallel sources took O(N³)).
-SourceCondition decide_path(const std::vector<graph::LoopBranch>& path, const RlcCircuit<Q>& c, const std::vector<io::Waveform>& all) {
+SourceCondition decide_path(const std::vector<graph::LoopBranch>& path, const RlcCircuit<Q>& c,
+                            const std::vector<io::Waveform>& all) {
   std::map<Index, int> coeff;  // source index → Σ signs
   for (const graph::LoopBranch& lb : path) {
     const RlcBranch<Q>& b = c.branches[lb.branch];
@@ -321,7 +330,8 @@ GraphForced graph_forced(const io::Netlist& deck) {
   const RlcCircuit<Q>& c = deck.rlc;
   std::vector<rlc::Branch> branches;
   branches.reserve(c.branches.size());
-  for (const RlcBranch<Q>& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+  for (const RlcBranch<Q>& b : c.branches)
+    branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
   const rlc::Tower t = rlc::tower(c.nodes, branches);
   GraphForced g;
   g.dims = t.dims;
@@ -351,13 +361,17 @@ dcad::Solution<Q> solve_forced(const io::Netlist& deck, const std::vector<std::s
   if (deck.rlc.branches.size() > kForcedBranches) {
     if (!graph_route_holds(deck.rlc))
       throw io::InputError(deck.file + ": expected at most " + std::to_string(kForcedBranches) +
-                           " branches for a circuit with a non-positive R or C or an inductance matrix that is not positive definite (k = 1, negative L), found " +
+                           " branches for a circuit with a non-positive R or C or an inductance matrix that is not "
+                           "positive definite (k = 1, negative L), found " +
                            std::to_string(deck.rlc.branches.size()) +
                            " (the exact route for those is dense; the others take the graph route at any size)");
     return graph_solution<Q>(deck, variables,
-                             "forced graph route (dcad/rlc_graph.hpp: cycle ranks of subgraphs; CEF Thms 6.4, 6.6, 6.8 with YM §4's sources), "
-                             "exact: the tower, the conditions on the sources and the state equations (dcad/reference/rlc_state.hpp); the tower's "
-                             "equations and the motion in (q, v, p) come from the dense exact route, up to " + std::to_string(kForcedBranches) + " branches");
+                             "forced graph route (dcad/rlc_graph.hpp: cycle ranks of subgraphs; CEF Thms 6.4, 6.6, 6.8 "
+                             "with YM §4's sources), "
+                             "exact: the tower, the conditions on the sources and the state equations "
+                             "(dcad/reference/rlc_state.hpp); the tower's "
+                             "equations and the motion in (q, v, p) come from the dense exact route, up to " +
+                                 std::to_string(kForcedBranches) + " branches");
   }
   dcad::Solution<Q> s = exact_forced(rlc_system(deck.rlc), deck.waveforms, variables);
   if (s.consistent && graph_route_holds(deck.rlc)) s.state = deck_state_equations<Q>(deck);

@@ -41,7 +41,9 @@ class Values {
   Rational operator()(const Expr& e) {
     if (expr::is_number(e)) return e->value;
     keep_.push_back(e);
-    return expr::evaluate<J>(e, vars_, [&](const Rational& q) { return J(none_, q); }, memo_).value();
+    return expr::evaluate<J>(
+               e, vars_, [&](const Rational& q) { return J(none_, q); }, memo_)
+        .value();
   }
 
  private:
@@ -81,7 +83,8 @@ std::optional<Rational> nearest_root(const std::vector<Rational>& a, const Ratio
   fmpz_t c;
   fmpz_init(c);
   for (std::size_t k = 0; k < a.size(); ++k) {
-    const boost::multiprecision::mpz_int v = boost::multiprecision::numerator(a[k]) * (l / boost::multiprecision::denominator(a[k]));
+    const boost::multiprecision::mpz_int v =
+        boost::multiprecision::numerator(a[k]) * (l / boost::multiprecision::denominator(a[k]));
     fmpz_set_mpz(c, v.backend().data());
     fmpz_poly_set_coeff_fmpz(p, static_cast<slong>(k), c);
   }
@@ -109,9 +112,17 @@ std::optional<Rational> nearest_root(const std::vector<Rational>& a, const Ratio
 
 class Pass {
  public:
-  Pass(const LagrangianSystem& s, const LagrangianDerivatives& d, expr::Differentiator& D, const std::vector<Rational>& point,
-       const std::vector<bool>& fixed, std::size_t& nudges)
-      : s_(s), d_(d), D_(D), fixed_(fixed), point_(point), value_(point), rf_(2 * s.n + 1), names_(s.variable_names()), solved_col_(s.n + 1, false),
+  Pass(const LagrangianSystem& s, const LagrangianDerivatives& d, expr::Differentiator& D,
+       const std::vector<Rational>& point, const std::vector<bool>& fixed, std::size_t& nudges)
+      : s_(s),
+        d_(d),
+        D_(D),
+        fixed_(fixed),
+        point_(point),
+        value_(point),
+        rf_(2 * s.n + 1),
+        names_(s.variable_names()),
+        solved_col_(s.n + 1, false),
         nudges_(nudges) {}
 
   /// The tower (true) or a Newton step that moved `point` (false); Undecided is thrown.
@@ -172,8 +183,8 @@ class Pass {
     Rational value;
   };
   struct Constraint {
-    Expr f;             ///< f = 0 on M_{k+1} (the candidate as found)
-    std::size_t solved; ///< its coordinate (column), Gauss–Jordan at the point
+    Expr f;              ///< f = 0 on M_{k+1} (the candidate as found)
+    std::size_t solved;  ///< its coordinate (column), Gauss–Jordan at the point
   };
 
   /// M_k's chart (variable indices): the time first if any, then the coordinates not solved for.
@@ -187,8 +198,9 @@ class Pass {
 
   /// Row `r` reduced by the pivots so far (forward elimination: r − (e/P)·pr, P nonzero near the point;
   /// fraction-free elimination would keep polynomials polynomial, but its values grow like 2^k in bits
-  /// without Bareiss's exact divisions — a chain of 40 pendulums did not finish); true if it takes a pivot (its first entry nonzero at the point), false if it is free: then
-  /// every entry must vanish identically (else the rank may drop at the point), and r.h is a candidate.
+  /// without Bareiss's exact divisions — a chain of 40 pendulums did not finish); true if it takes a pivot (its first
+  /// entry nonzero at the point), false if it is free: then every entry must vanish identically (else the rank may drop
+  /// at the point), and r.h is a candidate.
   bool insert(Row& r) {
     for (const Pivot& p : pivots_) {
       const auto it = r.a.find(p.col);
@@ -218,14 +230,17 @@ class Pass {
     if (col) {
       const Expr& x = r.a.at(*col);
       pivots_.push_back({rows_.size(), *col, value_(x)});
-      if (!expr::is_number(x)) valid_.push_back({"pivot of the system for v: " + r.name + ", column d/dt " + names_[*col], x});
+      if (!expr::is_number(x))
+        valid_.push_back({"pivot of the system for v: " + r.name + ", column d/dt " + names_[*col], x});
       rows_.push_back(r);
       return true;
     }
     for (const auto& [j, x] : r.a)
       if (!identically_zero(x))
-        throw Undecided{"after elimination, " + r.name + " keeps " + expr::to_text(x, names_) + " as the coefficient of d/dt " + names_[j] +
-                        ": 0 at the point but not identically (a point where the rank drops, or a formula that vanishes on M_k only)"};
+        throw Undecided{"after elimination, " + r.name + " keeps " + expr::to_text(x, names_) +
+                        " as the coefficient of d/dt " + names_[j] +
+                        ": 0 at the point but not identically (a point where the rank drops, or a formula that "
+                        "vanishes on M_k only)"};
     r.a.clear();
     return false;
   }
@@ -260,7 +275,8 @@ class Pass {
       std::vector<Jet<Rational>> x;
       for (std::size_t i = 0; i < point_.size(); ++i)
         x.push_back(i == s_.t() ? Jet<Rational>::variable(space, 0, point_[i]) : Jet<Rational>(space, point_[i]));
-      const Jet<Rational> j = expr::evaluate<Jet<Rational>>(e, x, [&](const Rational& q) { return Jet<Rational>(space, q); });
+      const Jet<Rational> j =
+          expr::evaluate<Jet<Rational>>(e, x, [&](const Rational& q) { return Jet<Rational>(space, q); });
       if (!j.is_zero()) return true;
     } catch (const NotExactHere&) {
       return std::nullopt;
@@ -303,8 +319,10 @@ class Pass {
     std::vector<std::vector<std::size_t>> g(2);
     for (std::size_t i = s_.n; i-- > 0;)
       if (!solved_col_[i]) {
-        if (!fixed_[s_.q(i)]) g[0].push_back(i);
-        else if (!only_movable) g[1].push_back(i);
+        if (!fixed_[s_.q(i)])
+          g[0].push_back(i);
+        else if (!only_movable)
+          g[1].push_back(i);
       }
     return g;
   }
@@ -344,13 +362,16 @@ class Pass {
         const std::optional<bool> nz = rational ? std::optional<bool>(true) : nonzero_in_time(*c);
         if (nz && !*nz) continue;
         if (nz && *nz) {
-          inconsistent(out, "step " + std::to_string(k) + " gives a condition on the time alone, " + expr::to_text(*c, names_) +
-                                " = 0 (its candidates combined): M_" + std::to_string(k + 1) + "(t) is empty at generic times");
+          inconsistent(out, "step " + std::to_string(k) + " gives a condition on the time alone, " +
+                                expr::to_text(*c, names_) + " = 0 (its candidates combined): M_" +
+                                std::to_string(k + 1) + "(t) is empty at generic times");
           return {};
         }
       }
-      throw Undecided{"a candidate of step " + std::to_string(k) + " vanishes with its differential at the point (mod the constraints) but is not "
-                      "identically a combination of them: " + expr::to_text(comb, names_)};
+      throw Undecided{"a candidate of step " + std::to_string(k) +
+                      " vanishes with its differential at the point (mod the constraints) but is not "
+                      "identically a combination of them: " +
+                      expr::to_text(comb, names_)};
     }
     if (piv.empty()) return {};
     // the new constraints, their tangent equations (Gauss–Jordan among them, each solved for its pivot)
@@ -408,7 +429,8 @@ class Pass {
   /// every nonzero candidate is affine in first), each constraint moving its pivot coordinate — true; or a
   /// combination that no coordinate moves, a nonzero constant or a condition on the time alone: M_{k+1} is
   /// empty (out says so) — false.  Anything else is undecided.
-  bool move(std::size_t k, const std::vector<Expr>& cand, const std::vector<Rational>& val, IdeFormulas& out, std::vector<Rational>& point) {
+  bool move(std::size_t k, const std::vector<Expr>& cand, const std::vector<Rational>& val, IdeFormulas& out,
+            std::vector<Rational>& point) {
     const std::size_t n = s_.n, m = cand.size();
     std::vector<std::vector<Rational>> aug(m), coefs(m);
     std::vector<Rational> rhs(m);
@@ -430,7 +452,8 @@ class Pass {
       std::vector<std::vector<Rational>> g = aug;
       std::vector<Rational> z(m, Rational(0));
       ExactDecisions<Rational> first;
-      for (const auto& pc : pointwise_detail::eliminate_constants(g, z, column_groups(false), first)) chart_solves[pc.second] = 1;
+      for (const auto& pc : pointwise_detail::eliminate_constants(g, z, column_groups(false), first))
+        chart_solves[pc.second] = 1;
     }
     std::vector<std::vector<std::size_t>> groups(3);
     for (std::size_t j : movable[0]) {
@@ -457,17 +480,22 @@ class Pass {
     for (std::size_t i = 0; i < m; ++i) {
       if (is_piv[i] || rhs[i] == 0) continue;
       for (std::size_t j = 0; j < n; ++j)
-        if (aug[i][j] != 0) return nudge("that no coordinate that may move brings to zero (given values it conflicts with, or a critical point)");
+        if (aug[i][j] != 0)
+          return nudge(
+              "that no coordinate that may move brings to zero (given values it conflicts with, or a critical point)");
       Expr comb = expr::number(0);
       for (std::size_t j = 0; j < m; ++j)
-        if (aug[i][n + 1 + j] != 0) comb = expr::add(comb, expr::mul(expr::number(aug[i][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
+        if (aug[i][n + 1 + j] != 0)
+          comb = expr::add(comb, expr::mul(expr::number(aug[i][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
       const std::optional<Expr> c = of_time_alone(comb);
       if (!c) return nudge("whose differential vanishes at the point although its value does not");
       if (expr::is_number(*c))
-        inconsistent(out, "step " + std::to_string(k) + " requires 0 = " + (*c)->value.str() + " (its constraints combined): M_" + std::to_string(k + 1) + " is empty");
+        inconsistent(out, "step " + std::to_string(k) + " requires 0 = " + (*c)->value.str() +
+                              " (its constraints combined): M_" + std::to_string(k + 1) + " is empty");
       else
-        inconsistent(out, "step " + std::to_string(k) + " gives a condition on the time alone, " + expr::to_text(*c, names_) + " = 0, violated at " + names_[s_.t()] +
-                              " = " + point_[s_.t()].str() + ": M_" + std::to_string(k + 1) + "(t) is empty there");
+        inconsistent(out, "step " + std::to_string(k) + " gives a condition on the time alone, " +
+                              expr::to_text(*c, names_) + " = 0, violated at " + names_[s_.t()] + " = " +
+                              point_[s_.t()].str() + ": M_" + std::to_string(k + 1) + "(t) is empty there");
       return false;
     }
     // a step along a coordinate some nonzero candidate is not affine in does not land (the digits double
@@ -479,7 +507,8 @@ class Pass {
       if (rhs[p] == 0 || std::find(groups[2].begin(), groups[2].end(), c) == groups[2].end()) continue;
       Expr comb = expr::number(0);
       for (std::size_t j = 0; j < m; ++j)
-        if (aug[p][n + 1 + j] != 0) comb = expr::add(comb, expr::mul(expr::number(aug[p][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
+        if (aug[p][n + 1 + j] != 0)
+          comb = expr::add(comb, expr::mul(expr::number(aug[p][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
       std::vector<std::size_t> along{c};
       for (std::size_t j : groups[2])
         if (j != c) along.push_back(j);
@@ -489,8 +518,9 @@ class Pass {
           return true;
         }
       if (s_.n > 30)
-        throw NoLanding{"no point of M_c reached from the given values: M_" + std::to_string(k + 1) + "'s candidates are affine in no coordinate that may move (" +
-                        names_[c] + " enters at second order, without a rational root), so no exact Newton step lands"};
+        throw NoLanding{"no point of M_c reached from the given values: M_" + std::to_string(k + 1) +
+                        "'s candidates are affine in no coordinate that may move (" + names_[c] +
+                        " enters at second order, without a rational root), so no exact Newton step lands"};
       break;
     }
     for (const auto& [p, c] : piv) point[s_.q(c)] += rhs[p] / aug[p][c];
@@ -511,7 +541,8 @@ class Pass {
       std::vector<Jet<Rational>> x;
       for (std::size_t i = 0; i < point_.size(); ++i)
         x.push_back(i == var ? Jet<Rational>::variable(space, 0, point_[i]) : Jet<Rational>(space, point_[i]));
-      const Jet<Rational> j = expr::evaluate<Jet<Rational>>(*low, x, [&](const Rational& q) { return Jet<Rational>(space, q); });
+      const Jet<Rational> j =
+          expr::evaluate<Jet<Rational>>(*low, x, [&](const Rational& q) { return Jet<Rational>(space, q); });
       for (std::size_t k = 0; k < a.size(); ++k) a[k] = j.coefficient(k);
     } catch (const std::exception&) {  // an irrational value, a division by zero: no root found exactly
       return std::nullopt;
@@ -595,8 +626,9 @@ class Pass {
   std::vector<Row> rows_;      ///< the pivot rows, reduced
   std::vector<Pivot> pivots_;  ///< in the order they were taken
   std::vector<Constraint> cons_;
-  std::vector<std::vector<Rational>> gj_;  ///< the constraints' gradients at the point over (x, t), Gauss–Jordan on their solved columns
-  std::vector<Expr> combined_;             ///< the combination of constraint formulas each gj_ row is the gradient of
+  std::vector<std::vector<Rational>>
+      gj_;  ///< the constraints' gradients at the point over (x, t), Gauss–Jordan on their solved columns
+  std::vector<Expr> combined_;  ///< the combination of constraint formulas each gj_ row is the gradient of
   std::vector<bool> solved_col_;
   PointwiseLevel<Rational> level_;
   std::vector<IdeFormulas::Condition> valid_;
@@ -607,14 +639,16 @@ class Pass {
 std::size_t bits(const std::vector<Rational>& x) {
   std::size_t b = 0;
   for (const Rational& q : x)
-    if (q != 0) b = std::max<std::size_t>(b, msb(boost::multiprecision::abs(boost::multiprecision::numerator(q))) + msb(boost::multiprecision::denominator(q)) + 2);
+    if (q != 0)
+      b = std::max<std::size_t>(b, msb(boost::multiprecision::abs(boost::multiprecision::numerator(q))) +
+                                       msb(boost::multiprecision::denominator(q)) + 2);
   return b;
 }
 
 }  // namespace
 
-std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& s, std::vector<Rational> start, const std::vector<bool>& fixed,
-                                                        std::size_t max_moves) {
+std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& s, std::vector<Rational> start,
+                                                        const std::vector<bool>& fixed, std::size_t max_moves) {
   if (!s.implicit) throw std::invalid_argument("ide_on_formulas: the implicit form's systems only");
   const LagrangianDerivatives d = derivatives(s);
   expr::Differentiator D;
@@ -634,10 +668,15 @@ std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& 
     } catch (const NoLanding& u) {
       return IdeUndecided{u.why, true};
     }
-    if (moves + 1 > max_moves) return IdeUndecided{"no point of M_c reached from the given values in " + std::to_string(max_moves) + " exact Newton steps", true};
+    if (moves + 1 > max_moves)
+      return IdeUndecided{
+          "no point of M_c reached from the given values in " + std::to_string(max_moves) + " exact Newton steps",
+          true};
     // steps that do not land double the digits: beyond 16 times the start's bits (and 1,024) none is near
     if (bits(point) > std::max<std::size_t>(1024, 16 * start_bits))
-      return IdeUndecided{"no point of M_c reached from the given values: the exact Newton steps' numbers outgrew the start's 16-fold", true};
+      return IdeUndecided{
+          "no point of M_c reached from the given values: the exact Newton steps' numbers outgrew the start's 16-fold",
+          true};
     start = point;
   }
 }

@@ -84,9 +84,18 @@ std::vector<Q> operating_point(const io::Netlist& d, InitialState& s) {
         if (br.to >= 0) r(0, br.to) -= Q(1);
       };
       switch (br.kind) {
-        case RlcKind::capacitor: r(0, nodes + b) = Q(1); rows.add(r, br.name + " open at DC: i = 0"); break;
-        case RlcKind::inductor: potential_difference(); rows.add(r, br.name + " shorted at DC: u = 0"); break;
-        case RlcKind::wire: potential_difference(); rows.add(r, br.name + ": u = 0"); break;
+        case RlcKind::capacitor:
+          r(0, nodes + b) = Q(1);
+          rows.add(r, br.name + " open at DC: i = 0");
+          break;
+        case RlcKind::inductor:
+          potential_difference();
+          rows.add(r, br.name + " shorted at DC: u = 0");
+          break;
+        case RlcKind::wire:
+          potential_difference();
+          rows.add(r, br.name + ": u = 0");
+          break;
         case RlcKind::resistor:
           potential_difference();
           r(0, nodes + b) = -br.value;
@@ -109,17 +118,22 @@ std::vector<Q> operating_point(const io::Netlist& d, InitialState& s) {
   Rows rows = dc_rows(true);
   AffineSubspace<Q> sol = affine_from_augmented(rows.m);
   if (sol.empty && !d.node_ic.empty()) {
-    s.notes.push_back("the .ic node voltages contradict the circuit at DC (ideal sources or shorts between them): the operating point does not hold them");
+    s.notes.push_back(
+        "the .ic node voltages contradict the circuit at DC (ideal sources or shorts between them): the operating "
+        "point does not hold them");
     rows = dc_rows(false);
     sol = affine_from_augmented(rows.m);
   }
   if (sol.empty)
-    throw io::InputError(d.file + ": initial state: expected a DC operating point at t = 0 (capacitors open, inductors shorted), found none: " +
-                         rows.what[first_inconsistent(rows, QM(0, w + 1))] + " contradicts the equations before it");
+    throw io::InputError(
+        d.file +
+        ": initial state: expected a DC operating point at t = 0 (capacitors open, inductors shorted), found none: " +
+        rows.what[first_inconsistent(rows, QM(0, w + 1))] + " contradicts the equations before it");
   if (sol.direction.dim() > 0)
-    s.notes.push_back("the DC operating point is not unique (" + std::to_string(sol.direction.dim()) +
-                      " free: floating nodes or loops of inductors, wires and voltage sources); its free parts are taken as small as "
-                      "possible (ngspice reports a singular matrix)");
+    s.notes.push_back(
+        "the DC operating point is not unique (" + std::to_string(sol.direction.dim()) +
+        " free: floating nodes or loops of inductors, wires and voltage sources); its free parts are taken as small as "
+        "possible (ngspice reports a singular matrix)");
   const std::vector<Q> y = nearest(sol, std::vector<Q>(w, Q(0)));
   std::vector<Q> x(3 * n, Q(0)), i(n);
   for (Index b = 0; b < n; ++b) {
@@ -166,7 +180,8 @@ void jump(const io::Netlist& d, const std::vector<std::string>& variables, Initi
   const Index n = c.branches.size(), nx = 3 * n, m = c.sources;
   const ForcedSystem<Q> f = rlc_system(c);
   const ForcedResult<Q> r = forced_tower(f);
-  if (!r.consistent) throw io::InputError(d.file + ": initial state: M_c is empty whatever the sources are: nothing to start from");
+  if (!r.consistent)
+    throw io::InputError(d.file + ": initial state: M_c is empty whatever the sources are: nothing to start from");
   std::vector<Q> u{Q(1)};  // (1, σ⁽⁰⁾(0+), σ⁽¹⁾(0+), …)
   for (Index k = 0; k < r.orders; ++k)
     for (Index j = 0; j < m; ++j) u.push_back(jet_at_zero(d.waveforms[j], static_cast<int>(k)));
@@ -215,9 +230,11 @@ void jump(const io::Netlist& d, const std::vector<std::string>& variables, Initi
   for (Index i = 0; i < delta.rows(); ++i) fix(wq, wp, i);
   const AffineSubspace<Q> reach = affine_from_augmented(vstack(impulses, mc.m));
   if (reach.empty)
-    throw io::InputError(d.file + ": initial state: expected a jump onto M_c at t = 0 that impulsive currents (KCL) and voltages (KVL) can make, "
-                         "found none: no impulse satisfies " + mc.what[first_inconsistent(mc, impulses)] +
-                         " (ideal sources or constraints that disagree at t = 0)");
+    throw io::InputError(
+        d.file +
+        ": initial state: expected a jump onto M_c at t = 0 that impulsive currents (KCL) and voltages (KVL) can make, "
+        "found none: no impulse satisfies " +
+        mc.what[first_inconsistent(mc, impulses)] + " (ideal sources or constraints that disagree at t = 0)");
   s.after = nearest(reach, s.before);
   const auto violated = [&](Index var) {  // an equation of M_c(0+) that x⁻ violates, through var if one does
     std::string any;
@@ -231,7 +248,8 @@ void jump(const io::Netlist& d, const std::vector<std::string>& variables, Initi
     return any.empty() ? std::string("(none: moved with a coupled variable)") : any;
   };
   for (Index v = 0; v < nx; ++v) {
-    const bool state = v < n || v >= 2 * n || c.branches[v - n].kind == RlcKind::inductor;  // q, p and inductor currents
+    const bool state =
+        v < n || v >= 2 * n || c.branches[v - n].kind == RlcKind::inductor;  // q, p and inductor currents
     if (state && s.after[v] != s.before[v]) s.jumps.push_back({variables[v], s.before[v], s.after[v], violated(v)});
   }
 }
@@ -245,19 +263,20 @@ InitialState initial_state(const io::Netlist& d, InitialRule rule, const std::ve
   s.rule = rule == InitialRule::op    ? "the DC operating point (--initial op)"
            : rule == InitialRule::uic ? "uic: IC= and .ic values, everything else 0 (--initial uic)"
            : d.tran == T::op          ? "the DC operating point (.tran without uic at " + d.tran_where + ")"
-           : d.tran == T::uic         ? "uic: IC= and .ic values, everything else 0 (.tran … uic at " + d.tran_where + ")"
-                                      : "uic: IC= and .ic values, everything else 0 (no .tran card)";
+           : d.tran == T::uic ? "uic: IC= and .ic values, everything else 0 (.tran … uic at " + d.tran_where + ")"
+                              : "uic: IC= and .ic values, everything else 0 (no .tran card)";
   const std::size_t n = d.rlc.branches.size();
   const bool dense = n <= kForcedBranches;
   if (!dense) {  // larger decks: LC ones only reach simulate; their operating point without .ic is 0
     if (op && (!d.node_ic.empty() || d.rlc.sources > 0))
       throw io::InputError(d.file + ": initial state: expected at most " + std::to_string(kForcedBranches) +
-                           " branches for a DC operating point with sources or .ic voltages, found " + std::to_string(n) +
-                           " (use --initial uic, or .tran … uic)");
+                           " branches for a DC operating point with sources or .ic voltages, found " +
+                           std::to_string(n) + " (use --initial uic, or .tran … uic)");
     s.before = op ? std::vector<Q>(3 * n, Q(0)) : use_initial_conditions(d);
     s.after = s.before;
     s.computed = false;
-    s.notes.push_back("beyond " + std::to_string(kForcedBranches) + " branches the state is not moved onto M_c: it must lie on it");
+    s.notes.push_back("beyond " + std::to_string(kForcedBranches) +
+                      " branches the state is not moved onto M_c: it must lie on it");
     return s;
   }
   s.before = op ? operating_point(d, s) : use_initial_conditions(d);

@@ -25,12 +25,13 @@ struct RationalFunctions::Impl {
   fmpq_mpoly_ctx_t ctx;
   std::vector<std::unique_ptr<Fraction>> store;
   std::unordered_map<const expr::ExprNode*, Fraction*> memo;
-  std::vector<Expr> keep;  ///< memoized nodes stay alive: a freed node's address is never reused
+  std::vector<Expr> keep;                        ///< memoized nodes stay alive: a freed node's address is never reused
   std::map<std::string, std::size_t> atom_slot;  ///< "sin(N/D)" → its variable
   std::vector<Expr> atom_expr;                   ///< the atom as an expression (slot − vars)
   std::vector<std::vector<bool>> atom_involves;  ///< which expression variables its argument involves
 
-  Impl(std::size_t v, std::size_t terms, std::size_t atoms) : vars(v), slots(v + atoms), max_terms(terms), max_atoms(atoms) {
+  Impl(std::size_t v, std::size_t terms, std::size_t atoms)
+      : vars(v), slots(v + atoms), max_terms(terms), max_atoms(atoms) {
     fmpq_mpoly_ctx_init(ctx, static_cast<slong>(slots), ORD_LEX);
   }
   ~Impl() {
@@ -50,7 +51,8 @@ struct RationalFunctions::Impl {
     return f;
   }
   void check(const fmpq_mpoly_t p) const {
-    if (static_cast<std::size_t>(fmpq_mpoly_length(p, ctx)) > max_terms) throw std::length_error("a rational function of more than " + std::to_string(max_terms) + " terms");
+    if (static_cast<std::size_t>(fmpq_mpoly_length(p, ctx)) > max_terms)
+      throw std::length_error("a rational function of more than " + std::to_string(max_terms) + " terms");
   }
   /// N/D to lowest terms, D monic; D = 0 is a division by an identically zero expression.
   void reduce(Fraction* f) {
@@ -107,8 +109,10 @@ struct RationalFunctions::Impl {
         fmpq_mpoly_init(t, ctx);
         fmpq_mpoly_mul(r->n, a->n, b->d, ctx);
         fmpq_mpoly_mul(t, b->n, a->d, ctx);
-        if (e->op == ExprOp::Add) fmpq_mpoly_add(r->n, r->n, t, ctx);
-        else fmpq_mpoly_sub(r->n, r->n, t, ctx);
+        if (e->op == ExprOp::Add)
+          fmpq_mpoly_add(r->n, r->n, t, ctx);
+        else
+          fmpq_mpoly_sub(r->n, r->n, t, ctx);
         fmpq_mpoly_mul(r->d, a->d, b->d, ctx);
         fmpq_mpoly_clear(t, ctx);
         reduce(r);
@@ -144,7 +148,10 @@ struct RationalFunctions::Impl {
       case ExprOp::Exp:
       case ExprOp::Sqrt: {
         const Fraction* a = of(e->a);
-        const char* op = e->op == ExprOp::Sin ? "sin" : e->op == ExprOp::Cos ? "cos" : e->op == ExprOp::Exp ? "exp" : "sqrt";
+        const char* op = e->op == ExprOp::Sin   ? "sin"
+                         : e->op == ExprOp::Cos ? "cos"
+                         : e->op == ExprOp::Exp ? "exp"
+                                                : "sqrt";
         char* ns = fmpq_mpoly_get_str_pretty(a->n, nullptr, ctx);
         char* ds = fmpq_mpoly_get_str_pretty(a->d, nullptr, ctx);
         const std::string key = std::string(op) + "((" + ns + ")/(" + ds + "))";
@@ -152,7 +159,8 @@ struct RationalFunctions::Impl {
         flint_free(ds);
         auto it = atom_slot.find(key);
         if (it == atom_slot.end()) {
-          if (atom_expr.size() >= max_atoms) throw std::length_error("more than " + std::to_string(max_atoms) + " distinct sin, cos, exp or sqrt");
+          if (atom_expr.size() >= max_atoms)
+            throw std::length_error("more than " + std::to_string(max_atoms) + " distinct sin, cos, exp or sqrt");
           it = atom_slot.emplace(key, vars + atom_expr.size()).first;
           atom_expr.push_back(e);
           atom_involves.push_back(involved(a));
@@ -195,7 +203,9 @@ struct RationalFunctions::Impl {
       fmpq_mpoly_get_term_exp_ui(exps.data(), p, i, ctx);
       Expr term = expr::number(q);
       for (std::size_t s = 0; s < slots; ++s)
-        if (exps[s] > 0) term = expr::mul(term, expr::pow(s < vars ? expr::variable(s) : atom_expr[s - vars], static_cast<long>(exps[s])));
+        if (exps[s] > 0)
+          term = expr::mul(term,
+                           expr::pow(s < vars ? expr::variable(s) : atom_expr[s - vars], static_cast<long>(exps[s])));
       sum = expr::add(sum, term);
     }
     fmpq_clear(c);
@@ -224,7 +234,8 @@ std::optional<Expr> RationalFunctions::reduced(const Expr& e, std::vector<bool>*
     if (atoms) {
       *atoms = false;
       for (const auto* q : {&f->n, &f->d})
-        for (std::size_t s = p_->vars; s < p_->slots; ++s) *atoms = *atoms || fmpq_mpoly_degree_si(*q, static_cast<slong>(s), p_->ctx) > 0;
+        for (std::size_t s = p_->vars; s < p_->slots; ++s)
+          *atoms = *atoms || fmpq_mpoly_degree_si(*q, static_cast<slong>(s), p_->ctx) > 0;
     }
     const Expr n = p_->expression(f->n);
     return fmpq_mpoly_is_one(f->d, p_->ctx) ? n : expr::div(n, p_->expression(f->d));

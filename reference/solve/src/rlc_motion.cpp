@@ -29,7 +29,8 @@ QM block(const StateEquations<Q>& s, const std::string& name) {
 QM solve(const QM& a, const QM& b) {
   if (a.rows() == 0) return QM(0, b.cols());
   QM x;
-  if (!solve_particular(a, b, x) || rank(a) != a.rows()) throw std::logic_error("state_motion: a block expected positive definite is singular");
+  if (!solve_particular(a, b, x) || rank(a) != a.rows())
+    throw std::logic_error("state_motion: a block expected positive definite is singular");
   return x;
 }
 
@@ -68,20 +69,23 @@ void add_row(QM& to, Index i, const QM& from, Index k, const Q& c) {
 StateMotion state_motion(const io::Netlist& deck) {
   const RlcCircuit<Q>& c = deck.rlc;
   if (!graph_route_holds(c))
-    throw std::invalid_argument("the state-equation model (the enclosures' model beyond the dense one's " + std::to_string(kForcedBranches) +
+    throw std::invalid_argument("the state-equation model (the enclosures' model beyond the dense one's " +
+                                std::to_string(kForcedBranches) +
                                 " branches) needs every R, L, C > 0 and couplings |k| < 1");
   if (rounded_coupling(c)) throw std::invalid_argument(kRoundedCoupling);
   const GraphForced g = graph_forced(deck);
   for (const SourceCondition& v : g.conditions)
-    if (!v.holds.yes()) throw std::invalid_argument("the source condition " + v.text + " is not proved to hold (" + v.evidence + ")");
+    if (!v.holds.yes())
+      throw std::invalid_argument("the source condition " + v.text + " is not proved to hold (" + v.evidence + ")");
   if (!g.consistent) throw std::invalid_argument("M_c is empty");
   if (g.solution_rank > 0)
     throw std::invalid_argument("the circuit's solutions are not unique (" + std::to_string(g.solution_rank) +
                                 " free multipliers, a loop of voltage sources and wires)");
   const StateEquations<Q> s = deck_state_equations<Q>(deck);
   const rlc::StateStructure st = state_structure(c);
-  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"), Lw = block(s, "L_w"), Lr = block(s, "L_r"),
-           Le = block(s, "L_e"), Phi = block(s, "Phi"), Hw = block(s, "H_w"), Hwd = block(s, "H_wd"), Hr = block(s, "H_r"), Ie = block(s, "I_e"),
+  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"),
+           Lw = block(s, "L_w"), Lr = block(s, "L_r"), Le = block(s, "L_e"), Phi = block(s, "Phi"),
+           Hw = block(s, "H_w"), Hwd = block(s, "H_wd"), Hr = block(s, "H_r"), Ie = block(s, "I_e"),
            Ol = block(s, "O_L");
   Core k{st.nw, Phi.rows(), c.sources};
   const QM W = k.select(0, k.nw), I = k.select(k.nw, k.nl);
@@ -110,7 +114,7 @@ StateMotion state_motion(const io::Netlist& deck) {
     for (const auto& [i, sg] : d.e) add_row(volt, b, e, static_cast<Index>(i), Q(sg));
     for (const auto& [j, sg] : d.o) volt(b, k.sigma(static_cast<std::size_t>(j))) += Q(sg);
     switch (br.kind) {
-      case RlcKind::capacitor: {  // i = C u̇ (both ends on one C-component: no ρ or e part)
+      case RlcKind::capacitor: {                     // i = C u̇ (both ends on one C-component: no ρ or e part)
         std::map<std::pair<char, long>, int> level;  // ρ and e parts: both ends' cancel (one C-component)
         for (const auto& [i, sg] : d.r) level[{'r', i}] += sg;
         for (const auto& [i, sg] : d.e) level[{'e', i}] += sg;
@@ -188,19 +192,23 @@ StateMotion state_motion(const io::Netlist& deck) {
   return out;
 }
 
-std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m, bool op, const std::vector<Rational>& sigma0) {
+std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m, bool op,
+                                  const std::vector<Rational>& sigma0) {
   const RlcCircuit<Q>& c = deck.rlc;
   const StateEquations<Q> s = deck_state_equations<Q>(deck);
   const rlc::StateStructure st = state_structure(c);
-  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"), Lw = block(s, "L_w"), Lr = block(s, "L_r"),
-           Le = block(s, "L_e"), Phi = block(s, "Phi"), Hw = block(s, "H_w"), Hr = block(s, "H_r"), Ie = block(s, "I_e"), Ol = block(s, "O_L");
+  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"),
+           Lw = block(s, "L_w"), Lr = block(s, "L_r"), Le = block(s, "L_e"), Phi = block(s, "Phi"),
+           Hw = block(s, "H_w"), Hr = block(s, "H_r"), Ie = block(s, "I_e"), Ol = block(s, "O_L");
   const std::size_t nw = m.nw, nr = Grr.rows(), ne = Le.rows(), nl = m.nl, nb = c.branches.size();
   const QM sig = QM::column(sigma0);
   std::vector<Q> y(nw + nl + m.nq, Q(0));
   if (op) {
     if (!deck.node_ic.empty())
-      throw std::invalid_argument(".ic node voltages held at the DC operating point are not enclosed on the state-equation model "
-                                  "(the dense model takes them, up to " + std::to_string(kForcedBranches) + " branches)");
+      throw std::invalid_argument(
+          ".ic node voltages held at the DC operating point are not enclosed on the state-equation model "
+          "(the dense model takes them, up to " +
+          std::to_string(kForcedBranches) + " branches)");
     // unknowns (w, ρ, e, i): KCL on w, ρ and island rows at ẇ = 0, and Φ i̇ = 0 on the inductors
     const std::size_t n = nw + nr + ne + nl;
     QM a(n, n + 1);
@@ -212,11 +220,15 @@ std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m,
     put(Gww, 0, 0), put(Gwr, 0, nw), put(Lw, 0, nw + nr + ne), put(bw, 0, n);
     put(Gwr.transpose(), nw, 0), put(Grr, nw, nw), put(Lr, nw, nw + nr + ne), put(br, nw, n);
     put(Le, nw + nr, nw + nr + ne), put(be, nw + nr, n);
-    put(Lw.transpose(), nw + nr + ne, 0), put(Lr.transpose(), nw + nr + ne, nw), put(Le.transpose(), nw + nr + ne, nw + nr), put(bl, nw + nr + ne, n);
+    put(Lw.transpose(), nw + nr + ne, 0), put(Lr.transpose(), nw + nr + ne, nw),
+        put(Le.transpose(), nw + nr + ne, nw + nr), put(bl, nw + nr + ne, n);
     const Rref<Q> r = rref(a);
     if (!r.pivots.empty() && r.pivots.back() == n)
-      throw std::invalid_argument("no DC operating point exists (a voltage source across an inductor loop, or current sources into a capacitor cutset)");
-    if (r.pivots.size() != n) throw std::invalid_argument("the DC operating point is not unique (ngspice: singular matrix)");
+      throw std::invalid_argument(
+          "no DC operating point exists (a voltage source across an inductor loop, or current sources into a capacitor "
+          "cutset)");
+    if (r.pivots.size() != n)
+      throw std::invalid_argument("the DC operating point is not unique (ngspice: singular matrix)");
     for (std::size_t i = 0; i < nw; ++i) y[i] = r.r(i, n);
     for (std::size_t i = 0; i < nl; ++i) y[nw + i] = r.r(nw + nr + ne + i, n);
     return y;

@@ -32,16 +32,24 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
   }
   Solution s;
   if (deck.circuit.branches.size() > pipeline::kStructuredBranches) {  // beyond the dense exact elimination
-    const std::string n = std::to_string(deck.circuit.branches.size()), limit = std::to_string(pipeline::kStructuredBranches);
+    const std::string n = std::to_string(deck.circuit.branches.size()),
+                      limit = std::to_string(pipeline::kStructuredBranches);
     if (!lc::physical(pipeline::lc_graph_of(deck)))
-      throw io::InputError(deck.file + ": expected at most " + limit + " branches for an LC circuit with a negative L or C (dense exact " +
-                           "elimination, O(n^3)), found " + n + " (physical circuits take the graph route at any size)");
+      throw io::InputError(deck.file + ": expected at most " + limit +
+                           " branches for an LC circuit with a negative L or C (dense exact " +
+                           "elimination, O(n^3)), found " + n +
+                           " (physical circuits take the graph route at any size)");
     s = pipeline::lc_graph_solution<Rational>(deck, p.linear.variables, [](const Rational& q) { return q; });
     s.circuit = io::circuit_facts(deck);
-    s.note = "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8: L, C > 0 decide nothing), exact: the tower, its "
-             "equations and the state equations (dcad/reference/rlc_state.hpp); the motion in (q, v, p) comes from the structured route "
-             "(dense exact elimination), up to " + limit + " branches";
-    if (parts.reduced && pipeline::graph_route_holds(deck.rlc)) s.state = pipeline::deck_state_equations<Rational>(deck);
+    s.note =
+        "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8: L, C > 0 decide nothing), exact: the "
+        "tower, its "
+        "equations and the state equations (dcad/reference/rlc_state.hpp); the motion in (q, v, p) comes from the "
+        "structured route "
+        "(dense exact elimination), up to " +
+        limit + " branches";
+    if (parts.reduced && pipeline::graph_route_holds(deck.rlc))
+      s.state = pipeline::deck_state_equations<Rational>(deck);
     return s;
   }
   int bits = 0;
@@ -55,8 +63,8 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
   s.note = "structured route for circuits (CEF §6 closed form and D̄_Δ on M_c, exact)" +
            std::string(deck.circuit.branches.size() <= pipeline::kAdaptedBranches
                            ? ""
-                           : "; the §7 adapted constraints (T*TQ, 4n variables) are given up to " + std::to_string(pipeline::kAdaptedBranches) +
-                                 " branches");
+                           : "; the §7 adapted constraints (T*TQ, 4n variables) are given up to " +
+                                 std::to_string(pipeline::kAdaptedBranches) + " branches");
   return s;
 }
 
@@ -65,8 +73,10 @@ Solution expression(const io::LagrangianCase& c) {
     try {
       return pipeline::solve_pointwise_exact_near(c);
     } catch (const NotExactHere& e) {
-      throw io::InputError(c.file + ": /initial: expected a point where every value of the formulas is rational (the exact route), found " +
-                           e.what() + "; give such a point (e.g. angles 0) or use --backend fast or certified");
+      throw io::InputError(
+          c.file +
+          ": /initial: expected a point where every value of the formulas is rational (the exact route), found " +
+          e.what() + "; give such a point (e.g. angles 0) or use --backend fast or certified");
     }
   });
 }
@@ -77,10 +87,14 @@ Solution implicit(const io::LagrangianCase& c) {
       return pipeline::solve_implicit_exact(c);
     } catch (const NotExactHere& e) {
       if (!c.has_initial)
-        throw io::InputError(c.file + ": /implicit: expected equations whose values are rational at dcad's default points (the exact route), found " +
+        throw io::InputError(c.file +
+                             ": /implicit: expected equations whose values are rational at dcad's default points (the "
+                             "exact route), found " +
                              e.what() + "; give `initial` values where they are, or use --backend fast or certified");
-      throw io::InputError(c.file + ": /initial: expected a point where every value of the equations is rational (the exact route), found " +
-                           e.what() + "; give such a point or use --backend fast or certified");
+      throw io::InputError(
+          c.file +
+          ": /initial: expected a point where every value of the equations is rational (the exact route), found " +
+          e.what() + "; give such a point or use --backend fast or certified");
     }
   });
 }
@@ -94,7 +108,8 @@ Solution solve(const io::Problem& p, const Parts& parts) {
                : p.form == io::Form::dae      ? pipeline::solve_dae(p.dae)
                : p.form == io::Form::netlist  ? netlist(p, parts)
                                               : linear(p.linear, parts);
-  if (p.form == io::Form::netlist && !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+  if (p.form == io::Form::netlist &&
+      !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
     s.certified = unknown;
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
   }

@@ -69,7 +69,8 @@ struct Checked {
 /// chart at `points` points of M_c (CONTRACT "Formulas for nonlinear results").
 Checked check(const std::string& result_file, const io::Problem& p, std::size_t points = 20);
 /// The same for a result given as JSON text (`name` stands for it in messages): no file needed.
-Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name = "<result>", std::size_t points = 20);
+Checked check_text(const std::string& result_json, const io::Problem& p, const std::string& name = "<result>",
+                   std::size_t points = 20);
 
 /// `dcad inspect`: what the problem's Dirac structure is (a `dirac` case; InputError otherwise).
 Inspection inspect(const io::Problem& p, Backend backend);
@@ -86,12 +87,15 @@ struct SimulateOptions {
   Backend backend = Backend::certified;
   Initial initial = Initial::deck;
   Route route = Route::automatic;
-  std::vector<std::string> columns;  ///< the CSV's variables after t (empty: every variable); UsageError for a name not in the problem
-  bool enclose = false;  ///< netlists: rigorous enclosures (Arb balls on the exact model); columns rad_q, rad_v, rad_p added
+  std::vector<std::string>
+      columns;  ///< the CSV's variables after t (empty: every variable); UsageError for a name not in the problem
+  bool enclose =
+      false;  ///< netlists: rigorous enclosures (Arb balls on the exact model); columns rad_q, rad_v, rad_p added
 };
 struct Simulated {
   long rows = 0;
-  double error_estimate = 0;   ///< largest |double − long double| over the run, relative to the scale of each variable's kind
+  double error_estimate =
+      0;  ///< largest |double − long double| over the run, relative to the scale of each variable's kind
   std::string worst_variable;  ///< where it is largest
   std::string estimate_kind;   ///< what error_estimate measures (empty: the long-double shadow's difference)
 };
@@ -100,7 +104,8 @@ std::vector<std::string> simulate_columns(const io::Problem& p);
 /// `dcad simulate`: the motion from the problem's initial condition on M_c, one CSV row per output step
 /// to `csv` as it is computed; warnings, notes and the run's summary to `log`.  With `energy` (systems
 /// with resistors, sources or forces only; UsageError otherwise), the energy balance per row.
-Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log, std::ostream* energy = nullptr);
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log,
+                   std::ostream* energy = nullptr);
 
 /// `dcad check WAVEFORM DECK` (CONTRACT "Checking a simulator's waveform"): another simulator's
 /// transient output against DECK's exact flow from the state the simulator started from, at the file's
@@ -108,8 +113,8 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
 struct WaveformOptions {
   double rtol = 1e-3, atol = 0;  ///< a vector agrees where |found − exact| ≤ atol + rtol · max |exact| over the run
   Initial initial = Initial::deck;
-  bool keep_exact = false;       ///< also return the exact values at every time point (for a plot)
-  bool enclose = true;           ///< build rigorous enclosures where dcad can (certified: true); false: the double flow only
+  bool keep_exact = false;  ///< also return the exact values at every time point (for a plot)
+  bool enclose = true;      ///< build rigorous enclosures where dcad can (certified: true); false: the double flow only
 };
 struct WaveformVector {
   std::string name;      ///< as the file names it
@@ -117,11 +122,12 @@ struct WaveformVector {
   double max_error = 0;  ///< largest |found − exact| over the compared points
   double at = 0;         ///< its time
   double exact = 0, found = 0;
-  double scale = 0;      ///< max |exact| over the run (its kind's largest, for a vector near 0: kind_scale)
-  bool kind_scale = false;  ///< the vector's largest |exact| is below 1e-12 of its kind's, which is its scale (CONTRACT)
+  double scale = 0;  ///< max |exact| over the run (its kind's largest, for a vector near 0: kind_scale)
+  bool kind_scale =
+      false;  ///< the vector's largest |exact| is below 1e-12 of its kind's, which is its scale (CONTRACT)
   bool agree = true;
-  bool at_corner = false;         ///< the worst point is a source corner (either one-sided value was allowed)
-  long skipped_at_jump = 0;       ///< points at t = 0 after a jump onto M_c, not compared
+  bool at_corner = false;    ///< the worst point is a source corner (either one-sided value was allowed)
+  long skipped_at_jump = 0;  ///< points at t = 0 after a jump onto M_c, not compared
   /// how far dcad's own value may be off: the flow's error estimate times the largest value of the
   /// vector's kind over the run (every node potential for a voltage, every branch current for a
   /// current …)
@@ -131,29 +137,33 @@ struct WaveformVector {
   bool decided = true;
 };
 struct WaveformChecked {
-  bool agree = true;              ///< exit 0 (true) or 3
-  bool certified = false;         ///< every exact value a rigorous enclosure
-  std::string certified_reason;   ///< why not
-  std::string format;             ///< the file's format
-  long points = 0;                ///< time points in the file
-  double error_estimate = 0;      ///< the exact flow's own error estimate (relative to the state)
+  bool agree = true;             ///< exit 0 (true) or 3
+  bool certified = false;        ///< every exact value a rigorous enclosure
+  std::string certified_reason;  ///< why not
+  std::string format;            ///< the file's format
+  long points = 0;               ///< time points in the file
+  double error_estimate = 0;     ///< the exact flow's own error estimate (relative to the state)
   /// the variables (q_C, v_L, p_L) that jump onto M_c at t = 0, decided on the exact model (the dense
   /// route's rationals up to kForcedBranches branches; beyond it the loops and cutsets that can move them)
   std::vector<std::string> jumped;
-  double first_after_zero = 0;    ///< the file's first time after 0
+  double first_after_zero = 0;  ///< the file's first time after 0
   std::vector<WaveformVector> vectors;
-  std::size_t worst = 0;          ///< the vector with the largest error relative to its scale (what --plot draws by default)
-  std::vector<std::vector<double>> exact;  ///< with keep_exact: exact[k][i], vector k at the file's time i (the value compared)
+  std::size_t worst = 0;  ///< the vector with the largest error relative to its scale (what --plot draws by default)
+  std::vector<std::vector<double>>
+      exact;  ///< with keep_exact: exact[k][i], vector k at the file's time i (the value compared)
 };
 /// InputError for an unreadable file, a vector name that DECK cannot map, or a circuit outside the
 /// route that evaluates its flow.
-WaveformChecked check_waveform(const io::Traces& traces, const io::Problem& p, const WaveformOptions& options, std::ostream& log);
+WaveformChecked check_waveform(const io::Traces& traces, const io::Problem& p, const WaveformOptions& options,
+                               std::ostream& log);
 /// The same on a stream of points (io::open_traces: an ngspice binary raw file is read from disk in chunks,
 /// so memory does not grow with the file; it is read once per precision of the enclosures).
-WaveformChecked check_waveform(io::TraceStream& traces, const io::Problem& p, const WaveformOptions& options, std::ostream& log);
+WaveformChecked check_waveform(io::TraceStream& traces, const io::Problem& p, const WaveformOptions& options,
+                               std::ostream& log);
 /// Its report: for people, or the CONTRACT's JSON ({"agree", "certified", "vectors": [{"name", "max_error",
 /// "at", "exact", "found", "scale", "agree"}]} and more keys).
-std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file, const WaveformOptions& options);
+std::string waveform_text(const WaveformChecked& c, const std::string& waveform_file, const std::string& deck_file,
+                          const WaveformOptions& options);
 std::string waveform_json(const WaveformChecked& c, const WaveformOptions& options);
 
 /// The golden corpus: $DCAD_CASES, else the source tree's cases/.

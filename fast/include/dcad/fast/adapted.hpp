@@ -37,7 +37,7 @@ struct AdaptedToPrimary {
   MatrixXd constraints;
   AdaptedConstraints adapted;
 };
-AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary, const MatrixXd& leaf,
-                                    const Options& opt = {});
+AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary,
+                                    const MatrixXd& leaf, const Options& opt = {});
 
 }  // namespace dcad::fast

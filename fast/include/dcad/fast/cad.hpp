@@ -76,10 +76,11 @@ struct InitialPoint {
   bool consistent = false;
   VectorXd point;
   int level = 0;
-  VectorXd violated;   ///< the first equation they cannot meet, [a | b]
+  VectorXd violated;    ///< the first equation they cannot meet, [a | b]
   Truth certain = yes;  ///< every consistency decision was certain (and the tower was)
 };
-InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given, const Options& opt = {});
+InitialPoint consistent_initial_point(const CadResult& r, const std::vector<std::optional<double>>& given,
+                                      const Options& opt = {});
 
 struct ReducedEquations {
   std::vector<int> coords;

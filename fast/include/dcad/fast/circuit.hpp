@@ -30,12 +30,12 @@
 
 namespace dcad::fast {
 
-using dcad::BranchKind;     // dcad/types.hpp: the reference's type
-using graph::Loop;          // dcad/graph.hpp: the topology every route shares
+using dcad::BranchKind;  // dcad/types.hpp: the reference's type
+using graph::Loop;       // dcad/graph.hpp: the topology every route shares
 using graph::LoopBranch;
 using CircuitBranch = lc::Branch<double>;  ///< kind, nodes (−1 = ground), L or C
 using Term = lc::Term<double>;
-using SparseRow = lc::Row<double>;         ///< Σ coeff·x_var = 0
+using SparseRow = lc::Row<double>;  ///< Σ coeff·x_var = 0
 
 struct CircuitGraph {
   std::size_t nodes = 0;  ///< non-ground nodes 0 … nodes−1
@@ -50,7 +50,8 @@ inline Options assessed_values(const Options& opt, const CircuitGraph& g) {
   Options out = opt;
   double lo = 1, hi = 1;
   for (const CircuitBranch& b : g.branches)
-    if (b.value != 0 && std::isfinite(b.value)) lo = std::min(lo, std::abs(b.value)), hi = std::max(hi, std::abs(b.value));
+    if (b.value != 0 && std::isfinite(b.value))
+      lo = std::min(lo, std::abs(b.value)), hi = std::max(hi, std::abs(b.value));
   if (hi / lo > 1 / out.nonzero_factor) out.input_well_scaled = false;
   out.input_assessed = true;
   return out;
@@ -69,7 +70,5 @@ CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt = {});
 
 /// No negative L or C: then circuit_tower takes the combinatorial route and decides nothing.
 bool is_physical(const CircuitGraph& g);
-
-
 
 }  // namespace dcad::fast

@@ -17,6 +17,7 @@ struct CircuitMotion {
 };
 
 /// `t` must be circuit_tower(g).  Throws std::invalid_argument for `coords` that do not parametrize M_c.
-CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::vector<int> coords = {}, const Options& opt = {});
+CircuitMotion circuit_motion(const CircuitGraph& g, const CircuitTower& t, std::vector<int> coords = {},
+                             const Options& opt = {});
 
 }  // namespace dcad::fast

@@ -21,7 +21,9 @@ struct DiracStructure {
 
 /// The raw data of a Dirac structure for `assessed` (rank.hpp): the presymplectic form it is the graph of,
 /// else its basis (orthonormal, so a deficiency decided on it is certain only if the caller vouches for it).
-inline const MatrixXd& dirac_data(const DiracStructure& d) { return d.graph_of.size() ? d.graph_of : d.given.size() ? d.given : d.d.columns(); }
+inline const MatrixXd& dirac_data(const DiracStructure& d) {
+  return d.graph_of.size() ? d.graph_of : d.given.size() ? d.given : d.d.columns();
+}
 
 /// Lemma 4.1: dim D = n and ⟨⟨D, D⟩⟩ = 0; `why` explains a negative answer.
 struct DiracCheck {

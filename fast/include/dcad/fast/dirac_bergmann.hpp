@@ -27,7 +27,8 @@ struct DiracBergmannResult {
 DiracBergmannResult dirac_bergmann(const ConstrainedSystem& s, const Options& opt = {});
 
 /// Λ^(c)_x for the given primary rows (decided).
-AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x, const Options& opt = {});
+AffineSubspace multipliers(const ConstrainedSystem& s, const DiracBergmannResult& r, const VectorXd& x,
+                           const Options& opt = {});
 
 struct ConstraintClasses {
   int s = 0;

@@ -18,15 +18,16 @@ namespace dcad::fast {
 using Operator = std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& y, Eigen::VectorXd* side)>;
 
 struct KrylovOptions {
-  int max_basis = 30;        ///< m: Arnoldi vectors per substep
-  double tol = 1e-14;        ///< local error per unit of τ, absolute, in the norm of w (scale w first)
+  int max_basis = 30;           ///< m: Arnoldi vectors per substep
+  double tol = 1e-14;           ///< local error per unit of τ, absolute, in the norm of w (scale w first)
   long max_products = 2000000;  ///< per advance(): beyond it std::runtime_error (a stiff operator: never a hang)
 };
 
 /// One integrator kept across calls: its step suggestion and its statistics.
 class KrylovExp {
  public:
-  KrylovExp(Operator a, std::size_t side_size, KrylovOptions opt = {}) : a_(std::move(a)), side_size_(side_size), opt_(opt) {}
+  KrylovExp(Operator a, std::size_t side_size, KrylovOptions opt = {})
+      : a_(std::move(a)), side_size_(side_size), opt_(opt) {}
   /// w ← exp(τA) w; `integral` (side_size) += ∫₀^τ g(exp(sA) w) ds.  τ ≥ 0.  std::runtime_error after
   /// max_products products in one call.
   void advance(double tau, Eigen::VectorXd& w, Eigen::VectorXd& integral);

@@ -11,10 +11,10 @@ namespace dcad::fast {
 
 struct ForcedSystem {
   LinearSystem s;
-  MatrixXd force;         ///< F (N×N; empty = 0)
+  MatrixXd force;  ///< F (N×N; empty = 0)
   int sources = 0;
-  MatrixXd source_force;  ///< B (N×m)
-  MatrixXd shift;         ///< Z (N×m)
+  MatrixXd source_force;      ///< B (N×m)
+  MatrixXd shift;             ///< Z (N×m)
   MatrixXd given_conditions;  ///< rows [1 | σ⁽⁰⁾]
 };
 

@@ -50,7 +50,7 @@ using Eigen::VectorXd;
 /// one numbered `uncertain_at` uncertain whatever its evidence.  Every result built on a decision
 /// must then say uncertain (prop_uncertainty: a verdict dropped at any place that combines them fails).
 struct DecisionProbe {
-  long made = 0;          ///< decisions made so far
+  long made = 0;           ///< decisions made so far
   long uncertain_at = -1;  ///< the decision (0-based) to report uncertain; −1: none
 };
 
@@ -90,7 +90,9 @@ void assess_input(const Eigen::Ref<const MatrixXd>& a, Options& opt);
 /// public entry point's raw input: matrices, vectors, a caller's values) and input_assessed set.
 Options assessed(const Options& opt, std::initializer_list<Eigen::Ref<const MatrixXd>> data);
 /// Whether a rank deficiency may be certain with these options: assessed, exact and well scaled.
-inline bool deficiency_provable(const Options& opt) { return opt.input_assessed && opt.input_exact && opt.input_well_scaled; }
+inline bool deficiency_provable(const Options& opt) {
+  return opt.input_assessed && opt.input_exact && opt.input_well_scaled;
+}
 
 /// A decision is made in one of three ways (the evidence says which):
 ///  * by the norm alone: ‖A‖_F ≤ τ0 bounds every singular value, so rank 0 without a factorization
@@ -119,9 +121,9 @@ struct RankDecision {
   double kept_lower = 0;                ///< σ_rank (QR: a lower bound of it); ∞ if rank = 0
   double dropped_upper = 0;             ///< σ_{rank+1} (QR: an upper bound of it); 0 if none
   bool by_qr = false;
-  bool by_norm = false;                 ///< rank 0 because ‖A‖_F ≤ τ0 (then σ₁ ≤ ‖A‖_F): no factorization
-  bool by_two_routes = false;           ///< decide_rank_either: the verdict of two routes
-  Truth certain = yes;                  ///< yes, or unknown
+  bool by_norm = false;          ///< rank 0 because ‖A‖_F ≤ τ0 (then σ₁ ≤ ‖A‖_F): no factorization
+  bool by_two_routes = false;    ///< decide_rank_either: the verdict of two routes
+  Truth certain = yes;           ///< yes, or unknown
   std::string describe() const;  ///< evidence in one line
 };
 
@@ -138,8 +140,8 @@ RankDecision decide_rank(const MatrixXd& a, const VectorXd& sigma, double scale,
 /// both describe (fast::forced_tower: the new rows of a step, from [old; candidates] and from the
 /// candidates projected off the old rows): certain when the two agree and either is certain (then with
 /// B's evidence), else A's, uncertain.  One decision (DecisionProbe counts it once).
-RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b, const VectorXd& sigma_b,
-                                double scale_b, const Options& opt);
+RankDecision decide_rank_either(const MatrixXd& a, int offset, double scale_a, const MatrixXd& b,
+                                const VectorXd& sigma_b, double scale_b, const Options& opt);
 
 /// Singular value decomposition A = U Σ Vᵀ with full U and V (one instantiation, in rank.cpp).
 struct Svd {
@@ -173,13 +175,13 @@ class RankRevealing {
   MatrixXd q_columns(Eigen::Index from, Eigen::Index count) const;
   RankDecision d_;
   Eigen::Index m_ = 0;
-  MatrixXd qr_;                                                   // QR: Eigen's compact Householder form
-  VectorXd tau_;                                                  // QR: Householder coefficients
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic> p_;   // QR: A P = Q R
-  MatrixXd u_;                                                    // SVD: U (m×m)
-  MatrixXd v_;                                                    // SVD: V[:, 0:r]
-  Eigen::Index n_ = 0;                                            // columns of A
-  VectorXd sigma_;                                                // SVD: σ_1..σ_r
+  MatrixXd qr_;                                                 // QR: Eigen's compact Householder form
+  VectorXd tau_;                                                // QR: Householder coefficients
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic> p_;  // QR: A P = Q R
+  MatrixXd u_;                                                  // SVD: U (m×m)
+  MatrixXd v_;                                                  // SVD: V[:, 0:r]
+  Eigen::Index n_ = 0;                                          // columns of A
+  VectorXd sigma_;                                              // SVD: σ_1..σ_r
 };
 
 /// An orthonormal basis (columns) of the orthogonal complement of the column span of an

@@ -70,7 +70,7 @@ class Model {
  public:
   explicit Model(const Network& c);
 
-  std::size_t state_size() const { return nw_ + nl_; }   ///< x = (w, i_L)
+  std::size_t state_size() const { return nw_ + nl_; }    ///< x = (w, i_L)
   std::size_t charge_size() const { return qx_.size(); }  ///< integrated charges (non-capacitor branches)
   std::size_t branches() const { return c_.branches.size(); }
   std::size_t islands() const { return ne_; }
@@ -78,7 +78,8 @@ class Model {
 
   /// ẋ = f(x, σ, σ̇) and, if `current` is given, the currents of the non-capacitor branches
   /// (charge_size(), in the order of charge_branches()).  Linear in (x, σ, σ̇).
-  void rate(const double* x, const double* sigma, const double* dsigma, double* xdot, double* current = nullptr, Vec* potentials = nullptr) const;
+  void rate(const double* x, const double* sigma, const double* dsigma, double* xdot, double* current = nullptr,
+            Vec* potentials = nullptr) const;
   const std::vector<std::size_t>& charge_branches() const { return qx_; }
 
   /// All branch quantities at a state, with the integrated charges `qx` (charge_size()).
@@ -109,7 +110,7 @@ class Model {
 
   /// The equations of motion as sparse matrices (the library's route to them at any size).
   struct Matrices {
-    SpMat T;            ///< supernode potentials E = T (w, ρ, e)
+    SpMat T;  ///< supernode potentials E = T (w, ρ, e)
     SpMat Cww, Gww, Gwr, Grr, Lw, Lr, Le, phi;
     SpMat Hw, Hwd, Hr, Ie, Ol;  ///< source maps: h_w = Hw σ + Hwd σ̇, h_ρ = Hr σ, I_e, o_L
   };
@@ -118,11 +119,11 @@ class Model {
  private:
   Network c_;
   std::size_t nsup_ = 0, nw_ = 0, nr_ = 0, ne_ = 0, nl_ = 0;
-  std::vector<long> sup_;                         ///< node → supernode (−1 ground)
-  std::vector<long> wv_, croot_;                  ///< supernode → its w variable (−1: a root), its C-component's root (−1: ground's)
-  std::vector<std::size_t> lidx_;                 ///< inductor k → branch
-  std::vector<long> lof_;                         ///< branch → inductor index or −1
-  std::vector<std::size_t> qx_;                   ///< non-capacitor branches
+  std::vector<long> sup_;         ///< node → supernode (−1 ground)
+  std::vector<long> wv_, croot_;  ///< supernode → its w variable (−1: a root), its C-component's root (−1: ground's)
+  std::vector<std::size_t> lidx_;  ///< inductor k → branch
+  std::vector<long> lof_;          ///< branch → inductor index or −1
+  std::vector<std::size_t> qx_;    ///< non-capacitor branches
   // V forest for the currents of voltage sources (leaves first): (node, branch, parent node)
   struct TreeEdge {
     long node, parent;
@@ -130,9 +131,10 @@ class Model {
   };
   std::vector<TreeEdge> vtree_;
   Matrices m_;
-  SpMat phi_inv_, ob_, on_;  ///< …; o per node (nodes × sources)  ///< Φ⁻¹ (block inverse); o_b for every branch (branches × sources)
+  SpMat phi_inv_, ob_,
+      on_;  ///< …; o per node (nodes × sources)  ///< Φ⁻¹ (block inverse); o_b for every branch (branches × sources)
   SpMat AC_, AR_, AL_, AI_;  ///< supernode incidences (rows supernodes) per kind
-  SpMat Crow_;               ///< i_C = C (A_Cᵀ T_w ẇ + o_C σ̇): the map ẇ → capacitor currents (C-branches × w)
+  SpMat Crow_;  ///< i_C = C (A_Cᵀ T_w ẇ + o_C σ̇): the map ẇ → capacitor currents (C-branches × w)
   std::vector<std::size_t> cidx_, ridx_, iidx_;
   Eigen::SimplicialLLT<SpMat> cww_, grr_, schur_;
   Vec rdiag_g_, cdiag_;

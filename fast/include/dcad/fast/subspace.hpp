@@ -34,9 +34,7 @@ class Subspace {
   const RankDecision& evidence() const { return evidence_; }
   /// σ₁/σ_r of the spanning set this basis came from (1 for a basis built orthonormal): rounding
   /// moves the subspace by about ε times this (Wedin), the scale of any test on its vectors.
-  double conditioning() const {
-    return evidence_.rank > 0 ? evidence_.largest / evidence_.kept_lower : 1.0;
-  }
+  double conditioning() const { return evidence_.rank > 0 ? evidence_.largest / evidence_.kept_lower : 1.0; }
   Subspace& and_certain(Truth c) {
     certain_ &= c;
     return *this;
@@ -79,6 +77,7 @@ struct AffineSubspace {
 /// the product is all rounding residue, its residue would be decided its rank.  Where rhs_scale
 /// exceeds scale, solvability is b's part off im A (an orthonormal complement from A's factorization),
 /// decided at rhs_scale: a right-hand side computed from large factors is not held to A's threshold.
-AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {}, double scale = -1, double rhs_scale = -1);
+AffineSubspace solve(const MatrixXd& a, const VectorXd& b, const Options& opt = {}, double scale = -1,
+                     double rhs_scale = -1);
 
 }  // namespace dcad::fast

@@ -61,8 +61,8 @@ using Loop = std::vector<LoopBranch>;
 /// forest is breadth first (short loops) and takes whole components of preferred edges at once.
 /// (With keep = non-inductive and prefer = empty, the loops through a capacitor are CEF Thm 6.4's
 /// KVLPC loops and the others lie in the empty subgraph.)  O(edges + total loop length).
-inline std::vector<Loop> fundamental_loops(std::size_t nodes, const std::vector<Edge>& edges, const std::vector<bool>& keep,
-                                           const std::vector<bool>& prefer) {
+inline std::vector<Loop> fundamental_loops(std::size_t nodes, const std::vector<Edge>& edges,
+                                           const std::vector<bool>& keep, const std::vector<bool>& prefer) {
   const std::size_t nv = nodes + 1, n = edges.size();
   std::vector<std::size_t> start(nv + 1, 0), adj;  // CSR adjacency of the kept edges
   for (std::size_t b = 0; b < n; ++b)
@@ -81,7 +81,9 @@ inline std::vector<Loop> fundamental_loops(std::size_t nodes, const std::vector<
   const std::size_t none = static_cast<std::size_t>(-1);
   std::vector<std::size_t> parent_edge(nv, none), parent(nv, none), depth(nv, 0), queue, flood;
   std::vector<bool> seen(nv, false), in_tree(n, false);
-  const auto other = [&](std::size_t b, std::size_t v) { return vertex(edges[b].from) == v ? vertex(edges[b].to) : vertex(edges[b].from); };
+  const auto other = [&](std::size_t b, std::size_t v) {
+    return vertex(edges[b].from) == v ? vertex(edges[b].to) : vertex(edges[b].from);
+  };
   const auto reach = [&](std::size_t b, std::size_t from, std::size_t to) {
     seen[to] = true;
     parent_edge[to] = b;

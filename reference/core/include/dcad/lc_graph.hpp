@@ -37,7 +37,7 @@ using Row = std::vector<Term<N>>;  ///< Σ coeff·x_var = 0
 /// M_0 ⊋ M_1 and the loops; the later steps of the physical route (or of a signed one) are added to it.
 template <class N>
 struct Tower {
-  std::vector<long> dims;                     ///< dim M_0 … M_c
+  std::vector<long> dims;                      ///< dim M_0 … M_c
   std::vector<std::vector<Row<N>>> equations;  ///< the constraints added to reach M_k (k = 0: none)
   int steps = 0;
   long solution_rank = 0;
@@ -93,7 +93,8 @@ template <class N>
 Row<N> kvl_row(const std::vector<Branch<N>>& branches, const graph::Loop& loop, std::size_t offset) {
   Row<N> r;
   for (const graph::LoopBranch& lb : loop)
-    if (branches[lb.branch].kind == BranchKind::capacitor) r.push_back({offset + lb.branch, N(lb.sign) / branches[lb.branch].value});
+    if (branches[lb.branch].kind == BranchKind::capacitor)
+      r.push_back({offset + lb.branch, N(lb.sign) / branches[lb.branch].value});
   std::sort(r.begin(), r.end(), [](const Term<N>& a, const Term<N>& b) { return a.var < b.var; });
   return r;
 }

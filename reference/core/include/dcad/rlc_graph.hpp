@@ -69,7 +69,9 @@ inline std::vector<bool> of_kinds(const std::vector<Branch>& branches, std::init
 inline Tower tower(std::size_t nodes, const std::vector<Branch>& branches) {
   using K = Kind;
   const std::vector<graph::Edge> e = edges(branches);
-  const auto z = [&](std::initializer_list<Kind> kinds) { return static_cast<long>(graph::cycle_rank(nodes, e, of_kinds(branches, kinds))); };
+  const auto z = [&](std::initializer_list<Kind> kinds) {
+    return static_cast<long>(graph::cycle_rank(nodes, e, of_kinds(branches, kinds)));
+  };
   const long n = static_cast<long>(branches.size());
   const long z_vw = z({K::voltage, K::wire});
   const long d0 = 3 * n, d1 = n + z({K::inductor, K::capacitor, K::resistor, K::voltage, K::wire});
@@ -83,7 +85,8 @@ inline Tower tower(std::size_t nodes, const std::vector<Branch>& branches) {
   t.solution_rank = z_vw;
   const std::vector<bool> current = of_kinds(branches, {K::current});
   t.current_cutsets = graph::cutsets(nodes, e, current, current);
-  for (graph::Loop& l : graph::fundamental_loops(nodes, e, of_kinds(branches, {K::voltage, K::wire}), of_kinds(branches, {K::wire}))) {
+  for (graph::Loop& l :
+       graph::fundamental_loops(nodes, e, of_kinds(branches, {K::voltage, K::wire}), of_kinds(branches, {K::wire}))) {
     bool source = false;
     for (const graph::LoopBranch& lb : l) source = source || branches[lb.branch].kind == K::voltage;
     if (source) t.voltage_loops.push_back(std::move(l));

@@ -33,7 +33,8 @@ struct Forest {
   std::vector<bool> in_tree;
   std::vector<std::size_t> root;
 };
-inline Forest forest(std::size_t nv, const std::vector<std::pair<std::size_t, std::size_t>>& ends, const std::vector<bool>& use) {
+inline Forest forest(std::size_t nv, const std::vector<std::pair<std::size_t, std::size_t>>& ends,
+                     const std::vector<bool>& use) {
   std::vector<std::vector<std::size_t>> adj(nv);
   for (std::size_t e = 0; e < ends.size(); ++e)
     if (use[e] && ends[e].first != ends[e].second) {
@@ -71,7 +72,7 @@ struct StateStructure {
   struct Levels {
     long w = -1, r = -1, e = -1;  ///< E_s = w + ρ + e, the indices of those present (−1: absent)
   };
-  std::vector<Levels> levels;  ///< per supernode
+  std::vector<Levels> levels;   ///< per supernode
   std::vector<long> root_node;  ///< supernode → the node whose potential E_s is (offset 0)
   std::vector<long> croot;      ///< supernode → its C-component's root supernode (−1: ground's component)
   struct TreeEdge {
@@ -84,7 +85,8 @@ struct StateStructure {
 
 /// The three contractions of a circuit with `nodes` non-ground nodes; `source[b]` is branch b's index
 /// into σ (voltage sources; ignored elsewhere).
-inline StateStructure state_structure(std::size_t nodes, const std::vector<Branch>& branches, const std::vector<long>& source) {
+inline StateStructure state_structure(std::size_t nodes, const std::vector<Branch>& branches,
+                                      const std::vector<long>& source) {
   const std::size_t n = branches.size(), nv = nodes + 1;
   const auto vx = [](long node) { return static_cast<std::size_t>(node + 1); };
   StateStructure st;
@@ -120,7 +122,8 @@ inline StateStructure state_structure(std::size_t nodes, const std::vector<Branc
   std::vector<std::pair<std::size_t, std::size_t>> sends(n);
   std::vector<bool> isc(n), iscr(n);
   for (std::size_t b = 0; b < n; ++b) {
-    sends[b] = {static_cast<std::size_t>(st.super(branches[b].from) + 1), static_cast<std::size_t>(st.super(branches[b].to) + 1)};
+    sends[b] = {static_cast<std::size_t>(st.super(branches[b].from) + 1),
+                static_cast<std::size_t>(st.super(branches[b].to) + 1)};
     isc[b] = branches[b].kind == Kind::capacitor;
     iscr[b] = isc[b] || branches[b].kind == Kind::resistor;
   }
@@ -147,12 +150,14 @@ inline StateStructure state_structure(std::size_t nodes, const std::vector<Branc
     std::vector<bool> all;
     for (std::size_t b = 0; b < n; ++b) {
       if (branches[b].kind != Kind::inductor) continue;
-      iends.emplace_back(static_cast<std::size_t>(island_of[sends[b].first] + 1), static_cast<std::size_t>(island_of[sends[b].second] + 1));
+      iends.emplace_back(static_cast<std::size_t>(island_of[sends[b].first] + 1),
+                         static_cast<std::size_t>(island_of[sends[b].second] + 1));
       all.push_back(true);
     }
     const Forest fi = forest(nis + 1, iends, all);
     for (std::size_t i = 0; i < nis; ++i)
-      if (fi.root[i + 1] == fi.root[0] || fi.root[i + 1] != i + 1) ev[i] = static_cast<long>(st.ne++);  // a component's first island is its gauge
+      if (fi.root[i + 1] == fi.root[0] || fi.root[i + 1] != i + 1)
+        ev[i] = static_cast<long>(st.ne++);  // a component's first island is its gauge
   }
   st.croot.assign(ns, -1);
   for (std::size_t s = 1; s <= ns; ++s)
@@ -160,7 +165,8 @@ inline StateStructure state_structure(std::size_t nodes, const std::vector<Branc
   for (std::size_t s = 1; s <= ns; ++s) {
     const std::size_t cc = fc.root[s];
     if (cc == fc.root[0] || rv[cc] >= 0) continue;
-    if (island_of[s] >= 0 && island_root_comp[static_cast<std::size_t>(island_of[s])] == static_cast<long>(cc)) continue;
+    if (island_of[s] >= 0 && island_root_comp[static_cast<std::size_t>(island_of[s])] == static_cast<long>(cc))
+      continue;
     rv[cc] = static_cast<long>(st.nr++);
   }
   st.levels.assign(ns, {});

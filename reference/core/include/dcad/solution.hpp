@@ -52,10 +52,10 @@ struct Level {
 /// the sources' jets u(t) = (V1(t), V1'(t), …)]: λ is free, so (F, f, S) are fixed modulo span(G).
 template <class N>
 struct Motion {
-  std::vector<std::size_t> coordinates;  ///< variable indices
-  Rows<N> f_matrix;                      ///< F
-  std::vector<N> f;                      ///< f
-  Rows<N> g;                             ///< G: its columns span the free directions (solution rank many)
+  std::vector<std::size_t> coordinates;     ///< variable indices
+  Rows<N> f_matrix;                         ///< F
+  std::vector<N> f;                         ///< f
+  Rows<N> g;                                ///< G: its columns span the free directions (solution rank many)
   std::vector<std::string> source_columns;  ///< the names of u's entries (forced systems)
   Rows<N> s;                                ///< S (rows × source_columns)
 };
@@ -76,9 +76,11 @@ struct SparseBlock {
 /// with C_ww, G_rr, Φ and L_e Φ⁻¹ L_eᵀ positive definite, so (ẇ, ρ, i̇, e) is unique at every state.
 template <class N>
 struct StateEquations {
-  std::vector<std::string> w, i, r, e;  ///< names: potentials (differential), inductor currents, levels ρ, island levels e
-  std::vector<std::string> sources;     ///< σ's names ("V1(t)"); σ̇ is the same list differentiated
-  std::vector<std::pair<std::string, SparseBlock<N>>> blocks;  ///< C_ww, G_ww, G_wr, G_rr, L_w, L_r, L_e, Phi, H_w, H_wd, H_r, I_e, O_L
+  std::vector<std::string> w, i, r,
+      e;  ///< names: potentials (differential), inductor currents, levels ρ, island levels e
+  std::vector<std::string> sources;  ///< σ's names ("V1(t)"); σ̇ is the same list differentiated
+  std::vector<std::pair<std::string, SparseBlock<N>>>
+      blocks;  ///< C_ww, G_ww, G_wr, G_rr, L_w, L_r, L_e, Phi, H_w, H_wd, H_r, I_e, O_L
 };
 
 /// The constraints of M_c: r − 2s first class, 2s second class, and the Dirac bracket J*  [CEF Lemma 3.23].
@@ -117,12 +119,13 @@ struct Decisions {
 
 /// The circuit's graph facts (CEF §6 Thms 6.4, 6.6, 6.8; YM §4's sources), by signed branch names.
 struct CircuitFacts {
-  long branches = 0, nodes = 0;     ///< nodes with ground
-  long empty_loops = 0;             ///< dim of the cycle space of the empty branches (Thm 6.8)
-  long kvlpc_graph = 0;             ///< Thm 6.4's count of KVL equations of purely capacitive loops
-  bool physical = true;             ///< no negative L or C (Remark 6.7)
+  long branches = 0, nodes = 0;  ///< nodes with ground
+  long empty_loops = 0;          ///< dim of the cycle space of the empty branches (Thm 6.8)
+  long kvlpc_graph = 0;          ///< Thm 6.4's count of KVL equations of purely capacitive loops
+  bool physical = true;          ///< no negative L or C (Remark 6.7)
   bool has_empty_branch = false;
-  std::vector<std::string> branch_names, branch_kinds;  ///< LC decks: each branch and "inductive", "capacitive" or "empty"
+  std::vector<std::string> branch_names,
+      branch_kinds;  ///< LC decks: each branch and "inductive", "capacitive" or "empty"
   std::vector<std::vector<std::string>> pc_loop_branches, empty_loop_branches;
   /// with resistors, sources or couplings (YM §4): the element counts and the loops and cutsets that
   /// constrain the circuit — CV loops fix charges by the sources, LI cutsets currents
@@ -146,10 +149,10 @@ struct Formulas {
   std::vector<long> levels;              ///< for each constraint, the k of the M_k it cuts out (1: the given ones)
   std::vector<std::pair<std::string, std::string>> equations;  ///< d/dt NAME = formula, for q and v
   std::vector<std::pair<std::string, std::string>> momenta;    ///< p_NAME = ∂L/∂v
-  std::vector<std::string> free;         ///< velocities whose rate is free on M_c (0 in `equations`)
+  std::vector<std::string> free;          ///< velocities whose rate is free on M_c (0 in `equations`)
   std::vector<std::string> kept, solved;  ///< M_c's chart: coordinates kept, coordinates the constraints solve for
   std::vector<std::string> valid_where, valid_where_why;  ///< must not vanish; why each
-  std::string decided;                   ///< where the chart's decisions were made
+  std::string decided;                                    ///< where the chart's decisions were made
 };
 
 /// The values at the user's own given point where the exact tiers could not run there (an irrational
@@ -174,11 +177,11 @@ template <class N>
 struct Pointwise {
   std::string route;  ///< "pointwise exact" or "pointwise double"
   bool regular = true;
-  std::string why;    ///< inconsistent or singular: the reason
+  std::string why;        ///< inconsistent or singular: the reason
   std::string time_name;  ///< the time variable, if the system has one
   N time{};
-  std::vector<N> point, velocity;  ///< x = (q, v, p) and one ẋ at the point
-  Rows<N> gauge;                   ///< the other solutions' differences (solution rank many)
+  std::vector<N> point, velocity;              ///< x = (q, v, p) and one ẋ at the point
+  Rows<N> gauge;                               ///< the other solutions' differences (solution rank many)
   std::vector<std::string> first_constraints;  ///< M_1 as formulas: p = ∂L/∂v and the constraints
   struct Tangent {
     std::string solved_for;
@@ -231,8 +234,8 @@ struct Solution {
   std::vector<SourceCondition> source_conditions;
   std::optional<Pointwise<N>> pointwise;  ///< the expression form
   Decisions decisions;
-  std::vector<std::string> warnings;      ///< the reader's (a netlist's ignored cards …)
-  std::string note;                       ///< how the result was reached; why it is not certified
+  std::vector<std::string> warnings;  ///< the reader's (a netlist's ignored cards …)
+  std::string note;                   ///< how the result was reached; why it is not certified
 
   std::vector<long> dims() const {
     std::vector<long> d;
@@ -318,11 +321,13 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
     o.motion = Motion<To>{m.coordinates, rows(m.f_matrix), vec(m.f), rows(m.g), m.source_columns, rows(m.s)};
   }
   if (s.state) o.state = map_state<To>(*s.state, f);
-  if (s.classes) o.classes = Classes<To>{s.classes->first_class, s.classes->second_class, eqs(s.classes->second_class_constraints),
-                                         rows(s.classes->dirac_bracket)};
+  if (s.classes)
+    o.classes = Classes<To>{s.classes->first_class, s.classes->second_class, eqs(s.classes->second_class_constraints),
+                            rows(s.classes->dirac_bracket)};
   if (s.adapted)
-    o.adapted = Adapted<To>{s.adapted->setting, s.adapted->variables, s.adapted->s_prime, s.adapted->secondary_first_class,
-                            eqs(s.adapted->chi), eqs(s.adapted->abridged)};
+    o.adapted =
+        Adapted<To>{s.adapted->setting,  s.adapted->variables,    s.adapted->s_prime, s.adapted->secondary_first_class,
+                    eqs(s.adapted->chi), eqs(s.adapted->abridged)};
   o.circuit = s.circuit;
   o.source_names = s.source_names;
   o.source_conditions = s.source_conditions;

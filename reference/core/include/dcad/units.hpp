@@ -16,7 +16,7 @@
 namespace dcad {
 
 struct Units {
-  int a = 0, b = 0;  ///< L0 = 10^a, C0 = 10^b (a + b even)
+  int a = 0, b = 0;                      ///< L0 = 10^a, C0 = 10^b (a + b even)
   int m() const { return (a + b) / 2; }  ///< T = 10^m
   int r() const { return (a - b) / 2; }  ///< R0 = 10^r
 

@@ -9,18 +9,19 @@ namespace dcad::reference {
 
 template <class T>
 struct AdaptedConstraints {
-  Index s_prime = 0;             ///< s' = rank Φ', Φ' = ({φ_i, φ_j}), i primary, j all
-  Index s = 0;                   ///< 2s = rank Φ, Φ = ({φ_i, φ_j}), i, j all
-  std::vector<Index> chi;        ///< χ'_1 … χ'_{s'} (primary), then χ''_{s'+1} … χ''_{2s} (not primary)
-  std::vector<Index> abridged;   ///< the primary φ_k of E_AT = E + λ^k φ_k: those not chosen as χ'
-  Matrix<T> dirac_tensor;        ///< J*_(χ) = J − J Gᵀ Σ⁻¹ G J
+  Index s_prime = 0;            ///< s' = rank Φ', Φ' = ({φ_i, φ_j}), i primary, j all
+  Index s = 0;                  ///< 2s = rank Φ, Φ = ({φ_i, φ_j}), i, j all
+  std::vector<Index> chi;       ///< χ'_1 … χ'_{s'} (primary), then χ''_{s'+1} … χ''_{2s} (not primary)
+  std::vector<Index> abridged;  ///< the primary φ_k of E_AT = E + λ^k φ_k: those not chosen as χ'
+  Matrix<T> dirac_tensor;       ///< J*_(χ) = J − J Gᵀ Σ⁻¹ G J
 };
 
 /// Rows are chosen greedily, in order, while they raise the rank of the chosen rows of Φ: χ' among
 /// the primary constraints (rank s'), then χ'' among the others (up to 2s).  `primary[i]` marks the
 /// primary constraints (in §7 also the leaf constraints φ_{a+1} … φ_b).  [CEF Thm 3.28, Thm 7.4]
 template <class T>
-AdaptedConstraints<T> adapted_constraints(const Matrix<T>& w, const Matrix<T>& constraints, const std::vector<bool>& primary) {
+AdaptedConstraints<T> adapted_constraints(const Matrix<T>& w, const Matrix<T>& constraints,
+                                          const std::vector<bool>& primary) {
   require(primary.size() == constraints.rows(), "adapted_constraints", "one primary flag per constraint",
           std::to_string(primary.size()) + " flags for " + std::to_string(constraints.rows()) + " constraints");
   const Matrix<T> j = poisson_tensor(w), a = gradients(constraints);
@@ -124,8 +125,8 @@ CadResult<T> foliated_tower(const FoliatedEmbedding<T>& f) {
 /// them with the primary and the leaf rows counted as primary (χ adapted to S'_0, E_AT for S_0).
 template <class T>
 struct AdaptedToPrimary {
-  Matrix<T> constraints;           ///< [primary; secondary; leaf], rows [a | b]
-  AdaptedConstraints<T> adapted;   ///< indices into `constraints`
+  Matrix<T> constraints;          ///< [primary; secondary; leaf], rows [a | b]
+  AdaptedConstraints<T> adapted;  ///< indices into `constraints`
 };
 
 template <class T>
@@ -134,7 +135,8 @@ AdaptedToPrimary<T> adapted_to_primary(const Matrix<T>& w, const Matrix<T>& prim
   AdaptedToPrimary<T> out;
   out.constraints = vstack(vstack(primary, secondary), leaf);
   std::vector<bool> is_primary(out.constraints.rows(), false);
-  for (Index i = 0; i < out.constraints.rows(); ++i) is_primary[i] = i < primary.rows() || i >= primary.rows() + secondary.rows();
+  for (Index i = 0; i < out.constraints.rows(); ++i)
+    is_primary[i] = i < primary.rows() || i >= primary.rows() + secondary.rows();
   out.adapted = adapted_constraints(w, out.constraints, is_primary);
   return out;
 }

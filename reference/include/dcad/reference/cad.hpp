@@ -11,8 +11,8 @@ namespace dcad::reference {
 
 template <class T>
 struct CadStep {
-  AffineSubspace<T> m;        ///< M_k (empty = inconsistent)
-  Matrix<T> equations;        ///< the equations a x = b added to reach M_k (independent), as rows [a | b]
+  AffineSubspace<T> m;                   ///< M_k (empty = inconsistent)
+  Matrix<T> equations;                   ///< the equations a x = b added to reach M_k (independent), as rows [a | b]
   Subspace<T> w = Subspace<T>::zero(0);  ///< W_k = T M_k ∩ E_D (zero space if M_k is empty)
   long dim() const { return m.empty ? -1 : static_cast<long>(m.direction.dim()); }
 };
@@ -21,8 +21,8 @@ template <class T>
 struct CadResult {
   std::vector<CadStep<T>> tower;  ///< M_0 … M_c, or M_0 … M_k with M_k = ∅
   bool consistent = true;
-  Index steps = 0;                ///< c (or k of the empty M_k)
-  Index solution_rank = 0;        ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]; meaningless if inconsistent
+  Index steps = 0;          ///< c (or k of the empty M_k)
+  Index solution_rank = 0;  ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]; meaningless if inconsistent
   bool unique() const { return consistent && solution_rank == 0; }
   const CadStep<T>& final_step() const { return tower.back(); }
 };
@@ -36,7 +36,8 @@ Matrix<T> independent_new_rows(const Matrix<T>& accumulated, const Matrix<T>& ca
   const std::vector<Index> piv = rref(vstack(accumulated, candidates).transpose()).pivots;
   Matrix<T> fresh(0, candidates.cols());
   for (Index p : piv)
-    if (p >= accumulated.rows()) fresh = vstack(fresh, candidates.block(p - accumulated.rows(), p - accumulated.rows() + 1, 0, candidates.cols()));
+    if (p >= accumulated.rows())
+      fresh = vstack(fresh, candidates.block(p - accumulated.rows(), p - accumulated.rows() + 1, 0, candidates.cols()));
   return fresh;
 }
 
@@ -54,8 +55,8 @@ CadResult<T> constraint_tower(const LinearSystem<T>& s, const Matrix<T>& initial
   const Index n = s.d.n;
   const Subspace<T> e = dirac_distribution(s.d);
   CadResult<T> out;
-  require(initial.rows() == 0 || initial.cols() == n + 1, "constraint_tower", "initial equations [a | b] of width " + std::to_string(n + 1),
-          shape(initial));
+  require(initial.rows() == 0 || initial.cols() == n + 1, "constraint_tower",
+          "initial equations [a | b] of width " + std::to_string(n + 1), shape(initial));
   Matrix<T> aug = initial.rows() ? initial : Matrix<T>(0, n + 1);  // all equations so far, [a | b]
   CadStep<T> step{affine_from_augmented(aug), aug, Subspace<T>::zero(n)};
   if (step.m.empty) {  // the primary constraints themselves are inconsistent
@@ -115,20 +116,25 @@ struct InitialPoint {
 };
 
 template <class T>
-InitialPoint<T> consistent_initial_point(const std::vector<Matrix<T>>& levels, const std::vector<std::optional<T>>& given) {
+InitialPoint<T> consistent_initial_point(const std::vector<Matrix<T>>& levels,
+                                         const std::vector<std::optional<T>>& given) {
   const Index n = given.size();
   Matrix<T> fixed(0, n + 1), defaults(0, n + 1), constraints(0, n + 1);
   for (Index i = 0; i < n; ++i) {
     Matrix<T> row(1, n + 1);
     row(0, i) = T(1);
     row(0, n) = given[i] ? *given[i] : T(0);
-    if (given[i]) fixed = vstack(fixed, row);
-    else defaults = vstack(defaults, row);
+    if (given[i])
+      fixed = vstack(fixed, row);
+    else
+      defaults = vstack(defaults, row);
   }
   for (const Matrix<T>& rows : levels) constraints = vstack(constraints, rows);
   // consistency of the given values with rows 0 … k of the tower is monotone in k: one solve when all
   // is well, a bisection for the first violated row when not
-  const auto meets = [&](Index rows) { return !affine_from_augmented(vstack(fixed, constraints.block(0, rows, 0, n + 1))).empty; };
+  const auto meets = [&](Index rows) {
+    return !affine_from_augmented(vstack(fixed, constraints.block(0, rows, 0, n + 1))).empty;
+  };
   InitialPoint<T> out;
   if (!meets(constraints.rows())) {
     Index lo = 0, hi = constraints.rows();  // meets(lo), !meets(hi)
@@ -180,7 +186,8 @@ ReducedEquations<T> reduced_equations(const LinearSystem<T>& s, const CadResult<
   if (coords.empty()) coords = default_coordinates(r);
   const Index n = s.d.n, m = r.final_step().m.direction.dim();
   const Matrix<T>& b = r.final_step().m.direction.basis();  // m × n
-  require(coords.size() == m, "reduced_equations", std::to_string(m) + " coordinates (dim M_c)", std::to_string(coords.size()));
+  require(coords.size() == m, "reduced_equations", std::to_string(m) + " coordinates (dim M_c)",
+          std::to_string(coords.size()));
   Matrix<T> sel(m, n);
   for (Index i = 0; i < m; ++i) sel(i, coords[i]) = T(1);
   const Matrix<T> t = sel * b.transpose();  // dz = T dy for x = x0 + Bᵀ y

@@ -49,7 +49,8 @@ Matrix<T> new_rows(const Subspace<T>& before, const Subspace<T>& after) {
   const std::vector<Index> old = rref(before.basis()).pivots, now = rref(after.basis()).pivots;
   Matrix<T> out(0, after.ambient());
   for (Index i = 0; i < now.size(); ++i)
-    if (std::find(old.begin(), old.end(), now[i]) == old.end()) out = vstack(out, after.basis().block(i, i + 1, 0, after.ambient()));
+    if (std::find(old.begin(), old.end(), now[i]) == old.end())
+      out = vstack(out, after.basis().block(i, i + 1, 0, after.ambient()));
   return out;
 }
 
@@ -116,7 +117,8 @@ CircuitMotion<T> circuit_motion(const Circuit<T>& c, const ProductStep<T>& mc) {
   const Matrix<T> bs = mc.s.basis().transpose(), bv = mc.v.basis().transpose();  // n × ds, n × dv
   const Matrix<T> bd = kernel(kcl_matrix(c)).basis();
   Matrix<T> r, p;
-  require(solve_particular(bs, bv, r), "circuit_motion", "V ⊂ S on M_c (q̇ = v tangent)", "V ⊄ S: a bug, please report it");
+  require(solve_particular(bs, bv, r), "circuit_motion", "V ⊂ S on M_c (q̇ = v tangent)",
+          "V ⊄ S: a bug, please report it");
   const Matrix<T> a = bd * inductance_matrix(c) * bv;
   require(solve_particular(a, -(bd * elastance_matrix(c) * bs), p), "circuit_motion",
           "φ v̇ + ψ q ∈ Δ° solvable on M_c (CEF Thm 5.4)", "an inconsistent system: a bug, please report it");
@@ -135,14 +137,17 @@ CircuitMotion<T> circuit_motion(const Circuit<T>& c, const ProductStep<T>& mc) {
 /// the reference's default_coordinates): z = T y with T = sel · Bᵀ, so F_z = T F T⁻¹, G_z = T G
 /// (no sources: f = 0).  As ReducedEquations, to compare with reduced_equations.
 template <class T>
-ReducedEquations<T> circuit_reduced_equations(const Circuit<T>& c, const ProductStep<T>& mc, std::vector<Index> coords = {}) {
+ReducedEquations<T> circuit_reduced_equations(const Circuit<T>& c, const ProductStep<T>& mc,
+                                              std::vector<Index> coords = {}) {
   const Matrix<T> b = product_basis(c, mc);
   const Index m = b.rows(), n3 = b.cols();
   if (coords.empty()) coords = rref(b).pivots;
-  require(coords.size() == m, "circuit_reduced_equations", std::to_string(m) + " coordinates (dim M_c)", std::to_string(coords.size()));
+  require(coords.size() == m, "circuit_reduced_equations", std::to_string(m) + " coordinates (dim M_c)",
+          std::to_string(coords.size()));
   Matrix<T> t(m, m);
   for (Index i = 0; i < m; ++i) {
-    require(coords[i] < n3, "circuit_reduced_equations", "variable indices below " + std::to_string(n3), std::to_string(coords[i]));
+    require(coords[i] < n3, "circuit_reduced_equations", "variable indices below " + std::to_string(n3),
+            std::to_string(coords[i]));
     for (Index j = 0; j < m; ++j) t(i, j) = b(j, coords[i]);
   }
   require(rank(t) == m, "circuit_reduced_equations", "coordinates that parametrize M_c", "variables that do not");

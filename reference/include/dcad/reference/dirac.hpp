@@ -32,8 +32,8 @@ template <class T>
 std::string dirac_defect(const DiracStructure<T>& d) {
   if (d.d.ambient() != 2 * d.n) return "a subspace of Q^" + std::to_string(2 * d.n);
   if (d.d.dim() != d.n)
-    return "dim D = " + std::to_string(d.d.dim()) + " (a Dirac structure on Q^" + std::to_string(d.n) +
-           " has dim " + std::to_string(d.n) + ")";
+    return "dim D = " + std::to_string(d.d.dim()) + " (a Dirac structure on Q^" + std::to_string(d.n) + " has dim " +
+           std::to_string(d.n) + ")";
   const Matrix<T> g = d.d.basis() * pairing_form<T>(d.n) * d.d.basis().transpose();
   for (Index i = 0; i < g.rows(); ++i)
     for (Index j = 0; j < g.cols(); ++j)
@@ -138,8 +138,8 @@ PresymplecticForm<T> dirac_form(const DiracStructure<T>& d) {
   // one α_i ∈ D^♭(b_i) for every basis vector b_i of E_D at once: Γ_α α_i = −Γ_v b_i (as in dirac_flat)
   const Matrix<T> g = annihilator(d.d).basis();
   const Matrix<T> gv = g.block(0, g.rows(), 0, d.n), ga = g.block(0, g.rows(), d.n, 2 * d.n);
-  Matrix<T> alphas;  // column i: α_i
-  solve_particular(ga, -(gv * b.transpose()), alphas);  // consistent: b_i ∈ E_D
+  Matrix<T> alphas;                                         // column i: α_i
+  solve_particular(ga, -(gv * b.transpose()), alphas);      // consistent: b_i ∈ E_D
   const Matrix<T> om = alphas.transpose() * b.transpose();  // (i, j) = α_i(b_j)
   Matrix<T> m(d.n, d.n);
   for (Index i = 0; i < b.rows(); ++i)

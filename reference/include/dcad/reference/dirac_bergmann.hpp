@@ -44,10 +44,12 @@ struct DiracBergmannResult {
 /// M must be defined regularly (CEF §2.1): independent gradients of the primary constraints.
 template <class T>
 void require_regular_primary(const ConstrainedSystem<T>& s, const std::string& fn) {
-  require(s.primary.cols() == s.omega.rows() + 1, fn, "primary constraint rows [a | b] of width " + std::to_string(s.omega.rows() + 1),
-          shape(s.primary));
-  require(rank(gradients(s.primary)) == s.primary.rows(), fn, "primary constraints with independent gradients (M defined regularly)",
-          std::to_string(s.primary.rows()) + " constraints with gradients of rank " + std::to_string(rank(gradients(s.primary))));
+  require(s.primary.cols() == s.omega.rows() + 1, fn,
+          "primary constraint rows [a | b] of width " + std::to_string(s.omega.rows() + 1), shape(s.primary));
+  require(rank(gradients(s.primary)) == s.primary.rows(), fn,
+          "primary constraints with independent gradients (M defined regularly)",
+          std::to_string(s.primary.rows()) + " constraints with gradients of rank " +
+              std::to_string(rank(gradients(s.primary))));
 }
 
 template <class T>
@@ -65,9 +67,9 @@ DiracBergmannResult<T> dirac_bergmann(const ConstrainedSystem<T>& s) {
   }
   for (;;) {
     const Matrix<T> a = gradients(all);
-    const Matrix<T> c = a * j * prim.transpose();            // {φ_j, φ_i}, j all, i primary
-    const Matrix<T> mu = nullspace(c.transpose());           // rows μ with μ C = 0
-    const Matrix<T> lhs = mu * a * j * s.hessian;            // μ^j {φ_j, E}(x) = μ A J (H x + g)
+    const Matrix<T> c = a * j * prim.transpose();   // {φ_j, φ_i}, j all, i primary
+    const Matrix<T> mu = nullspace(c.transpose());  // rows μ with μ C = 0
+    const Matrix<T> lhs = mu * a * j * s.hessian;   // μ^j {φ_j, E}(x) = μ A J (H x + g)
     const Matrix<T> rhs = -(mu * a * j * Matrix<T>::column(s.gradient));
     const Matrix<T> fresh = independent_new_rows(all, hstack(lhs, rhs));
     if (fresh.rows() == 0) break;
@@ -95,7 +97,8 @@ AffineSubspace<T> multipliers(const ConstrainedSystem<T>& s, const DiracBergmann
 
 /// X_{E_T}(x) = J (dE(x) + λ^i a_i).
 template <class T>
-std::vector<T> total_energy_field(const ConstrainedSystem<T>& s, const std::vector<T>& x, const std::vector<T>& lambda) {
+std::vector<T> total_energy_field(const ConstrainedSystem<T>& s, const std::vector<T>& x,
+                                  const std::vector<T>& lambda) {
   std::vector<T> d = (s.hessian * Matrix<T>::column(x)).col(0);
   const Matrix<T> prim = gradients(s.primary);
   for (Index i = 0; i < d.size(); ++i) {

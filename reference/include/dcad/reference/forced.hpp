@@ -20,9 +20,9 @@ namespace dcad::reference {
 
 template <class T>
 struct ForcedSystem {
-  LinearSystem<T> s;    ///< D and E (H symmetric, g)
-  Matrix<T> force;      ///< F, N×N (empty = 0)
-  Index sources = 0;    ///< m
+  LinearSystem<T> s;       ///< D and E (H symmetric, g)
+  Matrix<T> force;         ///< F, N×N (empty = 0)
+  Index sources = 0;       ///< m
   Matrix<T> source_force;  ///< B, N×m
   Matrix<T> shift;         ///< Z, N×m
   /// Rows of source conditions known before the CAD (e.g. KCL on current sources), columns [1 | σ⁽⁰⁾].
@@ -31,13 +31,13 @@ struct ForcedSystem {
 
 template <class T>
 struct ForcedResult {
-  std::vector<long> dims;    ///< dim M_k(t), k = 0…c (−1: empty)
+  std::vector<long> dims;  ///< dim M_k(t), k = 0…c (−1: empty)
   Index steps = 0;
-  bool consistent = true;    ///< false: M_k = ∅ whatever the sources are (0 = 1)
-  Index orders = 1;          ///< jet columns hold σ⁽⁰⁾ … σ^{(orders−1)}
-  Matrix<T> equations;       ///< M_c(t) as jet rows, x-parts in RREF (independent)
-  Matrix<T> conditions;      ///< source conditions, columns [1 | σ⁽⁰⁾ | …] (x-part dropped)
-  Index solution_rank = 0;   ///< dim{ẋ : (ẋ, 0) ∈ D, ẋ ∈ T M_c}  [CEF Thm 5.4(b)]
+  bool consistent = true;   ///< false: M_k = ∅ whatever the sources are (0 = 1)
+  Index orders = 1;         ///< jet columns hold σ⁽⁰⁾ … σ^{(orders−1)}
+  Matrix<T> equations;      ///< M_c(t) as jet rows, x-parts in RREF (independent)
+  Matrix<T> conditions;     ///< source conditions, columns [1 | σ⁽⁰⁾ | …] (x-part dropped)
+  Index solution_rank = 0;  ///< dim{ẋ : (ẋ, 0) ∈ D, ẋ ∈ T M_c}  [CEF Thm 5.4(b)]
   /// per step k, the equations that raised the rank (jet rows of that step's width): for reports
   std::vector<Matrix<T>> added;
   /// per step k, the source conditions known at M_k (columns [1 | σ⁽⁰⁾ | …] of that step's width);
@@ -79,7 +79,8 @@ template <class T>
 void require_forced(const ForcedSystem<T>& f, const std::string& fn) {
   require_system(f.s, fn);
   const Index n = f.s.d.n, m = f.sources;
-  require(f.force.rows() == 0 || (f.force.rows() == n && f.force.cols() == n), fn, "an N×N force matrix", shape(f.force));
+  require(f.force.rows() == 0 || (f.force.rows() == n && f.force.cols() == n), fn, "an N×N force matrix",
+          shape(f.force));
   require(f.source_force.rows() == n && f.source_force.cols() == m, fn, "B of shape N×m", shape(f.source_force));
   require(f.shift.rows() == n && f.shift.cols() == m, fn, "Z of shape N×m", shape(f.shift));
   require(f.given_conditions.rows() == 0 || f.given_conditions.cols() == 1 + m, fn, "conditions [1 | σ]",
@@ -242,7 +243,8 @@ ForcedMotion<T> forced_motion(const ForcedSystem<T>& f, const ForcedResult<T>& r
   const Index n = f.s.d.n, m = f.sources, wu = 1 + m * r.orders, wx = wu + m;
   ForcedMotion<T> fm;
   fm.orders = r.orders;
-  const Matrix<T> ex = r.equations.block(0, r.equations.rows(), 0, n), eu = r.equations.block(0, r.equations.rows(), n, n + wu);
+  const Matrix<T> ex = r.equations.block(0, r.equations.rows(), 0, n),
+                  eu = r.equations.block(0, r.equations.rows(), n, n + wu);
   fm.basis = Subspace<T>::solutions(ex).basis();
   solve_particular(ex, -eu, fm.x0);  // independent rows: solvable column by column
   const LambdaSystem<T> ls = lambda_system(f, r.equations, r.orders);

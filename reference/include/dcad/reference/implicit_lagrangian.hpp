@@ -43,8 +43,8 @@ DiracStructure<T> induced_dirac(const Matrix<T>& k, Index n) {
 /// 𝔇L(q, v) − π*F(q, v) = (−∂L/∂q − F, v) for the quadratic L of a PontryaginInput and the linear
 /// force F(q, v) = F_q q + F_v v (n×n each).
 template <class T>
-std::vector<T> dirac_differential(const PontryaginInput<T>& in, const Matrix<T>& fq, const Matrix<T>& fv, const std::vector<T>& q,
-                                  const std::vector<T>& v) {
+std::vector<T> dirac_differential(const PontryaginInput<T>& in, const Matrix<T>& fq, const Matrix<T>& fv,
+                                  const std::vector<T>& q, const std::vector<T>& v) {
   const Index n = in.n;
   const Matrix<T> cq = Matrix<T>::column(q), cv = Matrix<T>::column(v);
   // ∂L/∂q = B v + C q + a
@@ -107,7 +107,8 @@ DiracStructure<T> restrict_dirac(const DiracStructure<T>& d, const Subspace<T>& 
   const Matrix<T>& g = d.d.basis();
   const Matrix<T> gv = g.block(0, g.rows(), 0, n), ga = g.block(0, g.rows(), n, 2 * n);
   const Matrix<T> ann = annihilator(n_sub).basis();
-  const Matrix<T> lam = ann.rows() ? nullspace(ann * gv.transpose()) : Matrix<T>::identity(g.rows());  // rows λ: (λ G_v)·ann = 0
+  const Matrix<T> lam =
+      ann.rows() ? nullspace(ann * gv.transpose()) : Matrix<T>::identity(g.rows());  // rows λ: (λ G_v)·ann = 0
   const Matrix<T> w = lam * gv, alpha = lam * ga;
   // coordinates c of w in B: solve cB = w (B in RREF: c = w at the pivot columns)
   const std::vector<Index> piv = rref(b).pivots;
@@ -148,7 +149,8 @@ DiracStructure<T> constrained_dirac(const PontryaginInput<T>& in) {
 /// The constrained partial vector fields X_P at (q, v), v ∈ Δ, in T P's basis coordinates:
 /// {X_P : (X_P, 𝔇L_c) ∈ D_P} with 𝔇L_c = 𝔇L|_{T P}  [YM Def. 5.4, (5.12)].
 template <class T>
-AffineSubspace<T> implicit_constrained_fields(const PontryaginInput<T>& in, const std::vector<T>& q, const std::vector<T>& v) {
+AffineSubspace<T> implicit_constrained_fields(const PontryaginInput<T>& in, const std::vector<T>& q,
+                                              const std::vector<T>& v) {
   const Subspace<T> tp = constraint_momentum_tangent(in);
   const DiracStructure<T> dp = constrained_dirac(in);
   const std::vector<T> dl = dirac_differential(in, Matrix<T>(in.n, in.n), Matrix<T>(in.n, in.n), q, v);

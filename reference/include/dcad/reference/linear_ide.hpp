@@ -24,9 +24,9 @@ namespace dcad::reference {
 /// One step: M_{k+1} = {C x = G u} (every row, RREF) and the conditions 0 = c·u found on the way.
 template <class T>
 struct IdeLevel {
-  Matrix<T> c, g;        ///< C_{k+1} (r × N), G_{k+1} (r × U)
+  Matrix<T> c, g;              ///< C_{k+1} (r × N), G_{k+1} (r × U)
   Matrix<T> fresh_c, fresh_g;  ///< the rows new at this step (the candidates reduced modulo C_k, independent in x)
-  Matrix<T> conditions;  ///< rows c (× U): 0 = c·u(t) must hold, else M_{k+1}(t) = ∅
+  Matrix<T> conditions;        ///< rows c (× U): 0 = c·u(t) must hold, else M_{k+1}(t) = ∅
   Index dim() const { return c.cols() - c.rows(); }  ///< N − rank C, where nonempty
 };
 
@@ -54,7 +54,8 @@ Matrix<T> shift_jets(const Matrix<T>& g, Index m) {
 template <class T>
 IdeTower<T> linear_ide_tower(const Matrix<T>& e, const Matrix<T>& a, const Matrix<T>& sources, Index orders) {
   require(e.rows() == a.rows() && e.cols() == a.cols() && sources.rows() == e.rows(), "linear_ide_tower",
-          "E, A and F with one number of rows, E and A of one shape", shape(e) + ", " + shape(a) + " and " + shape(sources));
+          "E, A and F with one number of rows, E and A of one shape",
+          shape(e) + ", " + shape(a) + " and " + shape(sources));
   const Index m = e.rows(), n = e.cols(), s = sources.cols(), u = s * orders;
   IdeTower<T> t;
   t.n = n, t.sources = s, t.orders = orders;

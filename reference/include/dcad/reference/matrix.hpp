@@ -20,8 +20,8 @@ namespace dcad::reference {
 
 template <class T>
 struct is_exact_field {
-  static constexpr bool value = std::numeric_limits<T>::is_specialized && std::numeric_limits<T>::is_exact &&
-                                !std::numeric_limits<T>::is_integer;
+  static constexpr bool value =
+      std::numeric_limits<T>::is_specialized && std::numeric_limits<T>::is_exact && !std::numeric_limits<T>::is_integer;
 };
 
 template <class T, class = void>
@@ -46,7 +46,8 @@ using Index = std::size_t;
 template <class T>
 class Matrix {
   static_assert(admissible_scalar<T>::value,
-                "dcad::reference works over an exact field (e.g. mpq_rational), or a scalar that declares its zero test (T::zero_test)");
+                "dcad::reference works over an exact field (e.g. mpq_rational), or a scalar that declares its zero "
+                "test (T::zero_test)");
 
  public:
   Matrix() = default;

@@ -31,9 +31,9 @@ struct RlcBranch {
 
 template <class T>
 struct Mutual {
-  Index a = 0, b = 0;  ///< inductor branches
-  T m = T(0);          ///< mutual inductance (Φ_ab = Φ_ba = m)
-  std::optional<T> k;  ///< the coupling coefficient of the K card it came from (exact), if any
+  Index a = 0, b = 0;    ///< inductor branches
+  T m = T(0);            ///< mutual inductance (Φ_ab = Φ_ba = m)
+  std::optional<T> k;    ///< the coupling coefficient of the K card it came from (exact), if any
   bool rounded = false;  ///< m = k√(L_a L_b) is irrational: m is it truncated (80 digits)
 };
 
@@ -94,11 +94,11 @@ ForcedSystem<T> rlc_system(const RlcCircuit<T>& c) {
   in.v.assign(n, T(0));
   for (Index b = 0; b < n; ++b)
     if (c.branches[b].kind == RlcKind::capacitor) in.qq(b, b) = -T(1) / c.branches[b].value;
-  ForcedSystem<T> f{pontryagin_system(in), Matrix<T>(3 * n, 3 * n), m, Matrix<T>(3 * n, m), Matrix<T>(3 * n, m),
-                    Matrix<T>(0, 1 + m)};
+  ForcedSystem<T> f{pontryagin_system(in), Matrix<T>(3 * n, 3 * n), m,
+                    Matrix<T>(3 * n, m),   Matrix<T>(3 * n, m),     Matrix<T>(0, 1 + m)};
   for (Index b = 0; b < n; ++b) {
     const RlcBranch<T>& br = c.branches[b];
-    if (br.kind == RlcKind::resistor) f.force(b, n + b) = -br.value;         // F = −R v on q_b
+    if (br.kind == RlcKind::resistor) f.force(b, n + b) = -br.value;        // F = −R v on q_b
     if (br.kind == RlcKind::voltage) f.source_force(b, br.source) = T(-1);  // F = −V(t) on q_b
   }
   // Z: least squares K_Iᵀ K_I Z = K_Iᵀ R_I (exact); the residual R_I − K_I Z gives the conditions.
@@ -107,10 +107,11 @@ ForcedSystem<T> rlc_system(const RlcCircuit<T>& c) {
   const Matrix<T> residual = ri - ki * z;
   const Matrix<T> rows = rref(residual).r;
   for (Index i = 0; i < rows.rows(); ++i)
-    if (!rows.block(i, i + 1, 0, m).is_zero()) f.given_conditions = vstack(f.given_conditions, hstack(Matrix<T>(1, 1), rows.block(i, i + 1, 0, m)));
+    if (!rows.block(i, i + 1, 0, m).is_zero())
+      f.given_conditions = vstack(f.given_conditions, hstack(Matrix<T>(1, 1), rows.block(i, i + 1, 0, m)));
   for (Index b = 0; b < n; ++b)
     for (Index j = 0; j < m; ++j) {
-      f.shift(b, j) = z(b, j);                 // ẋ − Zσ: q̇ − z σ ∈ Δ
+      f.shift(b, j) = z(b, j);                  // ẋ − Zσ: q̇ − z σ ∈ Δ
       f.source_force(2 * n + b, j) += z(b, j);  // β − z σ = q̇ − z σ keeps β = q̇ = v
     }
   return f;

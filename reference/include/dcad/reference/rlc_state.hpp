@@ -80,7 +80,8 @@ inline BranchPotential branch_potential(const rlc::StateStructure& st, long from
 /// positive definite (the caller's precondition: graph_route_holds).  `node_names` name the non-ground
 /// nodes, `source_names` σ's entries.
 template <class N>
-StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std::string>& node_names, const std::vector<std::string>& source_names) {
+StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std::string>& node_names,
+                                  const std::vector<std::string>& source_names) {
   const rlc::StateStructure st = state_structure(c);
   const long nw = static_cast<long>(st.nw), nr = static_cast<long>(st.nr), ne = static_cast<long>(st.ne);
   const long ms = static_cast<long>(c.sources);
@@ -88,7 +89,9 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
   out.w.resize(st.nw);
   out.r.resize(st.nr);
   out.e.resize(st.ne);
-  const auto pot = [&](long supernode) { return "e(" + node_names.at(static_cast<std::size_t>(st.root_node[static_cast<std::size_t>(supernode)])) + ")"; };
+  const auto pot = [&](long supernode) {
+    return "e(" + node_names.at(static_cast<std::size_t>(st.root_node[static_cast<std::size_t>(supernode)])) + ")";
+  };
   // w = E_s − E_root (its C-component's root), ρ = E_root − E_island (the island's first root), e = E_island
   std::vector<long> island_root(st.ne, -1);
   for (std::size_t s = 0; s < st.supernodes; ++s) {
@@ -101,9 +104,12 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
   for (std::size_t s = 0; s < st.supernodes; ++s) {
     const rlc::StateStructure::Levels& l = st.levels[s];
     const long root = st.croot[s];
-    if (l.w >= 0) out.w[static_cast<std::size_t>(l.w)] = root >= 0 ? pot(static_cast<long>(s)) + "-" + pot(root) : pot(static_cast<long>(s));
+    if (l.w >= 0)
+      out.w[static_cast<std::size_t>(l.w)] =
+          root >= 0 ? pot(static_cast<long>(s)) + "-" + pot(root) : pot(static_cast<long>(s));
     else if (l.r >= 0)
-      out.r[static_cast<std::size_t>(l.r)] = pot(static_cast<long>(s)) + (l.e >= 0 ? "-" + pot(island_root[static_cast<std::size_t>(l.e)]) : "");
+      out.r[static_cast<std::size_t>(l.r)] =
+          pot(static_cast<long>(s)) + (l.e >= 0 ? "-" + pot(island_root[static_cast<std::size_t>(l.e)]) : "");
   }
   out.sources = source_names;
   // accumulation: one map per block, (row, column) → value
@@ -113,7 +119,8 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
     auto [it, fresh] = a.emplace(std::make_pair(i, j), v);
     if (!fresh) it->second += v;
   };
-  const auto outer = [&](Acc& a, const std::vector<std::pair<long, int>>& x, const std::vector<std::pair<long, int>>& y, const N& v) {
+  const auto outer = [&](Acc& a, const std::vector<std::pair<long, int>>& x, const std::vector<std::pair<long, int>>& y,
+                         const N& v) {
     for (const auto& [i, si] : x)
       for (const auto& [j, sj] : y) add(a, i, j, si * sj > 0 ? v : N(-v));
   };

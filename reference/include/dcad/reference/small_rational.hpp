@@ -37,7 +37,7 @@ struct Overflow : std::runtime_error {
 
 namespace words {
 
-using I = __int128;            ///< every intermediate
+using I = __int128;  ///< every intermediate
 using U = unsigned __int128;
 
 inline U magnitude(I v) { return v < 0 ? U(0) - static_cast<U>(v) : static_cast<U>(v); }
@@ -107,7 +107,8 @@ class BasicSmallRational {
   static constexpr U kMax = (U(1) << (kBits - 1)) - 1;  ///< 2^(w−1) − 1: |p| and q, so −p always fits
 
  public:
-  static constexpr const char* zero_test = "exact (p == 0 in lowest terms); Overflow when a result does not fit the word";
+  static constexpr const char* zero_test =
+      "exact (p == 0 in lowest terms); Overflow when a result does not fit the word";
 
   BasicSmallRational() = default;
   BasicSmallRational(int k) : p_(k) {}  // NOLINT: exact, as the reference writes T(0), T(1)
@@ -124,7 +125,10 @@ class BasicSmallRational {
     const mpz_int lim = words::to_mpz(static_cast<I>(kMax));
     if (abs(n) > lim || d > lim) throw Overflow("input number does not fit in " + std::to_string(kBits) + " bits");
     const mpz_int an = abs(n);
-    const auto half = [](const mpz_int& z, unsigned shift) { return static_cast<U>(static_cast<std::uint64_t>(mpz_int(z >> shift) & mpz_int(std::numeric_limits<std::uint64_t>::max()))); };
+    const auto half = [](const mpz_int& z, unsigned shift) {
+      return static_cast<U>(
+          static_cast<std::uint64_t>(mpz_int(z >> shift) & mpz_int(std::numeric_limits<std::uint64_t>::max())));
+    };
     const U un = (half(an, 64) << 64) | half(an, 0), ud = (half(d, 64) << 64) | half(d, 0);
     return make(n < 0 ? -static_cast<I>(un) : static_cast<I>(un), static_cast<I>(ud));
   }
@@ -193,12 +197,16 @@ class BasicSmallRational {
   BasicSmallRational& operator*=(const BasicSmallRational& o) { return *this = *this * o; }
   BasicSmallRational& operator/=(const BasicSmallRational& o) { return *this = *this / o; }
   /// Lowest terms with q > 0 are unique: equal values have equal (p, q).
-  friend bool operator==(const BasicSmallRational& x, const BasicSmallRational& y) { return x.p_ == y.p_ && x.q_ == y.q_; }
+  friend bool operator==(const BasicSmallRational& x, const BasicSmallRational& y) {
+    return x.p_ == y.p_ && x.q_ == y.q_;
+  }
   friend bool operator!=(const BasicSmallRational& x, const BasicSmallRational& y) { return !(x == y); }
   friend bool known_zero(const BasicSmallRational& x) { return x.p_ == 0; }
 
  private:
-  static std::uint64_t abs64(std::int64_t v) { return v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v); }
+  static std::uint64_t abs64(std::int64_t v) {
+    return v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+  }
   /// p / q as given (lowest terms, q > 0, both within the word: the callers' guarantee).
   static BasicSmallRational make(I p, I q) {
     BasicSmallRational r;

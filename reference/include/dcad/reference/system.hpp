@@ -20,10 +20,11 @@ template <class T>
 void require_system(const LinearSystem<T>& s, const std::string& fn) {
   require_dirac(s.d, fn);
   const Index n = s.d.n;
-  require(s.hessian.rows() == n && s.hessian.cols() == n, fn, "an " + std::to_string(n) + "x" + std::to_string(n) + " Hessian",
-          shape(s.hessian));
+  require(s.hessian.rows() == n && s.hessian.cols() == n, fn,
+          "an " + std::to_string(n) + "x" + std::to_string(n) + " Hessian", shape(s.hessian));
   require(is_symmetric(s.hessian), fn, "a symmetric Hessian", "an asymmetric one");
-  require(s.gradient.size() == n, fn, "a gradient of length " + std::to_string(n), "length " + std::to_string(s.gradient.size()));
+  require(s.gradient.size() == n, fn, "a gradient of length " + std::to_string(n),
+          "length " + std::to_string(s.gradient.size()));
 }
 
 /// dE(x) = H x + g.

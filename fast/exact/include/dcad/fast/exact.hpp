@@ -23,10 +23,10 @@ double resolution(const io::Rational& x);
 /// ones can.  If x's height exceeds 1/nonzero_factor (2^26), clears opt.input_well_scaled (x's own
 /// digits span more than a decision tells apart: 3 + 3·2^-50 beside −3 cancels to 2^-50 relative, as
 /// assess_input reads one entry) and, if rounding changed x, opt.input_exact (what rounding
-/// drops may be the very difference a rank decision is about: 1.00000000000000001 reads as 1).  A rounded value of small height (1/3, 0.1, 1/47) moves by
-/// at most 2^-53 relative, as the first step of any computation on it would: the separation
-/// hypothesis of Options (nonzero singular values of the exact data above τ1, the small-height
-/// data dcad is built for) covers it as it covers the rounding inside every decision.
+/// drops may be the very difference a rank decision is about: 1.00000000000000001 reads as 1).  A rounded value of
+/// small height (1/3, 0.1, 1/47) moves by at most 2^-53 relative, as the first step of any computation on it would: the
+/// separation hypothesis of Options (nonzero singular values of the exact data above τ1, the small-height data dcad is
+/// built for) covers it as it covers the rounding inside every decision.
 double to_double(const io::Rational& x, Options& opt);
 /// Each entry as above; clears opt.input_well_scaled if the entries' magnitudes and resolutions (and
 /// 1) span more than 1/nonzero_factor — assess_input on the exact entries (the same answer on

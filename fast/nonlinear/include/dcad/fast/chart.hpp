@@ -40,15 +40,15 @@ struct Chart {
   std::vector<reference::expr::Expr> rates;
   std::vector<std::size_t> free;  ///< velocities whose rate is free on M_c (solution_rank many): set to 0
   struct Condition {
-    std::string what;             ///< "pivot of M_k's system: row …, column …" or "chart: solve for …"
+    std::string what;               ///< "pivot of M_k's system: row …, column …" or "chart: solve for …"
     reference::expr::Expr formula;  ///< must not vanish
   };
   std::vector<Condition> valid_where;
   std::vector<std::size_t> kept, solved;  ///< M_c's chart: (q, v) coordinates kept and those the constraints solve for
   std::vector<double> point;              ///< the generic point of M_c (q, v, t) where the decisions were made
-  std::vector<reference::expr::Expr> constraints;                ///< every level's, in order
-  std::vector<std::vector<reference::expr::Expr>> gradients;     ///< ∂/∂(q, v) of each constraint
-  std::vector<reference::expr::Expr> momenta;                    ///< p_i = ∂L/∂v_i
+  std::vector<reference::expr::Expr> constraints;             ///< every level's, in order
+  std::vector<std::vector<reference::expr::Expr>> gradients;  ///< ∂/∂(q, v) of each constraint
+  std::vector<reference::expr::Expr> momenta;                 ///< p_i = ∂L/∂v_i
   /// What the elimination took as zero on M_k (entries, implied candidates): each must vanish at any
   /// point where the chart is used (chart_near checks the given point).
   std::vector<reference::expr::Expr> vanishing;
@@ -68,15 +68,17 @@ struct NotOnLevel : ChartFailure {
 
 /// y (q, v) moved onto {constraints = 0} at time t by Gauss–Newton steps of least norm; false if 30
 /// steps do not bring max |constraint| below tol × max(1, |y|).
-bool project_onto(const std::vector<reference::expr::Expr>& constraints, const std::vector<std::vector<reference::expr::Expr>>& gradients,
-                  std::vector<double>& y, double t, double tol, const std::vector<bool>* held = nullptr);
+bool project_onto(const std::vector<reference::expr::Expr>& constraints,
+                  const std::vector<std::vector<reference::expr::Expr>>& gradients, std::vector<double>& y, double t,
+                  double tol, const std::vector<bool>* held = nullptr);
 
 /// `start` ((q, v, t)) completed onto M_c with the coordinates `held` kept (the user's given values):
 /// a chart of the formulas' tower decided at a generic point near `start` (its dims unchecked: the
 /// caller's pointwise CAD recomputes the tower at the completed point), then least-norm Gauss–Newton on
 /// its constraints over the other coordinates.  Empty where no chart or no such point is reached.  For
 /// given values the pointwise CAD's own Newton moves do not settle (multiplier coordinates, index 3).
-std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start, const std::vector<bool>& held);
+std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start,
+                                      const std::vector<bool>& held);
 
 /// The CAD as formulas, decided at `generic` ((q, v, t), a point of M_c that is not special).
 Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& generic);

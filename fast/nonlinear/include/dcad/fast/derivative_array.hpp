@@ -28,7 +28,7 @@ struct DerivativeArrayResult {
   bool consistent = true;
   long solution_rank = 0;
   double time = 0;
-  std::vector<double> point, velocity;   ///< x and one ẋ (the minimum-norm one where not unique)
+  std::vector<double> point, velocity;     ///< x and one ẋ (the minimum-norm one where not unique)
   std::vector<std::vector<double>> gauge;  ///< an orthonormal basis of the other solutions' ẋ differences
   long order = 0;                          ///< the derivative array's last k
   Truth certain = yes;
@@ -39,7 +39,7 @@ struct DerivativeArrayResult {
 /// The derivative array route at `start` (values of x, v (ignored) and t, LagrangianSystem's indices;
 /// fixed[i]: a given value, held).  reference::PointwiseNoPoint when the given values cannot be held
 /// on {F_k = 0} but the others can (given values off M_c).
-DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start, const std::vector<bool>& fixed,
-                                       const Options& opt = {});
+DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start,
+                                       const std::vector<bool>& fixed, const Options& opt = {});
 
 }  // namespace dcad::fast

@@ -33,7 +33,7 @@ struct ToleranceDecisions {
   double scale = 0;         ///< its largest constant term
   Truth certain = yes;
   std::size_t decisions = 0;
-  std::string evidence;  ///< the first uncertain decision
+  std::string evidence;            ///< the first uncertain decision
   DecisionProbe* probe = nullptr;  ///< testing (fast/rank.hpp): each decision above counts once
 
   void step_data(const std::vector<Tracked>& data);
@@ -55,13 +55,15 @@ struct ToleranceDecisions {
 /// with a value beyond double's range (inf, NaN) is never returned: std::range_error whose message names
 /// the case's formula (a JSON path: /lagrangian/L, /lagrangian/constraints/k, /lagrangian/forces/i), its
 /// smallest subexpression that overflowed and the point (nonfinite_formula), or says the elimination overflowed.
-reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys, const std::vector<double>& start,
-                                                 const std::vector<bool>& fixed, ToleranceDecisions& decide,
+reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSystem& sys,
+                                                 const std::vector<double>& start, const std::vector<bool>& fixed,
+                                                 ToleranceDecisions& decide,
                                                  const std::vector<std::vector<std::size_t>>* plan = nullptr);
 
 /// The first of the case's formulas (L and its first derivatives, the constraints, the forces) whose value
 /// at (q, v, t) = `at` is not finite in double: its JSON path and "SUBEXPRESSION = VALUE" (the smallest
 /// subexpression whose operands are finite), or two empty strings if every one is finite.
-std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys, const std::vector<double>& at);
+std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys,
+                                                      const std::vector<double>& at);
 
 }  // namespace dcad::fast

@@ -23,9 +23,9 @@ struct Tracked {
   static constexpr double u = 0x1p-53;
   double v = 0, e = 0;
   Tracked() = default;
-  Tracked(int k) : v(k) {}                                  // NOLINT: the algorithms write T(0), T(1): exact
-  Tracked(long k) : v(static_cast<double>(k)) {}            // NOLINT (|k| < 2^53 here)
-  Tracked(unsigned k) : v(k) {}                             // NOLINT
+  Tracked(int k) : v(k) {}                        // NOLINT: the algorithms write T(0), T(1): exact
+  Tracked(long k) : v(static_cast<double>(k)) {}  // NOLINT (|k| < 2^53 here)
+  Tracked(unsigned k) : v(k) {}                   // NOLINT
   Tracked(double value, double error) : v(value), e(error) {}
   static Tracked input(double x) { return {x, u * std::abs(x)}; }
 
@@ -67,7 +67,9 @@ struct JetFunctions<fast::Tracked> {
   static T as_input(const T& x) { return T::input(x.v); }
   /// x with the error bound |bound|'s value plus its own error (an a-posteriori bound).
   static T with_error(const T& x, const T& bound) { return {x.v, std::abs(bound.v) + bound.e + T::u * std::abs(x.v)}; }
-  static T f(double value, double slope, const T& x) { return {value, std::abs(slope) * x.e + 2 * T::u * std::abs(value)}; }
+  static T f(double value, double slope, const T& x) {
+    return {value, std::abs(slope) * x.e + 2 * T::u * std::abs(value)};
+  }
   static T sin(const T& x) { return f(std::sin(x.v), std::cos(x.v), x); }
   static T cos(const T& x) { return f(std::cos(x.v), std::sin(x.v), x); }
   static T exp(const T& x) { return f(std::exp(x.v), std::exp(x.v + x.e), x); }

@@ -19,17 +19,17 @@
 namespace dcad::certified {
 
 using reference::Index;
-using reference::Rational;
 using reference::Matrix;
+using reference::Rational;
 
 struct CertifiedTower {
   Route route = Route::exact;
-  int word_bits = 0;  ///< machine_words: 64, or 128 when a number outgrew 64 bits
+  int word_bits = 0;       ///< machine_words: 64, or 128 when a number outgrew 64 bits
   std::vector<long> dims;  ///< dim M_0 … M_c (−1 for an empty M_k)
   Index steps = 0;         ///< c
   bool consistent = true;
   Index solution_rank = 0;  ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]
-  std::string why;  ///< why the cheaper routes gave up ("" on the first)
+  std::string why;          ///< why the cheaper routes gave up ("" on the first)
 };
 
 namespace detail {
@@ -65,22 +65,26 @@ CertifiedTower run(const reference::LinearSystem<Rational>& s, const Matrix<Rati
 
 /// The constraint tower of an exact linear system (CEF §5), decided by the cheapest route that can
 /// (cascade.hpp).
-inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& s, const Matrix<Rational>& initial = Matrix<Rational>()) {
+inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& s,
+                                       const Matrix<Rational>& initial = Matrix<Rational>()) {
   std::string narrow;  // why 64-bit words gave up, if they did
   const Cascaded<CertifiedTower> c = cascade<CertifiedTower>(
       [&](int& bits) {
         try {
           bits = 64;
-          return detail::run<reference::SmallRational>(s, initial, Route::machine_words,
-                                                       [](const Rational& q) { return reference::SmallRational::from(q); });
+          return detail::run<reference::SmallRational>(
+              s, initial, Route::machine_words, [](const Rational& q) { return reference::SmallRational::from(q); });
         } catch (const reference::Overflow& e) {
           narrow = std::string("64-bit words: ") + e.what() + "; ";
           bits = 128;
-          return detail::run<reference::WideRational>(s, initial, Route::machine_words,
-                                                      [](const Rational& q) { return reference::WideRational::from(q); });
+          return detail::run<reference::WideRational>(
+              s, initial, Route::machine_words, [](const Rational& q) { return reference::WideRational::from(q); });
         }
       },
-      [&] { return detail::run<reference::Fmpq>(s, initial, Route::exact, [](const Rational& q) { return reference::Fmpq::from(q); }); });
+      [&] {
+        return detail::run<reference::Fmpq>(s, initial, Route::exact,
+                                            [](const Rational& q) { return reference::Fmpq::from(q); });
+      });
   CertifiedTower out = c.result;
   out.route = c.route;
   out.word_bits = c.word_bits;

@@ -30,11 +30,12 @@ struct ZeroProblem {
 };
 
 struct ZeroEnclosure {
-  bool proved = false;             ///< a unique zero in the box, every `nonzero` proved nonzero there
-  std::string why;                 ///< not proved: which test failed
-  std::vector<std::size_t> solved;  ///< the K unknowns (the rest held: given values exactly, others at `approx` as exact doubles)
-  bool given_moved = false;        ///< the given values alone admit no zero near approx: some of them are among `solved`
-  std::vector<Enclosure> values;   ///< every variable
+  bool proved = false;  ///< a unique zero in the box, every `nonzero` proved nonzero there
+  std::string why;      ///< not proved: which test failed
+  std::vector<std::size_t>
+      solved;  ///< the K unknowns (the rest held: given values exactly, others at `approx` as exact doubles)
+  bool given_moved = false;       ///< the given values alone admit no zero near approx: some of them are among `solved`
+  std::vector<Enclosure> values;  ///< every variable
   std::vector<Enclosure> outputs;
 };
 

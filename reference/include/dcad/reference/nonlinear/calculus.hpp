@@ -65,7 +65,9 @@ class Differentiator {
     bool operator==(const Key& o) const { return node == o.node && var == o.var; }
   };
   struct Hash {
-    std::size_t operator()(const Key& k) const { return std::hash<const void*>()(k.node) ^ (k.var * 0x9e3779b97f4a7c15ULL); }
+    std::size_t operator()(const Key& k) const {
+      return std::hash<const void*>()(k.node) ^ (k.var * 0x9e3779b97f4a7c15ULL);
+    }
   };
   std::vector<Expr> keep_;  ///< keys stay alive: a freed node's address is never reused while cached
   std::unordered_map<Key, Expr, Hash> d_;

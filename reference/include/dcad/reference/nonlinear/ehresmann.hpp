@@ -15,8 +15,8 @@ namespace dcad::reference {
 /// q = (r, s): base coordinates r (n − m) and fibre coordinates s (m), with the constraints written
 /// ω^a = ds^a + A^a_α(q) dr^α, i.e. v_s = −A v_r on Δ  [YM §5, "Ehresmann connections"].
 struct EhresmannConnection {
-  std::vector<std::size_t> r, s;              ///< coordinate indices
-  std::vector<std::vector<expr::Expr>> a;     ///< A[a][α]
+  std::vector<std::size_t> r, s;           ///< coordinate indices
+  std::vector<std::vector<expr::Expr>> a;  ///< A[a][α]
 };
 
 /// The value of a formula of q at a point (exact: no sin/cos/exp except at values where rational).
@@ -37,8 +37,10 @@ inline EhresmannConnection ehresmann_connection(const LagrangianSystem& sys, con
   const std::size_t n = sys.n, m = sys.m();
   for (std::size_t c = 0; c < m; ++c) {
     if (!expr::is_number(d.b[c], 0) || expr::depends_on(sys.constraints[c], sys.t()))
-      throw std::invalid_argument("ehresmann_connection: expected constraints linear and homogeneous in v, free of t (YM §5), found constraint " +
-                                  std::to_string(c + 1));
+      throw std::invalid_argument(
+          "ehresmann_connection: expected constraints linear and homogeneous in v, free of t (YM §5), found "
+          "constraint " +
+          std::to_string(c + 1));
   }
   std::vector<Rational> at(2 * n + 1, Rational(0));
   for (std::size_t i = 0; i < n; ++i) at[i] = q0[i];
@@ -62,7 +64,9 @@ inline EhresmannConnection ehresmann_connection(const LagrangianSystem& sys, con
     fibre[col] = 1;
     ++row;
   }
-  if (row < m) throw std::invalid_argument("ehresmann_connection: expected independent constraints at the point, found rank " + std::to_string(row));
+  if (row < m)
+    throw std::invalid_argument("ehresmann_connection: expected independent constraints at the point, found rank " +
+                                std::to_string(row));
   for (std::size_t i = 0; i < n; ++i)
     if (!fibre[i]) conn.r.push_back(i);
   conn.a.assign(m, {});
@@ -74,13 +78,15 @@ inline EhresmannConnection ehresmann_connection(const LagrangianSystem& sys, con
 /// K^b_{αβ} = ∂A^b_α/∂r^β − ∂A^b_β/∂r^α + A^a_α ∂A^b_β/∂s^a − A^a_β ∂A^b_α/∂s^a  [YM, after (5.6)].
 inline std::vector<std::vector<std::vector<expr::Expr>>> curvature(const EhresmannConnection& c) {
   const std::size_t m = c.s.size(), k = c.r.size();
-  std::vector<std::vector<std::vector<expr::Expr>>> out(m, std::vector<std::vector<expr::Expr>>(k, std::vector<expr::Expr>(k)));
+  std::vector<std::vector<std::vector<expr::Expr>>> out(
+      m, std::vector<std::vector<expr::Expr>>(k, std::vector<expr::Expr>(k)));
   for (std::size_t b = 0; b < m; ++b)
     for (std::size_t al = 0; al < k; ++al)
       for (std::size_t be = 0; be < k; ++be) {
         expr::Expr e = expr::sub(expr::diff(c.a[b][al], c.r[be]), expr::diff(c.a[b][be], c.r[al]));
         for (std::size_t a = 0; a < m; ++a)
-          e = expr::add(e, expr::sub(expr::mul(c.a[a][al], expr::diff(c.a[b][be], c.s[a])), expr::mul(c.a[a][be], expr::diff(c.a[b][al], c.s[a]))));
+          e = expr::add(e, expr::sub(expr::mul(c.a[a][al], expr::diff(c.a[b][be], c.s[a])),
+                                     expr::mul(c.a[a][be], expr::diff(c.a[b][al], c.s[a]))));
         out[b][al][be] = e;
       }
   return out;
@@ -91,7 +97,8 @@ inline expr::Expr constrained_lagrangian(const LagrangianSystem& sys, const Ehre
   expr::Expr l = sys.lagrangian;
   for (std::size_t b = 0; b < c.s.size(); ++b) {
     expr::Expr w = expr::number(0);
-    for (std::size_t al = 0; al < c.r.size(); ++al) w = expr::sub(w, expr::mul(c.a[b][al], expr::variable(sys.v(c.r[al]))));
+    for (std::size_t al = 0; al < c.r.size(); ++al)
+      w = expr::sub(w, expr::mul(c.a[b][al], expr::variable(sys.v(c.r[al]))));
     l = expr::substitute(l, sys.v(c.s[b]), w);
   }
   return l;
@@ -101,8 +108,10 @@ inline expr::Expr constrained_lagrangian(const LagrangianSystem& sys, const Ehre
 ///   ṡ + A ṙ,   ṙ − u,   d/dt p̃_α − (∂L_c/∂r^α − A^b_α ∂L_c/∂s^b − p_b K^b_{αβ} u^β),
 /// with p̃_α = ∂L_c/∂u^α along the motion and p_b = ∂L/∂w^b (w = v_s) at (q, v).  All zero on a
 /// solution of the implicit constrained Lagrangian system (YM Thm 5.6 (a) ⇔ (c)).
-inline std::vector<Rational> implicit_lagrange_dalembert_residual(const LagrangianSystem& sys, const EhresmannConnection& c,
-                                                                   const std::vector<Rational>& qv, const std::vector<Rational>& qv_dot) {
+inline std::vector<Rational> implicit_lagrange_dalembert_residual(const LagrangianSystem& sys,
+                                                                  const EhresmannConnection& c,
+                                                                  const std::vector<Rational>& qv,
+                                                                  const std::vector<Rational>& qv_dot) {
   const std::size_t n = sys.n, m = c.s.size(), k = c.r.size();
   auto sp = std::make_shared<const JetSpace>(1, 1);  // first-order jets along the motion: value + ε d/dt
   std::vector<Jet<Rational>> x;
@@ -112,7 +121,9 @@ inline std::vector<Rational> implicit_lagrange_dalembert_residual(const Lagrangi
     x.push_back(j);
   }
   x.emplace_back(sp, Rational(0));
-  const auto ev = [&](const expr::Expr& e) { return expr::evaluate<Jet<Rational>>(e, x, [&](const Rational& q) { return Jet<Rational>(sp, q); }); };
+  const auto ev = [&](const expr::Expr& e) {
+    return expr::evaluate<Jet<Rational>>(e, x, [&](const Rational& q) { return Jet<Rational>(sp, q); });
+  };
   const expr::Expr lc = constrained_lagrangian(sys, c);
   const auto kk = curvature(c);
   std::vector<Rational> res;
@@ -137,7 +148,8 @@ inline std::vector<Rational> implicit_lagrange_dalembert_residual(const Lagrangi
 /// e with sin(x_i) and cos(x_i) of the variables i in `angles` replaced by the variables sin_var[i]
 /// and cos_var[i]: formulas in which each angle occurs only under sin and cos can then be evaluated
 /// exactly at rational points of the circle (cos, sin) = ((1 − t²)/(1 + t²), 2t/(1 + t²)).
-inline expr::Expr angles_as_variables(const expr::Expr& e, const std::vector<std::size_t>& angles, const std::vector<std::size_t>& sin_var,
+inline expr::Expr angles_as_variables(const expr::Expr& e, const std::vector<std::size_t>& angles,
+                                      const std::vector<std::size_t>& sin_var,
                                       const std::vector<std::size_t>& cos_var) {
   using expr::ExprOp;
   for (std::size_t k = 0; k < angles.size(); ++k)
@@ -146,10 +158,18 @@ inline expr::Expr angles_as_variables(const expr::Expr& e, const std::vector<std
   switch (e->op) {
     case ExprOp::Number:
     case ExprOp::Variable: return e;
-    case ExprOp::Add: return expr::add(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
-    case ExprOp::Sub: return expr::sub(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
-    case ExprOp::Mul: return expr::mul(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
-    case ExprOp::Div: return expr::div(angles_as_variables(e->a, angles, sin_var, cos_var), angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Add:
+      return expr::add(angles_as_variables(e->a, angles, sin_var, cos_var),
+                       angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Sub:
+      return expr::sub(angles_as_variables(e->a, angles, sin_var, cos_var),
+                       angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Mul:
+      return expr::mul(angles_as_variables(e->a, angles, sin_var, cos_var),
+                       angles_as_variables(e->b, angles, sin_var, cos_var));
+    case ExprOp::Div:
+      return expr::div(angles_as_variables(e->a, angles, sin_var, cos_var),
+                       angles_as_variables(e->b, angles, sin_var, cos_var));
     case ExprOp::Neg: return expr::neg(angles_as_variables(e->a, angles, sin_var, cos_var));
     case ExprOp::Pow: return expr::pow(angles_as_variables(e->a, angles, sin_var, cos_var), e->exponent);
     case ExprOp::Sin: return expr::sin(angles_as_variables(e->a, angles, sin_var, cos_var));

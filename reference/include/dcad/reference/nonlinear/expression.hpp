@@ -22,10 +22,10 @@ using Expr = std::shared_ptr<const ExprNode>;
 
 struct ExprNode {
   ExprOp op = ExprOp::Number;
-  Rational value = 0;       ///< Number
-  std::size_t var = 0;      ///< Variable
-  long exponent = 0;        ///< Pow
-  Expr a, b;                ///< operands (b only for binary operations)
+  Rational value = 0;   ///< Number
+  std::size_t var = 0;  ///< Variable
+  long exponent = 0;    ///< Pow
+  Expr a, b;            ///< operands (b only for binary operations)
 };
 
 inline bool is_number(const Expr& e) { return e->op == ExprOp::Number; }
@@ -263,7 +263,10 @@ inline std::string to_text(const Expr& e, const std::vector<std::string>& names,
     case ExprOp::Neg: return wrap("-" + to_text(e->a, names, 3), 3);
     case ExprOp::Mul: return wrap(to_text(e->a, names, 2) + "*" + to_text(e->b, names, 3), 2);
     case ExprOp::Div: return wrap(to_text(e->a, names, 2) + "/" + to_text(e->b, names, 3), 2);
-    case ExprOp::Pow: return wrap(to_text(e->a, names, 5) + "^" + (e->exponent < 0 ? "(" + std::to_string(e->exponent) + ")" : std::to_string(e->exponent)), 4);
+    case ExprOp::Pow:
+      return wrap(to_text(e->a, names, 5) + "^" +
+                      (e->exponent < 0 ? "(" + std::to_string(e->exponent) + ")" : std::to_string(e->exponent)),
+                  4);
     case ExprOp::Sin: return "sin(" + to_text(e->a, names) + ")";
     case ExprOp::Cos: return "cos(" + to_text(e->a, names) + ")";
     case ExprOp::Exp: return "exp(" + to_text(e->a, names) + ")";

@@ -35,9 +35,10 @@ class JetSpace {
   JetSpace(std::size_t d, std::size_t k) : d_(d), k_(k) {
     // the monomials, and the product table (one entry per pair of degree sum ≤ k: C(2d + k, k))
     if (binomial(d + k, k) > 200'000 || binomial(2 * d + k, k) > 20'000'000)
-      throw std::length_error("jets in " + std::to_string(d) + " variables to order " + std::to_string(k) + " (" +
-                              std::to_string(static_cast<long>(binomial(d + k, k))) + " monomials, a product table of " +
-                              std::to_string(static_cast<long>(binomial(2 * d + k, k))) + ") exceed what dcad computes");
+      throw std::length_error(
+          "jets in " + std::to_string(d) + " variables to order " + std::to_string(k) + " (" +
+          std::to_string(static_cast<long>(binomial(d + k, k))) + " monomials, a product table of " +
+          std::to_string(static_cast<long>(binomial(2 * d + k, k))) + ") exceed what dcad computes");
     std::vector<std::uint8_t> alpha(d, 0);
     index_[alpha] = 0;
     exps_.push_back(alpha);
@@ -196,7 +197,8 @@ class Jet {
   T value() const { return coefficient(0); }
   /// The coefficient of monomial i (0 if none is stored).
   T coefficient(std::size_t i) const {
-    const auto it = std::lower_bound(c_.begin(), c_.end(), i, [](const Entry& e, std::size_t k) { return e.first < k; });
+    const auto it =
+        std::lower_bound(c_.begin(), c_.end(), i, [](const Entry& e, std::size_t k) { return e.first < k; });
     return it != c_.end() && it->first == i ? it->second : T(0);
   }
   /// The stored (nonzero) coefficients, by increasing monomial index.
@@ -204,7 +206,8 @@ class Jet {
   /// ∂f/∂s_i at the point.
   T gradient(std::size_t i) const { return coefficient(1 + i); }
   void set_coefficient(std::size_t i, const T& v) {
-    const auto it = std::lower_bound(c_.begin(), c_.end(), i, [](const Entry& e, std::size_t k) { return e.first < k; });
+    const auto it =
+        std::lower_bound(c_.begin(), c_.end(), i, [](const Entry& e, std::size_t k) { return e.first < k; });
     const bool here = it != c_.end() && it->first == i;
     if (JetFunctions<T>::is_zero(v)) {
       if (here) c_.erase(it);
@@ -333,7 +336,8 @@ class Jet {
         mon[i] = p == 0 ? delta[v] : mon[p] * delta[v];
       }
       while (next < c_.size() && c_[next].first < i) ++next;
-      if (next < c_.size() && c_[next].first == i) r = r + (i == 0 ? Jet(to, c_[next].second) : mon[i] * Jet(to, c_[next].second));
+      if (next < c_.size() && c_[next].first == i)
+        r = r + (i == 0 ? Jet(to, c_[next].second) : mon[i] * Jet(to, c_[next].second));
     }
     r.set_order(ord);
     return r;
@@ -389,13 +393,16 @@ class Jet {
     const std::size_t known = r.ord_ < 0 ? 0 : a.sp_->count_up_to(static_cast<std::size_t>(r.ord_));
     std::size_t i = 0, j = 0;
     while (i < a.c_.size() || j < b.c_.size()) {
-      const std::uint32_t ia = i < a.c_.size() ? a.c_[i].first : UINT32_MAX, ib = j < b.c_.size() ? b.c_[j].first : UINT32_MAX;
+      const std::uint32_t ia = i < a.c_.size() ? a.c_[i].first : UINT32_MAX,
+                          ib = j < b.c_.size() ? b.c_[j].first : UINT32_MAX;
       const std::uint32_t k = std::min(ia, ib);
       if (k >= known) break;
       T v = ia == k ? a.c_[i].second : T(0);
       if (ib == k) {
-        if (minus) v -= b.c_[j].second;
-        else v += b.c_[j].second;
+        if (minus)
+          v -= b.c_[j].second;
+        else
+          v += b.c_[j].second;
       }
       if (ia == k) ++i;
       if (ib == k) ++j;

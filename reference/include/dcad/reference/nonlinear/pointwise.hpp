@@ -34,8 +34,9 @@ namespace dcad::reference {
 /// T.  Jets are computed to order `order` and more if the tower needs it.  `plan`: another result's
 /// plan, to make the same choice of solved coordinates where it works (simulate's projections).
 template <class T, class Decide>
-PointwiseResult<T> pointwise_cad(const LagrangianSystem& sys, std::vector<T> start, const std::vector<bool>& fixed, Decide& decide,
-                                 const std::function<T(const Rational&)>& constant, long order = 3, std::size_t max_moves = 12,
+PointwiseResult<T> pointwise_cad(const LagrangianSystem& sys, std::vector<T> start, const std::vector<bool>& fixed,
+                                 Decide& decide, const std::function<T(const Rational&)>& constant, long order = 3,
+                                 std::size_t max_moves = 12,
                                  const std::vector<std::vector<std::size_t>>* plan = nullptr) {
   const LagrangianDerivatives der = derivatives(sys);
   PointwiseResult<T> out;
@@ -49,12 +50,14 @@ PointwiseResult<T> pointwise_cad(const LagrangianSystem& sys, std::vector<T> sta
     }
     if (o == pointwise_detail::Run<T, Decide>::Outcome::MoreOrder) {
       K += 2;
-      if (K > static_cast<long>(2 * sys.n + 6)) throw std::logic_error("pointwise_cad: the tower needs jets beyond order 2n+6");
+      if (K > static_cast<long>(2 * sys.n + 6))
+        throw std::logic_error("pointwise_cad: the tower needs jets beyond order 2n+6");
       continue;
     }
     if (++moves > max_moves)
-      throw PointwiseNoPoint("no point of M_c was reached from the given values in " + std::to_string(max_moves) +
-                             " Newton steps (the exact route needs a point with rational coordinates: give values on M_c)");
+      throw PointwiseNoPoint(
+          "no point of M_c was reached from the given values in " + std::to_string(max_moves) +
+          " Newton steps (the exact route needs a point with rational coordinates: give values on M_c)");
   }
 }
 

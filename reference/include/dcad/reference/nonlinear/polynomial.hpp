@@ -22,7 +22,7 @@ namespace dcad::reference::expr {
 class Canonical {
  public:
   using Mono = std::vector<std::pair<std::string, long>>;  ///< atoms (by key, sorted) and exponents
-  using Poly = std::map<Mono, Rational>;                    ///< nonzero coefficients only
+  using Poly = std::map<Mono, Rational>;                   ///< nonzero coefficients only
 
   /// The canonical form of e; std::length_error beyond `max_terms` terms (an expansion too large to decide).
   /// A node shared in the DAG (derivatives share their operands) is expanded once.
@@ -97,7 +97,8 @@ class Canonical {
   Poly atom(const std::string& key, const Expr& e) {
     // an atom's key holds its argument's canonical text: nested quotients (1/(… 1/(…) …)) grow it
     // geometrically, so a large one is "too large to decide", like a large expansion
-    if (key.size() > max_key) throw std::length_error("an atom of more than " + std::to_string(max_key) + " characters");
+    if (key.size() > max_key)
+      throw std::length_error("an atom of more than " + std::to_string(max_key) + " characters");
     atoms_.emplace(key, e);
     return Poly{{Mono{{key, 1}}, Rational(1)}};
   }
@@ -115,7 +116,8 @@ class Canonical {
       for (const auto& [mb, cb] : b) {
         Mono m = ma;
         for (const auto& [atom, k] : mb) {
-          auto it = std::lower_bound(m.begin(), m.end(), atom, [](const auto& x, const std::string& y) { return x.first < y; });
+          auto it = std::lower_bound(m.begin(), m.end(), atom,
+                                     [](const auto& x, const std::string& y) { return x.first < y; });
           if (it != m.end() && it->first == atom) {
             it->second += k;
             if (it->second == 0) m.erase(it);
@@ -154,7 +156,8 @@ class Canonical {
 /// is_v (in order `vs`) and the rest, or nothing when e is not affine in them (a square of a velocity
 /// that does not cancel, a velocity inside a function or a denominator) or too large to expand.
 template <class IsV>
-std::optional<std::pair<std::vector<Expr>, Expr>> affine_form(const Expr& e, const std::vector<std::size_t>& vs, const IsV& is_v) {
+std::optional<std::pair<std::vector<Expr>, Expr>> affine_form(const Expr& e, const std::vector<std::size_t>& vs,
+                                                              const IsV& is_v) {
   Canonical c;
   Canonical::Poly p;
   try {

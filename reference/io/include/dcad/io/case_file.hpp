@@ -53,7 +53,7 @@ struct CaseFile {
   std::vector<std::string> variables;
   bool has_dirac = false;
   DiracInput dirac;
-  EnergyInput energy;       ///< zero if absent (or for `pontryagin`)
+  EnergyInput energy;  ///< zero if absent (or for `pontryagin`)
   bool has_pontryagin = false;
   PontryaginInput pontryagin;
   bool has_constrained = false;

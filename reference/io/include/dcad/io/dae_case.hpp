@@ -15,8 +15,8 @@ namespace dcad::io {
 struct DaeCase {
   std::string file, name, description;
   std::vector<std::string> variables;  ///< x's names, N of them
-  /// E and A, m × N, dense — where they fit: above `dense_limit` entries or `dense_side` rows or columns only `e_entries`/`a_entries`
-  /// hold them (`dense` false) and only the sparse route (fast) runs.
+  /// E and A, m × N, dense — where they fit: above `dense_limit` entries or `dense_side` rows or columns only
+  /// `e_entries`/`a_entries` hold them (`dense` false) and only the sparse route (fast) runs.
   QMatrix e, a;
   bool dense = true;
   long rows = 0;  ///< m; with `dense`, e.rows() is the one to read (a case built in code may set only e and a)
@@ -28,10 +28,11 @@ struct DaeCase {
   };
   std::vector<Entry> e_entries, a_entries;
   static constexpr long dense_limit = 4'000'000;  ///< m·N: 2,000 variables and equations (128 MB per matrix)
-  static constexpr long dense_side = 2'000;        ///< and m, N each (the exact route's left null vectors are m × m: a 3,900 × 150 case took 17 GB)
+  static constexpr long dense_side =
+      2'000;  ///< and m, N each (the exact route's left null vectors are m × m: a 3,900 × 150 case took 17 GB)
   /// f_i(t), one per equation, over the variable 0 (the time); the number 0 where f is absent.
   std::vector<reference::expr::Expr> f;
-  std::string time_name;               ///< "" when the case names no time (f then constant)
+  std::string time_name;  ///< "" when the case names no time (f then constant)
   std::map<std::string, Rational> parameters;
   std::vector<std::optional<Rational>> initial;  ///< size N
   std::optional<Rational> initial_time;

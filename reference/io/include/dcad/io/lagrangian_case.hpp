@@ -19,7 +19,7 @@ struct LagrangianCase {
   std::map<std::string, Rational> parameters;
   /// `initial`: values of q, v (indices of LagrangianSystem), then p (2n + 1 + i for p_i: see
   /// `initial_p`) and the time (index 2n); absent values are empty.
-  std::vector<std::optional<Rational>> initial;  ///< size 2n + 1: q, v, t
+  std::vector<std::optional<Rational>> initial;    ///< size 2n + 1: q, v, t
   std::vector<std::optional<Rational>> initial_p;  ///< size n
   bool has_initial = false;
 };
@@ -30,6 +30,7 @@ bool is_expression_file(const std::string& file);
 LagrangianCase read_lagrangian_case(const std::string& file);
 /// A formula of another tool's result (`text`, found at FILE's JSON `path`) in the case's names (q,
 /// v_*, the time) and parameters; InputError naming file, path and column.
-reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file, const std::string& path);
+reference::expr::Expr parse_case_formula(const LagrangianCase& c, const std::string& text, const std::string& file,
+                                         const std::string& path);
 
 }  // namespace dcad::io

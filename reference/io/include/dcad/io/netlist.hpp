@@ -16,9 +16,9 @@ namespace dcad::io {
 struct Netlist {
   std::string file, title;
   reference::Circuit<Rational> circuit;
-  std::vector<std::string> node_names;                  ///< non-ground nodes, in order of appearance
-  std::vector<std::optional<Rational>> initial;         ///< IC= per branch (current for L, voltage for C)
-  std::vector<std::string> warnings;                    ///< ignored dot-cards, non-physical values
+  std::vector<std::string> node_names;           ///< non-ground nodes, in order of appearance
+  std::vector<std::optional<Rational>> initial;  ///< IC= per branch (current for L, voltage for C)
+  std::vector<std::string> warnings;             ///< ignored dot-cards, non-physical values
   /// Every element, R, V, I and K included (YM §4); `circuit` holds the same branches with R and
   /// the sources as empty branches, and is the circuit only when !forced.
   reference::RlcCircuit<Rational> rlc;
@@ -46,7 +46,8 @@ struct Netlist {
 /// tier proves there is about the rounded circuit, so no tier says `certified` of the deck itself.
 inline std::string rounded_note(const Netlist& n) {
   if (n.rounded.empty()) return "";
-  std::string s = "not certified for the deck as written: " + std::to_string(n.rounded.size()) + " irrational value(s) used to 80 significant digits (" + n.rounded.front();
+  std::string s = "not certified for the deck as written: " + std::to_string(n.rounded.size()) +
+                  " irrational value(s) used to 80 significant digits (" + n.rounded.front();
   return s + (n.rounded.size() > 1 ? ", …)" : ")") + "; the answer is exact for that rounded circuit";
 }
 
@@ -69,7 +70,8 @@ bool is_netlist_file(const std::string& file);
 CircuitFacts circuit_facts(const Netlist& n);
 Netlist read_netlist(const std::string& file, const ReadOptions& options = {});
 /// A deck given as text, named `name` in messages; `.include`/`.lib` files are read from `directory`.
-Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory, const ReadOptions& options = {});
+Netlist read_netlist_text(const std::string& text, const std::string& name, const std::string& directory,
+                          const ReadOptions& options = {});
 /// SPICE value, exact: a number with an optional scale factor as ngspice reads it (f p n u m mil k meg g
 /// t, case-insensitive) and an optional unit ("10uF", "2.2kOhm").  Other trailing letters are ignored, as
 /// ngspice does, and put in `*ignored` (the caller warns).  A leading `a` or `x` is read as `dialect` reads

@@ -23,11 +23,11 @@ enum class Form {
 
 struct Problem {
   Form form = Form::linear;
-  std::string file;            ///< where it was read from (names every message)
-  CaseFile linear;             ///< Form::linear: the case; Form::netlist: the circuit's variable names (q_*, v_*, p_*)
-  Netlist netlist;             ///< Form::netlist
-  LagrangianCase expression;   ///< Form::expression; Form::implicit (its system is `implicit`)
-  DaeCase dae;                 ///< Form::dae
+  std::string file;           ///< where it was read from (names every message)
+  CaseFile linear;            ///< Form::linear: the case; Form::netlist: the circuit's variable names (q_*, v_*, p_*)
+  Netlist netlist;            ///< Form::netlist
+  LagrangianCase expression;  ///< Form::expression; Form::implicit (its system is `implicit`)
+  DaeCase dae;                ///< Form::dae
 
   /// The state's variable names, in order: x of a linear case, (q, v, p) of a circuit or a Lagrangian system.
   std::vector<std::string> variables() const;
@@ -50,8 +50,8 @@ Problem read_problem(const std::string& file, const ReadOptions& options = {});
 
 /// A netlist given as text; `name` stands for the file in messages, and `.include`/`.lib` paths are
 /// taken relative to `directory`.
-Problem parse_netlist(const std::string& text, const std::string& name = "netlist.cir", const std::string& directory = ".",
-                      const ReadOptions& options = {});
+Problem parse_netlist(const std::string& text, const std::string& name = "netlist.cir",
+                      const std::string& directory = ".", const ReadOptions& options = {});
 
 /// A JSON case (linear or expression form) given as text; `name` stands for the file in messages.
 Problem parse_case(const std::string& text, const std::string& name = "case.json");
@@ -66,7 +66,11 @@ auto at_input(const CaseFile& c, F f) {
   } catch (const InputError&) {
     throw;
   } catch (const std::invalid_argument& e) {
-    throw InputError(c.file + ": " + (c.has_pontryagin ? "/pontryagin" : c.has_constrained ? "/constrained" : c.dirac.path) + ": " + e.what());
+    throw InputError(c.file + ": " +
+                     (c.has_pontryagin    ? "/pontryagin"
+                      : c.has_constrained ? "/constrained"
+                                          : c.dirac.path) +
+                     ": " + e.what());
   }
 }
 

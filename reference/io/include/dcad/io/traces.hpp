@@ -13,9 +13,9 @@ namespace dcad::io {
 
 struct Traces {
   std::string file;
-  std::string format;                       ///< "ngspice raw (binary)", "ngspice raw (ascii)", "ngspice wrdata", "gnucap", "csv"
-  std::vector<std::string> names;           ///< the vectors after time, as the file names them
-  std::vector<double> time;                 ///< the file's time points (nondecreasing)
+  std::string format;              ///< "ngspice raw (binary)", "ngspice raw (ascii)", "ngspice wrdata", "gnucap", "csv"
+  std::vector<std::string> names;  ///< the vectors after time, as the file names them
+  std::vector<double> time;        ///< the file's time points (nondecreasing)
   std::vector<std::vector<double>> values;  ///< values[k][i]: vector k at time[i]
   /// Lines skipped inside the table, each "FILE:LINE: \"text\"" (gnucap writes step-control messages such
   /// as "zero time step" between its rows; the rows after them are read, and the check says so).

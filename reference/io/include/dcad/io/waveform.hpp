@@ -24,8 +24,8 @@ struct Waveform {
   std::vector<Rational> p;
   /// PWL's R= (ngspice): from this time point (one of the t_i) to the last the waveform repeats; none: holds
   std::optional<Rational> repeat;
-  std::string element;      ///< the source's name (V1, I.x1.i2)
-  std::string text;         ///< as written, for messages
+  std::string element;  ///< the source's name (V1, I.x1.i2)
+  std::string text;     ///< as written, for messages
   /// PULSE's 8th value NP (ngspice): the number of pulses, V1 after them; 0: unbounded.
   long pulses = 0;
   /// How many values the deck gave: PULSE and SIN take ngspice's defaults for the rest from .tran's TSTEP

@@ -19,10 +19,12 @@ namespace pointwise_detail {
 /// object picks among all (row, column) candidates in column order — the exact route the first
 /// nonzero, the double route the first that is at least 1/8 of the largest (threshold pivoting, so
 /// that a chart is never built on a small pivot, like v_theta = v_x/(R cos phi) near phi = pi/2,
-/// and is otherwise the preferred one) — and only when a group has no pivot left does the next come.  Returns the pivots (row, column); rows and rhs are reduced.
+/// and is otherwise the preferred one) — and only when a group has no pivot left does the next come.  Returns the
+/// pivots (row, column); rows and rhs are reduced.
 template <class T, class Decide>
-std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector<std::vector<T>>& rows, std::vector<T>& rhs,
-                                                                       const std::vector<std::vector<std::size_t>>& groups, Decide& decide) {
+std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(
+    std::vector<std::vector<T>>& rows, std::vector<T>& rhs, const std::vector<std::vector<std::size_t>>& groups,
+    Decide& decide) {
   std::vector<std::pair<std::size_t, std::size_t>> piv;
   std::vector<char> used(rows.size(), 0);
   std::vector<std::size_t> used_cols;
@@ -57,8 +59,10 @@ std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector
 
 /// The same with one group: columns in `col_order`.
 template <class T, class Decide>
-std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector<std::vector<T>>& rows, std::vector<T>& rhs,
-                                                                       const std::vector<std::size_t>& col_order, Decide& decide) {
+std::vector<std::pair<std::size_t, std::size_t>> eliminate_constants(std::vector<std::vector<T>>& rows,
+                                                                     std::vector<T>& rhs,
+                                                                     const std::vector<std::size_t>& col_order,
+                                                                     Decide& decide) {
   return eliminate_constants(rows, rhs, std::vector<std::vector<std::size_t>>{col_order}, decide);
 }
 
@@ -107,8 +111,9 @@ JetElimination<T> eliminate_jets(std::vector<std::vector<Jet<T>>> r, std::vector
     if (used[i]) continue;
     for (std::size_t c = 0; c < cols && out.singular.empty(); ++c)
       if (!decide.zero(r[i][c]))
-        out.singular = "the rank of the system for (d/dt s, lambda) drops at the point: after the pivots, row " + row_names[i] +
-                       " keeps a nonzero series in column " + col_names[c] + " that vanishes at the point";
+        out.singular = "the rank of the system for (d/dt s, lambda) drops at the point: after the pivots, row " +
+                       row_names[i] + " keeps a nonzero series in column " + col_names[c] +
+                       " that vanishes at the point";
     out.free_rows.push_back(i);
     out.candidates.push_back(h[i]);
   }
@@ -121,7 +126,8 @@ template <class T>
 std::size_t largest(const std::vector<T>& v) {
   std::size_t best = v.size();
   for (std::size_t i = 0; i < v.size(); ++i)
-    if (JetFunctions<T>::magnitude(v[i]) > 0 && (best == v.size() || JetFunctions<T>::magnitude(v[i]) > JetFunctions<T>::magnitude(v[best])))
+    if (JetFunctions<T>::magnitude(v[i]) > 0 &&
+        (best == v.size() || JetFunctions<T>::magnitude(v[i]) > JetFunctions<T>::magnitude(v[best])))
       best = i;
   return best;
 }

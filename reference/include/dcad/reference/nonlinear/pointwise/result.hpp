@@ -45,8 +45,8 @@ struct PointwiseConstraint {
 
 template <class T>
 struct PointwiseLevel {
-  long dim = 0;                      ///< dim M_k (at fixed time)
-  std::vector<std::size_t> chart;    ///< its coordinates (variable indices), time first if any
+  long dim = 0;                               ///< dim M_k (at fixed time)
+  std::vector<std::size_t> chart;             ///< its coordinates (variable indices), time first if any
   std::vector<PointwiseConstraint<T>> added;  ///< the constraints that cut M_k out of M_{k−1}
   std::vector<PointwisePivot<T>> pivots;      ///< of the (ṡ, λ) system on M_k
 };
@@ -56,18 +56,18 @@ struct PointwiseResult {
   std::vector<long> dims;  ///< dim M_k, k = 0…c (−1: empty)
   std::size_t steps = 0;
   bool consistent = true;
-  bool regular = true;     ///< false: a rank drops at the point (`why`); dims are then partial
+  bool regular = true;  ///< false: a rank drops at the point (`why`); dims are then partial
   std::string why;
   std::size_t solution_rank = 0;
-  std::vector<T> point;    ///< (q, v, p) at the point, 3n values
+  std::vector<T> point;  ///< (q, v, p) at the point, 3n values
   T time = T(0);
-  std::vector<T> velocity;               ///< ẋ at the point, one solution (3n)
-  std::vector<std::vector<T>> gauge;     ///< a basis of the other solutions' differences (solution_rank rows)
-  std::vector<std::vector<T>> tangent;   ///< a basis of T_x M_c (at fixed time) in x = (q, v, p): ∂x/∂s_j, s M_c's chart
-  std::vector<PointwiseLevel<T>> levels; ///< levels[k] describes M_{k+1}
-  long order = 0;          ///< jets were computed to this order
-  long checked_order = 0;  ///< the last step's constraints vanish on M_c to this order
-  std::size_t moves = 0;   ///< Newton steps that moved the given point onto M_c
+  std::vector<T> velocity;            ///< ẋ at the point, one solution (3n)
+  std::vector<std::vector<T>> gauge;  ///< a basis of the other solutions' differences (solution_rank rows)
+  std::vector<std::vector<T>> tangent;  ///< a basis of T_x M_c (at fixed time) in x = (q, v, p): ∂x/∂s_j, s M_c's chart
+  std::vector<PointwiseLevel<T>> levels;  ///< levels[k] describes M_{k+1}
+  long order = 0;                         ///< jets were computed to this order
+  long checked_order = 0;                 ///< the last step's constraints vanish on M_c to this order
+  std::size_t moves = 0;                  ///< Newton steps that moved the given point onto M_c
   /// The coordinates solved for at each step: plan[0] the dependent velocities of M_1, plan[k] those
   /// of M_{k+1}.  Given back to pointwise_cad at a nearby point, the same choices are made there
   /// (where their pivots are nonzero): the projection onto M_c is then one fixed map.
@@ -79,6 +79,5 @@ struct PointwiseResult {
 struct PointwiseNoPoint : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
-
 
 }  // namespace dcad::reference

@@ -20,10 +20,17 @@ class Run {
  public:
   using J = Jet<T>;
   Run(const LagrangianSystem& sys, const LagrangianDerivatives& der, const std::vector<bool>& fixed, Decide& decide,
-      const std::function<T(const Rational&)>& constant, const std::vector<std::vector<std::size_t>>* plan, std::size_t& polished,
-      std::size_t* constant_nudges = nullptr)
-      : polished_(polished), constant_nudges_(constant_nudges), s_(sys), d_(der), fixed_(fixed), decide_(decide), constant_(constant),
-        names_(sys.variable_names()), plan_(plan) {}
+      const std::function<T(const Rational&)>& constant, const std::vector<std::vector<std::size_t>>* plan,
+      std::size_t& polished, std::size_t* constant_nudges = nullptr)
+      : polished_(polished),
+        constant_nudges_(constant_nudges),
+        s_(sys),
+        d_(der),
+        fixed_(fixed),
+        decide_(decide),
+        constant_(constant),
+        names_(sys.variable_names()),
+        plan_(plan) {}
 
   enum class Outcome { Done, Moved, MoreOrder };
 
@@ -35,8 +42,10 @@ class Run {
     out.order = K;
     out.dims.push_back(static_cast<long>(s_.implicit ? s_.n : 3 * s_.n));
     State st;
-    if (s_.implicit) implicit_start(point, K, st);  // CEF (1.6): M_0 = Q, the first step is M_0 → M_1
-    else if (!first_level(point, K, out, st)) return Outcome::Done;
+    if (s_.implicit)
+      implicit_start(point, K, st);  // CEF (1.6): M_0 = Q, the first step is M_0 → M_1
+    else if (!first_level(point, K, out, st))
+      return Outcome::Done;
     for (std::size_t k = s_.implicit ? 0 : 1;; ++k)
       if (const std::optional<Outcome> o = next_level(k, point, K, out, st)) return *o;
   }
@@ -71,14 +80,16 @@ class Run {
         out.consistent = false;
         out.dims.push_back(-1);
         out.steps = 1;
-        out.why = "constraint " + std::to_string(a) + " is identically " + s_.constraints[a]->value.str() + " (after expanding): M_1 is empty";
+        out.why = "constraint " + std::to_string(a) + " is identically " + s_.constraints[a]->value.str() +
+                  " (after expanding): M_1 is empty";
         finish_given(out, point);
         return false;
       }
     const std::vector<std::pair<std::size_t, std::size_t>> vp = velocity_pivots(point, out);
     if (vp.size() < s_.m()) {
       out.regular = false;
-      out.why = "the constraints' velocity coefficients have rank " + std::to_string(vp.size()) + " < " + std::to_string(s_.m()) +
+      out.why = "the constraints' velocity coefficients have rank " + std::to_string(vp.size()) + " < " +
+                std::to_string(s_.m()) +
                 " at the point (dependent constraints, or a point where Delta changes dimension)";
       finish_given(out, point);
       return false;
@@ -114,7 +125,8 @@ class Run {
 
   /// The pivots (constraint, velocity) of a(t, q) at the point: the preferred dependent velocities, or
   /// the plan's where they carry the same rank.
-  std::vector<std::pair<std::size_t, std::size_t>> velocity_pivots(const std::vector<T>& point, PointwiseResult<T>& out) {
+  std::vector<std::pair<std::size_t, std::size_t>> velocity_pivots(const std::vector<T>& point,
+                                                                   PointwiseResult<T>& out) {
     std::vector<std::vector<T>> a0(s_.m(), std::vector<T>(2 * s_.n + 1, T(0)));
     std::vector<T> b0(s_.m());
     for (std::size_t a = 0; a < s_.m(); ++a)
@@ -133,8 +145,8 @@ class Run {
   }
 
   /// Σ_{dep} a_ai v_i = −b_a − Σ_{free} a_ai v_i, as series, with the pivots chosen.
-  void solve_dependent_velocities(const std::vector<std::pair<std::size_t, std::size_t>>& vp, const std::vector<char>& dependent,
-                                  std::vector<J>& x, std::vector<T>& point) {
+  void solve_dependent_velocities(const std::vector<std::pair<std::size_t, std::size_t>>& vp,
+                                  const std::vector<char>& dependent, std::vector<J>& x, std::vector<T>& point) {
     std::vector<std::vector<J>> r(s_.m());
     std::vector<J> h(s_.m());
     std::vector<std::size_t> dep_cols;
@@ -157,11 +169,14 @@ class Run {
 
   /// M_k → M_{k+1}: nothing while the tower goes on; else how the pass ends.
   std::optional<Outcome> next_level(std::size_t k, std::vector<T>& point, long K, PointwiseResult<T>& out, State& st) {
-    const MotionSystem<T> sys = motion_system<T>(s_, d_, st.x, st.chart, names_, [&](const expr::Expr& e, const std::vector<J>& x) { return eval(e, x); });
+    const MotionSystem<T> sys = motion_system<T>(
+        s_, d_, st.x, st.chart, names_, [&](const expr::Expr& e, const std::vector<J>& x) { return eval(e, x); });
     step_data(sys);
     JetElimination<T> e = eliminate_jets(sys.r, sys.h, decide_, sys.row_names, sys.col_names);
-    for (std::size_t k = 0; k < e.pivots.size(); ++k)  // the pivot as used (after the eliminations before it), not the raw entry
-      st.level.pivots.push_back({sys.row_names[e.pivots[k].first], sys.col_names[e.pivots[k].second], e.pivot_values[k]});
+    for (std::size_t k = 0; k < e.pivots.size();
+         ++k)  // the pivot as used (after the eliminations before it), not the raw entry
+      st.level.pivots.push_back(
+          {sys.row_names[e.pivots[k].first], sys.col_names[e.pivots[k].second], e.pivot_values[k]});
     if (!e.singular.empty()) return singular(out, st, point, "on M_" + std::to_string(k) + ": " + e.singular);
     long ord = std::numeric_limits<long>::max();  // to which order the candidates are known
     for (const J& c : e.candidates) ord = std::min(ord, c.order());
@@ -201,7 +216,8 @@ class Run {
     return on;
   }
 
-  std::optional<Outcome> singular(PointwiseResult<T>& out, const State& st, const std::vector<T>& point, const std::string& why) {
+  std::optional<Outcome> singular(PointwiseResult<T>& out, const State& st, const std::vector<T>& point,
+                                  const std::string& why) {
     out.levels.push_back(st.level);
     out.regular = false;
     out.why = why;
@@ -213,8 +229,8 @@ class Run {
   /// The candidates' independent differentials (over the non-time chart coordinates, the plan's if
   /// they carry the same rank): none — M_c = M_k, the tower ends (last_level) — or the graph of
   /// M_{k+1} over the remaining coordinates (graph).
-  std::optional<Outcome> new_level(std::size_t k, std::vector<T>& point, long K, PointwiseResult<T>& out, State& st, const MotionSystem<T>& sys,
-                                   JetElimination<T>& e, long ord) {
+  std::optional<Outcome> new_level(std::size_t k, std::vector<T>& point, long K, PointwiseResult<T>& out, State& st,
+                                   const MotionSystem<T>& sys, JetElimination<T>& e, long ord) {
     const std::vector<std::size_t>& chart = st.chart;
     std::vector<std::vector<T>> g(e.candidates.size(), std::vector<T>(chart.size(), T(0)));
     for (std::size_t i = 0; i < e.candidates.size(); ++i)
@@ -245,18 +261,21 @@ class Run {
 
   /// M_{k+1} = M_k: every candidate must vanish on M_k (else inconsistent, or the point is singular);
   /// the solutions at the point.
-  std::optional<Outcome> last_level(std::size_t k, const std::vector<T>& point, PointwiseResult<T>& out, State& st, const MotionSystem<T>& sys,
-                                    const JetElimination<T>& e, const std::vector<std::vector<T>>& g, long ord) {
+  std::optional<Outcome> last_level(std::size_t k, const std::vector<T>& point, PointwiseResult<T>& out, State& st,
+                                    const MotionSystem<T>& sys, const JetElimination<T>& e,
+                                    const std::vector<std::vector<T>>& g, long ord) {
     out.levels.push_back(st.level);
     for (std::size_t i = 0; i < e.candidates.size(); ++i) {
       if (decide_.zero(e.candidates[i])) continue;
       if (time_only(g[i], st.chart)) {
         if (out.consistent) out.dims.push_back(-1);
         out.consistent = false;
-        out.why = "step " + std::to_string(k) + " gives a condition on the time alone: M_" + std::to_string(k + 1) + "(t) is empty at generic times";
+        out.why = "step " + std::to_string(k) + " gives a condition on the time alone: M_" + std::to_string(k + 1) +
+                  "(t) is empty at generic times";
       } else {
         out.regular = false;
-        out.why = "on M_" + std::to_string(k) + ": a constraint vanishes with its differential at the point but not identically";
+        out.why = "on M_" + std::to_string(k) +
+                  ": a constraint vanishes with its differential at the point but not identically";
       }
     }
     out.steps = out.dims.size() - 1;
@@ -268,8 +287,9 @@ class Run {
 
   /// M_{k+1}: the graph of the pivot coordinates over the others, by Newton's method on jets; the
   /// constraints it adds (their tangent equations at the point, each solved for its pivot).
-  std::optional<Outcome> graph(std::size_t k, const std::vector<T>& point, long K, PointwiseResult<T>& out, State& st, JetElimination<T>& e,
-                               const std::vector<std::vector<T>>& g, const std::vector<std::vector<T>>& gr,
+  std::optional<Outcome> graph(std::size_t k, const std::vector<T>& point, long K, PointwiseResult<T>& out, State& st,
+                               JetElimination<T>& e, const std::vector<std::vector<T>>& g,
+                               const std::vector<std::vector<T>>& gr,
                                const std::vector<std::pair<std::size_t, std::size_t>>& gp, long ord) {
     const std::vector<std::size_t>& chart = st.chart;
     std::vector<std::size_t> sel_rows, dep_idx;
@@ -279,7 +299,8 @@ class Run {
     }
     PointwiseLevel<T> next;
     // reduced rows (Gauss–Jordan): each has 1 pivot among the solved coordinates, so it names the one it is solved for
-    for (std::size_t r = 0; r < gp.size(); ++r) next.added.push_back(tangent(gr[sel_rows[r]], chart, dep_idx[r], point));
+    for (std::size_t r = 0; r < gp.size(); ++r)
+      next.added.push_back(tangent(gr[sel_rows[r]], chart, dep_idx[r], point));
     out.plan.emplace_back();
     for (std::size_t j : dep_idx) out.plan.back().push_back(chart[j]);
     std::vector<std::size_t> new_chart;
@@ -294,8 +315,10 @@ class Run {
     newton_graph(e.candidates, sel_rows, dep_idx, g, subs, ord);
     for (const J& c : e.candidates)
       if (!decide_.zero(c.compose(subs)))
-        return singular(out, st, point, "on M_" + std::to_string(k + 1) + ": a constraint of step " + std::to_string(k) +
-                                            " vanishes with its differential at the point but not identically on M_" + std::to_string(k + 1));
+        return singular(out, st, point,
+                        "on M_" + std::to_string(k + 1) + ": a constraint of step " + std::to_string(k) +
+                            " vanishes with its differential at the point but not identically on M_" +
+                            std::to_string(k + 1));
     for (J& xi : st.x) xi = xi.compose(subs);
     out.levels.push_back(st.level);
     st.chart = new_chart;
@@ -347,7 +370,8 @@ class Run {
     return out;
   }
   /// The same groups as chart positions (never the time); `movable`: only coordinates not given.
-  std::vector<std::vector<std::size_t>> chart_preference(const std::vector<std::size_t>& chart, bool movable = false) const {
+  std::vector<std::vector<std::size_t>> chart_preference(const std::vector<std::size_t>& chart,
+                                                         bool movable = false) const {
     std::vector<std::vector<std::size_t>> out;
     for (const auto& group : preference(true, true)) {
       out.emplace_back();
@@ -360,8 +384,10 @@ class Run {
   bool time_only(const std::vector<T>& grad, const std::vector<std::size_t>& chart) {
     bool t_nonzero = false;
     for (std::size_t j = 0; j < chart.size(); ++j) {
-      if (chart[j] == s_.t()) t_nonzero = !decide_.zero(grad[j]);
-      else if (!decide_.zero(grad[j])) return false;
+      if (chart[j] == s_.t())
+        t_nonzero = !decide_.zero(grad[j]);
+      else if (!decide_.zero(grad[j]))
+        return false;
     }
     return t_nonzero;
   }
@@ -382,8 +408,9 @@ class Run {
 
   /// subs[dep] as series over the new chart with ψ_sel(subs) = 0: Newton's method with the
   /// Jacobian at the point (each iteration gains at least one order).
-  void newton_graph(const std::vector<J>& cand, const std::vector<std::size_t>& rows, const std::vector<std::size_t>& dep,
-                    const std::vector<std::vector<T>>& g, std::vector<J>& subs, long ord) {
+  void newton_graph(const std::vector<J>& cand, const std::vector<std::size_t>& rows,
+                    const std::vector<std::size_t>& dep, const std::vector<std::vector<T>>& g, std::vector<J>& subs,
+                    long ord) {
     const std::size_t r = rows.size();
     std::vector<std::vector<T>> jac(r, std::vector<T>(r));
     for (std::size_t i = 0; i < r; ++i)
@@ -408,7 +435,8 @@ class Run {
       for (std::size_t i = 0; i < r; ++i) res.push_back(cand[rows[i]].compose(subs));
       for (std::size_t k = 0; k < r; ++k)
         for (std::size_t c = 0; c < known; ++c)
-          subs[dep[k]].set_coefficient(c, JetFunctions<T>::with_error(subs[dep[k]].coefficient(c), absolute_sum(inv[k], res, c)));
+          subs[dep[k]].set_coefficient(
+              c, JetFunctions<T>::with_error(subs[dep[k]].coefficient(c), absolute_sum(inv[k], res, c)));
     }
   }
 
@@ -424,8 +452,8 @@ class Run {
 
   /// The point is not on M_{k+1}: one Newton step on the candidates in the coordinates that may
   /// move.  False (and `out` says why) if no move can satisfy them: M_{k+1} is empty near here.
-  bool move(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<J>& x, std::vector<T>& point,
-            std::size_t k, PointwiseResult<T>& out) {
+  bool move(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<J>& x,
+            std::vector<T>& point, std::size_t k, PointwiseResult<T>& out) {
     Step st = newton_step(cand, chart, k);
     const Reach reach = reachable(cand, chart, point, k, st, out);
     if (reach == Reach::empty) return false;
@@ -450,11 +478,11 @@ class Run {
   /// The linearized candidates g·δ = −ψ at the point, reduced on the coordinates that may move.
   struct Step {
     std::vector<std::vector<T>> g, gr;  ///< gradients over the chart, and reduced
-    std::vector<std::vector<T>> comb;    ///< row i of gr (and rhs) is Σ_j comb[i][j] · (candidate j)
-    std::vector<T> rhs;                  ///< −ψ, reduced
-    std::vector<std::size_t> movable;    ///< chart positions the step may change
+    std::vector<std::vector<T>> comb;   ///< row i of gr (and rhs) is Σ_j comb[i][j] · (candidate j)
+    std::vector<T> rhs;                 ///< −ψ, reduced
+    std::vector<std::size_t> movable;   ///< chart positions the step may change
     std::vector<std::pair<std::size_t, std::size_t>> piv;  ///< (candidate, coordinate) pivots
-    std::size_t rank_all = 0;            ///< rank of the gradients over every coordinate but the time
+    std::size_t rank_all = 0;                              ///< rank of the gradients over every coordinate but the time
   };
 
   Step newton_step(const std::vector<J>& cand, const std::vector<std::size_t>& chart, std::size_t k) {
@@ -492,8 +520,10 @@ class Run {
       // the implicit form: the coordinates in the charts' own order (the ones the next chart solves for
       // move): by magnitude, 2 x1 − x2 = 0 moved x1, which M_2's chart over x1 then moved back, forever
       // (prop_dae's LinearFormEqualsImplicitFormOnLinearData)
-      if (s_.implicit) st.piv = eliminate_constants(aug, rhs, groups, decide_);
-      else st.piv = eliminate_constants(aug, rhs, groups, largest);
+      if (s_.implicit)
+        st.piv = eliminate_constants(aug, rhs, groups, decide_);
+      else
+        st.piv = eliminate_constants(aug, rhs, groups, largest);
     } else {
       st.piv = eliminate_constants(aug, rhs, movable, largest);
     }
@@ -515,14 +545,17 @@ class Run {
   /// the Euler–Lagrange equations, and the candidates they give, are affine in it.  (Jets at the last
   /// levels are known to order 1 only, where affine_along cannot tell.)
   bool multiplier(std::size_t var) const {
-    if (var >= s_.n && var < 2 * s_.n) return multiplier(var - s_.n);  // v_μ: the candidates are affine in it too (d/dt of affine in μ)
+    if (var >= s_.n && var < 2 * s_.n)
+      return multiplier(var - s_.n);  // v_μ: the candidates are affine in it too (d/dt of affine in μ)
     if (var >= s_.n) return false;
     if (multiplier_.empty()) multiplier_.assign(s_.n, -1);  // once per coordinate: L may be a large DAG
     if (multiplier_[var] < 0) multiplier_[var] = is_multiplier(var) ? 1 : 0;
     return multiplier_[var] == 1;
   }
   bool is_multiplier(std::size_t var) const {
-    if (expr::degree_in(s_.lagrangian, [&](std::size_t i) { return i == var; }) != 1 || expr::depends_on(s_.lagrangian, s_.v(var))) return false;
+    if (expr::degree_in(s_.lagrangian, [&](std::size_t i) { return i == var; }) != 1 ||
+        expr::depends_on(s_.lagrangian, s_.v(var)))
+      return false;
     for (const auto& c : s_.constraints)
       if (expr::depends_on(c, var) || expr::depends_on(c, s_.v(var))) return false;
     for (const auto& f : s_.forces)
@@ -551,8 +584,8 @@ class Run {
   /// or be redundant; a nonzero constant, or a condition on the time alone, makes M_{k+1} empty (false,
   /// `out` says why); given values that no other coordinate can meet are bad input (PointwiseNoPoint).
   enum class Reach { go, empty, critical };
-  Reach reachable(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<T>& point, std::size_t k, const Step& st,
-                  PointwiseResult<T>& out) {
+  Reach reachable(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<T>& point,
+                  std::size_t k, const Step& st, PointwiseResult<T>& out) {
     const std::vector<std::vector<T>>& g = st.g;
     std::vector<char> prow(cand.size(), 0);
     for (const auto& pc : st.piv) prow[pc.first] = 1;
@@ -566,8 +599,10 @@ class Run {
         if (!decide_.zero(st.comb[i][j])) comb += cand[j] * J(cand[j].space(), st.comb[i][j]);
       bool constant = true, flat = true;
       for (const auto& [idx, c] : comb.entries()) constant = constant && (idx == 0 || decide_.zero(c));
-      for (std::size_t j = 0; j < chart.size(); ++j) flat = flat && (chart[j] == s_.t() || decide_.zero(comb.gradient(j)));
-      std::vector<T> gi(chart.size(), T(0));  // the combination's differential (x − 1 − t and x combine to −1 − t: the time alone)
+      for (std::size_t j = 0; j < chart.size(); ++j)
+        flat = flat && (chart[j] == s_.t() || decide_.zero(comb.gradient(j)));
+      std::vector<T> gi(chart.size(),
+                        T(0));  // the combination's differential (x − 1 − t and x combine to −1 − t: the time alone)
       for (std::size_t j = 0; j < chart.size(); ++j) gi[j] = comb.gradient(j);
       // constant to the jets' order only: lam² x at lam = 0 looks constant to order 1, as −10 (a certified
       // "0 = −10" for a pendulum whose multiplier enters squared): below order 6, once, a nearby point first
@@ -582,8 +617,8 @@ class Run {
         out.consistent = false;
         out.dims.push_back(-1);
         out.steps = out.dims.size() - 1;
-        out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(comb.value()) + " (its constraints combined): M_" +
-                  std::to_string(k + 1) + " is empty";
+        out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(comb.value()) +
+                  " (its constraints combined): M_" + std::to_string(k + 1) + " is empty";
         return Reach::empty;
       }
       if (flat && st.piv.empty()) {  // every candidate's differential vanishes here: a critical point, not a verdict
@@ -594,20 +629,23 @@ class Run {
         out.consistent = false;
         out.dims.push_back(-1);
         out.steps = out.dims.size() - 1;
-        out.why = "step " + std::to_string(k) + " gives a condition on the time alone, violated at t = " + JetFunctions<T>::text(point[s_.t()]) +
+        out.why = "step " + std::to_string(k) +
+                  " gives a condition on the time alone, violated at t = " + JetFunctions<T>::text(point[s_.t()]) +
                   ": M_" + std::to_string(k + 1) + "(t) is empty there";
         return Reach::empty;
       }
-      if (st.piv.empty() && involves(comb, st.movable)) {  // the coordinates that may move enter only at second order here
-        critical = true;                                   // (x² + y² = 1 with x given, y at 0): from a nearby point
+      if (st.piv.empty() &&
+          involves(comb, st.movable)) {  // the coordinates that may move enter only at second order here
+        critical = true;                 // (x² + y² = 1 with x given, y at 0): from a nearby point
         continue;
       }
       if (st.piv.size() < st.rank_all) {  // the constraints need more freedom than the movable coordinates give
         std::string given;
         for (std::size_t j = 0; j < chart.size(); ++j)
           if (fixed_[chart[j]] && !decide_.zero(g[i][j])) given += (given.empty() ? "" : ", ") + names_[chart[j]];
-        throw PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) + " (residual " +
-                               JetFunctions<T>::text(cand[i].value()) + ") that no other coordinate can satisfy");
+        throw PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" + std::to_string(k + 1) +
+                               " (residual " + JetFunctions<T>::text(cand[i].value()) +
+                               ") that no other coordinate can satisfy");
       }
       // otherwise a redundant candidate: it vanishes on M_{k+1}, where the independent ones bring the point
     }
@@ -674,7 +712,8 @@ class Run {
 
   /// The solution rank and the velocities at the point, from the final system's constant terms:
   /// z = (ṡ, λ) solves R z = h; ẋ = Σ_j ∂x/∂s_j ṡ_j + ∂x/∂t for every coordinate of x = (q, v, p).
-  void solutions(const MotionSystem<T>& sys, const std::vector<J>& x, const std::vector<std::size_t>& chart, PointwiseResult<T>& out) {
+  void solutions(const MotionSystem<T>& sys, const std::vector<J>& x, const std::vector<std::size_t>& chart,
+                 PointwiseResult<T>& out) {
     // the implicit form: x = q, z = ṡ (no λ); rows may be none (no equation): w = the chart's non-time size
     const std::size_t n = s_.n, lambdas = s_.implicit ? 0 : s_.m(), nx = s_.implicit ? n : 3 * n;
     const std::size_t w = rows_width(sys, chart, lambdas), rows = sys.r.size(), ms = w - lambdas;
@@ -758,7 +797,8 @@ class Run {
 
   bool planned(std::size_t k) const { return plan_ && k < plan_->size() && !(*plan_)[k].empty(); }
   /// The chart positions of the variables `vars` (those in the chart).
-  static std::vector<std::size_t> positions_in(const std::vector<std::size_t>& chart, const std::vector<std::size_t>& vars) {
+  static std::vector<std::size_t> positions_in(const std::vector<std::size_t>& chart,
+                                               const std::vector<std::size_t>& vars) {
     std::vector<std::size_t> out;
     for (std::size_t v : vars)
       for (std::size_t j = 0; j < chart.size(); ++j)
@@ -767,8 +807,9 @@ class Run {
   }
 
   mutable std::vector<signed char> multiplier_;  ///< multiplier(q_i), computed once (−1: not yet)
-  std::size_t& polished_;  ///< Newton steps taken only to polish, over the whole call (bounded)
-  std::size_t* constant_nudges_;  ///< nearby points tried for a combination constant to low order only, over the whole call (one)
+  std::size_t& polished_;                        ///< Newton steps taken only to polish, over the whole call (bounded)
+  std::size_t* constant_nudges_;  ///< nearby points tried for a combination constant to low order only, over the whole
+                                  ///< call (one)
   const LagrangianSystem& s_;
   const LagrangianDerivatives& d_;
   const std::vector<bool>& fixed_;

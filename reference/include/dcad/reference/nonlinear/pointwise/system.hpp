@@ -27,8 +27,9 @@ struct MotionSystem {
 /// The implicit form's system: a(t, q)·(Dq·ṡ + ∂_t q) + b(t, q) = 0, rows over ṡ (no λ, no momenta).
 template <class T, class Eval>
 MotionSystem<T> implicit_system(const LagrangianSystem& s, const LagrangianDerivatives& d, const std::vector<Jet<T>>& x,
-                                const std::vector<std::size_t>& moving, std::size_t tpos, const std::vector<std::size_t>& chart,
-                                const std::vector<std::string>& names, Eval eval) {
+                                const std::vector<std::size_t>& moving, std::size_t tpos,
+                                const std::vector<std::size_t>& chart, const std::vector<std::string>& names,
+                                Eval eval) {
   using J = Jet<T>;
   const std::size_t n = s.n;
   const J zero(x[0].space(), T(0));
@@ -66,8 +67,10 @@ MotionSystem<T> motion_system(const LagrangianSystem& s, const LagrangianDerivat
   std::vector<std::size_t> moving;  // chart positions of the non-time coordinates
   std::size_t tpos = chart.size();
   for (std::size_t j = 0; j < chart.size(); ++j) {
-    if (chart[j] == s.t()) tpos = j;
-    else moving.push_back(j);
+    if (chart[j] == s.t())
+      tpos = j;
+    else
+      moving.push_back(j);
   }
   std::vector<J> lq(n), f(n), b(m);
   std::vector<std::vector<J>> a(m, std::vector<J>(n));

@@ -66,7 +66,7 @@ struct IdeUndecided {
 /// CEF (1.6) of the implicit system `s` (LagrangianSystem::implicit) at `start` (values of x, and of the
 /// time at index s.t(); `fixed[i]`: the user gave variable i, never move it), exactly.  NotExactHere where
 /// a formula's value is irrational at the point.
-std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& s, std::vector<Rational> start, const std::vector<bool>& fixed,
-                                                        std::size_t max_moves = 12);
+std::variant<IdeFormulas, IdeUndecided> ide_on_formulas(const LagrangianSystem& s, std::vector<Rational> start,
+                                                        const std::vector<bool>& fixed, std::size_t max_moves = 12);
 
 }  // namespace dcad::reference

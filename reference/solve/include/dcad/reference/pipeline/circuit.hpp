@@ -29,7 +29,8 @@ inline std::vector<lc::Branch<Rational>> lc_graph_of(const io::Netlist& deck) {
 /// A physical LC circuit by the graph route, exactly (CEF Thms 6.4, 6.6, 6.8 decide every step):
 /// the tower with its equations, each coefficient through `number`; no equations of motion.
 template <class N, class Convert>
-dcad::Solution<N> lc_graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables, Convert number) {
+dcad::Solution<N> lc_graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables,
+                                    Convert number) {
   const lc::Tower<Rational> t = lc::physical_tower(deck.circuit.nodes, lc_graph_of(deck));
   dcad::Solution<N> s;
   s.variables = variables;
@@ -54,14 +55,15 @@ template <class T>
 Circuit<T> circuit_of(const io::Netlist& deck) {
   Circuit<T> circ;
   circ.nodes = deck.circuit.nodes;
-  for (const auto& b : deck.circuit.branches) circ.branches.push_back({b.name, b.kind, b.from, b.to, Numbers<T>::lift(b.value)});
+  for (const auto& b : deck.circuit.branches)
+    circ.branches.push_back({b.name, b.kind, b.from, b.to, Numbers<T>::lift(b.value)});
   return circ;
 }
 
 /// `variables`: the circuit's (q_*, v_*, p_*); `coordinates`: the variables to write the motion in (empty: default).
 template <class T>
-dcad::Solution<T> solve_lc(const io::Netlist& deck, const std::vector<std::string>& variables, const std::vector<std::size_t>& coordinates,
-                     const Parts& parts) {
+dcad::Solution<T> solve_lc(const io::Netlist& deck, const std::vector<std::string>& variables,
+                           const std::vector<std::size_t>& coordinates, const Parts& parts) {
   const Circuit<T> circ = circuit_of<T>(deck);
   const Index n = circ.branches.size();
   const std::vector<ProductStep<T>> tower = circuit_tower(circ);
@@ -81,7 +83,8 @@ dcad::Solution<T> solve_lc(const io::Netlist& deck, const std::vector<std::strin
   const ProductStep<T>& mc = tower.back();
   if (parts.final_constraints) {
     out.final_constraints = all;
-    if constexpr (Numbers<T>::exact) out.final_exact = ExactSubspace<T>{dense(product_basis(circ, mc)), std::vector<T>(3 * n, T(0))};
+    if constexpr (Numbers<T>::exact)
+      out.final_exact = ExactSubspace<T>{dense(product_basis(circ, mc)), std::vector<T>(3 * n, T(0))};
   }
   const ReducedEquations<T> red = circuit_reduced_equations(circ, mc, coordinates);
   out.solution_rank = static_cast<long>(red.g.cols());  // dim ker A = dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]

@@ -34,9 +34,9 @@ struct PlacedAngle {
 
 /// A rational place for the exact route.
 struct ExactPlace {
-  LagrangianSystem system;          ///< the case's system, its angles translated
-  std::vector<Rational> start;      ///< (q, v, t) to start from (angles: 0 = the translated angle)
-  std::vector<bool> fixed;          ///< values the CAD may not change (angles, landed positions, the time)
+  LagrangianSystem system;      ///< the case's system, its angles translated
+  std::vector<Rational> start;  ///< (q, v, t) to start from (angles: 0 = the translated angle)
+  std::vector<bool> fixed;      ///< values the CAD may not change (angles, landed positions, the time)
   std::vector<PlacedAngle> angles;
   std::vector<std::string> landed;  ///< the holonomic constraints the positions were put on, as text
   std::vector<std::size_t> loosen;  ///< given values typed short, fixed: freed if M_c has no point with them fixed
@@ -67,6 +67,7 @@ Rational simplest_near(const Rational& x, long max_den);
 /// or fewer) stay fixed, freed only if M_c has no point with them (`loosen`); long ones (rounded
 /// irrational values) become starting values (the caller bounds how far the CAD moves them).
 /// nullopt (and `why`) where no such place is found.
-std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given, std::string& why);
+std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given,
+                                      std::string& why);
 
 }  // namespace dcad::reference::pipeline

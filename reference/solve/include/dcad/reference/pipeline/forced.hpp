@@ -46,7 +46,8 @@ bool graph_route_holds(const RlcCircuit<Rational>& c);
 /// then exact for the rounded circuit only — not certified (kRoundedCoupling says why).
 bool rounded_coupling(const RlcCircuit<Rational>& c);
 constexpr const char* kRoundedCoupling =
-    "a mutual inductance k*sqrt(Lx*Ly) is irrational and was rounded to 80 digits: the dense route is exact for the rounded circuit, "
+    "a mutual inductance k*sqrt(Lx*Ly) is irrational and was rounded to 80 digits: the dense route is exact for the "
+    "rounded circuit, "
     "whose tower may differ from the deck's (a singular coupling matrix reads as regular)";
 /// The graph route on a deck where graph_route_holds; exact at any size (topology and ±1 rows).
 GraphForced graph_forced(const io::Netlist& deck);
@@ -58,8 +59,10 @@ StateEquations<N> deck_state_equations(const io::Netlist& deck) {
   RlcCircuit<N> c;
   c.nodes = deck.rlc.nodes;
   c.sources = deck.rlc.sources;
-  for (const RlcBranch<Rational>& b : deck.rlc.branches) c.branches.push_back({b.name, b.kind, b.from, b.to, static_cast<N>(b.value), b.source});
-  for (const Mutual<Rational>& mu : deck.rlc.mutuals) c.mutuals.push_back({mu.a, mu.b, static_cast<N>(mu.m), {}, mu.rounded});
+  for (const RlcBranch<Rational>& b : deck.rlc.branches)
+    c.branches.push_back({b.name, b.kind, b.from, b.to, static_cast<N>(b.value), b.source});
+  for (const Mutual<Rational>& mu : deck.rlc.mutuals)
+    c.mutuals.push_back({mu.a, mu.b, static_cast<N>(mu.m), {}, mu.rounded});
   std::vector<std::string> sources;
   for (const io::Waveform& w : deck.waveforms) sources.push_back(w.element + "(t)");
   return state_equations<N>(c, deck.node_names, sources);
@@ -68,7 +71,8 @@ StateEquations<N> deck_state_equations(const io::Netlist& deck) {
 /// The graph route's answer as a Solution of either twin: dims, conditions, verdict, and the state
 /// equations at any size (the tower's own equations come from the dense route only).
 template <class N>
-dcad::Solution<N> graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables, const std::string& note) {
+dcad::Solution<N> graph_solution(const io::Netlist& deck, const std::vector<std::string>& variables,
+                                 const std::string& note) {
   const GraphForced g = graph_forced(deck);
   dcad::Solution<N> s;
   for (long d : g.dims) s.tower.push_back({d, {}});

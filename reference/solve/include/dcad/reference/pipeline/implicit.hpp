@@ -18,20 +18,23 @@ namespace dcad::reference::pipeline {
 
 /// Given values must hold at M_c's point (io::InputError naming the first that the algorithm moved).
 template <class T>
-void check_given_implicit(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::function<bool(const T&, const Rational&)>& same,
+void check_given_implicit(const PointwiseResult<T>& r, const io::LagrangianCase& c,
+                          const std::function<bool(const T&, const Rational&)>& same,
                           const std::function<std::string(const T&)>& text) {
   if (!r.consistent || r.point.size() != c.system.n) return;
   for (std::size_t i = 0; i < c.system.n; ++i)
     if (c.initial[i] && !same(r.point[i], *c.initial[i]))
-      throw io::InputError(c.file + ": /initial/" + c.system.names[i] + ": expected a value on M_c (the constraints give " + c.system.names[i] +
-                           " = " + text(r.point[i]) + " with the other given values), found " + c.initial[i]->str());
+      throw io::InputError(c.file + ": /initial/" + c.system.names[i] +
+                           ": expected a value on M_c (the constraints give " + c.system.names[i] + " = " +
+                           text(r.point[i]) + " with the other given values), found " + c.initial[i]->str());
 }
 
 /// The result as a Solution: dims of M_0 … M_c, steps, consistency, the solution rank (the dimension
 /// of the affine space of ẋ ∈ T_x M_c with φ = 0), each step's constraints as tangent equations at the
 /// point solved for a coordinate, the point and one ẋ with the others' differences (`gauge`).
 template <class T>
-dcad::Solution<T> implicit_solution(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::string& route) {
+dcad::Solution<T> implicit_solution(const PointwiseResult<T>& r, const io::LagrangianCase& c,
+                                    const std::string& route) {
   dcad::Solution<T> out;
   out.file = c.file;
   out.name = c.name;
@@ -56,6 +59,7 @@ struct FormulasUndecided : std::runtime_error {
 
 /// The reference's route: exact, at the given values (or dcad's default point); NotExactHere where a
 /// formula is irrational there, PointwiseNoPoint where no rational point of M_c is reached.
-dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, ImplicitRoute route = ImplicitRoute::automatic);
+dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c,
+                                              ImplicitRoute route = ImplicitRoute::automatic);
 
 }  // namespace dcad::reference::pipeline

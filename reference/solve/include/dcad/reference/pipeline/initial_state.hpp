@@ -31,11 +31,11 @@ struct Jump {
 };
 
 struct InitialState {
-  std::string rule;                          ///< which rule, and why ("uic: .tran … uic at deck.cir:9")
-  std::vector<Rational> before, after;       ///< (q, v, p) just before t = 0 and on M_c(0+)
-  std::vector<Jump> jumps;                   ///< every charge, flux linkage or inductor current that jumped
-  std::vector<std::string> notes;            ///< a non-unique operating point, a jump beyond the dense size
-  bool computed = true;                      ///< false: `after` is `before`, unchecked (larger LC decks, uic)
+  std::string rule;                     ///< which rule, and why ("uic: .tran … uic at deck.cir:9")
+  std::vector<Rational> before, after;  ///< (q, v, p) just before t = 0 and on M_c(0+)
+  std::vector<Jump> jumps;              ///< every charge, flux linkage or inductor current that jumped
+  std::vector<std::string> notes;       ///< a non-unique operating point, a jump beyond the dense size
+  bool computed = true;                 ///< false: `after` is `before`, unchecked (larger LC decks, uic)
 };
 
 /// The state `simulate` and `check` start a netlist from.  `variables`: q_*, v_*, p_* names.  Throws

@@ -113,9 +113,11 @@ dcad::Solution<T> solve_linear(const io::CaseFile& c, const Parts& parts) {
   for (const CadStep<T>& st : r.tower) out.tower.push_back({st.dim(), equations(st.equations)});
   if (r.consistent && parts.final_constraints) {
     out.final_constraints = equations(final_rows(r.final_step().m));
-    if constexpr (Numbers<T>::exact) out.final_exact = ExactSubspace<T>{dense(r.final_step().m.direction.basis()), r.final_step().m.point};
+    if constexpr (Numbers<T>::exact)
+      out.final_exact = ExactSubspace<T>{dense(r.final_step().m.direction.basis()), r.final_step().m.point};
   }
-  if (c.has_constrained && r.consistent && parts.classes) {  // first and second class on M_c, Dirac bracket  [Lemma 3.23]
+  if (c.has_constrained && r.consistent &&
+      parts.classes) {  // first and second class on M_c, Dirac bracket  [Lemma 3.23]
     Matrix<T> all(0, c.n + 1);
     for (const CadStep<T>& st : r.tower) all = vstack(all, st.equations);
     const ConstraintClasses<T> cl = classify_constraints(lift<T>(c.constrained.w), all);
@@ -127,7 +129,8 @@ dcad::Solution<T> solve_linear(const io::CaseFile& c, const Parts& parts) {
     out.classes = k;
   }
   if (c.has_constrained && r.consistent && parts.adapted) {  // Theorem 3.28 on N
-    Adapted<T> a = adapted_of(lift<T>(c.constrained.w), r.tower[0].equations, secondary_constraints(r), Matrix<T>(0, c.n + 1));
+    Adapted<T> a =
+        adapted_of(lift<T>(c.constrained.w), r.tower[0].equations, secondary_constraints(r), Matrix<T>(0, c.n + 1));
     a.setting = "N";
     a.variables = c.variables;
     out.adapted = a;

@@ -26,7 +26,8 @@ inline std::vector<Rational> start_point(const io::LagrangianCase& c, std::vecto
       x[i] = *c.initial[i];
       fixed[i] = true;
     } else if (!c.has_initial && i < 2 * c.system.n) {
-      x[i] = Rational(static_cast<long>((i * 7 + 3 + 5 * static_cast<std::size_t>(seed)) % 11) - 5, static_cast<long>(3 + (i + static_cast<std::size_t>(seed)) % 4));
+      x[i] = Rational(static_cast<long>((i * 7 + 3 + 5 * static_cast<std::size_t>(seed)) % 11) - 5,
+                      static_cast<long>(3 + (i + static_cast<std::size_t>(seed)) % 4));
     }
   }
   return x;
@@ -35,26 +36,29 @@ inline std::vector<Rational> start_point(const io::LagrangianCase& c, std::vecto
 /// Given values must hold at the final point: a given value that the CAD had to change is not on M_c
 /// (io::InputError naming it).  `text` prints a found value.
 template <class T>
-void check_given(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::function<bool(const T&, const Rational&)>& same,
+void check_given(const PointwiseResult<T>& r, const io::LagrangianCase& c,
+                 const std::function<bool(const T&, const Rational&)>& same,
                  const std::function<std::string(const T&)>& text) {
   const std::vector<std::string> st = c.system.state_names();
   const std::size_t n = c.system.n;
   const auto bad = [&](std::size_t idx, const Rational& given, const T& found) {
-    throw io::InputError(c.file + ": /initial/" + st[idx] + ": expected a value on M_c (the constraints give " + st[idx] + " = " + text(found) +
-                         " with the other given values), found " + given.str());
+    throw io::InputError(c.file + ": /initial/" + st[idx] + ": expected a value on M_c (the constraints give " +
+                         st[idx] + " = " + text(found) + " with the other given values), found " + given.str());
   };
   if (!r.consistent || r.point.size() != 3 * n) return;  // no point of M_c to hold them against
   for (std::size_t i = 0; i < 2 * n; ++i)
     if (c.initial[i] && !same(r.point[i], *c.initial[i])) bad(i, *c.initial[i], r.point[i]);
   for (std::size_t i = 0; i < n; ++i)
-    if (c.initial_p[i] && !same(r.point[2 * n + i], *c.initial_p[i])) bad(2 * n + i, *c.initial_p[i], r.point[2 * n + i]);
+    if (c.initial_p[i] && !same(r.point[2 * n + i], *c.initial_p[i]))
+      bad(2 * n + i, *c.initial_p[i], r.point[2 * n + i]);
 }
 
 /// The pointwise algorithm's result at the point: the point, a velocity and the gauge, each step's
 /// constraints (tangent equations at the point, solved for a coordinate) and pivots, from r.levels[skip]
 /// on (the implicit form skips its M_0), so that levels[k] describes M_{k+1}.
 template <class T>
-Pointwise<T> pointwise_part(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::string& route, std::size_t skip) {
+Pointwise<T> pointwise_part(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::string& route,
+                            std::size_t skip) {
   Pointwise<T> p;
   p.route = route;
   p.regular = r.regular;
@@ -88,7 +92,8 @@ Pointwise<T> pointwise_part(const PointwiseResult<T>& r, const io::LagrangianCas
 /// The pointwise CAD's result as a Solution: dims, the tower's constraints (M_1 as formulas, the later
 /// ones as tangent equations at the point), the point, a velocity and the gauge.
 template <class T>
-dcad::Solution<T> pointwise_solution(const PointwiseResult<T>& r, const io::LagrangianCase& c, const std::string& route) {
+dcad::Solution<T> pointwise_solution(const PointwiseResult<T>& r, const io::LagrangianCase& c,
+                                     const std::string& route) {
   dcad::Solution<T> out;
   out.file = c.file;
   out.name = c.name;
@@ -102,7 +107,8 @@ dcad::Solution<T> pointwise_solution(const PointwiseResult<T>& r, const io::Lagr
     const std::vector<std::string> names = c.system.variable_names();
     const LagrangianDerivatives d = derivatives(c.system);
     const std::vector<std::string> st = c.system.state_names();
-    for (std::size_t i = 0; i < c.system.n; ++i) p.first_constraints.push_back(st[2 * c.system.n + i] + " = " + expr::to_text(d.dl_dv[i], names));
+    for (std::size_t i = 0; i < c.system.n; ++i)
+      p.first_constraints.push_back(st[2 * c.system.n + i] + " = " + expr::to_text(d.dl_dv[i], names));
     for (const auto& k : c.system.constraints) p.first_constraints.push_back(expr::to_text(k, names) + " = 0");
   }
   out.pointwise = p;
@@ -119,15 +125,21 @@ auto pointwise_input_errors(const io::LagrangianCase& c, F f) {
     throw;
   } catch (const PointwiseNoPoint& e) {
     if (!c.has_initial)  // the file gave no point: dcad's default start is not the user's input
-      throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") + ": expected a system whose M_c dcad reaches from its default point (no `initial` given), found " +
-                           e.what() + "; give `initial` values near M_c");
+      throw io::InputError(
+          c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") +
+          ": expected a system whose M_c dcad reaches from its default point (no `initial` given), found " + e.what() +
+          "; give `initial` values near M_c");
     throw io::InputError(c.file + ": /initial: expected values that extend to a point of M_c, found " + e.what());
-  } catch (const std::range_error& e) {  // the double route's values overflowed (its message names the formula and the point)
+  } catch (const std::range_error&
+               e) {  // the double route's values overflowed (its message names the formula and the point)
     throw io::InputError(c.file + ": " + e.what());
   } catch (const std::domain_error& e) {
-    throw io::InputError(c.file + ": /initial: expected a point where the formulas are defined and differentiable, found " + e.what());
+    throw io::InputError(
+        c.file + ": /initial: expected a point where the formulas are defined and differentiable, found " + e.what());
   } catch (const std::length_error& e) {
-    throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") + "/coordinates: expected a system whose tower fits in jets of at most 200000 monomials (and 20000000 products), found " +
+    throw io::InputError(c.file + (c.system.implicit ? ": /implicit" : ": /lagrangian") +
+                         "/coordinates: expected a system whose tower fits in jets of at most 200000 monomials (and "
+                         "20000000 products), found " +
                          std::to_string(c.system.n) + " coordinates: " + e.what());
   }
 }

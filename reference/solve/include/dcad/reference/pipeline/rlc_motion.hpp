@@ -49,6 +49,7 @@ StateMotion state_motion(const io::Netlist& deck);
 ///    (i⁺ = i⁻ − Φ⁻¹L_eᵀ S⁻¹ (L_e i⁻ + I_e σ)), and q_x holds the charges the impulsive currents carried
 ///    through voltage sources and wires (KCL with the capacitors' jumps).
 /// Throws std::invalid_argument naming what is missing (a non-unique operating point, `.ic` node holds).
-std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m, bool op, const std::vector<Rational>& sigma0);
+std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m, bool op,
+                                  const std::vector<Rational>& sigma0);
 
 }  // namespace dcad::reference::pipeline
