@@ -9,4 +9,14 @@ if(FLINT_FOUND AND NOT TARGET FLINT::FLINT)
   set_target_properties(FLINT::FLINT PROPERTIES IMPORTED_LOCATION "${FLINT_LIBRARY}"
                                                 INTERFACE_INCLUDE_DIRECTORIES "${FLINT_INCLUDE_DIR}")
 endif()
-mark_as_advanced(FLINT_INCLUDE_DIR FLINT_LIBRARY)
+# Arb (libflint-arb-dev, LGPL), FLINT's ball arithmetic: FLINT::ARB when found (the certified tier's balls).
+# Debian ships no CMake package for it; its headers sit beside FLINT's.
+find_path(FLINT_ARB_INCLUDE_DIR arb.h)
+find_library(FLINT_ARB_LIBRARY flint-arb)
+if(FLINT_FOUND AND FLINT_ARB_INCLUDE_DIR AND FLINT_ARB_LIBRARY AND NOT TARGET FLINT::ARB)
+  add_library(FLINT::ARB UNKNOWN IMPORTED)
+  set_target_properties(FLINT::ARB PROPERTIES IMPORTED_LOCATION "${FLINT_ARB_LIBRARY}"
+                                              INTERFACE_INCLUDE_DIRECTORIES "${FLINT_ARB_INCLUDE_DIR}"
+                                              INTERFACE_LINK_LIBRARIES FLINT::FLINT)
+endif()
+mark_as_advanced(FLINT_INCLUDE_DIR FLINT_LIBRARY FLINT_ARB_INCLUDE_DIR FLINT_ARB_LIBRARY)
