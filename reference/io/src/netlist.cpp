@@ -1301,6 +1301,8 @@ class Flattener {
                               const std::optional<Rational>& tc2, const std::optional<Rational>& device_temp,
                               const std::optional<Rational>& dtemp, const std::optional<Rational>& device_tnom) {
     const Rational t = device_temp ? *device_temp : temperature.value_or(Rational(27)) + dtemp.value_or(Rational(0));
+    if (device_temp && dtemp)  // ngspice's restemp.c: "Instance temperature specified, dtemp ignored"
+      out.warnings.push_back(l.where() + ": " + name + ": DTEMP= ignored where TEMP= is given (as ngspice)");
     const Rational dt = t - device_tnom.value_or(tnom);
     const Rational factor = 1 + tc1.value_or(Rational(0)) * dt + tc2.value_or(Rational(0)) * dt * dt;
     if (factor <= 0)

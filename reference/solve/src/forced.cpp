@@ -43,10 +43,36 @@ std::string row_text(const QM& row, const std::vector<std::string>& names) {
   return (s.empty() ? "0" : s) + " = 0";
 }
 
-/// The combination's largest deviation from 0 over sample times that show every feature of the
-/// waveforms (breakpoints, their midpoints, 97 times spread over the horizon), and its scale.
-void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders, double& worst, double& at,
-            double& scale, std::size_t& samples) {
+/// How fast σ_w's phase turns (rad/s: SIN's |ω| + |θ|, SFFM's 2π(FC + MDI·FS)), and from when (SIN's TD).
+double phase_rate(const io::Waveform& w) {
+  if (w.kind == io::Waveform::Kind::sin) return std::abs(w.omega()) + std::abs(w.decay());
+  if (w.kind == io::Waveform::Kind::sffm)
+    return 2 * M_PI * (std::abs(w.p[2].convert_to<double>()) + std::abs((w.p[3] * w.p[4]).convert_to<double>()));
+  return 0;
+}
+double phase_start(const io::Waveform& w) {
+  return w.kind == io::Waveform::Kind::sin ? w.p[3].convert_to<double>() : 0.0;
+}
+
+/// Whether σ_w's value in double at t is within 1e-10 of its scale of the exact value (the rounding of a
+/// few operations, c·ε·(1 + |phase|) with the phase below 1e4 rad): not within 1e-9 of the horizon of a
+/// corner of PULSE or PWL (a corner that is not a double may lie on either side of t), not for SIN and
+/// SFFM past 1e4 rad of phase (sin's argument is off by ε·phase there).  EXP always: exp(−x) in double is
+/// off by ε·x·e^{−x} ≤ ε/e of its amplitude.
+bool evaluation_holds(const io::Waveform& w, double t, const std::vector<double>& corners, double horizon) {
+  for (double c : corners)
+    if (std::abs(t - c) <= 1e-9 * horizon) return false;
+  return phase_rate(w) * std::max(0.0, t - phase_start(w)) <= 1e4;
+}
+
+/// The combination sampled at times that show every feature of the waveforms (breakpoints, their
+/// midpoints, 97 times spread over the horizon): its largest |value| and where (`worst`, `at`), the
+/// largest where every evaluation holds (`proved`, `proved_at`: evaluation_holds), and its scale.
+struct Sampled {
+  double worst = 0, at = 0, proved = 0, proved_at = 0, scale = 0;
+  std::size_t samples = 0;
+};
+Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders) {
   const std::size_t m = waveforms.size();
   std::vector<bool> in_row(m, false);  // only the row's own sources set the sample times
   for (std::size_t j = 0; j < m; ++j)
@@ -56,32 +82,40 @@ void sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orde
     if (in_row[j]) horizon = std::max(horizon, waveforms[j].horizon());
   if (horizon == 0) horizon = 1;
   std::vector<double> ts{0};
+  std::vector<std::vector<double>> corners(m);
   for (std::size_t j = 0; j < m; ++j)
-    if (in_row[j])
-      for (double b : waveforms[j].breakpoints(horizon)) ts.push_back(b);
+    if (in_row[j]) {
+      corners[j] = waveforms[j].breakpoints(horizon);
+      ts.insert(ts.end(), corners[j].begin(), corners[j].end());
+    }
   std::sort(ts.begin(), ts.end());
   const std::size_t k = ts.size();
   for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
   for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));
-  worst = 0;
-  at = 0;
-  scale = std::abs(row(0, 0).convert_to<double>());
+  for (std::size_t j = 0; j < m; ++j) {  // and 17 within the first 1e4 rad of a fast SIN or SFFM (evaluation_holds)
+    const double rate = in_row[j] ? phase_rate(waveforms[j]) : 0.0, from = phase_start(waveforms[j]);
+    if (rate > 0 && from + 1e4 / rate < horizon)
+      for (int i = 1; i <= 17; ++i) ts.push_back(from + 1e4 / rate * std::fmod(i * 0.6180339887498949, 1.0));
+  }
+  Sampled out;
+  out.scale = std::abs(row(0, 0).convert_to<double>());
   for (double t : ts) {
     double s = row(0, 0).convert_to<double>();
+    bool holds = true;
     for (std::size_t j = 0; j < m; ++j)
       for (long d = 0; d < orders && in_row[j]; ++d) {
         const double c = row(0, 1 + d * m + j).convert_to<double>();
         if (c == 0) continue;
         const double term = c * waveforms[j].value(t, static_cast<int>(d));
         s += term;
-        scale = std::max(scale, std::abs(term));
+        out.scale = std::max(out.scale, std::abs(term));
+        holds = holds && evaluation_holds(waveforms[j], t, corners[j], horizon);
       }
-    if (std::abs(s) > worst) {
-      worst = std::abs(s);
-      at = t;
-    }
+    if (std::abs(s) > out.worst) out.worst = std::abs(s), out.at = t;
+    if (holds && std::abs(s) > out.proved) out.proved = std::abs(s), out.proved_at = t;
   }
-  samples = ts.size();
+  out.samples = ts.size();
+  return out;
 }
 
 }  // namespace
@@ -120,17 +154,22 @@ SourceCondition decide_condition(const QM& row, const std::vector<io::Waveform>&
     v.evidence = "exact: the DC values give " + constant.str() + " = 0";
     return v;
   }
-  double worst = 0, at = 0, scale = 0;
-  std::size_t samples = 0;
-  sample(row, waveforms, orders, worst, at, scale, samples);
+  const Sampled sm = sample(row, waveforms, orders);
+  const double cut = kConditionFails * std::max(sm.scale, 1e-300);
   std::ostringstream o;
   o.precision(6);
-  if (worst > kConditionFails * std::max(scale, 1e-300)) {
+  if (sm.proved > cut) {  // 10 times the evaluation's rounding at that time: the combination is not 0 there
     v.holds = no;
-    o << "fails at t = " << at << " s: the left side is " << worst << " (sources evaluated in double)";
+    o << "fails at t = " << sm.proved_at << " s: the left side is " << sm.proved
+      << " (sources evaluated in double, within 1e-10 of the scale " << sm.scale << ")";
+  } else if (sm.worst > cut) {
+    v.holds = unknown;
+    o << "the left side is " << sm.worst << " at t = " << sm.at
+      << " s in double, where the evaluation is not proved (near a corner, or a phase beyond 1e4 rad): "
+         "cannot decide exactly";
   } else {
     v.holds = unknown;
-    o << "different waveforms agree to " << worst << " at " << samples << " sample times: cannot decide exactly";
+    o << "different waveforms agree to " << sm.worst << " at " << sm.samples << " sample times: cannot decide exactly";
   }
   v.evidence = o.str();
   return v;

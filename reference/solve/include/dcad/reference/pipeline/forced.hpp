@@ -26,7 +26,8 @@ std::vector<std::string> jet_names(const std::vector<io::Waveform>& w, long orde
 /// Whether a source condition b + Σ c_{j,d} σ_j^{(d)}(t) = 0 (a row [b | σ⁽⁰⁾ | σ⁽¹⁾ | …]) holds for all
 /// t ≥ 0: exactly where the waveforms allow (DC values, equal waveforms that cancel); otherwise no when
 /// the combination, evaluated in double at the breakpoints, their midpoints and 97 spread times, exceeds
-/// kConditionFails × its largest term (far above the rounding of the evaluation), else unknown.
+/// kConditionFails × its largest term at a time where the evaluation's rounding is below a tenth of that
+/// (away from corners, phases below 1e4 rad), else unknown.
 SourceCondition decide_condition(const Matrix<Rational>& row, const std::vector<io::Waveform>& w);
 constexpr double kConditionFails = 1e-9;
 
