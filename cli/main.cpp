@@ -505,10 +505,12 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {  // a library function's precondition on the input
-    std::cerr << (sim.app->parsed()     ? sim.file
-                  : check.app->parsed() ? check.file
-                                        : inspect.file)
-              << ": " << e.what() << "\n";
+    const std::string file = sim.app->parsed()                             ? sim.file
+                             : check.app->parsed()                         ? check.file
+                             : inspect.app->parsed()                       ? inspect.file
+                             : solve.app->parsed() && !solve.files.empty() ? solve.files.front()
+                                                                           : std::string("dcad");
+    std::cerr << file << ": " << e.what() << "\n";
     return 1;
   } catch (const std::bad_alloc&) {  // a resource limit, not a wrong answer
     std::cerr << "dcad: out of memory (no answer)\n";

@@ -431,6 +431,30 @@ std::string binary_raw(const std::vector<std::string>& names, const std::vector<
 
 }  // namespace
 
+// ngspice writes a binary raw file's 'No. Points:' when the run ends: a run it aborts ("Timestep too small", as on
+// Xyce's MINDUCTORS/cpldLMIs.cir) leaves 0 there with the points it wrote after it.  Those points are read and
+// checked, and the check says why (it refused the file before: "found more data after them"); bytes that are
+// not whole points stay bad input.
+TEST(TraceStream, AbortedRawRunIsReadWithANote) {
+  const dcad::io::Problem deck = dcad::fuzz::typed_bases()[3];  // the tank with a PULSE source, .tran 1u 40u
+  const std::vector<double> time{0, 1e-6, 2e-6};
+  const std::vector<std::vector<double>> values{{0, 0.1, 0.2}, {0, 1e-4, 2e-4}};
+  std::string text = binary_raw({"v(b)", "i(l1)"}, time, values);
+  text.replace(text.find("No. Points: 3"), 13, "No. Points: 0");
+  const std::string file = write_temp("aborted.raw", text);
+  const dcad::io::Traces t = dcad::io::read_traces(file);
+  EXPECT_EQ(t.time, time);
+  EXPECT_EQ(t.values, values);
+  ASSERT_EQ(t.notes.size(), 1u);
+  EXPECT_NE(t.notes[0].find("'No. Points: 0' with 3 points after it"), std::string::npos) << t.notes[0];
+  std::ostringstream log;
+  const dcad::api::WaveformChecked c = dcad::api::check_waveform(*dcad::io::open_traces(file), deck, {}, log);
+  EXPECT_EQ(c.points, 3);
+  EXPECT_NE(log.str().find("note: " + file + ": 'No. Points: 0'"), std::string::npos) << log.str();
+  const std::string torn = write_temp("aborted-torn.raw", text.substr(0, text.size() - 4));
+  EXPECT_THROW((void)dcad::io::read_traces(torn), dcad::io::InputError);
+}
+
 // Issue 45 §3: `dcad check` streams an ngspice binary raw file from disk (io::open_traces, chunks of
 // points: memory bounded whatever the file's size) — and the verdict is the one of the file read whole
 // (io::read_traces): the same JSON, over 10,001 points (three chunks), with a breakpoint's time written

@@ -827,6 +827,26 @@ TEST(Forced, SineHoldsItsPhaseBeforeItsDelay) {
   }
 }
 
+// ngspice's tests/general/rc.cir: PULSE(0 1) takes PW = PER = TSTOP, so the pulse steps back to 0 at TSTOP
+// itself.  The dense route refuses it as it refuses a step inside the run (and as simulate --certified
+// does): its last row took the step's right side in the jets but not in the flow and printed q_C1 = -0.001
+// for 0.999.  Ended a step before, the run is the RC's closed form: q(t) = 1·(t − 1 + e^{−t}) / 0.1 on the
+// rise (TR = 0.1), then 1 − (1 − q(0.1)) e^{−(t − 0.1)}.
+TEST(Simulate, PulseCutAtTheLastRowIsRefusedAndBeforeItIsTheClosedForm) {
+  const std::string deck =
+      write_temp("rc_pulse_default.cir", "rc\nV1 1 0 PULSE(0 1)\nR1 1 2 1\nC1 2 0 1\n.tran 0.1 7\n.end\n");
+  expect_input_error(run("simulate " + deck + " --tstop 7 --step 0.1"), deck, "steps from 1 to V1 = 0 at t = 7",
+                     "the step on the last row");
+  const auto rows = simulate_rows(deck, "--tstop 6.9 --step 0.1 --vars q_C1");
+  ASSERT_EQ(rows.size(), 70u);
+  const double q1 = (0.1 - 1 + std::exp(-0.1)) / 0.1;
+  for (const auto& row : rows) {
+    const double t = row.at("t");
+    const double exact = t <= 0.1 ? (t - 1 + std::exp(-t)) / 0.1 : 1 - (1 - q1) * std::exp(-(t - 0.1));
+    EXPECT_NEAR(row.at("q_C1"), exact, 1e-12) << "t = " << t;
+  }
+}
+
 // An EXP source is enclosed (issue 45 §1: EXP is analytic, so the enclosures take it): an RC charged through
 // EXP(1 3 1m 2m 6m 0.5m) from uic, whose current i = (V − v_C)/R follows from τc v' = V − v segment by segment:
 // on a segment from s0 with V = c + Σ a_k e^{−(t−t_k)/τ_k}, v = c + Σ a_k τ_k/(τ_k − τc) e^{−(t−t_k)/τ_k} + (the

@@ -69,8 +69,8 @@ std::string simulate(const SimRun& r) {
 // The corpus: each run's verdict from the independent derivation, and dcad's must be the same.  On
 // Debian 12 (ngspice-39, gnucap 2017.10.03) the derivation finds ngspice right on the RC pulse and on the
 // capacitor triangle at its defaults; with reltol=1e-7 it stops at the triangle's first pulse corner
-// ("timestep too small"): in batch (-r) its raw file has no point (bad input: exit 1 for both), from a
-// .control `run` it has the points up to the corner, the last one 5e4 V (wrong); wrong on the LC tank
+// ("timestep too small"): its raw file has the points up to the corner, the last one 5e4 V (wrong) — in batch
+// (-r) under 'No. Points: 0', the count ngspice writes when a run ends (read, with a note: bad input before); wrong on the LC tank
 // after 1000 periods (trapezoidal phase drift: 52 %) and in antiphase after 10^4; right on the mixed-scale RLC
 // (mOhm…MOhm, pH…mH, fF…uF) and on the k = 1 transformer (it keeps the flux, as the CONTRACT's jump does).  gnucap is
 // right on the RC pulse and wrong on the triangle's node voltages (the island's potential rings after each corner), on

@@ -48,6 +48,8 @@ def read_raw(path):
     n = len(names)
     rows = []
     if binary:
+        if npoints == 0:  # ngspice writes the count when the run ends: an aborted run leaves 0, its points after it
+            npoints = (len(data) - pos) // (8 * n)
         for p in range(npoints):
             rows.append(struct.unpack_from("<%dd" % n, data, pos + 8 * n * p))
     else:

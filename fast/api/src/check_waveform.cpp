@@ -633,6 +633,7 @@ std::vector<Functional> functionals_of(const io::TraceStream& tr, const io::Prob
   for (std::size_t k = 0; k < skipped.size() && k < 5; ++k)
     log << "note: skipped a simulator's message inside the table at " << skipped[k] << "\n";
   if (skipped.size() > 5) log << "note: … and " << skipped.size() - 5 << " more messages skipped\n";
+  for (const std::string& n : tr.notes()) log << "note: " << n << "\n";
   if (p.form != io::Form::netlist)
     throw io::InputError(p.netlist.file.empty()
                              ? tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file"

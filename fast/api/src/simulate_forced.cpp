@@ -357,6 +357,27 @@ ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const i
   return out;
 }
 
+/// The sources' corners the flow stops at (`breaks`, sorted) and each source's own (`own`): to TSTOP and a
+/// step beyond it.  Refuses (InputError) a step (PER < TR + PW + TF) inside the run or on its last row, whose
+/// jets would take the step's right side, a state the flow never reached (q printed -0.001 for 0.999 on
+/// ngspice's rc.cir), and more than kMaxPeriods periods.
+void source_corners(const std::vector<io::Waveform>& waveforms, const SimulateOptions& opt, const std::string& file,
+                    std::vector<double>& breaks, std::vector<std::vector<double>>& own) {
+  for (std::size_t j = 0; j < waveforms.size(); ++j) try {
+      own[j] = waveforms[j].breakpoints(opt.tstop + 1e-9 * opt.step);
+      try {  // and a corner an ulp after the last row (k·STEP may pass TSTOP by an ulp): applied with it
+        own[j] = waveforms[j].breakpoints(opt.tstop + opt.step);
+      } catch (const std::invalid_argument&) {  // a step after the last row: the run ends before it
+      }
+      for (double b : own[j]) breaks.push_back(b);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(file + ": simulate: expected sources continuous over the run, in at most " +
+                           std::to_string(io::Waveform::kMaxPeriods) + " periods, found " + e.what());
+    }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+}
+
 }  // namespace
 
 Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
@@ -416,16 +437,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
 
   std::vector<double> breaks;
   std::vector<std::vector<double>> own(m);  // each source's own corners: only they jump there
-  for (std::size_t j = 0; j < m; ++j) try {
-      own[j] = deck.waveforms[j].breakpoints(opt.tstop +
-                                             opt.step);  // and a corner an ulp after the last row: applied with it
-      for (double b : own[j]) breaks.push_back(b);
-    } catch (const std::invalid_argument& e) {
-      throw io::InputError(c.file + ": simulate: expected at most " + std::to_string(io::Waveform::kMaxPeriods) +
-                           " source periods, found " + e.what());
-    }
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  source_corners(deck.waveforms, opt, c.file, breaks, own);
   // energy: E(x) = ½ xᵀHx (+ gᵀx), and the power of the forces ⟨F x, q̇⟩, of the sources ⟨Bσ, q̇⟩ (the
   // q-rows: the force one-form is horizontal, YM §4) and, from the balance, of the reactions of the
   // affine constraints (current sources): dE/dt = ⟨F x + Bσ, q̇⟩ + P_constraints.

@@ -601,7 +601,12 @@ std::vector<Enclosure> MotionEnclosure::evaluate(const std::vector<Functional>& 
     return std::any_of(f.terms.begin(), f.terms.end(),
                        [](const Functional::Term& t) { return t.of == Functional::Of::u && t.index == 0; });
   };
-  if (s.zero && std::none_of(fs.begin(), fs.end(), constant)) return std::vector<Enclosure>(fs.size(), Enclosure{0, 0});
+  const auto in_range = [&](const Functional& f) {
+    return std::all_of(f.terms.begin(), f.terms.end(),
+                       [&](const Functional::Term& t) { return t.index < (t.of == Functional::Of::u ? s.nu : s.n); });
+  };
+  if (s.zero && std::none_of(fs.begin(), fs.end(), constant) && std::all_of(fs.begin(), fs.end(), in_range))
+    return std::vector<Enclosure>(fs.size(), Enclosure{0, 0});  // (out of range: the general path throws)
   const slong p = s.prec, dm = static_cast<slong>(s.dm), nz = static_cast<slong>(s.nz), n = static_cast<slong>(s.n);
   const BallMat& zb = left && s.corner ? s.z_left : s.z;
   BallMat y(dm, 1), w(static_cast<slong>(1 + 3 * s.m), 1), u(static_cast<slong>(s.nu), 1), x(n, 1), xd(n, 1), tmp(n, 1);

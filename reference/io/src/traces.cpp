@@ -109,6 +109,34 @@ void check_times(const Traces& t, const std::vector<std::size_t>& line_of = {}) 
 }
 
 // ---------------------------------------------------------------- ngspice raw
+/// An ngspice ascii raw file's `npoints` points from `pos` ("index value" then a value per line, blank lines
+/// between points) into `data`; bad input names the line.
+void read_ascii_points(const std::string& text, const std::string& file, const std::vector<std::string>& names,
+                       long npoints, bool complex, std::size_t& pos, std::size_t& line_no, std::vector<double>& data) {
+  for (long p = 0; p < npoints; ++p) {
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      std::vector<std::string> w;
+      while (w.empty()) {  // ngspice separates points by a blank line
+        if (pos >= text.size())
+          bad(file, std::to_string(npoints) + " points", std::to_string(p) + ": the file is truncated");
+        std::size_t e = text.find('\n', pos);
+        if (e == std::string::npos) e = text.size();
+        w = words(text.substr(pos, e - pos));
+        pos = e + 1;
+        ++line_no;
+      }
+      if (k == 0) w.erase(w.begin());  // the point's index
+      if (complex) bad(at_line(file, line_no), "a real (transient) plot", "a complex one");
+      if (w.size() != 1)
+        bad(at_line(file, line_no), "one value of " + names[k],
+            w.empty() ? "none" : shown(w[0]) + (w.size() > 1 ? " and more" : ""));
+      double v = 0;
+      if (!plain(w[0], v)) bad(at_line(file, line_no), "a number for " + names[k], shown(w[0]));
+      data.push_back(v);
+    }
+  }
+}
+
 Traces raw(const std::string& text, const std::string& file) {
   // plots follow one another; take the first transient one
   std::size_t pos = 0;
@@ -168,6 +196,17 @@ Traces raw(const std::string& text, const std::string& file) {
     if (complex && transient) bad(file, "a real transient plot", "complex values (flags: " + flags + ")");
     std::vector<double> data;
     const std::size_t left = text.size() - std::min(pos, text.size());
+    const std::string after = lower(text.substr(std::min(pos, text.size()), 9));
+    if (binary && npoints == 0 && left > 0 && after.rfind("title:", 0) != 0 &&
+        after != "plotname:") {                // ngspice writes the count when the run ends: an aborted run
+      if (left % (per * sizeof(double)) != 0)  //  leaves 0 with the points it wrote after it
+        bad(file, "'No. Points: 0' and then whole points of " + std::to_string(per) + " doubles (an aborted run)",
+            std::to_string(left) + " bytes, not a multiple of " + std::to_string(per * sizeof(double)));
+      npoints = static_cast<long>(left / (per * sizeof(double)));
+      t.notes.push_back(file + ": 'No. Points: 0' with " + std::to_string(npoints) +
+                        " points after it: a run the simulator aborted (ngspice leaves the count at 0 then); "
+                        "its points up to there are checked");
+    }
     if (static_cast<double>(npoints) * static_cast<double>(per) * (binary ? 8.0 : 2.0) >
         static_cast<double>(left))  // 2 bytes: a digit and a separator
       bad(file,
@@ -186,28 +225,7 @@ Traces raw(const std::string& text, const std::string& file) {
       if (need > 0) std::memcpy(data.data(), text.data() + pos, need);  // (no points: data() may be null)
       pos += need;
     } else {
-      for (long p = 0; p < npoints; ++p) {
-        for (std::size_t k = 0; k < names.size(); ++k) {
-          std::vector<std::string> w;
-          while (w.empty()) {  // ngspice separates points by a blank line
-            if (pos >= text.size())
-              bad(file, std::to_string(npoints) + " points", std::to_string(p) + ": the file is truncated");
-            std::size_t e = text.find('\n', pos);
-            if (e == std::string::npos) e = text.size();
-            w = words(text.substr(pos, e - pos));
-            pos = e + 1;
-            ++line_no;
-          }
-          if (k == 0) w.erase(w.begin());  // the point's index
-          if (complex) bad(at_line(file, line_no), "a real (transient) plot", "a complex one");
-          if (w.size() != 1)
-            bad(at_line(file, line_no), "one value of " + names[k],
-                w.empty() ? "none" : shown(w[0]) + (w.size() > 1 ? " and more" : ""));
-          double v = 0;
-          if (!plain(w[0], v)) bad(at_line(file, line_no), "a number for " + names[k], shown(w[0]));
-          data.push_back(v);
-        }
-      }
+      read_ascii_points(text, file, names, npoints, complex, pos, line_no, data);
     }
     // after the points: nothing, or the next plot's header (the header's count is the truth of the data)
     const std::size_t next = text.find_first_not_of(" \t\r\n", std::min(pos, text.size()));
@@ -401,7 +419,8 @@ namespace {
 class MemoryStream final : public TraceStream {
  public:
   MemoryStream(const Traces& t, std::unique_ptr<Traces> owned) : owned_(std::move(owned)), t_(owned_ ? *owned_ : t) {
-    file_ = t_.file, format_ = t_.format, names_ = t_.names, skipped_ = t_.skipped, points_ = t_.time.size();
+    file_ = t_.file, format_ = t_.format, names_ = t_.names, skipped_ = t_.skipped, notes_ = t_.notes,
+    points_ = t_.time.size();
     first_ = t_.time.empty() ? 0.0 : t_.time.front(), last_ = t_.time.empty() ? 0.0 : t_.time.back();
   }
   void rewind() override { pos_ = 0; }

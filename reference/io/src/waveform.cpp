@@ -619,8 +619,10 @@ long period_of(const T& t, const T& origin, const T& period, long k_min) {
   const double q = as_double(floor_of(T((t - origin) / period)));
   if (!(q < 1e15)) return static_cast<long>(1e15);  // corners beyond double's resolution of the period (and NaN)
   long k = std::max<long>(k_min, static_cast<long>(q));
-  while (k > k_min && t < start(k)) --k;
-  while (!(t < start(k + 1))) ++k;
+  // a few steps from the rounded quotient; more only where PERIOD is below the resolution of ORIGIN + PERIOD·k
+  // (its corners then coincide in double, and which of them t is past is moot): bounded, never a hang
+  for (int n = 0; n < 64 && k > k_min && t < start(k); ++n) --k;
+  for (int n = 0; n < 64 && !(t < start(k + 1)); ++n) ++k;
   return k;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -43,26 +44,34 @@ std::string row_text(const QM& row, const std::vector<std::string>& names) {
   return (s.empty() ? "0" : s) + " = 0";
 }
 
-/// How fast σ_w's phase turns (rad/s: SIN's |ω| + |θ|, SFFM's 2π(FC + MDI·FS)), and from when (SIN's TD).
+/// How fast σ_w's argument turns (per second: SIN's |ω| + |θ|, SFFM's 2π(FC + MDI·FS), EXP's 1/TAU1 + 1/TAU2),
+/// and the radians it holds from the start (SIN's PHASE): its double rounding is ε·(rate·t + that), TD's
+/// and TAU's rounding included (t, not t − TD: ω·TD is rounded too).
 double phase_rate(const io::Waveform& w) {
   if (w.kind == io::Waveform::Kind::sin) return std::abs(w.omega()) + std::abs(w.decay());
   if (w.kind == io::Waveform::Kind::sffm)
     return 2 * M_PI * (std::abs(w.p[2].convert_to<double>()) + std::abs((w.p[3] * w.p[4]).convert_to<double>()));
+  if (w.kind == io::Waveform::Kind::exp) return std::abs(w.rate1()) + std::abs(w.rate2());
   return 0;
 }
-double phase_start(const io::Waveform& w) {
-  return w.kind == io::Waveform::Kind::sin ? w.p[3].convert_to<double>() : 0.0;
+double phase_held(const io::Waveform& w) {
+  return w.kind == io::Waveform::Kind::sin ? std::abs(w.p[5].convert_to<double>()) * M_PI / 180 : 0.0;
 }
 
 /// Whether σ_w's value in double at t is within 1e-10 of its scale of the exact value (the rounding of a
-/// few operations, c·ε·(1 + |phase|) with the phase below 1e4 rad): not within 1e-9 of the horizon of a
-/// corner of PULSE or PWL (a corner that is not a double may lie on either side of t), not for SIN and
-/// SFFM past 1e4 rad of phase (sin's argument is off by ε·phase there).  EXP always: exp(−x) in double is
-/// off by ε·x·e^{−x} ≤ ε/e of its amplitude.
+/// few operations, c·ε·(1 + argument), the argument below 1e4): not within 1e-9 of the horizon of a corner
+/// (a corner that is not a double may lie on either side of t); on a PULSE's or PWL's piece only where it
+/// is longer than 4e10·ε·t (v0 + slope·(t − t0) with t0 rounded is off by ε·t·|slope|, 1e-10 of the
+/// piece's rise there); SIN, SFFM and EXP only to 1e4 of argument (phase_rate, phase_held).
 bool evaluation_holds(const io::Waveform& w, double t, const std::vector<double>& corners, double horizon) {
   for (double c : corners)
     if (std::abs(t - c) <= 1e-9 * horizon) return false;
-  return phase_rate(w) * std::max(0.0, t - phase_start(w)) <= 1e4;
+  if (w.kind == io::Waveform::Kind::pulse || w.kind == io::Waveform::Kind::pwl) {
+    const auto next = std::upper_bound(corners.begin(), corners.end(), t);  // corners: sorted (breakpoints)
+    const double from = next == corners.begin() ? 0.0 : *(next - 1), to = next == corners.end() ? HUGE_VAL : *next;
+    return to - from >= 4e10 * std::numeric_limits<double>::epsilon() * t;
+  }
+  return phase_rate(w) * t + phase_held(w) <= 1e4;
 }
 
 /// The combination sampled at times that show every feature of the waveforms (breakpoints, their
@@ -92,10 +101,11 @@ Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long o
   const std::size_t k = ts.size();
   for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
   for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));
-  for (std::size_t j = 0; j < m; ++j) {  // and 17 within the first 1e4 rad of a fast SIN or SFFM (evaluation_holds)
-    const double rate = in_row[j] ? phase_rate(waveforms[j]) : 0.0, from = phase_start(waveforms[j]);
-    if (rate > 0 && from + 1e4 / rate < horizon)
-      for (int i = 1; i <= 17; ++i) ts.push_back(from + 1e4 / rate * std::fmod(i * 0.6180339887498949, 1.0));
+  for (std::size_t j = 0; j < m; ++j) {  // and 17 where a fast SIN, SFFM or EXP is evaluated well (evaluation_holds)
+    const double rate = in_row[j] ? phase_rate(waveforms[j]) : 0.0, reach = (1e4 - phase_held(waveforms[j])) / rate;
+    const double from = waveforms[j].kind == io::Waveform::Kind::sin ? waveforms[j].p[3].convert_to<double>() : 0.0;
+    if (rate > 0 && from < reach && reach < horizon)
+      for (int i = 1; i <= 17; ++i) ts.push_back(from + (reach - from) * std::fmod(i * 0.6180339887498949, 1.0));
   }
   Sampled out;
   out.scale = std::abs(row(0, 0).convert_to<double>());

@@ -20,6 +20,9 @@ struct Traces {
   /// Lines skipped inside the table, each "FILE:LINE: \"text\"" (gnucap writes step-control messages such
   /// as "zero time step" between its rows; the rows after them are read, and the check says so).
   std::vector<std::string> skipped;
+  /// What the reader took beyond the format's letter, each said by `dcad check` ("FILE: …"): an ngspice raw
+  /// file whose header says 'No. Points: 0' and whose data follows (a run the simulator aborted).
+  std::vector<std::string> notes;
 };
 
 /// Traces built in code held to what the readers guarantee: at least one time point, finite and
@@ -45,6 +48,7 @@ class TraceStream {
   const std::string& format() const { return format_; }
   const std::vector<std::string>& names() const { return names_; }
   const std::vector<std::string>& skipped() const { return skipped_; }
+  const std::vector<std::string>& notes() const { return notes_; }
   std::size_t points() const { return points_; }
   double first_time() const { return first_; }
   double last_time() const { return last_; }
@@ -55,7 +59,7 @@ class TraceStream {
 
  protected:
   std::string file_, format_;
-  std::vector<std::string> names_, skipped_;
+  std::vector<std::string> names_, skipped_, notes_;
   std::size_t points_ = 0;
   double first_ = 0, last_ = 0;
 };
