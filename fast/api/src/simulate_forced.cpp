@@ -363,8 +363,9 @@ ForcedStart forced_start(const ForcedScene& deck, const ForcedModel& fm, const i
 /// ngspice's rc.cir), and more than kMaxPeriods periods.
 void source_corners(const std::vector<io::Waveform>& waveforms, const SimulateOptions& opt, const std::string& file,
                     std::vector<double>& breaks, std::vector<std::vector<double>>& own) {
+  const double last_row = std::max(opt.tstop, std::floor(opt.tstop / opt.step + 1e-9) * opt.step);
   for (std::size_t j = 0; j < waveforms.size(); ++j) try {
-      own[j] = waveforms[j].breakpoints(opt.tstop + 1e-9 * opt.step);
+      own[j] = waveforms[j].breakpoints(last_row * (1 + 8 * std::numeric_limits<double>::epsilon()));
       try {  // and a corner an ulp after the last row (k·STEP may pass TSTOP by an ulp): applied with it
         own[j] = waveforms[j].breakpoints(opt.tstop + opt.step);
       } catch (const std::invalid_argument&) {  // a step after the last row: the run ends before it

@@ -137,6 +137,25 @@ void read_ascii_points(const std::string& text, const std::string& file, const s
   }
 }
 
+/// A binary plot's points after 'No. Points: 0': ngspice writes the count when the run ends, so a run it
+/// aborted ("Timestep too small") leaves 0 with the points it wrote after it — read, with a note.  0 where
+/// the next plot follows (its 'Title:' or 'Plotname:').
+long aborted_points(const std::string& text, std::size_t pos, std::size_t per, const std::string& file,
+                    std::vector<std::string>& notes) {
+  const std::size_t left = text.size() - std::min(pos, text.size());
+  const std::size_t ahead = text.find_first_not_of(" \t\r\n", std::min(pos, text.size()));
+  const std::string after = ahead == std::string::npos ? "" : lower(text.substr(ahead, 9));
+  if (after.rfind("title:", 0) == 0 || after == "plotname:") return 0;
+  if (left % (per * sizeof(double)) != 0)
+    bad(file, "'No. Points: 0' and then whole points of " + std::to_string(per) + " doubles (an aborted run)",
+        std::to_string(left) + " bytes, not a multiple of " + std::to_string(per * sizeof(double)));
+  const long n = static_cast<long>(left / (per * sizeof(double)));
+  notes.push_back(file + ": 'No. Points: 0' with " + std::to_string(n) +
+                  " points after it: a run the simulator aborted (ngspice leaves the count at 0 then); "
+                  "its points up to there are checked");
+  return n;
+}
+
 Traces raw(const std::string& text, const std::string& file) {
   // plots follow one another; take the first transient one
   std::size_t pos = 0;
@@ -196,17 +215,7 @@ Traces raw(const std::string& text, const std::string& file) {
     if (complex && transient) bad(file, "a real transient plot", "complex values (flags: " + flags + ")");
     std::vector<double> data;
     const std::size_t left = text.size() - std::min(pos, text.size());
-    const std::string after = lower(text.substr(std::min(pos, text.size()), 9));
-    if (binary && npoints == 0 && left > 0 && after.rfind("title:", 0) != 0 &&
-        after != "plotname:") {                // ngspice writes the count when the run ends: an aborted run
-      if (left % (per * sizeof(double)) != 0)  //  leaves 0 with the points it wrote after it
-        bad(file, "'No. Points: 0' and then whole points of " + std::to_string(per) + " doubles (an aborted run)",
-            std::to_string(left) + " bytes, not a multiple of " + std::to_string(per * sizeof(double)));
-      npoints = static_cast<long>(left / (per * sizeof(double)));
-      t.notes.push_back(file + ": 'No. Points: 0' with " + std::to_string(npoints) +
-                        " points after it: a run the simulator aborted (ngspice leaves the count at 0 then); "
-                        "its points up to there are checked");
-    }
+    if (binary && npoints == 0 && left > 0) npoints = aborted_points(text, pos, per, file, t.notes);
     if (static_cast<double>(npoints) * static_cast<double>(per) * (binary ? 8.0 : 2.0) >
         static_cast<double>(left))  // 2 bytes: a digit and a separator
       bad(file,

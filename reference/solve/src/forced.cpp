@@ -54,8 +54,10 @@ double phase_rate(const io::Waveform& w) {
   if (w.kind == io::Waveform::Kind::exp) return std::abs(w.rate1()) + std::abs(w.rate2());
   return 0;
 }
-double phase_held(const io::Waveform& w) {
-  return w.kind == io::Waveform::Kind::sin ? std::abs(w.p[5].convert_to<double>()) * M_PI / 180 : 0.0;
+double phase_held(const io::Waveform& w) {  // SIN's PHASE, and ω·|TD| for a negative TD (the argument is ω (t − TD))
+  if (w.kind != io::Waveform::Kind::sin) return 0.0;
+  return std::abs(w.p[5].convert_to<double>()) * M_PI / 180 +
+         phase_rate(w) * std::max(0.0, -w.p[3].convert_to<double>());
 }
 
 /// Whether σ_w's value in double at t is within 1e-10 of its scale of the exact value (the rounding of a
@@ -103,7 +105,8 @@ Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long o
   for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));
   for (std::size_t j = 0; j < m; ++j) {  // and 17 where a fast SIN, SFFM or EXP is evaluated well (evaluation_holds)
     const double rate = in_row[j] ? phase_rate(waveforms[j]) : 0.0, reach = (1e4 - phase_held(waveforms[j])) / rate;
-    const double from = waveforms[j].kind == io::Waveform::Kind::sin ? waveforms[j].p[3].convert_to<double>() : 0.0;
+    const double from =
+        waveforms[j].kind == io::Waveform::Kind::sin ? std::max(0.0, waveforms[j].p[3].convert_to<double>()) : 0.0;
     if (rate > 0 && from < reach && reach < horizon)
       for (int i = 1; i <= 17; ++i) ts.push_back(from + (reach - from) * std::fmod(i * 0.6180339887498949, 1.0));
   }
@@ -166,9 +169,11 @@ SourceCondition decide_condition(const QM& row, const std::vector<io::Waveform>&
   }
   const Sampled sm = sample(row, waveforms, orders);
   const double cut = kConditionFails * std::max(sm.scale, 1e-300);
+  long terms = 0;  // each term's evaluation is within 1e-10 of the scale where it holds: their sum within terms·1e-10
+  for (Index j = 1; j < row.cols(); ++j) terms += row(0, j) != 0 ? 1 : 0;
   std::ostringstream o;
   o.precision(6);
-  if (sm.proved > cut) {  // 10 times the evaluation's rounding at that time: the combination is not 0 there
+  if (sm.proved > std::max(cut, 2e-10 * static_cast<double>(terms) * sm.scale)) {  // beyond rounding: not 0
     v.holds = no;
     o << "fails at t = " << sm.proved_at << " s: the left side is " << sm.proved
       << " (sources evaluated in double, within 1e-10 of the scale " << sm.scale << ")";
