@@ -70,13 +70,13 @@ std::string simulate(const SimRun& r) {
 // Debian 12 (ngspice-39, gnucap 2017.10.03) the derivation finds ngspice right on the RC pulse and on the
 // capacitor triangle at its defaults; with reltol=1e-7 it stops at the triangle's first pulse corner
 // ("timestep too small"): its raw file has the points up to the corner, the last one 5e4 V (wrong) — in batch
-// (-r) under 'No. Points: 0', the count ngspice writes when a run ends (read, with a note: bad input before); wrong on the LC tank
-// after 1000 periods (trapezoidal phase drift: 52 %) and in antiphase after 10^4; right on the mixed-scale RLC
-// (mOhm…MOhm, pH…mH, fF…uF) and on the k = 1 transformer (it keeps the flux, as the CONTRACT's jump does).  gnucap is
-// right on the RC pulse and wrong on the triangle's node voltages (the island's potential rings after each corner), on
-// the mixed-scale RLC (0.5 % on v(in): its voltage source is not ideal) and on the source current of the PWL deck after
-// its corners (ngspice is right there; gnucap at reltol=1e-7 still is, with step-control messages inside its table); on
-// k = 1 it does not finish.
+// (-r) under 'No. Points: 0', the count ngspice writes when a run ends (read, with a note: bad input before); wrong on
+// the LC tank after 1000 periods (trapezoidal phase drift: 52 %) and in antiphase after 10^4; right on the mixed-scale
+// RLC (mOhm…MOhm, pH…mH, fF…uF) and on the k = 1 transformer (it keeps the flux, as the CONTRACT's jump does).  gnucap
+// is right on the RC pulse and wrong on the triangle's node voltages (the island's potential rings after each corner),
+// on the mixed-scale RLC (0.5 % on v(in): its voltage source is not ideal) and on the source current of the PWL deck
+// after its corners (ngspice is right there; gnucap at reltol=1e-7 still is, with step-control messages inside its
+// table); on k = 1 it does not finish.
 TEST(SimulatorCheck, VerdictIsTheIndependentDerivations) {
   if (!have("ngspice") || !have("gnucap")) GTEST_SKIP() << "ngspice and gnucap are installed by .ci/setup";
   const std::string tight = ".options reltol=1e-7 abstol=1e-15 vntol=1e-12 chgtol=1e-20";
