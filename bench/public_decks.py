@@ -37,8 +37,18 @@ def fold(message):
 MEANT_TO_FAIL = re.compile(r"(^Netlists/Message/(?!.*[Ww]arning))|_fails?[._]|\.error\d|/bad_|/Bad_|_is_missing|missing_ends|/dup-|_dup\.|bogo", re.I)
 
 
+# Xyce_Regression's harness says it too: a test script DECK.sh that runs its own deck ($CIRFILE, the argument the
+# harness passes) with runAndCheckError or runAndCheckGroupedError expects Xyce to exit with an error
+# (TestScripts/XyceRegression/Tools.pm: "Xyce should EXIT WITH ERROR, and not doing so is a failure").
+EXPECTS_ERROR = re.compile(r"runAndCheck(?:Grouped)?Error\(\s*\$CIRFILE\s*,")
+CORPUS = None  # set by main(): where the decks' test scripts are
+
+
 def meant_to_fail(path):
-    return bool(MEANT_TO_FAIL.search(path))
+    if MEANT_TO_FAIL.search(path):
+        return True
+    script = os.path.join(CORPUS, "xyce", path + ".sh") if CORPUS else ""
+    return os.path.isfile(script) and bool(EXPECTS_ERROR.search(open(script, errors="replace").read()))
 
 
 def dialect(source, deck):
@@ -56,7 +66,9 @@ def dialect(source, deck):
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
+    global CORPUS
     dcad, corpus = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    CORPUS = corpus
     out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(os.path.dirname(__file__), "results", "public_decks.md")
     listing = os.path.join(os.path.dirname(os.path.abspath(__file__)), "public_decks.tsv")
     rows = list(csv.DictReader(open(listing), delimiter="\t"))
@@ -107,7 +119,8 @@ def main():
         f.write("| all meant to fail | %d | %d | %d | %d |\n\n" % tuple(sum(c[k] for c in failing) for k in range(4)))
         f.write("A deck is *meant to fail* when its origin wrote it to be refused (`MEANT_TO_FAIL` in this script: Xyce's\n"
                 "Netlists/Message/ tests of error messages, names with _fails, .error, bad_, _is_missing, missing_ends, dup-,\n"
-                "bogo); for those a true refusal is the right answer.  The percentage is over the decks meant to run.\n\n")
+                "bogo; and Xyce decks whose test script runs them with runAndCheckError, expecting Xyce to exit with an\n"
+                "error); for those a true refusal is the right answer.  The percentage is over the decks meant to run.\n\n")
         f.write("## Refusals by cause\n\n")
         for cause, decks in sorted(causes.items(), key=lambda kv: -len(kv[1])):
             f.write("- **%d** — `%s`\n" % (len(decks), cause.replace("`", "'")))

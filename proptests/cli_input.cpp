@@ -88,6 +88,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"parennode", "title\nL1 1 0 1\nv3 1( 0 1\n", "a node name without"},
         // gnucap's pulse keyword form: rise and fall 0, a step
         BadCase{"gnucappulse", "title\nL1 1 0 1\nv1 (1 0) pulse (iv=0 pv=10)\n", "gnucap's pulse"},
+        // Xyce_Regression's decks its harness runs expecting an error (BUG_784, ISSUE_455): read, they were another
+        // circuit — a port named twice joins two of the caller's nodes, a second DC replaces the first
+        BadCase{"subcktport2", "title\nL1 1 0 1\nX1 1 2 s\n.subckt s b b\nR1 b 0 1\n.ends\n", "port b twice"},
+        BadCase{"dctwice", "title\nL1 1 0 1\nV2 1 0 dc 1.0 dc 0.0\n", "found a second one, DC 0"},
         BadCase{"pwlfilemissing", "title\nR1 1 0 1\nV1 1 0 PWL FILE \"nothere.csv\"\n",
                 "\"nothere.csv\" (no such file)"},
         BadCase{"gnucapexpperiod", "title\nL1 1 0 1\nv1 1 0 exp iv=0 pv=1 tau1=1 td2=1 tau2=1 period=5\n", "period="}),
@@ -603,6 +607,40 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
   for (const char* said : {"gnucap's time-step hint", "ignored .store", "ignored .fanout", "ac=15k ignored",
                            "\"cap*2\" read as the expression {cap*2} = 1e-08", ".ic v(nowhere) ignored: no such node"})
     EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
+}
+
+// gnucap's positional SIN, EXP and PULSE fill its keys in order with gnucap's defaults (apps/bm_pulse.cc: rise and
+// fall 0, width and period forever), not SPICE's TSTEP and TSTOP (issue 45: gnucap's vs.spice, `pulse 4 7 1`, was
+// solved as ngspice's ramp over TSTEP where gnucap steps at t = 1).  A pulse without a period is its PWL, one
+// with all seven values SPICE's PULSE; a step is refused in the gnucap dialect and read as ngspice's ramp in
+// ngspice's.  Killed by: positional values given SPICE's defaults under --dialect gnucap, a width or fall off by one.
+TEST(Cli, GnucapPositionalSourcesTakeGnucapsDefaults) {
+  const std::string deck = write_temp("dcad_gnucap_positional.ckt",
+                                      "gnucap positional sources\n"
+                                      "v1 (1 0) pulse (0 1 .001 .0001)\n"
+                                      "v2 2 0 pulse 1 0 0 .002 .001 .003 .01\n"
+                                      "i3 0 3 pulse (0 1m .0005 .0002 .0003 .001)\n"
+                                      "r1 1 a 1k\nc1 a 0 1u\nr2 2 b 1k\nl2 b 0 1\nr3 3 0 1k\nc3 3 0 1u\n"
+                                      ".end\n");
+  const std::string twin = write_temp("dcad_gnucap_positional_twin.cir",
+                                      "the same sources in ngspice's words\n"
+                                      "v1 1 0 PWL(0 0 1m 0 1.1m 1)\n"
+                                      "v2 2 0 PULSE(1 0 0 2m 1m 3m 10m)\n"
+                                      "i3 0 3 PWL(0 0 0.5m 0 0.7m 1m 1.7m 1m 2m 0)\n"
+                                      "r1 1 a 1k\nc1 a 0 1u\nr2 2 b 1k\nl2 b 0 1\nr3 3 0 1k\nc3 3 0 1u\n"
+                                      ".end\n");
+  const Outcome sa = run("simulate --dialect gnucap " + deck + " --tstop 12m --step 5e-4"),
+                sb = run("simulate " + twin + " --tstop 12m --step 5e-4");
+  ASSERT_EQ(sa.rc, 0) << sa.err;
+  ASSERT_EQ(sb.rc, 0) << sb.err;
+  EXPECT_EQ(sa.out, sb.out);
+  const std::string step = write_temp("dcad_gnucap_step.ckt",
+                                      "vs test\nv2 2 0 pulse 4 7 1\nr2 2 a 1\nc2 a 0 1\n"
+                                      ".tran 1 2 0\n.end\n");
+  const Outcome g = run("solve --dialect gnucap " + step), n = run("solve --dialect ngspice " + step);
+  EXPECT_EQ(g.rc, 1);
+  EXPECT_NE(g.err.find("rise 0 (gnucap's default: a step at delay = 1)"), std::string::npos) << g.err;
+  EXPECT_EQ(n.rc, 0) << n.err;  // ngspice: TR = TSTEP = 1, a ramp
 }
 
 // ngspice reads a resistance below 1e-12 Ohm as 1e-12 (resparam.c's RESMIN): a resistor, never a wire (whose

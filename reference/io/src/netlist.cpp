@@ -1045,7 +1045,10 @@ class Flattener {
       std::string port = lower(tok[k]);
       if (!port.empty() && port.front() == '(') port.erase(0, 1);
       if (!port.empty() && port.back() == ')') port.pop_back();
-      if (!port.empty()) s.ports.push_back(port);
+      if (port.empty()) continue;
+      if (std::find(s.ports.begin(), s.ports.end(), port) != s.ports.end())  // which caller's node would it be?
+        fail(l, "distinct port names in .subckt " + tok[1], "port " + tok[k] + " twice (Xyce refuses it too)");
+      s.ports.push_back(port);
     }
     if (k < tok.size()) s.defaults = param_pairs(tok, lower(tok[k]) == "params:" ? k + 1 : k, l);
     if (subckts.count(s.key))
@@ -1412,7 +1415,7 @@ class Flattener {
       try {
         w = parse_waveform(
             pwl_from_file(l, spec, dialect), [&](const std::string& t) { return number(t, "a source value"); },
-            generator);
+            generator, dialect == Dialect::gnucap);
       } catch (const std::invalid_argument& e) {
         throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
       }

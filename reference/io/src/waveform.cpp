@@ -90,14 +90,92 @@ std::optional<std::string> gnucap_key(const std::string& fn, const std::string& 
   return std::nullopt;
 }
 
+/// gnucap's PULSE (bm_pulse.cc's tr_eval): IV up to DELAY, a ramp over RISE, PV for WIDTH, a ramp over FALL, IV
+/// after, the whole repeated every PERIOD (fmod, as SPICE's PULSE); WIDTH or PERIOD 0 or missing is forever.
+/// Without a period it is the PWL (0 IV) (DELAY IV) (DELAY+RISE PV) [(…+WIDTH PV) (…+FALL IV)]; with one, SPICE's
+/// PULSE of the same values, which evaluates a period alike — a period that cuts the pulse short is a step
+/// where the run reaches it, refused there (Waveform::breakpoints).  A step dcad sees here (RISE 0, a FALL 0
+/// that is reached) is refused.
+template <class Value, class Refuse>
+void gnucap_pulse(std::string& fn, const Value& value, const Refuse& refuse, std::vector<Rational>& args) {
+  if (!value("iv") || !value("pv")) refuse("no iv or pv (gnucap then takes a value of its own)", "iv=V1 pv=V2");
+  const Rational iv = *value("iv"), pv = *value("pv");
+  const Rational delay = value("delay").value_or(0), rise = value("rise").value_or(0);
+  const Rational fall = value("fall").value_or(0), width = value("width").value_or(0);
+  const Rational period = value("period").value_or(0);
+  for (const Rational* x : {&delay, &rise, &fall, &width, &period})
+    if (*x < 0) refuse("a negative time " + x->str(), "times >= 0");
+  if (iv == pv) {  // a constant
+    args = {0, iv};
+    fn = "pwl";
+    return;
+  }
+  if (rise == 0)
+    refuse("rise 0 (gnucap's default: a step at delay = " + delay.str() + ")",
+           "pulse (iv pv delay rise …) with rise > 0");
+  const Rational held = width == 0 && period != 0 ? period : width;  // PV up to the period's end
+  if (fall == 0 && held != 0 && (period == 0 || rise + held < period))
+    refuse("fall 0 (gnucap's default: a step at delay + rise + width = " + Rational(delay + rise + held).str() + ")",
+           "fall > 0");
+  if (period != 0) {
+    args = {iv, pv, delay, rise, fall == 0 ? rise : fall, held, period};  // a FALL 0 here is never reached
+    return;
+  }
+  args = {0, iv};
+  if (delay > 0) args.insert(args.end(), {delay, iv});
+  args.insert(args.end(), {delay + rise, pv});
+  if (width != 0) args.insert(args.end(), {delay + rise + width, pv, delay + rise + width + fall, iv});
+  fn = "pwl";
+}
+
+/// gnucap's meaning of a SIN, EXP or PULSE whose values are `got` (KEY, VALUE), keyword or positional alike
+/// (apps/bm_sin.cc, bm_exp.cc, bm_pulse.cc: parse_numlist fills the keys in their order, and the defaults are
+/// gnucap's own — no TSTEP or TSTOP).  gnucap evaluates SIN as OFFSET + AMPLITUDE sin(2π FREQUENCY (t − DELAY))
+/// e^{−(t−DELAY) DAMPING} after DELAY (OFFSET before) — SPICE's SIN with PHASE 0 — and EXP as SPICE's
+/// EXP(IV PV TD1 TAU1 TD2 TAU2) when TD1 <= TD2 and no PERIOD.  PULSE is IV up to DELAY, then RISE, WIDTH, FALL
+/// with RISE = FALL = 0 (a step) and WIDTH = PERIOD = forever by default, 0 meaning forever too: SPICE's PULSE
+/// when every piece is finite, else the PWL it is.  Sets `fn` and `args` to the SPICE form; throws where gnucap's
+/// meaning is not one dcad's exact flows take (a step, a repetition, a frequency taken from the analysis).
+void gnucap_meaning(std::string& fn, const std::vector<std::pair<std::string, Rational>>& got, const std::string& spec,
+                    std::vector<Rational>& args) {
+  const auto value = [&](const char* key) -> std::optional<Rational> {
+    for (const auto& g : got)
+      if (g.first == key) return g.second;
+    return std::nullopt;
+  };
+  const auto refuse = [&](const std::string& why, const std::string& instead) {
+    throw std::invalid_argument("expected gnucap's " + fn + " in a form with an exact transient, found " + why +
+                                " in \"" + spec + "\": write " + instead);
+  };
+  if (fn == "sin") {
+    if (!value("frequency")) refuse("no frequency (gnucap then takes the analysis' frequency)", "frequency=F");
+    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("frequency"),
+            value("delay").value_or(0),  value("damping").value_or(0),   0};
+    if (args[2] < 0)
+      throw std::invalid_argument("expected frequency >= 0, found " + args[2].str() + " in \"" + spec + "\"");
+  } else if (fn == "exp") {
+    if (!value("iv") || !value("pv")) refuse("no iv= or pv= (gnucap then takes a value of its own)", "iv=V1 pv=V2");
+    if (value("period")) refuse("period= (a repeated exponential)", "EXP(V1 V2 TD1 TAU1 TD2 TAU2) once, or a PWL");
+    const Rational td1 = value("td1").value_or(0), td2 = value("td2").value_or(0);
+    const Rational tau1 = value("tau1").value_or(0), tau2 = value("tau2").value_or(0);
+    if (!(tau1 > 0) || !(tau2 > 0)) refuse("tau1 or tau2 not > 0 (a step)", "tau1 and tau2 > 0");
+    if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
+    args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
+  } else if (fn ==
+             "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
+    if (!value("carrier") || !value("modindex") || !value("signal"))
+      refuse("no carrier=, modindex= or signal= (gnucap has no default)", "all three");
+    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("carrier"), *value("modindex"),
+            *value("signal")};
+  } else {
+    gnucap_pulse(fn, value, refuse, args);
+  }
+}
+
 /// Reads gnucap's keyword form from words[from]: KEY=VALUE words (and SIN's flags ZERO, PEAK, SAMPLES=, which
-/// steer gnucap's time steps, not the waveform) up to ')' or the end, mapped to the SPICE form with gnucap's
-/// meaning.  gnucap evaluates SIN as OFFSET + AMPLITUDE sin(2π FREQUENCY (t − DELAY)) e^{−(t−DELAY) DAMPING}
-/// after DELAY (OFFSET before) — SPICE's SIN with PHASE 0 — and EXP as SPICE's EXP(IV PV TD1 TAU1 TD2 TAU2)
-/// when TD1 <= TD2 and no PERIOD; gnucap's defaults are its own (no TSTEP or TSTOP), so the form is literal.
-/// Throws where gnucap's meaning is not one dcad's exact flows take (a step, a repetition, a frequency taken
-/// from the analysis).  Returns the index after the form.
-std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& words, std::size_t from,
+/// steer gnucap's time steps, not the waveform) up to ')' or the end, and gives them gnucap's meaning
+/// (gnucap_meaning).  Returns the index after the form.
+std::size_t gnucap_form(std::string& fn, const std::vector<std::string>& words, std::size_t from,
                         const std::string& spec, const std::function<Rational(const std::string&)>& number,
                         std::vector<Rational>& args, std::vector<std::string>& noted) {
   std::vector<std::pair<std::string, Rational>> got;
@@ -130,40 +208,27 @@ std::size_t gnucap_form(const std::string& fn, const std::vector<std::string>& w
         throw std::invalid_argument("expected " + *key + " once, found it twice in \"" + spec + "\"");
     got.emplace_back(*key, number(text));
   }
-  const auto value = [&](const char* key) -> std::optional<Rational> {
-    for (const auto& g : got)
-      if (g.first == key) return g.second;
-    return std::nullopt;
-  };
-  const auto refuse = [&](const std::string& why, const std::string& instead) {
-    throw std::invalid_argument("expected gnucap's " + fn + " in a form with an exact transient, found " + why +
-                                " in \"" + spec + "\": write " + instead);
-  };
-  if (fn == "sin") {
-    if (!value("frequency")) refuse("no frequency (gnucap then takes the analysis' frequency)", "frequency=F");
-    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("frequency"),
-            value("delay").value_or(0),  value("damping").value_or(0),   0};
-    if (args[2] < 0)
-      throw std::invalid_argument("expected frequency >= 0, found " + args[2].str() + " in \"" + spec + "\"");
-  } else if (fn == "exp") {
-    if (!value("iv") || !value("pv")) refuse("no iv= or pv= (gnucap then takes a value of its own)", "iv=V1 pv=V2");
-    if (value("period")) refuse("period= (a repeated exponential)", "EXP(V1 V2 TD1 TAU1 TD2 TAU2) once, or a PWL");
-    const Rational td1 = value("td1").value_or(0), td2 = value("td2").value_or(0);
-    const Rational tau1 = value("tau1").value_or(0), tau2 = value("tau2").value_or(0);
-    if (!(tau1 > 0) || !(tau2 > 0)) refuse("tau1 or tau2 not > 0 (a step)", "tau1 and tau2 > 0");
-    if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
-    args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
-  } else if (fn ==
-             "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
-    if (!value("carrier") || !value("modindex") || !value("signal"))
-      refuse("no carrier=, modindex= or signal= (gnucap has no default)", "all three");
-    args = {value("offset").value_or(0), value("amplitude").value_or(1), *value("carrier"), *value("modindex"),
-            *value("signal")};
-  } else {
-    refuse("pulse's keyword form (gnucap's rise and fall default to 0: a step, and width and period to forever)",
-           "PULSE(V1 V2 TD TR TF PW PER) with TR, TF > 0");
-  }
+  gnucap_meaning(fn, got, spec, args);
   return j;
+}
+
+/// gnucap's positional form (bm_*.cc parse_numlist): the values fill the keys in gnucap's order — SIN's
+/// offset amplitude frequency delay damping, EXP's iv pv td1 tau1 td2 tau2 period, PULSE's iv pv delay rise fall
+/// width period — with gnucap's defaults after them, not SPICE's.
+void gnucap_positional(std::string& fn, std::vector<Rational>& args, const std::string& spec) {
+  const std::vector<GnucapKey>& keys = gnucap_keys(fn);
+  const std::size_t n = fn == "sin" ? 5 : 7;  // SIN's keys after damping are time-step hints
+  if (args.size() > n)
+    throw std::invalid_argument("expected at most " + std::to_string(n) + " values in gnucap's " + fn + " (" +
+                                [&] {
+                                  std::string all;
+                                  for (std::size_t k = 0; k < n; ++k) all += (k ? " " : "") + std::string(keys[k].name);
+                                  return all;
+                                }() +
+                                "), found " + std::to_string(args.size()) + " in \"" + spec + "\"");
+  std::vector<std::pair<std::string, Rational>> got;
+  for (std::size_t k = 0; k < args.size(); ++k) got.emplace_back(keys[k].name, args[k]);
+  gnucap_meaning(fn, got, spec, args);
 }
 
 }  // namespace
@@ -240,140 +305,151 @@ struct SourceWords {
   bool literal = false;  ///< gnucap's keyword form: every value given, no SPICE defaults
 };
 
-SourceWords read_source_words(const std::string& spec, const std::function<Rational(const std::string&)>& number) {
-  SourceWords r;
-  std::optional<Rational>& dc = r.dc;
+/// The transient function at words[i] and its values — in parentheses, as SPICE3's bare list, or as gnucap's
+/// keys — read into r.  Returns the index after them, or words.size() for a function dcad does not read (its
+/// values need not be numbers; waveform_of says it).  `values` reads bare numbers up to a keyword.
+std::size_t read_function(SourceWords& r, const std::vector<std::string>& words, std::size_t i, const std::string& spec,
+                          const std::function<Rational(const std::string&)>& number,
+                          const std::function<std::size_t(std::size_t, std::size_t, std::vector<Rational>*)>& values) {
   std::string& fn = r.fn;
-  std::vector<Rational>& args = r.args;
-  std::vector<std::string>& ignored = r.ignored;
-  std::optional<Rational>& pwl_td = r.pwl_td;
-  std::optional<Rational>& pwl_r = r.pwl_r;
-  bool& literal = r.literal;
+  const std::string word = lower(words[i]);
+  if (!fn.empty())
+    throw std::invalid_argument("expected one transient function, found " + fn + " and " + words[i] + " in \"" + spec +
+                                "\"");
+  fn = word == "sine" ? "sin" : word;
+  std::size_t j = i + 1;
+  const std::size_t first = j < words.size() && words[j] == "(" ? j + 1 : j;
+  if (first < words.size() && words[first].find('=') != std::string::npos &&
+      gnucap_key(fn, words[first])) {  // gnucap's keyword form
+    j = gnucap_form(fn, words, first, spec, number, r.args, r.ignored);
+    if (first > i + 1) {  // "(…)"
+      if (j == words.size() || words[j] != ")")
+        throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
+      ++j;
+    }
+    r.literal = true;
+    return j;
+  }
+  if (!readable(fn)) return words.size();
+  if (j == words.size() || words[j] != "(") return values(j, words.size(), &r.args);  // SPICE3: no parentheses
+  for (++j; j < words.size() && words[j] != ")"; ++j) {
+    if (words[j] == "(")
+      throw std::invalid_argument("expected " + words[i] + "(values), found a nested '(' in \"" + spec + "\"");
+    r.args.push_back(number(words[j]));
+  }
+  if (j == words.size())  // "SIN(0 1 1k" at the end of the line: Xyce and ngspice read it to the end (SENS/vsin.cir)
+    r.ignored.push_back("the missing ')' of " + words[i] + "(…) (its values read to the end of the line)");
+  return j == words.size() ? j : j + 1;
+}
+
+/// KEY=VALUE at words[i] where the key is PWL's TD= or R= (ngspice, Xyce) or DC=, AC=, ACMAG=, ACPHASE=, a
+/// port's PORTNUM=, Z0=, PWR=, FREQ= (recorded as ignored): true when read.
+bool read_key_value(SourceWords& r, const std::string& word, const std::string& spec,
+                    const std::function<Rational(const std::string&)>& number) {
+  const std::size_t eq = word.find('=');
+  if (eq == std::string::npos) return false;
+  const std::string key = lower(word.substr(0, eq));
+  const bool pwl = r.fn == "pwl" && (key == "td" || key == "r");
+  if (!pwl && key != "dc" && key != "ac" && key != "acmag" && key != "acphase" && key != "portnum" && key != "z0" &&
+      key != "pwr" && key != "freq")
+    return false;
+  const std::string value = word.substr(eq + 1);
+  if (value.empty()) throw std::invalid_argument("expected a value after " + word + ", found none in \"" + spec + "\"");
+  const Rational v = number(value);
+  if (pwl)
+    (key == "td" ? r.pwl_td : r.pwl_r) = v;
+  else if (key == "dc")
+    r.dc = v;
+  else
+    r.ignored.push_back(word);
+  return true;
+}
+
+/// DC VALUE, or AC [MAG [PHASE]], DISTOF1/2, PORTNUM, Z0, PWR, FREQ and their values (recorded as ignored), at
+/// words[i]: the index after them, or i when words[i] is none of these.
+std::size_t read_dc_or_ignored(
+    SourceWords& r, const std::vector<std::string>& words, std::size_t i, const std::string& spec,
+    const std::function<std::size_t(std::size_t, std::size_t, std::vector<Rational>*)>& values) {
+  const std::string word = lower(words[i]);
+  if (word == "dc") {
+    std::vector<Rational> v;
+    const std::size_t j = values(i + 1, 1, &v);
+    if (v.empty()) {  // "DC" before a function or AC with no value of its own: the operating point's 0
+      if (j < words.size() && is_keyword(lower(words[j]))) {
+        r.ignored.push_back("DC without a value");
+        return j;
+      }
+      throw std::invalid_argument("expected a value after DC, found none in \"" + spec + "\"");
+    }
+    if (r.dc)  // Xyce's ISSUE_455 "dc 1.0 dc 0.0": Xyce refuses it; which one would the transient take?
+      throw std::invalid_argument("expected one DC value, found a second one, DC " + v[0].str() + ", in \"" + spec +
+                                  "\"");
+    r.dc = v[0];
+    return j;
+  }
+  if (word != "ac" && word != "distof1" && word != "distof2" && word != "portnum" && word != "z0" && word != "pwr" &&
+      word != "freq")
+    return i;
+  const std::size_t j = values(i + 1, word == "ac" || word == "distof1" || word == "distof2" ? 2 : 1, nullptr);
+  if (j == i + 1 && word != "ac")
+    throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
+  std::string said = words[i];
+  for (std::size_t k = i + 1; k < j; ++k) said += " " + words[k];
+  r.ignored.push_back(said);
+  return j;
+}
+
+SourceWords read_source_words(const std::string& spec, const std::function<Rational(const std::string&)>& number,
+                              bool gnucap) {
+  SourceWords r;
   const std::vector<std::string> words = spec_words(spec);
-  const auto note = [&](const std::string& s) { ignored.push_back(s); };
+  // the values after a keyword: at most `most`, while they are not keywords or parentheses
+  const auto values = [&](std::size_t from, std::size_t most, std::vector<Rational>* into) {
+    std::size_t j = from;
+    for (; j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" && !is_keyword(lower(words[j]));
+         ++j) {
+      const Rational v = number(words[j]);
+      if (into) into->push_back(v);
+    }
+    return j;
+  };
   for (std::size_t i = 0; i < words.size();) {
     const std::string word = lower(words[i]);
-    const std::size_t eq = word.find('=');
-    const std::string key = eq == std::string::npos ? word : word.substr(0, eq);
-    if (eq != std::string::npos && fn == "pwl" &&
-        (key == "td" || key == "r")) {  // PWL(…) TD=delay R=repeat (ngspice, Xyce)
-      const std::string value = words[i].substr(eq + 1);
-      if (value.empty())
-        throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
-      (key == "td" ? pwl_td : pwl_r) = number(value);
+    if (read_key_value(r, words[i], spec, number)) {
       ++i;
       continue;
     }
-    if (eq != std::string::npos && (key == "dc" || key == "ac" || key == "acmag" || key == "acphase" ||
-                                    key == "portnum" || key == "z0" || key == "pwr" || key == "freq")) {
-      const std::string value = words[i].substr(eq + 1);
-      if (value.empty())
-        throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
-      const Rational v = number(value);
-      if (key == "dc")
-        dc = v;
-      else
-        note(words[i]);
-      ++i;
-      continue;
-    }
-    // the values after a keyword: at most `most`, while they are not keywords or parentheses
-    const auto values = [&](std::size_t from, std::size_t most, std::vector<Rational>* into) {
-      std::size_t j = from;
-      while (j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" &&
-             !is_keyword(lower(words[j]))) {
-        const Rational v = number(words[j]);
-        if (into) into->push_back(v);
-        ++j;
-      }
-      return j;
-    };
-    if (word == "dc") {
-      std::vector<Rational> v;
-      const std::size_t j = values(i + 1, 1, &v);
-      if (v.empty()) {  // "DC" before a function or AC with no value of its own: the operating point's 0
-        if (j < words.size() && is_keyword(lower(words[j]))) {
-          note("DC without a value");
-          i = j;
-          continue;
-        }
-        throw std::invalid_argument("expected a value after DC, found none in \"" + spec + "\"");
-      }
-      dc = v[0];
-      i = j;
-      continue;
-    }
-    if (word == "ac" || word == "distof1" || word == "distof2" || word == "portnum" || word == "z0" || word == "pwr" ||
-        word == "freq") {
-      const std::size_t j = values(i + 1, word == "ac" || word == "distof1" || word == "distof2" ? 2 : 1, nullptr);
-      if (j == i + 1 && word != "ac")
-        throw std::invalid_argument("expected a value after " + words[i] + ", found none in \"" + spec + "\"");
-      std::string said = words[i];
-      for (std::size_t k = i + 1; k < j; ++k) said += " " + words[k];
-      note(said);
+    if (const std::size_t j = read_dc_or_ignored(r, words, i, spec, values); j != i) {
       i = j;
       continue;
     }
     if (is_function(word)) {
-      if (!fn.empty())
-        throw std::invalid_argument("expected one transient function, found " + fn + " and " + words[i] + " in \"" +
-                                    spec + "\"");
-      fn = word == "sine" ? "sin" : word;
-      std::size_t j = i + 1;
-      const std::size_t first = j < words.size() && words[j] == "(" ? j + 1 : j;
-      if (first < words.size() && words[first].find('=') != std::string::npos &&
-          gnucap_key(fn, words[first])) {  // gnucap's keyword form
-        j = gnucap_form(fn, words, first, spec, number, args, ignored);
-        if (first > i + 1) {  // "(…)"
-          if (j == words.size() || words[j] != ")")
-            throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
-          ++j;
-        }
-        literal = true;
-        i = j;
-        continue;
-      }
-      if (j < words.size() && words[j] == "(") {
-        ++j;
-        while (j < words.size() && words[j] != ")") {
-          if (words[j] == "(")
-            throw std::invalid_argument("expected " + words[i] + "(values), found a nested '(' in \"" + spec + "\"");
-          if (!readable(fn)) break;  // not read: said below, the values need not be numbers
-          args.push_back(number(words[j]));
-          ++j;
-        }
-        if (!readable(fn)) break;
-        if (j == words.size()) {  // "SIN(0 1 1k" at the end of the line: Xyce and ngspice read it to the end (Xyce's
-                                  // SENS/vsin.cir)
-          note("the missing ')' of " + words[i] + "(…) (its values read to the end of the line)");
-          i = j;
-          continue;
-        }
-        i = j + 1;
-      } else {  // SPICE3: the values follow without parentheses
-        if (!readable(fn)) break;
-        i = values(j, words.size(), &args);
-      }
+      i = read_function(r, words, i, spec, number, values);
       continue;
     }
     if (words[i] == "(" || words[i] == ")")
       throw std::invalid_argument("expected a value or a keyword, found '" + words[i] + "' in \"" + spec + "\"");
-    if (!fn.empty() && !dc && eq == std::string::npos && i > 0 &&
+    const bool keyword = word.find('=') != std::string::npos;
+    if (!r.fn.empty() && !r.dc && !keyword && i > 0 &&
         words[i - 1] == ")") {  // "pwl(…) 7": ngspice-39 ignores it (not even the DC)
       number(words[i]);
-      note(words[i] + " after " + fn + "(…) (ngspice ignores a value after the function)");
+      r.ignored.push_back(words[i] + " after " + r.fn + "(…) (ngspice ignores a value after the function)");
       ++i;
       continue;
     }
-    if (dc || !fn.empty()) {  // a second bare value
-      if (eq != std::string::npos)
+    if (r.dc || !r.fn.empty()) {  // a second bare value
+      if (keyword)
         throw std::invalid_argument("expected DC, AC or a transient function, found \"" + words[i] +
                                     "\" (a keyword dcad does not read) in \"" + spec + "\"");
       throw std::invalid_argument("expected one DC value, found another one, \"" + words[i] + "\", in \"" + spec +
                                   "\"");
     }
-    dc = number(words[i]);  // "[DC] value": DC is optional before the first value
+    r.dc = number(words[i]);  // "[DC] value": DC is optional before the first value
     ++i;
+  }
+  if (gnucap && !r.literal && (r.fn == "sin" || r.fn == "exp" || r.fn == "pulse")) {
+    gnucap_positional(r.fn, r.args, spec);  // gnucap's order and defaults, not SPICE's
+    r.literal = true;
   }
   return r;
 }
@@ -494,8 +570,8 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
 }  // namespace
 
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number,
-                        const Generator& generator) {
-  return waveform_of(read_source_words(spec, number), spec, generator);
+                        const Generator& generator, bool gnucap) {
+  return waveform_of(read_source_words(spec, number, gnucap), spec, generator);
 }
 
 void Waveform::complete(const std::optional<Rational>& tstep, const std::optional<Rational>& tstop) {

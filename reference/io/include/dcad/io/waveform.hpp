@@ -105,9 +105,11 @@ struct Generator {
 /// point's and is ignored as ngspice ignores it for .tran.  PULSE's and SIN's missing values wait for
 /// complete().  `number` converts one token exactly.  Throws std::invalid_argument naming what is not read
 /// (AM, TRNOISE, PAT …) and what to write instead.  EXP and PWL's TD= and R= are read as ngspice reads them;
-/// gnucap's `generator(SCALE)` as the PWL of `generator` times SCALE.
+/// gnucap's `generator(SCALE)` as the PWL of `generator` times SCALE.  `gnucap`: SIN, EXP and PULSE with values
+/// by position take gnucap's order and defaults (PULSE's rise and fall 0, width and period forever: bm_pulse.cc),
+/// as gnucap's keyword form always does, not SPICE's TSTEP and TSTOP.
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number,
-                        const Generator& generator = Generator{});
+                        const Generator& generator = Generator{}, bool gnucap = false);
 
 /// The first source whose waveform has no finite exosystem (SFFM), for simulate, check and the enclosures to
 /// refuse by name: "V1 (SFFM …)"; nullopt when every one has one.
