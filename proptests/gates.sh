@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The layout gates (issue 47): every C++ file as .clang-format lays it out (120 columns), and the
-# function-length ratchet (proptests/style/long_functions.txt only shrinks).  Exit non-zero on a finding.
+# The layout gates (issue 47): every C++ file as .clang-format lays it out (120 columns), the function-length
+# ratchet (proptests/style/long_functions.txt only shrinks) and the copied-code ratchet (proptests/style/copies.txt
+# only shrinks: a new run of 6 lines standing twice in the library fails).  Exit non-zero on a finding.
 # Usage: bash proptests/gates.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,5 +15,6 @@ if ! clang-format --style=file --dry-run -Werror "${files[@]}" > build-format.lo
 fi
 rm -f build-format.log
 python3 proptests/style/function_lengths.py . || status=1
-[ $status -eq 0 ] && echo "gates: layout and function lengths clean ($(echo "${#files[@]}") files)"
+python3 proptests/style/copies.py . || status=1
+[ $status -eq 0 ] && echo "gates: layout, function lengths and copies clean ($(echo "${#files[@]}") files)"
 exit $status

@@ -94,3 +94,54 @@ TEST(Twins, PublicNamesDifferOnlyAsListed) {
     EXPECT_TRUE(fast.count(n) && !ref.count(n))
         << "twins.txt lists " << n << " as fast-only; it is not (" << why << ")";
 }
+
+// Issue 47: the twins are independent — no library target under fast/ reaches a reference target (defined under
+// reference/, except dcad_core, the plain types both share) through its links, except those listed in
+// proptests/style/fast_links_reference.txt, a list that may only shrink.  The graph is CMake's own
+// (build/link_graph.tsv, written at configure time from each target's LINK_LIBRARIES).
+TEST(Twins, FastLinksNoReference) {
+  std::ifstream graph(DCAD_LINK_GRAPH);
+  ASSERT_TRUE(graph) << "no link graph at " << DCAD_LINK_GRAPH << " (configure writes it)";
+  std::map<std::string, std::string> folder;              // target -> the folder that defines it
+  std::map<std::string, std::vector<std::string>> links;  // target -> its direct links, aliases as targets
+  for (std::string line; std::getline(graph, line);) {
+    std::istringstream row(line);
+    std::string target, dir, all;
+    std::getline(row, target, '\t');
+    std::getline(row, dir, '\t');
+    std::getline(row, all);
+    folder[target] = dir;
+    std::istringstream items(all);
+    for (std::string item; std::getline(items, item, ';');)
+      links[target].push_back(item.rfind("dcad::", 0) == 0 ? "dcad_" + item.substr(6) : item);
+  }
+  ASSERT_TRUE(folder.count("dcad_fast") && folder.count("dcad_reference")) << "the graph names the twins";
+  const auto is_reference = [&](const std::string& t) {
+    return folder.count(t) && t != "dcad_core" && folder[t].rfind("reference", 0) == 0;
+  };
+  std::map<std::string, std::string> listed;  // target -> reason
+  std::ifstream list(fs::path(DCAD_SOURCE_DIR) / "proptests/style/fast_links_reference.txt");
+  for (std::string line; std::getline(list, line);)
+    if (!line.empty() && line[0] != '#') listed[line.substr(0, line.find(" : "))] = line.substr(line.find(" : ") + 3);
+  for (const auto& [target, dir] : folder) {
+    if (dir.rfind("fast", 0) != 0) continue;
+    std::string reached;  // the first reference target its links reach, with the path to it
+    std::vector<std::pair<std::string, std::string>> stack = {{target, target}};
+    std::set<std::string> seen;
+    while (!stack.empty() && reached.empty()) {
+      const auto [t, path] = stack.back();
+      stack.pop_back();
+      if (!seen.insert(t).second) continue;
+      for (const std::string& l : links[t]) {
+        if (is_reference(l)) reached = path + " -> " + l;
+        stack.emplace_back(l, path + " -> " + l);
+      }
+    }
+    if (listed.count(target))
+      EXPECT_FALSE(reached.empty()) << target << " no longer links the reference: delete its line in "
+                                    << "proptests/style/fast_links_reference.txt (" << listed[target] << ")";
+    else
+      EXPECT_TRUE(reached.empty()) << "a target under fast/ links the reference: " << reached;
+  }
+  for (const auto& [target, why] : listed) EXPECT_TRUE(folder.count(target)) << "listed and not a target: " << target;
+}

@@ -18,8 +18,8 @@ SCOPES = re.compile(r"\b(namespace|class|struct|union|enum)\b")
 CONTROL = re.compile(r"^\s*(if|for|while|switch|catch|else|do|try)\b")
 
 
-def blank(text):
-    """The text with comments, string and character literals replaced by spaces (newlines kept)."""
+def blank(text, literals=True):
+    """The text with comments, string and character literals (`literals`) replaced by spaces (newlines kept)."""
     out, i, n = [], 0, len(text)
     while i < n:
         c = text[i]
@@ -37,7 +37,7 @@ def blank(text):
             m = re.match(r'R"([^(\s]*)\(', text[i:])
             end = text.find(")" + m.group(1) + '"', i) if m else -1
             j = n if end < 0 else end + len(m.group(1)) + 2
-            out.append(re.sub(r"[^\n]", " ", text[i:j]))
+            out.append(re.sub(r"[^\n]", " ", text[i:j]) if literals else text[i:j])
             i = j
         elif c in "\"'":
             j = i + 1
@@ -47,7 +47,7 @@ def blank(text):
                 out.append(c)
                 i += 1
                 continue
-            out.append(" " * (min(j + 1, n) - i))
+            out.append(" " * (min(j + 1, n) - i) if literals else text[i:min(j + 1, n)])
             i = j + 1
         else:
             out.append(c)
@@ -108,6 +108,43 @@ def scan(root):
     return out
 
 
+def read_listing(listing, form):
+    """{(A, B): N} from the listing's lines `N A B` (text after # is a comment); None after printing a bad line."""
+    listed = {}
+    for k, raw in enumerate(open(listing, encoding="utf-8"), 1):
+        raw = raw.split("#")[0].strip()
+        if not raw:
+            continue
+        parts = raw.split()
+        if len(parts) != 3 or not parts[0].isdigit():
+            print(f"{listing}:{k}: expected '{form}', found '{raw}'")
+            return None
+        listed[(parts[1], parts[2])] = int(parts[0])
+    return listed
+
+
+def ratchet(now, listed, listing, unlisted, over, gone):
+    """The ratchet's findings, printed: a key of `now` ({(A, B): (N, line)}) not listed (unlisted(key, N, line)) or
+    above its listed N (over(key, N, line, listed N)), and a listed key gone (gone(key, listed N)) or below its
+    listed N (then the list must be lowered).  Returns how many."""
+    bad = 0
+    for key, (n, first) in sorted(now.items()):
+        if key not in listed:
+            print(unlisted(key, n, first))
+            bad += 1
+        elif n > listed[key]:
+            print(over(key, n, first, listed[key]))
+            bad += 1
+    for key, n in sorted(listed.items()):
+        if key not in now:
+            print(gone(key, n))
+            bad += 1
+        elif now[key][0] < n:
+            print(f"{listing}: {key[0]} {key[1]} is listed at {n} but is now {now[key][0]}: lower it")
+            bad += 1
+    return bad
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "."
     long_now = scan(root)
@@ -115,32 +152,16 @@ def main():
         for (rel, name), (n, _) in sorted(long_now.items(), key=lambda kv: (-kv[1][0], kv[0])):
             print(f"{n} {rel} {name}")
         return 0
-    listed = {}
     listing = os.path.join(os.path.dirname(os.path.abspath(__file__)), "long_functions.txt")
-    for k, raw in enumerate(open(listing, encoding="utf-8"), 1):
-        raw = raw.split("#")[0].strip()
-        if not raw:
-            continue
-        parts = raw.split()
-        if len(parts) != 3 or not parts[0].isdigit():
-            print(f"{listing}:{k}: expected 'LENGTH FILE FUNCTION', found '{raw}'")
-            return 2
-        listed[(parts[1], parts[2])] = int(parts[0])
-    bad = 0
-    for (rel, name), (n, first) in sorted(long_now.items()):
-        if (rel, name) not in listed:
-            print(f"{rel}:{first}: {name} is {n} lines, expected at most {LIMIT} (split it; the list of exceptions only shrinks)")
-            bad += 1
-        elif n > listed[(rel, name)]:
-            print(f"{rel}:{first}: {name} is {n} lines, expected at most its listed {listed[(rel, name)]}")
-            bad += 1
-    for (rel, name), n in sorted(listed.items()):
-        if (rel, name) not in long_now:
-            print(f"{listing}: {rel} {name} is listed at {n} lines but is now at most {LIMIT} (or gone): remove it")
-            bad += 1
-        elif long_now[(rel, name)][0] < n:
-            print(f"{listing}: {rel} {name} is listed at {n} lines but is now {long_now[(rel, name)][0]}: lower it")
-            bad += 1
+    listed = read_listing(listing, "LENGTH FILE FUNCTION")
+    if listed is None:
+        return 2
+    bad = ratchet(
+        long_now, listed, listing,
+        lambda k, n, first: f"{k[0]}:{first}: {k[1]} is {n} lines, expected at most {LIMIT} (split it; the list of "
+        "exceptions only shrinks)",
+        lambda k, n, first, most: f"{k[0]}:{first}: {k[1]} is {n} lines, expected at most its listed {most}",
+        lambda k, n: f"{listing}: {k[0]} {k[1]} is listed at {n} lines but is now at most {LIMIT} (or gone): remove it")
     print(f"function lengths: {len(long_now)} functions over {LIMIT} lines, {len(listed)} listed; {bad} findings")
     return 1 if bad else 0
 

@@ -381,4 +381,20 @@ Summary summarize(long rows, const std::vector<long double>& err, const std::vec
   return sum;
 }
 
+EnergyCsv::EnergyCsv(std::ostream* out) : out_(out) {
+  if (out_) *out_ << "t,E,P_forces,P_sources,P_constraints,W_forces,W_sources,W_constraints\n";
+}
+
+void EnergyCsv::row(double t, double e, double p_forces, double p_sources, double p_constraints, double w_forces,
+                    double w_sources, double w_constraints) {
+  if (!out_) return;
+  line_.clear();
+  char buf[32];
+  for (double v : {t, e, p_forces, p_sources, p_constraints, w_forces, w_sources, w_constraints}) {
+    if (!line_.empty()) line_ += ',';
+    line_.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+  }
+  *out_ << line_ << "\n";
+}
+
 }  // namespace dcad::api

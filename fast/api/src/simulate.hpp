@@ -72,6 +72,19 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
 Summary summarize(long rows, const std::vector<long double>& err, const std::vector<long double>& mag,
                   const std::vector<std::string>& names, const std::vector<long double>& natural = {});
 
+/// The energy-balance CSV of the circuit routes (YM §4): its header on construction, then a row per call —
+/// t, E, the powers P_forces, P_sources, P_constraints and their works W_… at full precision.  Null: nothing.
+class EnergyCsv {
+ public:
+  explicit EnergyCsv(std::ostream* out);
+  void row(double t, double e, double p_forces, double p_sources, double p_constraints, double w_forces,
+           double w_sources, double w_constraints);
+
+ private:
+  std::ostream* out_;
+  std::string line_;
+};
+
 /// Circuits up to this size: the flow is a dense (m+1)×(m+1) matrix exponential, m = dim M_c.
 constexpr std::size_t kSimulateBranches = 400;
 

@@ -453,7 +453,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
   out << "t";
   for (const std::string& v : c.variables) out << "," << v;
   out << "\n";
-  if (energy) *energy << "t,E,P_forces,P_sources,P_constraints,W_forces,W_sources,W_constraints\n";
+  EnergyCsv energy_csv(energy);
   std::string line;
   char buf[32];
   const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
@@ -508,14 +508,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
       wi += opt.step * (pi + last_pi) / 2;
     }
     last_pr = pr, last_pv = pv, last_pi = pi;
-    if (energy) {
-      line.clear();
-      for (double v : {t, en, pr, pv, pi, wr, wv, wi}) {
-        if (!line.empty()) line += ',';
-        put(v);
-      }
-      *energy << line << "\n";
-    }
+    energy_csv.row(t, en, pr, pv, pi, wr, wv, wi);
     if (k == steps) {
       log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t)
           << ") = " << io::float_text(en) << "; work of the forces " << io::float_text(wr) << " (dissipated "

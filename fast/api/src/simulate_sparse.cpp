@@ -422,7 +422,7 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
   out << "t";
   for (std::size_t i : cols) out << "," << c.variables[i];
   out << "\n";
-  if (energy) *energy << "t,E,P_forces,P_sources,P_constraints,W_forces,W_sources,W_constraints\n";
+  EnergyCsv energy_csv(energy);
   std::string line;
   char buf[32];
   const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
@@ -462,14 +462,7 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
     if (k == 0) e0 = en;
     if (k > 0) wr += opt.step * (pr + lr) / 2, wv += opt.step * (pv + lv) / 2, wi += opt.step * (pi + li) / 2;
     lr = pr, lv = pv, li = pi;
-    if (energy) {
-      line.clear();
-      for (double v : {t, en, pr, pv, pi, wr, wv, wi}) {
-        if (!line.empty()) line += ',';
-        put(v);
-      }
-      *energy << line << "\n";
-    }
+    energy_csv.row(t, en, pr, pv, pi, wr, wv, wi);
     if (k == steps)
       log << "simulate: energy: E(0) = " << io::float_text(e0) << ", E(" << io::float_text(t)
           << ") = " << io::float_text(en) << "; work of the forces " << io::float_text(wr) << " (dissipated "
