@@ -90,8 +90,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"gnucappulse", "title\nL1 1 0 1\nv1 (1 0) pulse (iv=0 pv=10)\n", "gnucap's pulse"},
         // Xyce_Regression's decks its harness runs expecting an error (BUG_784, ISSUE_455): read, they were another
         // circuit — a port named twice joins two of the caller's nodes, a second DC replaces the first
-        BadCase{"subcktport2", "title\nL1 1 0 1\nX1 1 2 s\n.subckt s b b\nR1 b 0 1\n.ends\n", "port b twice"},
+        BadCase{"subcktport2", "title\nL1 1 0 1\nX1 1 2 s\n.subckt s b b\nR1 b 0 1\n.ends\n",
+                "one node for port b, named twice in .subckt s"},
         BadCase{"dctwice", "title\nL1 1 0 1\nV2 1 0 dc 1.0 dc 0.0\n", "found a second one, DC 0"},
+        BadCase{"dctwicekey", "title\nL1 1 0 1\nV2 1 0 dc 1.0 dc=2\n", "found a second one, dc=2"},
         BadCase{"pwlfilemissing", "title\nR1 1 0 1\nV1 1 0 PWL FILE \"nothere.csv\"\n",
                 "\"nothere.csv\" (no such file)"},
         BadCase{"gnucapexpperiod", "title\nL1 1 0 1\nv1 1 0 exp iv=0 pv=1 tau1=1 td2=1 tau2=1 period=5\n", "period="}),
@@ -609,6 +611,14 @@ TEST(Cli, XyceAndGnucapSpellingsAreTheirSpiceTwin) {
     EXPECT_NE(sa.err.find(said), std::string::npos) << said << "\n" << sa.err;
 }
 
+// `simulate A` and `simulate B` with the same options print the same rows (two spellings of one circuit).
+static void expect_same_rows(const std::string& a, const std::string& b, const std::string& options) {
+  const Outcome sa = run("simulate " + a + " " + options), sb = run("simulate " + b + " " + options);
+  ASSERT_EQ(sa.rc, 0) << sa.err;
+  ASSERT_EQ(sb.rc, 0) << sb.err;
+  EXPECT_EQ(sa.out, sb.out) << a << " and " << b;
+}
+
 // gnucap's positional SIN, EXP and PULSE fill its keys in order with gnucap's defaults (apps/bm_pulse.cc: rise and
 // fall 0, width and period forever), not SPICE's TSTEP and TSTOP (issue 45: gnucap's vs.spice, `pulse 4 7 1`, was
 // solved as ngspice's ramp over TSTEP where gnucap steps at t = 1).  A pulse without a period is its PWL, one
@@ -629,11 +639,7 @@ TEST(Cli, GnucapPositionalSourcesTakeGnucapsDefaults) {
                                       "i3 0 3 PWL(0 0 0.5m 0 0.7m 1m 1.7m 1m 2m 0)\n"
                                       "r1 1 a 1k\nc1 a 0 1u\nr2 2 b 1k\nl2 b 0 1\nr3 3 0 1k\nc3 3 0 1u\n"
                                       ".end\n");
-  const Outcome sa = run("simulate --dialect gnucap " + deck + " --tstop 12m --step 5e-4"),
-                sb = run("simulate " + twin + " --tstop 12m --step 5e-4");
-  ASSERT_EQ(sa.rc, 0) << sa.err;
-  ASSERT_EQ(sb.rc, 0) << sb.err;
-  EXPECT_EQ(sa.out, sb.out);
+  expect_same_rows("--dialect gnucap " + deck, "--dialect ngspice " + twin, "--tstop 12m --step 5e-4");
   const std::string step = write_temp("dcad_gnucap_step.ckt",
                                       "vs test\nv2 2 0 pulse 4 7 1\nr2 2 a 1\nc2 a 0 1\n"
                                       ".tran 1 2 0\n.end\n");
@@ -641,6 +647,30 @@ TEST(Cli, GnucapPositionalSourcesTakeGnucapsDefaults) {
   EXPECT_EQ(g.rc, 1);
   EXPECT_NE(g.err.find("rise 0 (gnucap's default: a step at delay = 1)"), std::string::npos) << g.err;
   EXPECT_EQ(n.rc, 0) << n.err;  // ngspice: TR = TSTEP = 1, a ramp
+}
+
+// A SIN with TD < 0 has run for -TD at t = 0: its start is VO + VA sin(2 pi FREQ (-TD) + PHASE) (ngspice's
+// vsrcload.c, gnucap's bm_sin.cc), the operating point's source value — SIN(0 1 1 -0.25) is SIN(0 1 1 0 0 90), row
+// for row.  Killed by: the start taken as VO + VA sin(PHASE) whatever TD (review: q_c1(0) was 0.75 for 1).
+TEST(Cli, SineWithNegativeDelayStartsWhereItHasRun) {
+  const std::string late = write_temp("dcad_sin_negative_td.cir",
+                                      "title\nv1 1 0 SIN(0 1 1 -0.25)\nr1 1 2 1\nc1 2 0 1\n.tran 0.25 1\n.end\n");
+  const std::string phased =
+      write_temp("dcad_sin_phase_90.cir", "title\nv1 1 0 SIN(0 1 1 0 0 90)\nr1 1 2 1\nc1 2 0 1\n.tran 0.25 1\n.end\n");
+  expect_same_rows(late, phased, "--tstop 1 --step 0.125");
+}
+
+// A .subckt may name a port twice where every instance joins the same node there (Xyce's SUBCKT/subckt_j1_dup.cir,
+// MODEL_BINNING/complicatedLW.cir: ".subckt N OUT IN GND GND GND"); an instance that gives two nodes is refused
+// (BUG_784, BadInput subcktport2).  Killed by: the definition refused, or the second node silently taken.
+TEST(Cli, SubcircuitPortNamedTwiceJoinsOneNode) {
+  const std::string dup = write_temp("dcad_subckt_dup_port.cir",
+                                     "title\nV1 1 0 1\nX1 1 2 2 s\nC1 2 0 1u\n"
+                                     ".subckt s a b c\nR1 a b 1k\nR2 a c 1k\n.ends\n");
+  const std::string twice = write_temp("dcad_subckt_dup_port2.cir",
+                                       "title\nV1 1 0 1\nX1 1 2 2 s\nC1 2 0 1u\n"
+                                       ".subckt s a b b\nR1 a b 1k\nR2 a b 1k\n.ends\n");
+  expect_same_rows(dup, twice, "--tstop 1m --step 1e-4");
 }
 
 // ngspice reads a resistance below 1e-12 Ohm as 1e-12 (resparam.c's RESMIN): a resistor, never a wire (whose

@@ -53,6 +53,8 @@ def pairs(root):
                 if fa == fb and abs(ia - ib) < RUN:
                     continue  # a run overlapping itself (a repeated line), not a copy
                 shared[(fa, fb)].update(range(ia, ia + RUN))
+    if len(files) < 50:  # a wrong ROOT would find no copy: never a vacuous pass
+        sys.exit(f"copies: expected the library's sources under {root}/{{{','.join(DIRS)}}}, found {len(files)} files")
     return {k: (len(v), files[k[0]][min(v)][0]) for k, v in shared.items()}
 
 

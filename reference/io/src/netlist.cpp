@@ -1045,10 +1045,7 @@ class Flattener {
       std::string port = lower(tok[k]);
       if (!port.empty() && port.front() == '(') port.erase(0, 1);
       if (!port.empty() && port.back() == ')') port.pop_back();
-      if (port.empty()) continue;
-      if (std::find(s.ports.begin(), s.ports.end(), port) != s.ports.end())  // which caller's node would it be?
-        fail(l, "distinct port names in .subckt " + tok[1], "port " + tok[k] + " twice (Xyce refuses it too)");
-      s.ports.push_back(port);
+      if (!port.empty()) s.ports.push_back(port);  // a name twice: the instance must join the same node (below)
     }
     if (k < tok.size()) s.defaults = param_pairs(tok, lower(tok[k]) == "params:" ? k + 1 : k, l);
     if (subckts.count(s.key))
@@ -1246,7 +1243,16 @@ class Flattener {
       fail(l, std::to_string(s.ports.size()) + " nodes for " + tok[k - 1] + " (" + s.where.where() + ")",
            std::to_string(k - 2) + " in " + tok[0]);
     std::map<std::string, std::string> inner;
-    for (std::size_t p = 0; p < s.ports.size(); ++p) inner[s.ports[p]] = node_in(tok[1 + p], prefix, ports);
+    for (std::size_t p = 0; p < s.ports.size(); ++p) {
+      const std::string node = node_in(tok[1 + p], prefix, ports);
+      const auto [at, fresh] = inner.emplace(s.ports[p], node);
+      if (!fresh && at->second != node) {  // Xyce: "Duplicate nodes in .subckt … point to different nodes" (BUG_784)
+        const std::size_t q =
+            static_cast<std::size_t>(std::find(s.ports.begin(), s.ports.end(), s.ports[p]) - s.ports.begin());
+        fail(l, "one node for port " + s.ports[p] + ", named twice in .subckt " + s.name + " (" + s.where.where() + ")",
+             "nodes " + tok[1 + q] + " and " + tok[1 + p] + " in " + tok[0]);
+      }
+    }
     // the caller's parameters, then the subcircuit's defaults (which may use them), then this instance's
     // overrides (in the caller's scope), then the subcircuit's own .param lines but for overridden names
     std::map<std::string, Rational> local = params;

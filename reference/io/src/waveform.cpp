@@ -358,6 +358,8 @@ bool read_key_value(SourceWords& r, const std::string& word, const std::string& 
   const Rational v = number(value);
   if (pwl)
     (key == "td" ? r.pwl_td : r.pwl_r) = v;
+  else if (key == "dc" && r.dc)  // "dc 1 dc=2": one rule for both spellings (read_dc_or_ignored)
+    throw std::invalid_argument("expected one DC value, found a second one, " + word + ", in \"" + spec + "\"");
   else if (key == "dc")
     r.dc = v;
   else
@@ -833,9 +835,12 @@ std::optional<Rational> Waveform::exact_at_zero(int order) const {
         if (p[3] > 0) return Rational(0);  // before TD the value is constant
         return std::nullopt;               // VA (−θ + iω)^order …: ω = 2π FREQ
       }
-      const Rational phase = p[5] - 360 * floor_of(Rational(p[5] / 360));  // VO + VA sin φ, rational at quarter turns
-      // VO + VA sin φ, at t = 0 whether or not TD > 0 (ngspice holds it before TD)
+      // VO + VA sin(2π FREQ lag + φ) e^{−θ lag}, lag = −TD the time the sine has run at t = 0 when TD < 0, else 0
+      // (ngspice holds VO + VA sin φ before TD): rational at quarter turns where the damping has not acted
+      const Rational lag = p[3] < 0 ? Rational(-p[3]) : Rational(0), turns = p[5] + 360 * p[2] * lag;
+      const Rational phase = turns - 360 * floor_of(Rational(turns / 360));
       if (phase == 0 || phase == 180) return p[0];
+      if (lag > 0 && p[4] != 0) return std::nullopt;  // e^{−θ lag}: irrational
       if (phase == 90) return p[0] + p[1];
       if (phase == 270) return p[0] - p[1];
       return std::nullopt;
