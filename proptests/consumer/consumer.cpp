@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace ref = dcad::reference;
@@ -81,7 +82,27 @@ TEST(MyTool, ResultAgreesWithTheReference) {
   EXPECT_THROW(dcad::io::parse_netlist("bad\nQ1 1 0 npn\n", "bad.cir"), dcad::io::InputError);
 }
 
-// 4. A property of *your* CAD against the reference, on dcad's random Dirac systems with planted structure.
+// 4. The motion as a typed object: simulate's rows kept as doubles (a Trajectory), a column read by name.  The LC
+// tank from q_C1 = 1 uC (IC=1 V, uic) swings as cos(t / sqrt(LC)): at a quarter period the charge is 0.
+TEST(MyMotion, TheTrajectoryAsDoubles) {
+  const dcad::io::Problem p =
+      dcad::io::parse_netlist("tank\nL1 1 0 1m\nC1 1 0 1u IC=1\n.tran 1u 1m uic\n.end\n", "tank.cir");
+  dcad::api::SimulateOptions opt;
+  opt.tstop = 2e-4;
+  opt.step = 1e-6;
+  std::ostringstream log;
+  const dcad::api::Trajectory t = dcad::api::simulate_trajectory(p, opt, log);
+  ASSERT_EQ(t.rows.size(), 201u);
+  EXPECT_EQ(t.names.front(), "t");
+  const std::vector<double> q = t.column("q_C1");
+  EXPECT_NEAR(q.front(), 1e-6, 1e-18);
+  const double quarter = 3.141592653589793 / 2 * std::sqrt(1e-3 * 1e-6);  // 49.67 us
+  const std::size_t k = static_cast<std::size_t>(quarter / opt.step);
+  EXPECT_NEAR(q[k], 1e-6 * std::cos(t.rows[k][0] / std::sqrt(1e-9)), 1e-15);
+  EXPECT_LT(t.summary.error_estimate, 1e-9);
+}
+
+// 5. A property of *your* CAD against the reference, on dcad's random Dirac systems with planted structure.
 RC_GTEST_PROP(MyCad, AgreesWithTheReferenceWhereItIsCertain, ()) {
   using namespace dcad::test;
   const ref::LinearSystem<Q> s = any_system();

@@ -51,22 +51,13 @@ inline double distance(const std::vector<double>& a, const std::vector<double>& 
   return d / s;
 }
 
-inline void put(std::ostream& out, double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  out.write(buf, r.ptr - buf);
-}
-
-/// One CSV row, flushed (rows are streamed: a user watching the file, or a pipe, sees them as they
+/// One row, flushed (rows are streamed: a user watching the file, or a pipe, sees them as they
 /// come), and a progress line on the log every 2 s.
-inline void write_row(std::ostream& out, std::ostream& log, double time, const std::vector<double>& x, double tstop,
+inline void write_row(RowSink& out, std::ostream& log, double time, const std::vector<double>& x, double tstop,
                       std::chrono::steady_clock::time_point& last) {
-  put(out, time);
-  for (double v : x) {
-    out << ",";
-    put(out, v);
-  }
-  out << "\n";
+  std::vector<double> values = {time};
+  values.insert(values.end(), x.begin(), x.end());
+  out.row(values);
   out.flush();
   if (std::chrono::steady_clock::now() - last > std::chrono::seconds(2)) {
     last = std::chrono::steady_clock::now();

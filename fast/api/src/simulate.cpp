@@ -258,7 +258,7 @@ void require_times(const SimulateOptions& opt) {
 
 Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
                         const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                        std::ostream& out, std::ostream& log) {
+                        RowSink& out, std::ostream& log) {
   require_times(opt);
   if (c.has_pontryagin && c.pontryagin.has_forces)
     throw std::invalid_argument("a case with `forces` is simulated by simulate_forced_case, not this function");
@@ -311,14 +311,8 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
   Summary sum;
   sum.rows = steps + 1;
   std::vector<long double> err(n, 0), mag(n, 0);
-  out << "t";
-  for (const std::string& v : c.variables) out << "," << v;
-  out << "\n";
-  // Shortest round-trip text (std::to_chars): the same doubles as %.17g, several times faster to
-  // write — at 10^4 rows formatting was most of the run time.
-  std::string line;
-  char buf[32];
-  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  out.header(with_time(c.variables));
+  std::vector<double> row;
   Progress progress(steps + 1);
   for (long k = 0; k <= steps; ++k) {
     Eigen::VectorXd x = flow.x();
@@ -332,14 +326,9 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
       if (stride == 1)
         x = xl.cast<double>();  // every row has the long-double flow: print it (the double one is its estimate)
     }
-    line.clear();
-    put(static_cast<double>(k) * opt.step);
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-      line += ',';
-      put(x(i));
-    }
-    line += '\n';
-    out << line;
+    row.assign(1, static_cast<double>(k) * opt.step);
+    row.insert(row.end(), x.data(), x.data() + x.size());
+    out.row(row);
     flow.advance();
     progress.at(k);
   }
@@ -379,6 +368,29 @@ Summary summarize(long rows, const std::vector<long double>& err, const std::vec
     }
   }
   return sum;
+}
+
+void CsvRows::header(const std::vector<std::string>& names) {
+  line_.clear();
+  for (const std::string& n : names) line_ += (line_.empty() ? "" : ",") + n;
+  out_ << line_ << "\n";
+}
+
+void CsvRows::row(const std::vector<double>& values) {
+  line_.clear();
+  char buf[32];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) line_ += ',';
+    line_.append(buf, std::to_chars(buf, buf + sizeof buf, values[i]).ptr);
+  }
+  line_ += '\n';
+  out_ << line_;
+}
+
+std::vector<std::string> with_time(const std::vector<std::string>& names) {
+  std::vector<std::string> out = {"t"};
+  out.insert(out.end(), names.begin(), names.end());
+  return out;
 }
 
 EnergyCsv::EnergyCsv(std::ostream* out) : out_(out) {

@@ -52,55 +52,42 @@ std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck,
 
 namespace {
 
-/// Keeps the CSV columns t and `names` of every line written through it (the dense routes write every
-/// variable; --vars picks some).  The header line maps the names; UsageError for one not in it.
-class ColumnFilter : public std::streambuf {
+/// Keeps t and the columns `names` of the rows passed through it (the dense routes write every variable; --vars
+/// picks some).  simulate() has checked the names against the problem's columns.
+class ColumnFilter final : public RowSink {
  public:
-  ColumnFilter(std::ostream& out, std::vector<std::string> names, std::string file)
-      : out_(out), names_(std::move(names)), file_(std::move(file)) {}
-
- protected:
-  int overflow(int ch) override {
-    if (ch == traits_type::eof()) return 0;
-    if (ch != '\n') {
-      line_ += static_cast<char>(ch);
-      return ch;
-    }
-    fields_.clear();
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t comma = line_.find(',', start);
-      fields_.push_back(line_.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
-    if (keep_.empty()) {
-      std::map<std::string, std::size_t> at;
-      for (std::size_t i = 0; i < fields_.size(); ++i) at[fields_[i]] = i;
-      keep_.push_back(0);
-      for (const std::string& n : names_) {
-        const auto it = at.find(n);
-        if (it == at.end()) throw UsageError("--vars: expected variables of " + file_ + ", found " + n);
-        keep_.push_back(it->second);
-      }
-    }
-    std::string o;
-    for (std::size_t i = 0; i < keep_.size(); ++i) {
-      if (i) o += ',';
-      if (keep_[i] < fields_.size()) o += fields_[keep_[i]];
-    }
-    o += '\n';
-    out_ << o;
-    line_.clear();
-    return ch;
+  ColumnFilter(RowSink& out, std::vector<std::string> names) : out_(out), names_(std::move(names)) {}
+  void header(const std::vector<std::string>& all) override {
+    keep_ = {0};
+    for (const std::string& n : names_)
+      keep_.push_back(static_cast<std::size_t>(std::find(all.begin(), all.end(), n) - all.begin()));
+    out_.header(pick(all));
   }
+  void row(const std::vector<double>& values) override { out_.row(pick(values)); }
+  void flush() override { out_.flush(); }
 
  private:
-  std::ostream& out_;
+  template <class T>
+  std::vector<T> pick(const std::vector<T>& all) const {
+    std::vector<T> out;
+    for (std::size_t k : keep_)
+      if (k < all.size()) out.push_back(all[k]);
+    return out;
+  }
+  RowSink& out_;
   std::vector<std::string> names_;
-  std::string file_, line_;
-  std::vector<std::string> fields_;
   std::vector<std::size_t> keep_;
+};
+
+/// Keeps every row: simulate_trajectory's sink.
+class Collect final : public RowSink {
+ public:
+  explicit Collect(Trajectory& t) : t_(t) {}
+  void header(const std::vector<std::string>& names) override { t_.names = names; }
+  void row(const std::vector<double>& values) override { t_.rows.push_back(values); }
+
+ private:
+  Trajectory& t_;
 };
 
 /// Whether a netlist goes to the sparse route: asked for, or beyond the dense route's size where the
@@ -117,29 +104,52 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log,
                    std::ostream* energy) {
+  CsvRows rows(csv);
+  const Simulated sum = simulate(p, options, rows, log, energy);
+  csv.flush();
+  return sum;
+}
+
+Trajectory simulate_trajectory(const io::Problem& p, const SimulateOptions& options, std::ostream& log) {
+  Trajectory t;
+  Collect rows(t);
+  t.summary = simulate(p, options, rows, log);
+  return t;
+}
+
+std::vector<double> Trajectory::column(const std::string& name) const {
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) throw std::out_of_range("Trajectory::column: expected one of its names, found " + name);
+  const auto k = static_cast<std::size_t>(it - names.begin());
+  std::vector<double> out;
+  out.reserve(rows.size());
+  for (const std::vector<double>& r : rows) out.push_back(r.at(k));
+  return out;
+}
+
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink& csv, std::ostream& log,
+                   std::ostream* energy) {
   return guarded(p, [&] {
     io::validate(p);
     if (p.form == io::Form::netlist && !p.netlist.indefinite_inductance.empty())
       throw io::InputError(
           p.netlist.indefinite_inductance +
           "; simulate: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
-    if (!options.columns.empty()) {  // checked here: the filter sits inside a stream, whose errors are not exceptions
+    if (!options.columns.empty()) {  // checked before any row is computed
       std::vector<std::string> all = simulate_columns(p);
       if (options.enclose) all.insert(all.end(), {"rad_q", "rad_v", "rad_p"});
       for (const std::string& n : options.columns)
         if (n == "t" || std::find(all.begin(), all.end(), n) == all.end())
           throw UsageError("--vars: expected variables of " + p.file + ", found " + n);
     }
-    ColumnFilter filter(csv, options.columns, p.file);
-    std::ostream filtered(&filter);
-    std::ostream& rows = options.columns.empty() ? csv : filtered;
+    ColumnFilter filtered(csv, options.columns);
+    RowSink& rows = options.columns.empty() ? csv : filtered;
     if (p.form == io::Form::dae) {  // the exact velocities on M_c, Dormand–Prince
       if (energy)
         throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the dae form");
       if (options.route == Route::sparse || options.enclose)
         throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the dae form");
       const Summary sum = simulate_dae(p.dae, options, rows, log);
-      rows.flush();
       return sum;
     }
     if (p.form == io::Form::implicit) {  // RK4 on the pointwise CEF (1.6), projected onto M_c
@@ -148,7 +158,6 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       if (options.route == Route::sparse || options.enclose)
         throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the implicit form");
       const Summary sum = simulate_implicit(p.expression, options, rows, log);
-      rows.flush();
       return sum;
     }
     if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
@@ -158,7 +167,6 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
       if (options.route == Route::sparse)
         throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
       const Summary sum = simulate_lagrangian(p.expression, options, rows, log);
-      rows.flush();
       return sum;
     }
     const bool netlist = p.form == io::Form::netlist;
@@ -191,7 +199,6 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
                          ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
       if (energy) throw UsageError(p.file + ": --certified and --energy: expected one of them");
       const Summary sum = simulate_enclosed(p.netlist, c, options, rows, log);
-      rows.flush();
       return sum;
     }
     std::vector<std::optional<io::Rational>> init(c.n);
@@ -201,7 +208,6 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::os
     const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, rows, log, energy)
                         : forced_case ? simulate_forced_case(c, init, options, rows, log, energy)
                                       : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, rows, log);
-    rows.flush();
     log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate)
         << " relative to the largest magnitude of each variable's kind, at least the state's size in the circuit's "
            "natural units (worst "

@@ -24,12 +24,6 @@ namespace {
 
 namespace ex = reference::expr;
 
-void put(std::ostream& out, double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.write(buf, r.ptr - buf);
-}
-
 /// The jet columns' formulas: "f_3''(t)" is f_3 differentiated twice.
 std::vector<ex::Expr> jet_formulas(const io::DaeCase& c, const std::vector<std::string>& names) {
   std::vector<ex::Expr> out;
@@ -47,7 +41,7 @@ std::vector<ex::Expr> jet_formulas(const io::DaeCase& c, const std::vector<std::
 
 }  // namespace
 
-Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostream& out, std::ostream& log) {
+Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, RowSink& out, std::ostream& log) {
   using Eigen::MatrixXd;
   using Eigen::VectorXd;
   const dcad::Solution<reference::Rational> s = reference::pipeline::solve_dae(c);
@@ -132,9 +126,7 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
   if (s.solution_rank && *s.solution_rank > 0)
     log << "simulate: the solution is not unique (solution rank " << *s.solution_rank
         << "): the free directions are set to 0\n";
-  out << "t";
-  for (const std::string& v : c.variables) out << "," << v;
-  out << "\n";
+  out.header(with_time(c.variables));
   using State = std::vector<double>;
   const auto field = [&](const State& x, State& dx, double t) {
     const Eigen::Map<const VectorXd> xv(x.data(), static_cast<Eigen::Index>(n));
@@ -146,13 +138,11 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, std::ostr
   State x(x0.data(), x0.data() + x0.size());
   long rows = 0;
   double drift = 0;
+  std::vector<double> values;
   const auto row = [&](const State& xs, double t) {
-    put(out, t);
-    for (double v : xs) {
-      out << ",";
-      put(out, v);
-    }
-    out << "\n";
+    values.assign(1, t);
+    values.insert(values.end(), xs.begin(), xs.end());
+    out.row(values);
     out.flush();
     ++rows;
     if (cm.rows() > 0) {

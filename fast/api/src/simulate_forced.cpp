@@ -383,7 +383,7 @@ void source_corners(const std::vector<io::Waveform>& waveforms, const SimulateOp
 
 Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
                        const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                       std::ostream& out, std::ostream& log, std::ostream* energy) {
+                       RowSink& out, std::ostream& log, std::ostream* energy) {
   require_times(opt);
   const ForcedModel fm = forced_model(deck);
   if (fm.free > 0)
@@ -450,13 +450,9 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < m; ++j) has_i = has_i || fm.f.shift(i, j) != 0;
   double wr = 0, wv = 0, wi = 0, last_pr = 0, last_pv = 0, last_pi = 0, worst_balance = 0, power_scale = 0;
-  out << "t";
-  for (const std::string& v : c.variables) out << "," << v;
-  out << "\n";
+  out.header(with_time(c.variables));
   EnergyCsv energy_csv(energy);
-  std::string line;
-  char buf[32];
-  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  std::vector<double> row;
   const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
   std::vector<long double> err(n, 0), mag(n, 0);
   std::size_t next_break = 0;
@@ -484,14 +480,10 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
       err[i] = std::max(err[i], std::abs(xl(i) - static_cast<long double>(x(i))));
       mag[i] = std::max(mag[i], std::abs(xl(i)));
     }
-    line.clear();
-    put(t);
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-      line += ',';
-      put(static_cast<double>(xl(i)));  // the long-double flow: the double one is its error estimate
-    }
-    line += '\n';
-    out << line;
+    row.assign(1, t);
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      row.push_back(static_cast<double>(xl(i)));  // the long-double flow: the double one is its error estimate
+    out.row(row);
     // energy balance at this row
     const Vec<double> xdot = Vy * y + Vu * u;
     const double en = 0.5 * x.dot(H * x) + grad.dot(x);
@@ -576,7 +568,7 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
 
 Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c,
                         const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
-                        std::ostream& out, std::ostream& log, std::ostream* energy) {
+                        RowSink& out, std::ostream& log, std::ostream* energy) {
   if (const auto which = io::without_exosystem(deck.waveforms))
     throw io::InputError(
         c.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which);
@@ -591,7 +583,7 @@ Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c,
 }
 
 Summary simulate_forced_case(const io::CaseFile& c, const std::vector<std::optional<io::Rational>>& initial,
-                             const SimulateOptions& opt, std::ostream& out, std::ostream& log, std::ostream* energy) {
+                             const SimulateOptions& opt, RowSink& out, std::ostream& log, std::ostream* energy) {
   return simulate_scene(ForcedScene{c.file, reference::pipeline::forced_system(c), {}}, c, initial, opt, out, log,
                         energy);
 }
@@ -753,7 +745,7 @@ CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c,
   return r;
 }
 
-Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out,
+Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, RowSink& out,
                           std::ostream& log) {
   require_times(opt);
   // --route picks the exact model: dense (the forced tower) or sparse (the state equations)
@@ -765,15 +757,13 @@ Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const 
     throw io::InputError(deck.file +
                          ": simulate --certified: expected a circuit whose motion dcad encloses, found: " + cm.why);
   const std::size_t nb = deck.rlc.branches.size(), n = 3 * nb;
-  out << "t";
-  for (const std::string& v : c.variables) out << "," << v;
-  out << ",rad_q,rad_v,rad_p\n";
+  std::vector<std::string> names = with_time(c.variables);
+  names.insert(names.end(), {"rad_q", "rad_v", "rad_p"});
+  out.header(names);
   const Q h = certified::rational_of(opt.step);
   const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
   double worst[3] = {0, 0, 0}, scale[3] = {0, 0, 0};
-  std::string line;
-  char buf[32];
-  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  std::vector<double> row;
   for (long k = 0; k <= steps; ++k) {
     try {
       cm.flow->advance_to(h * k);
@@ -782,22 +772,18 @@ Summary simulate_enclosed(const io::Netlist& deck, const io::CaseFile& c, const 
     }
     const std::vector<certified::Enclosure> x = cm.flow->state();
     double rad[3] = {0, 0, 0};
-    line.clear();
-    put(static_cast<double>(k) * opt.step);
+    row.assign(1, static_cast<double>(k) * opt.step);
     for (std::size_t i = 0; i < n; ++i) {
-      line += ',';
-      put(x[i].mid);
+      row.push_back(x[i].mid);
       rad[i / nb] =
           std::max(rad[i / nb], io::printed_radius(x[i].mid, x[i].rad));  // the printed decimals hold the value
       scale[i / nb] = std::max(scale[i / nb], std::abs(x[i].mid));
     }
     for (int kind = 0; kind < 3; ++kind) {
-      line += ',';
-      put(rad[kind]);
+      row.push_back(rad[kind]);
       worst[kind] = std::max(worst[kind], rad[kind]);
     }
-    line += '\n';
-    out << line;
+    out.row(row);
   }
   Summary sum;
   sum.rows = steps + 1;

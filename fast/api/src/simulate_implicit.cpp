@@ -69,8 +69,7 @@ struct ImplicitField {
 
 }  // namespace
 
-Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out,
-                          std::ostream& log) {
+Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& opt, RowSink& out, std::ostream& log) {
   require_times(opt);
   // the start: the pointwise algorithm in double from the given values (held) at the case's time, as
   // every evaluation of the field is (fast's own answer, the derivative array, decides at a generic time)
@@ -103,9 +102,7 @@ Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& op
   ImplicitField f{c, 0, {}};
   std::vector<double> y = at.point;
   double t = at.time;
-  out << "t";
-  for (const std::string& s : c.system.names) out << "," << s;
-  out << "\n";
+  out.header(with_time(c.system.names));
   auto last = std::chrono::steady_clock::now();
   const auto row = [&](double time, const std::vector<double>& x) {
     projected::write_row(out, log, time, x, opt.tstop, last);

@@ -90,7 +90,7 @@ namespace {
 
 /// The pointwise route (the CAD at every evaluation): where no chart of formulas could be built.
 Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& opt, const fast::Solution& first,
-                           std::ostream& out, std::ostream& log) {
+                           RowSink& out, std::ostream& log) {
   const std::size_t n = c.system.n;
   const Pointwise<double>& at = *first.pointwise;
   Field f{c, n, 0, {}};
@@ -98,9 +98,7 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
   for (std::size_t i = 0; i < 2 * n; ++i) y[i] = at.point[i];
   double t = at.time;
   const std::vector<std::string> st = c.system.state_names();
-  out << "t";
-  for (const std::string& s : st) out << "," << s;
-  out << "\n" << std::setprecision(17);
+  out.header(with_time(st));
   // rows are streamed (each one costs many evaluations of the pointwise CAD: a user watching the file,
   // or a pipe, sees them as they come — before, a redirected run showed 0 bytes for minutes), with a
   // progress line on the log every 2 s
@@ -152,7 +150,7 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
 /// M_c when their drift exceeds 1e-10 (relative); the chart is rebuilt where a valid_where formula
 /// fell below 1e-3 of its value where the chart was built.
 Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& opt, const std::vector<double>& start,
-                          fast::Chart chart, std::ostream& out, std::ostream& log) {
+                          fast::Chart chart, RowSink& out, std::ostream& log) {
   namespace odeint = boost::numeric::odeint;
   using State = std::vector<double>;
   const std::size_t n = c.system.n;
@@ -169,9 +167,7 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
   State y(start.begin(), start.end() - 1), z = y;
   double t = start.back();
   const std::vector<std::string> st = c.system.state_names();
-  out << "t";
-  for (const std::string& s : st) out << "," << s;
-  out << "\n";
+  out.header(with_time(st));
   auto last = std::chrono::steady_clock::now();
   const auto full = [&](const State& q, double time) {  // x = (q, v, p)
     std::vector<double> x(q);
@@ -311,8 +307,7 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
 
 }  // namespace
 
-Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, std::ostream& out,
-                            std::ostream& log) {
+Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& opt, RowSink& out, std::ostream& log) {
   require_times(opt);
   const fast::Solution first = fast::solve_expression(c);  // the initial point on M_c (given values checked)
   const Pointwise<double>& at = *first.pointwise;

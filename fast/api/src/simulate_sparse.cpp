@@ -399,7 +399,7 @@ double SparseFlow::error_estimate() const { return max_norm_ > 0 ? krylov_->erro
 long SparseFlow::products() const { return krylov_->products(); }
 long SparseFlow::substeps() const { return krylov_->substeps(); }
 
-Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, std::ostream& out,
+Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, RowSink& out,
                         std::ostream& log, std::ostream* energy) {
   require_times(opt);
   SparseFlow flow(deck, c.file, opt.initial, opt.step, opt.tstop, log);
@@ -419,28 +419,23 @@ Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const Si
       cols.push_back(it->second);
     }
   }
-  out << "t";
-  for (std::size_t i : cols) out << "," << c.variables[i];
-  out << "\n";
+  std::vector<std::string> names = {"t"};
+  for (std::size_t i : cols) names.push_back(c.variables[i]);
+  out.header(names);
   EnergyCsv energy_csv(energy);
-  std::string line;
-  char buf[32];
-  const auto put = [&](double v) { line.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr); };
+  std::vector<double> row;
   const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
   double wr = 0, wv = 0, wi = 0, lr = 0, lv = 0, li = 0, worst_balance = 0, power_scale = 0, e0 = 0;
   for (long k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * opt.step;
     flow.advance_to(t);
     const sr::BranchValues bv = flow.values();
-    line.clear();
-    put(t);
+    row.assign(1, t);
     for (std::size_t i : cols) {
-      line += ',';
       const auto b = static_cast<Eigen::Index>(i % n);
-      put(i < n ? bv.q(b) : i < 2 * n ? bv.i(b) : bv.p(b));
+      row.push_back(i < n ? bv.q(b) : i < 2 * n ? bv.i(b) : bv.p(b));
     }
-    line += '\n';
-    out << line;
+    out.row(row);
     // energy: E = ½ Σ q_C²/C + ½ i_Lᵀ Φ i_L; the forces', sources' and constraints' powers
     double en = 0, pr = 0, pv = 0, pi = 0, tell = 0, mag = 0;
     for (std::size_t b = 0; b < n; ++b) {

@@ -99,6 +99,26 @@ struct Simulated {
   std::string worst_variable;  ///< where it is largest
   std::string estimate_kind;   ///< what error_estimate measures (empty: the long-double shadow's difference)
 };
+/// Where `simulate` puts its motion as it computes it: the names once (t, then the variables), then one row per
+/// output step (t first, as many values as names).  The tool's sink writes the CONTRACT's CSV; a Trajectory keeps
+/// the doubles; a caller's own sink may do anything else with them (stop early by throwing).
+class RowSink {
+ public:
+  virtual ~RowSink() = default;
+  virtual void header(const std::vector<std::string>& names) = 0;
+  virtual void row(const std::vector<double>& values) = 0;
+  /// After a row that was slow to compute (the ODE routes): a stream passes it on at once.
+  virtual void flush() {}
+};
+/// A run's motion as doubles: the typed form of simulate's CSV, row for row.
+struct Trajectory {
+  std::vector<std::string> names;         ///< t, then the variables (simulate's CSV header)
+  std::vector<std::vector<double>> rows;  ///< one per output step: t, then each variable's value
+  Simulated summary;                      ///< the run's error estimate
+  /// The values of one name over the run, row by row; std::out_of_range for a name it does not have.
+  std::vector<double> column(const std::string& name) const;
+};
+
 /// The CSV header `simulate` writes for the problem: t and every variable.
 std::vector<std::string> simulate_columns(const io::Problem& p);
 /// `dcad simulate`: the motion from the problem's initial condition on M_c, one CSV row per output step
@@ -106,6 +126,11 @@ std::vector<std::string> simulate_columns(const io::Problem& p);
 /// with resistors, sources or forces only; UsageError otherwise), the energy balance per row.
 Simulated simulate(const io::Problem& p, const SimulateOptions& options, std::ostream& csv, std::ostream& log,
                    std::ostream* energy = nullptr);
+/// The same run into `rows`, a caller's sink (the header, then each row as it is computed).
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink& rows, std::ostream& log,
+                   std::ostream* energy = nullptr);
+/// The same run kept as a Trajectory (every row in memory: mind tstop/step × the variables).
+Trajectory simulate_trajectory(const io::Problem& p, const SimulateOptions& options, std::ostream& log);
 
 /// `dcad check WAVEFORM DECK` (CONTRACT "Checking a simulator's waveform"): another simulator's
 /// transient output against DECK's exact flow from the state the simulator started from, at the file's
