@@ -162,14 +162,15 @@ struct SimulateCommand {
     app->add_option("--plot-vars", vars, "comma-separated variables to plot (default: every q_*)");
   }
 
-  int run(const dcad::io::ReadOptions& read) {
+  /// --tstop, --step, --backend, --initial, --route and --vars into `opt`: false after saying what is wrong.
+  bool read_options() {
     for (auto [flag, text, out] : {std::tuple{"--tstop", &tstop, &opt.tstop}, std::tuple{"--step", &step, &opt.step}}) {
       try {
         *out = static_cast<double>(dcad::io::parse_spice_value(*text));
       } catch (const std::invalid_argument&) {
         std::cerr << "dcad simulate: " << flag << ": expected a time in seconds such as 1e-3 or 20n, found \"" << *text
                   << "\"\n";
-        return 2;
+        return false;
       }
     }
     opt.backend = dcad::api::backend_named(backend);
@@ -185,6 +186,11 @@ struct SimulateCommand {
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
+    return true;
+  }
+
+  int run(const dcad::io::ReadOptions& read) {
+    if (!read_options()) return 2;
     const dcad::io::Problem problem = dcad::io::read_problem(file, read);
     std::vector<std::string> header = dcad::api::simulate_columns(problem);
     if (!opt.columns.empty()) {

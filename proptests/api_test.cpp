@@ -108,6 +108,34 @@ TEST(Api, SimulateEqualsTheBinary) {
   }
 }
 
+// A caller's RowSink sees the header and the rows as they come and may stop the run by throwing: its own exception
+// reaches the caller (not an InternalError, exit 4).  Killed by: the sink's exception mapped by the error channels.
+TEST(Api, ASinkStopsTheRunWithItsOwnException) {
+  struct FirstRows final : dcad::api::RowSink {
+    std::vector<std::string> names;
+    std::vector<std::vector<double>> rows;
+    void header(const std::vector<std::string>& n) override { names = n; }
+    void row(const std::vector<double>& v) override {
+      rows.push_back(v);
+      if (rows.size() == 3) throw std::runtime_error("enough");
+    }
+  } sink;
+  dcad::api::SimulateOptions opt;
+  opt.tstop = 1e-4;
+  opt.step = 1e-6;
+  std::ostringstream log;
+  try {
+    dcad::api::simulate(dcad::io::read_problem(case_path("rlc-series.cir")), opt, sink, log);
+    ADD_FAILURE() << "the run went on after the sink threw";
+  } catch (const dcad::api::InternalError& e) {
+    ADD_FAILURE() << "the sink's exception became an internal error: " << e.what();
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "enough");
+  }
+  EXPECT_EQ(sink.rows.size(), 3u);
+  EXPECT_EQ(sink.names.front(), "t");
+}
+
 // The channels: bad input names the file (exit 1), options that do not apply are usage (exit 2).
 TEST(Api, ErrorChannels) {
   const std::string missing = case_path("no-such-case.json");

@@ -2,8 +2,8 @@
 """The papers' traceability table (issue 46): proptests/papers.tsv has one row per statement of CEF, YM and V as
 ../shared/PAPER-ITEMS.md numbers them (1-110 CEF, Y1-Y25 YM, V1-V10 V, N1-N6 found later), tab-separated under
 the header `id status reference fast tests`.  Fails when an id is missing, doubled or unknown, a status is not
-covered / partial / missing / one-sided: REASON, a covered row names no test or no implementation, or a row names
-a test that ctest does not have (the names come from `ctest -N` on this build).
+covered / partial / missing / one-sided: REASON, a covered row names no test or not both twins' implementations,
+or a row names a test that ctest does not have (the names come from `ctest -N` on this build).
 
 Usage: papers_check.py SOURCE_DIR BUILD_DIR CTEST
 """
@@ -53,6 +53,8 @@ def main():
                 bad.append(f"{path}:{k}: {ident}: {status.split(':')[0]} names no test that holds it")
             if ref == "-" and fast == "-":
                 bad.append(f"{path}:{k}: {ident}: {status.split(':')[0]} names no implementation")
+            elif status == "covered" and (ref == "-" or fast == "-"):
+                bad.append(f"{path}:{k}: {ident}: covered names one twin only (both twins, or one-sided: REASON)")
     for ident in IDS:
         if ident not in rows:
             bad.append(f"{path}: expected a row for id {ident}, found none")

@@ -256,6 +256,21 @@ void require_times(const SimulateOptions& opt) {
                          io::float_text(opt.step) + ", tstop " + io::float_text(opt.tstop));
 }
 
+namespace {
+/// io::InputError naming `what` unless every entry of q is a finite double, nonzero where q is (the
+/// integration runs in floating point).
+void require_double_range(const QM& q, const std::string& file, const char* what) {
+  for (ref::Index i = 0; i < q.rows(); ++i)
+    for (ref::Index j = 0; j < q.cols(); ++j) {
+      const double x = q(i, j).convert_to<double>();
+      if (!std::isfinite(x) || (x == 0 && q(i, j) != 0))
+        throw io::InputError(file + ": simulate: expected " + what +
+                             " within double's range (1e-308 ... 1e308), found " + q(i, j).str().substr(0, 40) +
+                             (q(i, j).str().size() > 40 ? "..." : ""));
+    }
+}
+}  // namespace
+
 Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
                         const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
                         RowSink& out, std::ostream& log) {
@@ -289,19 +304,9 @@ Summary simulate_linear(const io::CaseFile& c, const io::Netlist* deck,
   const QM z0 = sel * QM::column(x0q);
   std::vector<Q> z0v(m);
   for (ref::Index i = 0; i < m; ++i) z0v[i] = z0(i, 0);
-  const auto require_range = [&](const QM& q, const char* what) {  // integration runs in floating point
-    for (ref::Index i = 0; i < q.rows(); ++i)
-      for (ref::Index j = 0; j < q.cols(); ++j) {
-        const double x = q(i, j).convert_to<double>();
-        if (!std::isfinite(x) || (x == 0 && q(i, j) != 0))
-          throw io::InputError(c.file + ": simulate: expected " + what +
-                               " within double's range (1e-308 ... 1e308), found " + q(i, j).str().substr(0, 40) +
-                               (q(i, j).str().size() > 40 ? "..." : ""));
-      }
-  };
-  require_range(a, "equations of motion with coefficients");
-  require_range(lift, "a parametrisation of M_c with coefficients");
-  require_range(QM::column(x0q), "an initial state");
+  require_double_range(a, c.file, "equations of motion with coefficients");
+  require_double_range(lift, c.file, "a parametrisation of M_c with coefficients");
+  require_double_range(QM::column(x0q), c.file, "an initial state");
   const std::vector<double> d = balancing(to<double>(a));
   const long steps = static_cast<long>(std::floor(opt.tstop / opt.step + 1e-9));
   // the shadow advances `stride` steps at a time (cost ~ 1/stride of the run for large systems)

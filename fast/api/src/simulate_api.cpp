@@ -6,6 +6,7 @@
 #include "dcad/reference/pipeline/initial_state.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <map>
 #include <streambuf>
 
@@ -79,6 +80,36 @@ class ColumnFilter final : public RowSink {
   std::vector<std::size_t> keep_;
 };
 
+/// The caller's sink, its exceptions carried past guarded() unchanged: a sink that stops the run by throwing gets
+/// its own exception back, not an InternalError.
+struct SinkStopped {};  // not a std::exception: guarded() lets it through
+class Relay final : public RowSink {
+ public:
+  explicit Relay(RowSink& to) : to_(to) {}
+  void header(const std::vector<std::string>& names) override {
+    relay([&] { to_.header(names); });
+  }
+  void row(const std::vector<double>& values) override {
+    relay([&] { to_.row(values); });
+  }
+  void flush() override {
+    relay([&] { to_.flush(); });
+  }
+  std::exception_ptr thrown;
+
+ private:
+  template <class F>
+  void relay(F f) {
+    try {
+      f();
+    } catch (...) {
+      thrown = std::current_exception();
+      throw SinkStopped{};
+    }
+  }
+  RowSink& to_;
+};
+
 /// Keeps every row: simulate_trajectory's sink.
 class Collect final : public RowSink {
  public:
@@ -98,6 +129,22 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
   const std::size_t n = d.rlc.branches.size();
   const bool beyond = d.forced ? n > reference::pipeline::kForcedBranches : n > kSimulateBranches;
   return beyond && sparse_route_takes(d);
+}
+
+/// The case forms with formulas: a DAE (the exact velocities on M_c, Dormand–Prince), an implicit system (RK4 on
+/// the pointwise CEF (1.6), projected onto M_c) or an expression-form system (RK4 on the pointwise CAD, projected).
+Summary simulate_formulas(const io::Problem& p, const SimulateOptions& options, RowSink& rows, std::ostream& log,
+                          std::ostream* energy) {
+  const std::string form = p.form == io::Form::dae ? "dae" : p.form == io::Form::implicit ? "implicit" : "expression";
+  if (energy)
+    throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the " + form + " form");
+  if (p.form != io::Form::expression && (options.route == Route::sparse || options.enclose))
+    throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the " + form + " form");
+  if (options.route == Route::sparse)
+    throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
+  if (p.form == io::Form::dae) return simulate_dae(p.dae, options, rows, log);
+  if (p.form == io::Form::implicit) return simulate_implicit(p.expression, options, rows, log);
+  return simulate_lagrangian(p.expression, options, rows, log);
 }
 
 }  // namespace
@@ -127,8 +174,25 @@ std::vector<double> Trajectory::column(const std::string& name) const {
   return out;
 }
 
-Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink& csv, std::ostream& log,
+namespace {
+Simulated simulate_guarded(const io::Problem& p, const SimulateOptions& options, RowSink& csv, std::ostream& log,
+                           std::ostream* energy);
+}  // namespace
+
+Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink& sink, std::ostream& log,
                    std::ostream* energy) {
+  Relay relay(sink);
+  try {
+    return simulate_guarded(p, options, relay, log, energy);
+  } catch (const SinkStopped&) {
+    std::rethrow_exception(relay.thrown);
+  }
+}
+
+namespace {
+
+Simulated simulate_guarded(const io::Problem& p, const SimulateOptions& options, RowSink& csv, std::ostream& log,
+                           std::ostream* energy) {
   return guarded(p, [&] {
     io::validate(p);
     if (p.form == io::Form::netlist && !p.netlist.indefinite_inductance.empty())
@@ -144,31 +208,8 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink
     }
     ColumnFilter filtered(csv, options.columns);
     RowSink& rows = options.columns.empty() ? csv : filtered;
-    if (p.form == io::Form::dae) {  // the exact velocities on M_c, Dormand–Prince
-      if (energy)
-        throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the dae form");
-      if (options.route == Route::sparse || options.enclose)
-        throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the dae form");
-      const Summary sum = simulate_dae(p.dae, options, rows, log);
-      return sum;
-    }
-    if (p.form == io::Form::implicit) {  // RK4 on the pointwise CEF (1.6), projected onto M_c
-      if (energy)
-        throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the implicit form");
-      if (options.route == Route::sparse || options.enclose)
-        throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the implicit form");
-      const Summary sum = simulate_implicit(p.expression, options, rows, log);
-      return sum;
-    }
-    if (p.form == io::Form::expression) {  // formulas: RK4 on the pointwise CAD, projected onto M_c
-      if (energy)
-        throw UsageError(p.file +
-                         ": --energy: expected a netlist with resistors or sources, found the expression form");
-      if (options.route == Route::sparse)
-        throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
-      const Summary sum = simulate_lagrangian(p.expression, options, rows, log);
-      return sum;
-    }
+    if (p.form == io::Form::dae || p.form == io::Form::implicit || p.form == io::Form::expression)
+      return simulate_formulas(p, options, rows, log, energy);
     const bool netlist = p.form == io::Form::netlist;
     if (netlist)
       if (const auto which = io::without_exosystem(p.netlist.waveforms))
@@ -198,8 +239,7 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink
         throw UsageError(p.file +
                          ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
       if (energy) throw UsageError(p.file + ": --certified and --energy: expected one of them");
-      const Summary sum = simulate_enclosed(p.netlist, c, options, rows, log);
-      return sum;
+      return simulate_enclosed(p.netlist, c, options, rows, log);
     }
     std::vector<std::optional<io::Rational>> init(c.n);
     if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
@@ -215,5 +255,7 @@ Simulated simulate(const io::Problem& p, const SimulateOptions& options, RowSink
     return sum;
   });
 }
+
+}  // namespace
 
 }  // namespace dcad::api

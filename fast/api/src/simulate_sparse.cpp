@@ -399,26 +399,32 @@ double SparseFlow::error_estimate() const { return max_norm_ > 0 ? krylov_->erro
 long SparseFlow::products() const { return krylov_->products(); }
 long SparseFlow::substeps() const { return krylov_->substeps(); }
 
+namespace {
+/// The indices of `names` among c's variables (all `count` of them when none is named); UsageError for a name the
+/// case does not have.
+std::vector<std::size_t> columns_of(const io::CaseFile& c, const std::vector<std::string>& names, std::size_t count) {
+  std::vector<std::size_t> cols;
+  if (names.empty())
+    for (std::size_t i = 0; i < count; ++i) cols.push_back(i);
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < c.variables.size(); ++i) index[c.variables[i]] = i;
+  for (const std::string& name : names) {
+    const auto it = index.find(name);
+    if (it == index.end())
+      throw UsageError("--vars: expected variables of " + c.file + " (q_*, v_*, p_*), found " + name);
+    cols.push_back(it->second);
+  }
+  return cols;
+}
+}  // namespace
+
 Summary simulate_sparse(const io::Netlist& deck, const io::CaseFile& c, const SimulateOptions& opt, RowSink& out,
                         std::ostream& log, std::ostream* energy) {
   require_times(opt);
   SparseFlow flow(deck, c.file, opt.initial, opt.step, opt.tstop, log);
   const sr::Network& circ = flow.network();
   const std::size_t n = circ.branches.size();
-  // columns
-  std::vector<std::size_t> cols;
-  if (opt.columns.empty())
-    for (std::size_t i = 0; i < 3 * n; ++i) cols.push_back(i);
-  else {
-    std::map<std::string, std::size_t> index;
-    for (std::size_t i = 0; i < c.variables.size(); ++i) index[c.variables[i]] = i;
-    for (const std::string& name : opt.columns) {
-      const auto it = index.find(name);
-      if (it == index.end())
-        throw UsageError("--vars: expected variables of " + c.file + " (q_*, v_*, p_*), found " + name);
-      cols.push_back(it->second);
-    }
-  }
+  const std::vector<std::size_t> cols = columns_of(c, opt.columns, 3 * n);
   std::vector<std::string> names = {"t"};
   for (std::size_t i : cols) names.push_back(c.variables[i]);
   out.header(names);

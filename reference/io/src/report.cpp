@@ -273,6 +273,38 @@ std::string radius_text(double r) {
   return std::to_string(m / 10) + "." + std::to_string(m % 10) + "e" + std::to_string(ex);
 }
 
+namespace {
+/// M_c's rows in the result: {a·x = b} as rows [a…, b] ("final_constraints", what `dcad check` compares as a
+/// subspace), or E and A's sparse encoding beyond 2·10⁶ entries ("final_constraints_sparse").
+void final_constraints_json(const std::vector<Eq>& rows_of_mc, const std::vector<std::string>& names, bool exact,
+                            json& j) {
+  // M_c's rows beyond 2·10⁶ entries (5,000 constraints of a 10⁴-node circuit: 5·10⁷ strings, 6 GB of JSON) go
+  // in E and A's sparse encoding instead, {rows, columns, entries: [[row, column, value]], rhs}
+  const std::size_t dense_entries = rows_of_mc.size() * (names.size() + 1);
+  if (dense_entries > 2'000'000) {
+    json entries = json::array(), rhs = json::array();
+    for (std::size_t i = 0; i < rows_of_mc.size(); ++i) {
+      const Eq& e = rows_of_mc[i];
+      for (const auto& [var, coeff] : e.terms) entries.push_back(json::array({i, var, coeff}));
+      rhs.push_back(e.rhs);
+    }
+    j["final_constraints_sparse"] = {
+        {"rows", rows_of_mc.size()}, {"columns", names}, {"entries", entries}, {"rhs", rhs}};
+  } else {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
+    json rows = json::array();
+    for (const Eq& e : rows_of_mc) {
+      // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)
+      std::vector<std::string> row(names.size(),
+                                   exact ? "0" : "0.0");  // the variables, then the sources' jets (if any)
+      for (const auto& [var, coeff] : e.terms) row[var] = coeff;
+      row.push_back(e.rhs);
+      rows.push_back(row);
+    }
+    j["final_constraints"] = rows;
+  }
+}
+}  // namespace
+
 json cad_json(const Printed& r) {
   const std::vector<std::string> names = r.columns();
   json j = {{"dcad", 1},        {"backend", r.backend},       {"certified", r.certified.yes()}, {"dims", r.dims()},
@@ -291,30 +323,7 @@ json cad_json(const Printed& r) {
     tower.push_back({{"k", k}, {"dim", r.tower[k].dim}, {"new_constraints", eqs}});
   }
   j["tower"] = tower;
-  // M_c's rows beyond 2·10⁶ entries (5,000 constraints of a 10⁴-node circuit: 5·10⁷ strings, 6 GB of JSON) go
-  // in E and A's sparse encoding instead, {rows, columns, entries: [[row, column, value]], rhs}
-  const std::size_t dense_entries = r.final_constraints ? r.final_constraints->size() * (names.size() + 1) : 0;
-  if (r.final_constraints && dense_entries > 2'000'000) {
-    json entries = json::array(), rhs = json::array();
-    for (std::size_t i = 0; i < r.final_constraints->size(); ++i) {
-      const Eq& e = (*r.final_constraints)[i];
-      for (const auto& [var, coeff] : e.terms) entries.push_back(json::array({i, var, coeff}));
-      rhs.push_back(e.rhs);
-    }
-    j["final_constraints_sparse"] = {
-        {"rows", r.final_constraints->size()}, {"columns", names}, {"entries", entries}, {"rhs", rhs}};
-  } else if (r.final_constraints) {  // rows [a…, b] of M_c = {a·x = b}: what `dcad check` compares as a subspace
-    json rows = json::array();
-    for (const Eq& e : *r.final_constraints) {
-      // an absent term is an exact 0 only in an exact result (a ball's "absent" only contains 0)
-      std::vector<std::string> row(names.size(),
-                                   r.exact ? "0" : "0.0");  // the variables, then the sources' jets (if any)
-      for (const auto& [var, coeff] : e.terms) row[var] = coeff;
-      row.push_back(e.rhs);
-      rows.push_back(row);
-    }
-    j["final_constraints"] = rows;
-  }
+  if (r.final_constraints) final_constraints_json(*r.final_constraints, names, r.exact, j);
   if (r.motion) {
     std::vector<std::string> coords;
     for (std::size_t i : r.motion->coordinates) coords.push_back(r.variables[i]);
@@ -358,6 +367,50 @@ json cad_json(const Printed& r) {
   return j;
 }
 
+namespace {
+
+/// The text of adapted constraints (CEF Thm 3.28; §7 on T*TQ): s', the second class chi, E_AT.
+void adapted_text(const Adapted<std::string>& a, std::ostream& o) {
+  o << "  adapted to the primary constraints (CEF Thm 3.28" << (a.setting == "T*TQ" ? ", §7 on T*TQ" : "")
+    << "): s' = " << a.s_prime << ", " << a.chi.size() << " second class\n";
+  for (const Eq& e : a.chi) o << "      chi: " << equation_text(e, a.variables) << "\n";
+  o << "    E_AT = E";
+  for (std::size_t k = 0; k < a.abridged.size(); ++k)
+    o << " + lambda" << k + 1 << "*(" << equation_text(a.abridged[k], a.variables) << ")";
+  o << "   (E_E adds " << a.secondary_first_class << " secondary first class constraints)\n";
+}
+
+/// The text of the equations of motion on M_c (CEF (5.12)), or of the velocities of a DAE (`ide`).
+void motion_text(const Printed& r, bool ide, std::ostream& o) {
+  const Motion<std::string>& m = *r.motion;
+  std::vector<std::string> coords;
+  for (std::size_t i : m.coordinates) coords.push_back(r.variables[i]);
+  std::vector<std::string> lambdas;
+  for (std::size_t k = 0; k < (m.g.empty() ? 0 : m.g[0].size()); ++k)
+    lambdas.push_back("lambda" + std::to_string(k + 1));
+  o << (ide ? "  velocities on M_c (E v = A x + f, v tangent to M_c) in coordinates ("
+            : "  equations of motion on M_c (CEF (5.12)) in coordinates (");
+  for (std::size_t i = 0; i < coords.size(); ++i) o << (i ? ", " : "") << coords[i];
+  o << "):\n";
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    std::vector<std::string> coeff = m.f_matrix[i];
+    std::vector<std::string> all = coords;
+    for (std::size_t k = 0; k < m.source_columns.size(); ++k) {
+      coeff.push_back(m.s[i][k]);
+      all.push_back(m.source_columns[k]);
+    }
+    for (std::size_t k = 0; k < lambdas.size(); ++k) {
+      coeff.push_back(is_zero_text(m.g[i][k]) ? "" : m.g[i][k]);
+      all.push_back(lambdas[k]);
+    }
+    for (std::string& x : coeff)
+      if (is_zero_text(x)) x = "";
+    o << "    d/dt " << coords[i] << " = " << row_text(coeff, all, m.f[i]) << "\n";
+  }
+}
+
+}  // namespace
+
 std::string cad_text(const Printed& r) {
   const std::vector<std::string> names = r.columns();
   std::ostringstream o;
@@ -400,43 +453,8 @@ std::string cad_text(const Printed& r) {
     for (const Eq& e : r.classes->second_class_constraints)
       o << "      second class: " << equation_text(e, names) << "\n";
   }
-  if (r.adapted) {
-    const Adapted<std::string>& a = *r.adapted;
-    o << "  adapted to the primary constraints (CEF Thm 3.28" << (a.setting == "T*TQ" ? ", §7 on T*TQ" : "")
-      << "): s' = " << a.s_prime << ", " << a.chi.size() << " second class\n";
-    for (const Eq& e : a.chi) o << "      chi: " << equation_text(e, a.variables) << "\n";
-    o << "    E_AT = E";
-    for (std::size_t k = 0; k < a.abridged.size(); ++k)
-      o << " + lambda" << k + 1 << "*(" << equation_text(a.abridged[k], a.variables) << ")";
-    o << "   (E_E adds " << a.secondary_first_class << " secondary first class constraints)\n";
-  }
-  if (r.motion) {
-    const Motion<std::string>& m = *r.motion;
-    std::vector<std::string> coords;
-    for (std::size_t i : m.coordinates) coords.push_back(r.variables[i]);
-    std::vector<std::string> lambdas;
-    for (std::size_t k = 0; k < (m.g.empty() ? 0 : m.g[0].size()); ++k)
-      lambdas.push_back("lambda" + std::to_string(k + 1));
-    o << (ide ? "  velocities on M_c (E v = A x + f, v tangent to M_c) in coordinates ("
-              : "  equations of motion on M_c (CEF (5.12)) in coordinates (");
-    for (std::size_t i = 0; i < coords.size(); ++i) o << (i ? ", " : "") << coords[i];
-    o << "):\n";
-    for (std::size_t i = 0; i < coords.size(); ++i) {
-      std::vector<std::string> coeff = m.f_matrix[i];
-      std::vector<std::string> all = coords;
-      for (std::size_t k = 0; k < m.source_columns.size(); ++k) {
-        coeff.push_back(m.s[i][k]);
-        all.push_back(m.source_columns[k]);
-      }
-      for (std::size_t k = 0; k < lambdas.size(); ++k) {
-        coeff.push_back(is_zero_text(m.g[i][k]) ? "" : m.g[i][k]);
-        all.push_back(lambdas[k]);
-      }
-      for (std::string& x : coeff)
-        if (is_zero_text(x)) x = "";
-      o << "    d/dt " << coords[i] << " = " << row_text(coeff, all, m.f[i]) << "\n";
-    }
-  }
+  if (r.adapted) adapted_text(*r.adapted, o);
+  if (r.motion) motion_text(r, ide, o);
   if (r.state) state_text(*r.state, o);
   if (!r.note.empty()) o << "  note: " << r.note << "\n";
   return o.str();
@@ -555,6 +573,42 @@ std::string tangent_text(const Pointwise<std::string>::Tangent& t) {
   return equation_text(e, names);
 }
 
+namespace {
+/// The pointwise result's formulas on a chart (or why there are none) and its values at the given point in balls.
+void pointwise_extras_text(const Pointwise<std::string>& p, std::ostream& o) {
+  if (p.formulas) {
+    const Formulas& f = *p.formulas;
+    const auto shown = [](const std::string& e) {
+      return e.size() <= 400 ? e : "(a formula of " + std::to_string(e.size()) + " characters: see --json)";
+    };
+    o << "  formulas on a chart (kept:";
+    for (const std::string& k : f.kept) o << " " << k;
+    o << "):\n";
+    for (std::size_t i = 0; i < f.constraints.size(); ++i)
+      o << "      M_" << f.levels[i] << ": " << shown(f.constraints[i]) << " = 0\n";
+    for (const auto& [name, e] : f.equations) o << "      d/dt " << name << " = " << shown(e) << "\n";
+    for (std::size_t i = 0; i < f.valid_where.size(); ++i)
+      o << "      valid where " << shown(f.valid_where[i]) << " != 0   (" << f.valid_where_why[i] << ")\n";
+  } else if (!p.formulas_why.empty()) {
+    o << "  no formulas: " << p.formulas_why << "\n";
+  }
+  if (p.at_given) {
+    const AtGiven& a = *p.at_given;
+    o << "  at the given values, in balls (" << (a.proved ? "proved" : "NOT proved: " + a.why) << "):";
+    const auto show = [&o](const std::string& pre, const std::vector<AtGiven::Ball>& bs) {
+      for (std::size_t i = 0; i < bs.size(); ++i)
+        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± "
+          << radius_text(printed_radius(bs[i].mid, bs[i].rad)) << (i + 1 < bs.size() ? "," : "");
+    };
+    show("", a.point);
+    show("d/dt ", a.velocity);
+    if (!a.solved.empty()) o << "\n      solved for: " << joined(a.solved);
+    if (!a.moved.empty()) o << "\n      given values moved (their decimals miss M_c): " << joined(a.moved);
+    o << "\n      " << a.claim << "\n";
+  }
+}
+}  // namespace
+
 std::string pointwise_text(const Printed& r) {
   const Pointwise<std::string>& p = *r.pointwise;
   const std::vector<long> dims = r.dims();
@@ -610,36 +664,7 @@ std::string pointwise_text(const Printed& r) {
         << (i + 1 < p.velocity.size() ? "," : "");
     o << "\n";
   }
-  if (p.formulas) {
-    const Formulas& f = *p.formulas;
-    const auto shown = [](const std::string& e) {
-      return e.size() <= 400 ? e : "(a formula of " + std::to_string(e.size()) + " characters: see --json)";
-    };
-    o << "  formulas on a chart (kept:";
-    for (const std::string& k : f.kept) o << " " << k;
-    o << "):\n";
-    for (std::size_t i = 0; i < f.constraints.size(); ++i)
-      o << "      M_" << f.levels[i] << ": " << shown(f.constraints[i]) << " = 0\n";
-    for (const auto& [name, e] : f.equations) o << "      d/dt " << name << " = " << shown(e) << "\n";
-    for (std::size_t i = 0; i < f.valid_where.size(); ++i)
-      o << "      valid where " << shown(f.valid_where[i]) << " != 0   (" << f.valid_where_why[i] << ")\n";
-  } else if (!p.formulas_why.empty()) {
-    o << "  no formulas: " << p.formulas_why << "\n";
-  }
-  if (p.at_given) {
-    const AtGiven& a = *p.at_given;
-    o << "  at the given values, in balls (" << (a.proved ? "proved" : "NOT proved: " + a.why) << "):";
-    const auto show = [&o](const std::string& pre, const std::vector<AtGiven::Ball>& bs) {
-      for (std::size_t i = 0; i < bs.size(); ++i)
-        o << (i % 3 == 0 ? "\n     " : "") << " " << pre << bs[i].name << " = " << float_text(bs[i].mid) << " ± "
-          << radius_text(printed_radius(bs[i].mid, bs[i].rad)) << (i + 1 < bs.size() ? "," : "");
-    };
-    show("", a.point);
-    show("d/dt ", a.velocity);
-    if (!a.solved.empty()) o << "\n      solved for: " << joined(a.solved);
-    if (!a.moved.empty()) o << "\n      given values moved (their decimals miss M_c): " << joined(a.moved);
-    o << "\n      " << a.claim << "\n";
-  }
+  pointwise_extras_text(p, o);
   if (!r.note.empty()) o << "  note: " << r.note << "\n";
   return o.str();
 }

@@ -99,9 +99,11 @@ struct Simulated {
   std::string worst_variable;  ///< where it is largest
   std::string estimate_kind;   ///< what error_estimate measures (empty: the long-double shadow's difference)
 };
-/// Where `simulate` puts its motion as it computes it: the names once (t, then the variables), then one row per
-/// output step (t first, as many values as names).  The tool's sink writes the CONTRACT's CSV; a Trajectory keeps
-/// the doubles; a caller's own sink may do anything else with them (stop early by throwing).
+/// Where `simulate` puts its motion as it computes it: the names once (t, the variables or those of
+/// SimulateOptions::columns, then rad_q, rad_v, rad_p with `enclose`), then one row per output step (t first, as
+/// many values as names).  The tool's sink writes the CONTRACT's CSV; a Trajectory keeps the doubles; a caller's
+/// own sink may do anything else with them, and stop the run by throwing: its exception reaches simulate's caller
+/// as it was thrown.
 class RowSink {
  public:
   virtual ~RowSink() = default;
@@ -112,7 +114,7 @@ class RowSink {
 };
 /// A run's motion as doubles: the typed form of simulate's CSV, row for row.
 struct Trajectory {
-  std::vector<std::string> names;         ///< t, then the variables (simulate's CSV header)
+  std::vector<std::string> names;         ///< simulate's CSV header (RowSink::header)
   std::vector<std::vector<double>> rows;  ///< one per output step: t, then each variable's value
   Simulated summary;                      ///< the run's error estimate
   /// The values of one name over the run, row by row; std::out_of_range for a name it does not have.

@@ -56,6 +56,30 @@ struct LoopBranch {
 };
 using Loop = std::vector<LoopBranch>;
 
+/// The kept edges (keep[b], not self-loops) at each vertex, in CSR form: those at v are
+/// edges[start[v]] … edges[start[v + 1] − 1].
+struct Adjacency {
+  std::vector<std::size_t> start, edges;
+};
+inline Adjacency kept_adjacency(std::size_t nv, const std::vector<Edge>& edges, const std::vector<bool>& keep) {
+  Adjacency a;
+  a.start.assign(nv + 1, 0);
+  for (std::size_t b = 0; b < edges.size(); ++b)
+    if (keep[b] && edges[b].from != edges[b].to) {
+      ++a.start[vertex(edges[b].from) + 1];
+      ++a.start[vertex(edges[b].to) + 1];
+    }
+  for (std::size_t v = 0; v < nv; ++v) a.start[v + 1] += a.start[v];
+  a.edges.resize(a.start[nv]);
+  std::vector<std::size_t> fill(a.start.begin(), a.start.end() - 1);
+  for (std::size_t b = 0; b < edges.size(); ++b)
+    if (keep[b] && edges[b].from != edges[b].to) {
+      a.edges[fill[vertex(edges[b].from)]++] = b;
+      a.edges[fill[vertex(edges[b].to)]++] = b;
+    }
+  return a;
+}
+
 /// The fundamental loops of the spanning forest of the edges with keep[b] that spans the edges with
 /// prefer[b] first: one loop per kept edge outside the forest, that edge first with sign +1.  The
 /// forest is breadth first (short loops) and takes whole components of preferred edges at once.
@@ -64,20 +88,8 @@ using Loop = std::vector<LoopBranch>;
 inline std::vector<Loop> fundamental_loops(std::size_t nodes, const std::vector<Edge>& edges,
                                            const std::vector<bool>& keep, const std::vector<bool>& prefer) {
   const std::size_t nv = nodes + 1, n = edges.size();
-  std::vector<std::size_t> start(nv + 1, 0), adj;  // CSR adjacency of the kept edges
-  for (std::size_t b = 0; b < n; ++b)
-    if (keep[b] && edges[b].from != edges[b].to) {
-      ++start[vertex(edges[b].from) + 1];
-      ++start[vertex(edges[b].to) + 1];
-    }
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  adj.resize(start[nv]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t b = 0; b < n; ++b)
-    if (keep[b] && edges[b].from != edges[b].to) {
-      adj[fill[vertex(edges[b].from)]++] = b;
-      adj[fill[vertex(edges[b].to)]++] = b;
-    }
+  const Adjacency csr = kept_adjacency(nv, edges, keep);
+  const std::vector<std::size_t>&start = csr.start, &adj = csr.edges;
   const std::size_t none = static_cast<std::size_t>(-1);
   std::vector<std::size_t> parent_edge(nv, none), parent(nv, none), depth(nv, 0), queue, flood;
   std::vector<bool> seen(nv, false), in_tree(n, false);
