@@ -159,6 +159,38 @@ double max_abs(const io::QMatrix& m) {
 /// left null space of the reference's G, exact), N G_found = 0 and rank G_found = rank G, i.e.
 /// span(G_found) = span(G).  Exact where the result's numbers are exact strings, else within
 /// 1e-9 × entries × scale.  Without free multipliers N = I: F and f entry by entry.
+/// Whether every number of x is exact (then a comparison is exact too).
+bool exact_all(const std::vector<std::vector<Number>>& x) {
+  for (const auto& row : x)
+    for (const Number& v : row)
+      if (!v.exact) return false;
+  return true;
+}
+
+/// reduced.G against the reference's g free directions: as many independent columns, each in span(G) (N G = 0,
+/// N the rows annihilating the reference's G), exactly or to the matrices' tolerance.
+void compare_free_directions(Checker& k, const io::QMatrix& n, std::size_t g, std::size_t g_cols,
+                             const std::optional<io::QMatrix>& g_found, bool exact) {
+  k.out.compared.push_back("reduced.G (span)");
+  if (!g_found) return;
+  const long rank = static_cast<long>(reference::rref(*g_found).pivots.size());
+  if (g_cols != g || rank != static_cast<long>(g)) {
+    k.out.disagreements.push_back("reduced.G: expected " + std::to_string(g) +
+                                  " independent free directions (solution rank), found " + std::to_string(rank) +
+                                  " among " + std::to_string(g_cols) + " columns");
+    return;
+  }
+  const io::QMatrix ngf = n * *g_found;
+  const double tol =
+      exact ? 0 : matrix_tolerance(g_found->rows() * g) * std::max(1.0, max_abs(n)) * std::max(1.0, max_abs(*g_found));
+  for (std::size_t i = 0; i < ngf.rows(); ++i)
+    for (std::size_t j = 0; j < ngf.cols(); ++j)
+      if (std::abs(ngf(i, j).convert_to<double>()) > tol || (tol == 0 && ngf(i, j) != 0)) {
+        k.out.disagreements.push_back("reduced.G: column " + std::to_string(j) + " is not in the reference's span(G)");
+        return;
+      }
+}
+
 void compare_reduced(Checker& k, const reference::Solution& truth, const json& red) {
   const Motion<io::Rational>& mo = *truth.motion;
   const std::size_t m = mo.coordinates.size(), g = mo.g.empty() ? 0 : mo.g[0].size();
@@ -183,12 +215,6 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
   const std::size_t g_cols = g_json.is_array() && !g_json.empty() && g_json[0].is_array() ? g_json[0].size() : 0;
   const auto g_found =
       red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng) : std::optional<io::QMatrix>();
-  const auto exact_all = [](const std::vector<std::vector<Number>>& x) {
-    for (const auto& row : x)
-      for (const Number& v : row)
-        if (!v.exact) return false;
-    return true;
-  };
   const auto same_modulo = [&](const std::string& key, const io::QMatrix& want, const io::QMatrix& found, bool exact) {
     k.out.compared.push_back(key + modulo);
     const io::QMatrix d = n * found - n * want;
@@ -224,24 +250,7 @@ void compare_reduced(Checker& k, const reference::Solution& truth, const json& r
     if (g) k.out.not_compared.push_back("reduced.G (absent: the result does not say which directions are free)");
     return;
   }
-  k.out.compared.push_back("reduced.G (span)");
-  if (!g_found) return;
-  const long rank = static_cast<long>(reference::rref(*g_found).pivots.size());
-  if (g_cols != g || rank != static_cast<long>(g)) {
-    k.out.disagreements.push_back("reduced.G: expected " + std::to_string(g) +
-                                  " independent free directions (solution rank), found " + std::to_string(rank) +
-                                  " among " + std::to_string(g_cols) + " columns");
-    return;
-  }
-  const io::QMatrix ngf = n * *g_found;
-  const double tol =
-      exact_all(ng) ? 0 : matrix_tolerance(m * g) * std::max(1.0, max_abs(n)) * std::max(1.0, max_abs(*g_found));
-  for (std::size_t i = 0; i < ngf.rows(); ++i)
-    for (std::size_t j = 0; j < ngf.cols(); ++j)
-      if (std::abs(ngf(i, j).convert_to<double>()) > tol || (tol == 0 && ngf(i, j) != 0)) {
-        k.out.disagreements.push_back("reduced.G: column " + std::to_string(j) + " is not in the reference's span(G)");
-        return;
-      }
+  compare_free_directions(k, n, g, g_cols, g_found, exact_all(ng));
 }
 
 /// `final_constraints`: rows [a…, b] of equations whose solution set the result claims is M_c.

@@ -294,15 +294,10 @@ class EFactor {
   std::vector<Combination> null_of_e;  ///< z with zᵀ E = 0
   long rank = 0;                       ///< rank E
 
-  /// The z_E of a basis of S_k's left null vectors beyond E's own; `extra` = rank S_k − rank E.
-  /// The part outside E's row space is factored densely (an SVD) where it is small or dense, by a sparse
-  /// QR (CleanQr, the threshold as for E) where it is large and sparse: an MNA ladder with a capacitor at
-  /// every other node has 5,000 constraints whose parts outside are nearly unit vectors (the SVD of that
-  /// 5,000 × 5,000 took 270 s at 10⁴ nodes).
-  std::vector<Combination> with(const std::vector<Row>& c, long& extra, Evidence& ev, int sparse_qr_from) const {
+  /// D_c c_i / ‖D_c c_i‖ for each row c_i, in et_'s row order.
+  std::vector<Eigen::SparseVector<double>> unit_rows(const std::vector<Row>& c) const {
     const int n = static_cast<int>(col_scale_.size());
-    const Eigen::Index k = static_cast<Eigen::Index>(c.size());
-    std::vector<Eigen::SparseVector<double>> y;  // D_c c_i / ‖D_c c_i‖, in et_'s row order
+    std::vector<Eigen::SparseVector<double>> y;
     for (const Row& r : c) {
       Eigen::SparseVector<double> v(n);
       std::vector<std::pair<int, double>> at;
@@ -317,6 +312,18 @@ class EFactor {
       for (const auto& [j, x] : at) v.insert(j) = x / norm;
       y.push_back(std::move(v));
     }
+    return y;
+  }
+
+  /// The z_E of a basis of S_k's left null vectors beyond E's own; `extra` = rank S_k − rank E.
+  /// The part outside E's row space is factored densely (an SVD) where it is small or dense, by a sparse
+  /// QR (CleanQr, the threshold as for E) where it is large and sparse: an MNA ladder with a capacitor at
+  /// every other node has 5,000 constraints whose parts outside are nearly unit vectors (the SVD of that
+  /// 5,000 × 5,000 took 270 s at 10⁴ nodes).
+  std::vector<Combination> with(const std::vector<Row>& c, long& extra, Evidence& ev, int sparse_qr_from) const {
+    const int n = static_cast<int>(col_scale_.size());
+    const Eigen::Index k = static_cast<Eigen::Index>(c.size());
+    const std::vector<Eigen::SparseVector<double>> y = unit_rows(c);
     const Eigen::Index below = n - rank;
     std::vector<Eigen::Triplet<double>> t;  // the part of each y outside E's row space
     Eigen::VectorXd yi(n), q(n);            // reused across the constraints

@@ -73,6 +73,37 @@ Rows<double> rows_of(const MatrixXd& m) {
   return out;
 }
 
+/// The equations of motion on M_c for display: entries at rounding level relative to the largest shown as 0.
+Motion<double> motion_of(const ReducedEquations& red) {
+  Motion<double> m;
+  m.coordinates.assign(red.coords.begin(), red.coords.end());
+  const double tiny = 1e-13 * (1 + (red.f_matrix.size() ? red.f_matrix.cwiseAbs().maxCoeff() : 0.0) +
+                               (red.f.size() ? red.f.cwiseAbs().maxCoeff() : 0.0));  // M_c may be a point
+  const auto shown = [&](double x) { return std::abs(x) <= tiny ? 0.0 : x; };
+  m.f_matrix = rows_of(red.f_matrix.unaryExpr(shown));
+  for (Eigen::Index i = 0; i < red.f.size(); ++i) m.f.push_back(shown(red.f(i)));
+  m.g = rows_of(red.g);
+  return m;
+}
+
+/// First and second class among the tower's constraints (CEF §2.1, Lemma 3.23): 2s = rank {φ_i, φ_j} =
+/// rank A Ω⁻ᵀ Aᵀ, A the constraints' rows, decided with its evidence (certain &= the decision's).
+Classes<double> classes_of(const CadResult& r, const MatrixXd& omega, const Options& opt, Truth& certain) {
+  const Eigen::Index n = omega.cols();
+  MatrixXd a(0, n);
+  for (const CadStep& st : r.tower) {
+    MatrixXd more(a.rows() + st.equations.rows(), n);
+    more << a, st.equations.leftCols(n);
+    a = more;
+  }
+  const MatrixXd j = omega.transpose().inverse();
+  const RankDecision d = decide_rank(a * j * a.transpose(), norm2(j), opt);
+  certain &= d.certain;
+  Classes<double> k;
+  k.second_class = d.rank;
+  k.first_class = a.rows() - d.rank;
+  return k;
+}
 }  // namespace
 
 Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& options) {
@@ -100,21 +131,8 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
   }
   // the classes and the adapted constraints need Ω⁻¹: not from a form whose nondegeneracy is undecided
   const bool invertible = why_uncertain.empty();
-  if (c.has_constrained && r.consistent && parts.classes && invertible) {  // 2s = rank {φ_i, φ_j} on M_c, decided
-    MatrixXd a(0, c.n);
-    for (const CadStep& st : r.tower) {
-      MatrixXd more(a.rows() + st.equations.rows(), c.n);
-      more << a, st.equations.leftCols(c.n);
-      a = more;
-    }
-    const MatrixXd j = to_double(c.constrained.w, in_opt).transpose().inverse();
-    const RankDecision d = decide_rank(a * j * a.transpose(), norm2(j), opt);
-    out.certified &= d.certain;
-    Classes<double> k;
-    k.second_class = d.rank;
-    k.first_class = a.rows() - d.rank;
-    out.classes = k;
-  }
+  if (c.has_constrained && r.consistent && parts.classes && invertible)  // 2s = rank {φ_i, φ_j} on M_c, decided
+    out.classes = classes_of(r, to_double(c.constrained.w, in_opt), opt, out.certified);
   if (c.has_constrained && r.consistent && parts.adapted && invertible) {  // Theorem 3.28 on N
     Adapted<double> a = adapted_of(to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_constraints(r),
                                    MatrixXd(0, c.n + 1), opt, out.certified);
@@ -139,16 +157,7 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
     const ReducedEquations red =
         reduced_equations(s, r, std::vector<int>(c.coordinates.begin(), c.coordinates.end()), opt);
     out.certified &= red.certain;
-    Motion<double> m;
-    m.coordinates.assign(red.coords.begin(), red.coords.end());
-    // display: entries at rounding level relative to the largest are shown as 0
-    const double tiny = 1e-13 * (1 + (red.f_matrix.size() ? red.f_matrix.cwiseAbs().maxCoeff() : 0.0) +
-                                 (red.f.size() ? red.f.cwiseAbs().maxCoeff() : 0.0));  // M_c may be a point
-    const auto shown = [&](double x) { return std::abs(x) <= tiny ? 0.0 : x; };
-    m.f_matrix = rows_of(red.f_matrix.unaryExpr(shown));
-    for (Eigen::Index i = 0; i < red.f.size(); ++i) m.f.push_back(shown(red.f(i)));
-    m.g = rows_of(red.g);
-    out.motion = m;
+    out.motion = motion_of(red);
   }
   if (!why_uncertain.empty()) {
     out.certified = unknown;

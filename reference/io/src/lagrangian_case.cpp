@@ -106,6 +106,41 @@ std::map<std::string, std::size_t> formula_variables(const reference::Lagrangian
 
 }  // namespace
 
+namespace {
+/// "initial": exact values by name — coordinates, velocities v_*, momenta p_* and the time — into c.initial
+/// (q, v, t) and c.initial_p; every slot not named stays free.
+void read_initial(const json& j, const Where& root, const std::map<std::string, std::size_t>& vars, LagrangianCase& c) {
+  const reference::LagrangianSystem& s = c.system;
+  c.initial.assign(2 * s.n + 1, std::nullopt);
+  c.initial_p.assign(s.n, std::nullopt);
+  if (j.contains("initial")) {
+    const json& in = j["initial"];
+    const Where w = root / "initial";
+    if (!in.is_object()) w.fail("an object {name: exact value} (coordinates, v_*, p_*, the time)", describe(in));
+    c.has_initial = true;
+    std::vector<std::string> known;
+    for (const auto& [k, v] : vars) known.push_back(k);
+    for (const std::string& n : s.names) known.push_back("p_" + n);
+    for (const auto& [k, v] : in.items()) {
+      const Rational value = read_number(v, w / k);
+      if (const auto it = vars.find(k); it != vars.end()) {
+        c.initial[it->second] = value;
+        continue;
+      }
+      const auto p = std::find(s.names.begin(), s.names.end(),
+                               k.size() > 2 && k.compare(0, 2, "p_") == 0 ? k.substr(2) : std::string());
+      if (p != s.names.end()) {
+        c.initial_p[static_cast<std::size_t>(p - s.names.begin())] = value;
+        continue;
+      }
+      const std::string best = nearest_name(k, known);
+      (w / k).fail("a coordinate, velocity (v_*), momentum (p_*) or time name",
+                   "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+    }
+  }
+}
+}  // namespace
+
 LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   const Where root{file, ""};
   require_known_keys(
@@ -158,33 +193,7 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
     for (std::size_t i = 0; i < s.n; ++i)
       s.forces.push_back(parse(f[i], l / "forces" / i, "a force component as a string expression"));
   }
-  c.initial.assign(2 * s.n + 1, std::nullopt);
-  c.initial_p.assign(s.n, std::nullopt);
-  if (j.contains("initial")) {
-    const json& in = j["initial"];
-    const Where w = root / "initial";
-    if (!in.is_object()) w.fail("an object {name: exact value} (coordinates, v_*, p_*, the time)", describe(in));
-    c.has_initial = true;
-    std::vector<std::string> known;
-    for (const auto& [k, v] : vars) known.push_back(k);
-    for (const std::string& n : s.names) known.push_back("p_" + n);
-    for (const auto& [k, v] : in.items()) {
-      const Rational value = read_number(v, w / k);
-      if (const auto it = vars.find(k); it != vars.end()) {
-        c.initial[it->second] = value;
-        continue;
-      }
-      const auto p = std::find(s.names.begin(), s.names.end(),
-                               k.size() > 2 && k.compare(0, 2, "p_") == 0 ? k.substr(2) : std::string());
-      if (p != s.names.end()) {
-        c.initial_p[static_cast<std::size_t>(p - s.names.begin())] = value;
-        continue;
-      }
-      const std::string best = nearest_name(k, known);
-      (w / k).fail("a coordinate, velocity (v_*), momentum (p_*) or time name",
-                   "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
-    }
-  }
+  read_initial(j, root, vars, c);
   return c;
 }
 

@@ -86,6 +86,30 @@ struct RationalFunctions::Impl {
     check(f->d);
   }
 
+  /// sin, cos, exp or sqrt of a fraction: a new generator per distinct argument (an atom), the same one again
+  /// for an argument that reduces to the same fraction.
+  void atom(const Expr& e, Fraction* r) {
+    const Fraction* a = of(e->a);
+    const char* op = e->op == ExprOp::Sin   ? "sin"
+                     : e->op == ExprOp::Cos ? "cos"
+                     : e->op == ExprOp::Exp ? "exp"
+                                            : "sqrt";
+    char* ns = fmpq_mpoly_get_str_pretty(a->n, nullptr, ctx);
+    char* ds = fmpq_mpoly_get_str_pretty(a->d, nullptr, ctx);
+    const std::string key = std::string(op) + "((" + ns + ")/(" + ds + "))";
+    flint_free(ns);
+    flint_free(ds);
+    auto it = atom_slot.find(key);
+    if (it == atom_slot.end()) {
+      if (atom_expr.size() >= max_atoms)
+        throw std::length_error("more than " + std::to_string(max_atoms) + " distinct sin, cos, exp or sqrt");
+      it = atom_slot.emplace(key, vars + atom_expr.size()).first;
+      atom_expr.push_back(e);
+      atom_involves.push_back(involved(a));
+    }
+    fmpq_mpoly_gen(r->n, static_cast<slong>(it->second), ctx);
+  }
+
   Fraction* of(const Expr& e) {
     if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
     Fraction* r = fresh();
@@ -146,28 +170,7 @@ struct RationalFunctions::Impl {
       case ExprOp::Sin:
       case ExprOp::Cos:
       case ExprOp::Exp:
-      case ExprOp::Sqrt: {
-        const Fraction* a = of(e->a);
-        const char* op = e->op == ExprOp::Sin   ? "sin"
-                         : e->op == ExprOp::Cos ? "cos"
-                         : e->op == ExprOp::Exp ? "exp"
-                                                : "sqrt";
-        char* ns = fmpq_mpoly_get_str_pretty(a->n, nullptr, ctx);
-        char* ds = fmpq_mpoly_get_str_pretty(a->d, nullptr, ctx);
-        const std::string key = std::string(op) + "((" + ns + ")/(" + ds + "))";
-        flint_free(ns);
-        flint_free(ds);
-        auto it = atom_slot.find(key);
-        if (it == atom_slot.end()) {
-          if (atom_expr.size() >= max_atoms)
-            throw std::length_error("more than " + std::to_string(max_atoms) + " distinct sin, cos, exp or sqrt");
-          it = atom_slot.emplace(key, vars + atom_expr.size()).first;
-          atom_expr.push_back(e);
-          atom_involves.push_back(involved(a));
-        }
-        fmpq_mpoly_gen(r->n, static_cast<slong>(it->second), ctx);
-        break;
-      }
+      case ExprOp::Sqrt: atom(e, r); break;
     }
     keep.push_back(e);
     memo.emplace(e.get(), r);

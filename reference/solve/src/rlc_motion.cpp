@@ -192,47 +192,58 @@ StateMotion state_motion(const io::Netlist& deck) {
   return out;
 }
 
+namespace {
+/// The DC operating point as the state (w, i_L): unknowns (w, ρ, e, i), KCL on w, ρ and island rows at ẇ = 0, and
+/// Φ i̇ = 0 on the inductors, solved exactly; std::invalid_argument where none exists or it is not unique.
+std::vector<Q> operating_point_state(const io::Netlist& deck, const StateMotion& m, const StateEquations<Q>& s,
+                                     const std::vector<Rational>& sigma0) {
+  const QM Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"), Lw = block(s, "L_w"),
+           Lr = block(s, "L_r"), Le = block(s, "L_e"), Hw = block(s, "H_w"), Hr = block(s, "H_r"), Ie = block(s, "I_e"),
+           Ol = block(s, "O_L");
+  const std::size_t nw = m.nw, nr = Grr.rows(), ne = Le.rows(), nl = m.nl;
+  const QM sig = QM::column(sigma0);
+  std::vector<Q> y(nw + nl + m.nq, Q(0));
+  if (!deck.node_ic.empty())
+    throw std::invalid_argument(
+        ".ic node voltages held at the DC operating point are not enclosed on the state-equation model "
+        "(the dense model takes them, up to " +
+        std::to_string(kForcedBranches) + " branches)");
+  // unknowns (w, ρ, e, i): KCL on w, ρ and island rows at ẇ = 0, and Φ i̇ = 0 on the inductors
+  const std::size_t n = nw + nr + ne + nl;
+  QM a(n, n + 1);
+  const auto put = [&](const QM& blk, std::size_t r0, std::size_t c0) {
+    for (Index i = 0; i < blk.rows(); ++i)
+      for (Index j = 0; j < blk.cols(); ++j) a(r0 + i, c0 + j) = blk(i, j);
+  };
+  const QM bw = -(Hw * sig), br = -(Hr * sig), be = -(Ie * sig), bl = -(Ol * sig);
+  put(Gww, 0, 0), put(Gwr, 0, nw), put(Lw, 0, nw + nr + ne), put(bw, 0, n);
+  put(Gwr.transpose(), nw, 0), put(Grr, nw, nw), put(Lr, nw, nw + nr + ne), put(br, nw, n);
+  put(Le, nw + nr, nw + nr + ne), put(be, nw + nr, n);
+  put(Lw.transpose(), nw + nr + ne, 0), put(Lr.transpose(), nw + nr + ne, nw),
+      put(Le.transpose(), nw + nr + ne, nw + nr), put(bl, nw + nr + ne, n);
+  const Rref<Q> r = rref(a);
+  if (!r.pivots.empty() && r.pivots.back() == n)
+    throw std::invalid_argument(
+        "no DC operating point exists (a voltage source across an inductor loop, or current sources into a capacitor "
+        "cutset)");
+  if (r.pivots.size() != n)
+    throw std::invalid_argument("the DC operating point is not unique (ngspice: singular matrix)");
+  for (std::size_t i = 0; i < nw; ++i) y[i] = r.r(i, n);
+  for (std::size_t i = 0; i < nl; ++i) y[nw + i] = r.r(nw + nr + ne + i, n);
+  return y;
+}
+}  // namespace
+
 std::vector<Rational> state_start(const io::Netlist& deck, const StateMotion& m, bool op,
                                   const std::vector<Rational>& sigma0) {
   const RlcCircuit<Q>& c = deck.rlc;
   const StateEquations<Q> s = deck_state_equations<Q>(deck);
+  if (op) return operating_point_state(deck, m, s, sigma0);
   const rlc::StateStructure st = state_structure(c);
-  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"),
-           Lw = block(s, "L_w"), Lr = block(s, "L_r"), Le = block(s, "L_e"), Phi = block(s, "Phi"),
-           Hw = block(s, "H_w"), Hr = block(s, "H_r"), Ie = block(s, "I_e"), Ol = block(s, "O_L");
-  const std::size_t nw = m.nw, nr = Grr.rows(), ne = Le.rows(), nl = m.nl, nb = c.branches.size();
+  const QM Cww = block(s, "C_ww"), Le = block(s, "L_e"), Phi = block(s, "Phi"), Ie = block(s, "I_e");
+  const std::size_t nw = m.nw, ne = Le.rows(), nl = m.nl, nb = c.branches.size();
   const QM sig = QM::column(sigma0);
   std::vector<Q> y(nw + nl + m.nq, Q(0));
-  if (op) {
-    if (!deck.node_ic.empty())
-      throw std::invalid_argument(
-          ".ic node voltages held at the DC operating point are not enclosed on the state-equation model "
-          "(the dense model takes them, up to " +
-          std::to_string(kForcedBranches) + " branches)");
-    // unknowns (w, ρ, e, i): KCL on w, ρ and island rows at ẇ = 0, and Φ i̇ = 0 on the inductors
-    const std::size_t n = nw + nr + ne + nl;
-    QM a(n, n + 1);
-    const auto put = [&](const QM& blk, std::size_t r0, std::size_t c0) {
-      for (Index i = 0; i < blk.rows(); ++i)
-        for (Index j = 0; j < blk.cols(); ++j) a(r0 + i, c0 + j) = blk(i, j);
-    };
-    const QM bw = -(Hw * sig), br = -(Hr * sig), be = -(Ie * sig), bl = -(Ol * sig);
-    put(Gww, 0, 0), put(Gwr, 0, nw), put(Lw, 0, nw + nr + ne), put(bw, 0, n);
-    put(Gwr.transpose(), nw, 0), put(Grr, nw, nw), put(Lr, nw, nw + nr + ne), put(br, nw, n);
-    put(Le, nw + nr, nw + nr + ne), put(be, nw + nr, n);
-    put(Lw.transpose(), nw + nr + ne, 0), put(Lr.transpose(), nw + nr + ne, nw),
-        put(Le.transpose(), nw + nr + ne, nw + nr), put(bl, nw + nr + ne, n);
-    const Rref<Q> r = rref(a);
-    if (!r.pivots.empty() && r.pivots.back() == n)
-      throw std::invalid_argument(
-          "no DC operating point exists (a voltage source across an inductor loop, or current sources into a capacitor "
-          "cutset)");
-    if (r.pivots.size() != n)
-      throw std::invalid_argument("the DC operating point is not unique (ngspice: singular matrix)");
-    for (std::size_t i = 0; i < nw; ++i) y[i] = r.r(i, n);
-    for (std::size_t i = 0; i < nl; ++i) y[nw + i] = r.r(nw + nr + ne + i, n);
-    return y;
-  }
   // uic: charges kept per C-component, inductor currents moved along island levels, impulse charges
   std::vector<Q> qb(nb, Q(0)), dq(nb, Q(0));
   QM il(nl, 1), rhs(nw, 1);
