@@ -349,6 +349,28 @@ reference::Solution truth_of(const io::Problem& p) {
   return reference::solve(p);
 }
 
+/// A result for a system with forces or sources against the forced route's exact tower: dims, steps, consistency,
+/// solution rank and the reduced equations in the reference's coordinates (M_c not yet compared).
+Checked check_forced(const std::string& result_file, const json& r, const io::Problem& p) {
+  const reference::Solution fr = reference::solve(p);
+  const json want = printed_json(fr);
+  Checker k{result_file, {}};
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (r.contains("final_constraints"))
+    k.out.not_compared.push_back("final_constraints (not yet for systems with forces or sources)");
+  if (r.contains("reduced") && fr.motion) {
+    const json coords = r["reduced"].value("coordinates", json());
+    if (coords != want["reduced"]["coordinates"])
+      k.out.not_compared.push_back("reduced (in coordinates other than the reference's " +
+                                   want["reduced"]["coordinates"].dump() +
+                                   ": not yet for systems with forces or sources)");
+    else
+      compare_reduced(k, fr, r["reduced"]);
+  }
+  return k.out;
+}
+
 Checked check_linear(const std::string& result_file, const json& r, const io::Problem& p_in) {
   const io::CaseFile& c_in = p_in.linear;
   for (const char* key :
@@ -379,25 +401,7 @@ Checked check_linear(const std::string& result_file, const json& r, const io::Pr
   }
   const bool forced = (p.form == io::Form::netlist && p.netlist.forced) ||
                       (p.form == io::Form::linear && c.has_pontryagin && c.pontryagin.has_forces);
-  if (forced) {  // the forced route's exact tower
-    const reference::Solution fr = reference::solve(p_in);
-    const json want = printed_json(fr);
-    Checker k{result_file, {}};
-    for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
-    if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
-    if (r.contains("final_constraints"))
-      k.out.not_compared.push_back("final_constraints (not yet for systems with forces or sources)");
-    if (r.contains("reduced") && fr.motion) {
-      const json coords = r["reduced"].value("coordinates", json());
-      if (coords != want["reduced"]["coordinates"])
-        k.out.not_compared.push_back("reduced (in coordinates other than the reference's " +
-                                     want["reduced"]["coordinates"].dump() +
-                                     ": not yet for systems with forces or sources)");
-      else
-        compare_reduced(k, fr, r["reduced"]);
-    }
-    return k.out;
-  }
+  if (forced) return check_forced(result_file, r, p_in);
   const reference::Solution truth = truth_of(p);
   const json want = printed_json(truth);
   Checker k{result_file, {}};

@@ -134,6 +134,52 @@ struct Ours {
   std::function<void(const std::vector<double>& y, double t, std::vector<double>& rates)> rates;
 };
 
+/// The first of dcad's constraints that theirs (Jacobian `jac` at x) do not imply, by rank: "φ = 0 (M_k)", or "".
+std::string first_not_implied(const Ours& us, const std::vector<std::vector<double>>& jac, const std::vector<double>& x,
+                              const std::vector<std::string>& names) {
+  const std::size_t w = us.width;
+  std::vector<ex::Expr> flat;
+  for (const auto& row : us.gradients) flat.insert(flat.end(), row.begin(), row.end());
+  std::vector<double> dg(flat.size());
+  fast::Tape(flat).evaluate(x.data(), dg.data());
+  for (std::size_t i = 0; i < us.constraints.size(); ++i) {
+    std::vector<std::vector<double>> more = jac;
+    more.emplace_back(dg.begin() + static_cast<long>(i * w), dg.begin() + static_cast<long>((i + 1) * w));
+    if (rank_of(more) > rank_of(jac))
+      return ex::to_text(us.constraints[i], names) + " = 0 (M_" + std::to_string(us.levels[i]) + ")";
+  }
+  return "";
+}
+
+/// A point of M_c: x padded to the time's index (the formulas' arguments), y the state, t the time, `where` its text.
+struct PointOfMc {
+  const std::vector<double>& x;
+  const std::vector<double>& y;
+  double t;
+  const std::string& where;
+};
+
+/// Their equations against dcad's velocities at a point of M_c (free directions skipped), each equation's first
+/// disagreement recorded once (eq_bad).
+void compare_rates(const Theirs& th, const Ours& us, const fast::Tape& eq_tape, const PointOfMc& at,
+                   const std::vector<std::string>& names, std::vector<char>& eq_bad, Checked& out) {
+  std::vector<double> theirs_v(th.equations.size()), ours;
+  eq_tape.evaluate(at.x.data(), theirs_v.data());
+  us.rates(at.y, at.t, ours);
+  double rscale = 1;
+  for (double v : ours) rscale = std::max(rscale, std::abs(v));
+  for (std::size_t i = 0; i < th.equations.size(); ++i) {
+    const std::size_t k2 = th.equations[i].first;
+    if (us.free[k2] || eq_bad[i]) continue;
+    if (!(std::abs(theirs_v[i] - ours[k2]) <= 1e-8 * rscale)) {
+      eq_bad[i] = 1;
+      out.disagreements.push_back("formulas.equations." + names[k2] + ": expected d/dt " + names[k2] + " = " +
+                                  io::float_text(ours[k2]) + ", found " + io::float_text(theirs_v[i]) +
+                                  " at the point of M_c " + at.where);
+    }
+  }
+}
+
 /// The comparison at `points` points of M_c: how many were reached.
 /// A rank of their constraints short in double goes to `rank_short` (settled with the exact rank, settle_rank).
 std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vector<std::string>& names, bool has_time,
@@ -190,43 +236,14 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
       const std::size_t r = rank_of(jac);
       if (!rank_bad && r < needed) {
         rank_bad = true;
-        // which of dcad's constraints theirs do not imply (by rank)
-        std::string missing;
-        std::vector<ex::Expr> flat;
-        for (const auto& row : us.gradients) flat.insert(flat.end(), row.begin(), row.end());
-        std::vector<double> dg(flat.size());
-        fast::Tape(flat).evaluate(x.data(), dg.data());
-        for (std::size_t i = 0; i < us.constraints.size(); ++i) {
-          std::vector<std::vector<double>> more = jac;
-          more.emplace_back(dg.begin() + static_cast<long>(i * w), dg.begin() + static_cast<long>((i + 1) * w));
-          if (rank_of(more) > rank_of(jac)) {
-            missing = ex::to_text(us.constraints[i], names) + " = 0 (M_" + std::to_string(us.levels[i]) + ")";
-            break;
-          }
-        }
+        const std::string missing = first_not_implied(us, jac, x, names);
         rank_short = "formulas.constraints: expected " + std::to_string(needed) +
                      " independent constraints (dim M_c = " + std::to_string(us.dim) + " in " + std::to_string(w) +
                      " state columns), found rank " + std::to_string(r) + " at " + where +
                      (missing.empty() ? "" : "; not implied: " + missing);
       }
     }
-    if (!th.equations.empty()) {
-      std::vector<double> theirs_v(th.equations.size()), ours;
-      eq_tape.evaluate(x.data(), theirs_v.data());
-      us.rates(y, t, ours);
-      double rscale = 1;
-      for (double v : ours) rscale = std::max(rscale, std::abs(v));
-      for (std::size_t i = 0; i < th.equations.size(); ++i) {
-        const std::size_t k2 = th.equations[i].first;
-        if (us.free[k2] || eq_bad[i]) continue;
-        if (!(std::abs(theirs_v[i] - ours[k2]) <= 1e-8 * rscale)) {
-          eq_bad[i] = 1;
-          out.disagreements.push_back("formulas.equations." + names[k2] + ": expected d/dt " + names[k2] + " = " +
-                                      io::float_text(ours[k2]) + ", found " + io::float_text(theirs_v[i]) +
-                                      " at the point of M_c " + where);
-        }
-      }
-    }
+    if (!th.equations.empty()) compare_rates(th, us, eq_tape, {x, y, t, where}, names, eq_bad, out);
   }
   return used;
 }
