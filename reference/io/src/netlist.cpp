@@ -1118,52 +1118,64 @@ class Flattener {
     return cards.count(head) > 0;
   }
 
+  /// .ic V(NODE)=VALUE … (or Xyce's .IC NODE VALUE …, and .dcvolt): node voltages at the start.
+  void initial_conditions(const Line& l, const std::vector<std::string>& tok, const std::string& prefix,
+                          const std::map<std::string, std::string>& ports,
+                          const std::map<std::string, Rational>& params) {
+    for (std::size_t k = 1; k < tok.size(); ++k) {
+      std::string t = lower(tok[k]);
+      while (t.compare(0, 2, "v(") == 0 && t.find(')') == std::string::npos && k + 1 < tok.size())
+        t += lower(tok[++k]);  // "V(mid )=1"
+      const std::size_t eq = t.find('=');
+      std::string node, value;
+      if (t.compare(0, 2, "v(") == 0 && eq != std::string::npos && t[eq - 1] == ')') {
+        node = t.substr(2, eq - 3), value = t.substr(eq + 1);
+      } else if (t.find_first_of("()=") == std::string::npos && k + 1 < tok.size()) {  // Xyce's ".IC NODE VALUE …"
+        node = t, value = lower(tok[++k]);
+      } else {
+        fail(l, tok[0] + " V(NODE)=VALUE … (or Xyce's NODE VALUE …)", "\"" + tok[k] + "\"");
+      }
+      if (!value.empty() && value.front() == '{') value = value.substr(1, value.size() - 2);
+      const std::string at = node_in(hierarchical(node), prefix, ports);
+      node_ic[at] = evaluate(l, value, params, "V(NODE)=VALUE");
+      node_ic_where[at] = l.where();
+    }
+  }
+
+  /// .tran TSTEP TSTOP [TSTART [TMAX]] [UIC]: read for its uic (the initial state of simulate and check) and the
+  /// times sources' defaults take; the rest ignored.
+  void transient_card(const Line& l, const std::vector<std::string>& tok,
+                      const std::map<std::string, Rational>& params) {
+    bool uic = false;
+    for (std::size_t k = 1; k < tok.size(); ++k) uic = uic || lower(tok[k]) == "uic";
+    out.tran = uic ? Netlist::Transient::uic : Netlist::Transient::op;
+    out.tran_where = l.where();
+    std::vector<std::string> times;  // .tran TSTEP TSTOP [TSTART [TMAX]] [UIC]
+    for (std::size_t k = 1; k < tok.size(); ++k)
+      if (lower(tok[k]) != "uic") times.push_back(tok[k]);
+    try {
+      const auto time = [&](const std::string& t) {
+        return t.size() > 1 && t.front() == '{'
+                   ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value()
+                   : parse_spice_value(t, nullptr, dialect);
+      };
+      if (times.size() >= 2) {
+        out.tran_step = time(times[0]);
+        out.tran_stop = time(times[1]);
+      }
+    } catch (
+        const std::invalid_argument&) {  // not needed by the circuit (only by sources' defaults, which then say so)
+    }
+  }
+
   void dot_card(const Line& l, const std::vector<std::string>& tok, const std::string& prefix,
                 const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
     const std::string head = lower(tok[0]);
     if (head == ".ic" || head == ".dcvolt") {
-      for (std::size_t k = 1; k < tok.size(); ++k) {
-        std::string t = lower(tok[k]);
-        while (t.compare(0, 2, "v(") == 0 && t.find(')') == std::string::npos && k + 1 < tok.size())
-          t += lower(tok[++k]);  // "V(mid )=1"
-        const std::size_t eq = t.find('=');
-        std::string node, value;
-        if (t.compare(0, 2, "v(") == 0 && eq != std::string::npos && t[eq - 1] == ')') {
-          node = t.substr(2, eq - 3), value = t.substr(eq + 1);
-        } else if (t.find_first_of("()=") == std::string::npos && k + 1 < tok.size()) {  // Xyce's ".IC NODE VALUE …"
-          node = t, value = lower(tok[++k]);
-        } else {
-          fail(l, tok[0] + " V(NODE)=VALUE … (or Xyce's NODE VALUE …)", "\"" + tok[k] + "\"");
-        }
-        if (!value.empty() && value.front() == '{') value = value.substr(1, value.size() - 2);
-        const std::string at = node_in(hierarchical(node), prefix, ports);
-        node_ic[at] = evaluate(l, value, params, "V(NODE)=VALUE");
-        node_ic_where[at] = l.where();
-      }
+      initial_conditions(l, tok, prefix, ports, params);
       return;
     }
-    if (head == ".tran") {  // read for its uic (the initial state of simulate and check), the rest ignored
-      bool uic = false;
-      for (std::size_t k = 1; k < tok.size(); ++k) uic = uic || lower(tok[k]) == "uic";
-      out.tran = uic ? Netlist::Transient::uic : Netlist::Transient::op;
-      out.tran_where = l.where();
-      std::vector<std::string> times;  // .tran TSTEP TSTOP [TSTART [TMAX]] [UIC]
-      for (std::size_t k = 1; k < tok.size(); ++k)
-        if (lower(tok[k]) != "uic") times.push_back(tok[k]);
-      try {
-        const auto time = [&](const std::string& t) {
-          return t.size() > 1 && t.front() == '{'
-                     ? Expression(t.substr(1, t.size() - 2), params, &functions, nullptr, 0, dialect).value()
-                     : parse_spice_value(t, nullptr, dialect);
-        };
-        if (times.size() >= 2) {
-          out.tran_step = time(times[0]);
-          out.tran_stop = time(times[1]);
-        }
-      } catch (
-          const std::invalid_argument&) {  // not needed by the circuit (only by sources' defaults, which then say so)
-      }
-    }
+    if (head == ".tran") transient_card(l, tok, params);
     if (head == ".temp" || ((head == ".options" || head == ".option" || head == ".opt") && !prefix.empty() &&
                             std::any_of(tok.begin(), tok.end(), [](const std::string& t) {
                               return lower(t).rfind("temp=", 0) == 0 || lower(t).rfind("tnom=", 0) == 0;

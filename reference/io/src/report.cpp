@@ -460,34 +460,10 @@ std::string cad_text(const Printed& r) {
   return o.str();
 }
 
-json pointwise_json(const Printed& r) {
-  const Pointwise<std::string>& p = *r.pointwise;
-  const std::vector<long> dims = r.dims();
-  json j;
-  j["dcad"] = 1;
-  j["backend"] = r.backend;
-  j["certified"] = r.certified.yes();
-  j["dims"] = dims;
-  j["steps"] = r.steps;
-  // at a singular point the tower is not decided: consistency is unknown (null), never a regular-looking true
-  j["consistent"] = p.regular || !r.consistent ? json(r.consistent) : json(nullptr);
-  j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
-  j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
-  // the implicit form: where ẋ is unique on M_c, steps is the index (Rabier–Rheinboldt's geometric
-  // index, which is the differentiation index there); else none
-  if (r.algorithm == "CEF (1.6)")
-    j["index"] = r.consistent && r.solution_rank && *r.solution_rank == 0 ? json(r.steps) : json(nullptr);
-  if (!r.name.empty()) j["name"] = r.name;
-  j["variables"] = r.variables;
-  j["route"] = p.route;
-  j["regular"] = p.regular;
-  if (!p.why.empty()) j["why"] = p.why;
-  json pt = json::object();
-  if (!p.time_name.empty()) pt[p.time_name] = p.time;
-  for (std::size_t i = 0; i < p.point.size(); ++i) pt[r.variables[i]] = p.point[i];
-  for (const auto& [i, text] : p.point_text) pt[r.variables[i]] = text;
-  j["point"] = pt;
-  if (!p.place.empty()) j["place"] = p.place;
+namespace {
+/// The pointwise tower: M_0, then each level's constraints (formulas, or tangent equations at the point with what
+/// they are solved for) and the pivots of its linear system, and an empty last level where M_c is empty.
+json pointwise_tower_json(const Printed& r, const Pointwise<std::string>& p, const std::vector<long>& dims) {
   json tower = json::array();
   tower.push_back({{"k", 0}, {"dim", dims[0]}, {"new_constraints", json::array()}});
   for (std::size_t k = 0; k < p.levels.size(); ++k) {
@@ -517,7 +493,39 @@ json pointwise_json(const Printed& r) {
     tower.push_back(step);
   }
   if (!r.consistent) tower.push_back({{"k", dims.size() - 1}, {"dim", -1}, {"new_constraints", json::array({p.why})}});
-  j["tower"] = tower;
+  return tower;
+}
+}  // namespace
+
+json pointwise_json(const Printed& r) {
+  const Pointwise<std::string>& p = *r.pointwise;
+  const std::vector<long> dims = r.dims();
+  json j;
+  j["dcad"] = 1;
+  j["backend"] = r.backend;
+  j["certified"] = r.certified.yes();
+  j["dims"] = dims;
+  j["steps"] = r.steps;
+  // at a singular point the tower is not decided: consistency is unknown (null), never a regular-looking true
+  j["consistent"] = p.regular || !r.consistent ? json(r.consistent) : json(nullptr);
+  j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
+  j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
+  // the implicit form: where ẋ is unique on M_c, steps is the index (Rabier–Rheinboldt's geometric
+  // index, which is the differentiation index there); else none
+  if (r.algorithm == "CEF (1.6)")
+    j["index"] = r.consistent && r.solution_rank && *r.solution_rank == 0 ? json(r.steps) : json(nullptr);
+  if (!r.name.empty()) j["name"] = r.name;
+  j["variables"] = r.variables;
+  j["route"] = p.route;
+  j["regular"] = p.regular;
+  if (!p.why.empty()) j["why"] = p.why;
+  json pt = json::object();
+  if (!p.time_name.empty()) pt[p.time_name] = p.time;
+  for (std::size_t i = 0; i < p.point.size(); ++i) pt[r.variables[i]] = p.point[i];
+  for (const auto& [i, text] : p.point_text) pt[r.variables[i]] = text;
+  j["point"] = pt;
+  if (!p.place.empty()) j["place"] = p.place;
+  j["tower"] = pointwise_tower_json(r, p, dims);
   if (!p.velocity.empty()) {
     json v = json::object();
     for (std::size_t i = 0; i < p.velocity.size(); ++i) v[r.variables[i]] = p.velocity[i];
