@@ -1,4 +1,4 @@
-// dcad: the command-line tool, a shell over dcad::api (fast/api/include/dcad/api.hpp): it parses
+// dcad: the command-line tool, a shell over dcad::api (reference/api/include/dcad/api.hpp): it parses
 // arguments, prints what the library returns (text and JSON by dcad/io/report.hpp) and sets exit codes.
 // Exit codes per ../shared/CONTRACT.md: 0 success, 1 bad input (file + line or JSON path, expected vs
 // found), 2 bad usage, 3 check disagrees; 4 internal error.

@@ -7,7 +7,9 @@
 #include "support/tally.hpp"
 
 #include "dcad/fast/adapted.hpp"
+#include "dcad/fast/quotient.hpp"
 #include "dcad/reference/adapted.hpp"
+#include "dcad/reference/quotient.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -121,4 +123,64 @@ RC_GTEST_PROP(FastVsReference, MultipliersFarAlongMc, ()) {
   RC_ASSERT(!rl.empty);
   RC_ASSERT(!tally("dim Lambda^(c) far along M_c", fl.certain.yes(),
                    !fl.empty && static_cast<Index>(fl.direction.dim()) == rl.direction.dim()));
+}
+
+// CEF §3.2 by both twins: fast's K_c, K̃_c and M̄_c (its own route: the SVD of Ω's Gram matrix on TM_c,
+// (3.8) read off (3.4)) have the reference's dimensions unless fast says uncertain; the exact solution X
+// of (3.4) at an exact x ∈ M_c projects by fast's C onto fast's X̄(C x) (Lemma 3.20 (d), (3.8)), and
+// fast's ω̄_c pulls back to ω_c, up to rounding.
+RC_GTEST_PROP(FastVsReference, GaugeQuotient, ()) {
+  const auto& [s, opt, fs, r, f] = any_twins();
+  if (!r.consistent || !f.consistent || f.certain.unknown()) return;
+  const ref::GaugeQuotient<Q> rq = ref::gauge_quotient(s, r);
+  const fast::GaugeQuotient fq = fast::gauge_quotient(fs, f, opt);
+  RC_ASSERT(!tally("quotient dim K_c", fq.certain.yes(), fq.gauge.dim() == static_cast<int>(rq.gauge.dim())));
+  RC_ASSERT(!tally("quotient dim K~_c", fq.certain.yes(),
+                   fq.physical_gauge.dim() == static_cast<int>(rq.physical_gauge.dim())));
+  if (fq.certain.unknown() || fq.gauge.dim() != static_cast<int>(rq.gauge.dim())) return;
+  const std::vector<Q> x = some_point(r.tower.back());
+  const std::vector<Q> field = ref::total_energy_field(s, x, some_point(ref::multipliers(s, r, x)));
+  const Eigen::VectorXd xd = to_double(x), xdot = to_double(field);
+  const Eigen::VectorXd lhs = fq.coordinates * xdot, rhs = fast::quotient_field(fq, fq.coordinates * xd);
+  const double w = fast::norm2(fs.omega), reach = 1 + fast::norm2(fq.section) * w;
+  const double tol = 1e-8 * (1 + w) * reach * (1 + fast::norm2(fs.hessian)) *
+                     (1 + xd.norm() + fq.point.norm() + fs.gradient.norm() + xdot.norm());
+  RC_LOG() << case_json(s) << "x = " << json_vector(x) << "\n|C X - Xbar(C x)| = " << (lhs - rhs).norm() << ", tol "
+           << tol << "\n";
+  RC_ASSERT((lhs - rhs).norm() <= tol);
+  const Eigen::MatrixXd y = fq.tangent.columns() * to_double(integer_matrix(fq.tangent.dim(), 2));
+  const Eigen::MatrixXd cy = fq.coordinates * y;
+  RC_ASSERT(std::abs((y.col(0).transpose() * fs.omega * y.col(1))(0, 0) -
+                     (cy.col(0).transpose() * fq.form * cy.col(1))(0, 0)) <= tol * (1 + y.norm() * y.norm()));
+}
+
+// Lemma 3.23 (d)–(e) by both twins on the same random V (a complement of ker ω in (T M_c)^Ω): fast's Dirac
+// tensor — the Poisson tensor of Ω on V^Ω — is the reference's, Dirac's formula with χ′, up to rounding,
+// and V^Ω has the reference's dimension, unless fast says uncertain.
+RC_GTEST_PROP(FastVsReference, SecondClassChoice, ()) {
+  const auto& [s, opt, fs, r, f] = any_twins();
+  if (!r.consistent) return;
+  const ref::Subspace<Q> tmc = r.tower.back().direction;
+  const ref::Subspace<Q> kerw = ref::form_kernel(ref::restrict_form(s.omega, tmc));
+  const QM e = ref::extending_rows(kerw.basis(), ref::symplectic_complement(s.omega, tmc).basis());
+  const ref::Subspace<Q> v = ref::Subspace<Q>::span(e + integer_matrix(e.rows(), kerw.dim()) * kerw.basis());
+  const ref::SecondClassChoice<Q> rch = ref::second_class_choice(s.omega, r.tower.back(), v);
+  fast::AffineSubspace mc;
+  mc.empty = false;
+  mc.point = to_double(r.tower.back().point);
+  mc.direction =
+      tmc.dim() > 0 ? fast::Subspace::span(to_double(tmc.basis()), -1, opt) : fast::Subspace::zero(fs.omega.rows());
+  const fast::Subspace fv =
+      v.dim() > 0 ? fast::Subspace::span(to_double(v.basis()), -1, opt) : fast::Subspace::zero(fs.omega.rows());
+  const fast::SecondClassChoice fch = fast::second_class_choice(fs.omega, mc, fv, opt);
+  const Truth first = fast::is_first_class_submanifold(fs.omega, mc.direction, opt);
+  RC_ASSERT(!tally("first class submanifold (Def 3.22)", first != unknown,
+                   first.yes() == ref::is_first_class_submanifold(s.omega, tmc)));
+  RC_ASSERT(!tally("second class choice dim V^Omega", fch.certain.yes(),
+                   fch.tangent.dim() == static_cast<int>(rch.tangent.dim())));
+  if (fch.certain.unknown()) return;
+  const Eigen::MatrixXd jr = to_double(rch.dirac_tensor);
+  const double tol = 1e-8 * (1 + fast::norm2(fs.omega)) * (1 + fast::norm2(jr)) * (1 + fast::norm2(jr));
+  RC_LOG() << case_json(s) << "|J*_fast - J*_ref| = " << (fch.dirac_tensor - jr).norm() << ", tol " << tol << "\n";
+  RC_ASSERT((fch.dirac_tensor - jr).norm() <= tol);
 }

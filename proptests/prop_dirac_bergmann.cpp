@@ -3,6 +3,7 @@
 #include "support/gen.hpp"
 
 #include "dcad/reference/dirac_bergmann.hpp"
+#include "dcad/reference/quotient.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -10,7 +11,21 @@
 using namespace dcad::reference;
 using namespace dcad::test;
 
-namespace {}  // namespace
+namespace {
+
+/// dE_T(x) = H x + g + λ^i a_i: the total energy's differential with multipliers λ.
+std::vector<Q> total_energy_differential(const ConstrainedSystem<Q>& s, const std::vector<Q>& x,
+                                         const std::vector<Q>& l) {
+  std::vector<Q> d = (s.hessian * QM::column(x)).col(0);
+  const QM prim = gradients(s.primary);
+  for (Index i = 0; i < d.size(); ++i) {
+    d[i] += s.gradient[i];
+    for (Index k = 0; k < l.size(); ++k) d[i] += l[k] * prim(k, i);
+  }
+  return d;
+}
+
+}  // namespace
 
 // §2: the Dirac–Bergmann and the Gotay–Nester algorithms produce the same M_k.
 RC_GTEST_PROP(DiracBergmann, SameTowerAsGotayNester, ()) {
@@ -107,11 +122,134 @@ RC_GTEST_PROP(DiracBergmann, DiracBracketGivesTheSameMotion, ()) {
   const std::vector<Q> x = some_point(db.tower.back());
   const AffineSubspace<Q> lambda = multipliers(s, db, x);
   const std::vector<Q> l = some_point(lambda);
-  std::vector<Q> d = (s.hessian * QM::column(x)).col(0);
-  const QM prim = gradients(s.primary);
-  for (Index i = 0; i < d.size(); ++i) {
-    d[i] += s.gradient[i];
-    for (Index k = 0; k < l.size(); ++k) d[i] += l[k] * prim(k, i);
-  }
+  const std::vector<Q> d = total_energy_differential(s, x, l);
   RC_ASSERT((cl.dirac_tensor * QM::column(d)).col(0) == total_energy_field(s, x, l));
+}
+
+// CEF §3.2 on M̄_c = M_c / K_c: (3.5) K̃_c = ker ω ∩ TM_c ⊆ K_c = ker ω_c, with dim K̃_c = d^(c), the
+// dimension of the Gotay–Nester solution set (Thm 3.19); Lemma 3.9 (a): C kills exactly K_c on TM_c and
+// ω̄_c is symplectic and pulls back to ω_c; Lemma 3.20 (d): dE(x) vanishes on K_c at every x ∈ M_c;
+// (3.8) and Remark 3.21: every solution X of (3.4) at x ∈ M_c (any λ ∈ Λ^(c)_x) projects to the one
+// solution of (3.8), C X = X̄(C x); the section x(z) lies on M_c over z.
+RC_GTEST_PROP(DiracBergmann, Lemma3_9_GaugeQuotient, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const GaugeQuotient<Q> q = gauge_quotient(s, db);
+  const CadResult<Q> gn = gotay_nester(s);
+  const Index n = s.omega.rows(), m = q.form.rows();
+  RC_TAG("dim K_c = " + std::to_string(q.gauge.dim()) + ", d^(c) = " + std::to_string(q.physical_gauge.dim()));
+  RC_ASSERT(contains(q.gauge, q.physical_gauge));                                               // (3.5)
+  RC_ASSERT(static_cast<long>(q.physical_gauge.dim()) == static_cast<long>(gn.solution_rank));  // Thm 3.19
+  RC_ASSERT(q.gauge == form_kernel(restrict_form(s.omega, db.tower.back().direction)));
+  RC_ASSERT(m == q.tangent.dim() - q.gauge.dim());
+  RC_ASSERT(is_skew(q.form) && rank(q.form) == m);
+  RC_ASSERT((q.coordinates * q.gauge.basis().transpose()).is_zero());
+  RC_ASSERT(rank(q.coordinates * q.tangent.basis().transpose()) == m);
+  if (q.tangent.dim() > 0) {
+    const QM y = integer_matrix(2, q.tangent.dim()) * q.tangent.basis();  // two vectors of TM_c, as rows
+    const QM cy = q.coordinates * y.transpose();                          // C y, C y' as columns
+    RC_ASSERT(y.block(0, 1, 0, n) * s.omega * y.block(1, 2, 0, n).transpose() ==
+              cy.block(0, m, 0, 1).transpose() * q.form * cy.block(0, m, 1, 2));
+  }
+  const std::vector<Q> x = some_point(db.tower.back());
+  std::vector<Q> de = (s.hessian * QM::column(x)).col(0);
+  for (Index i = 0; i < n; ++i) de[i] += s.gradient[i];
+  RC_ASSERT((QM::from_rows({de}, n) * q.gauge.basis().transpose()).is_zero());  // Lemma 3.20 (d)
+  const std::vector<Q> field = total_energy_field(s, x, some_point(multipliers(s, db, x)));
+  const std::vector<Q> z = (q.coordinates * QM::column(x)).col(0);
+  RC_ASSERT((q.coordinates * QM::column(field)).col(0) == quotient_field(q, z));  // (3.8)
+  std::vector<Q> xz = q.point;
+  const std::vector<Q> cx0 = (q.coordinates * QM::column(q.point)).col(0);
+  std::vector<Q> dz(m);
+  for (Index i = 0; i < m; ++i) dz[i] = z[i] - cx0[i];
+  const std::vector<Q> sdz = (q.section * QM::column(dz)).col(0);
+  for (Index i = 0; i < n; ++i) xz[i] += sdz[i];
+  RC_ASSERT(db.tower.back().contains_point(xz));
+  RC_ASSERT((q.coordinates * QM::column(xz)).col(0) == z);
+}
+
+// Lemma 3.23 (d)–(e) for every choice, not only the χ picked from the constraints: V any complement of
+// ker ω in (T M_c)^Ω ((3.12); a random one: classify's complement plus random multiples of ker ω) —
+// dim V = 2s; (3.13) V^♭ ⊕ (ker ω)^♭ = (T M_c)°; T M_c ⊆ V^Ω = T S^V, symplectic, of dim M_c + dim ker ω;
+// dχ′, dψ independent and det Σ′ ≠ 0; and the motion by χ′'s Dirac bracket is the canonical one,
+// J*′ dE_T = J dE_T on M_c (E_T is first class), whichever V.
+RC_GTEST_PROP(DiracBergmann, Lemma3_23d_AnySecondClassChoice, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
+  const Subspace<Q> tmc = db.tower.back().direction;
+  const Subspace<Q> kerw = form_kernel(restrict_form(s.omega, tmc));
+  const QM e = extending_rows(kerw.basis(), symplectic_complement(s.omega, tmc).basis());
+  const Subspace<Q> v = Subspace<Q>::span(e + integer_matrix(e.rows(), kerw.dim()) * kerw.basis());
+  const SecondClassChoice<Q> ch = second_class_choice(s.omega, db.tower.back(), v);
+  RC_TAG("2s = " + std::to_string(v.dim()) + ", dim ker w = " + std::to_string(kerw.dim()));
+  RC_ASSERT(v.dim() == 2 * cl.s);
+  const Subspace<Q> vflat = Subspace<Q>::span(v.basis() * s.omega), kflat = Subspace<Q>::span(kerw.basis() * s.omega);
+  RC_ASSERT(intersection(vflat, kflat).dim() == 0u);
+  RC_ASSERT(sum(vflat, kflat) == annihilator(tmc));  // (3.13)
+  RC_ASSERT(contains(ch.tangent, tmc));
+  RC_ASSERT(form_kernel(restrict_form(s.omega, ch.tangent)).dim() == 0u);
+  RC_ASSERT(ch.tangent.dim() == tmc.dim() + kerw.dim());
+  RC_ASSERT(rank(vstack(gradients(ch.chi), gradients(cl.first))) == ch.chi.rows() + cl.first.rows());
+  RC_ASSERT(rank(ch.sigma) == ch.sigma.rows());
+  const std::vector<Q> x = some_point(db.tower.back());
+  const std::vector<Q> l = some_point(multipliers(s, db, x));
+  const std::vector<Q> d = total_energy_differential(s, x, l);
+  RC_ASSERT((ch.dirac_tensor * QM::column(d)).col(0) == total_energy_field(s, x, l));
+}
+
+// Lemma 3.23 (d)–(e) in §3.3's abstract setting, planted: in canonical coordinates S fixes (q_i, p_i) for
+// i in A (second class pairs) and p_j for j in B (first class), then a unimodular change and a shift —
+// so 2s = 2|A| and dim ker ω = |B| are known, and both are often nonzero together (the case where the
+// choice of V matters).  For a random V with (3.12): dim V = 2s, (3.13), T S ⊆ V^Ω symplectic of dim
+// S + dim ker ω, det Σ′ ≠ 0, and (e): the Dirac bracket's field of any F is the Hamiltonian field of F on
+// S^V, J*′ dF = X_{F|S^V} (the unique X ∈ V^Ω with Ω(X, y) = dF(y) for all y ∈ V^Ω).
+RC_GTEST_PROP(DiracBergmann, Lemma3_23d_PlantedSecondClass, ()) {
+  const Index m = pick_size(1, 4), n = 2 * m;
+  const QM change = unimodular(n);
+  const QM w = pull_back(canonical_form(n, m), change);
+  const Index pairs = *rc::gen::inRange<Index>(0, m + 1), firsts = *rc::gen::inRange<Index>(0, m - pairs + 1);
+  QM rows(2 * pairs + firsts, n);
+  for (Index i = 0; i < pairs; ++i) rows(2 * i, i) = rows(2 * i + 1, m + i) = Q(1);  // q_i, p_i
+  for (Index j = 0; j < firsts; ++j) rows(2 * pairs + j, m + pairs + j) = Q(1);      // p_j
+  AffineSubspace<Q> sub;
+  sub.empty = false;
+  sub.direction = kernel(rows * change);
+  sub.point = integer_vector(n, 2);
+  RC_TAG("2s = " + std::to_string(2 * pairs) + ", dim ker w = " + std::to_string(firsts));
+  const Subspace<Q> kerw = form_kernel(restrict_form(w, sub.direction));
+  RC_ASSERT(kerw.dim() == firsts);
+  const QM e = extending_rows(kerw.basis(), symplectic_complement(w, sub.direction).basis());
+  const Subspace<Q> v = Subspace<Q>::span(e + integer_matrix(e.rows(), kerw.dim()) * kerw.basis());
+  const SecondClassChoice<Q> ch = second_class_choice(w, sub, v);
+  RC_ASSERT(v.dim() == 2 * pairs);
+  const Subspace<Q> vflat = Subspace<Q>::span(v.basis() * w), kflat = Subspace<Q>::span(kerw.basis() * w);
+  RC_ASSERT(intersection(vflat, kflat).dim() == 0u);
+  RC_ASSERT(sum(vflat, kflat) == annihilator(sub.direction));  // (3.13)
+  RC_ASSERT(contains(ch.tangent, sub.direction));
+  RC_ASSERT(ch.tangent.dim() == sub.direction.dim() + firsts);
+  RC_ASSERT(form_kernel(restrict_form(w, ch.tangent)).dim() == 0u);
+  RC_ASSERT(rank(ch.sigma) == 2 * pairs);
+  const std::vector<Q> df = integer_vector(n);
+  const AffineSubspace<Q> x = solve_on_subspace(restrict_form(w, ch.tangent), df);
+  RC_ASSERT(!x.empty && x.direction.dim() == 0u);
+  RC_ASSERT((ch.dirac_tensor * QM::column(df)).col(0) == x.point);  // (e)
+  // Def 3.22: S is first class in P exactly when it has no second class pair; (c): in S^V it always is
+  RC_ASSERT(is_first_class_submanifold(w, sub.direction) == (pairs == 0));
+  RC_ASSERT(contains(sub.direction, intersection(symplectic_complement(w, sub.direction), ch.tangent)));
+}
+
+// Def 3.22 on M_c: first class (every function vanishing on it first class) ⇔ no second class constraint
+// (2s = 0) ⇔ coisotropic, (T M_c)^Ω ⊆ T M_c.
+RC_GTEST_PROP(DiracBergmann, Def3_22_FirstClassSubmanifold, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const Subspace<Q>& tmc = db.tower.back().direction;
+  const bool first = is_first_class_submanifold(s.omega, tmc);
+  RC_CLASSIFY(first, "first class");
+  RC_ASSERT(first == (classify_constraints(s.omega, db.constraints).s == 0));
+  RC_ASSERT(first == contains(tmc, symplectic_complement(s.omega, tmc)));
 }

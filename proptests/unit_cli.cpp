@@ -1,7 +1,8 @@
 // The pipeline's helpers at unit level, which the CLI tests see only through whole decks:
 //  * waveforms (dcad/io/waveform.hpp): what a source is worth at t = 0, exactly, and where it is not
 //    rational — these decide whether a deck's initial condition is on M_c(0) (simulate_forced.cpp);
-//  * balancing (dcad::api, fast/api/src/simulate.hpp): the diagonal similarity that makes simulate unit-independent;
+//  * balancing (dcad::api, reference/api/src/simulate.hpp): the diagonal similarity that makes simulate
+//  unit-independent;
 //  * the input assessment of the fast backend (dcad/fast/exact.hpp): what may be certain in double.
 #include "dcad/fast/exact.hpp"
 #include "simulate.hpp"
@@ -400,10 +401,10 @@ TEST(ConvertFast, ElementValuesSpan) {
   EXPECT_FALSE(far.input_well_scaled);  // 1e8
 }
 
-// The simulation's error estimate (dcad::api, fast/api/src/simulate.hpp): the worst relative error over the variables,
-// err / mag, naming the variable; a variable that stays exactly 0 has no relative error and is skipped
-// (0/0 is NaN, and a rounding speck over 0 would be infinite). Killed by: the skip test mag == 1
-// (seed-26 survivor [200]: a variable whose largest magnitude is exactly 1 lost its say).
+// The simulation's error estimate (dcad::api, reference/api/src/simulate.hpp): the worst relative error over the
+// variables, err / mag, naming the variable; a variable that stays exactly 0 has no relative error and is skipped (0/0
+// is NaN, and a rounding speck over 0 would be infinite). Killed by: the skip test mag == 1 (seed-26 survivor [200]: a
+// variable whose largest magnitude is exactly 1 lost its say).
 TEST(Simulate, ErrorEstimateIsTheWorstRelativeError) {
   const dcad::api::Simulated s =
       dcad::api::summarize(11, {1e-15L, 1e-16L, 1e-300L}, {1.0L, 1000.0L, 0.0L}, {"q_C1", "v_L1", "p_C1"});

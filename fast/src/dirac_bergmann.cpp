@@ -123,4 +123,47 @@ MatrixXd secondary_constraints(const CadResult& r) {
   return out;
 }
 
+SecondClassChoice second_class_choice(const MatrixXd& w, const AffineSubspace& s, const Subspace& v,
+                                      const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
+  SecondClassChoice out;
+  const Subspace kerw = form_kernel(restrict_form(w, s.direction), opt);
+  const Subspace comp = symplectic_complement(w, s.direction, opt);
+  const Subspace both = sum(v, kerw, opt);
+  const Truth complement = equal(both, comp, opt);
+  out.certain = s.certain & v.certain() & kerw.certain() & comp.certain() & complement;
+  if (both.dim() != v.dim() + kerw.dim()) out.certain = unknown;  // V ∩ ker ω ≠ 0, or a rank off
+  if (complement.no())
+    throw std::invalid_argument(
+        "second_class_choice: expected V with V ⊕ ker ω = (TS)^Ω (CEF (3.12)), found another subspace");
+  out.tangent = symplectic_complement(w, v, opt);
+  out.certain &= out.tangent.certain();
+  const int n = static_cast<int>(w.rows());
+  const MatrixXd a = v.columns().transpose() * w;  // row i: y ↦ Ω(v_i, y)
+  out.chi.resize(a.rows(), n + 1);
+  out.chi << a, a * s.point;
+  Truth nondegenerate = yes;
+  out.sigma = a * poisson_tensor(w, opt, nondegenerate) * a.transpose();
+  const MatrixXd& q = out.tangent.columns();
+  const MatrixXd g = q.transpose() * w.transpose() * q;
+  const RankDecision d = decide_rank(g, std::max(norm2(w), 1e-300), opt);
+  out.certain &= nondegenerate & d.certain;
+  if (d.rank < g.rows())
+    throw std::invalid_argument("second_class_choice: expected a symplectic V^Ω, found a degenerate one");
+  out.dirac_tensor =
+      q.rows() > 0 && q.cols() > 0 ? MatrixXd(q * g.fullPivLu().inverse() * q.transpose()) : MatrixXd::Zero(n, n);
+  return out;
+}
+
+Truth is_first_class_submanifold(const MatrixXd& w, const Subspace& ts, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
+  Truth certain = ts.certain();
+  const MatrixXd j = poisson_tensor(w, opt, certain);
+  const MatrixXd a = annihilator(ts).columns().transpose();
+  if (a.rows() == 0) return Truth::decided(true, certain);  // S = P
+  const RankDecision d = decide_rank(a * j * a.transpose(), std::max(norm2(j), 1e-300), opt);
+  certain &= d.certain;
+  return Truth::decided(d.rank == 0, certain);
+}
+
 }  // namespace dcad::fast

@@ -62,6 +62,32 @@ Solution dae_solution(const io::DaeCase& c) {
   return out;
 }
 
+/// ẋ = X x + K λ on M_c = V_c (`constrained`: V_c is not the whole space): X the minimum-norm solution
+/// of [E; C_c] v = [A x; 0], K spanning ker E ∩ V_c; its rank decision counted in `certain`, `decisions`.
+static Motion<double> dae_motion(const MatrixXd& e, const MatrixXd& a, const Subspace& vc, bool constrained,
+                                 double scale, const Options& opt, Truth& certain, long& decisions) {
+  const int n = static_cast<int>(e.cols());
+  const MatrixXd cc = constrained ? MatrixXd(orthogonal_complement(vc.columns()).transpose()) : MatrixXd(0, n);
+  MatrixXd stacked(e.rows() + cc.rows(), n), rhs = MatrixXd::Zero(e.rows() + cc.rows(), n);
+  stacked << e, cc;
+  rhs.topRows(e.rows()) = a;
+  const RankRevealing rr(stacked, scale, opt);
+  ++decisions;
+  certain &= rr.decision().certain;
+  const MatrixXd x = rr.solve_range(rhs);
+  const Subspace gauge = intersection(kernel(e, opt), vc, opt);
+  Motion<double> mo;
+  for (int i = 0; i < n; ++i) mo.coordinates.push_back(static_cast<std::size_t>(i));
+  mo.f_matrix.assign(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
+  mo.f.assign(static_cast<std::size_t>(n), 0.0);
+  mo.g.assign(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(gauge.dim())));
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) mo.f_matrix[i][j] = x(i, j);
+    for (int j = 0; j < gauge.dim(); ++j) mo.g[i][j] = gauge.columns()(i, j);
+  }
+  return mo;
+}
+
 Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
   if (!c.dense || static_cast<long>(c.variables.size()) >= opt_in.dae_sparse_from) return solve_dae_sparse(c, opt_in);
   Options opt = opt_in;
@@ -124,27 +150,7 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
     if (!exact_source_conditions(c, out)) certain = unknown;
     note += "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";
   }
-  if (out.consistent && !has_f) {  // ẋ = X x + K λ on M_c: the minimum-norm solution of [E; C_c] v = [A x; 0]
-    const MatrixXd cc = v.size() > 1 ? MatrixXd(orthogonal_complement(vc.columns()).transpose()) : MatrixXd(0, n);
-    MatrixXd stacked(e.rows() + cc.rows(), n), rhs = MatrixXd::Zero(e.rows() + cc.rows(), n);
-    stacked << e, cc;
-    rhs.topRows(e.rows()) = a;
-    const RankRevealing rr(stacked, scale, opt);
-    ++decisions;
-    certain &= rr.decision().certain;
-    const MatrixXd x = rr.solve_range(rhs);
-    const Subspace gauge = intersection(kernel(e, opt), vc, opt);
-    Motion<double> mo;
-    for (int i = 0; i < n; ++i) mo.coordinates.push_back(static_cast<std::size_t>(i));
-    mo.f_matrix.assign(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
-    mo.f.assign(static_cast<std::size_t>(n), 0.0);
-    mo.g.assign(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(gauge.dim())));
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) mo.f_matrix[i][j] = x(i, j);
-      for (int j = 0; j < gauge.dim(); ++j) mo.g[i][j] = gauge.columns()(i, j);
-    }
-    out.motion = mo;
-  }
+  if (out.consistent && !has_f) out.motion = dae_motion(e, a, vc, v.size() > 1, scale, opt, certain, decisions);
   out.decisions.float_tests = decisions;
   out.certified = certain;
   const std::string caveat = input_caveat(opt);

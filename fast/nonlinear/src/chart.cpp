@@ -408,6 +408,46 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
   return ch;
 }
 
+// The chart must hold at `near` itself: M_c's constraints vanish there (the generic point may have
+// landed on another component: {x v_y = 0} is two) and none of its conditions does.  `why` says which failed.
+static bool chart_holds_at(const reference::LagrangianSystem& s, const Chart& c, const std::vector<double>& near,
+                           const std::vector<double>* velocity, std::string& why) {
+  const ChartField f(c);
+  const std::vector<double> y(near.begin(), near.end() - 1);
+  if (f.drift(y, near.back()) > 1e-8) {
+    why = "the generic points reached lie on another component of M_c";
+    return false;
+  }
+  // every entry the elimination took as zero on M_k (decided at the generic point) vanishes at `near`
+  // too: else `near` lies on a component where the chart's elimination is not valid
+  Values val(near);
+  for (const Expr& z : c.vanishing)  // to the drift check's 1e-8: `near` is on M_c to that
+    if (!val.zero_to(z, 1e-8)) {
+      why = "the generic points reached lie on another component of M_c (" + ex::to_text(z, s.variable_names()) +
+            " vanishes there, not at the given point)";
+      return false;
+    }
+  if (velocity) {
+    std::vector<double> u(2 * s.n);
+    f.rates(y.data(), near.back(), u.data());
+    double scale = 1, worst = 0;
+    for (std::size_t i = 0; i < 2 * s.n; ++i) scale = std::max(scale, std::abs((*velocity)[i]));
+    for (std::size_t i = 0; i < 2 * s.n; ++i) worst = std::max(worst, std::abs(u[i] - (*velocity)[i]));
+    if (!(worst <= 1e-7 * scale)) {
+      why = "the chart's equations disagree with the pointwise CAD at the given point (by " +
+            std::to_string(worst / scale) + " relative)";
+      return false;
+    }
+  }
+  std::size_t weakest = 0;
+  if (f.margin(y, near.back(), &weakest) < 1e-6) {
+    why = "the condition " + ex::to_text(c.valid_where[weakest].formula, s.variable_names()) + " != 0 (" +
+          c.valid_where[weakest].what + ") fails at the given point";
+    return false;
+  }
+  return true;
+}
+
 Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
                  const std::vector<double>* velocity) {
   const auto dims_text = [](const std::vector<long>& d) {
@@ -416,44 +456,6 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
     return "[" + t + "]";
   };
   std::string why;
-  // the chart must hold at `near` itself: M_c's constraints vanish there (the generic point may have
-  // landed on another component: {x v_y = 0} is two) and none of its conditions does
-  const auto holds_at = [&](const Chart& c) {
-    const ChartField f(c);
-    const std::vector<double> y(near.begin(), near.end() - 1);
-    if (f.drift(y, near.back()) > 1e-8) {
-      why = "the generic points reached lie on another component of M_c";
-      return false;
-    }
-    // every entry the elimination took as zero on M_k (decided at the generic point) vanishes at `near`
-    // too: else `near` lies on a component where the chart's elimination is not valid
-    Values val(near);
-    for (const Expr& z : c.vanishing)  // to the drift check's 1e-8: `near` is on M_c to that
-      if (!val.zero_to(z, 1e-8)) {
-        why = "the generic points reached lie on another component of M_c (" + ex::to_text(z, s.variable_names()) +
-              " vanishes there, not at the given point)";
-        return false;
-      }
-    if (velocity) {
-      std::vector<double> u(2 * s.n);
-      f.rates(y.data(), near.back(), u.data());
-      double scale = 1, worst = 0;
-      for (std::size_t i = 0; i < 2 * s.n; ++i) scale = std::max(scale, std::abs((*velocity)[i]));
-      for (std::size_t i = 0; i < 2 * s.n; ++i) worst = std::max(worst, std::abs(u[i] - (*velocity)[i]));
-      if (!(worst <= 1e-7 * scale)) {
-        why = "the chart's equations disagree with the pointwise CAD at the given point (by " +
-              std::to_string(worst / scale) + " relative)";
-        return false;
-      }
-    }
-    std::size_t weakest = 0;
-    if (f.margin(y, near.back(), &weakest) < 1e-6) {
-      why = "the condition " + ex::to_text(c.valid_where[weakest].formula, s.variable_names()) + " != 0 (" +
-            c.valid_where[weakest].what + ") fails at the given point";
-      return false;
-    }
-    return true;
-  };
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
   for (double size : {0.1, 0.1, 0.01, 0.001}) {
@@ -468,7 +470,7 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
       at.push_back(t);
       try {
         Chart c = chart_at(s, at);
-        if (c.dims == dims && holds_at(c)) return c;
+        if (c.dims == dims && chart_holds_at(s, c, near, velocity, why)) return c;
         if (c.dims == dims) break;
         why = "the formulas' tower has dims " + dims_text(c.dims) + ", the pointwise CAD's " + dims_text(dims);
         break;
@@ -493,7 +495,7 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
       std::vector<double> at(r.point.begin(), r.point.begin() + static_cast<long>(2 * s.n));
       at.push_back(r.time);
       Chart c = chart_at(s, at);
-      if (c.dims == dims && holds_at(c)) return c;
+      if (c.dims == dims && chart_holds_at(s, c, near, velocity, why)) return c;
     } catch (const std::exception&) {
     }
   }

@@ -54,82 +54,108 @@ struct ModElimination {
   std::vector<std::vector<std::pair<std::size_t, u64>>> combination;
 };
 
+/// A pivot row of the modular elimination: its column, the inverse of its entry there, the row and its
+/// combination of the input rows.
+struct ModPivot {
+  long col;
+  u64 inv;
+  std::vector<std::pair<long, u64>> row;
+  std::vector<std::pair<std::size_t, u64>> comb;
+};
+
+/// The elimination's dense accumulators for the row being reduced (entries by column) and its combination
+/// (coefficients by input row), with the positions touched so far: cleared by harvest() for the next row.
+struct ModScratch {
+  std::vector<u64> acc, cacc;
+  std::vector<char> mark, cmark;
+  std::vector<long> touched;
+  std::vector<std::size_t> ctouched;
+  ModScratch(std::size_t cols, std::size_t rows) : acc(cols, 0), cacc(rows, 0), mark(cols, 0), cmark(rows, 0) {}
+};
+
+using SlotHeap = std::priority_queue<long, std::vector<long>, std::greater<long>>;  // first taken first
+
+/// The row in `sc` reduced by the pivot slots in `heap` (and those the reduction brings in), in the order
+/// they were taken; its combination follows.  Throws beyond the work budget.
+void reduce_by_pivots(SlotHeap& heap, const std::vector<ModPivot>& piv, const std::vector<long>& slot_of, const Zp& z,
+                      ModScratch& sc, double& work) {
+  while (!heap.empty()) {
+    const long s = heap.top();
+    heap.pop();
+    const ModPivot& pv = piv[static_cast<std::size_t>(s)];
+    const u64 f = z.mul(sc.acc[static_cast<std::size_t>(pv.col)], pv.inv);
+    if (f == 0) continue;  // already reduced (a slot pushed twice)
+    for (const auto& [c, v] : pv.row) {
+      const std::size_t cc = static_cast<std::size_t>(c);
+      if (!sc.mark[cc]) sc.mark[cc] = 1, sc.touched.push_back(c);
+      sc.acc[cc] = z.sub(sc.acc[cc], z.mul(f, v));
+      if (c != pv.col && sc.acc[cc] && slot_of[cc] >= 0) heap.push(slot_of[cc]);
+    }
+    sc.acc[static_cast<std::size_t>(pv.col)] = 0;
+    for (const auto& [rr, w] : pv.comb) {
+      if (!sc.cmark[rr]) sc.cmark[rr] = 1, sc.ctouched.push_back(rr);
+      sc.cacc[rr] = z.sub(sc.cacc[rr], z.mul(f, w));
+    }
+    work += static_cast<double>(pv.row.size() + pv.comb.size());
+    if (work > kWork)
+      throw reference::NotExactHere("the modular elimination outgrew its budget (" +
+                                    std::to_string(static_cast<long>(kWork)) + " operations): fill-in");
+  }
+}
+
+/// The reduced row's nonzero entries (`left`, by column) and combination (`comb`, by input row), the
+/// scratch cleared; returns the column for its pivot (the one fewest rows touch, `weight`), or -1: zero.
+long harvest(ModScratch& sc, const std::vector<long>& weight, std::vector<std::pair<long, u64>>& left,
+             std::vector<std::pair<std::size_t, u64>>& comb) {
+  long best = -1;
+  std::sort(sc.touched.begin(), sc.touched.end());
+  for (long c : sc.touched) {
+    const std::size_t cc = static_cast<std::size_t>(c);
+    if (sc.acc[cc]) {
+      left.emplace_back(c, sc.acc[cc]);
+      if (best < 0 || weight[cc] < weight[static_cast<std::size_t>(best)]) best = c;
+    }
+    sc.acc[cc] = 0, sc.mark[cc] = 0;
+  }
+  sc.touched.clear();
+  std::sort(sc.ctouched.begin(), sc.ctouched.end());
+  for (std::size_t rr : sc.ctouched) {
+    if (sc.cacc[rr]) comb.emplace_back(rr, sc.cacc[rr]);
+    sc.cacc[rr] = 0, sc.cmark[rr] = 0;
+  }
+  sc.ctouched.clear();
+  return best;
+}
+
 /// Rows in order, each reduced by the pivots so far (a pivot row has zeros at the pivot columns taken
 /// before it, so reducing by them in the order they were taken never refills one); a row left nonzero
 /// takes a pivot (its entry in the column that fewest rows touch, `weight`), one left zero is dependent.
 ModElimination eliminate(const std::vector<QRow>& rows, std::size_t cols, const Zp& z, const std::vector<long>& weight,
                          double& work) {
   ModElimination out;
-  struct Pivot {
-    long col;
-    u64 inv;
-    std::vector<std::pair<long, u64>> row;
-    std::vector<std::pair<std::size_t, u64>> comb;
-  };
-  std::vector<Pivot> piv;
+  std::vector<ModPivot> piv;
   std::vector<long> slot_of(cols, -1);
-  std::vector<u64> acc(cols, 0), cacc(rows.size(), 0);
-  std::vector<char> mark(cols, 0), cmark(rows.size(), 0);
-  std::vector<long> touched;
-  std::vector<std::size_t> ctouched;
+  ModScratch sc(cols, rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    std::priority_queue<long, std::vector<long>, std::greater<long>>
-        heap;  // pivot slots to reduce by, first taken first
+    SlotHeap heap;  // pivot slots to reduce by
     for (const auto& [c, q] : rows[r]) {
       u64 v = 0;
       if (!z.of(q, v)) {
         out.ok = false;
         return out;
       }
-      acc[static_cast<std::size_t>(c)] = v;
-      mark[static_cast<std::size_t>(c)] = 1;
-      touched.push_back(c);
+      sc.acc[static_cast<std::size_t>(c)] = v;
+      sc.mark[static_cast<std::size_t>(c)] = 1;
+      sc.touched.push_back(c);
       if (v && slot_of[static_cast<std::size_t>(c)] >= 0) heap.push(slot_of[static_cast<std::size_t>(c)]);
     }
-    cacc[r] = 1;
-    cmark[r] = 1;
-    ctouched.push_back(r);
-    while (!heap.empty()) {
-      const long s = heap.top();
-      heap.pop();
-      const Pivot& pv = piv[static_cast<std::size_t>(s)];
-      const u64 f = z.mul(acc[static_cast<std::size_t>(pv.col)], pv.inv);
-      if (f == 0) continue;  // already reduced (a slot pushed twice)
-      for (const auto& [c, v] : pv.row) {
-        const std::size_t cc = static_cast<std::size_t>(c);
-        if (!mark[cc]) mark[cc] = 1, touched.push_back(c);
-        acc[cc] = z.sub(acc[cc], z.mul(f, v));
-        if (c != pv.col && acc[cc] && slot_of[cc] >= 0) heap.push(slot_of[cc]);
-      }
-      acc[static_cast<std::size_t>(pv.col)] = 0;
-      for (const auto& [rr, w] : pv.comb) {
-        if (!cmark[rr]) cmark[rr] = 1, ctouched.push_back(rr);
-        cacc[rr] = z.sub(cacc[rr], z.mul(f, w));
-      }
-      work += static_cast<double>(pv.row.size() + pv.comb.size());
-      if (work > kWork)
-        throw reference::NotExactHere("the modular elimination outgrew its budget (" +
-                                      std::to_string(static_cast<long>(kWork)) + " operations): fill-in");
-    }
+    sc.cacc[r] = 1;
+    sc.cmark[r] = 1;
+    sc.ctouched.push_back(r);
+    reduce_by_pivots(heap, piv, slot_of, z, sc, work);
     std::vector<std::pair<long, u64>> left;
-    long best = -1;
-    std::sort(touched.begin(), touched.end());
-    for (long c : touched) {
-      const std::size_t cc = static_cast<std::size_t>(c);
-      if (acc[cc]) {
-        left.emplace_back(c, acc[cc]);
-        if (best < 0 || weight[cc] < weight[static_cast<std::size_t>(best)]) best = c;
-      }
-      acc[cc] = 0, mark[cc] = 0;
-    }
-    touched.clear();
     std::vector<std::pair<std::size_t, u64>> comb;
-    std::sort(ctouched.begin(), ctouched.end());
-    for (std::size_t rr : ctouched) {
-      if (cacc[rr]) comb.emplace_back(rr, cacc[rr]);
-      cacc[rr] = 0, cmark[rr] = 0;
-    }
-    ctouched.clear();
+    const long best = harvest(sc, weight, left, comb);
     if (best >= 0) {
       u64 pv = 0;
       for (const auto& [c, v] : left)

@@ -327,17 +327,83 @@ class Pass {
     return g;
   }
 
-  /// The candidates (all 0 at the point): the independent ones become M_{k+1}'s constraints (their indices
-  /// in cons_), the dependent ones must vanish identically with them; a condition on the time alone that
-  /// is not identically zero makes the system inconsistent (out says so).  Empty: M_c = M_k.
-  std::vector<std::size_t> new_constraints(std::size_t k, const std::vector<Expr>& cand, IdeFormulas& out) {
+  /// Each candidate's gradient reduced on M_k's chart (coefficients in `coefs`), followed by the unit row
+  /// that records which candidates an elimination combines (columns n+1…n+m).
+  std::vector<std::vector<Rational>> augmented(const std::vector<Expr>& cand,
+                                               std::vector<std::vector<Rational>>& coefs) {
     const std::size_t n = s_.n, m = cand.size();
-    std::vector<std::vector<Rational>> aug(m), coefs(m);
+    std::vector<std::vector<Rational>> aug(m);
+    coefs.assign(m, {});
     for (std::size_t i = 0; i < m; ++i) {
       aug[i] = reduced_gradient(cand[i], coefs[i]);
       aug[i].resize(n + 1 + m, Rational(0));
       aug[i][n + 1 + i] = 1;
     }
+    return aug;
+  }
+
+  /// Σ_j row[n+1+j] ψ̃_j: the reduced candidates combined as an eliminated row of augmented() records.
+  Expr combined_candidates(const std::vector<Rational>& row, const std::vector<Expr>& cand,
+                           const std::vector<std::vector<Rational>>& coefs) {
+    const std::size_t n = s_.n;
+    Expr comb = expr::number(0);
+    for (std::size_t j = 0; j < cand.size(); ++j)
+      if (row[n + 1 + j] != 0)
+        comb = expr::add(comb, expr::mul(expr::number(row[n + 1 + j]), reduced_formula(cand[j], coefs[j])));
+    return comb;
+  }
+
+  /// The chart coordinates an elimination of `aug` (a copy) in the charts' order solves for: 1 at each.
+  std::vector<char> pivot_columns(std::vector<std::vector<Rational>> aug) {
+    std::vector<char> solves(s_.n, 0);
+    std::vector<Rational> z(aug.size(), Rational(0));
+    ExactDecisions<Rational> first;
+    for (const auto& pc : pointwise_detail::eliminate_constants(aug, z, column_groups(false), first))
+      solves[pc.second] = 1;
+    return solves;
+  }
+
+  /// A new constraint's tangent equation g·(dq, dt) = g·(q, t) at the point, over M_k's chart in its order
+  /// (the time first), solved for coordinate c (g normalized: g[c] = 1).
+  PointwiseConstraint<Rational> tangent_equation(const std::vector<Rational>& g, std::size_t c) const {
+    const std::size_t n = s_.n;
+    PointwiseConstraint<Rational> t;
+    t.solved_for = s_.q(c);
+    for (std::size_t jj = 0; jj <= n; ++jj) {
+      const std::size_t j = jj == 0 ? n : jj - 1;
+      if (g[j] == 0) continue;
+      const std::size_t var = j < n ? s_.q(j) : s_.t();
+      t.gradient.emplace_back(var, g[j]);
+      t.rhs += g[j] * point_[var];
+    }
+    return t;
+  }
+
+  /// The new constraints' Gauss–Jordan rows (`rows`, with their formulas `combined`; constraints `added`)
+  /// join the old ones, which first lose their entries at the new solved columns.
+  void add_gauss_jordan_rows(const std::vector<std::vector<Rational>>& rows, const std::vector<Expr>& combined,
+                             const std::vector<std::size_t>& added) {
+    for (std::size_t l = 0; l < gj_.size(); ++l)
+      for (std::size_t a = 0; a < rows.size(); ++a) {
+        const Rational f = gj_[l][cons_[added[a]].solved];
+        if (f == 0) continue;
+        for (std::size_t j = 0; j <= s_.n; ++j) gj_[l][j] -= f * rows[a][j];
+        combined_[l] = expr::sub(combined_[l], expr::mul(expr::number(f), combined[a]));
+      }
+    for (std::size_t a = 0; a < rows.size(); ++a) {
+      gj_.push_back(rows[a]);
+      combined_.push_back(combined[a]);
+      solved_col_[cons_[added[a]].solved] = true;
+    }
+  }
+
+  /// The candidates (all 0 at the point): the independent ones become M_{k+1}'s constraints (their indices
+  /// in cons_), the dependent ones must vanish identically with them; a condition on the time alone that
+  /// is not identically zero makes the system inconsistent (out says so).  Empty: M_c = M_k.
+  std::vector<std::size_t> new_constraints(std::size_t k, const std::vector<Expr>& cand, IdeFormulas& out) {
+    const std::size_t n = s_.n, m = cand.size();
+    std::vector<std::vector<Rational>> coefs;
+    std::vector<std::vector<Rational>> aug = augmented(cand, coefs);
     std::vector<Rational> rhs(m, Rational(0));
     ExactDecisions<Rational> exact;
     const auto piv = pointwise_detail::eliminate_constants(aug, rhs, column_groups(false), exact);
@@ -386,16 +452,7 @@ class Pass {
       std::vector<Rational> g(aug[p].begin(), aug[p].begin() + static_cast<std::ptrdiff_t>(n + 1));
       const Rational scale = g[c];
       for (Rational& x : g) x /= scale;
-      PointwiseConstraint<Rational> t;  // over M_k's chart, in its order: the time first
-      t.solved_for = s_.q(c);
-      for (std::size_t jj = 0; jj <= n; ++jj) {
-        const std::size_t j = jj == 0 ? n : jj - 1;
-        if (g[j] == 0) continue;
-        const std::size_t var = j < n ? s_.q(j) : s_.t();
-        t.gradient.emplace_back(var, g[j]);
-        t.rhs += g[j] * point_[var];
-      }
-      next.added.push_back(t);
+      next.added.push_back(tangent_equation(g, c));
       rows.push_back(g);
       combined.push_back(expr::mul(expr::number(1 / scale), combination(p)));
       cons_.push_back({cand[p], c});
@@ -404,19 +461,7 @@ class Pass {
       out.solved.back().push_back(s_.q(c));
       out.result.plan.back().push_back(s_.q(c));
     }
-    // the old Gauss–Jordan rows lose their entries at the new solved columns
-    for (std::size_t l = 0; l < gj_.size(); ++l)
-      for (std::size_t a = 0; a < rows.size(); ++a) {
-        const Rational f = gj_[l][cons_[added[a]].solved];
-        if (f == 0) continue;
-        for (std::size_t j = 0; j <= n; ++j) gj_[l][j] -= f * rows[a][j];
-        combined_[l] = expr::sub(combined_[l], expr::mul(expr::number(f), combined[a]));
-      }
-    for (std::size_t a = 0; a < rows.size(); ++a) {
-      gj_.push_back(rows[a]);
-      combined_.push_back(combined[a]);
-      solved_col_[cons_[added[a]].solved] = true;
-    }
+    add_gauss_jordan_rows(rows, combined, added);
     out.result.levels.push_back(level_);
     next.chart = chart();
     next.dim = static_cast<long>(s_.n - cons_.size());
@@ -432,14 +477,10 @@ class Pass {
   bool move(std::size_t k, const std::vector<Expr>& cand, const std::vector<Rational>& val, IdeFormulas& out,
             std::vector<Rational>& point) {
     const std::size_t n = s_.n, m = cand.size();
-    std::vector<std::vector<Rational>> aug(m), coefs(m);
+    std::vector<std::vector<Rational>> coefs;
+    std::vector<std::vector<Rational>> aug = augmented(cand, coefs);
     std::vector<Rational> rhs(m);
-    for (std::size_t i = 0; i < m; ++i) {
-      aug[i] = reduced_gradient(cand[i], coefs[i]);
-      aug[i].resize(n + 1 + m, Rational(0));
-      aug[i][n + 1 + i] = 1;
-      rhs[i] = -val[i];
-    }
+    for (std::size_t i = 0; i < m; ++i) rhs[i] = -val[i];
     const std::vector<std::vector<std::size_t>> movable = column_groups(true);
     std::vector<Expr> lowest(m);  // the candidates in lowest terms: (2x + 1)/(4x + 2) is affine in x
     for (std::size_t i = 0; i < m; ++i)
@@ -447,14 +488,7 @@ class Pass {
     // the coordinates M_{k+1}'s chart will solve for move first (where every nonzero candidate is affine in
     // them): a coordinate moved here that stays in the chart would be moved again by the next step, away
     // from this one's constraints, forever
-    std::vector<char> chart_solves(n, 0);
-    {
-      std::vector<std::vector<Rational>> g = aug;
-      std::vector<Rational> z(m, Rational(0));
-      ExactDecisions<Rational> first;
-      for (const auto& pc : pointwise_detail::eliminate_constants(g, z, column_groups(false), first))
-        chart_solves[pc.second] = 1;
-    }
+    const std::vector<char> chart_solves = pivot_columns(aug);
     std::vector<std::vector<std::size_t>> groups(3);
     for (std::size_t j : movable[0]) {
       bool affine = true;
@@ -483,10 +517,7 @@ class Pass {
         if (aug[i][j] != 0)
           return nudge(
               "that no coordinate that may move brings to zero (given values it conflicts with, or a critical point)");
-      Expr comb = expr::number(0);
-      for (std::size_t j = 0; j < m; ++j)
-        if (aug[i][n + 1 + j] != 0)
-          comb = expr::add(comb, expr::mul(expr::number(aug[i][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
+      const Expr comb = combined_candidates(aug[i], cand, coefs);
       const std::optional<Expr> c = of_time_alone(comb);
       if (!c) return nudge("whose differential vanishes at the point although its value does not");
       if (expr::is_number(*c))
@@ -505,10 +536,7 @@ class Pass {
     // cannot follow: no point is reached from here (the caller's rational place next)
     for (const auto& [p, c] : piv) {
       if (rhs[p] == 0 || std::find(groups[2].begin(), groups[2].end(), c) == groups[2].end()) continue;
-      Expr comb = expr::number(0);
-      for (std::size_t j = 0; j < m; ++j)
-        if (aug[p][n + 1 + j] != 0)
-          comb = expr::add(comb, expr::mul(expr::number(aug[p][n + 1 + j]), reduced_formula(cand[j], coefs[j])));
+      const Expr comb = combined_candidates(aug[p], cand, coefs);
       std::vector<std::size_t> along{c};
       for (std::size_t j : groups[2])
         if (j != c) along.push_back(j);

@@ -51,6 +51,67 @@ std::size_t first_inconsistent(const Rows& rows, const QM& fixed) {
 
 std::string node_name(const io::Netlist& d, long k) { return k < 0 ? "0" : d.node_names[k]; }
 
+/// The DC equations in y = (e, i): KCL at every node (or, with `hold`, e_k = value at a node `.ic` holds)
+/// and each branch's law with capacitors open, inductors shorted and the sources at t = 0.
+Rows dc_equations(const io::Netlist& d, const std::vector<bool>& held_node, bool hold) {
+  const RlcCircuit<Q>& c = d.rlc;
+  const Index n = c.branches.size(), nodes = c.nodes, w = nodes + n;
+  Rows rows(w);
+  for (Index k = 0; k < nodes; ++k) {  // KCL
+    QM r(1, w + 1);
+    if (hold && held_node[k]) {
+      r(0, k) = Q(1);
+      for (const auto& [node, v] : d.node_ic)
+        if (node == static_cast<long>(k)) r(0, w) = v;
+      rows.add(r, ".ic v(" + d.node_names[k] + ")");
+      continue;
+    }
+    for (Index b = 0; b < n; ++b) {
+      if (c.branches[b].from == static_cast<long>(k)) r(0, nodes + b) += Q(1);
+      if (c.branches[b].to == static_cast<long>(k)) r(0, nodes + b) -= Q(1);
+    }
+    rows.add(r, "KCL at node " + d.node_names[k]);
+  }
+  for (Index b = 0; b < n; ++b) {
+    const RlcBranch<Q>& br = c.branches[b];
+    QM r(1, w + 1);
+    const auto potential_difference = [&] {  // u_b = e_from − e_to
+      if (br.from >= 0) r(0, br.from) += Q(1);
+      if (br.to >= 0) r(0, br.to) -= Q(1);
+    };
+    switch (br.kind) {
+      case RlcKind::capacitor:
+        r(0, nodes + b) = Q(1);
+        rows.add(r, br.name + " open at DC: i = 0");
+        break;
+      case RlcKind::inductor:
+        potential_difference();
+        rows.add(r, br.name + " shorted at DC: u = 0");
+        break;
+      case RlcKind::wire:
+        potential_difference();
+        rows.add(r, br.name + ": u = 0");
+        break;
+      case RlcKind::resistor:
+        potential_difference();
+        r(0, nodes + b) = -br.value;
+        rows.add(r, br.name + ": u = R i");
+        break;
+      case RlcKind::voltage:
+        potential_difference();
+        r(0, w) = jet_at_zero(d.waveforms[br.source], 0);
+        rows.add(r, br.name + ": u = " + r(0, w).str() + " V at t = 0");
+        break;
+      case RlcKind::current:
+        r(0, nodes + b) = Q(1);
+        r(0, w) = jet_at_zero(d.waveforms[br.source], 0);
+        rows.add(r, br.name + ": i = " + r(0, w).str() + " A at t = 0");
+        break;
+    }
+  }
+  return rows;
+}
+
 /// The DC operating point: charges, currents and flux linkages (q, v, p).  [CONTRACT]
 std::vector<Q> operating_point(const io::Netlist& d, InitialState& s) {
   const RlcCircuit<Q>& c = d.rlc;
@@ -59,69 +120,13 @@ std::vector<Q> operating_point(const io::Netlist& d, InitialState& s) {
   // business, so its row is replaced by e_k = value (tried without the holding if they contradict)
   std::vector<bool> held_node(nodes, false);
   for (const auto& [k, v] : d.node_ic) held_node[k] = true;
-  const auto dc_rows = [&](bool hold) {
-    Rows rows(w);
-    for (Index k = 0; k < nodes; ++k) {  // KCL
-      QM r(1, w + 1);
-      if (hold && held_node[k]) {
-        r(0, k) = Q(1);
-        for (const auto& [node, v] : d.node_ic)
-          if (node == static_cast<long>(k)) r(0, w) = v;
-        rows.add(r, ".ic v(" + d.node_names[k] + ")");
-        continue;
-      }
-      for (Index b = 0; b < n; ++b) {
-        if (c.branches[b].from == static_cast<long>(k)) r(0, nodes + b) += Q(1);
-        if (c.branches[b].to == static_cast<long>(k)) r(0, nodes + b) -= Q(1);
-      }
-      rows.add(r, "KCL at node " + d.node_names[k]);
-    }
-    for (Index b = 0; b < n; ++b) {
-      const RlcBranch<Q>& br = c.branches[b];
-      QM r(1, w + 1);
-      const auto potential_difference = [&] {  // u_b = e_from − e_to
-        if (br.from >= 0) r(0, br.from) += Q(1);
-        if (br.to >= 0) r(0, br.to) -= Q(1);
-      };
-      switch (br.kind) {
-        case RlcKind::capacitor:
-          r(0, nodes + b) = Q(1);
-          rows.add(r, br.name + " open at DC: i = 0");
-          break;
-        case RlcKind::inductor:
-          potential_difference();
-          rows.add(r, br.name + " shorted at DC: u = 0");
-          break;
-        case RlcKind::wire:
-          potential_difference();
-          rows.add(r, br.name + ": u = 0");
-          break;
-        case RlcKind::resistor:
-          potential_difference();
-          r(0, nodes + b) = -br.value;
-          rows.add(r, br.name + ": u = R i");
-          break;
-        case RlcKind::voltage:
-          potential_difference();
-          r(0, w) = jet_at_zero(d.waveforms[br.source], 0);
-          rows.add(r, br.name + ": u = " + r(0, w).str() + " V at t = 0");
-          break;
-        case RlcKind::current:
-          r(0, nodes + b) = Q(1);
-          r(0, w) = jet_at_zero(d.waveforms[br.source], 0);
-          rows.add(r, br.name + ": i = " + r(0, w).str() + " A at t = 0");
-          break;
-      }
-    }
-    return rows;
-  };
-  Rows rows = dc_rows(true);
+  Rows rows = dc_equations(d, held_node, true);
   AffineSubspace<Q> sol = affine_from_augmented(rows.m);
   if (sol.empty && !d.node_ic.empty()) {
     s.notes.push_back(
         "the .ic node voltages contradict the circuit at DC (ideal sources or shorts between them): the operating "
         "point does not hold them");
-    rows = dc_rows(false);
+    rows = dc_equations(d, held_node, false);
     sol = affine_from_augmented(rows.m);
   }
   if (sol.empty)

@@ -46,4 +46,22 @@ CadResult gotay_nester(const ConstrainedSystem& s, const Options& opt = {});
 /// The equations the tower added after M_0, rows [a | b], in order.
 MatrixXd secondary_constraints(const CadResult& r);
 
+/// A second class submanifold through S chosen by V (CEF Lemma 3.23 (d)): V^Ω = T S^V, χ′ (rows [a | b],
+/// a orthonormal spanning V^♭), Σ′ = [{χ′_i, χ′_j}], and the Dirac tensor — by another route than the
+/// reference's Dirac formula: the Poisson tensor of Ω restricted to the symplectic V^Ω,
+/// J* = Q (Qᵀ Wᵀ Q)⁻¹ Qᵀ (Q orthonormal), which Lemma 3.23 (e) says it is (X_{(χ),F} = X_{F|S^χ}).
+struct SecondClassChoice {
+  Subspace tangent = Subspace::zero(0);
+  MatrixXd chi, sigma, dirac_tensor;
+  Truth certain = yes;  ///< (3.12) and V^Ω's nondegeneracy decided certainly
+};
+/// std::invalid_argument where V is certainly no complement of ker ω in (TS)^Ω (CEF (3.12)).
+SecondClassChoice second_class_choice(const MatrixXd& w, const AffineSubspace& s, const Subspace& v,
+                                      const Options& opt = {});
+
+/// CEF Def 3.22: is S (direction TS) a first class constraint submanifold (coisotropic)?  Another route
+/// than the reference's definition: the bracket matrix A J Aᵀ of orthonormal defining covectors A of TS
+/// is decided zero (2s = 0: every constraint first class).  unknown where the rank decision is not certain.
+Truth is_first_class_submanifold(const MatrixXd& w, const Subspace& ts, const Options& opt = {});
+
 }  // namespace dcad::fast

@@ -83,15 +83,12 @@ struct StateStructure {
   long super(long node) const { return node < 0 ? -1 : supernode[static_cast<std::size_t>(node)]; }
 };
 
-/// The three contractions of a circuit with `nodes` non-ground nodes; `source[b]` is branch b's index
-/// into σ (voltage sources; ignored elsewhere).
-inline StateStructure state_structure(std::size_t nodes, const std::vector<Branch>& branches,
-                                      const std::vector<long>& source) {
-  const std::size_t n = branches.size(), nv = nodes + 1;
+/// The first contraction: the supernodes (nodes joined by voltage sources and wires, the forest `vtree`),
+/// each node's offset from its supernode's potential, into st (st.nodes set).
+inline void contract_voltage_sources(StateStructure& st, const std::vector<Branch>& branches,
+                                     const std::vector<long>& source) {
+  const std::size_t n = branches.size(), nodes = st.nodes, nv = nodes + 1;
   const auto vx = [](long node) { return static_cast<std::size_t>(node + 1); };
-  StateStructure st;
-  st.nodes = nodes;
-  // 1. supernodes
   std::vector<std::pair<std::size_t, std::size_t>> ends(n);
   std::vector<bool> vw(n);
   for (std::size_t b = 0; b < n; ++b) {
@@ -117,6 +114,16 @@ inline StateStructure state_structure(std::size_t nodes, const std::vector<Branc
     }
     st.supernode[v - 1] = s;
   }
+}
+
+/// The three contractions of a circuit with `nodes` non-ground nodes; `source[b]` is branch b's index
+/// into σ (voltage sources; ignored elsewhere).
+inline StateStructure state_structure(std::size_t nodes, const std::vector<Branch>& branches,
+                                      const std::vector<long>& source) {
+  const std::size_t n = branches.size();
+  StateStructure st;
+  st.nodes = nodes;
+  contract_voltage_sources(st, branches, source);  // 1. supernodes
   // 2./3. C-components and R-components of supernodes (vertex 0 ground, k + 1 supernode k)
   const std::size_t ns = st.supernodes;
   std::vector<std::pair<std::size_t, std::size_t>> sends(n);

@@ -278,6 +278,59 @@ void keep_parts(Solution<N>& s, const Parts& parts) {
   if (!parts.adapted) s.adapted.reset();
 }
 
+/// Every number of v mapped by f.
+template <class To, class From, class F>
+std::vector<To> map_vector(const std::vector<From>& v, F f) {
+  std::vector<To> o;
+  for (const From& x : v) o.push_back(f(x));
+  return o;
+}
+
+/// Every number of the rows m mapped by f.
+template <class To, class From, class F>
+Rows<To> map_rows(const Rows<From>& m, F f) {
+  Rows<To> o;
+  for (const auto& r : m) o.push_back(map_vector<To>(r, f));
+  return o;
+}
+
+/// The same pointwise result with every number mapped by f.
+template <class To, class From, class F>
+Pointwise<To> map_pointwise(const Pointwise<From>& p, F f) {
+  Pointwise<To> q;
+  q.route = p.route;
+  q.regular = p.regular;
+  q.why = p.why;
+  q.time_name = p.time_name;
+  q.time = f(p.time);
+  q.point = map_vector<To>(p.point, f);
+  q.velocity = map_vector<To>(p.velocity, f);
+  q.gauge = map_rows<To>(p.gauge, f);
+  q.first_constraints = p.first_constraints;
+  for (const auto& l : p.levels) {
+    typename Pointwise<To>::Step k;
+    k.dim = l.dim;
+    for (const auto& t : l.constraints) {
+      typename Pointwise<To>::Tangent u;
+      u.solved_for = t.solved_for;
+      for (const auto& [name, g] : t.terms) u.terms.emplace_back(name, f(g));
+      u.rhs = f(t.rhs);
+      k.constraints.push_back(u);
+    }
+    for (const auto& pv : l.pivots) k.pivots.push_back({pv.row, pv.column, f(pv.value)});
+    q.levels.push_back(k);
+  }
+  q.order = p.order;
+  q.checked_order = p.checked_order;
+  q.moves = p.moves;
+  q.place = p.place;
+  q.point_text = p.point_text;
+  q.formulas = p.formulas;
+  q.formulas_why = p.formulas_why;
+  q.at_given = p.at_given;
+  return q;
+}
+
 /// The same solution with every number mapped by f (e.g. a machine-word rational to mpq).
 template <class To, class From, class F>
 Solution<To> map_numbers(const Solution<From>& s, F f) {
@@ -292,16 +345,8 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
     for (const auto& e : v) o.push_back(eq(e));
     return o;
   };
-  const auto vec = [&](const std::vector<From>& v) {
-    std::vector<To> o;
-    for (const From& x : v) o.push_back(f(x));
-    return o;
-  };
-  const auto rows = [&](const Rows<From>& m) {
-    Rows<To> o;
-    for (const auto& r : m) o.push_back(vec(r));
-    return o;
-  };
+  const auto vec = [&](const std::vector<From>& v) { return map_vector<To>(v, f); };
+  const auto rows = [&](const Rows<From>& m) { return map_rows<To>(m, f); };
   Solution<To> o;
   o.backend = s.backend;
   o.certified = s.certified;
@@ -333,41 +378,7 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
   o.source_conditions = s.source_conditions;
   o.regular_pencil = s.regular_pencil;
   o.algorithm = s.algorithm;
-  if (s.pointwise) {
-    const Pointwise<From>& p = *s.pointwise;
-    Pointwise<To> q;
-    q.route = p.route;
-    q.regular = p.regular;
-    q.why = p.why;
-    q.time_name = p.time_name;
-    q.time = f(p.time);
-    q.point = vec(p.point);
-    q.velocity = vec(p.velocity);
-    q.gauge = rows(p.gauge);
-    q.first_constraints = p.first_constraints;
-    for (const auto& l : p.levels) {
-      typename Pointwise<To>::Step k;
-      k.dim = l.dim;
-      for (const auto& t : l.constraints) {
-        typename Pointwise<To>::Tangent u;
-        u.solved_for = t.solved_for;
-        for (const auto& [name, g] : t.terms) u.terms.emplace_back(name, f(g));
-        u.rhs = f(t.rhs);
-        k.constraints.push_back(u);
-      }
-      for (const auto& pv : l.pivots) k.pivots.push_back({pv.row, pv.column, f(pv.value)});
-      q.levels.push_back(k);
-    }
-    q.order = p.order;
-    q.checked_order = p.checked_order;
-    q.moves = p.moves;
-    q.place = p.place;
-    q.point_text = p.point_text;
-    q.formulas = p.formulas;
-    q.formulas_why = p.formulas_why;
-    q.at_given = p.at_given;
-    o.pointwise = q;
-  }
+  if (s.pointwise) o.pointwise = map_pointwise<To>(*s.pointwise, f);
   o.decisions = s.decisions;
   o.warnings = s.warnings;
   o.note = s.note;

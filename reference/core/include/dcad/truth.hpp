@@ -69,7 +69,7 @@ static_assert((no & unknown) == no && (unknown & no) == no, "&: no decides");
 static_assert((no | no) == no && (yes | no) == yes && (no | yes) == yes && (yes | yes) == yes, "|: known");
 static_assert((no | unknown) == unknown && (unknown | no) == unknown && (unknown | unknown) == unknown, "|: unknown");
 static_assert((yes | unknown) == yes && (unknown | yes) == yes, "|: yes decides");
-static_assert(!yes == no && !no == yes && !unknown == unknown, "!");
+static_assert((!yes) == no && (!no) == yes && (!unknown) == unknown, "!");
 static_assert(Truth::decided(true, unknown) == unknown && Truth::decided(false, yes) == no, "decided");
 
 }  // namespace dcad

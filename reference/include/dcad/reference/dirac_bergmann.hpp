@@ -182,4 +182,43 @@ ConstraintClasses<T> classify_constraints(const Matrix<T>& w, const Matrix<T>& c
   return out;
 }
 
+/// A second class submanifold through S chosen by V (CEF Lemma 3.23 (d)): its tangent V^Ω, the
+/// constraints χ′ defining it and their bracket matrix, and the Dirac tensor of χ′.
+template <class T>
+struct SecondClassChoice {
+  Subspace<T> tangent = Subspace<T>::zero(0);  ///< V^Ω = T S^V
+  Matrix<T> chi;                               ///< rows [a | b]: the a span V^♭ = (V^Ω)°, b = a·x₀
+  Matrix<T> sigma;                             ///< [{χ′_i, χ′_j}]
+  Matrix<T> dirac_tensor;                      ///< J − J Aᵀ Σ⁻¹ A J  [Lemma 3.23 (e)]
+};
+
+/// Lemma 3.23 (d) for S = x₀ + TS: any V with V ⊕ ker ω = (TS)^Ω (3.12), ω = Ω|_{TS}, gives S^V = x₀ + V^Ω
+/// ⊇ S, defined by χ′ with dχ′ spanning V^♭ (Ω(v, ·), v ∈ V: they vanish exactly on V^Ω).  Literal:
+/// (3.12) is checked (std::invalid_argument where V is no such complement), nothing else is.
+template <class T>
+SecondClassChoice<T> second_class_choice(const Matrix<T>& w, const AffineSubspace<T>& s, const Subspace<T>& v) {
+  require(!s.empty, "second_class_choice", "a nonempty S", "the empty set");
+  const Subspace<T> kerw = form_kernel(restrict_form(w, s.direction));
+  require(intersection(v, kerw).dim() == 0 && sum(v, kerw) == symplectic_complement(w, s.direction),
+          "second_class_choice", "V with V ⊕ ker ω = (TS)^Ω (CEF (3.12))", "another subspace");
+  SecondClassChoice<T> out;
+  out.tangent = symplectic_complement(w, v);
+  const Matrix<T> a = v.basis() * w;  // row i: y ↦ v_iᵀ W y = Ω(v_i, y)
+  out.chi = hstack(a, a * Matrix<T>::column(s.point));
+  const Matrix<T> j = poisson_tensor(w);
+  out.sigma = a * j * a.transpose();
+  out.dirac_tensor = v.dim() == 0 ? j : j - j * a.transpose() * inverse(out.sigma) * a * j;
+  return out;
+}
+
+/// Def 3.22: S (direction TS) is a first class constraint submanifold of (P, Ω) when every function that
+/// vanishes on S is first class — X_f = J df ∈ TS for every df ∈ (TS)° — literally, over a basis of (TS)°.
+template <class T>
+bool is_first_class_submanifold(const Matrix<T>& w, const Subspace<T>& ts) {
+  const Matrix<T> j = poisson_tensor(w), a = annihilator(ts).basis();
+  for (Index i = 0; i < a.rows(); ++i)
+    if (!contains(ts, (j * Matrix<T>::column(a.row(i))).col(0))) return false;
+  return true;
+}
+
 }  // namespace dcad::reference

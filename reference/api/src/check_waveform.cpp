@@ -687,6 +687,30 @@ std::vector<Reduced> chosen(std::vector<Reduced>& enc_acc, std::vector<Reduced>&
   return acc;
 }
 
+/// dcad's own uncertainty on the graph route: the Krylov estimate (at least 64 ε for the rounding of the
+/// outputs) of the largest value of the vector's kind; a potential difference v(a,b) counts both ends.
+std::vector<double> flow_uncertainty(const std::vector<Functional>& fs, double error_estimate,
+                                     const double* kind_scale) {
+  std::vector<double> uncertainty(fs.size(), 0.0);
+  for (std::size_t k = 0; k < fs.size(); ++k)
+    uncertainty[k] = std::max(error_estimate, 64 * std::numeric_limits<double>::epsilon()) * kind_scale[fs[k].kind] *
+                     (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
+  return uncertainty;
+}
+
+/// Why a check is not certified: the vectors `wide` whose enclosures were too wide (`enc_ok`), or no
+/// enclosure at all (`enc_why`).
+std::string not_certified_because(bool enc_ok, const std::string& wide, double error_estimate,
+                                  const std::string& enc_why) {
+  if (enc_ok)
+    return "the enclosures of " + wide +
+           " are wider than the double flow's own uncertainty: those vectors are decided by the double flow "
+           "(estimated error " +
+           io::float_text(error_estimate) + " of the state), not proved";
+  return "the exact flow is evaluated in double (Krylov exponential action on the state equations, estimated error " +
+         io::float_text(error_estimate) + " of the state): values, not enclosures; no enclosure because " + enc_why;
+}
+
 /// Every vector's verdict into `out` (its agree, exact values with keep_exact, the worst vector).
 void add_verdicts(WaveformChecked& out, std::vector<Reduced>& acc, const std::vector<Functional>& fs,
                   const std::vector<std::string>& names, const double* kind_scale, const WaveformOptions& opt) {
@@ -786,28 +810,15 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
     }
   }
   const bool enc_ok = enc != nullptr;
-  // dcad's own uncertainty on the graph route: the Krylov estimate (at least 64 ε for the rounding of the
-  // outputs) of the largest value of the vector's kind; a potential difference v(a,b) counts both ends
-  std::vector<double> uncertainty(nv, 0.0);
-  if (graph) {
-    out.error_estimate = flow->error_estimate();
-    for (std::size_t k = 0; k < nv; ++k)
-      uncertainty[k] = std::max(out.error_estimate, 64 * std::numeric_limits<double>::epsilon()) *
-                       kind_scale[fs[k].kind] * (fs[k].kind == Functional::potential && fs[k].b >= 0 ? 2.0 : 1.0);
-  }
+  if (graph) out.error_estimate = flow->error_estimate();
+  const std::vector<double> uncertainty =
+      graph ? flow_uncertainty(fs, out.error_estimate, kind_scale) : std::vector<double>(nv, 0.0);
   std::string wide;
   std::vector<Reduced> acc = chosen(enc_acc, flow_acc, uncertainty, enc_ok && graph, enc_ok, tr.names(), wide);
   out.jumped = jumped;
   out.certified = enc_ok && wide.empty();
-  out.certified_reason = out.certified ? std::string()
-                         : enc_ok      ? "the enclosures of " + wide +
-                                        " are wider than the double flow's own uncertainty: those vectors are decided "
-                                        "by the double flow (estimated error " +
-                                        io::float_text(out.error_estimate) + " of the state), not proved"
-                                  : "the exact flow is evaluated in double (Krylov exponential action on the state "
-                                    "equations, estimated error " +
-                                        io::float_text(out.error_estimate) +
-                                        " of the state): values, not enclosures; no enclosure because " + enc_why;
+  out.certified_reason =
+      out.certified ? std::string() : not_certified_because(enc_ok, wide, out.error_estimate, enc_why);
   add_verdicts(out, acc, fs, tr.names(), kind_scale, opt);
   return out;
 }

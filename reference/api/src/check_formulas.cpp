@@ -398,6 +398,69 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
   summarize(th, us, names, exactly, used, points, out);
 }
 
+/// dcad's formulas `f` (of the implicit case `c`, read back from their printed text) as the side the points
+/// compare: constraints and their gradients, the rates, and the projection onto M_c where the formulas'
+/// pivots hold (as at the exact point x0 = (q, v, t) of M_c, dimension `dim`).
+Ours ours_of_formulas(const std::string& file, const io::LagrangianCase& c, const Formulas& f, long dim,
+                      const std::vector<reference::Rational>& x0) {
+  const std::size_t n = c.system.n;
+  const std::vector<std::string> names = c.system.variable_names();
+  const auto parse = [&](const std::string& text, const std::string& what) {
+    return io::parse_case_formula(c, text, file + " (dcad's own " + what + ")", "");
+  };
+  Ours us;
+  us.width = n;
+  us.dim = dim;
+  us.free.assign(n, 0);
+  for (const std::string& name : f.free)
+    for (std::size_t i = 0; i < n; ++i)
+      if (names[i] == name) us.free[i] = 1;
+  fast::Differentiator d;
+  std::vector<std::vector<ex::Expr>> grads;  // over (q, v) for project_onto: the v entries 0
+  for (std::size_t i = 0; i < f.constraints.size(); ++i) {
+    us.constraints.push_back(parse(f.constraints[i], "constraint"));
+    us.levels.push_back(f.levels[i]);
+    us.gradients.emplace_back();
+    for (std::size_t j = 0; j < n; ++j) us.gradients.back().push_back(d(us.constraints.back(), j));
+    grads.push_back(us.gradients.back());
+    grads.back().resize(2 * n, ex::number(0));
+  }
+  std::vector<ex::Expr> rates(n, ex::number(0)), valid;
+  for (const auto& [name, e] : f.equations)
+    for (std::size_t i = 0; i < n; ++i)
+      if (names[i] == name) rates[i] = parse(e, "equation");
+  for (const std::string& v : f.valid_where) valid.push_back(parse(v, "valid_where"));
+  const auto rate_tape = std::make_shared<fast::Tape>(rates), valid_tape = std::make_shared<fast::Tape>(valid);
+  us.at.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) us.at[i] = x0[i].convert_to<double>();
+  us.at.push_back(x0[2 * n].convert_to<double>());
+  const auto padded = [n](const std::vector<double>& y, double t) {  // (q, v = 0, t): the case's variable indices
+    std::vector<double> x(2 * n + 1, 0.0);
+    std::copy(y.begin(), y.begin() + static_cast<long>(n), x.begin());
+    x[2 * n] = t;
+    return x;
+  };
+  std::vector<double> valid0(valid.size());
+  valid_tape->evaluate(padded(us.at, us.at.back()).data(), valid0.data());
+  const std::vector<ex::Expr> cons = us.constraints;
+  us.onto = [=](std::vector<double>& y, double t) {
+    std::vector<double> yv(2 * n, 0.0);  // project_onto's (q, v): the v entries have no gradient and stay 0
+    std::copy(y.begin(), y.end(), yv.begin());
+    if (!fast::project_onto(cons, grads, yv, t, 1e-14)) return false;
+    std::copy(yv.begin(), yv.begin() + static_cast<long>(n), y.begin());
+    std::vector<double> val(valid.size());
+    valid_tape->evaluate(padded(y, t).data(), val.data());
+    for (std::size_t i = 0; i < val.size(); ++i)  // where the formulas' pivots hold (as the chart's margin)
+      if (!(std::abs(val[i]) >= 1e-6 * std::abs(valid0[i]))) return false;
+    return true;
+  };
+  us.rates = [=](const std::vector<double>& y, double t, std::vector<double>& out_r) {
+    out_r.assign(n, 0.0);
+    rate_tape->evaluate(padded(y, t).data(), out_r.data());
+  };
+  return us;
+}
+
 /// The implicit form: dcad's formulas are the exact route's on formulas (`dcad solve --json`'s `formulas`,
 /// read back: what is printed is what is compared), decided at its exact point of M_c.
 void check_implicit_formulas(const std::string& file, const Theirs& th, const io::Problem& p, std::size_t points,
@@ -430,63 +493,10 @@ void check_implicit_formulas(const std::string& file, const Theirs& th, const io
         "); give `initial` where the exact route runs on formulas, or compare dims, steps and index");
     return;
   }
-  const Formulas& f = *r.pointwise->formulas;
-  const auto parse = [&](const std::string& text, const std::string& what) {
-    return io::parse_case_formula(c, text, file + " (dcad's own " + what + ")", "");
-  };
-  Ours us;
-  us.width = n;
-  us.dim = r.dims().back();
-  us.free.assign(n, 0);
-  for (const std::string& name : f.free)
-    for (std::size_t i = 0; i < n; ++i)
-      if (names[i] == name) us.free[i] = 1;
-  fast::Differentiator d;
-  std::vector<std::vector<ex::Expr>> grads;  // over (q, v) for project_onto: the v entries 0
-  for (std::size_t i = 0; i < f.constraints.size(); ++i) {
-    us.constraints.push_back(parse(f.constraints[i], "constraint"));
-    us.levels.push_back(f.levels[i]);
-    us.gradients.emplace_back();
-    for (std::size_t j = 0; j < n; ++j) us.gradients.back().push_back(d(us.constraints.back(), j));
-    grads.push_back(us.gradients.back());
-    grads.back().resize(2 * n, ex::number(0));
-  }
-  std::vector<ex::Expr> rates(n, ex::number(0)), valid;
-  for (const auto& [name, e] : f.equations)
-    for (std::size_t i = 0; i < n; ++i)
-      if (names[i] == name) rates[i] = parse(e, "equation");
-  for (const std::string& v : f.valid_where) valid.push_back(parse(v, "valid_where"));
-  const auto rate_tape = std::make_shared<fast::Tape>(rates), valid_tape = std::make_shared<fast::Tape>(valid);
   std::vector<reference::Rational> x0(2 * n + 1, reference::Rational(0));
   for (std::size_t i = 0; i < n; ++i) x0[i] = r.pointwise->point[i];
   x0[2 * n] = r.pointwise->time;
-  us.at.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) us.at[i] = x0[i].convert_to<double>();
-  us.at.push_back(x0[2 * n].convert_to<double>());
-  const auto padded = [n](const std::vector<double>& y, double t) {  // (q, v = 0, t): the case's variable indices
-    std::vector<double> x(2 * n + 1, 0.0);
-    std::copy(y.begin(), y.begin() + static_cast<long>(n), x.begin());
-    x[2 * n] = t;
-    return x;
-  };
-  std::vector<double> valid0(valid.size());
-  valid_tape->evaluate(padded(us.at, us.at.back()).data(), valid0.data());
-  const std::vector<ex::Expr> cons = us.constraints;
-  us.onto = [=](std::vector<double>& y, double t) {
-    std::vector<double> yv(2 * n, 0.0);  // project_onto's (q, v): the v entries have no gradient and stay 0
-    std::copy(y.begin(), y.end(), yv.begin());
-    if (!fast::project_onto(cons, grads, yv, t, 1e-14)) return false;
-    std::copy(yv.begin(), yv.begin() + static_cast<long>(n), y.begin());
-    std::vector<double> val(valid.size());
-    valid_tape->evaluate(padded(y, t).data(), val.data());
-    for (std::size_t i = 0; i < val.size(); ++i)  // where the formulas' pivots hold (as the chart's margin)
-      if (!(std::abs(val[i]) >= 1e-6 * std::abs(valid0[i]))) return false;
-    return true;
-  };
-  us.rates = [=](const std::vector<double>& y, double t, std::vector<double>& out_r) {
-    out_r.assign(n, 0.0);
-    rate_tape->evaluate(padded(y, t).data(), out_r.data());
-  };
+  Ours us = ours_of_formulas(file, c, *r.pointwise->formulas, r.dims().back(), x0);
   std::string rank_short, exact_short;
   std::optional<bool> full_rank;
   const std::size_t used = compare_at_points(th, us, names, s.has_time, points, out, rank_short);
