@@ -59,3 +59,44 @@ RC_GTEST_PROP(Circuit, SignedValues, ()) {
   RC_ASSERT(r.steps <= 3 * c.branches.size());
   for (Index k = 1; k < r.tower.size(); ++k) RC_ASSERT(r.tower[k].dim() < r.tower[k - 1].dim());
 }
+
+// CEF Lemma 6.5 on random circuits with signed values and empty branches: (b) condition (*) holds exactly
+// when Δ_1 = Δ_2; (c) (*) and M_4 = M_5 give M_3 = M_4 (closed forms, which equal the CAD's M_k:
+// CircuitClosedForm.EqualsGenericCad).  Theorem 6.6: with L > 0 or a finite C > 0 on every branch, (*) holds.
+RC_GTEST_PROP(Circuit, Lemma6_5_ConditionStar, ()) {
+  const Circuit<Q> c = random_circuit(true, true);
+  const bool star = condition_star(c);
+  RC_CLASSIFY(!star, "condition (*) fails");
+  RC_ASSERT(star == (delta_k(c, 1) == delta_k(c, 2)));
+  if (star && closed_form_m(c, 4) == closed_form_m(c, 5)) RC_ASSERT(closed_form_m(c, 3) == closed_form_m(c, 4));
+  RC_ASSERT(condition_star(random_circuit(false, false)));
+}
+
+// Remark 6.7's circuit (L, C and −C in parallel) and two capacitors 3 and −3 across one node pair with an
+// inductor elsewhere: condition (*) fails, Δ_1 ≠ Δ_2, and the CAD runs past M_3 (to M_5) — Lemma 6.5 (b)
+// where it bites.
+TEST(Circuit, Lemma6_5_ConditionFailsPastM3) {
+  for (const Circuit<Q>& c : {remark_6_7_circuit(), cancelling_capacitors_circuit()}) {
+    EXPECT_FALSE(condition_star(c));
+    EXPECT_FALSE(delta_k(c, 1) == delta_k(c, 2));
+    EXPECT_EQ(cad(c).steps, 5);
+  }
+}
+
+// CEF §6 after Theorem 6.8, for every physical circuit (empty branches too): the leaf x₀ + W̃_c is cut out of
+// T*TE regularly by κ(q) = κ(q₀), η(ψq) = 0, p − φv = 0, κ(v) = 0, η(ψv) = 0, ν = 0 (independent rows, b =
+// Theorem 6.4's KVLPC count), and the matrix of their brackets in dq∧dp + dv∧dν is the printed block form Σ,
+// for any circuit; Σ is nondegenerate — every constraint second class, the leaf symplectic — exactly when
+// there is no empty loop (Theorem 6.8).
+RC_GTEST_PROP(Circuit, Section6_SigmaBlockForm, ()) {
+  const Circuit<Q> c = random_circuit(true, false);
+  const Index n = c.branches.size();
+  const QM rows = leaf_equations(c, integer_vector(n));
+  const QM a = gradients(rows);
+  const QM sigma = a * poisson_tensor(cotangent_of_tangent_form<Q>(n)) * a.transpose();
+  RC_TAG("b = " + std::to_string(kvlpc_loops(c).cols()) + ", empty loops " + std::to_string(empty_loop_count(c)));
+  RC_ASSERT(kvlpc_loops(c).cols() == kvlpc_count(c));
+  RC_ASSERT(rank(a) == a.rows());
+  RC_ASSERT(sigma == leaf_sigma_block_form(c));
+  RC_ASSERT((rank(sigma) == sigma.rows()) == (empty_loop_count(c) == 0));
+}

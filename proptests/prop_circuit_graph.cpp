@@ -81,14 +81,7 @@ RC_GTEST_PROP(CircuitClosedForm, EqualsGenericCad, ()) {
 // Killed by: Δ_{k+1} in place of Δ_{k−1} (a mutation survivor; the property above finds it after ~1400
 // cases).
 TEST(CircuitClosedForm, CancellingCapacitorsTowerOfFive) {
-  Circuit<Q> c;
-  c.nodes = 3;
-  using K = BranchKind;
-  c.branches = {{"E", K::empty, 0, -1, Q(0)},
-                {"L1", K::inductor, 1, -1, Q(1)},
-                {"L2", K::inductor, 2, -1, Q(1)},
-                {"C1", K::capacitor, 1, -1, Q(3)},
-                {"C2", K::capacitor, -1, 1, Q(-3)}};
+  const Circuit<Q> c = cancelling_capacitors_circuit();
   const ref::CadResult<Q> r = generic(c);
   EXPECT_EQ(r.steps, 5);
   for (Index j = 1; j <= r.steps + 1; ++j)
@@ -150,4 +143,34 @@ RC_GTEST_PROP(CircuitGraphRoute, EqualsGenericFastCad, ()) {
   bool same = f.tower.size() == t.dims.size() && f.solution_rank == t.solution_rank;
   for (std::size_t k = 0; same && k < t.dims.size(); ++k) same = f.tower[k].dim() == t.dims[k];
   RC_ASSERT(!tally("graph vs generic fast: tower and solution rank", certain, same));
+}
+
+// CEF Lemma 6.5's condition (*) by both twins on random circuits with signed values: fast's verdict (Theorem
+// 6.6's route: P_Δ φ|_Δ and P_Δ ψ|_Δ in an orthonormal loop basis) is the reference's (φ(Δ) ⊆ φ(Δ_1) + Δ°)
+// unless fast is uncertain; on physical circuits (Theorem 6.6) it holds.
+RC_GTEST_PROP(CircuitGraphRoute, ConditionStar, ()) {
+  const Circuit<Q> c = random_circuit(true, true);
+  RC_LOG() << case_json(ref::circuit_lagrangian(c));
+  const Truth star = fast::condition_star(fast_graph(c));
+  RC_ASSERT(!tally("condition (*)", star != unknown, star.yes() == ref::condition_star(c)));
+  RC_ASSERT(fast::condition_star(fast_graph(random_circuit(false, false))) != no);
+}
+
+// The two circuits where condition (*) fails (Lemma6_5_ConditionFailsPastM3): fast says no, never yes.
+TEST(CircuitGraphRoute, ConditionStarFailsPastM3) {
+  EXPECT_TRUE(fast::condition_star(fast_graph(remark_6_7_circuit())) == no);
+  EXPECT_TRUE(fast::condition_star(fast_graph(cancelling_capacitors_circuit())) == no);
+}
+
+// CEF §6 after Theorem 6.8 by both twins: fast's Σ (the brackets of its own leaf equations, the graph's
+// purely capacitive loops) has the reference's size and is nondegenerate exactly when the reference's
+// block form is (all constraints second class), unless fast is uncertain.
+RC_GTEST_PROP(CircuitGraphRoute, LeafSecondClass, ()) {
+  const Circuit<Q> c = random_circuit(true, false);
+  RC_LOG() << case_json(ref::circuit_lagrangian(c));
+  const fast::LeafBrackets f = fast::leaf_brackets(fast_graph(c));
+  const QM sigma = ref::leaf_sigma_block_form(c);
+  RC_ASSERT(f.sigma.rows() == static_cast<Eigen::Index>(sigma.rows()));
+  RC_ASSERT(!tally("leaf all second class", f.second_class != unknown,
+                   f.second_class.yes() == (ref::rank(sigma) == sigma.rows())));
 }

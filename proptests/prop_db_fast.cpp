@@ -11,6 +11,7 @@
 #include "dcad/reference/adapted.hpp"
 #include "dcad/reference/quotient.hpp"
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
@@ -183,4 +184,28 @@ RC_GTEST_PROP(FastVsReference, SecondClassChoice, ()) {
   const double tol = 1e-8 * (1 + fast::norm2(fs.omega)) * (1 + fast::norm2(jr)) * (1 + fast::norm2(jr));
   RC_LOG() << case_json(s) << "|J*_fast - J*_ref| = " << (fch.dirac_tensor - jr).norm() << ", tol " << tol << "\n";
   RC_ASSERT((fch.dirac_tensor - jr).norm() <= tol);
+}
+
+// CEF Lemma 3.17 by both twins: fast's first class covectors have the reference's dimension unless fast is
+// uncertain, and the brackets of two exact first class functions, {f, h} = αᵀ J β on N, equal those of
+// their push-forwards by fast's own quotient (ᾱ = Sᵀ α, the bracket of ω̄_c), up to rounding.
+RC_GTEST_PROP(FastVsReference, FirstClassFunctions, ()) {
+  const auto& [s, opt, fs, r, f] = any_twins();
+  if (!r.consistent || !f.consistent || f.certain.unknown()) return;
+  const ref::GaugeQuotient<Q> rq = ref::gauge_quotient(s, r);
+  const fast::GaugeQuotient fq = fast::gauge_quotient(fs, f, opt);
+  const ref::Subspace<Q> rr = ref::first_class_covectors(s.omega, rq.tangent);
+  const fast::Subspace fr = fast::first_class_covectors(fs.omega, fq.tangent, opt);
+  const bool certain = fq.certain.yes() && fr.certain().yes();
+  RC_ASSERT(!tally("first class covectors dim", certain, fr.dim() == static_cast<int>(rr.dim())));
+  if (!certain || fq.form.rows() == 0) return;
+  const QM alpha = integer_matrix(1, rr.dim()) * rr.basis(), beta = integer_matrix(1, rr.dim()) * rr.basis();
+  const double exact = to_double(alpha * ref::poisson_tensor(s.omega) * beta.transpose())(0, 0);
+  const Eigen::VectorXd a = to_double(alpha).row(0).transpose(), b = to_double(beta).row(0).transpose();
+  const Eigen::MatrixXd jbar = fq.form.transpose().fullPivLu().inverse();
+  const double bracket = fast::push_forward(fq, a).dot(jbar * fast::push_forward(fq, b));
+  const double tol = 1e-8 * (1 + fast::norm2(jbar)) * (1 + fast::norm2(fq.section) * fast::norm2(fq.section)) *
+                     (1 + a.norm() * b.norm());
+  RC_LOG() << case_json(s) << "{f, h} = " << exact << " exactly, " << bracket << " on fast's quotient\n";
+  RC_ASSERT(std::abs(bracket - exact) <= tol);
 }

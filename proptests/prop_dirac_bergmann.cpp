@@ -253,3 +253,39 @@ RC_GTEST_PROP(DiracBergmann, Def3_22_FirstClassSubmanifold, ()) {
   RC_ASSERT(first == (classify_constraints(s.omega, db.constraints).s == 0));
   RC_ASSERT(first == contains(tmc, symplectic_complement(s.omega, tmc)));
 }
+
+// CEF Def 3.10 and Lemmas 3.12–3.17 on the linear first class functions f = α·x of M_c (X_f = J α):
+// 3.12 (b) {X_f : f ∈ R^(c)} = TM_c; 3.13 (a) f ∈ R^(c) is constant along K_c; 3.16 for f ∈ R^(c):
+// f|_{M_c} constant ⇔ X_f ∈ K_c = ker ω_c ⇔ {f, h} = 0 on M_c for every h ∈ R^(c) (for a random f and for a
+// random first class constraint, f ∈ I^(c)); 3.17: (p_{K_c})_* is onto M̄_c's linear functions, its kernel
+// is I^(c), and it is a Poisson map, {f, h} = {f̄, h̄} in ω̄_c's bracket.
+RC_GTEST_PROP(DiracBergmann, Lemmas3_12_3_17_FirstClassFunctions, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const GaugeQuotient<Q> q = gauge_quotient(s, db);
+  const QM j = poisson_tensor(s.omega);
+  const Index n = s.omega.rows(), m = q.form.rows();
+  const Subspace<Q> r = first_class_covectors(s.omega, q.tangent);
+  const Subspace<Q> ideal = intersection(r, annihilator(q.tangent));  // I^(c)
+  RC_TAG("dim R = " + std::to_string(r.dim()) + ", dim I = " + std::to_string(ideal.dim()));
+  RC_ASSERT(map(j, r) == q.tangent);                               // 3.12 (b)
+  RC_ASSERT((r.basis() * q.gauge.basis().transpose()).is_zero());  // 3.13 (a)
+  QM bars(0, m);
+  for (Index i = 0; i < r.dim(); ++i) bars = vstack(bars, QM::from_rows({push_forward(q, r.basis().row(i))}, m));
+  RC_ASSERT(rank(bars) == m);             // 3.17: onto
+  RC_ASSERT(r.dim() - m == ideal.dim());  // 3.17: its kernel is I^(c)
+  const QM alpha = integer_matrix(1, r.dim()) * r.basis(), beta = integer_matrix(1, r.dim()) * r.basis();
+  const QM abar = QM::from_rows({push_forward(q, alpha.row(0))}, m),
+           bbar = QM::from_rows({push_forward(q, beta.row(0))}, m);
+  RC_ASSERT(alpha * j * beta.transpose() == abar * poisson_tensor(q.form) * bbar.transpose());  // 3.17: Poisson
+  const QM gamma = integer_matrix(1, ideal.dim()) * ideal.basis();
+  for (const QM& c : {alpha, gamma}) {  // 3.16 (i) ⇔ (ii) ⇔ (iii)
+    const bool constant = (c * q.tangent.basis().transpose()).is_zero();
+    const bool in_gauge = contains(q.gauge, (j * c.transpose()).col(0));
+    const bool commutes = (c * j * r.basis().transpose()).is_zero();
+    RC_ASSERT(constant == in_gauge);
+    RC_ASSERT(in_gauge == commutes);
+  }
+  RC_ASSERT(gamma.cols() == n);
+}

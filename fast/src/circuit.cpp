@@ -34,20 +34,34 @@ SparseRow sparse(const Eigen::RowVectorXd& row, std::size_t offset) {
   return r;
 }
 
-/// The closed form with each rank decided: q-constraints aq (rows of S^⊥), v-constraints av (Δ_k^⊥).
-void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
+/// The fundamental-loop currents (rows: a basis of Δ, each loop with its own tree-free branch) and the
+/// diagonals of φ (L) and ψ (1/C).
+struct LoopData {
+  MatrixXd bl;
+  VectorXd phi, psi;
+};
+LoopData loop_data(const CircuitGraph& g) {
   const std::size_t n = g.branches.size();
   const std::vector<Loop> loops =
       graph::fundamental_loops(g.nodes, lc::edges(g.branches), std::vector<bool>(n, true), std::vector<bool>(n, false));
   const Eigen::Index m = static_cast<Eigen::Index>(loops.size()), nn = static_cast<Eigen::Index>(n);
-  MatrixXd bl = MatrixXd::Zero(m, nn);  // rows: loop currents, a basis of Δ
+  LoopData d{MatrixXd::Zero(m, nn), VectorXd::Zero(nn), VectorXd::Zero(nn)};
   for (Eigen::Index i = 0; i < m; ++i)
-    for (const LoopBranch& lb : loops[i]) bl(i, static_cast<Eigen::Index>(lb.branch)) += lb.sign;
-  VectorXd phi = VectorXd::Zero(nn), psi = VectorXd::Zero(nn);
+    for (const LoopBranch& lb : loops[i]) d.bl(i, static_cast<Eigen::Index>(lb.branch)) += lb.sign;
   for (std::size_t b = 0; b < n; ++b) {
-    if (g.branches[b].kind == BranchKind::inductor) phi(b) = g.branches[b].value;
-    if (g.branches[b].kind == BranchKind::capacitor) psi(b) = 1.0 / g.branches[b].value;
+    if (g.branches[b].kind == BranchKind::inductor) d.phi(b) = g.branches[b].value;
+    if (g.branches[b].kind == BranchKind::capacitor) d.psi(b) = 1.0 / g.branches[b].value;
   }
+  return d;
+}
+
+/// The closed form with each rank decided: q-constraints aq (rows of S^⊥), v-constraints av (Δ_k^⊥).
+void signed_route(const CircuitGraph& g, CircuitTower& t, const Options& opt) {
+  const std::size_t n = g.branches.size();
+  const LoopData ld = loop_data(g);
+  const MatrixXd& bl = ld.bl;
+  const VectorXd &phi = ld.phi, &psi = ld.psi;
+  const Eigen::Index m = bl.rows(), nn = static_cast<Eigen::Index>(n);
   const double nb = m ? norm2(bl) : 1.0;
   const double phi_scale = nb * std::max(phi.cwiseAbs().maxCoeff(), 0.0), psi_scale = nb * psi.cwiseAbs().maxCoeff();
   std::vector<RankDecision>& trace = t.decisions;
@@ -112,6 +126,68 @@ CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt_in) {
   }
   t.steps = static_cast<int>(t.dims.size()) - 1;
   return t;
+}
+
+Truth condition_star(const CircuitGraph& g, const Options& opt_in) {
+  const Options opt = assessed_values(opt_in, g);
+  validate(g);
+  const LoopData ld = loop_data(g);
+  const MatrixXd& bl = ld.bl;
+  const VectorXd &phi = ld.phi, &psi = ld.psi;
+  const Eigen::Index m = bl.rows();
+  if (m == 0) return yes;                                     // Δ = 0: nothing to find
+  const MatrixXd q = full_svd(bl.transpose()).u.leftCols(m);  // orthonormal basis of Δ (the loops: rank m)
+  const MatrixXd a = q.transpose() * phi.asDiagonal() * q, b = q.transpose() * psi.asDiagonal() * q;
+  const double phi_scale = std::max(phi.cwiseAbs().maxCoeff(), 1e-300);
+  const double psi_scale = std::max(psi.cwiseAbs().maxCoeff(), 1e-300);
+  const Svd sa = full_svd(a);
+  const RankDecision da = decide_rank(a, sa.sigma, phi_scale, opt);
+  const MatrixXd off = sa.u.rightCols(m - da.rank);  // (im A)^⊥
+  const Subspace delta1 =
+      off.cols() ? Subspace::solutions(off.transpose() * b, psi_scale, opt) : Subspace::whole(static_cast<int>(m));
+  if (delta1.dim() == 0) return Truth::decided(da.rank == 0, da.certain & delta1.certain());
+  const RankDecision d1 = decide_rank(a * delta1.columns(), phi_scale, opt);
+  return Truth::decided(d1.rank == da.rank, da.certain & delta1.certain() & d1.certain);
+}
+
+LeafBrackets leaf_brackets(const CircuitGraph& g, const Options& opt_in) {
+  const Options opt = assessed_values(opt_in, g);
+  validate(g);
+  if (!is_physical(g))
+    throw std::invalid_argument("leaf_brackets: expected a physical circuit (L, C > 0), found a negative value");
+  const Eigen::Index n = static_cast<Eigen::Index>(g.branches.size()), a = static_cast<Eigen::Index>(g.nodes);
+  const std::vector<Loop> pc = lc::first_step(g.nodes, g.branches).pc_loops;
+  const Eigen::Index b = static_cast<Eigen::Index>(pc.size());
+  MatrixXd rows = MatrixXd::Zero(2 * a + 2 * b + 2 * n, 4 * n);  // columns q, v, p, ν
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const CircuitBranch& br = g.branches[static_cast<std::size_t>(j)];
+    for (Eigen::Index off : {Eigen::Index(0), a + b + n}) {  // κ(q), κ(v)
+      const Eigen::Index col = off == 0 ? j : n + j;
+      if (br.from >= 0) rows(off + br.from, col) += 1;
+      if (br.to >= 0) rows(off + br.to, col) -= 1;
+    }
+    rows(a + b + j, 2 * n + j) = 1;  // p − φ v
+    if (br.kind == BranchKind::inductor) rows(a + b + j, n + j) = -br.value;
+    rows(2 * a + 2 * b + n + j, 3 * n + j) = 1;  // ν
+  }
+  for (Eigen::Index i = 0; i < b; ++i)
+    for (const LoopBranch& lb : pc[static_cast<std::size_t>(i)]) {
+      const CircuitBranch& br = g.branches[lb.branch];
+      if (br.kind != BranchKind::capacitor) continue;
+      const Eigen::Index j = static_cast<Eigen::Index>(lb.branch);
+      rows(a + i, j) += lb.sign / br.value;                  // η(ψ q)
+      rows(2 * a + b + n + i, n + j) += lb.sign / br.value;  // η(ψ v)
+    }
+  MatrixXd j = MatrixXd::Zero(4 * n, 4 * n);  // dq ∧ dp + dv ∧ dν: J = W
+  for (Eigen::Index i = 0; i < n; ++i) {
+    j(i, 2 * n + i) = j(n + i, 3 * n + i) = 1;
+    j(2 * n + i, i) = j(3 * n + i, n + i) = -1;
+  }
+  LeafBrackets out;
+  out.sigma = rows * j * rows.transpose();
+  out.decision = decide_rank(out.sigma, std::max(norm2(rows) * norm2(rows), 1e-300), opt);
+  out.second_class = Truth::decided(out.decision.rank == out.sigma.rows(), out.decision.certain);
+  return out;
 }
 
 }  // namespace dcad::fast

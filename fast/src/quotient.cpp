@@ -49,4 +49,11 @@ GaugeQuotient gauge_quotient(const ConstrainedSystem& s, const DiracBergmannResu
   return q;
 }
 
+Subspace first_class_covectors(const MatrixXd& w, const Subspace& tmc, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {w});
+  Truth nondegenerate = yes;
+  const MatrixXd j = poisson_tensor(w, opt, nondegenerate);
+  return preimage(j, tmc, opt, std::max(norm2(j), 1e-300)).and_certain(nondegenerate);
+}
+
 }  // namespace dcad::fast

@@ -63,4 +63,27 @@ inline fast::CircuitGraph fast_graph(const Circuit<Q>& c, fast::Options* opt = n
   return g;
 }
 
+/// CEF Remark 6.7's circuit: an inductor, a capacitor C and a capacitor −C in parallel (the CAD stops at M_5).
+inline reference::Circuit<Q> remark_6_7_circuit() {
+  Circuit<Q> c;
+  c.nodes = 1;
+  c.branches = {{"L", BranchKind::inductor, 0, -1, Q(1)},
+                {"C1", BranchKind::capacitor, 0, -1, Q(2)},
+                {"C2", BranchKind::capacitor, 0, -1, Q(-2)}};
+  return c;
+}
+
+/// Two capacitors 3 and −3 across one node pair (the elastances cancel), an inductor alone on another node
+/// and an empty branch: a tower of length 5 (a shrunk counterexample of CircuitClosedForm.EqualsGenericCad).
+inline reference::Circuit<Q> cancelling_capacitors_circuit() {
+  Circuit<Q> c;
+  c.nodes = 3;
+  c.branches = {{"E", BranchKind::empty, 0, -1, Q(0)},
+                {"L1", BranchKind::inductor, 1, -1, Q(1)},
+                {"L2", BranchKind::inductor, 2, -1, Q(1)},
+                {"C1", BranchKind::capacitor, 1, -1, Q(3)},
+                {"C2", BranchKind::capacitor, -1, 1, Q(-3)}};
+  return c;
+}
+
 }  // namespace dcad::test

@@ -71,4 +71,23 @@ CircuitTower circuit_tower(const CircuitGraph& g, const Options& opt = {});
 /// No negative L or C: then circuit_tower takes the combinatorial route and decides nothing.
 bool is_physical(const CircuitGraph& g);
 
+/// CEF Lemma 6.5's condition (*): for each δ ∈ Δ some δ_1 ∈ Δ_1 has φ(δ) − φ(δ_1) ∈ Δ°.  By the route of
+/// Theorem 6.6's proof, not the reference's annihilators: in an orthonormal basis of Δ (from the fundamental
+/// loops), A = P_Δ φ|_Δ and B = P_Δ ψ|_Δ; Δ_1 = {c : B c ∈ im A} and (*) says A Δ_1 = im A.  Lemma 6.5 (b):
+/// it holds exactly when Δ_1 = Δ_2.  unknown where a rank decision is not certain.
+Truth condition_star(const CircuitGraph& g, const Options& opt = {});
+
+/// Σ = [{ε_i, ε_j}] of the equations of the leaf x₀ + W̃_c of a physical LC circuit in T*TE, variables
+/// (q, v, p, ν) (CEF §6 after Theorem 6.8: κ(q), η(ψq), p − φv, κ(v), η(ψv), ν).  Another route than the
+/// reference's block formula: the brackets a_i J a_jᵀ of its own rows, K one per node and Γ the graph's
+/// fundamental purely capacitive loops.  `second_class`: Σ decided nondegenerate (every constraint second
+/// class, the leaf symplectic — Theorem 6.8: exactly when there is no empty loop).  std::invalid_argument for
+/// a circuit that is not physical (a negative L or C).
+struct LeafBrackets {
+  MatrixXd sigma;
+  RankDecision decision;
+  Truth second_class = unknown;
+};
+LeafBrackets leaf_brackets(const CircuitGraph& g, const Options& opt = {});
+
 }  // namespace dcad::fast

@@ -29,4 +29,11 @@ GaugeQuotient gauge_quotient(const ConstrainedSystem& s, const DiracBergmannResu
 /// X̄(z) = field z + offset.
 inline VectorXd quotient_field(const GaugeQuotient& q, const VectorXd& z) { return q.field * z + q.offset; }
 
+/// The linear first class functions α·x of M_c (CEF Def 3.10 ff.): J α ∈ TM_c (a decided preimage).
+Subspace first_class_covectors(const MatrixXd& w, const Subspace& tmc, const Options& opt = {});
+
+/// (p_{K_c})_* (α·x) (CEF Lemma 3.13 (a)) by the section: f(x(z)) = (Sᵀ α)·z + const, so ᾱ = Sᵀ α — the
+/// reference solves ᾱ·(C y) = α·y over TM_c instead.
+inline VectorXd push_forward(const GaugeQuotient& q, const VectorXd& alpha) { return q.section.transpose() * alpha; }
+
 }  // namespace dcad::fast

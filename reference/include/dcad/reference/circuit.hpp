@@ -146,4 +146,90 @@ Subspace<T> closed_form_m(const Circuit<T>& c, Index j) {
   return pontryagin_product(c, kvl_subspace(c, delta_k(c, k - 1)), delta_k(c, k - 1));
 }
 
+/// Condition (*) of CEF Lemma 6.5 (b), literally: for each δ ∈ Δ there is δ_1 ∈ Δ_1 with φ(δ) − φ(δ_1) ∈ Δ°,
+/// i.e. φ(Δ) ⊆ φ(Δ_1) + Δ°.  Lemma 6.5 (b): it holds exactly when Δ_1 = Δ_2; Theorem 6.6: it holds when every
+/// branch has L > 0 or a finite C > 0.
+template <class T>
+bool condition_star(const Circuit<T>& c) {
+  const Subspace<T> delta = delta_k(c, 0);
+  const Matrix<T> phi = inductance_matrix(c);
+  return contains(sum(map(phi, delta_k(c, 1)), annihilator(delta)), map(phi, delta));
+}
+
+/// Γ = [η_1 … η_b] (columns): the KVLPC loops of CEF Theorem 6.4 — of a basis of the non-inductive loop
+/// currents (φ(Δ) + Δ°)° = φ(Δ)° ∩ Δ, those whose elastance rows ηᵀψ extend the ones kept (empty loops give
+/// ηᵀψ = 0 and drop out), so the equations η(ψq) = 0 are independent.
+template <class T>
+Matrix<T> kvlpc_loops(const Circuit<T>& c) {
+  const Subspace<T> delta = delta_k(c, 0);
+  const Matrix<T> phi = inductance_matrix(c), psi = elastance_matrix(c);
+  const Subspace<T> loops = intersection(annihilator(map(phi, delta)), delta);
+  Matrix<T> kept(0, c.branches.size()), rows(0, c.branches.size());
+  for (Index i = 0; i < loops.dim(); ++i) {
+    const Matrix<T> eta = loops.basis().block(i, i + 1, 0, loops.ambient());
+    if (rank(vstack(rows, eta * psi)) == rows.rows()) continue;
+    rows = vstack(rows, eta * psi);
+    kept = vstack(kept, eta);
+  }
+  return kept.transpose();
+}
+
+/// The equations of the leaf x₀ + W̃_c of an LC circuit in T*TE, variables (q, v, p, ν) ∈ Q^{4n}, rows [a | b]
+/// (CEF §6 after Theorem 6.8): κ(q) = κ(q₀), η(ψq) = 0, p − φv = 0, κ(v) = 0, η(ψv) = 0, ν = 0 — K the KCL
+/// rows, Γ the KVLPC loops.
+template <class T>
+Matrix<T> leaf_equations(const Circuit<T>& c, const std::vector<T>& q0) {
+  const Index n = c.branches.size();
+  const Matrix<T> k = kcl_matrix(c), gpsi = kvlpc_loops(c).transpose() * elastance_matrix(c);
+  const Matrix<T> phi = inductance_matrix(c), id = Matrix<T>::identity(n);
+  const auto row = [&](const Matrix<T>& q, const Matrix<T>& v, const Matrix<T>& p, const Matrix<T>& nu,
+                       const Matrix<T>& b) { return hstack(hstack(hstack(q, v), hstack(p, nu)), b); };
+  const auto zero = [&](const Matrix<T>& like) { return Matrix<T>(like.rows(), n); };
+  const auto none = [&](const Matrix<T>& like) { return Matrix<T>(like.rows(), 1); };
+  Matrix<T> rows = row(k, zero(k), zero(k), zero(k), k * Matrix<T>::column(q0));
+  rows = vstack(rows, row(gpsi, zero(gpsi), zero(gpsi), zero(gpsi), none(gpsi)));
+  rows = vstack(rows, row(zero(id), -phi, id, zero(id), none(id)));
+  rows = vstack(rows, row(zero(k), k, zero(k), zero(k), none(k)));
+  rows = vstack(rows, row(zero(gpsi), gpsi, zero(gpsi), zero(gpsi), none(gpsi)));
+  return vstack(rows, row(zero(id), zero(id), zero(id), id, none(id)));
+}
+
+/// T*TE's canonical form dq ∧ dp + dv ∧ dν on (q, v, p, ν) ∈ Q^{4n} (CEF Appendix A; {q_i, p_j} = δ_ij).
+template <class T>
+Matrix<T> cotangent_of_tangent_form(Index n) {
+  Matrix<T> w(4 * n, 4 * n);
+  for (Index i = 0; i < n; ++i) {
+    w(i, 2 * n + i) = w(n + i, 3 * n + i) = T(1);
+    w(2 * n + i, i) = w(3 * n + i, n + i) = T(-1);
+  }
+  return w;
+}
+
+/// Σ = [{ε_i, ε_j}] of leaf_equations in CEF's block form (after Theorem 6.8), from K, Γ, φ and ψ:
+///   [0 0 K 0 0 0; 0 0 Γᵀψ 0 0 0; −Kᵀ −ψΓ 0 0 0 −φ; 0 0 0 0 0 K; 0 0 0 0 0 Γᵀψ; 0 0 φ −Kᵀ −ψΓ 0].
+template <class T>
+Matrix<T> leaf_sigma_block_form(const Circuit<T>& c) {
+  const Index n = c.branches.size();
+  const Matrix<T> k = kcl_matrix(c), psi = elastance_matrix(c), phi = inductance_matrix(c);
+  const Matrix<T> gpsi = kvlpc_loops(c).transpose() * psi;
+  const Index a = k.rows(), b = gpsi.rows();
+  const std::vector<Index> at{0, a, a + b, a + b + n, 2 * a + b + n, 2 * a + 2 * b + n, 2 * a + 2 * b + 2 * n};
+  Matrix<T> sigma(at.back(), at.back());
+  const auto put = [&](Index bi, Index bj, const Matrix<T>& m) {
+    for (Index i = 0; i < m.rows(); ++i)
+      for (Index j = 0; j < m.cols(); ++j) sigma(at[bi] + i, at[bj] + j) = m(i, j);
+  };
+  put(0, 2, k);
+  put(1, 2, gpsi);
+  put(2, 0, -k.transpose());
+  put(2, 1, -gpsi.transpose());
+  put(2, 5, -phi);
+  put(3, 5, k);
+  put(4, 5, gpsi);
+  put(5, 2, phi);
+  put(5, 3, -k.transpose());
+  put(5, 4, -gpsi.transpose());
+  return sigma;
+}
+
 }  // namespace dcad::reference

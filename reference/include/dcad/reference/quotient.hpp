@@ -80,4 +80,24 @@ std::vector<T> quotient_field(const GaugeQuotient<T>& q, const std::vector<T>& z
   return out;
 }
 
+/// The linear first class functions f = α·x of M_c (CEF Def 3.10 ff., R^(c) among the linear functions):
+/// the covectors α whose Hamiltonian field X_f = J α is tangent to M_c.  Those that also vanish along TM_c
+/// are its first class constraints, I^(c).
+template <class T>
+Subspace<T> first_class_covectors(const Matrix<T>& w, const Subspace<T>& tmc) {
+  return preimage(poisson_tensor(w), tmc);
+}
+
+/// (p_{K_c})_* f for a first class f = α·x (CEF Lemma 3.13 (a)): the ᾱ with f|_{M_c} = ᾱ·z + const, i.e.
+/// ᾱ·(C y) = α·y for every y ∈ TM_c — solved over TM_c's basis; it exists because α vanishes on K_c.
+template <class T>
+std::vector<T> push_forward(const GaugeQuotient<T>& q, const std::vector<T>& alpha) {
+  const Matrix<T>& y = q.tangent.basis();
+  const std::vector<T> rhs = (y * Matrix<T>::column(alpha)).col(0);
+  const AffineSubspace<T> bar = solve(y * q.coordinates.transpose(), rhs);
+  require(!bar.empty, "push_forward", "a first class function (α vanishing on K_c, Lemma 3.13 (a))",
+          "α that does not vanish on K_c");
+  return bar.point;
+}
+
 }  // namespace dcad::reference
