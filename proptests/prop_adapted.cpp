@@ -78,11 +78,10 @@ RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
 // through x and solves (7.7) there, for every λ.
 RC_GTEST_PROP(Adapted, Theorem7_4_Foliated, ()) {
   const ConstrainedSystem<Q> s = any_constrained_system();
-  const Index n = s.omega.rows();
-  const Index nleaf = *rc::gen::inRange<Index>(0, 3);
-  QM leaf = hstack(integer_matrix(nleaf, n, 2), QM(nleaf, 1));  // φ_leaf(x) = c·x, level sets C
-  QM both = vstack(s.primary, leaf);
-  if (rank(gradients(both)) != both.rows()) return;  // defined regularly
+  const QM leaf = any_leaf_functions(s);
+  if (leaf.rows() == 0 && leaf.cols() == 0) return;  // not defined regularly
+  const QM both = vstack(s.primary, leaf);
+  const Index nleaf = leaf.rows();
   // the CAD of D_{(T S'_C, Ω)} on M_0 = S'
   const CadResult<Q> r = foliated_tower(FoliatedEmbedding<Q>{s.omega, s.hessian, s.gradient, s.primary, leaf});
   if (!r.consistent) return;
@@ -100,4 +99,70 @@ RC_GTEST_PROP(Adapted, Theorem7_4_Foliated, ()) {
   const auto field = [&](const std::vector<Q>& l) { return abridged_field(ad, all, s.hessian, s.gradient, x, l); };
   RC_ASSERT(parametrises_all(field, ad.abridged.size(), s.omega, ts_c, kernel(gradients(both))));
   RC_ASSERT(ad.abridged.size() == r.solution_rank);  // a' − s' = d^(c) on the leaves
+}
+
+// CEF §7 after (7.7), (7.8), Remark 7.3 and the extended Poisson manifold, on random foliated systems: at
+// x ∈ S (any leaf, C = φ_leaf(x)) Λ_x is nonempty; for λ ∈ Λ_x the field (7.8) J (dE + λ^i dφ_i) is tangent
+// to S_C and solves (7.7) on the leaf (Ω(X, δx) = dE(δx) for δx ∈ T S'_C); every solution X of (7.7) (the
+// CAD's velocities) is J (dE + λ^i dφ_i) for exactly one λ, which lies in Λ_x (Remark 7.3); and the
+// Hamiltonian field of E_{λ̃,T} on the extended Poisson manifold at (x, C) on the graph of C is (X, 0) for
+// any derivative of the section, tangent to that graph (the motion preserves it).
+RC_GTEST_PROP(Adapted, Section7_FoliatedMultipliersAndExtendedField, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const QM leaf = any_leaf_functions(s);
+  if (leaf.rows() == 0 && leaf.cols() == 0) return;
+  const FoliatedEmbedding<Q> f{s.omega, s.hessian, s.gradient, s.primary, leaf};
+  const CadResult<Q> r = foliated_tower(f);
+  if (!r.consistent) return;
+  const Index n = s.omega.rows();
+  const QM secondary = secondary_constraints(r);
+  const std::vector<Q> x = some_point(r.final_step().m);
+  const AffineSubspace<Q> lambda = foliated_multipliers(f, secondary, x);
+  RC_ASSERT(!lambda.empty);
+  RC_TAG("leaves: " + std::to_string(leaf.rows()) + ", dim Lambda: " + std::to_string(lambda.direction.dim()));
+  const QM both = vstack(s.primary, leaf);
+  const Subspace<Q> ts_c = intersection(r.final_step().m.direction, kernel(gradients(leaf)));
+  const std::vector<Q> l = some_point(lambda);
+  const std::vector<Q> field = foliated_field(f, x, l);
+  RC_ASSERT(contains(ts_c, field));                                                      // (7.8): S_C preserved
+  RC_ASSERT(solves(s.omega, s.hessian, s.gradient, x, field, kernel(gradients(both))));  // (7.7)
+  const AffineSubspace<Q> xdots = velocities(foliated_system(f), r, x);
+  const std::vector<Q> xdot = some_point(xdots);
+  const QM jmult = poisson_tensor(s.omega) * gradients(both).transpose();
+  std::vector<Q> rest = xdot, de = foliated_field(f, x, std::vector<Q>(both.rows(), Q(0)));
+  for (Index i = 0; i < n; ++i) rest[i] -= de[i];
+  const AffineSubspace<Q> unique = solve(jmult, rest);  // Remark 7.3
+  RC_ASSERT(!unique.empty && unique.direction.dim() == 0u);
+  RC_ASSERT(lambda.contains_point(unique.point));
+  std::vector<Q> c(leaf.rows());
+  for (Index k = 0; k < leaf.rows(); ++k) c[k] = dot(gradients(leaf).row(k), x) - leaf(k, n);
+  const std::vector<Q> ext = extended_hamiltonian_field(f, x, c, l, integer_matrix(both.rows(), n));
+  std::vector<Q> expected = field;
+  expected.resize(n + leaf.rows(), Q(0));
+  RC_ASSERT(ext == expected);
+  RC_ASSERT((hstack(gradients(leaf), -QM::identity(leaf.rows())) * QM::column(ext)).is_zero());  // d(φ − C)(X) = 0
+}
+
+// CEF Remark 7.5: Dirac's equation ġ ≈ {g, H_T}* with the total Hamiltonian of the primary constraints alone
+// is not the motion of a foliated system.  P = R², Ω = dq ∧ dp, E = (q² + p²)/2, no primary constraint, leaves
+// p = C: (7.7) on each leaf gives the secondary q = 0, S_C = {(0, C)}, and Λ_x = {λ = −p}, so the motion is
+// rest, X = (p + λ, −q) = 0.  Dirac's algorithm on (P, Ω, E, P) finds no constraint and H_T = E: its field
+// (p, −q) = (C, 0) at (0, C) leaves S_C for every C ≠ 0.
+TEST(Adapted, Remark7_5_DiracsEquationIsWrongWhenFoliated) {
+  const QM w = QM::from_rows({{Q(0), Q(1)}, {Q(-1), Q(0)}}, 2);
+  const QM h = QM::identity(2);
+  const FoliatedEmbedding<Q> f{w, h, {Q(0), Q(0)}, QM(0, 3), QM::from_rows({{Q(0), Q(1), Q(0)}}, 3)};
+  const CadResult<Q> r = foliated_tower(f);
+  ASSERT_TRUE(r.consistent);
+  ASSERT_EQ(r.final_step().m.direction.dim(), 1u);  // S = {q = 0}, foliated by the points (0, C)
+  const std::vector<Q> x{Q(0), Q(3)};
+  const AffineSubspace<Q> lambda = foliated_multipliers(f, secondary_constraints(r), x);
+  ASSERT_FALSE(lambda.empty);
+  EXPECT_EQ(lambda.point, std::vector<Q>{Q(-3)});
+  EXPECT_EQ(foliated_field(f, x, lambda.point), (std::vector<Q>{Q(0), Q(0)}));
+  const ConstrainedSystem<Q> unfoliated{w, h, {Q(0), Q(0)}, QM(0, 3)};
+  const DiracBergmannResult<Q> db = dirac_bergmann(unfoliated);
+  EXPECT_EQ(db.tower.back().direction.dim(), 2u);  // Dirac: no constraint at all
+  const std::vector<Q> dirac = total_energy_field(unfoliated, x, {});
+  EXPECT_EQ(dirac, (std::vector<Q>{Q(3), Q(0)}));  // not tangent to S_C = {(0, 3)}
 }

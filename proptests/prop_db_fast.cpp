@@ -209,3 +209,42 @@ RC_GTEST_PROP(FastVsReference, FirstClassFunctions, ()) {
   RC_LOG() << case_json(s) << "{f, h} = " << exact << " exactly, " << bracket << " on fast's quotient\n";
   RC_ASSERT(std::abs(bracket - exact) <= tol);
 }
+
+// CEF §7 by both twins on random foliated systems: fast's Λ_x (Remark 7.3's route: a velocity of its own CAD
+// solved for λ) has the reference's dimension unless fast is uncertain, and fast's field (7.8) with its λ is
+// tangent to the exact leaf S_C and solves (7.7) there, up to rounding.
+RC_GTEST_PROP(FastVsReference, FoliatedMultipliers, ()) {
+  const ref::ConstrainedSystem<Q> s = any_constrained_system();
+  const QM leaf = any_leaf_functions(s);
+  if (leaf.rows() == 0 && leaf.cols() == 0) return;
+  const ref::FoliatedEmbedding<Q> f{s.omega, s.hessian, s.gradient, s.primary, leaf};
+  const ref::CadResult<Q> r = ref::foliated_tower(f);
+  if (!r.consistent) return;
+  const std::vector<Q> x = some_point(r.final_step().m);
+  const ref::AffineSubspace<Q> rl = ref::foliated_multipliers(f, ref::secondary_constraints(r), x);
+  fast::Options opt = any_route_options();
+  const fast::FoliatedEmbedding ff{to_double(s.omega, &opt), to_double(s.hessian, &opt), to_double(s.primary, &opt),
+                                   to_double(leaf, &opt), to_double(QM::column(s.gradient), &opt).col(0)};
+  const fast::CadResult fr = fast::foliated_tower(ff, opt);
+  if (!fr.consistent || fr.certain.unknown()) return;
+  const Eigen::VectorXd xd = to_double(x);
+  const fast::AffineSubspace fl = fast::foliated_multipliers(ff, fr, fast::secondary_constraints(fr), xd, opt);
+  RC_LOG() << "fast: empty " << fl.empty << " dim " << (fl.empty ? -1 : fl.direction.dim()) << ", exact dim "
+           << rl.direction.dim() << "\n";
+  RC_ASSERT(!tally("foliated dim Lambda", fl.certain.yes(),
+                   !fl.empty && fl.direction.dim() == static_cast<int>(rl.direction.dim())));
+  if (fl.empty || fl.certain.unknown()) return;
+  const Eigen::VectorXd field = fast::foliated_field(ff, xd, fl.point);
+  const QM both = ref::vstack(s.primary, leaf);
+  const Eigen::MatrixXd ts_c =
+      to_double(ref::intersection(r.final_step().m.direction, ref::kernel(ref::gradients(leaf))).basis());
+  const Eigen::MatrixXd off = to_double(
+      ref::annihilator(ref::intersection(r.final_step().m.direction, ref::kernel(ref::gradients(leaf)))).basis());
+  const Eigen::MatrixXd tsp = to_double(ref::kernel(ref::gradients(both)).basis());  // T S'_C, rows
+  const Eigen::VectorXd de = ff.hessian * xd + ff.gradient;
+  const double tol = 1e-8 * (1 + fast::norm2(ff.omega)) * (1 + field.norm() + de.norm()) * (1 + fl.point.norm());
+  RC_LOG() << case_json(s) << "x = " << json_vector(x) << "\n";
+  RC_ASSERT((off * field).norm() <= tol * (1 + fast::norm2(off)));                                // tangent to S_C
+  RC_ASSERT((tsp * (ff.omega.transpose() * field - de)).norm() <= tol * (1 + fast::norm2(tsp)));  // (7.7)
+  RC_ASSERT(ts_c.cols() == xd.size());
+}

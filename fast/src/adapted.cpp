@@ -102,4 +102,40 @@ AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, 
   return out;
 }
 
+AffineSubspace foliated_multipliers(const FoliatedEmbedding& f, const CadResult& r, const MatrixXd& secondary,
+                                    const VectorXd& x, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {f.omega, f.hessian, f.primary, f.leaf, f.gradient});
+  const int n = static_cast<int>(f.omega.rows());
+  MatrixXd mult(f.primary.rows() + f.leaf.rows(), n), all(mult.rows() + secondary.rows(), n);
+  mult << f.primary.leftCols(n), f.leaf.leftCols(n);
+  all << f.primary.leftCols(n), secondary.leftCols(n), f.leaf.leftCols(n);
+  AffineSubspace out;
+  Truth certain = yes;
+  const MatrixXd j = poisson_tensor(f.omega, opt, certain);
+  const AffineSubspace xdot = velocities(foliated_system(f, opt), r, x, opt);
+  out.certain = certain & xdot.certain;
+  if (xdot.empty) return out;
+  const VectorXd de = f.hessian * x + f.gradient;
+  const MatrixXd ja = j * mult.transpose();  // X − J dE = J Aᵀ λ
+  const double scale = std::max(norm2(ja), 1e-300);
+  // X and J dE carry the rounding of the velocities' solve: the right-hand side's scale is theirs
+  const double rhs_scale = xdot.point.norm() + norm2(j) * de.norm() + scale * x.norm();
+  const AffineSubspace lam = solve(ja, xdot.point - j * de, opt, scale, rhs_scale);
+  out.certain &= lam.certain;
+  if (lam.empty) return out;
+  out.empty = false;
+  out.point = lam.point;
+  out.direction = Subspace::solutions(all * ja, std::max(norm2(all) * scale, 1e-300), opt);  // J λ·a ∈ T S
+  out.certain &= out.direction.certain();
+  return out;
+}
+
+VectorXd foliated_field(const FoliatedEmbedding& f, const VectorXd& x, const VectorXd& lambda) {
+  const int n = static_cast<int>(f.omega.rows());
+  MatrixXd mult(f.primary.rows() + f.leaf.rows(), n);
+  mult << f.primary.leftCols(n), f.leaf.leftCols(n);
+  Truth ignored = yes;
+  return poisson_tensor(f.omega, {}, ignored) * (f.hessian * x + f.gradient + mult.transpose() * lambda);
+}
+
 }  // namespace dcad::fast

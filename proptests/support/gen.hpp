@@ -301,6 +301,15 @@ inline reference::ConstrainedSystem<Q> any_constrained_system() {
   return s;
 }
 
+/// 0–2 leaf functions φ_leaf(x) = c·x (level sets C) for the foliated setting of §7, or a 0×0 matrix where
+/// they and the primary constraints are not defined regularly together.
+inline QM any_leaf_functions(const reference::ConstrainedSystem<Q>& s) {
+  const Index n = s.omega.rows();
+  const Index nleaf = *rc::gen::inRange<Index>(0, 3);
+  const QM leaf = hstack(integer_matrix(nleaf, n, 2), QM(nleaf, 1));
+  return reference::rank(reference::gradients(vstack(s.primary, leaf))) == s.primary.rows() + nleaf ? leaf : QM(0, 0);
+}
+
 /// A point of an affine subspace: its point plus an integer combination of its directions.
 inline std::vector<Q> some_point(const reference::AffineSubspace<Q>& m) {
   std::vector<Q> x = m.point;

@@ -40,4 +40,13 @@ struct AdaptedToPrimary {
 AdaptedToPrimary adapted_to_primary(const MatrixXd& w, const MatrixXd& primary, const MatrixXd& secondary,
                                     const MatrixXd& leaf, const Options& opt = {});
 
+/// CEF §7 after (7.7): Λ_x for E_{C,T} = E + λ^i (φ_i − C_i), i over the primary then the leaf functions, at
+/// x ∈ S — by Remark 7.3's route, not the reference's bracket equations: one solution X of the leaf-wise
+/// equations (7.7) at x (the CAD's velocities of foliated_system) gives the λ with X = J (dE + λ^i a_i)
+/// (least squares, checked), and the directions are the λ whose J λ^i a_i is tangent to S.
+AffineSubspace foliated_multipliers(const FoliatedEmbedding& f, const CadResult& r, const MatrixXd& secondary,
+                                    const VectorXd& x, const Options& opt = {});
+/// (7.8) at x₀: J (dE(x₀) + λ^i a_i), λ over the primary then the leaf functions.
+VectorXd foliated_field(const FoliatedEmbedding& f, const VectorXd& x, const VectorXd& lambda);
+
 }  // namespace dcad::fast

@@ -141,4 +141,60 @@ AdaptedToPrimary<T> adapted_to_primary(const Matrix<T>& w, const Matrix<T>& prim
   return out;
 }
 
+/// CEF §7 after (7.7): the multipliers of E_{C,T} = E + λ^i (φ_i − C_i), i over the primary then the leaf
+/// functions, at x ∈ S: {E, φ_j}(x) + λ^i {φ_i, φ_j}(x) = 0 for every constraint φ_j of S (primary,
+/// `secondary`, leaf).  C enters neither side: Λ_x depends on x, not on the leaf through it.
+template <class T>
+AffineSubspace<T> foliated_multipliers(const FoliatedEmbedding<T>& f, const Matrix<T>& secondary,
+                                       const std::vector<T>& x) {
+  const Matrix<T> j = poisson_tensor(f.omega);
+  const Matrix<T> mult = gradients(vstack(f.primary, f.leaf));
+  const Matrix<T> all = gradients(vstack(vstack(f.primary, secondary), f.leaf));
+  std::vector<T> de = (f.hessian * Matrix<T>::column(x)).col(0);
+  for (Index i = 0; i < de.size(); ++i) de[i] += f.gradient[i];
+  // {E, φ_j} = dEᵀ J a_jᵀ and {φ_i, φ_j} = a_i J a_jᵀ: row j of both is a_j Jᵀ (·)
+  std::vector<T> rhs = (all * j.transpose() * Matrix<T>::column(de)).col(0);
+  for (T& v : rhs) v = -v;
+  return solve(all * j.transpose() * mult.transpose(), rhs);
+}
+
+/// (7.8) at x₀, C₀ = φ(x₀) held fixed: X = dE^♯(x₀) + λ^i dφ_i^♯(x₀) = J (dE(x₀) + λ^i a_i), λ over the primary
+/// then the leaf functions.
+template <class T>
+std::vector<T> foliated_field(const FoliatedEmbedding<T>& f, const std::vector<T>& x, const std::vector<T>& lambda) {
+  const Matrix<T> mult = gradients(vstack(f.primary, f.leaf));
+  require(lambda.size() == mult.rows(), "foliated_field", std::to_string(mult.rows()) + " multipliers",
+          std::to_string(lambda.size()));
+  std::vector<T> d = (f.hessian * Matrix<T>::column(x)).col(0);
+  for (Index i = 0; i < d.size(); ++i) {
+    d[i] += f.gradient[i];
+    for (Index k = 0; k < lambda.size(); ++k) d[i] += lambda[k] * mult(k, i);
+  }
+  return (poisson_tensor(f.omega) * Matrix<T>::column(d)).col(0);
+}
+
+/// CEF §7's extended Poisson manifold U × R^{b−a} (the bracket Ω⁻¹ on U, 0 on the leaf values C): the
+/// Hamiltonian field at (x, c) of E_{λ̃,T}(x, C) = E(x) + λ̃^i(x) (φ_i(x) − C_i) (C_i = 0 for the primary φ_i),
+/// for a section λ̃ with value `lambda` and derivative `dlambda` (row i: dλ̃^i) at x: (J ∂_x E_{λ̃,T}, 0) — the
+/// C-part vanishes with the bracket there.
+template <class T>
+std::vector<T> extended_hamiltonian_field(const FoliatedEmbedding<T>& f, const std::vector<T>& x,
+                                          const std::vector<T>& c, const std::vector<T>& lambda,
+                                          const Matrix<T>& dlambda) {
+  const Matrix<T> rows = vstack(f.primary, f.leaf);
+  const Index n = x.size(), p = f.primary.rows();
+  require(c.size() == f.leaf.rows(), "extended_hamiltonian_field", std::to_string(f.leaf.rows()) + " leaf values",
+          std::to_string(c.size()));
+  std::vector<T> grad = (f.hessian * Matrix<T>::column(x)).col(0);
+  for (Index i = 0; i < n; ++i) grad[i] += f.gradient[i];
+  for (Index k = 0; k < rows.rows(); ++k) {
+    T level = -rows(k, n) - (k < p ? T(0) : c[k - p]);  // φ_k(x) − C_k, φ_k = a_k·x − b_k
+    for (Index i = 0; i < n; ++i) level += rows(k, i) * x[i];
+    for (Index i = 0; i < n; ++i) grad[i] += lambda[k] * rows(k, i) + level * dlambda(k, i);
+  }
+  std::vector<T> out = (poisson_tensor(f.omega) * Matrix<T>::column(grad)).col(0);
+  out.resize(n + c.size(), T(0));
+  return out;
+}
+
 }  // namespace dcad::reference
