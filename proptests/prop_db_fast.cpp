@@ -248,3 +248,36 @@ RC_GTEST_PROP(FastVsReference, FoliatedMultipliers, ()) {
   RC_ASSERT((tsp * (ff.omega.transpose() * field - de)).norm() <= tol * (1 + fast::norm2(tsp)));  // (7.7)
   RC_ASSERT(ts_c.cols() == xd.size());
 }
+
+// CEF Remark 2.2 by both sides: f ≈ 0 (f|_{M_c} = 0: the reference, literally) ⇔ f = ν^i φ_i^(c) with affine ν
+// (fast: the coefficient matching decided solvable), on quadratic f planted in the ideal of M_c's constraints
+// (half the cases) or moved off it by a random quadratic (which may or may not vanish on M_c).
+RC_GTEST_PROP(FastVsReference, Remark2_2_WeakEquality, ()) {
+  const auto& [s, opt, fs, r, f] = any_twins();
+  if (!r.consistent) return;
+  const Index n = s.omega.rows(), k = r.constraints.rows();
+  const QM nu = integer_matrix(k, n), nu0 = integer_matrix(k, 1), a = ref::gradients(r.constraints);
+  ref::QuadraticFunction<Q> q{QM(n, n), std::vector<Q>(n, Q(0)), Q(0)};
+  for (Index i = 0; i < k; ++i) {  // Σ (N_i·x + ν0_i)(a_i·x − β_i)
+    const Q beta = r.constraints(i, n);
+    for (Index p = 0; p < n; ++p) {
+      for (Index c = 0; c < n; ++c) q.a(p, c) += nu(i, p) * a(i, c) + a(i, p) * nu(i, c);
+      q.b[p] += nu0(i, 0) * a(i, p) - beta * nu(i, p);
+    }
+    q.c -= nu0(i, 0) * beta;
+  }
+  const bool planted = *rc::gen::arbitrary<bool>();
+  if (!planted) {
+    const QM extra = symmetric_matrix(n, *rc::gen::inRange<Index>(0, 2));
+    for (Index p = 0; p < n; ++p)
+      for (Index c = 0; c < n; ++c) q.a(p, c) += extra(p, c);
+    q.c += Q(*rc::gen::inRange(0, 2));
+  }
+  const bool weak = ref::weakly_zero(r.tower.back(), q);
+  RC_CLASSIFY(weak, "f ~ 0");
+  if (planted) RC_ASSERT(weak);
+  fast::Options o = opt;
+  const fast::QuadraticFunction fq{to_double(q.a, &o), to_double(QM::column(q.b), &o).col(0), q.c.convert_to<double>()};
+  const Truth fw = fast::weakly_zero(to_double(r.constraints, &o), fq, o);
+  RC_ASSERT(!tally("Remark 2.2 f ~ 0", fw != unknown, fw.yes() == weak));
+}

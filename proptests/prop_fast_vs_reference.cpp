@@ -160,3 +160,50 @@ RC_GTEST_PROP(FastVsReference, Graded, ()) {
   const fast::RankDecision d = fast::decide_rank(wd, -1, opt);
   RC_ASSERT(!tally("graded rank", d.certain.yes(), static_cast<Index>(d.rank) == 2 * p.h));
 }
+
+// CEF (6.10)–(6.12) for D̄_Δ on TQ ⊕ T*Q, coordinates (q, v, p), Δ = ker K random: E_D̄ = {q̇ ∈ Δ} (6.10),
+// E_D̄^♭ = {(α, γ, β) : γ = 0, β ∈ Δ} (6.11) and E_D̄^D̄ = {q̇ = 0, ṗ ∈ Δ°} (6.12) — the sets as printed,
+// built here from Δ, equal the reference's dirac_distribution, dirac_flat and dirac_orthogonal exactly, and
+// fast's (its own D̄_Δ from the same data) unless fast is uncertain.
+RC_GTEST_PROP(FastVsReference, Section6_EFlatAndOrthogonal, ()) {
+  const Index n = pick_size(1, 4);
+  ref::PontryaginInput<Q> in;
+  in.n = n;
+  in.k = integer_matrix(*rc::gen::inRange<Index>(0, n + 1), n, 1);
+  in.vv = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  in.qq = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  in.qv = QM(n, n);
+  in.q.assign(n, Q(0));
+  in.v.assign(n, Q(0));
+  const ref::DiracStructure<Q> d = ref::pontryagin_system(in).d;
+  const QSub delta = ref::kernel(in.k), delta0 = ref::annihilator(delta);
+  const auto place = [&](const QM& rows, Index block) {  // rows of Q^n into block 0 (q), 1 (v) or 2 (p) of Q^{3n}
+    QM out(rows.rows(), 3 * n);
+    for (Index i = 0; i < rows.rows(); ++i)
+      for (Index j = 0; j < n; ++j) out(i, block * n + j) = rows(i, j);
+    return out;
+  };
+  const QM id = QM::identity(n);
+  const QSub e = QSub::span(ref::vstack(place(delta.basis(), 0), ref::vstack(place(id, 1), place(id, 2))));
+  const QSub flat = QSub::span(ref::vstack(place(id, 0), place(delta.basis(), 2)));
+  const QSub orth = QSub::span(ref::vstack(place(id, 1), place(delta0.basis(), 2)));
+  RC_TAG("dim Delta = " + std::to_string(delta.dim()) + " of " + std::to_string(n));
+  RC_ASSERT(ref::dirac_distribution(d) == e);      // (6.10)
+  RC_ASSERT(ref::dirac_flat(d, e) == flat);        // (6.11)
+  RC_ASSERT(ref::dirac_orthogonal(d, e) == orth);  // (6.12)
+  fast::PontryaginInput fin;
+  fin.n = static_cast<std::size_t>(n);
+  fin.k = to_double(in.k);
+  fin.vv = to_double(in.vv);
+  fin.qq = to_double(in.qq);
+  fin.qv = to_double(in.qv);
+  fin.q = Eigen::VectorXd::Zero(n);
+  fin.v = Eigen::VectorXd::Zero(n);
+  const fast::DiracStructure fd = fast::pontryagin_system(fin).d;
+  const fast::Subspace fe = fast::dirac_distribution(fd);
+  RC_ASSERT(!tally("(6.10) E_D", fe.certain().yes(), fast::equal(fe, to_fast(e)).yes()));
+  if (fe.certain().unknown()) return;
+  const fast::Subspace ff = fast::dirac_flat(fd, fe), fo = fast::dirac_orthogonal(fd, fe);
+  RC_ASSERT(!tally("(6.11) E_D flat", ff.certain().yes(), fast::equal(ff, to_fast(flat)).yes()));
+  RC_ASSERT(!tally("(6.12) E_D^D", fo.certain().yes(), fast::equal(fo, to_fast(orth)).yes()));
+}

@@ -166,4 +166,36 @@ Truth is_first_class_submanifold(const MatrixXd& w, const Subspace& ts, const Op
   return Truth::decided(d.rank == 0, certain);
 }
 
+Truth weakly_zero(const MatrixXd& constraints, const QuadraticFunction& f, const Options& opt_in) {
+  const Options opt = assessed(opt_in, {constraints, f.a, f.b});
+  const int n = static_cast<int>(f.a.rows()), k = static_cast<int>(constraints.rows());
+  if (k == 0) return f.a.isZero(0) && f.b.isZero(0) && f.c == 0 ? yes : no;  // M_c = N: f ≡ 0 (data, not computed)
+  const MatrixXd a = constraints.leftCols(n);
+  const VectorXd beta = constraints.col(n);
+  // unknowns: N_ip at i * n + p, ν0_i at k n + i;  equations: A_pq (p ≤ q), b_p, c
+  const int unknowns = k * n + k, rows = n * (n + 1) / 2 + n + 1;
+  MatrixXd m = MatrixXd::Zero(rows, unknowns);
+  VectorXd rhs(rows);
+  int r = 0;
+  for (int p = 0; p < n; ++p)
+    for (int q = p; q < n; ++q, ++r) {  // A_pq = Σ_i N_ip a_iq + a_ip N_iq
+      for (int i = 0; i < k; ++i) {
+        m(r, i * n + p) += a(i, q);
+        m(r, i * n + q) += a(i, p);
+      }
+      rhs(r) = f.a(p, q);
+    }
+  for (int p = 0; p < n; ++p, ++r) {  // b_p = Σ_i ν0_i a_ip − β_i N_ip
+    for (int i = 0; i < k; ++i) {
+      m(r, k * n + i) = a(i, p);
+      m(r, i * n + p) = -beta(i);
+    }
+    rhs(r) = f.b(p);
+  }
+  for (int i = 0; i < k; ++i) m(r, k * n + i) = -beta(i);  // c = −Σ ν0_i β_i
+  rhs(r) = f.c;
+  const AffineSubspace sol = solve(m, rhs, opt);
+  return Truth::decided(!sol.empty, sol.certain);
+}
+
 }  // namespace dcad::fast

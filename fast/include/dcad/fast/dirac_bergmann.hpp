@@ -64,4 +64,15 @@ SecondClassChoice second_class_choice(const MatrixXd& w, const AffineSubspace& s
 /// is decided zero (2s = 0: every constraint first class).  unknown where the rank decision is not certain.
 Truth is_first_class_submanifold(const MatrixXd& w, const Subspace& ts, const Options& opt = {});
 
+/// f(x) = ½ xᵀ A x + bᵀ x + c (A symmetric).
+struct QuadraticFunction {
+  MatrixXd a;
+  VectorXd b;
+  double c = 0;
+};
+/// CEF Remark 2.2 by its ideal side, not the reference's restriction: f ≈ 0 on M_c = {φ = 0} (rows [a | β] of
+/// independent constraints) exactly when f = ν^i φ_i for affine ν^i(x) = N_i·x + ν0_i — the matching of f's
+/// coefficients, a linear system in (N, ν0), decided solvable.  unknown where that decision is not certain.
+Truth weakly_zero(const MatrixXd& constraints, const QuadraticFunction& f, const Options& opt = {});
+
 }  // namespace dcad::fast

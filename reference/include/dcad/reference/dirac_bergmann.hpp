@@ -221,4 +221,25 @@ bool is_first_class_submanifold(const Matrix<T>& w, const Subspace<T>& ts) {
   return true;
 }
 
+/// f(x) = ½ xᵀ A x + bᵀ x + c on N (A symmetric).
+template <class T>
+struct QuadraticFunction {
+  Matrix<T> a;
+  std::vector<T> b;
+  T c = T(0);
+};
+
+/// Remark 2.2's weak equality f ≈ 0, literally: f|_{M_c} = 0.  On x = x₀ + Σ t_k d_k (M_c's point and basis)
+/// f is a polynomial in t, zero exactly when D A Dᵀ = 0, D (A x₀ + b) = 0 and f(x₀) = 0.  (Remark 2.2's other
+/// side, f = ν^i φ_i^(c), is fast's route: fast::weakly_zero.)
+template <class T>
+bool weakly_zero(const AffineSubspace<T>& mc, const QuadraticFunction<T>& f) {
+  require(!mc.empty, "weakly_zero", "a nonempty M_c", "the empty set");
+  const Matrix<T>& d = mc.direction.basis();
+  const Matrix<T> x0 = Matrix<T>::column(mc.point);
+  const Matrix<T> slope = f.a * x0 + Matrix<T>::column(f.b);
+  const T value = (x0.transpose() * f.a * x0)(0, 0) / T(2) + (Matrix<T>::column(f.b).transpose() * x0)(0, 0) + f.c;
+  return (d * f.a * d.transpose()).is_zero() && (d * slope).is_zero() && value == T(0);
+}
+
 }  // namespace dcad::reference
