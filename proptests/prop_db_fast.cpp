@@ -149,6 +149,11 @@ RC_GTEST_PROP(FastVsReference, GaugeQuotient, ()) {
   RC_LOG() << case_json(s) << "x = " << json_vector(x) << "\n|C X - Xbar(C x)| = " << (lhs - rhs).norm() << ", tol "
            << tol << "\n";
   RC_ASSERT((lhs - rhs).norm() <= tol);
+  // M̃_c (Thm 3.19, (3.6)): fast's C̃ gives two exact solutions one X̃, and P C̃ X = C X
+  const std::vector<Q> other = ref::total_energy_field(s, x, some_point(ref::multipliers(s, r, x)));
+  RC_ASSERT((fq.tilde_coordinates * (xdot - to_double(other))).norm() <= tol);
+  RC_ASSERT((fq.fibration * fq.tilde_coordinates * xdot - lhs).norm() <= tol * (1 + fast::norm2(fq.fibration)));
+  RC_ASSERT(fq.tilde_coordinates.rows() == static_cast<Eigen::Index>(rq.tilde_coordinates.rows()));
   const Eigen::MatrixXd y = fq.tangent.columns() * to_double(integer_matrix(fq.tangent.dim(), 2));
   const Eigen::MatrixXd cy = fq.coordinates * y;
   RC_ASSERT(std::abs((y.col(0).transpose() * fs.omega * y.col(1))(0, 0) -

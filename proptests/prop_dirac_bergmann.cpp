@@ -25,6 +25,24 @@ std::vector<Q> total_energy_differential(const ConstrainedSystem<Q>& s, const st
   return d;
 }
 
+/// CEF Thm 3.19, Lemma 3.20 (3.6) and Remark 3.21 on M̃_c at x ∈ M_c with two multipliers l, m: "" or what fails.
+std::string tilde_quotient_fails(const ConstrainedSystem<Q>& s, const GaugeQuotient<Q>& q, const std::vector<Q>& x,
+                                 const std::vector<Q>& l, const std::vector<Q>& m) {
+  const QM d = q.tangent.basis();
+  if (rank(q.tilde_coordinates * d.transpose()) != q.tangent.dim() - q.physical_gauge.dim() ||
+      q.tilde_coordinates.rows() != q.tangent.dim() - q.physical_gauge.dim())
+    return "C~ is not onto M~_c";
+  if (!(q.tilde_coordinates * q.physical_gauge.basis().transpose()).is_zero()) return "C~ does not kill K~_c";
+  if (!(q.coordinates * d.transpose() == q.fibration * q.tilde_coordinates * d.transpose())) return "P C~ != C on TM_c";
+  const std::vector<Q> a = total_energy_field(s, x, l), b = total_energy_field(s, x, m);
+  std::vector<Q> diff(a.size());
+  for (Index i = 0; i < a.size(); ++i) diff[i] = a[i] - b[i];
+  if (!contains(q.physical_gauge, diff)) return "two solutions differ off K~_c (Remark 3.21)";
+  if (!(q.tilde_coordinates * QM::column(a) == q.tilde_coordinates * QM::column(b))) return "two X~ ((3.6))";
+  if (!(q.fibration * q.tilde_coordinates * QM::column(a) == q.coordinates * QM::column(a))) return "P X~ != Xbar";
+  return "";
+}
+
 }  // namespace
 
 // §2: the Dirac–Bergmann and the Gotay–Nester algorithms produce the same M_k.
@@ -288,4 +306,45 @@ RC_GTEST_PROP(DiracBergmann, Lemmas3_12_3_17_FirstClassFunctions, ()) {
     RC_ASSERT(in_gauge == commutes);
   }
   RC_ASSERT(gamma.cols() == n);
+}
+
+// CEF Thm 3.19, Lemma 3.20 (3.6)–(3.7) and Remark 3.21 on M̃_c = M_c / K̃_c: C̃ kills exactly K̃_c on TM_c; two
+// solutions X, X′ of (3.4) at x ∈ M_c (any two multipliers) differ by K̃_c and project to the one X̃ = C̃ X —
+// uniqueness recovered on M̃_c; and the fibration p_{K_c K̃_c} (P) carries C̃ to C on TM_c, so X̃ to X̄.
+RC_GTEST_PROP(DiracBergmann, Lemma3_20_TildeQuotient, ()) {
+  const ConstrainedSystem<Q> s = any_constrained_system();
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  if (!db.consistent) return;
+  const GaugeQuotient<Q> q = gauge_quotient(s, db);
+  RC_TAG("dim M~_c = " + std::to_string(q.tilde_coordinates.rows()) +
+         ", dim Mbar_c = " + std::to_string(q.form.rows()));
+  const std::vector<Q> x = some_point(db.tower.back());
+  const AffineSubspace<Q> lambda = multipliers(s, db, x);
+  RC_ASSERT(tilde_quotient_fails(s, q, x, some_point(lambda), some_point(lambda)) == "");
+}
+
+// The same where M̃_c ≠ M̄_c (rare among random systems): L = ½ (q̇₁ − q₂)², so p₂ = 0 is primary and
+// E = ½ p₁² + p₁ q₂ gives the secondary p₁ = 0, both first class: K_c = TM_c (dim 2, M̄_c a point) but
+// K̃_c = span ∂/∂q₂ (dim 1): M̃_c is the line of q₁ — Remark 3.21's physical state is finer than M̄_c's.
+TEST(DiracBergmann, Lemma3_20_TildeQuotientFinerThanBar) {
+  ConstrainedSystem<Q> s;
+  s.omega = QM(4, 4);  // (q₁, q₂, p₁, p₂), Ω = dq ∧ dp
+  for (Index i = 0; i < 2; ++i) s.omega(i, 2 + i) = Q(1), s.omega(2 + i, i) = Q(-1);
+  s.hessian = QM(4, 4);
+  s.hessian(2, 2) = s.hessian(1, 2) = s.hessian(2, 1) = Q(1);
+  s.gradient.assign(4, Q(0));
+  s.primary = QM::from_rows({{Q(0), Q(0), Q(0), Q(1), Q(0)}}, 5);
+  const DiracBergmannResult<Q> db = dirac_bergmann(s);
+  ASSERT_TRUE(db.consistent);
+  const GaugeQuotient<Q> q = gauge_quotient(s, db);
+  EXPECT_EQ(q.gauge.dim(), 2u);
+  EXPECT_EQ(q.physical_gauge.dim(), 1u);
+  EXPECT_EQ(q.tilde_coordinates.rows(), 1u);
+  EXPECT_EQ(q.form.rows(), 0u);
+  const std::vector<Q> x{Q(2), Q(-1), Q(0), Q(0)};
+  const AffineSubspace<Q> lambda = multipliers(s, db, x);
+  ASSERT_FALSE(lambda.empty);
+  std::vector<Q> other = lambda.point;
+  for (Index i = 0; i < other.size(); ++i) other[i] += lambda.direction.dim() ? lambda.direction.basis()(0, i) : Q(0);
+  EXPECT_EQ(tilde_quotient_fails(s, q, x, lambda.point, other), "");
 }

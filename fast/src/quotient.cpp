@@ -46,6 +46,8 @@ GaugeQuotient gauge_quotient(const ConstrainedSystem& s, const DiracBergmannResu
   const VectorXd base = q.point - q.section * (q.coordinates * q.point);
   q.field = -(q.complement * s.hessian * q.section);
   q.offset = -(q.complement * (s.hessian * base + s.gradient));
+  q.tilde_coordinates = (t * orthogonal_complement(c.columns())).transpose();
+  q.fibration = q.coordinates * q.tilde_coordinates.transpose();
   return q;
 }
 

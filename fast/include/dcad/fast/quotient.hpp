@@ -20,7 +20,9 @@ struct GaugeQuotient {
   MatrixXd section;  ///< S: x(z) = x₀ + S (z − C x₀), C S = I
   MatrixXd field;    ///< X̄(z) = field z + offset, the solution of CEF (3.8)
   VectorXd offset;
-  Truth certain = yes;  ///< every rank decision behind it certain (the tower's too)
+  MatrixXd tilde_coordinates;  ///< C̃: z̃ = C̃ x on M̃_c = M_c / K̃_c — orthonormal rows spanning TM_c ⊖ K̃_c
+  MatrixXd fibration;          ///< P = C C̃ᵀ: z̄ = P z̃ (K̃_c ⊆ K_c, so C kills what C̃ drops)  [CEF Thm 3.19]
+  Truth certain = yes;         ///< every rank decision behind it certain (the tower's too)
 };
 
 /// M̄_c and (3.8) from the fast Dirac–Bergmann tower r of s (consistent; std::invalid_argument else).

@@ -25,6 +25,8 @@ struct GaugeQuotient {
   Matrix<T> section;     ///< S: x(z) = x₀ + S (z − C x₀) lies on M_c with C x(z) = z
   Matrix<T> field;       ///< X̄(z) = field z + offset: the unique solution of (3.8)
   std::vector<T> offset;
+  Matrix<T> tilde_coordinates;  ///< C̃: z̃ = C̃ x, coordinates of M̃_c = M_c / K̃_c  [Thm 3.19, Lemma 3.20]
+  Matrix<T> fibration;          ///< P: z̄ = P z̃, the submersion p_{K_c K̃_c}: M̃_c → M̄_c  [Thm 3.19]
 };
 
 /// The rows of `candidates` (in order) that extend the row space of `start` to the span of both.
@@ -39,6 +41,27 @@ Matrix<T> extending_rows(const Matrix<T>& start, const Matrix<T>& candidates) {
     out = vstack(out, row);
   }
   return out;
+}
+
+/// M̃_c = M_c / K̃_c (Thm 3.19): coordinates z̃_i = Ω(t_i, x) for the vectors t_i of TM's basis whose functionals,
+/// restricted to TM_c, extend the ones kept — on TM_c their common kernel is TM_c ∩ (TM)^Ω = K̃_c; and the
+/// fibration P with C y = P C̃ y on TM_c (it exists because K̃_c ⊆ K_c, (3.5)), solved column by column.
+template <class T>
+void tilde_quotient(const Matrix<T>& w, const Subspace<T>& tm, GaugeQuotient<T>& q) {
+  const Matrix<T> functionals = tm.basis() * w, d = q.tangent.basis();
+  Matrix<T> kept(0, w.cols());
+  for (Index i = 0; i < functionals.rows(); ++i) {
+    const Matrix<T> more = vstack(kept, functionals.block(i, i + 1, 0, functionals.cols()));
+    if (rank(more * d.transpose()) > rank(kept * d.transpose())) kept = more;
+  }
+  q.tilde_coordinates = kept;
+  const Matrix<T> m = (kept * d.transpose()).transpose(), nt = (q.coordinates * d.transpose()).transpose();
+  q.fibration = Matrix<T>(q.coordinates.rows(), kept.rows());
+  for (Index i = 0; i < nt.cols(); ++i) {
+    const AffineSubspace<T> row = solve(m, nt.block(0, nt.rows(), i, i + 1).col(0));
+    require(!row.empty, "gauge_quotient", "K̃_c ⊆ K_c (CEF (3.5))", "a fibration that does not exist");
+    for (Index j = 0; j < kept.rows(); ++j) q.fibration(i, j) = row.point[j];
+  }
 }
 
 /// M̄_c = M_c / K_c and (3.8) on it, from the Dirac–Bergmann tower r of s (consistent).  Ē_c(z) = E(x(z))
@@ -69,6 +92,7 @@ GaugeQuotient<T> gauge_quotient(const ConstrainedSystem<T>& s, const DiracBergma
   const Matrix<T> lhs_inv = inverse(q.form.transpose());
   q.field = lhs_inv * q.section.transpose() * s.hessian * q.section;
   q.offset = (lhs_inv * q.section.transpose() * Matrix<T>::column(de0)).col(0);
+  tilde_quotient(w, tm, q);
   return q;
 }
 
