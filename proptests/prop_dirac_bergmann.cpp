@@ -283,7 +283,7 @@ RC_GTEST_PROP(DiracBergmann, Lemmas3_12_3_17_FirstClassFunctions, ()) {
   if (!db.consistent) return;
   const GaugeQuotient<Q> q = gauge_quotient(s, db);
   const QM j = poisson_tensor(s.omega);
-  const Index n = s.omega.rows(), m = q.form.rows();
+  const Index m = q.form.rows();
   const Subspace<Q> r = first_class_covectors(s.omega, q.tangent);
   const Subspace<Q> ideal = intersection(r, annihilator(q.tangent));  // I^(c)
   RC_TAG("dim R = " + std::to_string(r.dim()) + ", dim I = " + std::to_string(ideal.dim()));
@@ -305,7 +305,6 @@ RC_GTEST_PROP(DiracBergmann, Lemmas3_12_3_17_FirstClassFunctions, ()) {
     RC_ASSERT(constant == in_gauge);
     RC_ASSERT(in_gauge == commutes);
   }
-  RC_ASSERT(gamma.cols() == n);
 }
 
 // CEF Thm 3.19, Lemma 3.20 (3.6)–(3.7) and Remark 3.21 on M̃_c = M_c / K̃_c: C̃ kills exactly K̃_c on TM_c; two
