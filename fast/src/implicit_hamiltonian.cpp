@@ -1,0 +1,116 @@
+#include "dcad/fast/implicit_hamiltonian.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace dcad::fast {
+
+namespace {
+
+void require_input(const HamiltonianInput& in, const char* fn) {
+  const Eigen::Index n = static_cast<Eigen::Index>(in.n);
+  const auto square = [&](const MatrixXd& m, const char* name) {
+    if (m.rows() != n || m.cols() != n)
+      throw std::invalid_argument(std::string(fn) + ": expected " + name + " " + std::to_string(n) + "x" +
+                                  std::to_string(n) + ", found " + std::to_string(m.rows()) + "x" +
+                                  std::to_string(m.cols()));
+  };
+  square(in.pp, "pp (A)");
+  square(in.qp, "qp (B)");
+  square(in.qq, "qq (C)");
+  if (in.q.size() != n || in.p.size() != n)
+    throw std::invalid_argument(std::string(fn) + ": expected q and p of length " + std::to_string(n) +
+                                ", found lengths " + std::to_string(in.q.size()) + " and " +
+                                std::to_string(in.p.size()));
+  if (in.k.rows() && in.k.cols() != n)
+    throw std::invalid_argument(std::string(fn) + ": expected k with " + std::to_string(n) + " columns, found " +
+                                std::to_string(in.k.cols()));
+  for (const MatrixXd* m : {&in.k, &in.pp, &in.qp, &in.qq}) require_finite(*m, fn);
+  require_finite(in.q, fn);
+  require_finite(in.p, fn);
+  if (in.pp != in.pp.transpose() || in.qq != in.qq.transpose())
+    throw std::invalid_argument(std::string(fn) + ": expected symmetric pp and qq, found an asymmetric one");
+}
+
+void require_vector(const HamiltonianInput& in, const VectorXd& v, const char* fn, const char* what) {
+  if (v.size() != 2 * static_cast<Eigen::Index>(in.n))
+    throw std::invalid_argument(std::string(fn) + ": expected " + what + " of length 2n = " + std::to_string(2 * in.n) +
+                                ", found length " + std::to_string(v.size()));
+  require_finite(v, fn);
+}
+
+}  // namespace
+
+VectorXd hamiltonian_differential(const HamiltonianInput& in, const VectorXd& z) {
+  require_input(in, "hamiltonian_differential");
+  require_vector(in, z, "hamiltonian_differential", "z");
+  const Eigen::Index n = static_cast<Eigen::Index>(in.n);
+  const VectorXd q = z.head(n), p = z.tail(n);
+  VectorXd dh(2 * n);
+  dh.head(n) = in.qp * p + in.qq * q + in.q;
+  dh.tail(n) = in.pp * p + in.qp.transpose() * q + in.p;
+  return dh;
+}
+
+VectorXd hamilton_field(const HamiltonianInput& in, const VectorXd& z) {
+  const VectorXd dh = hamiltonian_differential(in, z);
+  const Eigen::Index n = static_cast<Eigen::Index>(in.n);
+  VectorXd x(2 * n);
+  x.head(n) = dh.tail(n);
+  x.tail(n) = -dh.head(n);
+  return x;
+}
+
+AffineSubspace implicit_hamiltonian_fields(const HamiltonianInput& in, const VectorXd& z, const Options& opt_in) {
+  const VectorXd dh = hamiltonian_differential(in, z);
+  const Options opt = assessed(opt_in, {in.k, in.pp, in.qp, in.qq, in.q, in.p, z});
+  const Eigen::Index n = static_cast<Eigen::Index>(in.n);
+  const Subspace delta = in.k.rows() ? kernel(in.k, opt) : Subspace::whole(static_cast<int>(n));
+  const MatrixXd& nb = delta.columns();
+  const Eigen::Index k = in.k.rows(), d = nb.cols();
+  MatrixXd a = MatrixXd::Zero(n + k + d, 2 * n);
+  VectorXd b = VectorXd::Zero(n + k + d);
+  a.topLeftCorner(n, n).setIdentity();  // q̇ = ∂H/∂p
+  b.head(n) = dh.tail(n);
+  if (k) a.block(n, 0, k, n) = in.k;         // K q̇ = 0
+  a.block(n + k, n, d, n) = nb.transpose();  // Nᵀ ṗ = −Nᵀ ∂H/∂q
+  b.tail(d) = -nb.transpose() * dh.head(n);
+  // the scale of the right-hand side: what its terms may have lost to rounding, not its computed size
+  const double knorm = k ? in.k.norm() : 0.0;
+  const double terms = (in.pp.norm() + in.qp.norm() + in.qq.norm()) * z.norm() + in.q.norm() + in.p.norm();
+  AffineSubspace out = solve(a, b, opt, std::max(1.0, knorm), terms * std::max(1.0, knorm));
+  out.certain &= delta.certain();
+  return out;
+}
+
+VectorXd hamiltonian_constraint_force(const HamiltonianInput& in, const VectorXd& z, const VectorXd& x) {
+  const VectorXd dh = hamiltonian_differential(in, z);
+  require_vector(in, x, "hamiltonian_constraint_force", "X");
+  const Eigen::Index n = static_cast<Eigen::Index>(in.n);
+  return x.tail(n) + dh.head(n);
+}
+
+LinearSystem implicit_hamiltonian_system(const HamiltonianInput& in, const Options& opt_in) {
+  require_input(in, "implicit_hamiltonian_system");
+  const Options opt = assessed(opt_in, {in.k, in.pp, in.qp, in.qq, in.q, in.p});
+  const int n = static_cast<int>(in.n);
+  const Subspace delta = in.k.rows() ? kernel(in.k, opt) : Subspace::whole(n);
+  MatrixXd e = MatrixXd::Zero(2 * n, delta.dim() + n);  // Δ_{T*Q} = (Tπ_Q)⁻¹(Δ), orthonormal columns
+  e.topLeftCorner(n, delta.dim()) = delta.columns();
+  e.bottomRightCorner(n, n).setIdentity();
+  MatrixXd w = MatrixXd::Zero(2 * n, 2 * n);  // Ω((a, b), (c, d)) = a·d − b·c
+  w.topRightCorner(n, n).setIdentity();
+  w.bottomLeftCorner(n, n) = -MatrixXd::Identity(n, n);
+  LinearSystem s;
+  s.d = dirac_from_distribution(Subspace::from_orthonormal_columns(e, delta.certain()), w);
+  s.hessian = MatrixXd::Zero(2 * n, 2 * n);
+  s.hessian.topLeftCorner(n, n) = in.qq;
+  s.hessian.topRightCorner(n, n) = in.qp;
+  s.hessian.bottomLeftCorner(n, n) = in.qp.transpose();
+  s.hessian.bottomRightCorner(n, n) = in.pp;
+  s.gradient.resize(2 * n);
+  s.gradient << in.q, in.p;
+  return s;
+}
+
+}  // namespace dcad::fast
