@@ -20,6 +20,7 @@
 #include "support/tally.hpp"
 
 #include "dcad/fast/implicit_hamiltonian.hpp"
+#include "dcad/fast/implicit_lagrangian.hpp"
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/hamilton_pontryagin.hpp"
 #include "dcad/reference/implicit_hamiltonian.hpp"
@@ -311,4 +312,84 @@ RC_GTEST_PROP(YoshimuraMarsden, Prop3_5_IntrinsicLdapWhereLIsRegularOnDelta, ())
              coordinates = ref::satisfies_ldap(l, none, none, x, other);
   if (coordinates) RC_ASSERT(intrinsic);
   if (regular_on_delta) RC_ASSERT(intrinsic == coordinates);
+}
+
+// Thm 3.8 (with Props 3.6, 3.7): for a possibly degenerate L, at x = (q, v, p) — on v ∈ Δ, p = FL(q, v) mostly,
+// anywhere else sometimes — and candidate values X = (q̇, ṗ) of a partial vector field (fields of the system,
+// moved along Δ° in ṗ, moved off, random): the LDAP equations (3.13) at the vertical lift, the intrinsic
+// system (3.22) and (X, 𝔇L) ∈ D_Δ (3.24) hold together; on P, dE|_{T T*Q} = 𝔇L (3.28), so (3.32) is (3.24).
+RC_GTEST_PROP(ImplicitLagrangian, Thm3_8_ThreeFormsAgree, ()) {
+  const Index n = pick_size(1, 4);
+  const ref::PontryaginInput<Q> l = random_lagrangian(n, true);
+  const QSub delta = l.k.rows() ? ref::kernel(l.k) : QSub::whole(n);
+  const std::vector<Q> q = integer_vector(n, 3);
+  const bool on = *rc::gen::inRange(0, 5) != 0;
+  const std::vector<Q> v =
+      on ? some_point(ref::AffineSubspace<Q>{false, std::vector<Q>(n), delta}) : integer_vector(n, 3);
+  std::vector<Q> x = q;
+  x.insert(x.end(), v.begin(), v.end());
+  const std::vector<Q> p = on ? ref::legendre(l, q, v) : integer_vector(n, 3);
+  x.insert(x.end(), p.begin(), p.end());
+  const QM none(n, n);
+  // (3.28): dE(x) restricted to T_{(q, p)}T*Q is 𝔇L(q, v), so (3.32) is (3.24)
+  const std::vector<Q> de = ref::energy_differential(ref::pontryagin_system(l), x);
+  std::vector<Q> de_tq(de.begin(), de.begin() + n);
+  de_tq.insert(de_tq.end(), de.begin() + 2 * n, de.end());
+  RC_ASSERT(de_tq == ref::dirac_differential(l, none, none, q, v));
+  const ref::AffineSubspace<Q> fields = ref::implicit_lagrangian_fields(l, none, none, q, v);
+  std::vector<std::vector<Q>> candidates{integer_vector(2 * n, 3)};
+  if (!fields.empty) {
+    const std::vector<Q> f = some_point(fields);
+    std::vector<Q> along = f, off = f;
+    const QSub ann = ref::annihilator(delta);
+    const std::vector<Q> c = integer_vector(ann.dim() + 1, 3);
+    for (Index i = 0; i < ann.dim(); ++i)
+      for (Index j = 0; j < n; ++j) along[n + j] += c[i] * ann.basis()(i, j);
+    off[*rc::gen::inRange<Index>(0, 2 * n)] += Q(1);
+    candidates.insert(candidates.end(), {f, along, off});
+  }
+  for (const std::vector<Q>& field : candidates) {
+    const bool c = ref::satisfies_implicit_lagrangian_condition(l, x, field);          // (3.24)
+    RC_ASSERT(ref::satisfies_ldap(l, none, none, x, ref::vertical_lift(field)) == c);  // (3.13)
+    RC_ASSERT(ref::satisfies_intrinsic_implicit_lagrangian(l, x, field) == c);         // (3.22)
+    if (on)
+      RC_ASSERT(c == (!fields.empty && ref::contains(fields.direction, [&] {
+                  std::vector<Q> d(field.size());
+                  for (Index i = 0; i < d.size(); ++i) d[i] = field[i] - fields.point[i];
+                  return d;
+                }())));
+  }
+}
+
+RC_GTEST_PROP(FastVsReference, ImplicitLagrangianFields, ()) {
+  const Index n = pick_size(1, 4);
+  const ref::PontryaginInput<Q> l = random_lagrangian(n, true);
+  const QSub delta = l.k.rows() ? ref::kernel(l.k) : QSub::whole(n);
+  const std::vector<Q> q = integer_vector(n, 3);
+  const std::vector<Q> v = *rc::gen::inRange(0, 4) != 0
+                               ? some_point(ref::AffineSubspace<Q>{false, std::vector<Q>(n), delta})
+                               : integer_vector(n, 3);
+  fast::PontryaginInput fl;
+  fl.n = n;
+  fl.k = l.k.rows() ? to_double(l.k) : Eigen::MatrixXd(0, n);
+  fl.vv = to_double(l.vv);
+  fl.qv = to_double(l.qv);
+  fl.qq = to_double(l.qq);
+  fl.q = to_double(l.q);
+  fl.v = to_double(l.v);
+  const Eigen::VectorXd qd = to_double(q), vd = to_double(v);
+  const QM none(n, n);
+  const ref::AffineSubspace<Q> rf = ref::implicit_lagrangian_fields(l, none, none, q, v);
+  const fast::AffineSubspace ff = fast::implicit_lagrangian_fields(fl, qd, vd);
+  const double tol =
+      1e-9 * (1 + qd.norm() + vd.norm()) * (1 + fl.vv.norm() + fl.qv.norm() + fl.qq.norm() + fl.q.norm() + fl.v.norm());
+  RC_ASSERT((fast::legendre(fl, qd, vd) - to_double(ref::legendre(l, q, v))).norm() <= tol);
+  RC_ASSERT((fast::dirac_differential(fl, qd, vd) - to_double(ref::dirac_differential(l, none, none, q, v))).norm() <=
+            tol);
+  RC_ASSERT(!tally("implicit Lagrangian: fields exist", ff.certain.yes(), ff.empty == rf.empty));
+  if (rf.empty || ff.empty || !ff.certain.yes()) return;
+  RC_ASSERT(ff.direction.dim() == static_cast<int>(rf.direction.dim()));
+  const Eigen::VectorXd gap = to_double(rf.point) - ff.point;
+  const Eigen::MatrixXd& dir = ff.direction.columns();
+  RC_ASSERT((gap - dir * (dir.transpose() * gap)).norm() <= tol);
 }

@@ -1,4 +1,5 @@
 #include "dcad/fast/implicit_hamiltonian.hpp"
+#include "dcad/fast/implicit_lagrangian.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -61,26 +62,65 @@ VectorXd hamilton_field(const HamiltonianInput& in, const VectorXd& z) {
   return x;
 }
 
+namespace {
+
+/// {X = (q̇, ṗ) : q̇ = u, K q̇ = 0, ṗ + g ∈ Δ°} as one linear system — q̇ = u, K q̇ = 0, Nᵀ ṗ = −Nᵀ g for an
+/// orthonormal basis N of Δ = ker K — decided by solve; `terms`: the size of what u and g were computed from.
+AffineSubspace induced_fields(const MatrixXd& kmat, const VectorXd& u, const VectorXd& g, double terms,
+                              const Options& opt) {
+  const Eigen::Index n = u.size();
+  const Subspace delta = kmat.rows() ? kernel(kmat, opt) : Subspace::whole(static_cast<int>(n));
+  const MatrixXd& nb = delta.columns();
+  const Eigen::Index k = kmat.rows(), d = nb.cols();
+  MatrixXd a = MatrixXd::Zero(n + k + d, 2 * n);
+  VectorXd b = VectorXd::Zero(n + k + d);
+  a.topLeftCorner(n, n).setIdentity();
+  b.head(n) = u;
+  if (k) a.block(n, 0, k, n) = kmat;
+  a.block(n + k, n, d, n) = nb.transpose();
+  b.tail(d) = -nb.transpose() * g;
+  // the scale of the right-hand side: what its terms may have lost to rounding, not its computed size
+  const double knorm = k ? kmat.norm() : 0.0;
+  AffineSubspace out = solve(a, b, opt, std::max(1.0, knorm), terms * std::max(1.0, knorm));
+  out.certain &= delta.certain();
+  return out;
+}
+
+}  // namespace
+
 AffineSubspace implicit_hamiltonian_fields(const HamiltonianInput& in, const VectorXd& z, const Options& opt_in) {
   const VectorXd dh = hamiltonian_differential(in, z);
   const Options opt = assessed(opt_in, {in.k, in.pp, in.qp, in.qq, in.q, in.p, z});
   const Eigen::Index n = static_cast<Eigen::Index>(in.n);
-  const Subspace delta = in.k.rows() ? kernel(in.k, opt) : Subspace::whole(static_cast<int>(n));
-  const MatrixXd& nb = delta.columns();
-  const Eigen::Index k = in.k.rows(), d = nb.cols();
-  MatrixXd a = MatrixXd::Zero(n + k + d, 2 * n);
-  VectorXd b = VectorXd::Zero(n + k + d);
-  a.topLeftCorner(n, n).setIdentity();  // q̇ = ∂H/∂p
-  b.head(n) = dh.tail(n);
-  if (k) a.block(n, 0, k, n) = in.k;         // K q̇ = 0
-  a.block(n + k, n, d, n) = nb.transpose();  // Nᵀ ṗ = −Nᵀ ∂H/∂q
-  b.tail(d) = -nb.transpose() * dh.head(n);
-  // the scale of the right-hand side: what its terms may have lost to rounding, not its computed size
-  const double knorm = k ? in.k.norm() : 0.0;
   const double terms = (in.pp.norm() + in.qp.norm() + in.qq.norm()) * z.norm() + in.q.norm() + in.p.norm();
-  AffineSubspace out = solve(a, b, opt, std::max(1.0, knorm), terms * std::max(1.0, knorm));
-  out.certain &= delta.certain();
+  return induced_fields(in.k, dh.tail(n), dh.head(n), terms, opt);
+}
+
+VectorXd legendre(const PontryaginInput& in, const VectorXd& q, const VectorXd& v) {
+  pontryagin_energy(in);  // the input's checks
+  if (q.size() != in.vv.rows() || v.size() != in.vv.rows())
+    throw std::invalid_argument("legendre: expected q and v of length " + std::to_string(in.vv.rows()) +
+                                ", found lengths " + std::to_string(q.size()) + " and " + std::to_string(v.size()));
+  require_finite(q, "legendre");
+  require_finite(v, "legendre");
+  return in.vv * v + in.qv.transpose() * q + in.v;
+}
+
+VectorXd dirac_differential(const PontryaginInput& in, const VectorXd& q, const VectorXd& v) {
+  legendre(in, q, v);  // the checks
+  VectorXd out(2 * v.size());
+  out.head(v.size()) = -(in.qv * v + in.qq * q + in.q);
+  out.tail(v.size()) = v;
   return out;
+}
+
+AffineSubspace implicit_lagrangian_fields(const PontryaginInput& in, const VectorXd& q, const VectorXd& v,
+                                          const Options& opt_in) {
+  const VectorXd dl = dirac_differential(in, q, v);  // (−∂L/∂q, v)
+  const Options opt = assessed(opt_in, {in.k, in.vv, in.qv, in.qq, in.q, in.v, q, v});
+  const Eigen::Index n = v.size();
+  const double terms = (in.qv.norm() + in.qq.norm()) * (q.norm() + v.norm()) + in.q.norm() + v.norm();
+  return induced_fields(in.k, dl.tail(n), dl.head(n), terms, opt);
 }
 
 VectorXd hamiltonian_constraint_force(const HamiltonianInput& in, const VectorXd& z, const VectorXd& x) {

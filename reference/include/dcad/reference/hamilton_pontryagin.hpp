@@ -6,7 +6,10 @@
 //   the intrinsic implicit Euler–Lagrange equations (3.10): that form vanishes for every w  [YM Prop 3.3];
 //   the intrinsic Lagrange–d'Alembert–Pontryagin equations (3.17): x ∈ 𝒦 (3.14), (x, ẋ) ∈ 𝒞 = ℬ ∩ T𝒦,
 //   and the form vanishes on w ∈ 𝒢 (3.15), whose base parts Tτ(w) = (δq, δv, δp) range over 𝒞(x):
-//   δq ∈ Δ, δv ∈ Δ, δp = Bᵀ δq + A δv  [YM Prop 3.5].
+//   δq ∈ Δ, δv ∈ Δ, δp = Bᵀ δq + A δv  [YM Prop 3.5];
+//   the vertical lift X̃ = (q̇, 0, ṗ) of a partial vector field X = (q̇, ṗ), the intrinsic implicit Lagrangian
+//   system (3.18)/(3.21) read as Prop 3.6's proof reads it, (3.22), with δv and δp free, and the condition
+//   (3.24) (X, 𝔇L) ∈ D_Δ: Thm 3.8 says the three are one.
 // Prop 3.5 calls (3.17) equivalent to the LDAP equations (3.13).  On 𝒞 it reads, for δq, δv ∈ Δ and
 // u = q̇ − v: u·(Bᵀ δq + A δv) + (∂L/∂q − ṗ)·δq = 0, i.e. u ∈ Δ, A u ∈ Δ° and ∂L/∂q − ṗ + B u ∈ Δ°, while
 // (3.13) is u = 0 with ∂L/∂q − ṗ ∈ Δ°.  They agree where A is nondegenerate on Δ (L regular on Δ).  Where it
@@ -104,6 +107,52 @@ bool satisfies_intrinsic_ldap(const PontryaginInput<T>& in, const std::vector<T>
   for (Index r = 0; r < c.dim(); ++r)
     if (intrinsic_hamilton_pontryagin(in, x, xdot, c.basis().row(r)) != T(0)) return false;
   return true;
+}
+
+/// The vertical lift X̃(x) = (q̇, 0, ṗ) of a partial vector field's value X(x) = (q̇, ṗ)  [YM §3, before Prop 3.6].
+template <class T>
+std::vector<T> vertical_lift(const std::vector<T>& x) {
+  const Index n = x.size() / 2;
+  std::vector<T> out(x.begin(), x.begin() + n);
+  out.resize(2 * n);
+  out.insert(out.end(), x.begin() + n, x.end());
+  return out;
+}
+
+/// The intrinsic implicit Lagrangian system (3.18)/(3.21) as Prop 3.6's proof evaluates it, (3.22): v ∈ Δ and
+/// the intrinsic form at X̃(x) vanishes for δq in Δ's basis and every δv, δp of the standard basis (free, as the
+/// proof takes them — not tied by T𝒦 as in (3.17)).
+template <class T>
+bool satisfies_intrinsic_implicit_lagrangian(const PontryaginInput<T>& in, const std::vector<T>& x,
+                                             const std::vector<T>& field) {
+  require(field.size() == 2 * in.n, "satisfies_intrinsic_implicit_lagrangian",
+          "X = (q̇, ṗ) of length 2n = " + std::to_string(2 * in.n), "length " + std::to_string(field.size()));
+  const Index n = in.n;
+  const Subspace<T> delta = in.k.rows() ? kernel(in.k) : Subspace<T>::whole(n);
+  if (!contains(delta, std::vector<T>(x.begin() + n, x.begin() + 2 * n))) return false;
+  const std::vector<T> lifted = vertical_lift(field);
+  Matrix<T> rows(delta.dim() + 2 * n, 3 * n);
+  for (Index i = 0; i < delta.dim(); ++i)
+    for (Index j = 0; j < n; ++j) rows(i, j) = delta.basis()(i, j);
+  for (Index j = 0; j < 2 * n; ++j) rows(delta.dim() + j, n + j) = T(1);
+  for (Index r = 0; r < rows.rows(); ++r)
+    if (intrinsic_hamilton_pontryagin(in, x, lifted, rows.row(r)) != T(0)) return false;
+  return true;
+}
+
+/// (3.24): v ∈ Δ, p = FL(q, v) and (X, 𝔇L(q, v)) ∈ D_Δ(q, p)  [YM Prop 3.7, Thm 3.8 (c)].
+template <class T>
+bool satisfies_implicit_lagrangian_condition(const PontryaginInput<T>& in, const std::vector<T>& x,
+                                             const std::vector<T>& field) {
+  require_bundle_vectors(in, {&x}, "satisfies_implicit_lagrangian_condition");
+  const Index n = in.n;
+  const std::vector<T> q(x.begin(), x.begin() + n), v(x.begin() + n, x.begin() + 2 * n);
+  const Subspace<T> delta = in.k.rows() ? kernel(in.k) : Subspace<T>::whole(n);
+  if (!contains(delta, v) || std::vector<T>(x.begin() + 2 * n, x.end()) != legendre(in, q, v)) return false;
+  std::vector<T> pair = field;
+  const std::vector<T> dl = dirac_differential(in, Matrix<T>(n, n), Matrix<T>(n, n), q, v);
+  pair.insert(pair.end(), dl.begin(), dl.end());
+  return contains(induced_dirac(in.k, n).d, pair);
 }
 
 }  // namespace dcad::reference
