@@ -9,7 +9,8 @@
 //    Hamilton–d'Alembert principle (3.43) and the intrinsic system (3.46) hold for the same X, on fields
 //    of the system, fields moved along Δ° (still fields) and fields moved off it (no longer);
 //  - the fields exist iff ∂H/∂p ∈ Δ and then form an affine space of dimension dim Δ° (ṗ's free part);
-//  - without constraints they are Hamilton's equations, i_X Ω = dH read off as (∂H/∂p, −∂H/∂q) (Prop 3.11);
+//  - without constraints they are Hamilton's equations, i_X Ω = dH read off as (∂H/∂p, −∂H/∂q) (Prop 3.11),
+//    the only rates at which the Poincaré–Cartan integrand vanishes (Prop 3.9);
 //  - the Legendre transform of a hyperregular L turns the implicit Lagrangian system into the implicit
 //    Hamiltonian one: the same (q̇, ṗ) pointwise, and the CAD's towers on TQ ⊕ T*Q and on T*Q end in
 //    manifolds of one dimension whose velocities agree;
@@ -126,6 +127,11 @@ RC_GTEST_PROP(ImplicitHamiltonian, Prop3_11_WithoutConstraintsHamiltonsEquations
   RC_ASSERT(!fields.empty);
   RC_ASSERT(fields.direction.dim() == 0);  // D_Δ with Δ = TQ is the graph of Ω: X is X_H
   RC_ASSERT(fields.point == x);
+  // Prop 3.9: the Poincaré–Cartan integrand vanishes for all (δq, δp) exactly at (3.34), and not one coordinate off
+  RC_ASSERT(ref::satisfies_hamilton_dalembert(h, z, x));
+  std::vector<Q> off = x;
+  off[*rc::gen::inRange<Index>(0, 2 * h.n)] += Q(1);
+  RC_ASSERT(!ref::satisfies_hamilton_dalembert(h, z, off));
 }
 
 RC_GTEST_PROP(ImplicitHamiltonian, LegendreOfTheImplicitLagrangianSystem, ()) {

@@ -105,6 +105,49 @@ DiracInput read_dirac(const json& j, const Where& at, long n) {
   return d;
 }
 
+/// "variables": distinct non-empty names.
+std::vector<std::string> read_variable_names(const json& v, const Where& at) {
+  if (!v.is_array()) at.fail("an array of names", describe(v));
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_string() || v[i].get<std::string>().empty())
+      (at / i).fail("a name (non-empty string)", describe(v[i]));
+    const auto seen = std::find(names.begin(), names.end(), v[i].get<std::string>());
+    if (seen != names.end())
+      (at / i).fail("a new name", "\"" + *seen + "\", already variable " + std::to_string(seen - names.begin()));
+    names.push_back(v[i].get<std::string>());
+  }
+  return names;
+}
+
+/// "energy", "initial" and "coordinates", once c.n and c.variables are known.
+void read_energy_and_start(const json& j, const Where& root, CaseFile& c) {
+  const long nn = static_cast<long>(c.n);
+  c.energy.hessian = QMatrix(c.n, c.n);
+  c.energy.gradient.assign(c.n, 0);
+  if (j.contains("energy")) {
+    const json& e = j["energy"];
+    const Where at = root / "energy";
+    if (!e.is_object()) at.fail("an object {hessian, gradient, constant}", describe(e));
+    require_known_keys(e, at, {"hessian", "gradient", "constant"});
+    if (e.contains("hessian")) c.energy.hessian = read_matrix(e["hessian"], at / "hessian", nn, nn);
+    require_symmetric_input(c.energy.hessian, at / "hessian");
+    if (e.contains("gradient")) c.energy.gradient = read_vector(e["gradient"], at / "gradient", nn);
+    if (e.contains("constant")) c.energy.constant = read_number(e["constant"], at / "constant");
+  }
+  if (j.contains("initial")) c.initial = read_vector(j["initial"], root / "initial", static_cast<long>(c.n));
+  if (j.contains("coordinates")) {
+    const json& cs = j["coordinates"];
+    if (!cs.is_array()) (root / "coordinates").fail("an array of variable names", describe(cs));
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      const auto it = cs[i].is_string() ? std::find(c.variables.begin(), c.variables.end(), cs[i].get<std::string>())
+                                        : c.variables.end();
+      if (it == c.variables.end()) (root / "coordinates" / i).fail("one of the variables' names", describe(cs[i]));
+      c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
+    }
+  }
+}
+
 }  // namespace
 
 CaseFile read_case(const std::string& file) { return read_case(parse_json_exact(slurp(file), file), file); }
@@ -133,18 +176,8 @@ CaseFile read_case(const json& j, const std::string& file) {
   if (j.contains("description") && j["description"].is_string()) c.description = j["description"].get<std::string>();
   long n = -1;
   if (j.contains("variables")) {
-    const json& v = j["variables"];
-    if (!v.is_array()) (root / "variables").fail("an array of names", describe(v));
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!v[i].is_string() || v[i].get<std::string>().empty())
-        (root / "variables" / i).fail("a name (non-empty string)", describe(v[i]));
-      const auto seen = std::find(c.variables.begin(), c.variables.end(), v[i].get<std::string>());
-      if (seen != c.variables.end())
-        (root / "variables" / i)
-            .fail("a new name", "\"" + *seen + "\", already variable " + std::to_string(seen - c.variables.begin()));
-      c.variables.push_back(v[i].get<std::string>());
-    }
-    n = static_cast<long>(v.size());
+    c.variables = read_variable_names(j["variables"], root / "variables");
+    n = static_cast<long>(c.variables.size());
   }
   const int forms = j.contains("dirac") + j.contains("pontryagin") + j.contains("constrained");
   if (forms > 1)
@@ -188,30 +221,7 @@ CaseFile read_case(const json& j, const std::string& file) {
       for (std::size_t i = 0; i < c.n; ++i) c.variables.push_back("x" + std::to_string(i + 1));
     }
   }
-  const long nn = static_cast<long>(c.n);
-  c.energy.hessian = QMatrix(c.n, c.n);
-  c.energy.gradient.assign(c.n, 0);
-  if (j.contains("energy")) {
-    const json& e = j["energy"];
-    const Where at = root / "energy";
-    if (!e.is_object()) at.fail("an object {hessian, gradient, constant}", describe(e));
-    require_known_keys(e, at, {"hessian", "gradient", "constant"});
-    if (e.contains("hessian")) c.energy.hessian = read_matrix(e["hessian"], at / "hessian", nn, nn);
-    require_symmetric_input(c.energy.hessian, at / "hessian");
-    if (e.contains("gradient")) c.energy.gradient = read_vector(e["gradient"], at / "gradient", nn);
-    if (e.contains("constant")) c.energy.constant = read_number(e["constant"], at / "constant");
-  }
-  if (j.contains("initial")) c.initial = read_vector(j["initial"], root / "initial", static_cast<long>(c.n));
-  if (j.contains("coordinates")) {
-    const json& cs = j["coordinates"];
-    if (!cs.is_array()) (root / "coordinates").fail("an array of variable names", describe(cs));
-    for (std::size_t i = 0; i < cs.size(); ++i) {
-      const auto it = cs[i].is_string() ? std::find(c.variables.begin(), c.variables.end(), cs[i].get<std::string>())
-                                        : c.variables.end();
-      if (it == c.variables.end()) (root / "coordinates" / i).fail("one of the variables' names", describe(cs[i]));
-      c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
-    }
-  }
+  read_energy_and_start(j, root, c);
   return c;
 }
 

@@ -166,6 +166,62 @@ double value_at(const reference::expr::Expr& e, double t) {
   return NAN;
 }
 
+/// /dae/f: one expression in the time per equation (numbers allowed), each defined for generic t.
+void read_sources(const json& f, const Where& at_f, DaeCase& c) {
+  const std::size_t m = c.f.size();
+  if (!f.is_array() || f.size() != m)
+    at_f.fail("an array of " + std::to_string(m) + " expressions in the time (one per equation)", describe(f));
+  std::map<std::string, std::size_t> vars;
+  if (!c.time_name.empty()) vars[c.time_name] = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Where at = at_f / i;
+    if (f[i].is_number()) {
+      c.f[i] = reference::expr::number(read_number(f[i], at));
+      continue;
+    }
+    try {
+      c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
+    } catch (const InputError& e) {
+      if (!c.time_name.empty()) throw;
+      throw InputError(std::string(e.what()) +
+                       " (a source that depends on the time needs its name in /dae/time, e.g. \"time\": \"t\")");
+    }
+    bool defined = false;  // a source must be defined for generic t: 1/(t - t) or sqrt(-1 - t^2) is no function
+    for (double t : {0.5, 1.0, 2.0, 3.7}) defined = defined || std::isfinite(value_at(c.f[i], t));
+    if (!defined)
+      at.fail("a formula defined (finite and real) for generic t",
+              "\"" + f[i].get<std::string>() + "\", undefined at t = 0.5, 1, 2 and 3.7");
+  }
+}
+
+/// /initial: exact values of variables (and of the time, by its name).
+void read_initial_values(const json& j, const Where& root, DaeCase& c) {
+  const std::size_t n = c.variables.size();
+  c.initial.assign(n, std::nullopt);
+  if (j.contains("initial")) {
+    const json& in = j["initial"];
+    const Where wi = root / "initial";
+    if (!in.is_object()) wi.fail("an object {name: exact value} (variables, the time)", describe(in));
+    c.has_initial = true;
+    for (const auto& [k, v] : in.items()) {
+      const Rational value = read_number(v, wi / k);
+      if (!c.time_name.empty() && k == c.time_name) {
+        c.initial_time = value;
+        continue;
+      }
+      const auto it = std::find(c.variables.begin(), c.variables.end(), k);
+      if (it == c.variables.end()) {
+        std::vector<std::string> known = c.variables;
+        if (!c.time_name.empty()) known.push_back(c.time_name);
+        const std::string best = nearest_name(k, known);
+        (wi / k).fail("a variable or the time",
+                      "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+      }
+      c.initial[static_cast<std::size_t>(it - c.variables.begin())] = value;
+    }
+  }
+}
+
 }  // namespace
 
 DaeCase read_dae_case(const json& j, const std::string& file) {
@@ -223,55 +279,8 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
   c.a_entries = std::move(a.nonzeros);
   const std::size_t m = static_cast<std::size_t>(c.rows);
   c.f.assign(m, reference::expr::number(0));
-  if (d.contains("f")) {
-    const json& f = d["f"];
-    if (!f.is_array() || f.size() != m)
-      (w / "f").fail("an array of " + std::to_string(m) + " expressions in the time (one per equation)", describe(f));
-    std::map<std::string, std::size_t> vars;
-    if (!c.time_name.empty()) vars[c.time_name] = 0;
-    for (std::size_t i = 0; i < m; ++i) {
-      const Where at = w / "f" / i;
-      if (f[i].is_number()) {
-        c.f[i] = reference::expr::number(read_number(f[i], at));
-        continue;
-      }
-      try {
-        c.f[i] = parse_expression(text_at(f[i], at, "an expression in the time (a string)"), vars, c.parameters, at);
-      } catch (const InputError& e) {
-        if (!c.time_name.empty()) throw;
-        throw InputError(std::string(e.what()) +
-                         " (a source that depends on the time needs its name in /dae/time, e.g. \"time\": \"t\")");
-      }
-      bool defined = false;  // a source must be defined for generic t: 1/(t - t) or sqrt(-1 - t^2) is no function
-      for (double t : {0.5, 1.0, 2.0, 3.7}) defined = defined || std::isfinite(value_at(c.f[i], t));
-      if (!defined)
-        at.fail("a formula defined (finite and real) for generic t",
-                "\"" + f[i].get<std::string>() + "\", undefined at t = 0.5, 1, 2 and 3.7");
-    }
-  }
-  c.initial.assign(n, std::nullopt);
-  if (j.contains("initial")) {
-    const json& in = j["initial"];
-    const Where wi = root / "initial";
-    if (!in.is_object()) wi.fail("an object {name: exact value} (variables, the time)", describe(in));
-    c.has_initial = true;
-    for (const auto& [k, v] : in.items()) {
-      const Rational value = read_number(v, wi / k);
-      if (!c.time_name.empty() && k == c.time_name) {
-        c.initial_time = value;
-        continue;
-      }
-      const auto it = std::find(c.variables.begin(), c.variables.end(), k);
-      if (it == c.variables.end()) {
-        std::vector<std::string> known = c.variables;
-        if (!c.time_name.empty()) known.push_back(c.time_name);
-        const std::string best = nearest_name(k, known);
-        (wi / k).fail("a variable or the time",
-                      "unknown name \"" + k + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
-      }
-      c.initial[static_cast<std::size_t>(it - c.variables.begin())] = value;
-    }
-  }
+  if (d.contains("f")) read_sources(d["f"], w / "f", c);
+  read_initial_values(j, root, c);
   return c;
 }
 

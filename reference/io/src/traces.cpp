@@ -156,6 +156,58 @@ long aborted_points(const std::string& text, std::size_t pos, std::size_t per, c
   return n;
 }
 
+/// A raw file's plot header, from `pos` up to its "Values:" or "Binary:" line (both advanced past it).
+struct RawHeader {
+  std::string plotname, flags;
+  long npoints = -1;
+  std::vector<std::string> names;
+  bool binary = false, found_data = false;
+};
+
+RawHeader read_raw_header(const std::string& text, const std::string& file, std::size_t& pos, std::size_t& line_no) {
+  RawHeader h;
+  long nvars = -1;
+  while (pos < text.size()) {
+    std::size_t e = text.find('\n', pos);
+    if (e == std::string::npos) e = text.size();
+    std::string l = text.substr(pos, e - pos);
+    if (!l.empty() && l.back() == '\r') l.pop_back();
+    pos = e + 1;
+    ++line_no;
+    const std::string key = lower(trim(l.substr(0, l.find(':') == std::string::npos ? 0 : l.find(':') + 1)));
+    const std::string val = l.find(':') == std::string::npos ? "" : trim(l.substr(l.find(':') + 1));
+    if (key == "plotname:")
+      h.plotname = val;
+    else if (key == "flags:")
+      h.flags = lower(val);
+    else if (key == "no. variables:") {
+      double count = 0;
+      if (!plain(val, count) || (nvars = std::atol(val.c_str())) < 1)
+        bad(at_line(file, line_no), "a positive number of variables", shown(val));
+    } else if (key == "no. points:") {
+      h.npoints = std::atol(val.c_str());
+      if (h.npoints < 0) bad(at_line(file, line_no), "a number of points", shown(val));
+    } else if (key == "variables:") {
+      if (nvars < 1) bad(at_line(file, line_no), "'No. Variables:' before 'Variables:'", "none");
+      for (long k = 0; k < nvars; ++k) {
+        std::size_t e2 = text.find('\n', pos);
+        if (e2 == std::string::npos)
+          bad(at_line(file, line_no + 1), std::to_string(nvars) + " variable lines", "the end of the file");
+        const std::vector<std::string> w = words(text.substr(pos, e2 - pos));
+        pos = e2 + 1;
+        ++line_no;
+        if (w.size() < 3) bad(at_line(file, line_no), "'index name type'", shown(w.empty() ? "" : w[0]));
+        h.names.push_back(w[1]);
+      }
+    } else if (key == "values:" || key == "binary:") {
+      h.binary = key == "binary:";
+      h.found_data = true;
+      break;
+    }
+  }
+  return h;
+}
+
 Traces raw(const std::string& text, const std::string& file) {
   // plots follow one another; take the first transient one
   std::size_t pos = 0;
@@ -163,49 +215,11 @@ Traces raw(const std::string& text, const std::string& file) {
   while (pos < text.size()) {
     Traces t;
     t.file = file;
-    std::string plotname, flags;
-    long nvars = -1, npoints = -1;
-    std::vector<std::string> names;
-    // header lines up to "Values:" or "Binary:"
-    bool binary = false, found_data = false;
-    while (pos < text.size()) {
-      std::size_t e = text.find('\n', pos);
-      if (e == std::string::npos) e = text.size();
-      std::string l = text.substr(pos, e - pos);
-      if (!l.empty() && l.back() == '\r') l.pop_back();
-      pos = e + 1;
-      ++line_no;
-      const std::string key = lower(trim(l.substr(0, l.find(':') == std::string::npos ? 0 : l.find(':') + 1)));
-      const std::string val = l.find(':') == std::string::npos ? "" : trim(l.substr(l.find(':') + 1));
-      if (key == "plotname:")
-        plotname = val;
-      else if (key == "flags:")
-        flags = lower(val);
-      else if (key == "no. variables:") {
-        double count = 0;
-        if (!plain(val, count) || (nvars = std::atol(val.c_str())) < 1)
-          bad(at_line(file, line_no), "a positive number of variables", shown(val));
-      } else if (key == "no. points:") {
-        npoints = std::atol(val.c_str());
-        if (npoints < 0) bad(at_line(file, line_no), "a number of points", shown(val));
-      } else if (key == "variables:") {
-        if (nvars < 1) bad(at_line(file, line_no), "'No. Variables:' before 'Variables:'", "none");
-        for (long k = 0; k < nvars; ++k) {
-          std::size_t e2 = text.find('\n', pos);
-          if (e2 == std::string::npos)
-            bad(at_line(file, line_no + 1), std::to_string(nvars) + " variable lines", "the end of the file");
-          const std::vector<std::string> w = words(text.substr(pos, e2 - pos));
-          pos = e2 + 1;
-          ++line_no;
-          if (w.size() < 3) bad(at_line(file, line_no), "'index name type'", shown(w.empty() ? "" : w[0]));
-          names.push_back(w[1]);
-        }
-      } else if (key == "values:" || key == "binary:") {
-        binary = key == "binary:";
-        found_data = true;
-        break;
-      }
-    }
+    RawHeader h = read_raw_header(text, file, pos, line_no);
+    const std::string &plotname = h.plotname, &flags = h.flags;
+    const std::vector<std::string>& names = h.names;
+    const bool binary = h.binary, found_data = h.found_data;
+    long npoints = h.npoints;
     if (!found_data) bad(file, "an ngspice raw file with 'Values:' or 'Binary:' after its header", "no data section");
     if (npoints < 0 || names.empty())
       bad(at_line(file, line_no), "'No. Points:' and 'Variables:' before the data", "neither");

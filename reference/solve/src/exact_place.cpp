@@ -167,6 +167,78 @@ std::optional<Rational> rational_sqrt(const Rational& r) {
 /// quadratic in them: the second intersection of the line from a rational point R of the quadric
 /// through x; of the points found, the nearest to x in the `anchored` coordinates — the given ones —
 /// or in all of `vars` if none is).  The result is checked exactly; false if none is found.
+/// h affine in one of `vars`: one exact Newton step in it lands on h = 0.
+bool affine_step(const Expr& h, const std::vector<std::size_t>& vars, std::vector<Rational>& x) {
+  for (std::size_t z : vars) {
+    if (expr::degree_in(h, [&](std::size_t i) { return i == z; }) != 1) continue;
+    std::vector<Rational> y = x;
+    const Rational a = value_at(expr::diff(h, z), y);
+    if (a == 0) continue;
+    y[z] -= value_at(h, y) / a;
+    if (value_at(h, y) == 0) {
+      x = y;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Candidate values for the coordinates not solved for: small numbers and the values at hand (the values
+/// of the coordinates that stay: a circle about (x1, y1) has the point (x1 ± r, y1)), and the moving
+/// coordinates' values simplified (x = 0.6000000000000001: 3/5, and y = ±4/5).
+std::vector<Rational> candidate_values(const std::vector<std::size_t>& vars, const std::vector<Rational>& x) {
+  std::vector<Rational> cand{0, 1, -1, 2, -2, Rational(1, 2), Rational(-1, 2), 3, -3};
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::find(vars.begin(), vars.end(), i) == vars.end() && std::find(cand.begin(), cand.end(), x[i]) == cand.end())
+      cand.push_back(x[i]);
+  for (std::size_t w : vars)
+    for (long den = 10; den <= 1000000; den *= 10) {
+      const Rational r = simplest_near(x[w], den);
+      if (std::find(cand.begin(), cand.end(), r) == cand.end()) cand.push_back(r);
+    }
+  return cand;
+}
+
+/// The rational zeros of a polynomial of degree ≤ 2 given by its values at 0, 1 and −1.
+std::vector<Rational> rational_roots(const Rational& f0, const Rational& f1, const Rational& fm) {
+  const Rational qa = (f1 + fm) / 2 - f0, qb = (f1 - fm) / 2;
+  std::vector<Rational> roots;
+  if (qa == 0 && qb != 0) roots.push_back(-f0 / qb);
+  if (qa != 0)
+    if (const auto r = rational_sqrt(qb * qb - 4 * qa * f0)) {
+      roots.push_back((-qb + *r) / (2 * qa));
+      roots.push_back((-qb - *r) / (2 * qa));
+    }
+  return roots;
+}
+
+/// From a rational zero rp of the quadratic h, the line rp + s·d, d ≈ x − rp with its largest entry 1 and the
+/// others' best approximations of denominator ≤ 10⁴ (the slopes of a stereographic projection: the point lands
+/// within ~1e-8 with small denominators): g(s) = A s² + B s (g(0) = 0), its other zero s = −B/A, if rational
+/// and a zero of h.
+std::optional<std::vector<Rational>> second_intersection(const Expr& h, const std::vector<std::size_t>& vars,
+                                                         const std::vector<Rational>& x,
+                                                         const std::vector<Rational>& rp, long& budget) {
+  std::size_t big = vars[0];
+  for (std::size_t w : vars)
+    if (abs(x[w] - rp[w]) > abs(x[big] - rp[big])) big = w;
+  if (x[big] == rp[big]) return std::nullopt;
+  std::map<std::size_t, Rational> d;
+  for (std::size_t w : vars) d[w] = w == big ? Rational(1) : simplest_near((x[w] - rp[w]) / (x[big] - rp[big]), 10000);
+  const auto g = [&](const Rational& s) {
+    std::vector<Rational> p = x;
+    for (std::size_t w : vars) p[w] = rp[w] + s * d[w];
+    return p;
+  };
+  budget -= 3;
+  const Rational g1 = value_at(h, g(1)), gm = value_at(h, g(-1));
+  const Rational la = (g1 + gm) / 2, lb = (g1 - gm) / 2;
+  if (la == 0) return std::nullopt;
+  const std::vector<Rational> p = g(-lb / la);
+  if (value_at(h, p) != 0) return std::nullopt;
+  return p;
+}
+
 bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector<char>& anchored,
           std::vector<Rational>& x) {
   std::vector<std::size_t> measured;
@@ -180,33 +252,13 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
                    std::abs((p[w] - x[w]).convert_to<double>()) / std::max(1.0, std::abs(x[w].convert_to<double>())));
     return d;
   };
-  std::optional<std::vector<Rational>> best;
-  double best_distance = HUGE_VAL;
-  for (std::size_t z : vars) {  // affine in one coordinate: one exact step
-    if (expr::degree_in(h, [&](std::size_t i) { return i == z; }) != 1) continue;
-    std::vector<Rational> y = x;
-    const Rational a = value_at(expr::diff(h, z), y);
-    if (a == 0) continue;
-    y[z] -= value_at(h, y) / a;
-    if (value_at(h, y) == 0) {
-      x = y;
-      return true;
-    }
-  }
+  if (affine_step(h, vars, x)) return true;
   if (expr::degree_in(h, [&](std::size_t i) { return std::find(vars.begin(), vars.end(), i) != vars.end(); }) != 2)
     return false;
-  // candidate values for the coordinates not solved for: small numbers and the values at hand
-  // (the values of the coordinates that stay: a circle about (x1, y1) has the point (x1 ± r, y1))
-  std::vector<Rational> cand{0, 1, -1, 2, -2, Rational(1, 2), Rational(-1, 2), 3, -3};
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (std::find(vars.begin(), vars.end(), i) == vars.end() && std::find(cand.begin(), cand.end(), x[i]) == cand.end())
-      cand.push_back(x[i]);
-  for (std::size_t w : vars)  // the moving coordinates' values, simplified (x = 0.6000000000000001: 3/5, and y = ±4/5)
-    for (long den = 10; den <= 1000000; den *= 10) {
-      const Rational r = simplest_near(x[w], den);
-      if (std::find(cand.begin(), cand.end(), r) == cand.end()) cand.push_back(r);
-    }
+  const std::vector<Rational> cand = candidate_values(vars, x);
   const std::size_t nc = cand.size();
+  std::optional<std::vector<Rational>> best;
+  double best_distance = HUGE_VAL;
   long budget = 20000;  // evaluations of h in the search
   for (std::size_t z : vars) {
     std::vector<std::size_t> others;
@@ -222,41 +274,14 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
       };
       budget -= 3;
       const Rational f0 = at(0), f1 = at(1), fm = at(-1);
-      const Rational qa = (f1 + fm) / 2 - f0, qb = (f1 - fm) / 2;
-      std::vector<Rational> roots;
-      if (qa == 0 && qb != 0) roots.push_back(-f0 / qb);
-      if (qa != 0)
-        if (const auto r = rational_sqrt(qb * qb - 4 * qa * f0)) {
-          roots.push_back((-qb + *r) / (2 * qa));
-          roots.push_back((-qb - *r) / (2 * qa));
-        }
-      for (const Rational& root : roots) {
+      for (const Rational& root : rational_roots(f0, f1, fm)) {
         std::vector<Rational> rp = y;
         rp[z] = root;
         if (value_at(h, rp) != 0) continue;
-        // the line R + s·d, d ≈ x − R with its largest entry 1 and the others' best approximations of
-        // denominator ≤ 10⁴ (the slopes of a stereographic projection: the point lands within ~1e-8
-        // with small denominators): g(s) = A s² + B s (g(0) = 0), its other zero s = −B/A
-        std::size_t big = vars[0];
-        for (std::size_t w : vars)
-          if (abs(x[w] - rp[w]) > abs(x[big] - rp[big])) big = w;
-        if (x[big] == rp[big]) continue;
-        std::map<std::size_t, Rational> d;
-        for (std::size_t w : vars)
-          d[w] = w == big ? Rational(1) : simplest_near((x[w] - rp[w]) / (x[big] - rp[big]), 10000);
-        const auto g = [&](const Rational& s) {
-          std::vector<Rational> p = x;
-          for (std::size_t w : vars) p[w] = rp[w] + s * d[w];
-          return p;
-        };
-        budget -= 3;
-        const Rational g1 = value_at(h, g(1)), gm = value_at(h, g(-1));
-        const Rational la = (g1 + gm) / 2, lb = (g1 - gm) / 2;
-        if (la == 0) continue;
-        const std::vector<Rational> p = g(-lb / la);
-        if (value_at(h, p) == 0 && distance(p) < best_distance) {
+        const std::optional<std::vector<Rational>> p = second_intersection(h, vars, x, rp, budget);
+        if (p && distance(*p) < best_distance) {
           best = p;
-          best_distance = distance(p);
+          best_distance = distance(*p);
         }
       }
       if (best_distance <= 1e-12) break;  // as near as the given decimals
