@@ -281,6 +281,64 @@ class Reader {
 
   /// `text`: the top deck's contents (a deck given as a string, named `file` in messages; its
   /// includes are read relative to `directory`), else the file is opened.
+  /// .data … .enddata (skipped with a note), .if (refused), .control (its script watched for changes): true if
+  /// `head` is one of them.
+  bool block_card(const Line& here, const std::string& head, bool& in_control, ControlScript& control) {
+    if (head == ".data") {
+      skip_until = ".enddata";
+      warnings.push_back(
+          here.where() +
+          ": ignored .data block (a table for sweeps: dcad solves the circuit at the values as written)");
+      return true;
+    }
+    if (head == ".if") fail(here, "a netlist without conditionals (write the branch that applies)", ".if");
+    if (head == ".control") {
+      in_control = true;
+      control = ControlScript{};
+      warnings.push_back(here.where() + ": ignored .control block");
+      return true;
+    }
+    return false;
+  }
+  /// An include's path: beside the including file, else beside the top deck (Xyce's fallback, its
+  /// Certification_Tests/BUG_1325_SON: "paths relative to the directory of the top-level netlist").
+  std::string locate_include(const std::string& beside_this, const std::string& name) const {
+    const std::string here_path = beside(beside_this, name);
+    std::error_code ec;
+    if (std::filesystem::exists(here_path, ec) || top_deck.empty()) return here_path;
+    const std::string top_path = beside(top_deck, name);
+    return std::filesystem::exists(top_path, ec) ? top_path : here_path;
+  }
+  enum class IncludeCard { none, read_on, stop_if_ended };
+  /// .include/.inc/.incl FILE, .lib FILE SECTION, .lib FILE (the whole file) and .lib SECTION (skipped here).
+  template <class Locate>
+  IncludeCard include_card(const Line& here, const std::string& head, const std::vector<std::string>& tok,
+                           const std::string& text, int depth, const Locate& locate) {
+    if (head == ".include" || head == ".inc" || head == ".incl") {  // Xyce takes all three
+      if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
+      read(locate(unquote(tok[1])), false, "", depth + 1, &here);
+      return IncludeCard::stop_if_ended;
+    }
+    if (head == ".lib" && tok.size() == 3) {
+      read(locate(unquote(tok[1])), false, tok[2], depth + 1, &here);
+      return IncludeCard::read_on;
+    }
+    if (head == ".lib" && tok.size() == 2) {
+      std::error_code ec;
+      const std::string whole = locate(unquote(tok[1]));
+      if (std::filesystem::is_regular_file(
+              whole,
+              ec)) {  // .lib FILE: the whole file, as .include (Xyce, HSPICE without a section)
+        read(whole, false, "", depth + 1, &here);
+        return IncludeCard::stop_if_ended;
+      }
+      skip_until = ".endl";  // .lib SECTION … .endl defined here and not asked for: skipped, as ngspice does
+      return IncludeCard::read_on;
+    }
+    if (head == ".lib")
+      fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
+    return IncludeCard::none;
+  }
   void read(const std::string& file, bool top, const std::string& section, int depth, const Line* from,
             std::istream* text = nullptr, const std::string& directory = "") {
     if (depth > 16) fail(*from, "includes nested at most 16 deep", "deeper (an include cycle?)");
@@ -300,15 +358,7 @@ class Reader {
     // includes beside this deck (a deck given as text: in `directory`)
     const std::string beside_this = text ? (directory.empty() ? std::string("./") : directory + "/") + "deck" : file;
     if (top) top_deck = beside_this;
-    // an include's path: beside the including file, else beside the top deck (Xyce's fallback, its
-    // Certification_Tests/BUG_1325_SON: "paths relative to the directory of the top-level netlist")
-    const auto locate = [&](const std::string& name) {
-      const std::string here_path = beside(beside_this, name);
-      std::error_code ec;
-      if (std::filesystem::exists(here_path, ec) || top_deck.empty()) return here_path;
-      const std::string top_path = beside(top_deck, name);
-      return std::filesystem::exists(top_path, ec) ? top_path : here_path;
-    };
+    const auto locate = [&](const std::string& name) { return locate_include(beside_this, name); };
     std::string raw;
     std::size_t number = 0;
     bool first = top, in_control = false, in_section = section.empty();
@@ -347,20 +397,7 @@ class Reader {
         if (head == skip_until) skip_until.clear();
         continue;
       }
-      if (head == ".data") {
-        skip_until = ".enddata";
-        warnings.push_back(
-            here.where() +
-            ": ignored .data block (a table for sweeps: dcad solves the circuit at the values as written)");
-        continue;
-      }
-      if (head == ".if") fail(here, "a netlist without conditionals (write the branch that applies)", ".if");
-      if (head == ".control") {
-        in_control = true;
-        control = ControlScript{};
-        warnings.push_back(here.where() + ": ignored .control block");
-        continue;
-      }
+      if (block_card(here, head, in_control, control)) continue;
       if (text[0] == '+') {
         if (lines.empty() || lines.back().file != file)
           fail(here, "an element line before a continuation '+'", "'+' first");
@@ -371,30 +408,10 @@ class Reader {
         ended = true;
         return;
       }
-      if (head == ".include" || head == ".inc" || head == ".incl") {  // Xyce takes all three
-        if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
-        read(locate(unquote(tok[1])), false, "", depth + 1, &here);
-        if (ended) return;
+      if (const IncludeCard c = include_card(here, head, tok, text, depth, locate); c != IncludeCard::none) {
+        if (c == IncludeCard::stop_if_ended && ended) return;
         continue;
       }
-      if (head == ".lib" && tok.size() == 3) {
-        read(locate(unquote(tok[1])), false, tok[2], depth + 1, &here);
-        continue;
-      }
-      if (head == ".lib" && tok.size() == 2) {
-        std::error_code ec;
-        const std::string whole = locate(unquote(tok[1]));
-        if (std::filesystem::is_regular_file(
-                whole, ec)) {  // .lib FILE: the whole file, as .include (Xyce, HSPICE without a section)
-          read(whole, false, "", depth + 1, &here);
-          if (ended) return;
-          continue;
-        }
-        skip_until = ".endl";  // .lib SECTION … .endl defined here and not asked for: skipped, as ngspice does
-        continue;
-      }
-      if (head == ".lib")
-        fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
       lines.push_back(here);
     }
     if (!section.empty() && !in_section && from) fail(*from, "a section .lib " + section + " in " + file, "none");
@@ -621,27 +638,16 @@ class Expression {
       if (!eat(",")) throw std::invalid_argument("expected ',' or ')' in the arguments of " + name);
     }
   }
-  Rational call(const std::string& name) {
-    if (functions_) {
-      const auto f = functions_->find(name);
-      if (f != functions_->end()) {
-        const std::vector<Rational> a = arguments(name);
-        if (a.size() != f->second.args.size())
-          throw std::invalid_argument(name + ": expected " + std::to_string(f->second.args.size()) +
-                                      " arguments, found " + std::to_string(a.size()));
-        std::map<std::string, Rational> local = params_;
-        for (std::size_t k = 0; k < a.size(); ++k) local[f->second.args[k]] = a[k];
-        return Expression(f->second.body, local, functions_, notes_, depth_ + 1, dialect_).value();
-      }
-    }
-    const std::size_t at = i_;
-    const std::vector<Rational> a = arguments(name);
-    const auto want = [&](std::size_t lo, std::size_t hi) {
-      if (a.size() < lo || a.size() > hi)
-        throw std::invalid_argument(name + ": expected " + std::to_string(lo) +
-                                    (hi > lo ? " to " + std::to_string(hi) : "") + " arguments, found " +
-                                    std::to_string(a.size()));
-    };
+  static void want_arguments(const std::string& name, const std::vector<Rational>& a, std::size_t lo, std::size_t hi) {
+    if (a.size() < lo || a.size() > hi)
+      throw std::invalid_argument(name + ": expected " + std::to_string(lo) +
+                                  (hi > lo ? " to " + std::to_string(hi) : "") + " arguments, found " +
+                                  std::to_string(a.size()));
+  }
+  /// sqrt, abs, exp, log, pow, min, max and the trigonometric and hyperbolic functions: exact where the value
+  /// is rational at a rational argument, else rounded (and noted); nullopt for another name.
+  std::optional<Rational> analytic(const std::string& name, const std::vector<Rational>& a) {
+    const auto want = [&](std::size_t lo, std::size_t hi) { want_arguments(name, a, lo, hi); };
     const auto transcendental = [&](Float (*fn)(const Float&), const Rational& at_zero_arg,
                                     const Rational& at_zero_value) -> Rational {
       want(1, 1);
@@ -703,6 +709,11 @@ class Expression {
       if (a[0] == 0 && a[1] > 0) return Rational(0);
       return rounded(boost::multiprecision::atan2(as_float(a[0]), as_float(a[1])));
     }
+    return std::nullopt;
+  }
+  /// floor, ceil, int, nint/round, sign/sgn and if: exact; nullopt for another name.
+  static std::optional<Rational> piecewise(const std::string& name, const std::vector<Rational>& a) {
+    const auto want = [&](std::size_t lo, std::size_t hi) { want_arguments(name, a, lo, hi); };
     using boost::multiprecision::mpz_int;
     const auto floor_q = [](const Rational& x) {
       const mpz_int n = boost::multiprecision::numerator(x), d = boost::multiprecision::denominator(x);
@@ -721,6 +732,26 @@ class Expression {
                         : Rational(0);
     if (name == "sign" || name == "sgn") return want(1, 1), Rational(a[0] > 0 ? 1 : a[0] < 0 ? -1 : 0);
     if (name == "if" || name == "ternary_fcn") return want(3, 3), a[0] != 0 ? a[1] : a[2];
+    return std::nullopt;
+  }
+  Rational call(const std::string& name) {
+    if (functions_) {
+      const auto f = functions_->find(name);
+      if (f != functions_->end()) {
+        const std::vector<Rational> a = arguments(name);
+        if (a.size() != f->second.args.size())
+          throw std::invalid_argument(name + ": expected " + std::to_string(f->second.args.size()) +
+                                      " arguments, found " + std::to_string(a.size()));
+        std::map<std::string, Rational> local = params_;
+        for (std::size_t k = 0; k < a.size(); ++k) local[f->second.args[k]] = a[k];
+        return Expression(f->second.body, local, functions_, notes_, depth_ + 1, dialect_).value();
+      }
+    }
+    const std::size_t at = i_;
+    const std::vector<Rational> a = arguments(name);
+    const auto want = [&](std::size_t lo, std::size_t hi) { want_arguments(name, a, lo, hi); };
+    if (const std::optional<Rational> r = analytic(name, a)) return *r;
+    if (const std::optional<Rational> r = piecewise(name, a)) return *r;
     if (name == "agauss" || name == "gauss" || name == "aunif" || name == "unif" || name == "limit") {
       want(1, 4);
       if (notes_) notes_->nominal.push_back(name + s_.substr(at, i_ - at));
