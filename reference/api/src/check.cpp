@@ -493,43 +493,13 @@ bool equal_modulo(const std::vector<Number>& found, const std::vector<std::strin
   return r <= 1e-9 * static_cast<double>(n) * scale;
 }
 
-Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
-  const io::LagrangianCase& c = p.expression;
-  const std::vector<std::string> st = c.system.state_names();
-  if (r.contains("name") && r["name"] != c.name)
-    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
-        shown(r["name"]) + ": a result for another case");
-  if (r.contains("variables") && r["variables"] != json(st))
-    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
-  Checker k{result_file, {}};
-  if (r.contains("formulas") &&
-      r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
-    k.out.not_compared.push_back("formulas (null in the result)");
-  } else if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
-    check_formulas(result_file, r["formulas"], p, points, k.out);
-    if (!r.contains("dims")) return k.out;
-  }
-  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
-  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
-  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
-  if (!r.contains("point") || !r.contains("velocity")) {
-    if (r.contains("velocity") || r.contains("point"))
-      k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
-    return k.out;
-  }
-  // the velocity at the result's own point: the reference there (exact if the point is), modulo the gauge
-  const json& pt = r["point"];
-  const json& vel = r["velocity"];
-  if (!pt.is_object()) bad(result_file, "/point", "an object {variable: value}", shown(pt));
-  if (!vel.is_object()) bad(result_file, "/velocity", "an object {variable: d/dt of it}", shown(vel));
-  io::LagrangianCase at = c;
-  at.has_initial = true;
-  at.initial.assign(at.initial.size(), std::nullopt);
-  at.initial_p.assign(at.initial_p.size(), std::nullopt);
+/// The result's /point: every coordinate and velocity (and the time) into `at`'s initial values, an angle given
+/// as "2*atan(t)" (+ N*pi, N even) into `angles` (its coordinate then 0, the translated angle); whether every
+/// value is exact.
+bool read_result_point(const std::string& result_file, const json& pt, const io::LagrangianCase& c,
+                       io::LagrangianCase& at, std::vector<reference::pipeline::PlacedAngle>& angles) {
   bool exact = true;
-  const std::size_t n = c.system.n;
   std::vector<std::string> names = c.system.variable_names();  // q, v, t
-  std::vector<reference::pipeline::PlacedAngle> angles;  // "2*atan(t)": the exact tiers' rational place (issue 29)
   const std::vector<std::size_t> angle_coordinates = reference::pipeline::angle_coordinates(c.system);
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i == c.system.t() && !c.system.has_time) continue;
@@ -570,6 +540,45 @@ Checked check_expression(const std::string& result_file, const json& r, const io
     exact = exact && x.exact;
     at.initial[i] = exact_value(x);
   }
+  return exact;
+}
+
+Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
+  const io::LagrangianCase& c = p.expression;
+  const std::vector<std::string> st = c.system.state_names();
+  if (r.contains("name") && r["name"] != c.name)
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
+        shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(st))
+    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
+  Checker k{result_file, {}};
+  if (r.contains("formulas") &&
+      r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
+    k.out.not_compared.push_back("formulas (null in the result)");
+  } else if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
+    check_formulas(result_file, r["formulas"], p, points, k.out);
+    if (!r.contains("dims")) return k.out;
+  }
+  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (!r.contains("point") || !r.contains("velocity")) {
+    if (r.contains("velocity") || r.contains("point"))
+      k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
+    return k.out;
+  }
+  // the velocity at the result's own point: the reference there (exact if the point is), modulo the gauge
+  const json& pt = r["point"];
+  const json& vel = r["velocity"];
+  if (!pt.is_object()) bad(result_file, "/point", "an object {variable: value}", shown(pt));
+  if (!vel.is_object()) bad(result_file, "/velocity", "an object {variable: d/dt of it}", shown(vel));
+  io::LagrangianCase at = c;
+  at.has_initial = true;
+  at.initial.assign(at.initial.size(), std::nullopt);
+  at.initial_p.assign(at.initial_p.size(), std::nullopt);
+  std::vector<reference::pipeline::PlacedAngle> angles;  // "2*atan(t)": the exact tiers' rational place (issue 29)
+  bool exact = read_result_point(result_file, pt, c, at, angles);
+  const std::size_t n = c.system.n;
   if (!angles.empty()) {
     if (!exact) bad(result_file, "/point", "exact values with an angle 2*atan(t)", "a decimal among them");
     at.system = reference::pipeline::translate_angles(at.system, angles);  // a translation of Q: the same velocities

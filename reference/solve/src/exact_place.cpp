@@ -365,6 +365,80 @@ Rational simplest_near(const Rational& x, long max_den) {
   return k1 == 0 ? x : Rational(h1, k1);
 }
 
+namespace {
+
+/// The given angle v of coordinate i placed at a rational point of the circle: φ = 2·atan(t) + 2πk with t the
+/// simplest rational within 1e-9 (relative) of tan(φ/2), never 0 for φ ≠ 0 (a special point: sin φ = 0); dcad's
+/// own default point (`given` false): 2·atan(v).  nullopt (with `why`) for |φ| ≥ 1e12.
+std::optional<PlacedAngle> placed_angle(const LagrangianSystem& s, std::size_t i, const Rational& v, bool given,
+                                        std::string& why) {
+  PlacedAngle g;
+  g.q = s.q(i);
+  g.tan_half = v;
+  if (given) {
+    const double phi = v.convert_to<double>(), two_pi = 2 * std::acos(-1.0);
+    if (!(std::abs(phi) < 1e12)) {  // whole turns beyond a long, and tan(φ/2) meaningless in double
+      why = "the angle " + s.variable_names()[i] + " = " + v.str() + " is too large to place (|angle| ≥ 1e12)";
+      return std::nullopt;
+    }
+    g.turns = static_cast<long>(std::llround(phi / two_pi));
+    const double red = phi - two_pi * static_cast<double>(g.turns);
+    for (long den = 100000;; den *= 100) {
+      g.tan_half = simplest_near(Rational(std::tan(red / 2)), den);
+      const double err = std::abs(2 * std::atan(g.tan_half.convert_to<double>()) - red);
+      if ((g.tan_half != 0 && err <= 1e-9 * std::abs(red)) || den > 100000000000000L) break;
+    }
+  }
+  return g;
+}
+
+/// A given coordinate inside sin, cos or exp that is not an angle keeps its given value, which makes them
+/// irrational: the reason, or "" when there is none.
+std::string not_exact_reason(const LagrangianSystem& s, const std::vector<Rational>& start) {
+  const std::vector<std::size_t> ang = angle_coordinates(s);
+  for (std::size_t i = 0; i < 2 * s.n; ++i) {
+    if (start[i] == 0 || std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
+    for (const Expr& e : all_expressions(s))
+      if (inside_function(e, i))
+        return s.variable_names()[i] + " = " + start[i].str() +
+               " occurs inside sin, cos or exp other than as an angle (" +
+               (i < s.n ? "an angle occurs only as integer multiples, at most 64, inside sin and cos" : "a velocity") +
+               "): no rational value near it makes them rational (they are irrational at every nonzero rational, "
+               "Lindemann)";
+  }
+  return "";
+}
+
+/// dcad's own point: coordinates inside sin, cos, exp, sqrt (other than angles) at 0, with their velocities.
+void default_zero_inside_functions(const LagrangianSystem& s, ExactPlace& pl) {
+  const std::vector<std::size_t> ang = angle_coordinates(s);
+  for (std::size_t i = 0; i < s.n; ++i) {
+    if (std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
+    for (const Expr& e : all_expressions(pl.system))
+      if (inside_function(e, s.q(i)) || inside_function(e, s.v(i))) {
+        pl.start[s.q(i)] = 0;
+        pl.start[s.v(i)] = 0;
+      }
+  }
+}
+
+/// Given values typed short (6 decimals or fewer) stay unless M_c then has no point (`loosen`); long ones —
+/// rounded values of irrational ones, which may miss M_c at the place — are starting values, to 12 digits or so
+/// (the CAD's values then keep readable denominators); landed positions and angles stay as placed.
+void settle_given_values(const io::LagrangianCase& c, ExactPlace& pl) {
+  for (std::size_t i = 0; i < 2 * c.system.n; ++i) {  // positions and velocities, not the time
+    if (!c.initial[i] || pl.fixed[i]) continue;
+    if (denominator(*c.initial[i]) <= 1000000) {
+      pl.fixed[i] = true;
+      pl.loosen.push_back(i);
+    } else {
+      pl.start[i] = simplest_near(pl.start[i], 1000000);
+    }
+  }
+}
+
+}  // namespace
+
 std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::vector<Rational>& start, bool given,
                                       std::string& why) {
   const LagrangianSystem& s = c.system;
@@ -375,25 +449,9 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
   for (std::size_t i : angle_coordinates(s)) {
     const Rational& v = start[s.q(i)];
     if (v == 0) continue;  // sin 0 and cos 0 are rational already
-    PlacedAngle g;
-    g.q = s.q(i);
-    // the given angle: φ = 2·atan(t) + 2πk with t the simplest rational within 1e-9 (relative) of
-    // tan(φ/2), never 0 for φ ≠ 0 (a special point: sin φ = 0); dcad's own default point: 2·atan(value)
-    g.tan_half = v;
-    if (given) {
-      const double phi = v.convert_to<double>(), two_pi = 2 * std::acos(-1.0);
-      if (!(std::abs(phi) < 1e12)) {  // whole turns beyond a long, and tan(φ/2) meaningless in double
-        why = "the angle " + s.variable_names()[i] + " = " + v.str() + " is too large to place (|angle| ≥ 1e12)";
-        return std::nullopt;
-      }
-      g.turns = static_cast<long>(std::llround(phi / two_pi));
-      const double red = phi - two_pi * static_cast<double>(g.turns);
-      for (long den = 100000;; den *= 100) {
-        g.tan_half = simplest_near(Rational(std::tan(red / 2)), den);
-        const double err = std::abs(2 * std::atan(g.tan_half.convert_to<double>()) - red);
-        if ((g.tan_half != 0 && err <= 1e-9 * std::abs(red)) || den > 100000000000000L) break;
-      }
-    }
+    std::optional<PlacedAngle> placed = placed_angle(s, i, v, given, why);
+    if (!placed) return std::nullopt;
+    PlacedAngle& g = *placed;
     const Rational t2 = g.tan_half * g.tan_half;
     g.cos = (1 - t2) / (1 + t2);
     g.sin = 2 * g.tan_half / (1 + t2);
@@ -402,34 +460,8 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
     pl.fixed[g.q] = true;
   }
   pl.system = translate_angles(s, pl.angles);
-  if (given) {  // a coordinate inside sin, cos or exp that is not an angle keeps its given value
-    const std::vector<std::size_t> ang = angle_coordinates(s);
-    for (std::size_t i = 0; i < 2 * s.n; ++i) {
-      if (start[i] == 0 || std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
-      for (const Expr& e : all_expressions(s))
-        if (inside_function(e, i)) {
-          pl.not_exact =
-              s.variable_names()[i] + " = " + start[i].str() +
-              " occurs inside sin, cos or exp other than as an angle (" +
-              (i < s.n ? "an angle occurs only as integer multiples, at most 64, inside sin and cos" : "a velocity") +
-              "): no rational value near it makes them rational (they are irrational at every nonzero rational, "
-              "Lindemann)";
-          break;
-        }
-      if (!pl.not_exact.empty()) break;
-    }
-  }
-  if (!given) {  // dcad's own point: coordinates inside sin, cos, exp, sqrt at 0
-    const std::vector<std::size_t> ang = angle_coordinates(s);
-    for (std::size_t i = 0; i < s.n; ++i) {
-      if (std::find(ang.begin(), ang.end(), i) != ang.end()) continue;
-      for (const Expr& e : all_expressions(pl.system))
-        if (inside_function(e, s.q(i)) || inside_function(e, s.v(i))) {
-          pl.start[s.q(i)] = 0;
-          pl.start[s.v(i)] = 0;
-        }
-    }
-  }
+  if (given) pl.not_exact = not_exact_reason(s, start);
+  if (!given) default_zero_inside_functions(s, pl);
   // positions onto the holonomic constraints, fewest coordinates first; each claims the ones it moves
   std::vector<Expr> hs = holonomic_constraints(pl.system);
   std::vector<Expr> shown = holonomic_constraints(s);  // as the case writes them (the same order)
@@ -478,18 +510,7 @@ std::optional<ExactPlace> exact_place(const io::LagrangianCase& c, const std::ve
     why = std::string("a holonomic constraint is irrational there (") + e.what() + ")";
     return std::nullopt;
   }
-  // given values typed short (6 decimals or fewer) stay unless M_c then has no point (`loosen`); long
-  // ones — rounded values of irrational ones, which may miss M_c at the place — are starting values,
-  // to 12 digits or so (the CAD's values then keep readable denominators); landed positions and
-  // angles stay as placed
-  for (std::size_t i = 0; i < 2 * s.n; ++i) {
-    const bool typed = c.initial[i] && denominator(*c.initial[i]) <= 1000000;
-    if (c.initial[i] && given && typed && !pl.fixed[i]) {
-      pl.fixed[i] = true;
-      pl.loosen.push_back(i);
-    }
-    if (c.initial[i] && given && !pl.fixed[i]) pl.start[i] = simplest_near(pl.start[i], 1000000);
-  }
+  if (given) settle_given_values(c, pl);
   return pl;
 }
 

@@ -23,6 +23,7 @@
 #include "dcad/rlc_state.hpp"
 #include "dcad/solution.hpp"
 
+#include <array>
 #include <map>
 #include <string>
 #include <utility>
@@ -76,23 +77,42 @@ inline BranchPotential branch_potential(const rlc::StateStructure& st, long from
   return p;
 }
 
-/// The state equations of `c` (dcad/solution.hpp's StateEquations), with every R, C positive and Φ
-/// positive definite (the caller's precondition: graph_route_holds).  `node_names` name the non-ground
-/// nodes, `source_names` σ's entries.
+/// The blocks of the state equations as they are accumulated: one map (row, column) → value per block, in
+/// StateEquations' order C_ww, G_ww, G_wr, G_rr, L_w, L_r, L_e, Phi, H_w, H_wd, H_r, I_e, O_L.
 template <class N>
-StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std::string>& node_names,
-                                  const std::vector<std::string>& source_names) {
-  const rlc::StateStructure st = state_structure(c);
-  const long nw = static_cast<long>(st.nw), nr = static_cast<long>(st.nr), ne = static_cast<long>(st.ne);
-  const long ms = static_cast<long>(c.sources);
-  StateEquations<N> out;
+struct StateBlocks {
+  using Acc = std::map<std::pair<long, long>, N>;
+  std::array<Acc, 13> maps;
+  static void add(Acc& a, long i, long j, const N& v) {
+    auto [it, fresh] = a.emplace(std::make_pair(i, j), v);
+    if (!fresh) it->second += v;
+  }
+  /// Into out.blocks, nonzero entries only (nw, nr, ne: the levels; nl: inductors; ms: sources).
+  void emit(StateEquations<N>& out, long nw, long nr, long ne, long nl, long ms) const {
+    static const char* const names[13] = {"C_ww", "G_ww", "G_wr", "G_rr", "L_w", "L_r", "L_e",
+                                          "Phi",  "H_w",  "H_wd", "H_r",  "I_e", "O_L"};
+    const long rows[13] = {nw, nw, nw, nr, nw, nr, ne, nl, nw, nw, nr, ne, nl};
+    const long cols[13] = {nw, nw, nr, nr, nl, nl, nl, nl, ms, ms, ms, ms, ms};
+    for (std::size_t k = 0; k < 13; ++k) {
+      SparseBlock<N> b{rows[k], cols[k], {}};
+      for (const auto& [ij, v] : maps[k])
+        if (v != N(0)) b.entries.emplace_back(ij.first, ij.second, v);
+      out.blocks.emplace_back(names[k], std::move(b));
+    }
+  }
+};
+
+/// The names of the state levels: w = E_s − E_root (its C-component's root), ρ = E_root − E_island (the
+/// island's first root), e = E_island, each written with the potentials e(node) of `node_names`.
+template <class N>
+void name_state_levels(const rlc::StateStructure& st, const std::vector<std::string>& node_names,
+                       StateEquations<N>& out) {
   out.w.resize(st.nw);
   out.r.resize(st.nr);
   out.e.resize(st.ne);
   const auto pot = [&](long supernode) {
     return "e(" + node_names.at(static_cast<std::size_t>(st.root_node[static_cast<std::size_t>(supernode)])) + ")";
   };
-  // w = E_s − E_root (its C-component's root), ρ = E_root − E_island (the island's first root), e = E_island
   std::vector<long> island_root(st.ne, -1);
   for (std::size_t s = 0; s < st.supernodes; ++s) {
     const rlc::StateStructure::Levels& l = st.levels[s];
@@ -111,14 +131,24 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
       out.r[static_cast<std::size_t>(l.r)] =
           pot(static_cast<long>(s)) + (l.e >= 0 ? "-" + pot(island_root[static_cast<std::size_t>(l.e)]) : "");
   }
+}
+
+/// The state equations of `c` (dcad/solution.hpp's StateEquations), with every R, C positive and Φ
+/// positive definite (the caller's precondition: graph_route_holds).  `node_names` name the non-ground
+/// nodes, `source_names` σ's entries.
+template <class N>
+StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std::string>& node_names,
+                                  const std::vector<std::string>& source_names) {
+  const rlc::StateStructure st = state_structure(c);
+  const long nw = static_cast<long>(st.nw), nr = static_cast<long>(st.nr), ne = static_cast<long>(st.ne);
+  const long ms = static_cast<long>(c.sources);
+  StateEquations<N> out;
+  name_state_levels(st, node_names, out);
   out.sources = source_names;
-  // accumulation: one map per block, (row, column) → value
-  using Acc = std::map<std::pair<long, long>, N>;
-  Acc Cww, Gww, Gwr, Grr, Lw, Lr, Le, Phi, Hw, Hwd, Hr, Ie, Ol;
-  const auto add = [](Acc& a, long i, long j, const N& v) {
-    auto [it, fresh] = a.emplace(std::make_pair(i, j), v);
-    if (!fresh) it->second += v;
-  };
+  StateBlocks<N> acc;  // one map per block, (row, column) → value
+  auto& [Cww, Gww, Gwr, Grr, Lw, Lr, Le, Phi, Hw, Hwd, Hr, Ie, Ol] = acc.maps;
+  using Acc = typename StateBlocks<N>::Acc;
+  const auto add = [](Acc& a, long i, long j, const N& v) { StateBlocks<N>::add(a, i, j, v); };
   const auto outer = [&](Acc& a, const std::vector<std::pair<long, int>>& x, const std::vector<std::pair<long, int>>& y,
                          const N& v) {
     for (const auto& [i, si] : x)
@@ -170,25 +200,7 @@ StateEquations<N> state_equations(const RlcCircuit<N>& c, const std::vector<std:
   }
   for (std::size_t k = 0; k < c.branches.size(); ++k)
     if (c.branches[k].kind == RlcKind::inductor) out.i.push_back("v_" + c.branches[k].name);
-  const auto block = [&](const char* name, const Acc& a, long rows, long cols) {
-    SparseBlock<N> b{rows, cols, {}};
-    for (const auto& [ij, v] : a)
-      if (v != N(0)) b.entries.emplace_back(ij.first, ij.second, v);
-    out.blocks.emplace_back(name, std::move(b));
-  };
-  block("C_ww", Cww, nw, nw);
-  block("G_ww", Gww, nw, nw);
-  block("G_wr", Gwr, nw, nr);
-  block("G_rr", Grr, nr, nr);
-  block("L_w", Lw, nw, nl);
-  block("L_r", Lr, nr, nl);
-  block("L_e", Le, ne, nl);
-  block("Phi", Phi, nl, nl);
-  block("H_w", Hw, nw, ms);
-  block("H_wd", Hwd, nw, ms);
-  block("H_r", Hr, nr, ms);
-  block("I_e", Ie, ne, ms);
-  block("O_L", Ol, nl, ms);
+  acc.emit(out, nw, nr, ne, nl, ms);
   return out;
 }
 
