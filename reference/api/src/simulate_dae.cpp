@@ -39,6 +39,58 @@ std::vector<ex::Expr> jet_formulas(const io::DaeCase& c, const std::vector<std::
   return out;
 }
 
+/// The start of a DAE's motion on M_c(t0) = {C x = rhs0}: the given values held, the others the least-norm
+/// least-squares completion (logged); a given value that leaves the constraints violated is bad /initial,
+/// naming the constraint.
+Eigen::VectorXd dae_start(const io::DaeCase& c, const dcad::Solution<reference::Rational>& s, const Eigen::MatrixXd& cm,
+                          const Eigen::VectorXd& rhs0, double t0, std::ostream& log) {
+  using Eigen::MatrixXd;
+  using Eigen::VectorXd;
+  const std::size_t n = c.variables.size();
+  std::vector<Eigen::Index> given, other;
+  VectorXd x0 = VectorXd::Zero(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (c.initial[i]) {
+      given.push_back(static_cast<Eigen::Index>(i));
+      x0(static_cast<Eigen::Index>(i)) = c.initial[i]->convert_to<double>();
+    } else {
+      other.push_back(static_cast<Eigen::Index>(i));
+    }
+  }
+  if (cm.rows() > 0) {
+    MatrixXd co(cm.rows(), static_cast<Eigen::Index>(other.size()));
+    for (std::size_t j = 0; j < other.size(); ++j) co.col(static_cast<Eigen::Index>(j)) = cm.col(other[j]);
+    VectorXd b = rhs0;
+    for (Eigen::Index g : given) b -= cm.col(g) * x0(g);
+    if (!other.empty()) {  // least squares of least norm (a COD of a matrix without columns is not asked for)
+      const Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(co);
+      const VectorXd y = cod.solve(b);
+      for (std::size_t j = 0; j < other.size(); ++j) x0(other[j]) = y(static_cast<Eigen::Index>(j));
+    }
+    const VectorXd res = cm * x0 - rhs0;
+    const double scale = 1 + x0.cwiseAbs().maxCoeff() + rhs0.cwiseAbs().maxCoeff();
+    for (Eigen::Index i = 0; i < res.size(); ++i)
+      if (std::abs(res(i)) > 1e-9 * scale * (1 + cm.row(i).cwiseAbs().maxCoeff())) {
+        const std::vector<std::string> names = s.columns();
+        std::string eq;
+        for (const auto& [col, q] : (*s.final_constraints)[static_cast<std::size_t>(i)].terms) {
+          const std::string mag = abs(q) == 1 ? "" : reference::Rational(abs(q)).str() + "*";
+          eq += (eq.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + names[col];
+        }
+        for (const std::string& f : s.source_names) eq += "; " + f;
+        throw io::InputError(c.file + ": /initial: expected values on M_c at t = " + io::float_text(t0) +
+                             ", found the constraint " + eq + " = 0 violated by " + io::float_text(res(i)) +
+                             " (the given values fix it)");
+      }
+  }
+  log << "simulate: the start on M_c at t = " << io::float_text(t0) << ":";
+  for (std::size_t i = 0; i < n; ++i)
+    log << " " << c.variables[i] << " = " << io::float_text(x0(static_cast<Eigen::Index>(i)))
+        << (c.initial[i] ? " (given)" : " (completed)");
+  log << "\n";
+  return x0;
+}
+
 }  // namespace
 
 Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, RowSink& out, std::ostream& log) {
@@ -81,48 +133,7 @@ Summary simulate_dae(const io::DaeCase& c, const SimulateOptions& opt, RowSink& 
   }
   // the start: given values held, the others solved for on M_c(t0)
   const double t0 = c.initial_time ? c.initial_time->convert_to<double>() : 0.0;
-  std::vector<Eigen::Index> given, other;
-  VectorXd x0 = VectorXd::Zero(static_cast<Eigen::Index>(n));
-  for (std::size_t i = 0; i < n; ++i) {
-    if (c.initial[i]) {
-      given.push_back(static_cast<Eigen::Index>(i));
-      x0(static_cast<Eigen::Index>(i)) = c.initial[i]->convert_to<double>();
-    } else {
-      other.push_back(static_cast<Eigen::Index>(i));
-    }
-  }
-  const VectorXd rhs0 = gm * u_at(t0);
-  if (cm.rows() > 0) {
-    MatrixXd co(cm.rows(), static_cast<Eigen::Index>(other.size()));
-    for (std::size_t j = 0; j < other.size(); ++j) co.col(static_cast<Eigen::Index>(j)) = cm.col(other[j]);
-    VectorXd b = rhs0;
-    for (Eigen::Index g : given) b -= cm.col(g) * x0(g);
-    if (!other.empty()) {  // least squares of least norm (a COD of a matrix without columns is not asked for)
-      const Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(co);
-      const VectorXd y = cod.solve(b);
-      for (std::size_t j = 0; j < other.size(); ++j) x0(other[j]) = y(static_cast<Eigen::Index>(j));
-    }
-    const VectorXd res = cm * x0 - rhs0;
-    const double scale = 1 + x0.cwiseAbs().maxCoeff() + rhs0.cwiseAbs().maxCoeff();
-    for (Eigen::Index i = 0; i < res.size(); ++i)
-      if (std::abs(res(i)) > 1e-9 * scale * (1 + cm.row(i).cwiseAbs().maxCoeff())) {
-        const std::vector<std::string> names = s.columns();
-        std::string eq;
-        for (const auto& [col, q] : fin[static_cast<std::size_t>(i)].terms) {
-          const std::string mag = abs(q) == 1 ? "" : reference::Rational(abs(q)).str() + "*";
-          eq += (eq.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + names[col];
-        }
-        for (const std::string& f : s.source_names) eq += "; " + f;
-        throw io::InputError(c.file + ": /initial: expected values on M_c at t = " + io::float_text(t0) +
-                             ", found the constraint " + eq + " = 0 violated by " + io::float_text(res(i)) +
-                             " (the given values fix it)");
-      }
-  }
-  log << "simulate: the start on M_c at t = " << io::float_text(t0) << ":";
-  for (std::size_t i = 0; i < n; ++i)
-    log << " " << c.variables[i] << " = " << io::float_text(x0(static_cast<Eigen::Index>(i)))
-        << (c.initial[i] ? " (given)" : " (completed)");
-  log << "\n";
+  const VectorXd x0 = dae_start(c, s, cm, gm * u_at(t0), t0, log);
   if (s.solution_rank && *s.solution_rank > 0)
     log << "simulate: the solution is not unique (solution rank " << *s.solution_rank
         << "): the free directions are set to 0\n";

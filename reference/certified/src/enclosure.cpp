@@ -436,6 +436,56 @@ void require_enclosable(const std::vector<io::Waveform>& waveforms) {
   }
 }
 
+/// The exosystem of the sources: its generator S (a constant, and per source a rotation with decay for SIN, two
+/// decays for EXP, a ramp for PWL/PULSE pieces) and W, the map from its state to u_ext = (1, σ, σ', …) —
+/// exo_output/exo_generator in simulate, in balls.
+void build_exosystem(const ForcedMotionData& data, std::size_t m, slong p, BallMat& wout, BallMat& sgen) {
+  arb_one(wout.at(0, 0));
+  for (std::size_t j = 0; j < m; ++j) {
+    const io::Waveform& w = data.waveforms[j];
+    const slong c = static_cast<slong>(1 + 3 * j);
+    if (w.is_sine()) {
+      Ball om, dec;
+      arb_const_pi(om.v, p);
+      Ball f;
+      set_q(f.v, 2 * w.p[2], p);
+      arb_mul(om.v, om.v, f.v, p);
+      set_q(dec.v, -w.p[4], p);
+      arb_set(sgen.at(c + 1, c + 1), dec.v);
+      arb_set(sgen.at(c + 2, c + 2), dec.v);
+      arb_neg(sgen.at(c + 1, c + 2), om.v);
+      arb_set(sgen.at(c + 2, c + 1), om.v);
+      BallMat mm(2, 2), pw(2, 2), tmp(2, 2);
+      arb_set(mm.at(0, 0), dec.v), arb_neg(mm.at(0, 1), om.v), arb_set(mm.at(1, 0), om.v), arb_set(mm.at(1, 1), dec.v);
+      arb_mat_one(pw.m);
+      for (long d = 0; d <= data.orders; ++d) {
+        const slong row = static_cast<slong>(1 + static_cast<std::size_t>(d) * m + j);
+        if (d == 0) arb_one(wout.at(row, c));
+        arb_set(wout.at(row, c + 1), pw.at(1, 0));
+        arb_set(wout.at(row, c + 2), pw.at(1, 1));
+        arb_mat_mul(tmp.m, mm.m, pw.m, p);
+        arb_mat_swap(pw.m, tmp.m);
+      }
+    } else if (w.is_exp()) {  // (c, e1, e2) with ė_k = −e_k / TAU_k; σ = c + e1 + e2, σ^{(d)} = (−1/TAU1)^d e1 +
+                              // (−1/TAU2)^d e2
+      const Q r1 = -1 / w.p[3], r2 = -1 / w.p[5];
+      set_q(sgen.at(c + 1, c + 1), r1, p);
+      set_q(sgen.at(c + 2, c + 2), r2, p);
+      Q p1 = 1, p2 = 1;
+      for (long d = 0; d <= data.orders; ++d, p1 *= r1, p2 *= r2) {
+        const slong row = static_cast<slong>(1 + static_cast<std::size_t>(d) * m + j);
+        if (d == 0) arb_one(wout.at(row, c));
+        set_q(wout.at(row, c + 1), p1, p);
+        set_q(wout.at(row, c + 2), p2, p);
+      }
+    } else {
+      arb_one(sgen.at(c, c + 1));
+      arb_one(wout.at(static_cast<slong>(1 + j), c));
+      if (data.orders >= 1) arb_one(wout.at(static_cast<slong>(1 + m + j), c + 1));
+    }
+  }
+}
+
 }  // namespace
 
 MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector<Q>& y0, long precision)
@@ -468,51 +518,8 @@ MotionEnclosure::MotionEnclosure(const ForcedMotionData& data, const std::vector
   // W (exosystem → u_ext) and the exosystem's generator S, as exo_output/exo_generator in simulate
   s.reset(s.wout, nu, static_cast<slong>(1 + 3 * s.m));
   BallMat sgen(static_cast<slong>(1 + 3 * s.m), static_cast<slong>(1 + 3 * s.m));
-  arb_one(s.wout.at(0, 0));
+  build_exosystem(data, s.m, p, s.wout, sgen);
   const std::size_t m = s.m;
-  for (std::size_t j = 0; j < m; ++j) {
-    const io::Waveform& w = data.waveforms[j];
-    const slong c = static_cast<slong>(1 + 3 * j);
-    if (w.is_sine()) {
-      Ball om, dec;
-      arb_const_pi(om.v, p);
-      Ball f;
-      set_q(f.v, 2 * w.p[2], p);
-      arb_mul(om.v, om.v, f.v, p);
-      set_q(dec.v, -w.p[4], p);
-      arb_set(sgen.at(c + 1, c + 1), dec.v);
-      arb_set(sgen.at(c + 2, c + 2), dec.v);
-      arb_neg(sgen.at(c + 1, c + 2), om.v);
-      arb_set(sgen.at(c + 2, c + 1), om.v);
-      BallMat mm(2, 2), pw(2, 2), tmp(2, 2);
-      arb_set(mm.at(0, 0), dec.v), arb_neg(mm.at(0, 1), om.v), arb_set(mm.at(1, 0), om.v), arb_set(mm.at(1, 1), dec.v);
-      arb_mat_one(pw.m);
-      for (long d = 0; d <= data.orders; ++d) {
-        const slong row = static_cast<slong>(1 + static_cast<std::size_t>(d) * m + j);
-        if (d == 0) arb_one(s.wout.at(row, c));
-        arb_set(s.wout.at(row, c + 1), pw.at(1, 0));
-        arb_set(s.wout.at(row, c + 2), pw.at(1, 1));
-        arb_mat_mul(tmp.m, mm.m, pw.m, p);
-        arb_mat_swap(pw.m, tmp.m);
-      }
-    } else if (w.is_exp()) {  // (c, e1, e2) with ė_k = −e_k / TAU_k; σ = c + e1 + e2, σ^{(d)} = (−1/TAU1)^d e1 +
-                              // (−1/TAU2)^d e2
-      const Q r1 = -1 / w.p[3], r2 = -1 / w.p[5];
-      set_q(sgen.at(c + 1, c + 1), r1, p);
-      set_q(sgen.at(c + 2, c + 2), r2, p);
-      Q p1 = 1, p2 = 1;
-      for (long d = 0; d <= data.orders; ++d, p1 *= r1, p2 *= r2) {
-        const slong row = static_cast<slong>(1 + static_cast<std::size_t>(d) * m + j);
-        if (d == 0) arb_one(s.wout.at(row, c));
-        set_q(s.wout.at(row, c + 1), p1, p);
-        set_q(s.wout.at(row, c + 2), p2, p);
-      }
-    } else {
-      arb_one(sgen.at(c, c + 1));
-      arb_one(s.wout.at(static_cast<slong>(1 + j), c));
-      if (data.orders >= 1) arb_one(s.wout.at(static_cast<slong>(1 + m + j), c + 1));
-    }
-  }
   // G = [[A_y, A_u W], [0, S]], balanced: D⁻¹ G D
   s.reset(s.g, nz, nz);
   BallMat ay(dm, dm), au(dm, nu), auw(dm, static_cast<slong>(1 + 3 * m));
