@@ -66,46 +66,25 @@ void add_row(QM& to, Index i, const QM& from, Index k, const Q& c) {
 
 }  // namespace
 
-StateMotion state_motion(const io::Netlist& deck) {
-  const RlcCircuit<Q>& c = deck.rlc;
-  if (!graph_route_holds(c))
-    throw std::invalid_argument("the state-equation model (the enclosures' model beyond the dense one's " +
-                                std::to_string(kForcedBranches) +
-                                " branches) needs every R, L, C > 0 and couplings |k| < 1");
-  if (rounded_coupling(c)) throw std::invalid_argument(kRoundedCoupling);
-  const GraphForced g = graph_forced(deck);
-  for (const SourceCondition& v : g.conditions)
-    if (!v.holds.yes())
-      throw std::invalid_argument("the source condition " + v.text + " is not proved to hold (" + v.evidence + ")");
-  if (!g.consistent) throw std::invalid_argument("M_c is empty");
-  if (g.solution_rank > 0)
-    throw std::invalid_argument("the circuit's solutions are not unique (" + std::to_string(g.solution_rank) +
-                                " free multipliers, a loop of voltage sources and wires)");
-  const StateEquations<Q> s = deck_state_equations<Q>(deck);
-  const rlc::StateStructure st = state_structure(c);
-  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"),
-           Lw = block(s, "L_w"), Lr = block(s, "L_r"), Le = block(s, "L_e"), Phi = block(s, "Phi"),
-           Hw = block(s, "H_w"), Hwd = block(s, "H_wd"), Hr = block(s, "H_r"), Ie = block(s, "I_e"),
-           Ol = block(s, "O_L");
-  Core k{st.nw, Phi.rows(), c.sources};
-  const QM W = k.select(0, k.nw), I = k.select(k.nw, k.nl);
-  // ρ, ẇ, e, i̇ as rows over the core coordinates (the header's four solves)
-  const QM rho = solve(Grr, -(Gwr.transpose() * W + Lr * I + k.place(Hr, 0)));
-  const QM wdot = solve(Cww, -(Gww * W + Gwr * rho + Lw * I + k.place(Hw, 0) + k.place(Hwd, 1)));
-  QM flux = Lw.transpose() * W + Lr.transpose() * rho + k.place(Ol, 0);
-  QM e(0, k.nx());
-  if (Le.rows() > 0) {
-    const QM s_mat = Le * solve(Phi, Le.transpose());
-    e = solve(s_mat, -(Le * solve(Phi, flux) + k.place(Ie, 1)));
-    flux = flux + Le.transpose() * e;
-  }
-  const QM idot = solve(Phi, flux);
-  // per branch: voltage, current (rows over the core coordinates)
+namespace {
+
+/// Per branch, its voltage and current as rows over the core coordinates (capacitors i = C u̇, resistors
+/// u / R, inductors and current sources their coordinates; voltage sources and wires by KCL at the child of
+/// each forest edge, leaves first), the inductors' numbers and the branches whose charge is a state (every
+/// non-capacitor).
+struct BranchRows {
+  QM volt, cur;
+  std::vector<long> inductor;
+  std::vector<std::size_t> charges;
+};
+
+BranchRows branch_rows(const RlcCircuit<Q>& c, const rlc::StateStructure& st, const Core& k, const QM& rho, const QM& e,
+                       const QM& wdot) {
   const std::size_t nb = c.branches.size();
-  QM volt(nb, k.nx()), cur(nb, k.nx());
-  std::vector<long> inductor(nb, -1);
+  BranchRows out{QM(nb, k.nx()), QM(nb, k.nx()), std::vector<long>(nb, -1), {}};
+  QM &volt = out.volt, &cur = out.cur;
+  std::vector<long>& inductor = out.inductor;
   long nl = 0;
-  StateMotion out;
   for (std::size_t b = 0; b < nb; ++b) {
     const RlcBranch<Q>& br = c.branches[b];
     const BranchPotential d = branch_potential(st, br.from, br.to);
@@ -145,6 +124,64 @@ StateMotion state_motion(const io::Netlist& deck) {
     add_row(cur, it->branch, net, ch, br.from == it->node ? Q(-1) : Q(1));
     add_row(net, pa, cur, it->branch, br.from == it->parent ? Q(1) : Q(-1));
   }
+  return out;
+}
+
+/// e (the islands' levels, from their KCL through the inductors: L_e Φ⁻¹ (flux + L_eᵀ e) + I_e σ̇ = 0) and
+/// i̇ = Φ⁻¹ (flux + L_eᵀ e), as rows over the core coordinates.
+std::pair<QM, QM> island_levels_and_rates(const Core& k, QM flux, const QM& le, const QM& phi, const QM& ie_sigma) {
+  QM e(0, k.nx());
+  if (le.rows() > 0) {
+    const QM s_mat = le * solve(phi, le.transpose());
+    e = solve(s_mat, -(le * solve(phi, flux) + ie_sigma));
+    flux = flux + le.transpose() * e;
+  }
+  return {e, solve(phi, flux)};
+}
+
+/// The state-equation model's preconditions: every R, L, C > 0, |k| < 1 and no rounded coupling, the source
+/// conditions proved, M_c nonempty and the solution unique; std::invalid_argument saying which fails.
+void require_state_model(const io::Netlist& deck) {
+  const RlcCircuit<Q>& c = deck.rlc;
+  if (!graph_route_holds(c))
+    throw std::invalid_argument("the state-equation model (the enclosures' model beyond the dense one's " +
+                                std::to_string(kForcedBranches) +
+                                " branches) needs every R, L, C > 0 and couplings |k| < 1");
+  if (rounded_coupling(c)) throw std::invalid_argument(kRoundedCoupling);
+  const GraphForced g = graph_forced(deck);
+  for (const SourceCondition& v : g.conditions)
+    if (!v.holds.yes())
+      throw std::invalid_argument("the source condition " + v.text + " is not proved to hold (" + v.evidence + ")");
+  if (!g.consistent) throw std::invalid_argument("M_c is empty");
+  if (g.solution_rank > 0)
+    throw std::invalid_argument("the circuit's solutions are not unique (" + std::to_string(g.solution_rank) +
+                                " free multipliers, a loop of voltage sources and wires)");
+}
+
+}  // namespace
+
+StateMotion state_motion(const io::Netlist& deck) {
+  const RlcCircuit<Q>& c = deck.rlc;
+  require_state_model(deck);
+  const StateEquations<Q> s = deck_state_equations<Q>(deck);
+  const rlc::StateStructure st = state_structure(c);
+  const QM Cww = block(s, "C_ww"), Gww = block(s, "G_ww"), Gwr = block(s, "G_wr"), Grr = block(s, "G_rr"),
+           Lw = block(s, "L_w"), Lr = block(s, "L_r"), Le = block(s, "L_e"), Phi = block(s, "Phi"),
+           Hw = block(s, "H_w"), Hwd = block(s, "H_wd"), Hr = block(s, "H_r"), Ie = block(s, "I_e"),
+           Ol = block(s, "O_L");
+  Core k{st.nw, Phi.rows(), c.sources};
+  const QM W = k.select(0, k.nw), I = k.select(k.nw, k.nl);
+  // ρ, ẇ, e, i̇ as rows over the core coordinates (the header's four solves)
+  const QM rho = solve(Grr, -(Gwr.transpose() * W + Lr * I + k.place(Hr, 0)));
+  const QM wdot = solve(Cww, -(Gww * W + Gwr * rho + Lw * I + k.place(Hw, 0) + k.place(Hwd, 1)));
+  const std::pair<QM, QM> levels =
+      island_levels_and_rates(k, Lw.transpose() * W + Lr.transpose() * rho + k.place(Ol, 0), Le, Phi, k.place(Ie, 1));
+  const QM &e = levels.first, &idot = levels.second;  // (named: the lambdas below capture idot)
+  // per branch: voltage, current (rows over the core coordinates); voltage sources and wires by KCL
+  const std::size_t nb = c.branches.size();
+  StateMotion out;
+  const auto [volt, cur, inductor, charges] = branch_rows(c, st, k, rho, e, wdot);
+  out.charges = charges;
   // y = (w, i_L, q_x): split a core row into its y part (w, i_L) and its u part
   out.nw = k.nw, out.nl = k.nl, out.nq = out.charges.size();
   const std::size_t dm = k.ns() + out.nq, nu = k.nu(), nue = 1 + 3 * k.m;
