@@ -15,6 +15,7 @@
 #include "dcad/reference/dirac_field.hpp"
 
 #include <gtest/gtest.h>
+#include <cmath>
 #include <rapidcheck/gtest.h>
 
 using namespace dcad;
@@ -190,4 +191,38 @@ RC_GTEST_PROP(FastVsReference, DiracFieldIntegrability, ()) {
   const bool exact = ref::is_integrable(form ? ref::presymplectic_sections(f) : ref::poisson_sections(f));
   const fast::Integrability d = form ? fast::is_closed(to_fast_field(f)) : fast::is_jacobi(to_fast_field(f));
   RC_ASSERT(!tally("Dirac field integrable", !d.integrable.unknown(), d.integrable.yes() == exact));
+}
+
+// Thm 4.7's contrapositive on one bivector: P = e₀∧(e₁ + x₀ e₂) on R³ is not Jacobi, and E_D at 0 is not
+// involutive ([X, Y] = e₂ there, off span{X_i(0)} = span{e₀, e₁}).
+TEST(DiracField, Thm4_7_NonIntegrableBivectorIsNotInvolutive) {
+  Field p{QM(3, 3), {QM(3, 3), QM(3, 3), QM(3, 3)}};
+  p.constant(0, 1) = Q(1), p.constant(1, 0) = Q(-1);
+  p.slopes[0](0, 2) = Q(1), p.slopes[0](2, 0) = Q(-1);
+  const std::vector<ref::AffineSection<Q>> s = ref::poisson_sections(p);
+  EXPECT_FALSE(ref::is_jacobi(p));
+  EXPECT_FALSE(ref::is_integrable(s));
+  EXPECT_FALSE(ref::involutive_at(s, std::vector<Q>(3)));
+  EXPECT_TRUE(fast::is_jacobi(to_fast_field(p)).integrable.no());
+}
+
+// fast never certain and wrong on graded or cancelling data (each case: the exact answer is "not integrable"):
+// dω₀₁₂ = 2⁴² − (2⁴² − 1) = 1, and [P, P] ≠ 0 for P = 2²³ e₀∧e₁ + 2⁻²³ (x₃ e₀∧e₂ + x₂ e₁∧e₃).
+TEST(FastVsReference, DiracFieldIntegrabilityOnGradedData) {
+  fast::AffineSkewField w{Eigen::MatrixXd::Zero(3, 3), std::vector<Eigen::MatrixXd>(3, Eigen::MatrixXd::Zero(3, 3))};
+  w.slopes[1](2, 0) = std::ldexp(1.0, 42), w.slopes[1](0, 2) = -std::ldexp(1.0, 42);
+  w.slopes[2](0, 1) = -(std::ldexp(1.0, 42) - 1), w.slopes[2](1, 0) = std::ldexp(1.0, 42) - 1;
+  EXPECT_FALSE(fast::is_closed(w).integrable.yes());
+  fast::AffineSkewField p{Eigen::MatrixXd::Zero(4, 4), std::vector<Eigen::MatrixXd>(4, Eigen::MatrixXd::Zero(4, 4))};
+  p.constant(0, 1) = std::ldexp(1.0, 23), p.constant(1, 0) = -std::ldexp(1.0, 23);
+  p.slopes[3](0, 2) = std::ldexp(1.0, -23), p.slopes[3](2, 0) = -std::ldexp(1.0, -23);
+  p.slopes[2](1, 3) = std::ldexp(1.0, -23), p.slopes[2](3, 1) = -std::ldexp(1.0, -23);
+  Field exact{QM(4, 4), std::vector<QM>(4, QM(4, 4))};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      exact.constant(i, j) = Q(p.constant(i, j));
+      for (int k = 0; k < 4; ++k) exact.slopes[k](i, j) = Q(p.slopes[k](i, j));
+    }
+  ASSERT_FALSE(ref::is_jacobi(exact));
+  EXPECT_FALSE(fast::is_jacobi(p).integrable.yes());
 }

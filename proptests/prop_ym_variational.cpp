@@ -399,3 +399,42 @@ RC_GTEST_PROP(FastVsReference, ImplicitLagrangianFields, ()) {
   const Eigen::MatrixXd& dir = ff.direction.columns();
   RC_ASSERT((gap - dir * (dir.transpose() * gap)).norm() <= tol);
 }
+
+// Prop 3.5's gap on the smallest example: n = 2, Δ = TQ, L = ½ v₀² (A = diag(1, 0)).  At q = 0, v = (1, 2),
+// p = FL = (1, 0), the rate q̇ = (1, 3), v̇ = 0, ṗ = 0 lies in 𝒞 and satisfies (3.17), not (3.13) (q̇ ≠ v);
+// q̇ = v satisfies both.
+TEST(YoshimuraMarsden, Prop3_5_HalfV0SquaredLosesQdotEqualsV) {
+  ref::PontryaginInput<Q> l{2, QM(0, 2), QM(2, 2), QM(2, 2), QM(2, 2), std::vector<Q>(2), std::vector<Q>(2)};
+  l.vv(0, 0) = Q(1);
+  const std::vector<Q> x{Q(0), Q(0), Q(1), Q(2), Q(1), Q(0)};
+  const std::vector<Q> solution{Q(1), Q(2), Q(0), Q(0), Q(0), Q(0)}, planted{Q(1), Q(3), Q(0), Q(0), Q(0), Q(0)};
+  const QM none(2, 2);
+  EXPECT_TRUE(ref::satisfies_ldap(l, none, none, x, solution));
+  EXPECT_TRUE(ref::satisfies_intrinsic_ldap(l, x, solution));
+  EXPECT_TRUE(ref::satisfies_intrinsic_ldap(l, x, planted));
+  EXPECT_FALSE(ref::satisfies_ldap(l, none, none, x, planted));
+}
+
+// fast never certain and wrong on an ill-conditioned K: K = [2²³, 2²³ + 1], ∂H/∂p = b = (1, −1) at z = 0, so
+// K ∂H/∂p = −1 and there are no fields (and likewise for the Lagrangian fields at v = (1, −1)).
+TEST(FastVsReference, ImplicitFieldsOnAnIllConditionedK) {
+  fast::HamiltonianInput h;
+  h.n = 2;
+  h.k = Eigen::MatrixXd(1, 2);
+  h.k << std::ldexp(1.0, 23), std::ldexp(1.0, 23) + 1;
+  h.pp = h.qp = h.qq = Eigen::MatrixXd::Zero(2, 2);
+  h.q = Eigen::VectorXd::Zero(2);
+  h.p = Eigen::VectorXd(2);
+  h.p << 1, -1;
+  const fast::AffineSubspace f = fast::implicit_hamiltonian_fields(h, Eigen::VectorXd::Zero(4));
+  EXPECT_TRUE(f.empty || !f.certain.yes());
+  fast::PontryaginInput l;
+  l.n = 2;
+  l.k = h.k;
+  l.vv = l.qv = l.qq = Eigen::MatrixXd::Zero(2, 2);
+  l.q = l.v = Eigen::VectorXd::Zero(2);
+  Eigen::VectorXd v(2);
+  v << 1, -1;
+  const fast::AffineSubspace g = fast::implicit_lagrangian_fields(l, Eigen::VectorXd::Zero(2), v);
+  EXPECT_TRUE(g.empty || !g.certain.yes());
+}

@@ -11,11 +11,13 @@ LinearSystem pontryagin_energy(const PontryaginInput& in) {
   const MatrixXd &k = in.k, &vv = in.vv, &qv = in.qv, &qq = in.qq;
   const VectorXd &q = in.q, &v = in.v;
   const int n = static_cast<int>(vv.rows());
-  if (in.n != vv.rows() || qq.rows() != n || qv.rows() != n || q.size() != n || v.size() != n ||
-      (k.rows() && k.cols() != n))
+  if (in.n != vv.rows() || vv.cols() != n || qq.rows() != n || qq.cols() != n || qv.rows() != n || qv.cols() != n ||
+      q.size() != n || v.size() != n || (k.rows() && k.cols() != n))
     throw std::invalid_argument("pontryagin_system: expected n = " + std::to_string(in.n) +
-                                " rows in vv, qv, qq, q, v and columns in k");
+                                " rows and columns in vv, qv, qq, entries in q, v and columns in k");
   for (const MatrixXd* m : {&k, &vv, &qv, &qq}) require_finite(*m, "pontryagin_system");
+  require_finite(q, "pontryagin_system");
+  require_finite(v, "pontryagin_system");
   if (vv != vv.transpose() || qq != qq.transpose())
     throw std::invalid_argument("pontryagin_system: expected symmetric vv and qq, found an asymmetric one");
   MatrixXd h = MatrixXd::Zero(3 * n, 3 * n);

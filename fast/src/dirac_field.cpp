@@ -1,5 +1,6 @@
 #include "dcad/fast/dirac_field.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -25,17 +26,10 @@ void require_field(const AffineSkewField& f, const char* fn) {
   for (std::size_t k = 0; k < f.slopes.size(); ++k) skew(f.slopes[k], "slopes[" + std::to_string(k) + "]");
 }
 
-Integrability decide(const VectorXd& coefficients, double scale, const Options& opt) {
-  Integrability out;
-  if (scale == 0) {  // constant M: every coefficient is a product with an exact 0
-    out.integrable = yes;
-    out.evidence.rows = static_cast<int>(coefficients.size());
-    out.evidence.cols = 1;
-    return out;
-  }
-  out.evidence = decide_rank(coefficients, scale, opt);
-  out.integrable = out.evidence.certain.yes() ? (out.evidence.rank == 0 ? yes : no) : unknown;
-  return out;
+bool all_zero(const std::vector<MatrixXd>& ms) {
+  for (const MatrixXd& m : ms)
+    if ((m.array() != 0).any()) return false;
+  return true;
 }
 
 double slope_norm(const AffineSkewField& f) {
@@ -44,30 +38,64 @@ double slope_norm(const AffineSkewField& f) {
   return s;
 }
 
+/// Options with every matrix of the field assessed (assessed() stops after its first call).
+Options assessed_field(const AffineSkewField& f, const Options& opt_in) {
+  if (opt_in.input_assessed) return opt_in;
+  Options opt = opt_in;
+  assess_input(f.constant, opt);
+  for (const MatrixXd& m : f.slopes) assess_input(m, opt);
+  opt.input_assessed = true;
+  return opt;
+}
+
+/// Folds one block of coefficients, decided at its own scale (what its terms may have lost to rounding), into
+/// `out`: a certainly nonzero block makes the answer no; an uncertain one, unknown unless another is certainly
+/// nonzero.  `exact_zero`: every coefficient is a sum of products with an exact 0 (nothing to decide); a scale
+/// that under- or overflowed is no scale, and the block is then uncertain.
+void decide_block(const VectorXd& coefficients, bool exact_zero, double scale, const Options& opt, Integrability& out) {
+  if (exact_zero || out.integrable.no()) return;
+  if (!(scale > 0) || !std::isfinite(scale)) {
+    out.integrable = unknown;
+    return;
+  }
+  const RankDecision d = decide_rank(coefficients, scale, opt);
+  if (!d.certain.yes()) {
+    out.integrable = unknown;
+    out.evidence = d;
+  } else if (d.rank > 0) {
+    out.integrable = no;
+    out.evidence = d;
+  } else if (out.integrable.yes()) {
+    out.evidence = d;
+  }
+}
+
 }  // namespace
 
 Integrability is_closed(const AffineSkewField& w, const Options& opt_in) {
   require_field(w, "is_closed");
   const int n = static_cast<int>(w.constant.rows());
-  Options opt = opt_in;
-  for (const MatrixXd& m : w.slopes) opt = assessed(opt, {m});
+  const Options opt = assessed_field(w, opt_in);
   VectorXd c(static_cast<Eigen::Index>(n) * n * n);
   for (int i = 0, r = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) c(r++) = w.slopes[i](j, k) + w.slopes[j](k, i) + w.slopes[k](i, j);
-  return decide(c, slope_norm(w), opt);
+  Integrability out{yes, {}};
+  decide_block(c, all_zero(w.slopes), slope_norm(w), opt, out);  // dω is constant: one block
+  return out;
 }
 
 Integrability is_jacobi(const AffineSkewField& p, const Options& opt_in) {
   require_field(p, "is_jacobi");
   const int n = static_cast<int>(p.constant.rows());
-  Options opt = assessed(opt_in, {p.constant});
-  for (const MatrixXd& m : p.slopes) opt = assessed(opt, {m});
-  // [P, P] at x is affine in x: one block of n³ coefficients for the constant part, one per x_m
-  VectorXd c(static_cast<Eigen::Index>(n + 1) * n * n * n);
-  Eigen::Index r = 0;
+  const Options opt = assessed_field(p, opt_in);
+  // [P, P] at x is affine in x: one block of n³ coefficients for the constant part, one per x_m, each decided at
+  // the scale of its own terms (‖M‖ Σ_l ‖∂_l P‖, M the constant or the slope of x_m)
+  Integrability out{yes, {}};
   for (int block = -1; block < n; ++block) {
     const MatrixXd& m = block < 0 ? p.constant : p.slopes[block];
+    VectorXd c(static_cast<Eigen::Index>(n) * n * n);
+    Eigen::Index r = 0;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j)
         for (int k = 0; k < n; ++k) {
@@ -76,8 +104,9 @@ Integrability is_jacobi(const AffineSkewField& p, const Options& opt_in) {
             s += m(i, l) * p.slopes[l](j, k) + m(j, l) * p.slopes[l](k, i) + m(k, l) * p.slopes[l](i, j);
           c(r++) = s;
         }
+    decide_block(c, all_zero({m}) || all_zero(p.slopes), m.norm() * slope_norm(p), opt, out);
   }
-  return decide(c, (p.constant.norm() + slope_norm(p)) * slope_norm(p), opt);
+  return out;
 }
 
 }  // namespace dcad::fast

@@ -64,25 +64,34 @@ VectorXd hamilton_field(const HamiltonianInput& in, const VectorXd& z) {
 
 namespace {
 
-/// {X = (q̇, ṗ) : q̇ = u, K q̇ = 0, ṗ + g ∈ Δ°} as one linear system — q̇ = u, K q̇ = 0, Nᵀ ṗ = −Nᵀ g for an
-/// orthonormal basis N of Δ = ker K — decided by solve; `terms`: the size of what u and g were computed from.
+/// {X = (q̇, ṗ) : q̇ = u ∈ Δ, ṗ + g ∈ Δ°}: Δ = ker K decided (an orthonormal basis N, and R of its complement
+/// row K = Δ°), u ∈ Δ decided on Rᵀ u alone at `terms` (the size of what u and g were computed from: K's own
+/// conditioning does not enter, as it would through K q̇ = 0), then X = (u, −N Nᵀ g) + {0} × Δ°.
 AffineSubspace induced_fields(const MatrixXd& kmat, const VectorXd& u, const VectorXd& g, double terms,
                               const Options& opt) {
   const Eigen::Index n = u.size();
   const Subspace delta = kmat.rows() ? kernel(kmat, opt) : Subspace::whole(static_cast<int>(n));
   const MatrixXd& nb = delta.columns();
-  const Eigen::Index k = kmat.rows(), d = nb.cols();
-  MatrixXd a = MatrixXd::Zero(n + k + d, 2 * n);
-  VectorXd b = VectorXd::Zero(n + k + d);
-  a.topLeftCorner(n, n).setIdentity();
-  b.head(n) = u;
-  if (k) a.block(n, 0, k, n) = kmat;
-  a.block(n + k, n, d, n) = nb.transpose();
-  b.tail(d) = -nb.transpose() * g;
-  // the scale of the right-hand side: what its terms may have lost to rounding, not its computed size
-  const double knorm = k ? kmat.norm() : 0.0;
-  AffineSubspace out = solve(a, b, opt, std::max(1.0, knorm), terms * std::max(1.0, knorm));
-  out.certain &= delta.certain();
+  const MatrixXd rb = orthogonal_complement(nb);  // Δ° (as vectors: row K)
+  AffineSubspace out;
+  out.certain = delta.certain();
+  if (rb.cols() > 0) {
+    const VectorXd off = rb.transpose() * u;  // u's part off Δ
+    if (!(terms > 0) || !std::isfinite(terms)) {
+      if (off.cwiseAbs().maxCoeff() > 0) out.certain = unknown;
+    } else {
+      const RankDecision d = decide_rank(off, terms, opt);
+      out.certain &= d.certain;
+      if (d.rank > 0) return out;  // empty: ∂H/∂p (or v) is not in Δ
+    }
+  }
+  out.empty = false;
+  out.point = VectorXd::Zero(2 * n);
+  out.point.head(n) = u;
+  out.point.tail(n) = -nb * (nb.transpose() * g);
+  MatrixXd dir = MatrixXd::Zero(2 * n, rb.cols());
+  dir.bottomRows(n) = rb;
+  out.direction = Subspace::from_orthonormal_columns(dir, out.certain);
   return out;
 }
 

@@ -279,8 +279,6 @@ class Reader {
   std::string top_deck;  ///< the top deck's path (includes fall back to its directory)
   Dialect dialect = Dialect::strict;
 
-  /// `text`: the top deck's contents (a deck given as a string, named `file` in messages; its
-  /// includes are read relative to `directory`), else the file is opened.
   /// .data … .enddata (skipped with a note), .if (refused), .control (its script watched for changes): true if
   /// `head` is one of them.
   bool block_card(const Line& here, const std::string& head, bool& in_control, ControlScript& control) {
@@ -339,6 +337,8 @@ class Reader {
       fail(here, ".lib FILE SECTION (a library section is read where it is named)", "\"" + text + "\"");
     return IncludeCard::none;
   }
+  /// `text`: the top deck's contents (a deck given as a string, named `file` in messages; its
+  /// includes are read relative to `directory`), else the file is opened.
   void read(const std::string& file, bool top, const std::string& section, int depth, const Line* from,
             std::istream* text = nullptr, const std::string& directory = "") {
     if (depth > 16) fail(*from, "includes nested at most 16 deep", "deeper (an include cycle?)");

@@ -163,10 +163,6 @@ std::optional<Rational> rational_sqrt(const Rational& r) {
   }
 }
 
-/// Puts x on {h = 0} by moving the coordinates in `vars` (h affine in one of them: solved for it; h
-/// quadratic in them: the second intersection of the line from a rational point R of the quadric
-/// through x; of the points found, the nearest to x in the `anchored` coordinates — the given ones —
-/// or in all of `vars` if none is).  The result is checked exactly; false if none is found.
 /// h affine in one of `vars`: one exact Newton step in it lands on h = 0.
 bool affine_step(const Expr& h, const std::vector<std::size_t>& vars, std::vector<Rational>& x) {
   for (std::size_t z : vars) {
@@ -239,6 +235,10 @@ std::optional<std::vector<Rational>> second_intersection(const Expr& h, const st
   return p;
 }
 
+/// Puts x on {h = 0} by moving the coordinates in `vars` (h affine in one of them: solved for it; h
+/// quadratic in them: the second intersection of the line from a rational point R of the quadric
+/// through x; of the points found, the nearest to x in the `anchored` coordinates — the given ones —
+/// or in all of `vars` if none is).  The result is checked exactly; false if none is found.
 bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector<char>& anchored,
           std::vector<Rational>& x) {
   std::vector<std::size_t> measured;

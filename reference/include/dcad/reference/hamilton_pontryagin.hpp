@@ -12,7 +12,8 @@
 //   (3.24) (X, 𝔇L) ∈ D_Δ: Thm 3.8 says the three are one.
 // Prop 3.5 calls (3.17) equivalent to the LDAP equations (3.13).  On 𝒞 it reads, for δq, δv ∈ Δ and
 // u = q̇ − v: u·(Bᵀ δq + A δv) + (∂L/∂q − ṗ)·δq = 0, i.e. u ∈ Δ, A u ∈ Δ° and ∂L/∂q − ṗ + B u ∈ Δ°, while
-// (3.13) is u = 0 with ∂L/∂q − ṗ ∈ Δ°.  They agree where A is nondegenerate on Δ (L regular on Δ).  Where it
+// (3.13) is u = 0 with ∂L/∂q − ṗ ∈ Δ°.  They agree where A is nondegenerate on Δ (L regular on Δ — which an
+// invertible A does not imply: diag(1, −1) on Δ = span(1, 1)).  Where it
 // is not, a u ≠ 0 with A u ∈ Δ° and (B − Bᵀ) u ∈ A Δ + Δ° (always, when B is symmetric — LC circuits have
 // B = 0) gives a rate in 𝒞 satisfying (3.17) and not (3.13): the intrinsic equations lose q̇ = v there
 // (prop_ym_variational plants such rates).

@@ -7,7 +7,10 @@
 //   the Hamilton–d'Alembert principle in phase space: (q̇ − ∂H/∂p)·δp + (−ṗ − ∂H/∂q)·δq = 0 for all
 //   δq ∈ Δ, δp, with q̇ ∈ Δ  [YM (3.42)–(3.43), Prop 3.15];
 //   its intrinsic form χ(X)·w = (τ*dH)·w for the variations w, where χ(X)·w = Ω♭(X)·u = −ṗ δq + q̇ δp and
-//   u = Tτ(w) = (δq, δp) ranges over Δ_{T*Q}  [YM (3.46), (3.48)–(3.52), Props 3.16–3.18];
+//   u = Tτ(w) = (δq, δp) ranges over Δ_{T*Q}  [YM (3.46), (3.48)–(3.52), Props 3.16–3.18] — as the proof of
+//   Prop 3.18 lets it range; read literally, 𝒥 = ℐ ∩ TΔ_P ties (δq, δp) to T P, and (3.46) is then weaker than
+//   (3.47) where H's A is degenerate on the directions P leaves (the gap hamilton_pontryagin.hpp shows for
+//   Prop 3.5, which an invertible A does not close: A = diag(1, −1) is degenerate on Δ = span(1, 1));
 //   and Thm 3.19: the principle, the intrinsic system and (X, dH) ∈ D_Δ are equivalent.
 // The multipliers' term μ_a ω^a = ṗ + ∂H/∂q ∈ Δ° ("Coordinate Representation" after Prop 3.15) is the
 // constraint force; at a point it is free in Δ°, and the CAD on (D_Δ, H) (CEF (1.1)) fixes it on M_c.
@@ -147,7 +150,7 @@ bool satisfies_intrinsic_implicit_hamiltonian(const HamiltonianInput<T>& in, con
   for (Index i = 0; i < delta.dim(); ++i)
     for (Index j = 0; j < n; ++j) rows(i, j) = delta.basis()(i, j);
   for (Index j = 0; j < n; ++j) rows(delta.dim() + j, n + j) = T(1);
-  if (!contains(Subspace<T>::span(rows), x)) return false;                         // X(z) ∈ Δ_P ⊂ Δ_{T*Q}
+  if (!contains(Subspace<T>::span(rows), x)) return false;                         // X(z) ∈ Δ_{T*Q}
   const std::vector<T> chi = omega_flat(x), dh = hamiltonian_differential(in, z);  // Ω♭(X) = (−ṗ, q̇)
   for (Index r = 0; r < rows.rows(); ++r) {
     T lhs(0), rhs(0);
