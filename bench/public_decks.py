@@ -45,6 +45,24 @@ MEANT_TO_FAIL = re.compile(r"(^Netlists/Message/(?!.*[Ww]arning))|_fails?[._]|\.
 EXPECTS_ERROR = re.compile(r"runAndCheck(?:Grouped)?Error\(\s*\$CIRFILE\s*,")
 CORPUS = None  # set by main(): where the decks' test scripts are
 
+# Refusals of decks that are not one fixed linear R/L/C/K/V/I circuit with deterministic sources: reported as a
+# second figure beside the first (issue 45 asks for >= 97 % of "the public linear decks"; which decks count as
+# linear is the reader's call, so both figures are printed and the first stays the headline).  Matched on dcad's
+# own refusal message.
+OUTSIDE = [
+    ("a random source or value (rand, trnoise)", re.compile(r"random", re.I)),
+    ("a script or card that changes the circuit (.alter, .delete, .fault, mc_source, .preprocess)",
+     re.compile(r"a command that changes the circuit|which changes it before|found \.preprocess", re.I)),
+    ("a behavioural source in the time (a `time` expression)", re.compile(r'unknown parameter "time"', re.I)),
+    ("an AC-only quantity (freq, hertz, complex values)", re.compile(r'unknown parameter "(freq|hertz)"|"complex', re.I)),
+    ("a conditional netlist (.if)", re.compile(r"found \.if\b", re.I)),
+    ("a nonlinear device card (gnucap .vccap)", re.compile(r"\.vccap", re.I)),
+]
+
+
+def outside_linear(first):
+    return next((label for label, pattern in OUTSIDE if pattern.search(first)), None)
+
 
 def meant_to_fail(path):
     if MEANT_TO_FAIL.search(path):
@@ -110,6 +128,9 @@ def main():
     present = sum(c[0] for c in valid.values())
     accepted = sum(c[1] for c in valid.values())
     failing = [c for s, c in per_source.items() if s.endswith("(meant to fail)")]
+    outside = collections.Counter(outside_linear(first) for decks in causes.values() for _, _, first in decks)
+    outside.pop(None, None)
+    n_out = sum(outside.values())
     with open(out, "w") as f:
         f.write("# Public linear decks through `dcad solve` (issue 45)\n\n")
         f.write("`/usr/bin/python3 bench/public_decks.py build/dcad CORPUS` — %d decks present of %d listed, %.0f s.\n\n" % (present + sum(c[0] for c in failing), len(rows), seconds))
@@ -119,6 +140,11 @@ def main():
         f.write("| all meant to run | %d | %d (%.1f %%) | %d | %d |\n" % (present, accepted, 100.0 * accepted / max(present, 1),
                                                                      sum(c[2] for c in valid.values()), sum(c[3] for c in valid.values())))
         f.write("| all meant to fail | %d | %d | %d | %d |\n\n" % tuple(sum(c[k] for c in failing) for k in range(4)))
+        f.write("\nOf the %d decks meant to run, %d are refused for a feature outside one fixed linear R/L/C/K/V/I circuit "
+                "with deterministic sources (`OUTSIDE` in this script, matched on dcad's message): %s.  Without them: "
+                "%d of %d accepted (%.1f %%).  The headline stays the figure over all of them.\n\n" % (
+                    present, n_out, "; ".join("%d %s" % (n, label) for label, n in outside.most_common()),
+                    accepted, present - n_out, 100.0 * accepted / max(present - n_out, 1)))
         f.write("A deck is *meant to fail* when its origin wrote it to be refused (`MEANT_TO_FAIL` in this script: Xyce's\n"
                 "Netlists/Message/ tests of error messages, names with _fails, .error, bad_, _is_missing, missing_ends, /dup-,\n"
                 "bogo; and Xyce decks whose test script runs them with runAndCheckError, expecting Xyce to exit with an\n"
@@ -138,8 +164,10 @@ def main():
             f.write("\n## Other exits (crashes, internal errors, timeouts)\n\n")
             for s, path, code, first in others:
                 f.write("- %s `%s`: exit %s, %s\n" % (s, path, code, first[:300]))
-    print("%d of %d decks meant to run accepted (%.1f %%); %d of %d meant to fail refused; table in %s" % (
-        accepted, present, 100.0 * accepted / max(present, 1), sum(c[2] for c in failing), sum(c[0] for c in failing), out))
+    print("%d of %d decks meant to run accepted (%.1f %%; %.1f %% of the %d within one fixed linear circuit); "
+          "%d of %d meant to fail refused; table in %s" % (
+              accepted, present, 100.0 * accepted / max(present, 1), 100.0 * accepted / max(present - n_out, 1),
+              present - n_out, sum(c[2] for c in failing), sum(c[0] for c in failing), out))
 
 
 if __name__ == "__main__":
