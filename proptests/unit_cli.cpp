@@ -7,10 +7,12 @@
 #include "dcad/fast/exact.hpp"
 #include "simulate.hpp"
 #include "dcad/io/traces.hpp"
+#include "dcad/io/netlist.hpp"
 #include "dcad/io/waveform.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -22,6 +24,10 @@ namespace {
 
 Waveform wave(const std::string& spec) {
   return parse_waveform(spec, [](const std::string& s) { return dcad::reference::parse_rational(s); });
+}
+/// With SPICE's scale factors (1n, 5n), as the decks write them.
+Waveform spice_wave(const std::string& spec) {
+  return parse_waveform(spec, [](const std::string& s) { return dcad::io::parse_spice_value(s); });
 }
 
 }  // namespace
@@ -147,8 +153,8 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
   EXPECT_EQ(v, Rational(0));
   EXPECT_EQ(slope, Rational(1));
   EXPECT_EQ(r.value(3, 1), 1.0);
-  EXPECT_THROW(wave("PWL(0 0 1 1 2 0) R=1"), std::invalid_argument);  // repeats 1 → 0 with a step: an ideal jump
-  Waveform cut_jump = wave("PULSE(0 1 0 1 1 1 2)");  // PER < TR + PW + TF, cut at 2: a step 1 → 0 there
+  EXPECT_EQ(wave("PWL(0 0 1 1 2 0) R=1").step_at(), Rational(2));  // repeats 1 → 0 with a step: solve only
+  Waveform cut_jump = wave("PULSE(0 1 0 1 1 1 2)");                // PER < TR + PW + TF, cut at 2: a step 1 → 0 there
   cut_jump.complete(Rational(1), Rational(10));
   EXPECT_NO_THROW(cut_jump.breakpoints(1.5));                     // a run that ends before the step
   EXPECT_THROW(cut_jump.breakpoints(10), std::invalid_argument);  // one that reaches it: refused, named
@@ -162,9 +168,10 @@ TEST(Waveform, NgspiceSpellingsOfOneTransient) {
 // the values as given (gnucap's td1 = 0 is 0, where ngspice puts TSTEP); SIN offset amplitude frequency delay
 // damping is SPICE's SIN with PHASE 0, keys abbreviated as gnucap takes them (o{ffset}, a{mplitude},
 // f{requency}, de{lay}, da{mping}); zero, peak, samples= steer gnucap's steps and are noted.  What has no
-// exact transient here is refused: a period=, tau 0 (a step), td2 < td1, a frequency left to the analysis,
-// pulse's form (rise 0).  Killed by: complete() adding SPICE's defaults to the form, a key matched by
-// any prefix ("d" is neither delay nor damping in gnucap), the flags read as values.
+// exact transient here is refused: tau 0 (a step), td2 < td1, a frequency left to the analysis; a period= is
+// gnucap's summed restarts and pulse's rise 0 a step (both read: GnucapPeriodicExp…, GnucapStepPulse…).  Killed by:
+// complete() adding SPICE's defaults to the form, a key matched by any prefix ("d" is neither delay nor damping in
+// gnucap), the flags read as values.
 TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   Waveform e = wave("exp iv=0. pv=1. td1=0 tau1=5e-9 td2=10e-9 tau2=5e-9");
   e.complete(Rational(1, 1000000000), Rational(20, 1000000000));
@@ -186,13 +193,13 @@ TEST(Waveform, GnucapKeywordFormIsSpicesWithGnucapsValues) {
   EXPECT_EQ(f.kind, Waveform::Kind::sffm);
   EXPECT_EQ(f.p, (std::vector<Rational>{0, 1, 10000, Rational(1, 10), 1000}));
   EXPECT_THROW(wave("sffm offset=0 amplitude=1 carrier=10000"),
-               std::invalid_argument);                              // no modindex, signal: no default
-  EXPECT_THROW(wave("sin(d=1 freq=1000)"), std::invalid_argument);  // "d": delay or damping?
-  EXPECT_THROW(wave("sin(amplitude=1)"), std::invalid_argument);    // the analysis' frequency
-  EXPECT_THROW(wave("exp iv=0 pv=1 tau1=1 tau2=1 period=5"), std::invalid_argument);
+               std::invalid_argument);                                             // no modindex, signal: no default
+  EXPECT_THROW(wave("sin(d=1 freq=1000)"), std::invalid_argument);                 // "d": delay or damping?
+  EXPECT_THROW(wave("sin(amplitude=1)"), std::invalid_argument);                   // the analysis' frequency
+  EXPECT_EQ(wave("exp iv=0 pv=1 tau1=1 tau2=1 period=5").period, Rational(5));     // summed restarts (bm_exp.cc)
   EXPECT_THROW(wave("exp iv=0 pv=1 td1=2 tau1=1 tau2=1"), std::invalid_argument);  // td2 = 0 < td1
   EXPECT_THROW(wave("exp iv=0 pv=1 td1=0 td2=1 tau2=1"), std::invalid_argument);   // tau1 = 0: a step
-  EXPECT_THROW(wave("pulse (iv=0 pv=10)"), std::invalid_argument);
+  EXPECT_EQ(wave("pulse (iv=0 pv=10)").step_at(), Rational(0));                    // rise 0: a step, which solve takes
   EXPECT_THROW(wave("exp(iv=0 pv=1 tau1=1 td2=1 tau2=1 bogus=3)"), std::invalid_argument);
   EXPECT_THROW(wave("exp(iv=0 iv=1 pv=1 tau1=1 td2=1 tau2=1)"), std::invalid_argument);
 }
@@ -431,4 +438,126 @@ TEST(Traces, GnucapMessagesInsideTheTableAreSkippedNotTheEnd) {
   EXPECT_DOUBLE_EQ(t.values[0][3], 4.0);
   ASSERT_EQ(t.skipped.size(), 2u);
   EXPECT_EQ(t.skipped[0], "run.txt:5: \"zero time step\"");
+}
+
+// gnucap's periodic EXP (apps/bm_exp.cc tr_eval) is not a repeated EXP but the sum of one started every
+// period: IV + Σ_{m: t − mP > TD} of each term, continuous (no step) with corners at TD1 + mP and TD2 + mP.
+// Checked three ways: gnucap's own printed output for tests/bm_exp.2.ckt (==out/bm_exp.2.ckt.out, 5 digits),
+// the sum written out term by term as tr_eval loops it, and the first derivative against a central difference.
+// Killed by: the period read as a repetition of one EXP (0.11296 at 20 ns would be 0), the closed-form
+// geometric sum off by one term, a derivative sign.
+TEST(Waveform, GnucapPeriodicExpIsTheSumGnucapPrints) {
+  const Waveform w = spice_wave("exp iv=0. pv=1. td1=1.n tau1=5.n td2=10.n tau2=5.n period=20.n");
+  ASSERT_EQ(w.period, Rational(20, 1000000000));
+  const std::vector<std::pair<double, double>> printed = {
+      {0, 0},           {1e-9, 0},         {2e-9, 0.18127},  {10e-9, 0.8347},   {11e-9, 0.6834},
+      {20e-9, 0.11296}, {21e-9, 0.092488}, {22e-9, 0.25699}, {30e-9, 0.84999},  {31e-9, 0.69591},
+      {40e-9, 0.11503}, {41e-9, 0.094181}, {42e-9, 0.25838}, {61e-9, 0.094213}, {70e-9, 0.85027},
+      {99e-9, 0.14055}, {100e-9, 0.11507}};
+  for (const auto& [t, v] : printed) EXPECT_NEAR(w.value(t, 0), v, 6e-6 + 5e-5 * v) << "t = " << t;
+  const auto loop = [](double time) {  // bm_exp.cc's tr_eval, verbatim in its arithmetic
+    double ev = 0;
+    for (double t = time; t >= 0; t -= 20e-9) {
+      if (t > 1e-9) ev += (1. - 0.) * (1. - std::exp(-(t - 1e-9) / 5e-9));
+      if (t > 10e-9) ev += (0. - 1.) * (1. - std::exp(-(t - 10e-9) / 5e-9));
+    }
+    return ev;
+  };
+  for (double t = 0; t < 3e-7; t += 0.7e-9) {
+    EXPECT_NEAR(w.value(t, 0), loop(t), 1e-12) << t;
+    const double h = 1e-13, fd = (w.value(t + h, 0) - w.value(t - h, 0)) / (2 * h);
+    const std::vector<double> corners = w.breakpoints(t + 1e-9);
+    const bool near = std::any_of(corners.begin(), corners.end(), [&](double c) { return std::abs(c - t) < 1e-12; });
+    if (t > h && !near) EXPECT_NEAR(w.value(t, 1), fd, 1e-4 * 2e8) << t;
+  }
+  EXPECT_FALSE(w.step_at());  // continuous: every term starts at 0
+  const std::vector<double> b = w.breakpoints(45e-9), want = {1e-9, 10e-9, 21e-9, 30e-9, 41e-9};
+  ASSERT_EQ(b.size(), want.size());
+  for (std::size_t i = 0; i < b.size(); ++i) EXPECT_NEAR(b[i], want[i], 1e-20);
+  const auto why = dcad::io::without_exact_flow({w});
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("a periodic EXP"), std::string::npos) << *why;
+}
+
+// gnucap's PULSE with RISE or FALL 0 (its defaults) steps: read as the PWL with two points at one time, its
+// value the right limit, step_at() the first jump — solve takes it, the exact flows refuse it by name
+// (without_exact_flow).  Killed by: a zero-width piece divided by (NaN), the step read as a ramp, a step at
+// t = 0 missed because it is where the run starts.
+TEST(Waveform, GnucapStepPulseIsAPwlWithAStep) {
+  const Waveform at0 = wave("pulse (iv=0 pv=10)");
+  EXPECT_EQ(at0.kind, Waveform::Kind::pwl);
+  EXPECT_EQ(at0.value(0, 0), 10.0);
+  EXPECT_EQ(at0.value(0, 1), 0.0);
+  EXPECT_EQ(at0.step_at(), Rational(0));
+  const Waveform box = wave("pulse (iv=1 pv=3 delay=2 rise=0 width=1 fall=0)");
+  EXPECT_EQ(box.value(1.999, 0), 1.0);
+  EXPECT_EQ(box.value(2, 0), 3.0);
+  EXPECT_EQ(box.value(2.5, 1), 0.0);
+  EXPECT_EQ(box.value(3, 0), 1.0);
+  EXPECT_EQ(box.step_at(), Rational(2));
+  const Waveform ramps = wave("pulse (iv=1 pv=3 delay=2 rise=1 width=1 fall=1)");
+  EXPECT_FALSE(ramps.step_at());
+  EXPECT_EQ(ramps.value(2.5, 0), 2.0);
+  const Waveform periodic = wave("pulse (iv=0 pv=1 delay=0 rise=1 width=1 fall=0 period=4)");
+  EXPECT_EQ(periodic.kind, Waveform::Kind::pulse);
+  EXPECT_EQ(periodic.step_at(), Rational(2));  // the fall is reached within the period
+  EXPECT_EQ(periodic.value(2.5, 0), 0.0);
+  const auto why = dcad::io::without_exact_flow({ramps, box});
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("a step at t = 2 s"), std::string::npos) << *why;
+}
+
+// Xyce's and HSPICE's PAT(VHI VLO TD TR TF TSAMPLE bDATA R= RB=) as the PWL that draws it: values from Xyce's
+// own output for Xyce_Regression's VPAT/vpat.cir (bits from TD, the first through the delay; ramps centred on
+// the bit boundary; R=1 once more, R=-1 for ever, R=0 and R=-2 once; TD < 0 cut at t = 0).  Killed by: a ramp
+// that starts at the boundary, the repetition from the wrong bit, a negative delay shifted the wrong way.
+TEST(Waveform, PatternSourceIsThePwlXyceDraws) {
+  const auto at = [](const std::string& spec, double t) { return spice_wave(spec).value(t * 1e-9, 0); };
+  EXPECT_NEAR(at("PAT (5 0 0n 1n 2n 5n b1010)", 4), 5.0, 1e-9);
+  EXPECT_NEAR(at("PAT (5 0 0n 1n 2n 5n b1010)", 4.5), 3.75, 1e-9);
+  EXPECT_NEAR(at("PAT (5 0 0n 1n 2n 5n b1010)", 10), 2.5, 1e-9);
+  EXPECT_NEAR(at("PAT (5 0 0n 1n 2n 5n b1010)", 30), 0.0, 1e-9);
+  EXPECT_NEAR(at("pat 5 0 0n 2n 1n 5n b0101 R=0", 5), 2.5, 1e-9);
+  EXPECT_NEAR(at("pat 5 0 0n 2n 1n 5n b0101 R=0", 30), 5.0, 1e-9);  // once, the last bit held
+  EXPECT_NEAR(at("pat 5 0 5n 1n 2n 5n b1010", 9), 5.0, 1e-9);       // the first bit through the delay
+  EXPECT_NEAR(at("pat (5 0 -7.5n 1n 1n 5n b1010)", 2.5), 2.5, 1e-9);
+  EXPECT_NEAR(at("pat (5 0 0n 1n 2n 5n B1010 R=1)", 20), 2.5, 1e-9);  // the second play starts
+  EXPECT_NEAR(at("pat (5 0 0n 1n 2n 5n B1010 R=1)", 45), 0.0, 1e-9);
+  EXPECT_NEAR(at("pat 5 0 0 1n 1n 5n b1010 R=-1", 40), 2.5, 1e-9);  // for ever
+  EXPECT_NEAR(at("pat 5 0 0 1n 1n 5n b1010 R=-1", 1005), 2.5, 1e-9);
+  EXPECT_NEAR(at("pat 5 0 0 1n 1n 5n b1010 R=-2", 20), 0.0, 1e-9);
+  EXPECT_NEAR(at("PAT (5 1 0n 1n 2n 5n b1m10)", 7), 3.0, 1e-9);  // M: the middle level
+  EXPECT_FALSE(spice_wave("pat 5 0 0 1n 1n 5n b1010 R=-1").step_at());
+  EXPECT_THROW(spice_wave("pat (5 0 0 1n 1n 5n b102)"), std::invalid_argument);
+  EXPECT_THROW(spice_wave("pat (5 0 0 6n 1n 5n b10)"), std::invalid_argument);  // TR > TSAMPLE: ramps overlap
+  EXPECT_THROW(spice_wave("pat (5 0 0 1n 1n 5n b10 RB=3)"), std::invalid_argument);
+  EXPECT_THROW(spice_wave("pat (5 0 0 1n 1n 5n)"), std::invalid_argument);
+}
+
+// A PWL whose repeated part does not start where it ends (Xyce's VPWL/vpwl.cir: R=0 after (10, 3)) steps at
+// every repetition; a constant PWL's R= names no time point and changes nothing (Xyce's BUG_630 "PWL(1.0 1.0)
+// R=0").  Killed by: the step refused at the door, or missed by step_at (a flow would integrate through it).
+TEST(Waveform, RepeatedPwlStepsWhereItsPartDoesNotClose) {
+  const Waveform w = wave("PWL(0 0 1 3) R=0");
+  EXPECT_EQ(w.step_at(), Rational(1));
+  EXPECT_DOUBLE_EQ(w.value(1.5, 0), 1.5);
+  EXPECT_DOUBLE_EQ(w.value(1, 0), 0.0);  // right limit: the part starts again
+  const Waveform flat = wave("PWL (1.0 1.0) R=0");
+  EXPECT_EQ(flat.value(2.5, 0), 1.0);
+  EXPECT_FALSE(flat.repeat);
+  EXPECT_NE(flat.ignored.find("R=0"), std::string::npos);
+  EXPECT_THROW(wave("PWL(0 0 1 3) R=0.5"), std::invalid_argument);  // not a time point
+}
+
+// Xyce's parameter expressions write & and | for && and || (BUG_1222_SON: '0.034u <= s & s < 0.036u ? …').
+// Killed by: `&` read as the end of the expression (refused) or as a bitwise and of the rationals.
+TEST(Netlist, XyceSingleAmpersandAndBarAreLogical) {
+  const dcad::io::Netlist n = dcad::io::read_netlist_text(
+      "t\n.param a={1 < 2 & 3 < 2 ? 5 : 7} b={1 < 2 | 3 < 2 ? 5 : 7} c={0 & 1 | 1}\nR1 1 0 {a}\nR2 1 0 {b}\n"
+      "R3 1 0 {c}\nV1 1 0 1\n.end\n",
+      "amp.cir", ".");
+  ASSERT_EQ(n.rlc.branches.size(), 4u);
+  EXPECT_EQ(n.rlc.branches[0].value, Rational(7));
+  EXPECT_EQ(n.rlc.branches[1].value, Rational(5));
+  EXPECT_EQ(n.rlc.branches[2].value, Rational(1));
 }

@@ -745,10 +745,9 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
 
 WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt,
                                std::ostream& log) {
-  if (const auto which = io::without_exosystem(p.netlist.waveforms))
-    throw io::InputError(
-        p.file + ": check: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which +
-        ", frequency modulated: dcad has no exact flow for it; write the waveform as PWL(t1 v1 t2 v2 …)");
+  if (const auto which = io::without_exact_flow(p.netlist.waveforms))
+    throw io::InputError(p.file + ": check: expected continuous sources with a finite exosystem, found " + *which +
+                         ": dcad has no exact flow for it; write the waveform as a continuous PWL(t1 v1 t2 v2 …)");
   const std::vector<Functional> fs = functionals_of(tr, p, opt, log);
   const io::Netlist& deck = p.netlist;
   WaveformChecked out;

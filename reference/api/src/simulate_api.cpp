@@ -212,12 +212,13 @@ Simulated simulate_guarded(const io::Problem& p, const SimulateOptions& options,
       return simulate_formulas(p, options, rows, log, energy);
     const bool netlist = p.form == io::Form::netlist;
     if (netlist)
-      if (const auto which = io::without_exosystem(p.netlist.waveforms))
+      if (const auto which = io::without_exact_flow(p.netlist.waveforms))
         throw io::InputError(p.file +
-                             ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " +
+                             ": simulate: expected continuous sources with a finite exosystem (DC, SIN, PULSE, PWL, "
+                             "EXP), found " +
                              *which +
-                             ", frequency modulated: solve decides its circuit; write the waveform as PWL(t1 v1 t2 v2 "
-                             "…) to simulate it");
+                             ": solve decides its circuit; write the waveform as a continuous PWL(t1 v1 t2 v2 …) to "
+                             "simulate it");
     const io::CaseFile& c = p.linear;
     const bool forced_deck = netlist && p.netlist.forced,
                forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;

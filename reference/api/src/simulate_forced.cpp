@@ -569,9 +569,11 @@ Summary simulate_scene(const ForcedScene& deck, const io::CaseFile& c,
 Summary simulate_forced(const io::Netlist& deck, const io::CaseFile& c,
                         const std::vector<std::optional<io::Rational>>& initial, const SimulateOptions& opt,
                         RowSink& out, std::ostream& log, std::ostream* energy) {
-  if (const auto which = io::without_exosystem(deck.waveforms))
-    throw io::InputError(
-        c.file + ": simulate: expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), found " + *which);
+  if (const auto which = io::without_exact_flow(deck.waveforms))
+    throw io::InputError(c.file +
+                         ": simulate: expected continuous sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP), "
+                         "found " +
+                         *which);
   if (deck.rlc.branches.size() > reference::pipeline::kForcedBranches)
     throw io::InputError(c.file + ": simulate: expected at most " +
                          std::to_string(reference::pipeline::kForcedBranches) +
@@ -700,8 +702,8 @@ CertifiedMotion state_motion(const io::Netlist& deck, Initial rule, double step,
 CertifiedMotion certified_motion(const io::Netlist& deck, const io::CaseFile& c, Initial rule, double step,
                                  long precision, EnclosureModel model, std::ostream* log) {
   CertifiedMotion out;
-  if (const auto which = io::without_exosystem(deck.waveforms)) {
-    out.why = "a source without a finite exosystem, " + *which;
+  if (const auto which = io::without_exact_flow(deck.waveforms)) {
+    out.why = "a source the exact flows do not take, " + *which;
     return out;
   }
   const std::size_t nb = deck.rlc.branches.size();

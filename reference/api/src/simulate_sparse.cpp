@@ -152,10 +152,9 @@ SparseFlow::SparseFlow(const io::Netlist& deck, const std::string& file, Initial
                        std::ostream& log)
     : deck_(deck), file_(file), step_(step) {
   namespace pl = reference::pipeline;
-  if (const auto which = io::without_exosystem(deck.waveforms))
-    throw io::InputError(
-        file + ": expected sources with a finite exosystem (DC, SIN, PULSE, PWL, EXP) for the exact flow, found " +
-        *which);
+  if (const auto which = io::without_exact_flow(deck.waveforms))
+    throw io::InputError(file + ": expected continuous sources with a finite exosystem for the exact flow, found " +
+                         *which);
   if (!pl::graph_route_holds(deck.rlc))
     throw io::InputError(file +
                          ": simulate: expected every R, L and C positive, the couplings |k| < 1 and at most 200 "

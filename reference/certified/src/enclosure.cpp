@@ -424,9 +424,13 @@ void require_enclosable(const std::vector<io::Waveform>& waveforms) {
   for (const io::Waveform& w : waveforms) {
     if (w.kind == io::Waveform::Kind::pulse && (w.p[3] <= 0 || w.p[4] <= 0))
       throw std::invalid_argument(w.element + ": a PULSE with TR or TF = 0 jumps; its enclosure is not built");
+    if (const auto t = w.step_at())
+      throw std::invalid_argument(w.element + ": a step at t = " + t->str() + " s; its enclosure is not built");
     if (w.is_sffm())
       throw std::invalid_argument(
           w.element + ": an SFFM source (frequency modulated: no finite exosystem); its enclosure is not built");
+    if (w.is_exp() && w.period > 0)
+      throw std::invalid_argument(w.element + ": a periodic EXP (gnucap's period=); its enclosure is not built");
     if (w.is_exp() && (w.p[3] == 0 || w.p[5] == 0))  // validate() refuses it before: a step, no exosystem
       throw std::invalid_argument(w.element + ": an EXP with TAU1 or TAU2 = 0 (a step); its enclosure is not built");
     if (w.is_sine() && w.p[2] == 0)

@@ -431,6 +431,7 @@ struct UserFunction {
 struct ExpressionNotes {
   bool rounded = false;              ///< the last value read was rounded (irrational)
   std::vector<std::string> nominal;  ///< "agauss(…)" read as its nominal value
+  std::vector<std::string> letters;  ///< "10x": letters after a number that are neither scale nor unit, ignored
 };
 
 /// Arithmetic on .param expressions as ngspice's numparam and Xyce read them: numbers (SPICE suffixes),
@@ -520,7 +521,7 @@ class Expression {
   }
   Rational logical_or() {
     Rational v = logical_and();
-    while (eat("||")) {
+    while (eat("||") || eat("|")) {  // Xyce writes | and & for || and &&
       const Rational w = logical_and();
       v = (v != 0 || w != 0) ? 1 : 0;
     }
@@ -528,7 +529,7 @@ class Expression {
   }
   Rational logical_and() {
     Rational v = comparison();
-    while (eat("&&")) {
+    while (eat("&&") || eat("&")) {
       const Rational w = comparison();
       v = (v != 0 && w != 0) ? 1 : 0;
     }
@@ -626,7 +627,16 @@ class Expression {
                                std::isdigit(static_cast<unsigned char>(s_[start])))))
       ++i_;
     if (i_ == start) throw std::invalid_argument("expected a number, a parameter or '('");
-    return parse_spice_value(s_.substr(start, i_ - start), nullptr, dialect_);
+    const std::string number = s_.substr(start, i_ - start);
+    if (std::tolower(static_cast<unsigned char>(number.back())) == 'j' &&
+        std::isdigit(static_cast<unsigned char>(number[number.size() > 1 ? number.size() - 2 : 0])))
+      throw std::invalid_argument("\"" + number +
+                                  "\" is an imaginary number (Xyce's J suffix): complex values are "
+                                  "AC-only");
+    std::string ignored;
+    const Rational v = parse_spice_value(number, &ignored, dialect_);
+    if (!ignored.empty() && notes_) notes_->letters.push_back("\"" + number + "\" read as " + v.str());
+    return v;
   }
   std::vector<Rational> arguments(const std::string& name) {
     eat("(");
@@ -1022,7 +1032,19 @@ class Flattener {
         continue;
       }
       if (keep && keep->count(name)) continue;
-      params[name] = evaluate(l, expr, params, "a parameter value");
+      try {
+        params[name] = evaluate(l, expr, params, "a parameter value");
+      } catch (const InputError& e) {      // Xyce's COMPLEX_NUM: a value dcad does not read (complex), unused, changes
+        const std::string why = e.what();  // nothing; a name no card defines is the deck's error (Xyce: BUG_864)
+        if ((why.find("(unknown parameter \"") != std::string::npos &&
+             why.find(": its .param has no value") == std::string::npos) ||
+            why.find("(unknown function \"") != std::string::npos)
+          throw;
+        params.erase(name);  // never an earlier value in its place
+        unevaluated[name] = e.what();
+        out.warnings.push_back(l.where() + ": .param " + name + " has no value dcad reads (" + e.what() +
+                               "): a card that uses it is refused");
+      }
     }
   }
 
@@ -1046,6 +1068,9 @@ class Flattener {
     functions[lower(name)] = f;
   }
 
+  /// .param names whose value could not be read (the reason, with its line): refused where a card uses them.
+  std::map<std::string, std::string> unevaluated;
+
   /// An expression's value; an irrational one is recorded (rounded: the certified tier does not claim it).
   Rational evaluate(const Line& l, const std::string& expr, const std::map<std::string, Rational>& params,
                     const std::string& what) {
@@ -1054,14 +1079,23 @@ class Flattener {
     try {
       v = Expression(expr, params, &functions, &notes, 0, dialect).value();
     } catch (const std::invalid_argument& e) {
+      std::string why = e.what();
+      const std::string unknown = "unknown parameter \"";
+      if (why.rfind(unknown, 0) == 0) {  // one whose .param had no value: say why
+        const auto it = unevaluated.find(why.substr(unknown.size(), why.find('"', unknown.size()) - unknown.size()));
+        if (it != unevaluated.end()) why += ": its .param has no value, " + it->second;
+      }
       fail(l, what + " (numbers, parameters, + - * / ^, comparisons, ?:, pi, sqrt, exp, log, trig, min, max, .func)",
-           "\"" + expr + "\" (" + e.what() + ")");
+           "\"" + expr + "\" (" + why + ")");
     }
     if (notes.rounded)
       out.rounded.push_back(l.where() + ": {" + expr + "} is irrational: used to 80 significant digits");
     for (const std::string& n : notes.nominal)
       out.warnings.push_back(l.where() + ": " + n +
                              " read as its nominal value (a statistical function: dcad solves the nominal circuit)");
+    for (const std::string& n : notes.letters)
+      out.warnings.push_back(l.where() + ": " + n + " in {" + expr +
+                             "} (letters that are neither a scale factor nor a unit, ignored)");
     return v;
   }
 

@@ -17,6 +17,14 @@ std::string lower(std::string s) {
 }
 
 double d(const Rational& x) { return x.convert_to<double>(); }
+double floor_of(double x) { return std::floor(x); }
+Rational floor_of(const Rational& x) {
+  using boost::multiprecision::mpz_int;
+  const mpz_int n = boost::multiprecision::numerator(x), q = boost::multiprecision::denominator(x);
+  mpz_int f = n / q;  // truncates toward zero
+  if (f * q > n) f -= 1;
+  return Rational(f);
+}
 
 constexpr double kPi = 3.141592653589793238462643383279502884;
 
@@ -94,8 +102,8 @@ std::optional<std::string> gnucap_key(const std::string& fn, const std::string& 
 /// after, the whole repeated every PERIOD (fmod, as SPICE's PULSE); WIDTH or PERIOD 0 or missing is forever.
 /// Without a period it is the PWL (0 IV) (DELAY IV) (DELAY+RISE PV) [(…+WIDTH PV) (…+FALL IV)]; with one, SPICE's
 /// PULSE of the same values, which evaluates a period alike — a period that cuts the pulse short is a step
-/// where the run reaches it, refused there (Waveform::breakpoints).  A step dcad sees here (RISE 0, a FALL 0
-/// that is reached) is refused.
+/// where the run reaches it, refused there (Waveform::breakpoints).  A RISE 0, or a FALL 0 that is reached, is
+/// a step: two PWL points at one time, or a PULSE with TR or TF 0 (Waveform::step_at).
 template <class Value, class Refuse>
 void gnucap_pulse(std::string& fn, const Value& value, const Refuse& refuse, std::vector<Rational>& args) {
   if (!value("iv") || !value("pv")) refuse("no iv or pv (gnucap then takes a value of its own)", "iv=V1 pv=V2");
@@ -110,15 +118,10 @@ void gnucap_pulse(std::string& fn, const Value& value, const Refuse& refuse, std
     fn = "pwl";
     return;
   }
-  if (rise == 0)
-    refuse("rise 0 (gnucap's default: a step at delay = " + delay.str() + ")",
-           "pulse (iv pv delay rise …) with rise > 0");
   const Rational held = width == 0 && period != 0 ? period : width;  // PV up to the period's end
-  if (fall == 0 && held != 0 && (period == 0 || rise + held < period))
-    refuse("fall 0 (gnucap's default: a step at delay + rise + width = " + Rational(delay + rise + held).str() + ")",
-           "fall > 0");
   if (period != 0) {
-    args = {iv, pv, delay, rise, fall == 0 ? rise : fall, held, period};  // a FALL 0 here is never reached
+    const bool falls = rise + held < period;  // else the period ends before the fall
+    args = {iv, pv, delay, rise, fall == 0 && !falls ? rise : fall, held, period};  // a FALL 0 unreached: any
     return;
   }
   args = {0, iv};
@@ -155,12 +158,14 @@ void gnucap_meaning(std::string& fn, const std::vector<std::pair<std::string, Ra
       throw std::invalid_argument("expected frequency >= 0, found " + args[2].str() + " in \"" + spec + "\"");
   } else if (fn == "exp") {
     if (!value("iv") || !value("pv")) refuse("no iv= or pv= (gnucap then takes a value of its own)", "iv=V1 pv=V2");
-    if (value("period")) refuse("period= (a repeated exponential)", "EXP(V1 V2 TD1 TAU1 TD2 TAU2) once, or a PWL");
     const Rational td1 = value("td1").value_or(0), td2 = value("td2").value_or(0);
     const Rational tau1 = value("tau1").value_or(0), tau2 = value("tau2").value_or(0);
     if (!(tau1 > 0) || !(tau2 > 0)) refuse("tau1 or tau2 not > 0 (a step)", "tau1 and tau2 > 0");
     if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
+    if (td1 < 0) refuse("td1 < 0", "td1 >= 0");
     args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
+    if (const std::optional<Rational> period = value("period"); period && *period > 0)
+      args.push_back(*period);  // bm_exp.cc: the EXP started again every period, summed (Waveform::period)
   } else if (fn ==
              "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
     if (!value("carrier") || !value("modindex") || !value("signal"))
@@ -302,8 +307,35 @@ struct SourceWords {
   std::vector<Rational> args;
   std::vector<std::string> ignored;
   std::optional<Rational> pwl_td, pwl_r;
-  bool literal = false;  ///< gnucap's keyword form: every value given, no SPICE defaults
+  bool literal = false;                   ///< gnucap's keyword form: every value given, no SPICE defaults
+  std::string pat_data;                   ///< PAT's bits ("1010", of 0, 1 and M), without the leading b
+  std::optional<Rational> pat_r, pat_rb;  ///< PAT's R= (repetitions; -1 for ever) and RB= (the bit they start at)
 };
+
+/// PAT's words from words[j] (HSPICE, Xyce): "(VHI VLO TD TR TF TSAMPLE bDATA [R=n] [RB=k])" or the same without
+/// parentheses to the end of the specification; R= and RB= may also follow the ')'.  Returns the index after them.
+std::size_t read_pat(SourceWords& r, const std::vector<std::string>& words, std::size_t j, const std::string& spec,
+                     const std::function<Rational(const std::string&)>& number) {
+  const bool parens = j < words.size() && words[j] == "(";
+  for (j += parens ? 1 : 0; j < words.size() && words[j] != ")"; ++j) {
+    const std::string w = lower(words[j]);
+    if (w.rfind("r=", 0) == 0 || w.rfind("rb=", 0) == 0) {
+      (w[1] == '=' ? r.pat_r : r.pat_rb) = number(w.substr(w.find('=') + 1));
+    } else if (r.args.size() == 6 && r.pat_data.empty()) {
+      if (w.size() < 2 || w[0] != 'b' || w.find_first_not_of("01m", 1) != std::string::npos)
+        throw std::invalid_argument("expected PAT's data as a b-string of 0, 1 and M (b1010), found \"" + words[j] +
+                                    "\" in \"" + spec + "\"");
+      r.pat_data = w.substr(1);
+    } else if (r.args.size() < 6) {
+      r.args.push_back(number(words[j]));
+    } else {
+      throw std::invalid_argument("expected PAT(VHI VLO TD TR TF TSAMPLE bDATA [R=n] [RB=k]), found \"" + words[j] +
+                                  "\" after the data in \"" + spec + "\"");
+    }
+  }
+  if (parens && j == words.size()) throw std::invalid_argument("expected a closing ')' in \"" + spec + "\"");
+  return parens ? j + 1 : j;
+}
 
 /// The transient function at words[i] and its values — in parentheses, as SPICE3's bare list, or as gnucap's
 /// keys — read into r.  Returns the index after them, or words.size() for a function dcad does not read (its
@@ -330,6 +362,7 @@ std::size_t read_function(SourceWords& r, const std::vector<std::string>& words,
     r.literal = true;
     return j;
   }
+  if (fn == "pat") return read_pat(r, words, j, spec, number);
   if (!readable(fn)) return words.size();
   if (j == words.size() || words[j] != "(") return values(j, words.size(), &r.args);  // SPICE3: no parentheses
   for (++j; j < words.size() && words[j] != ")"; ++j) {
@@ -350,6 +383,10 @@ bool read_key_value(SourceWords& r, const std::string& word, const std::string& 
   if (eq == std::string::npos) return false;
   const std::string key = lower(word.substr(0, eq));
   const bool pwl = r.fn == "pwl" && (key == "td" || key == "r");
+  if (r.fn == "pat" && (key == "r" || key == "rb")) {
+    (key == "r" ? r.pat_r : r.pat_rb) = number(word.substr(eq + 1));
+    return true;
+  }
   if (!pwl && key != "dc" && key != "ac" && key != "acmag" && key != "acphase" && key != "portnum" && key != "z0" &&
       key != "pwr" && key != "freq")
     return false;
@@ -405,10 +442,18 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
                               bool gnucap) {
   SourceWords r;
   const std::vector<std::string> words = spec_words(spec);
-  // the values after a keyword: at most `most`, while they are not keywords or parentheses
+  // the values after a keyword: at most `most`, while they are not keywords, KEY=VALUE words (HSPICE's bare
+  // "PWL 0 0, 2 3 R=7 TD=1", Xyce_Regression's VPWL) or parentheses
+  const auto key_value = [](const std::string& w) {
+    const std::size_t eq = w.find('=');
+    if (eq == std::string::npos || eq == 0 || !std::isalpha(static_cast<unsigned char>(w[0]))) return false;
+    return std::all_of(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(eq),
+                       [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  };
   const auto values = [&](std::size_t from, std::size_t most, std::vector<Rational>* into) {
     std::size_t j = from;
-    for (; j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" && !is_keyword(lower(words[j]));
+    for (; j < words.size() && j - from < most && words[j] != "(" && words[j] != ")" && !is_keyword(lower(words[j])) &&
+           !key_value(words[j]);
          ++j) {
       const Rational v = number(words[j]);
       if (into) into->push_back(v);
@@ -457,41 +502,126 @@ SourceWords read_source_words(const std::string& spec, const std::function<Ratio
 }
 
 /// PWL's points (t1 v1 t2 v2 …) checked, shifted by TD= and repeated from R= as ngspice does (R = -1: none).
+/// `steps`: two points may share a time (gnucap's PULSE with RISE or FALL 0, read as its PWL), a step there.
 void shape_pwl(Waveform& w, std::vector<Rational>& a, const std::optional<Rational>& pwl_td,
-               const std::optional<Rational>& pwl_r) {
+               const std::optional<Rational>& pwl_r, bool steps) {
   if (a.size() < 2 || a.size() % 2 != 0)
     throw std::invalid_argument("expected PWL(t1 v1 t2 v2 ...) with pairs, found " + std::to_string(a.size()) +
                                 " values");
   if (pwl_td)
     for (std::size_t i = 0; i < a.size(); i += 2) a[i] += *pwl_td;  // TD= shifts the whole waveform
   for (std::size_t i = 2; i < a.size(); i += 2)
-    if (!(a[i] > a[i - 2]))
+    if (!(a[i] > a[i - 2]) && !(steps && a[i] == a[i - 2]))
       throw std::invalid_argument("expected increasing PWL times, found " + a[i - 2].str() + " then " + a[i].str());
   if (a[0] < 0) throw std::invalid_argument("expected PWL times >= 0, found " + a[0].str());
   w.kind = Waveform::Kind::pwl;
-  if (pwl_r && *pwl_r >= 0) {  // R = -1: no repetition (ngspice); else a time point before the last
+  bool constant = true;
+  for (std::size_t i = 3; i < a.size(); i += 2) constant = constant && a[i] == a[1];
+  if (pwl_r && *pwl_r >= 0 && constant) {  // Xyce's BUG_630 "PWL (1.0 1.0) R=0": any repetition is the same constant
+    w.ignored += std::string(w.ignored.empty() ? "" : ", ") + "R=" + pwl_r->str() + " (a constant PWL repeats itself)";
+  } else if (pwl_r && *pwl_r >= 0) {  // R = -1: no repetition (ngspice); else a time point before the last
     const Rational r = *pwl_r + (pwl_td ? *pwl_td : Rational(0));
     bool point = false;
     for (std::size_t i = 0; i < a.size(); i += 2) point = point || a[i] == r;
     if (!(r < a[a.size() - 2]) || !point)
       throw std::invalid_argument("expected PWL's R= at one of its time points before the last (ngspice), found R = " +
                                   pwl_r->str());
-    w.repeat = r;
-    Rational at_r = 0;
-    for (std::size_t i = 0; i < a.size(); i += 2)
-      if (a[i] == r) at_r = a[i + 1];
-    if (at_r != a.back())
-      throw std::invalid_argument(
-          "expected PWL's repeated part to start where it ends (" + at_r.str() + " at R, " + a.back().str() +
-          " at the last point), found a step: dcad's exact flows take continuous sources (add a ramp)");
+    w.repeat = r;  // a part that does not start where it ends steps at each repetition (step_at)
   }
+}
+
+/// PAT(VHI VLO TD TR TF TSAMPLE bDATA R= RB=) as the PWL that draws it (HSPICE's pattern source as Xyce reads it,
+/// checked against Xyce_Regression's VPAT/vpat.cir output): bit k holds from TD + k·TSAMPLE, the first also
+/// through the delay; a change of level ramps over TR (rising) or TF (falling) centred on the bit boundary; M is
+/// (VHI + VLO)/2.  After the data, R >= 1 repeats bits RB… R times, R = -1 for ever (a PWL repeated from the
+/// middle of bit RB), R = 0 — and R < -1, as Xyce's output holds it — plays it once; the last bit then holds.
+/// Points before t = 0 (TD < 0) are cut at the value there.  TR or TF 0 is a step (two points at one time).
+std::vector<Rational> pat_pwl(const SourceWords& r, const std::string& spec, std::optional<Rational>& repeat) {
+  const auto refuse = [&](const std::string& what) {
+    throw std::invalid_argument("expected PAT(VHI VLO TD TR TF TSAMPLE bDATA [R=n] [RB=k]) " + what + " in \"" + spec +
+                                "\"");
+  };
+  if (r.args.size() != 6 || r.pat_data.empty()) refuse("with its six values and a b-string");
+  const Rational &hi = r.args[0], &lo = r.args[1], &td = r.args[2], &tr = r.args[3], &tf = r.args[4];
+  const Rational& ts = r.args[5];
+  if (tr < 0 || tf < 0 || !(ts > 0)) refuse("with TR, TF >= 0 and TSAMPLE > 0");
+  if (tr > ts || tf > ts) refuse("with TR, TF <= TSAMPLE (the ramps of neighbouring bits would overlap)");
+  const long n = static_cast<long>(r.pat_data.size());
+  const Rational rr = r.pat_r.value_or(0), rb = r.pat_rb.value_or(1);
+  if (rb != floor_of(rb) || rb < 1 || rb > n) refuse("with RB= a bit of the data, 1 to " + std::to_string(n));
+  if (rr != floor_of(rr)) refuse("with R= a whole number of repetitions");
+  const long first = static_cast<long>(d(rb)) - 1;
+  const long period = n - first;
+  const bool forever = rr == -1;
+  const long times = rr > 0 ? static_cast<long>(d(rr)) : 0;
+  if (times > 1000000 / period) refuse("with at most 10^6 repeated bits");
+  const auto bit = [&](long k) { return r.pat_data[static_cast<std::size_t>(k < n ? k : first + (k - n) % period)]; };
+  const auto level = [&](char b) { return b == '1' ? hi : b == '0' ? lo : Rational((hi + lo) / 2); };
+  // forever: the PWL repeats from the middle of bit `first` + m·period (m making it >= 0) over one period
+  Rational from = td + (Rational(first) + Rational(1, 2)) * ts;
+  if (forever && from < 0) from += ts * period * floor_of(Rational(-from / (ts * period)) + 1);
+  const Rational until = forever ? Rational(from + ts * period) : Rational(0);
+  const long bits = forever ? static_cast<long>(d(floor_of(Rational((until - td) / ts)))) + 2 : n + times * period;
+  std::vector<std::pair<Rational, Rational>> pts{{td, level(bit(0))}};
+  for (long k = 1; k < bits; ++k) {
+    const Rational before = level(bit(k - 1)), after = level(bit(k));
+    if (before == after) continue;
+    const Rational edge = td + ts * k, half = (after > before ? tr : tf) / 2;
+    pts.push_back({edge - half, before});
+    pts.push_back({edge + half, after});
+  }
+  const auto at = [&](const Rational& t) {  // the drawn value at t
+    if (t <= pts.front().first) return pts.front().second;
+    for (std::size_t i = 1; i < pts.size(); ++i)
+      if (t < pts[i].first)
+        return Rational(pts[i - 1].second + (pts[i].second - pts[i - 1].second) * (t - pts[i - 1].first) /
+                                                (pts[i].first - pts[i - 1].first));
+    return pts.back().second;
+  };
+  std::vector<std::pair<Rational, Rational>> cut{{0, at(0)}};
+  if (forever) cut.push_back({from, at(from)});
+  for (const auto& q : pts)
+    if (q.first > 0 && (!forever || (q.first > from && q.first < until))) cut.push_back(q);
+  if (forever) cut.push_back({until, at(until)});
+  std::sort(cut.begin(), cut.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Rational> out;
+  for (std::size_t i = 0; i < cut.size(); ++i)
+    if (i == 0 || cut[i] != cut[i - 1]) out.insert(out.end(), {cut[i].first, cut[i].second});
+  if (forever) repeat = from;
+  return out;
+}
+
+/// PAT's waveform: the PWL pat_pwl draws, with what the transient does not use noted.
+Waveform pat_waveform(const SourceWords& r, const std::string& spec) {
+  Waveform w;
+  w.text = spec;
+  w.p = pat_pwl(r, spec, w.repeat);
+  w.kind = Waveform::Kind::pwl;
+  w.given = w.p.size();
+  w.literal = true;
+  for (std::size_t k = 0; k < r.ignored.size(); ++k) w.ignored += (k ? ", " : "") + r.ignored[k];
+  return w;
+}
+
+/// SFFM's values: all five (the defaults and a 6th value differ between ngspice versions), FC, FS > 0, MDI >= 0.
+void check_sffm(const std::vector<Rational>& a) {
+  if (a.size() != 5)
+    throw std::invalid_argument(
+        "expected SFFM(VO VA FC MDI FS) with the five values SPICE3, ngspice 39, ngspice 46 on and Xyce read alike "
+        "(their defaults for missing ones differ between ngspice versions, a 6th value is PHASEC in ngspice 39 and "
+        "TD in ngspice 43 on), found " +
+        std::to_string(a.size()) + " values: write the five");
+  if (!(a[2] > 0) || !(a[4] > 0) || a[3] < 0)
+    throw std::invalid_argument("expected SFFM's FC > 0, FS > 0 and MDI >= 0, found FC = " + a[2].str() +
+                                ", MDI = " + a[3].str() + ", FS = " + a[4].str());
 }
 
 /// The waveform the words stand for: each kind's count and ranges checked, PWL's TD= and R= applied.
 Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& generator) {
   Waveform w;
   w.text = spec;
-  if (r.fn == "am" || r.fn == "trnoise" || r.fn == "trrandom" || r.fn == "pat" || r.fn == "file")
+  if (r.fn == "pat") return pat_waveform(r, spec);
+  if (r.fn == "am" || r.fn == "trnoise" || r.fn == "trrandom" || r.fn == "file")
     throw std::invalid_argument("expected DC, SIN, PULSE, PWL or EXP for the transient, found " + r.fn +
                                 (r.fn == "trnoise" || r.fn == "trrandom"
                                      ? " (a random source: no exact transient exists)"
@@ -540,24 +670,20 @@ Waveform waveform_of(SourceWords r, const std::string& spec, const Generator& ge
       a.pop_back();
     }
     w.kind = Waveform::Kind::pulse;
-  } else if (r.fn == "sffm") {  // all five: the defaults and a 6th value differ between ngspice versions
-    if (a.size() != 5)
-      throw std::invalid_argument(
-          "expected SFFM(VO VA FC MDI FS) with the five values SPICE3, ngspice 39, ngspice 46 on and Xyce read alike "
-          "(their defaults for missing ones differ between ngspice versions, a 6th value is PHASEC in ngspice 39 and "
-          "TD in ngspice 43 on), found " +
-          std::to_string(a.size()) + " values: write the five");
-    if (!(a[2] > 0) || !(a[4] > 0) || a[3] < 0)
-      throw std::invalid_argument("expected SFFM's FC > 0, FS > 0 and MDI >= 0, found FC = " + a[2].str() +
-                                  ", MDI = " + a[3].str() + ", FS = " + a[4].str());
+  } else if (r.fn == "sffm") {
+    check_sffm(a);
     w.kind = Waveform::Kind::sffm;
   } else if (r.fn == "exp") {
+    if (r.literal && a.size() == 7) {  // gnucap's period= (gnucap_meaning)
+      w.period = a[6];
+      a.pop_back();
+    }
     if (a.size() < 2 || a.size() > 6)
       throw std::invalid_argument("expected EXP(V1 V2 [TD1 [TAU1 [TD2 [TAU2]]]]), found " + std::to_string(a.size()) +
                                   " values");
     w.kind = Waveform::Kind::exp;
   } else {
-    shape_pwl(w, a, r.pwl_td, r.pwl_r);
+    shape_pwl(w, a, r.pwl_td, r.pwl_r, r.literal);  // literal: gnucap's PULSE as its PWL
   }
   if ((r.pwl_td || r.pwl_r) && r.fn != "pwl")
     throw std::invalid_argument("expected TD= and R= after PWL only, found them after " + r.fn);
@@ -630,7 +756,7 @@ double Waveform::horizon() const {
     case Kind::dc: return 0;
     case Kind::sin: return d(p[3]) + (p[2] != 0 ? 4 / d(p[2]) : 1.0);
     case Kind::pulse: return d(p[2]) + 2 * d(p[6]);
-    case Kind::exp: return std::max(d(p[2]), d(p[4])) + 5 * (std::abs(d(p[3])) + std::abs(d(p[5])));
+    case Kind::exp: return std::max(d(p[2]), d(p[4])) + 5 * (std::abs(d(p[3])) + std::abs(d(p[5]))) + 2 * d(period);
     case Kind::sffm: return 2 / std::min(d(p[2]), d(p[4]));  // two periods of the slower of carrier and modulation
     default: return 2 * d(p[p.size() - 2]);
   }
@@ -670,19 +796,30 @@ void exp_state(const Waveform& w, double t, long double* x) {
   }
   x[2] = (v2 - v1) * std::exp(-(static_cast<long double>(t) - td2) / tau2);
 }
+
+/// gnucap's periodic EXP (bm_exp.cc tr_eval): IV + Σ over the m >= 0 with t − m·P > TD of (PV − IV)(1 − e^{−(t −
+/// m·P − TD1)/TAU1}) and (IV − PV)(1 − e^{−(t − m·P − TD2)/TAU2}); the N terms started of each with the geometric
+/// sum of their exponentials in closed form: e^{−s/TAU} (1 − r^N)/(1 − r), r = e^{−P/TAU}, s the youngest's age.
+double periodic_exp(const Waveform& w, double t, int order) {
+  const long double v1 = w.p[0].convert_to<long double>(), v2 = w.p[1].convert_to<long double>();
+  const long double period = w.period.convert_to<long double>();
+  const auto started = [&](std::size_t td_at, std::size_t tau_at, long double sign) -> long double {
+    const long double td = w.p[td_at].convert_to<long double>(), tau = w.p[tau_at].convert_to<long double>();
+    if (!(static_cast<long double>(t) > td)) return 0;
+    const long double n = std::ceil((static_cast<long double>(t) - td) / period);  // t − m·P > TD for m < n
+    const long double s = static_cast<long double>(t) - td - (n - 1) * period;
+    const long double r = std::exp(-period / tau);
+    const long double sum = std::exp(-s / tau) * (r < 1 ? -std::expm1(n * std::log(r)) / (1 - r) : n);
+    const long double terms = order == 0 ? n - sum : -sum * std::pow(-1 / tau, order);
+    return sign * (v2 - v1) * terms;
+  };
+  return static_cast<double>((order == 0 ? v1 : 0) + started(2, 3, 1) + started(4, 5, -1));
+}
 }  // namespace
 
 namespace {
 
 /// Piecewise-linear pieces (t_i, v_i) of PULSE (one period, shifted) or PWL at t: value and slope.
-double floor_of(double x) { return std::floor(x); }
-Rational floor_of(const Rational& x) {
-  using boost::multiprecision::mpz_int;
-  const mpz_int n = boost::multiprecision::numerator(x), q = boost::multiprecision::denominator(x);
-  mpz_int f = n / q;  // truncates toward zero
-  if (f * q > n) f -= 1;
-  return Rational(f);
-}
 double as(double, const Rational& x) { return d(x); }
 Rational as(const Rational&, const Rational& x) { return x; }
 double as_double(double x) { return x; }
@@ -808,6 +945,7 @@ double Waveform::value(double t, int order) const {
       return (order == 0 ? vo : 0.0) + z.imag();
     }
     case Kind::exp: {
+      if (period > 0) return periodic_exp(*this, t, order);
       long double x[3];
       exp_state(*this, t, x);
       if (order == 0) return static_cast<double>(x[0] + x[1] + x[2]);
@@ -888,7 +1026,15 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
     if (d(p[3]) > 0 && d(p[3]) <= tstop) out.push_back(d(p[3]));
   } else if (kind == Kind::exp) {
     for (double c : {d(p[2]), d(p[4])})
-      if (c > 0 && c <= tstop) out.push_back(c);
+      for (long k = 0; period > 0 || k == 0; ++k) {  // gnucap's period=: each restart's corners
+        const double at = c + (period > 0 ? d(period) * static_cast<double>(k) : 0.0);
+        if (at > tstop) break;
+        if (k >= kMaxPeriods)
+          throw std::invalid_argument(element + ": " + text + " has more than " + std::to_string(kMaxPeriods) +
+                                      " periods before " + std::to_string(tstop) + " s");
+        if (at > 0) out.push_back(at);
+        if (!(period > 0)) break;
+      }
   } else if (kind == Kind::pwl) {
     for (std::size_t i = 0; i < p.size(); i += 2)
       if (d(p[i]) > 0 && d(p[i]) <= tstop) out.push_back(d(p[i]));
@@ -931,6 +1077,7 @@ std::vector<double> Waveform::breakpoints(double tstop) const {
 
 void Waveform::exo_state(double t, long double* w) const {
   if (kind == Kind::sffm) throw std::invalid_argument(element + ": an SFFM source has no finite exosystem");
+  if (period > 0) throw std::invalid_argument(element + ": a periodic EXP has no exosystem of three states");
   w[0] = w[1] = w[2] = 0;
   if (kind == Kind::sin) {
     const double td = d(p[3]), phi = d(p[5]) * kPi / 180;
@@ -970,9 +1117,32 @@ void Waveform::exact_piece(const Rational& t, Rational& v, Rational& slope) cons
   linear_at(*this, t, v, slope);
 }
 
-std::optional<std::string> without_exosystem(const std::vector<Waveform>& waveforms) {
-  for (const Waveform& w : waveforms)
-    if (w.is_sffm()) return w.element + " (" + w.text + ")";
+std::optional<std::string> without_exact_flow(const std::vector<Waveform>& waveforms) {
+  for (const Waveform& w : waveforms) {
+    if (w.is_sffm()) return w.element + " (" + w.text + "), frequency modulated: no finite exosystem";
+    if (w.period > 0)
+      return w.element + " (" + w.text + "), a periodic EXP (gnucap's period=: a new exponential every period)";
+    if (const std::optional<Rational> t = w.step_at())
+      return w.element + " (" + w.text + "), a step at t = " + t->str() + " s";
+  }
+  return std::nullopt;
+}
+
+std::optional<Rational> Waveform::step_at() const {
+  if (kind == Kind::pulse) {
+    if (p.size() < 7 || p[0] == p[1]) return std::nullopt;
+    const Rational &td = p[2], &tr = p[3], &tf = p[4], &pw = p[5], &per = p[6];
+    if (tr == 0) return td;
+    if (tf == 0 && (per == 0 || tr + pw < per)) return td + tr + pw;  // the fall is reached
+    return std::nullopt;  // a PULSE cut by its PER: refused where a run reaches it (breakpoints)
+  }
+  if (kind != Kind::pwl) return std::nullopt;
+  for (std::size_t i = 2; i + 1 < p.size(); i += 2)
+    if (p[i] == p[i - 2] && p[i + 1] != p[i - 1]) return p[i];
+  if (repeat) {
+    for (std::size_t i = 0; i + 1 < p.size(); i += 2)
+      if (p[i] == *repeat && p[i + 1] != p.back()) return p[p.size() - 2];
+  }
   return std::nullopt;
 }
 

@@ -152,8 +152,10 @@ SourceCondition decide_condition(const QM& row, const std::vector<io::Waveform>&
         continue;
       }
       all_constant = false;
-      std::string key = std::to_string(static_cast<int>(w.kind));
+      std::string key = std::to_string(static_cast<int>(w.kind));  // every parameter of the function: R=, NP too
       for (const Q& p : w.p) key += " " + p.str();
+      key += " R " + (w.repeat ? w.repeat->str() : std::string("-")) + " NP " + std::to_string(w.pulses) + " P " +
+             w.period.str();
       sums[{key, d}] += c;
     }
   bool zero = constant == 0;

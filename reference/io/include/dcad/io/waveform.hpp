@@ -28,6 +28,10 @@ struct Waveform {
   std::string text;     ///< as written, for messages
   /// PULSE's 8th value NP (ngspice): the number of pulses, V1 after them; 0: unbounded.
   long pulses = 0;
+  /// gnucap's EXP period= (> 0; 0: none): the EXP started again at every multiple of it and summed (bm_exp.cc), so
+  /// σ stays continuous and its corners repeat; solve takes it (value(), breakpoints()), the exact flows refuse it
+  /// (without_exact_flow: its exosystem grows by two states a period).
+  Rational period = 0;
   /// How many values the deck gave: PULSE and SIN take ngspice's defaults for the rest from .tran's TSTEP
   /// and TSTOP (complete()); until then p may be shorter than its kind's.
   std::size_t given = 0;
@@ -66,6 +70,13 @@ struct Waveform {
   /// SFFM (SPICE3, ngspice 39, Xyce): frequency modulated, no finite exosystem — solve decides source
   /// conditions on its values and derivatives (value()), simulate and check refuse it (without_exosystem).
   bool is_sffm() const { return kind == Kind::sffm; }
+  /// The first time t >= 0 where σ itself jumps (gnucap's PULSE with RISE or FALL 0 — a PWL with two points
+  /// at one time —, a repeated PWL whose part does not start where it ends; a PULSE cut by its PER is refused
+  /// where a run reaches it, by breakpoints() and next_corner()): the
+  /// transient is then a distribution there, which solve's tower and source conditions take (σ's right
+  /// limits; a condition on a derivative of it is never decided "holds" by sampling) and the exact flows
+  /// refuse (without_exact_flow).  nullopt when σ is continuous on t >= 0.
+  std::optional<Rational> step_at() const;
   /// EXP and SIN: the jump of σ^{(order)} at the corner tb (one of breakpoints()), from their closed forms —
   /// EXP at TD1 (V1 − V2)(−1/TAU1)^order, at TD2 (V2 − V1)(−1/TAU2)^order (the other term is continuous), SIN
   /// at TD its right derivative (0 before); σ itself (order 0) does not jump.  nullopt for the piecewise-linear
@@ -111,8 +122,9 @@ struct Generator {
 Waveform parse_waveform(const std::string& spec, const std::function<Rational(const std::string&)>& number,
                         const Generator& generator = Generator{}, bool gnucap = false);
 
-/// The first source whose waveform has no finite exosystem (SFFM), for simulate, check and the enclosures to
-/// refuse by name: "V1 (SFFM …)"; nullopt when every one has one.
-std::optional<std::string> without_exosystem(const std::vector<Waveform>& waveforms);
+/// The first source the exact flows do not take, for simulate, check and the enclosures to refuse by name and
+/// cause: "V1 (SFFM …), frequency modulated: no finite exosystem" or "V1 (pulse (0 1)), a step at t = 0";
+/// nullopt when every source is continuous with a finite exosystem.
+std::optional<std::string> without_exact_flow(const std::vector<Waveform>& waveforms);
 
 }  // namespace dcad::io
