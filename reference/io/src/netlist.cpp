@@ -1036,7 +1036,8 @@ class Flattener {
         params[name] = evaluate(l, expr, params, "a parameter value");
       } catch (const InputError& e) {      // Xyce's COMPLEX_NUM: a value dcad does not read (complex), unused, changes
         const std::string why = e.what();  // nothing; a name no card defines is the deck's error (Xyce: BUG_864)
-        if ((why.find("(unknown parameter \"") != std::string::npos &&
+        if (name == "pi" || name == "exp" || name == "temp" || name == "temper" ||  // else the built-in stands in
+            (why.find("(unknown parameter \"") != std::string::npos &&
              why.find(": its .param has no value") == std::string::npos) ||
             why.find("(unknown function \"") != std::string::npos)
           throw;
@@ -1066,6 +1067,28 @@ class Flattener {
     if (name.empty() || body.empty()) fail(l, ".func NAME(ARGS) {EXPRESSION}", "\"" + l.text + "\"");
     f.body = body;
     functions[lower(name)] = f;
+  }
+
+  /// An element's value that is neither a number nor a parameter: refused, saying what it is — gnucap's nonlinear
+  /// PWL/FIT/TABLE/POLY value, a name no .param defines (a value set from outside the deck), or not a number.
+  [[noreturn]] void refuse_value(const Line& l, const std::string& what, const std::string& text,
+                                 const std::string& why) {
+    const std::string t = lower(text);
+    if (t == "pwl" || t == "fit" || t == "table" || t == "poly")  // gnucap's d_res tests
+      fail(l, what,
+           "\"" + text + "\" (a nonlinear element: gnucap's " + t +
+               " gives the value as a function of the element's voltage or current; dcad reads linear R, L and C)");
+    const bool word = !t.empty() && std::all_of(t.begin(), t.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+    });
+    if (word && (std::isalpha(static_cast<unsigned char>(t[0])) || t[0] == '_'))
+      fail(l, what,
+           "\"" + text + "\" (a name no .param defines" +
+               (unevaluated.count(t) ? ": its .param has no value, " + unevaluated.at(t)
+                                     : std::string("; a value set from outside the deck — Xyce's -prf parameter "
+                                                   "file, Dakota — is not read: define it with .param")) +
+               ")");
+    fail(l, what, "\"" + text + "\" (" + why + ")");
   }
 
   /// .param names whose value could not be read (the reason, with its line): refused where a card uses them.
@@ -1456,7 +1479,7 @@ class Flattener {
         return v;
       } catch (const std::invalid_argument& e) {
         if (const auto v = bare_expression(l, text, params, name)) return *v;
-        fail(l, what, "\"" + text + "\" (" + e.what() + ")");
+        refuse_value(l, what, text, e.what());
       }
     };
     if (kind == 'k') {

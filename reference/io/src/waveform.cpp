@@ -121,6 +121,8 @@ void gnucap_pulse(std::string& fn, const Value& value, const Refuse& refuse, std
   const Rational held = width == 0 && period != 0 ? period : width;  // PV up to the period's end
   if (period != 0) {
     const bool falls = rise + held < period;  // else the period ends before the fall
+    if (rise == 0 || (fall == 0 && falls))
+      refuse("rise or fall 0 with period=" + period.str() + " (a step every period)", "rise and fall > 0");
     args = {iv, pv, delay, rise, fall == 0 && !falls ? rise : fall, held, period};  // a FALL 0 unreached: any
     return;
   }
@@ -164,8 +166,10 @@ void gnucap_meaning(std::string& fn, const std::vector<std::pair<std::string, Ra
     if (td2 < td1) refuse("td2 < td1 (gnucap's second exponential starts first; SPICE's EXP does not)", "td2 >= td1");
     if (td1 < 0) refuse("td1 < 0", "td1 >= 0");
     args = {*value("iv"), *value("pv"), td1, tau1, td2, tau2};
-    if (const std::optional<Rational> period = value("period"); period && *period > 0)
-      args.push_back(*period);  // bm_exp.cc: the EXP started again every period, summed (Waveform::period)
+    if (const std::optional<Rational> period = value("period")) {  // bm_exp.cc: started again every period, summed
+      if (!(*period > 0)) refuse("period=" + period->str() + " (gnucap's sum over periods never ends)", "period > 0");
+      args.push_back(*period);
+    }
   } else if (fn ==
              "sffm") {  // bm_sffm.cc: offset + amplitude sin(2π carrier t + modindex sin(2π signal t)), SPICE's SFFM
     if (!value("carrier") || !value("modindex") || !value("signal"))
@@ -581,9 +585,10 @@ std::vector<Rational> pat_pwl(const SourceWords& r, const std::string& spec, std
   std::vector<std::pair<Rational, Rational>> cut{{0, at(0)}};
   if (forever) cut.push_back({from, at(from)});
   for (const auto& q : pts)
-    if (q.first > 0 && (!forever || (q.first > from && q.first < until))) cut.push_back(q);
+    if (q.first > 0 && (!forever || q.first < until)) cut.push_back(q);  // the bits before `from` too
   if (forever) cut.push_back({until, at(until)});
-  std::sort(cut.begin(), cut.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::stable_sort(cut.begin(), cut.end(),  // a step's two points share a time: their order is the step's
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
   std::vector<Rational> out;
   for (std::size_t i = 0; i < cut.size(); ++i)
     if (i == 0 || cut[i] != cut[i - 1]) out.insert(out.end(), {cut[i].first, cut[i].second});
@@ -797,16 +802,17 @@ void exp_state(const Waveform& w, double t, long double* x) {
   x[2] = (v2 - v1) * std::exp(-(static_cast<long double>(t) - td2) / tau2);
 }
 
-/// gnucap's periodic EXP (bm_exp.cc tr_eval): IV + Σ over the m >= 0 with t − m·P > TD of (PV − IV)(1 − e^{−(t −
-/// m·P − TD1)/TAU1}) and (IV − PV)(1 − e^{−(t − m·P − TD2)/TAU2}); the N terms started of each with the geometric
-/// sum of their exponentials in closed form: e^{−s/TAU} (1 − r^N)/(1 − r), r = e^{−P/TAU}, s the youngest's age.
+/// gnucap's periodic EXP (bm_exp.cc tr_eval): IV + Σ over the m >= 0 with t − m·P > TD (>= here: right limits) of (PV −
+/// IV)(1 − e^{−(t − m·P − TD1)/TAU1}) and (IV − PV)(1 − e^{−(t − m·P − TD2)/TAU2}); the N terms started of each with
+/// the geometric sum of their exponentials in closed form: e^{−s/TAU} (1 − r^N)/(1 − r), r = e^{−P/TAU}, s the
+/// youngest's age.
 double periodic_exp(const Waveform& w, double t, int order) {
   const long double v1 = w.p[0].convert_to<long double>(), v2 = w.p[1].convert_to<long double>();
   const long double period = w.period.convert_to<long double>();
   const auto started = [&](std::size_t td_at, std::size_t tau_at, long double sign) -> long double {
     const long double td = w.p[td_at].convert_to<long double>(), tau = w.p[tau_at].convert_to<long double>();
-    if (!(static_cast<long double>(t) > td)) return 0;
-    const long double n = std::ceil((static_cast<long double>(t) - td) / period);  // t − m·P > TD for m < n
+    if (static_cast<long double>(t) < td) return 0;  // at a restart its right limit: the new term has started
+    const long double n = std::floor((static_cast<long double>(t) - td) / period) + 1;  // t − m·P >= TD for m < n
     const long double s = static_cast<long double>(t) - td - (n - 1) * period;
     const long double r = std::exp(-period / tau);
     const long double sum = std::exp(-s / tau) * (r < 1 ? -std::expm1(n * std::log(r)) / (1 - r) : n);
