@@ -341,40 +341,15 @@ Vec Model::from_charges(const Vec& q_before, const Vec& i_before, const double* 
   return x;
 }
 
-Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long, double>>& held) const {
-  // inductors are shorts: they join supernodes into DC nodes, with offsets E_from − E_to = −o_L σ
-  const Eigen::Map<const Vec> s(sigma, static_cast<Eigen::Index>(c_.sources));
+Model::DcHolds Model::dc_holds(const std::vector<std::pair<long, double>>& held, const rlc::Forest& fl,
+                               const std::vector<double>& t, const Vec& on) const {
   const std::size_t nv = nsup_ + 1;
-  std::vector<std::pair<std::size_t, std::size_t>> ends(nl_);
-  std::vector<bool> all(nl_, true);
-  std::vector<long> rep(nv, -1);  // a node of each supernode, for messages
-  for (std::size_t k = 0; k < c_.nodes; ++k)
-    if (rep[static_cast<std::size_t>(sup_[k] + 1)] < 0)
-      rep[static_cast<std::size_t>(sup_[k] + 1)] = static_cast<long>(k);
-  const auto sv = [&](long node) {
-    return static_cast<std::size_t>((node < 0 ? -1 : sup_[static_cast<std::size_t>(node)]) + 1);
-  };
-  for (std::size_t k = 0; k < nl_; ++k) ends[k] = {sv(c_.branches[lidx_[k]].from), sv(c_.branches[lidx_[k]].to)};
-  const rlc::Forest fl = rlc::forest(nv, ends, all);
-  const Vec ol = m_.Ol * s, obs = ob_ * s;
-  for (std::size_t k = 0; k < nl_; ++k)
-    if (!fl.in_tree[k])
-      throw std::domain_error("the DC operating point is not unique: " + c_.branch_names.at(lidx_[k]) +
-                              " closes a loop of inductors, voltage sources and wires, whose current DC leaves free "
-                              "(ngspice: singular matrix)");
-  std::vector<double> t(nv, 0.0);
-  for (const rlc::Forest::Edge& e : fl.tree) {  // E_child = E_parent ± (−o_L σ)
-    const double d = -ol(static_cast<Eigen::Index>(e.edge));
-    t[e.child] = t[e.parent] + (e.child == ends[e.edge].first ? d : -d);
-  }
-  // resistors on the DC nodes: a Laplacian grounded at ground's DC node
-  // `.ic` holds: a held node fixes its DC node's potential (root level P with e_node = P + t + o_node σ)
-  const Vec on = on_ * s;
-  std::vector<double> fixed(nv, 0.0);
-  std::vector<bool> is_fixed(nv, false);
-  std::vector<long> hold_at(nv, -1);  // the vertex whose hold source feeds the DC node
+  DcHolds h{std::vector<double>(nv, 0.0), std::vector<bool>(nv, false), std::vector<long>(nv, -1)};
+  std::vector<double>& fixed = h.fixed;
+  std::vector<bool>& is_fixed = h.is_fixed;
+  std::vector<long>& hold_at = h.hold_at;
   for (const auto& [node, value] : held) {
-    const std::size_t v = sv(node), r = fl.root[v];
+    const std::size_t v = vertex(node), r = fl.root[v];
     const double p = value - t[v] - on(node);
     const bool ground = r == fl.root[0];
     const double known = ground ? 0.0 : fixed[r];
@@ -387,22 +362,18 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
     fixed[r] = p;
     if (hold_at[r] < 0) hold_at[r] = static_cast<long>(v);
   }
-  std::vector<long> dc(nv, -1);
-  std::size_t ndc = 0;
-  for (std::size_t v = 0; v < nv; ++v)
-    if (fl.root[v] != fl.root[0] && !is_fixed[fl.root[v]] && dc[fl.root[v]] < 0)
-      dc[fl.root[v]] = static_cast<long>(ndc++);
-  const auto level = [&](std::size_t root) {
-    return is_fixed[root] ? fixed[root] : 0.0;
-  };  // a known root level (0: ground's)
-  std::vector<std::pair<std::size_t, std::size_t>> rends;
-  std::vector<bool> rall;
-  Triplets tg;
-  Vec rhs = Vec::Zero(static_cast<Eigen::Index>(ndc));
-  std::vector<double> net(nv, 0.0);  // supernode outflow of resistors and current sources
+  return h;
+}
+
+void Model::dc_resistors(const rlc::Forest& fl, const std::vector<long>& dc, const std::vector<double>& t,
+                         const DcHolds& holds, const Vec& obs, std::vector<Eigen::Triplet<double>>& tg, Vec& rhs,
+                         std::vector<std::pair<std::size_t, std::size_t>>& rends, std::vector<bool>& rall) const {
+  const auto level = [&](std::size_t root) {  // a known root level (0: ground's)
+    return holds.is_fixed[root] ? holds.fixed[root] : 0.0;
+  };
   for (std::size_t k = 0; k < ridx_.size(); ++k) {
     const Element& br = c_.branches[ridx_[k]];
-    const std::size_t a = sv(br.from), z = sv(br.to);
+    const std::size_t a = vertex(br.from), z = vertex(br.to);
     rends.emplace_back(fl.root[a], fl.root[z]);
     rall.push_back(true);
     const double g = rdiag_g_(static_cast<Eigen::Index>(k));
@@ -422,6 +393,86 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
       rhs(dz) += g * o;
     }
   }
+}
+
+std::size_t Model::vertex(long node) const {
+  return static_cast<std::size_t>((node < 0 ? -1 : sup_[static_cast<std::size_t>(node)]) + 1);
+}
+
+Vec Model::dc_inductor_currents(const Vec& E, const double* sigma, const Vec& obs, const rlc::Forest& fl,
+                                const std::vector<std::pair<std::size_t, std::size_t>>& ends,
+                                const std::vector<bool>& is_fixed, const std::vector<long>& hold_at) const {
+  const std::size_t nv = nsup_ + 1;
+  std::vector<double> net(nv, 0.0);  // supernode outflow of resistors and current sources
+  for (std::size_t k = 0; k < ridx_.size(); ++k) {
+    const Element& br = c_.branches[ridx_[k]];
+    const std::size_t a = vertex(br.from), z = vertex(br.to);
+    const double ea = a ? E(static_cast<Eigen::Index>(a - 1)) : 0.0, ez = z ? E(static_cast<Eigen::Index>(z - 1)) : 0.0;
+    const double cur = rdiag_g_(static_cast<Eigen::Index>(k)) * (ea - ez + obs(static_cast<Eigen::Index>(ridx_[k])));
+    net[a] += cur;
+    net[z] -= cur;
+  }
+  for (std::size_t k = 0; k < iidx_.size(); ++k) {
+    const Element& br = c_.branches[iidx_[k]];
+    net[vertex(br.from)] += sigma[br.source];
+    net[vertex(br.to)] -= sigma[br.source];
+  }
+  // a hold source delivers what its DC node's KCL lacks, at its own node
+  std::vector<double> total(nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v) total[fl.root[v]] += net[v];
+  for (std::size_t r = 0; r < nv; ++r)
+    if (is_fixed[r]) net[static_cast<std::size_t>(hold_at[r])] -= total[r];
+  Vec il = Vec::Zero(static_cast<Eigen::Index>(nl_));
+  for (auto it = fl.tree.rbegin(); it != fl.tree.rend(); ++it) {
+    const double cur = ends[it->edge].first == it->child ? -net[it->child] : net[it->child];
+    il(static_cast<Eigen::Index>(it->edge)) = cur;
+    net[it->parent] += ends[it->edge].first == it->parent ? cur : -cur;
+  }
+  return il;
+}
+
+Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long, double>>& held) const {
+  // inductors are shorts: they join supernodes into DC nodes, with offsets E_from − E_to = −o_L σ
+  const Eigen::Map<const Vec> s(sigma, static_cast<Eigen::Index>(c_.sources));
+  const std::size_t nv = nsup_ + 1;
+  std::vector<std::pair<std::size_t, std::size_t>> ends(nl_);
+  std::vector<bool> all(nl_, true);
+  std::vector<long> rep(nv, -1);  // a node of each supernode, for messages
+  for (std::size_t k = 0; k < c_.nodes; ++k)
+    if (rep[static_cast<std::size_t>(sup_[k] + 1)] < 0)
+      rep[static_cast<std::size_t>(sup_[k] + 1)] = static_cast<long>(k);
+  const auto sv = [&](long node) { return vertex(node); };
+  for (std::size_t k = 0; k < nl_; ++k) ends[k] = {sv(c_.branches[lidx_[k]].from), sv(c_.branches[lidx_[k]].to)};
+  const rlc::Forest fl = rlc::forest(nv, ends, all);
+  const Vec ol = m_.Ol * s, obs = ob_ * s;
+  for (std::size_t k = 0; k < nl_; ++k)
+    if (!fl.in_tree[k])
+      throw std::domain_error("the DC operating point is not unique: " + c_.branch_names.at(lidx_[k]) +
+                              " closes a loop of inductors, voltage sources and wires, whose current DC leaves free "
+                              "(ngspice: singular matrix)");
+  std::vector<double> t(nv, 0.0);
+  for (const rlc::Forest::Edge& e : fl.tree) {  // E_child = E_parent ± (−o_L σ)
+    const double d = -ol(static_cast<Eigen::Index>(e.edge));
+    t[e.child] = t[e.parent] + (e.child == ends[e.edge].first ? d : -d);
+  }
+  // `.ic` holds: a held node fixes its DC node's potential (root level P with e_node = P + t + o_node σ)
+  const DcHolds holds = dc_holds(held, fl, t, on_ * s);
+  const std::vector<double>& fixed = holds.fixed;
+  const std::vector<bool>& is_fixed = holds.is_fixed;
+  const std::vector<long>& hold_at = holds.hold_at;
+  std::vector<long> dc(nv, -1);
+  std::size_t ndc = 0;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (fl.root[v] != fl.root[0] && !is_fixed[fl.root[v]] && dc[fl.root[v]] < 0)
+      dc[fl.root[v]] = static_cast<long>(ndc++);
+  const auto level = [&](std::size_t root) {
+    return is_fixed[root] ? fixed[root] : 0.0;
+  };  // a known root level (0: ground's)
+  std::vector<std::pair<std::size_t, std::size_t>> rends;
+  std::vector<bool> rall;
+  Triplets tg;
+  Vec rhs = Vec::Zero(static_cast<Eigen::Index>(ndc));
+  dc_resistors(fl, dc, t, holds, obs, tg, rhs, rends, rall);  // a Laplacian grounded at ground's DC node
   for (std::size_t k = 0; k < iidx_.size(); ++k) {
     const Element& br = c_.branches[iidx_[k]];
     const double cur = s(br.source);
@@ -450,31 +501,7 @@ Vec Model::operating_point(const double* sigma, const std::vector<std::pair<long
   Vec E(static_cast<Eigen::Index>(nsup_));
   for (std::size_t v = 1; v < nv; ++v)
     E(static_cast<Eigen::Index>(v - 1)) = (dc[fl.root[v]] >= 0 ? pot(dc[fl.root[v]]) : level(fl.root[v])) + t[v];
-  // inductor currents: KCL along the inductor forest, leaves first
-  for (std::size_t k = 0; k < ridx_.size(); ++k) {
-    const Element& br = c_.branches[ridx_[k]];
-    const std::size_t a = sv(br.from), z = sv(br.to);
-    const double ea = a ? E(static_cast<Eigen::Index>(a - 1)) : 0.0, ez = z ? E(static_cast<Eigen::Index>(z - 1)) : 0.0;
-    const double cur = rdiag_g_(static_cast<Eigen::Index>(k)) * (ea - ez + obs(static_cast<Eigen::Index>(ridx_[k])));
-    net[a] += cur;
-    net[z] -= cur;
-  }
-  for (std::size_t k = 0; k < iidx_.size(); ++k) {
-    const Element& br = c_.branches[iidx_[k]];
-    net[sv(br.from)] += s(br.source);
-    net[sv(br.to)] -= s(br.source);
-  }
-  // a hold source delivers what its DC node's KCL lacks, at its own node
-  std::vector<double> total(nv, 0.0);
-  for (std::size_t v = 0; v < nv; ++v) total[fl.root[v]] += net[v];
-  for (std::size_t r = 0; r < nv; ++r)
-    if (is_fixed[r]) net[static_cast<std::size_t>(hold_at[r])] -= total[r];
-  Vec il = Vec::Zero(static_cast<Eigen::Index>(nl_));
-  for (auto it = fl.tree.rbegin(); it != fl.tree.rend(); ++it) {
-    const double cur = ends[it->edge].first == it->child ? -net[it->child] : net[it->child];
-    il(static_cast<Eigen::Index>(it->edge)) = cur;
-    net[it->parent] += ends[it->edge].first == it->parent ? cur : -cur;
-  }
+  const Vec il = dc_inductor_currents(E, sigma, obs, fl, ends, is_fixed, hold_at);
   // the state: w = E − (the potential of its C-component's root; 0 for the component of ground)
   Vec x(static_cast<Eigen::Index>(nw_ + nl_));
   for (std::size_t k = 0; k < nsup_; ++k)

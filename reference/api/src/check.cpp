@@ -687,6 +687,94 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
 /// span(G) is no more than the free directions P·gauge.  Compared exactly on a basis of the consistent
 /// (x, u) (the kernel of M_c's rows) and at a point of it; within 1e-9 × entries × scale for floats.  F
 /// itself is not unique where z does not parametrize M_c: any F that gives the right ż passes.
+/// The result's reduced coordinates z = P x: indices of the case's variables, each named once.
+std::vector<std::size_t> reduced_coordinates(Checker& k, const json& coords,
+                                             const std::vector<std::string>& variables) {
+  std::vector<std::size_t> z;
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    const auto it =
+        std::find(variables.begin(), variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
+    if (it == variables.end())
+      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable of the case", shown(coords[i]));
+    if (std::find(z.begin(), z.end(), static_cast<std::size_t>(it - variables.begin())) != z.end())
+      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable not named before in the list",
+          shown(coords[i]));
+    z.push_back(static_cast<std::size_t>(it - variables.begin()));
+  }
+  return z;
+}
+
+/// The result's S over dcad's jet columns (`sources.columns` named as dcad names them, each once; a column it does
+/// not name: 0) added into `s_found`; false when S itself is malformed (found_matrix said why).
+bool reduced_sources(Checker& k, const json& src, const std::vector<std::string>& jets, std::size_t m,
+                     std::vector<std::vector<Number>>& ns, io::QMatrix& s_found) {
+  const json& cols = src.is_object() ? src.value("columns", json()) : json();
+  if (!cols.is_array())
+    bad(k.file, "/reduced/sources/columns", "an array of the sources' jets as dcad names them (source_jets)",
+        shown(cols));
+  const auto sm = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, cols.size(), ns);
+  if (!sm) return false;
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    const auto it = std::find(jets.begin(), jets.end(), cols[c].is_string() ? cols[c].get<std::string>() : "");
+    if (it == jets.end())
+      bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "one of " + json(jets).dump(), shown(cols[c]));
+    for (std::size_t c2 = 0; c2 < c; ++c2)
+      if (cols[c2] == cols[c])
+        bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "a jet not named before in the list",
+            shown(cols[c]));
+    for (std::size_t i = 0; i < m; ++i) s_found(i, static_cast<std::size_t>(it - jets.begin())) += (*sm)(i, c);
+  }
+  return true;
+}
+
+/// The consistent (x, u) of M_c's rows [C D] (x, u) = b over w = N + jets columns: a basis of the directions (rows)
+/// and a point (x0, u0) in `point`.
+io::QMatrix consistent_states(const std::vector<Equation<io::Rational>>& rows, std::size_t w,
+                              std::vector<io::Rational>& point) {
+  io::QMatrix cd(rows.size(), w + 1);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (const auto& [j, v] : rows[i].terms) cd(i, j) = v;
+    cd(i, w) = rows[i].rhs;
+  }
+  const io::QMatrix lhs = cd.block(0, cd.rows(), 0, w), dirs = reference::nullspace(lhs);  // rows
+  std::vector<io::Rational> b(cd.rows());
+  for (std::size_t i = 0; i < cd.rows(); ++i) b[i] = cd(i, w);
+  if (!reference::solve_particular(lhs, b, point)) throw InternalError("check: the reference's M_c has no point");
+  return dirs;
+}
+
+/// The residual map (x, u, 1) ↦ P (X x + W u) − (F P x + S u + f) of claimed F, f, S against the reference's motion,
+/// as an m × (N + jets + 1) matrix.
+io::QMatrix residual_map(const Motion<io::Rational>& mo, const std::vector<std::size_t>& z, const io::QMatrix& f_found,
+                         const io::QMatrix& v_found, const io::QMatrix& s_found, std::size_t n) {
+  const std::size_t m = z.size(), nj = s_found.cols(), w = n + nj;
+  io::QMatrix res(m, w + 1);
+  for (std::size_t a = 0; a < m; ++a) {
+    const std::size_t i = z[a];
+    for (std::size_t j = 0; j < n; ++j) res(a, j) = mo.f_matrix[i][j];
+    for (std::size_t j = 0; j < nj; ++j) res(a, n + j) = mo.s[i][j] - s_found(a, j);
+    for (std::size_t b = 0; b < m; ++b) res(a, z[b]) -= f_found(a, b);
+    res(a, w) = mo.f[i] - v_found(a, 0);
+  }
+  return res;
+}
+
+/// A JSON vector [x, …] as the column [[x], …] (nlohmann iterates a single value as itself, null as nothing).
+json as_column(const json& v) {
+  json col = json::array();
+  for (const json& x : v) col.push_back(json::array({x}));
+  return col;
+}
+
+/// The first entry of `m` that `nonzero` says is not zero, row and column.
+std::optional<std::pair<std::size_t, std::size_t>> first_nonzero(
+    const io::QMatrix& m, const std::function<bool(const io::Rational&)>& nonzero) {
+  for (std::size_t a = 0; a < m.rows(); ++a)
+    for (std::size_t c = 0; c < m.cols(); ++c)
+      if (nonzero(m(a, c))) return std::make_pair(a, c);
+  return std::nullopt;
+}
+
 void compare_dae_reduced(Checker& k, const json& red, const reference::Solution& truth,
                          const std::vector<std::string>& variables) {
   const std::string key = "reduced";
@@ -707,26 +795,11 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
   const std::size_t n = variables.size(), nj = truth.jets.size();
   const json& coords = red.value("coordinates", json());
   if (!coords.is_array()) bad(k.file, "/reduced/coordinates", "an array of variable names", shown(coords));
-  std::vector<std::size_t> z;
-  for (std::size_t i = 0; i < coords.size(); ++i) {
-    const auto it =
-        std::find(variables.begin(), variables.end(), coords[i].is_string() ? coords[i].get<std::string>() : "");
-    if (it == variables.end())
-      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable of the case", shown(coords[i]));
-    if (std::find(z.begin(), z.end(), static_cast<std::size_t>(it - variables.begin())) != z.end())
-      bad(k.file, "/reduced/coordinates/" + std::to_string(i), "a variable not named before in the list",
-          shown(coords[i]));
-    z.push_back(static_cast<std::size_t>(it - variables.begin()));
-  }
+  const std::vector<std::size_t> z = reduced_coordinates(k, coords, variables);
   const std::size_t m = z.size();
   std::vector<std::vector<Number>> nf, nv, ng, ns;
-  const json fv_json = [&] {
-    json col = json::array();
-    for (const json& x : red.value("f", json::array())) col.push_back(json::array({x}));
-    return col;
-  }();
   const auto f_found = found_matrix(k, "reduced.F", red.value("F", json()), m, m, nf);
-  const auto v_found = red.contains("f") ? found_matrix(k, "reduced.f", fv_json, m, 1, nv)
+  const auto v_found = red.contains("f") ? found_matrix(k, "reduced.f", as_column(red["f"]), m, 1, nv)
                                          : std::optional<io::QMatrix>(io::QMatrix(m, 1));
   const json g_json = red.contains("G") && red["G"].is_array() && red["G"].empty()
                           ? json(std::vector<json>(m, json::array()))
@@ -735,53 +808,17 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
   const auto g_found = red.contains("G") ? found_matrix(k, "reduced.G", g_json, m, g_cols, ng)
                                          : std::optional<io::QMatrix>(io::QMatrix(m, 0));
   io::QMatrix s_found(m, nj);  // over dcad's jet columns (a column the result does not name: 0)
-  if (red.contains("sources")) {
-    const json& src = red["sources"];
-    const json& cols = src.is_object() ? src.value("columns", json()) : json();
-    if (!cols.is_array())
-      bad(k.file, "/reduced/sources/columns", "an array of the sources' jets as dcad names them (source_jets)",
-          shown(cols));
-    const auto sm = found_matrix(k, "reduced.sources.S", src.value("S", json()), m, cols.size(), ns);
-    if (!sm) return;
-    for (std::size_t c = 0; c < cols.size(); ++c) {
-      const auto it =
-          std::find(truth.jets.begin(), truth.jets.end(), cols[c].is_string() ? cols[c].get<std::string>() : "");
-      if (it == truth.jets.end())
-        bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "one of " + json(truth.jets).dump(),
-            shown(cols[c]));
-      for (std::size_t c2 = 0; c2 < c; ++c2)
-        if (cols[c2] == cols[c])
-          bad(k.file, "/reduced/sources/columns/" + std::to_string(c), "a jet not named before in the list",
-              shown(cols[c]));
-      for (std::size_t i = 0; i < m; ++i) s_found(i, static_cast<std::size_t>(it - truth.jets.begin())) += (*sm)(i, c);
-    }
-  }
+  if (red.contains("sources") && !reduced_sources(k, red["sources"], truth.jets, m, ns, s_found)) return;
   if (!f_found || !v_found || !g_found) return;
   bool exact = true;
   for (const auto* nums : {&nf, &nv, &ng, &ns})
     for (const auto& row : *nums)
       for (const Number& v : row) exact = exact && v.exact;
-  // the consistent (x, u): [C D] (x, u) = b — a point (x0, u0) and a basis of the directions
   const std::size_t w = n + nj;
-  io::QMatrix cd(truth.final_constraints->size(), w + 1);
-  for (std::size_t i = 0; i < truth.final_constraints->size(); ++i) {
-    for (const auto& [j, v] : (*truth.final_constraints)[i].terms) cd(i, j) = v;
-    cd(i, w) = (*truth.final_constraints)[i].rhs;
-  }
-  const io::QMatrix lhs = cd.block(0, cd.rows(), 0, w), dirs = reference::nullspace(lhs);  // rows
-  std::vector<io::Rational> b(cd.rows()), point;
-  for (std::size_t i = 0; i < cd.rows(); ++i) b[i] = cd(i, w);
-  if (!reference::solve_particular(lhs, b, point)) throw InternalError("check: the reference's M_c has no point");
-  // the residual map (x, u, 1) ↦ P (X x + W u) − (F P x + S u + f), as an m × (w + 1) matrix
+  std::vector<io::Rational> point;
+  const io::QMatrix dirs = consistent_states(*truth.final_constraints, w, point);
   const Motion<io::Rational>& mo = *truth.motion;
-  io::QMatrix res(m, w + 1);
-  for (std::size_t a = 0; a < m; ++a) {
-    const std::size_t i = z[a];
-    for (std::size_t j = 0; j < n; ++j) res(a, j) = mo.f_matrix[i][j];
-    for (std::size_t j = 0; j < nj; ++j) res(a, n + j) = mo.s[i][j] - s_found(a, j);
-    for (std::size_t b = 0; b < m; ++b) res(a, z[b]) -= (*f_found)(a, b);
-    res(a, w) = mo.f[i] - (*v_found)(a, 0);
-  }
+  const io::QMatrix res = residual_map(mo, z, *f_found, *v_found, s_found, n);
   io::QMatrix at(w + 1, dirs.rows() + 1);  // columns: the directions (0 in the last row), and the point (1)
   for (std::size_t c = 0; c < dirs.rows(); ++c)
     for (std::size_t j = 0; j < w; ++j) at(j, c) = dirs(c, j);
@@ -796,33 +833,25 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
   const double scale = std::max(1.0, max_abs(n_g)) * std::max({1.0, max_abs(res), max_abs(at)});
   const double tol = exact ? 0 : matrix_tolerance(m * (w + 1)) * scale;
   const auto nonzero = [&](const io::Rational& v) { return exact ? v != 0 : std::abs(v.convert_to<double>()) > tol; };
-  for (std::size_t a = 0; a < off.rows(); ++a)
-    for (std::size_t c = 0; c < off.cols(); ++c)
-      if (nonzero(off(a, c))) {
-        k.out.disagreements.push_back(
-            "reduced: d/dt of the coordinates " + coords.dump() + " differs from the DAE's on M_c" +
-            (c + 1 == off.cols() ? " at its point" : " along a consistent direction of (x, u)") + " (component " +
-            std::to_string(a) + " of the difference, off span(G): " + io::float_text(off(a, c).convert_to<double>()) +
-            ")");
-        return;
-      }
-  for (std::size_t a = 0; a < free_off.rows(); ++a)
-    for (std::size_t c = 0; c < free_off.cols(); ++c)
-      if (nonzero(free_off(a, c))) {
-        k.out.disagreements.push_back("reduced.G: the DAE leaves a direction of d/dt " + coords.dump() +
-                                      " free that span(G) does not contain (solution rank " +
-                                      std::to_string(pg.cols()) + ")");
-        return;
-      }
+  if (const auto ac = first_nonzero(off, nonzero)) {
+    const auto [a, c] = *ac;
+    k.out.disagreements.push_back(
+        "reduced: d/dt of the coordinates " + coords.dump() + " differs from the DAE's on M_c" +
+        (c + 1 == off.cols() ? " at its point" : " along a consistent direction of (x, u)") + " (component " +
+        std::to_string(a) + " of the difference, off span(G): " + io::float_text(off(a, c).convert_to<double>()) + ")");
+    return;
+  }
+  if (first_nonzero(free_off, nonzero)) {
+    k.out.disagreements.push_back("reduced.G: the DAE leaves a direction of d/dt " + coords.dump() +
+                                  " free that span(G) does not contain (solution rank " + std::to_string(pg.cols()) +
+                                  ")");
+    return;
+  }
   const io::QMatrix n_pg = reference::annihilator(reference::Subspace<io::Rational>::span(pg.transpose())).basis(),
                     extra = n_pg * *g_found;
-  for (std::size_t a = 0; a < extra.rows(); ++a)
-    for (std::size_t c = 0; c < extra.cols(); ++c)
-      if (nonzero(extra(a, c))) {
-        k.out.disagreements.push_back("reduced.G: column " + std::to_string(c) +
-                                      " frees a direction the DAE determines");
-        return;
-      }
+  if (const auto ac = first_nonzero(extra, nonzero))
+    k.out.disagreements.push_back("reduced.G: column " + std::to_string(ac->second) +
+                                  " frees a direction the DAE determines");
 }
 
 /// A linear DAE (CONTRACT "Linear and implicit DAEs"): another tool's discrete claims — dims, steps,

@@ -1423,142 +1423,89 @@ class Flattener {
     return factor;
   }
 
-  void element(const Line& l, std::vector<std::string> tok, const std::string& prefix,
-               const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
-    const std::string head = lower(tok[0]);
-    const char kind = head[0];
-    if (std::string("lcvrik").find(kind) == std::string::npos)
-      fail(l, "an L, C, R, V, I, K or X element", "element " + tok[0] + " (not supported)");
-    // gnucap writes the nodes in parentheses, "(a b)" or "( a b )": ngspice reads them as separators too
-    if (kind != 'k' && tok.size() >= 3) {
-      std::vector<std::string> t{tok[0]};
-      std::size_t k = 1;
-      for (std::size_t got = 0; k < tok.size() && got < 2; ++k) {
-        std::string u = tok[k];
-        if (got == 0 && !u.empty() && u.front() == '(') u.erase(0, 1);
-        if (got == 1 && !u.empty() && u.back() == ')' && u.find('(') == std::string::npos) u.pop_back();
-        if (u.empty() || u == ")") continue;
-        t.push_back(u);
-        ++got;
-      }
-      if (k < tok.size() && tok[k] == ")") ++k;
-      t.insert(t.end(), tok.begin() + static_cast<long>(k), tok.end());
-      tok = t;
+  /// gnucap writes the nodes in parentheses, "(a b)" or "( a b )": ngspice reads them as separators too.
+  static std::vector<std::string> without_node_parentheses(const std::vector<std::string>& tok) {
+    std::vector<std::string> t{tok[0]};
+    std::size_t k = 1;
+    for (std::size_t got = 0; k < tok.size() && got < 2; ++k) {
+      std::string u = tok[k];
+      if (got == 0 && !u.empty() && u.front() == '(') u.erase(0, 1);
+      if (got == 1 && !u.empty() && u.back() == ')' && u.find('(') == std::string::npos) u.pop_back();
+      if (u.empty() || u == ")") continue;
+      t.push_back(u);
+      ++got;
     }
-    if (tok.size() < 4 && !(kind == 'v' || kind == 'i')) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
-    if (tok.size() < 3) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
-    // ngspice's tokenizer (INPgetTok, INPgetNetTok) ends a name at , ( ) = and reads quotes and braces as
-    // syntax: "v2, 2 0 1" is V2 there, "v4 , 0 1" a different source.  Such a name is refused, not guessed.
-    for (std::size_t k = 0; k < (kind == 'k' ? 1u : 3u); ++k)
-      if (tok[k].find_first_of(",()=\"'{}") != std::string::npos)
-        fail(l, k == 0 ? "an element name without , ( ) = \" ' { }" : "a node name without , ( ) = \" ' { }",
-             "\"" + tok[k] + "\" (ngspice reads these characters as separators or syntax: rename it)");
-    // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
-    const auto hier = [&](const std::string& t) {
-      return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t);
-    };
-    const std::string name = hier(tok[0]);
-    const std::string key = lower(name);
-    if (names.count(key))
-      fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
-    const auto number = [&](const std::string& text, const std::string& what) {
-      if (!text.empty() && text.front() == '{') {
-        if (text.back() != '}') fail(l, what, "\"" + text + "\" (no closing '}')");
-        return evaluate(l, text.substr(1, text.size() - 2), params, what);
-      }
-      const std::string t = lower(text);
-      if (!t.empty() && (std::isalpha(static_cast<unsigned char>(t[0])) || t[0] == '_') && params.count(t))
-        return params.at(t);  // a parameter's name without braces (Xyce, and ngspice's numparam)
-      try {
-        std::string ignored;
-        const Rational v = parse_spice_value(text, &ignored, dialect);
-        if (!ignored.empty())
-          out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as " + shown(v) +
-                                 " (the letters \"" + ignored +
-                                 "\" are neither a scale factor nor a unit; ngspice ignores them too)");
-        return v;
-      } catch (const std::invalid_argument& e) {
-        if (const auto v = bare_expression(l, text, params, name)) return *v;
-        refuse_value(l, what, text, e.what());
-      }
-    };
-    if (kind == 'k') {
-      if (tok.size() < 4) fail(l, "KNAME LX LY COUPLING", "\"" + l.text + "\"");
-      const Rational k = number(tok.back(), "a coupling coefficient");
-      if (k < -1 || k > 1)
-        fail(l,
-             "a coupling coefficient with |k| <= 1 for " + name +
-                 (prefix.empty() ? "" : " (instance " + prefix.substr(0, prefix.size() - 1) + ")"),
-             "k = " + shown(k) + (tok.back().front() == '{' ? " from " + tok.back() : std::string()));
-      // K L1 L2 … k: every pair of the listed inductors (Xyce); two of them as in ngspice
-      for (std::size_t a = 1; a + 1 < tok.size(); ++a)
-        for (std::size_t b = a + 1; b + 1 < tok.size(); ++b)
-          couplings.push_back({l, name, lower(hier(tok[a])), lower(hier(tok[b])), k});
-      names[key] = out_lines.size();
-      out_lines.push_back(l.where());
-      return;
+    if (k < tok.size() && tok[k] == ")") ++k;
+    t.insert(t.end(), tok.begin() + static_cast<long>(k), tok.end());
+    return t;
+  }
+
+  using Number = std::function<Rational(const std::string&, const std::string&)>;
+  /// K L1 L2 … k: a coupling of every pair of the listed inductors (Xyce; two of them as in ngspice), |k| <= 1.
+  void coupling_element(const Line& l, const std::vector<std::string>& tok, const std::string& name,
+                        const std::string& prefix, const std::vector<std::string>& inductors, const Number& number) {
+    if (tok.size() < 4) fail(l, "KNAME LX LY COUPLING", "\"" + l.text + "\"");
+    const Rational k = number(tok.back(), "a coupling coefficient");
+    if (k < -1 || k > 1)
+      fail(l,
+           "a coupling coefficient with |k| <= 1 for " + name +
+               (prefix.empty() ? "" : " (instance " + prefix.substr(0, prefix.size() - 1) + ")"),
+           "k = " + shown(k) + (tok.back().front() == '{' ? " from " + tok.back() : std::string()));
+    for (std::size_t a = 0; a < inductors.size(); ++a)
+      for (std::size_t b = a + 1; b < inductors.size(); ++b)
+        couplings.push_back({l, name, inductors[a], inductors[b], k});
+  }
+  /// A V or I element: its waveform (the source's own words after the nodes), a 0-volt V a wire.
+  void source_element(const Line& l, const std::vector<std::string>& tok, char kind, const std::string& name,
+                      const Number& number, reference::Branch<Rational>& b, reference::RlcBranch<Rational>& rb) {
+    std::string spec;
+    for (std::size_t k = 3; k < tok.size(); ++k) spec += (k > 3 ? " " : "") + tok[k];
+    Waveform w;
+    try {
+      w = parse_waveform(
+          pwl_from_file(l, spec, dialect), [&](const std::string& t) { return number(t, "a source value"); }, generator,
+          dialect == Dialect::gnucap);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
     }
-    names[key] = out_lines.size();
-    out_lines.push_back(l.where());
-    reference::Branch<Rational> b;
-    b.name = name;
-    const auto node = [&](const std::string& t) -> long {
-      const std::string s = node_in(t, prefix, ports);
-      if (s == "0") return -1;
-      if (!nodes.count(s)) {
-        nodes[s] = out.node_names.size();
-        out.node_names.push_back(s);
-      }
-      return static_cast<long>(nodes[s]);
-    };
-    b.from = node(tok[1]);
-    b.to = node(tok[2]);
-    reference::RlcBranch<Rational> rb{name, reference::RlcKind::wire, b.from, b.to, Rational(0), 0};
-    if (kind == 'v' || kind == 'i') {
-      std::string spec;
-      for (std::size_t k = 3; k < tok.size(); ++k) spec += (k > 3 ? " " : "") + tok[k];
-      Waveform w;
-      try {
-        w = parse_waveform(
-            pwl_from_file(l, spec, dialect), [&](const std::string& t) { return number(t, "a source value"); },
-            generator, dialect == Dialect::gnucap);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(l.where() + ": " + name + ": " + e.what());  // the parser's own "expected …, found …"
-      }
-      w.element = name;
-      if (!w.ignored.empty())
-        out.warnings.push_back(l.where() + ": " + name + ": not part of the transient, ignored: " + w.ignored);
-      if (w.is_sffm())  // SPICE3's VO + VA sin(2π FC t + MDI sin(2π FS t)); ngspice 43 on holds 0 up to TD = 0 and
-                        // limits MDI
-        out.warnings.push_back(
-            l.where() + ": " + name +
-            ": SFFM read as SPICE3, ngspice 39 and Xyce read it (VO + VA sin(2 pi FC t + MDI sin(2 pi FS t)))" +
-            (w.p[0] != 0 ? "; ngspice 43 on has 0, not VO, at t = 0 (its operating point differs)" : "") +
-            (w.p[3] > w.p[2] / w.p[4] ? "; ngspice 43 on limits MDI to FC/FS" : "") +
-            "; simulate and check refuse it (no finite exosystem)");
-      b.kind = reference::BranchKind::empty;
-      if (kind == 'v' && w.kind == Waveform::Kind::dc && w.p[0] == 0) {
-        rb.kind = reference::RlcKind::wire;  // a zero-volt source is a wire (an ammeter)
-      } else {
-        rb.kind = kind == 'v' ? reference::RlcKind::voltage : reference::RlcKind::current;
-        rb.source = out.waveforms.size();
-        out.waveforms.push_back(w);
-        source_lines.push_back(l);
-        out.forced = true;
-      }
-      out.circuit.branches.push_back(b);
-      out.rlc.branches.push_back(rb);
-      out.initial.push_back(std::nullopt);
-      out.where.push_back(l.where());
-      return;
+    w.element = name;
+    if (!w.ignored.empty())
+      out.warnings.push_back(l.where() + ": " + name + ": not part of the transient, ignored: " + w.ignored);
+    if (w.is_sffm())  // SPICE3's VO + VA sin(2π FC t + MDI sin(2π FS t)); ngspice 43 on holds 0 up to TD = 0 and
+                      // limits MDI
+      out.warnings.push_back(
+          l.where() + ": " + name +
+          ": SFFM read as SPICE3, ngspice 39 and Xyce read it (VO + VA sin(2 pi FC t + MDI sin(2 pi FS t)))" +
+          (w.p[0] != 0 ? "; ngspice 43 on has 0, not VO, at t = 0 (its operating point differs)" : "") +
+          (w.p[3] > w.p[2] / w.p[4] ? "; ngspice 43 on limits MDI to FC/FS" : "") +
+          "; simulate and check refuse it (no finite exosystem)");
+    b.kind = reference::BranchKind::empty;
+    if (kind == 'v' && w.kind == Waveform::Kind::dc && w.p[0] == 0) {
+      rb.kind = reference::RlcKind::wire;  // a zero-volt source is a wire (an ammeter)
+    } else {
+      rb.kind = kind == 'v' ? reference::RlcKind::voltage : reference::RlcKind::current;
+      rb.source = out.waveforms.size();
+      out.waveforms.push_back(w);
+      source_lines.push_back(l);
+      out.forced = true;
     }
+    out.circuit.branches.push_back(b);
+    out.rlc.branches.push_back(rb);
+    out.initial.push_back(std::nullopt);
+    out.where.push_back(l.where());
+  }
+
+  /// An R, L or C element's value: positional or a keyword (r=, c=, l=, value=), then IC=, a multiplier M= and
+  /// temperature coefficients (which change nothing at the nominal temperature); `ic` set from IC=.
+  Rational passive_value(const Line& l, std::vector<std::string> tok, char kind, const std::string& name,
+                         const Number& number, std::optional<Rational>& ic) {
     if (tok.size() > 4 && gnucap_mode(tok[3]))
       tok = transient_value(l, tok, name, [&](const std::string& t) { return number(t, "a value"); });
     // the value: positional, or as a keyword (r=, c=, l=, value=); then IC=, a multiplier M= and temperature
     // coefficients, which change nothing at the nominal temperature
     const std::string value_key = kind == 'r' ? "r=" : kind == 'c' ? "c=" : "l=";
     std::optional<Rational> value;
-    std::optional<Rational> ic, multiplier;
+    std::optional<Rational> multiplier;
     std::optional<Rational> tc1, tc2, device_temp, dtemp,
         device_tnom;  // ngspice's and Xyce's instance temperature parameters
     for (std::size_t k = 3; k < tok.size(); ++k) {
@@ -1602,7 +1549,12 @@ class Flattener {
     Rational v = *value;
     if (multiplier) v = kind == 'c' ? Rational(v * *multiplier) : Rational(v / *multiplier);  // M parallel copies
     if (tc1 || tc2) v *= temperature_factor(l, name, tc1, tc2, device_temp, dtemp, device_tnom);
-    const Rational& value_ = v;
+    return v;
+  }
+
+  /// An R, L or C branch of value `value_` in both graphs (R: empty in D_Δ's, L = 0 a wire), with its warnings.
+  void passive_kind(const Line& l, char kind, const std::string& name, const Rational& value_,
+                    reference::Branch<Rational>& b, reference::RlcBranch<Rational>& rb) {
     rb.value = value_;
     if (kind == 'r') {
       if (value_ < 0)
@@ -1636,6 +1588,82 @@ class Flattener {
       b.kind = reference::BranchKind::empty;  // L = 0: a wire
       rb.kind = reference::RlcKind::wire;
     }
+  }
+
+  void element(const Line& l, std::vector<std::string> tok, const std::string& prefix,
+               const std::map<std::string, std::string>& ports, const std::map<std::string, Rational>& params) {
+    const std::string head = lower(tok[0]);
+    const char kind = head[0];
+    if (std::string("lcvrik").find(kind) == std::string::npos)
+      fail(l, "an L, C, R, V, I, K or X element", "element " + tok[0] + " (not supported)");
+    if (kind != 'k' && tok.size() >= 3) tok = without_node_parentheses(tok);
+    if (tok.size() < 4 && !(kind == 'v' || kind == 'i')) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    if (tok.size() < 3) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    // ngspice's tokenizer (INPgetTok, INPgetNetTok) ends a name at , ( ) = and reads quotes and braces as
+    // syntax: "v2, 2 0 1" is V2 there, "v4 , 0 1" a different source.  Such a name is refused, not guessed.
+    for (std::size_t k = 0; k < (kind == 'k' ? 1u : 3u); ++k)
+      if (tok[k].find_first_of(",()=\"'{}") != std::string::npos)
+        fail(l, k == 0 ? "an element name without , ( ) = \" ' { }" : "a node name without , ( ) = \" ' { }",
+             "\"" + tok[k] + "\" (ngspice reads these characters as separators or syntax: rename it)");
+    // ngspice's hierarchical name: kind letter, instance path, element name (l.x1.l1)
+    const auto hier = [&](const std::string& t) {
+      return prefix.empty() ? t : std::string(1, t[0]) + "." + prefix + lower(t);
+    };
+    const std::string name = hier(tok[0]);
+    const std::string key = lower(name);
+    if (names.count(key))
+      fail(l, "a new element name", "duplicate " + name + " (first at " + out_lines[names[key]] + ")");
+    const auto number = [&](const std::string& text, const std::string& what) {
+      if (!text.empty() && text.front() == '{') {
+        if (text.back() != '}') fail(l, what, "\"" + text + "\" (no closing '}')");
+        return evaluate(l, text.substr(1, text.size() - 2), params, what);
+      }
+      const std::string t = lower(text);
+      if (!t.empty() && (std::isalpha(static_cast<unsigned char>(t[0])) || t[0] == '_') && params.count(t))
+        return params.at(t);  // a parameter's name without braces (Xyce, and ngspice's numparam)
+      try {
+        std::string ignored;
+        const Rational v = parse_spice_value(text, &ignored, dialect);
+        if (!ignored.empty())
+          out.warnings.push_back(l.where() + ": " + name + ": \"" + text + "\" read as " + shown(v) +
+                                 " (the letters \"" + ignored +
+                                 "\" are neither a scale factor nor a unit; ngspice ignores them too)");
+        return v;
+      } catch (const std::invalid_argument& e) {
+        if (const auto v = bare_expression(l, text, params, name)) return *v;
+        refuse_value(l, what, text, e.what());
+      }
+    };
+    if (kind == 'k') {
+      std::vector<std::string> inductors;
+      for (std::size_t a = 1; a + 1 < tok.size(); ++a) inductors.push_back(lower(hier(tok[a])));
+      coupling_element(l, tok, name, prefix, inductors, number);
+      names[key] = out_lines.size();
+      out_lines.push_back(l.where());
+      return;
+    }
+    names[key] = out_lines.size();
+    out_lines.push_back(l.where());
+    reference::Branch<Rational> b;
+    b.name = name;
+    const auto node = [&](const std::string& t) -> long {
+      const std::string s = node_in(t, prefix, ports);
+      if (s == "0") return -1;
+      if (!nodes.count(s)) {
+        nodes[s] = out.node_names.size();
+        out.node_names.push_back(s);
+      }
+      return static_cast<long>(nodes[s]);
+    };
+    b.from = node(tok[1]);
+    b.to = node(tok[2]);
+    reference::RlcBranch<Rational> rb{name, reference::RlcKind::wire, b.from, b.to, Rational(0), 0};
+    if (kind == 'v' || kind == 'i') {
+      source_element(l, tok, kind, name, number, b, rb);
+      return;
+    }
+    std::optional<Rational> ic;
+    passive_kind(l, kind, name, passive_value(l, tok, kind, name, number, ic), b, rb);
     out.circuit.branches.push_back(b);
     out.rlc.branches.push_back(rb);
     out.initial.push_back(ic);

@@ -95,6 +95,103 @@ struct Jets {
 
 }  // namespace
 
+namespace {
+
+/// The tower of CEF (1.6) with u's blocks as few as it uses: a result whose last block is used is recomputed with
+/// twice as many (N + 2 always suffice: at most N + 1 steps, each one derivative more); `orders` set to them.
+IdeTower<Rational> dae_tower(const io::DaeCase& c, const Matrix<Rational>& f, Index s, Index& orders) {
+  using M = Matrix<Rational>;
+  const Index n = c.variables.size();
+  const auto uses_last_block = [&](const IdeTower<Rational>& t) {
+    const auto any = [&](const M& g) {
+      for (Index i = 0; i < g.rows(); ++i)
+        for (Index j = s * (t.orders - 1); j < g.cols(); ++j)
+          if (g(i, j) != 0) return true;
+      return false;
+    };
+    if (t.orders == 0) return false;
+    for (const IdeLevel<Rational>& l : t.levels)
+      if (any(l.g) || any(l.conditions)) return true;
+    return any(t.u_rate);
+  };
+  orders = s == 0 ? 0 : std::min<Index>(4, n + 2);
+  IdeTower<Rational> t = linear_ide_tower(c.e, c.a, f, orders);
+  while (orders > 0 && orders < n + 2 && uses_last_block(t)) {
+    orders = std::min<Index>(2 * orders, n + 2);
+    t = linear_ide_tower(c.e, c.a, f, orders);
+  }
+  return t;
+}
+
+/// Row i of a step's conditions, 0 = Σ c_j u_j(t), decided against the sources' formulas (identical formulas, two
+/// equal sources, summed first); `k` the step it was found for.
+SourceCondition dae_condition(const Matrix<Rational>& conditions, Index i, const Jets& jets, std::size_t k) {
+  std::string text;
+  std::map<std::string, std::pair<Rational, ex::Expr>> same;
+  for (Index j = 0; j < conditions.cols(); ++j)
+    if (conditions(i, j) != 0) {
+      const Rational& q = conditions(i, j);
+      auto& entry = same.try_emplace(ex::to_text(jets.at(j), {"t"}), Rational(0), jets.at(j)).first->second;
+      entry.first += q;
+      const std::string mag = abs(q) == 1 ? "" : Rational(abs(q)).str() + "*";
+      text += (text.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + jets.names[j];
+    }
+  ex::Expr g = ex::number(0);
+  for (const auto& [formula, term] : same)
+    if (term.first != 0) g = ex::add(g, ex::mul(ex::number(term.first), term.second));
+  SourceCondition sc;
+  sc.text = text + " = 0";
+  sc.holds = vanishes_identically(g, sc.evidence);
+  if (sc.holds.yes() && ex::is_number(g, 0) && same.size() > 0) sc.evidence = "identical formulas cancel";
+  sc.evidence = "found for M_" + std::to_string(k + 1) + "; " + sc.evidence;
+  return sc;
+}
+
+/// x' = X x + K λ + S u on M_c: X = t.x_rate, K = t.gauge, S the columns of t.u_rate the output uses.
+Motion<Rational> dae_motion(const IdeTower<Rational>& t, Index n, const std::vector<bool>& used,
+                            const std::vector<std::size_t>& column, const std::vector<std::string>& jets) {
+  Motion<Rational> mo;
+  for (Index i = 0; i < n; ++i) mo.coordinates.push_back(i);
+  mo.f_matrix.assign(n, std::vector<Rational>(n));
+  mo.f.assign(n, Rational(0));
+  mo.g.assign(n, std::vector<Rational>(t.gauge.cols()));
+  mo.source_columns = jets;
+  mo.s.assign(n, std::vector<Rational>(jets.size()));
+  for (Index i = 0; i < n; ++i) {
+    for (Index j = 0; j < n; ++j) mo.f_matrix[i][j] = t.x_rate(i, j);
+    for (Index j = 0; j < t.gauge.cols(); ++j) mo.g[i][j] = t.gauge(i, j);
+    for (Index j = 0; j < static_cast<Index>(used.size()); ++j)
+      if (used[j]) mo.s[i][column[j] - n] = t.u_rate(i, j);
+  }
+  return mo;
+}
+
+/// The exact route takes dense rational matrices only (io::DaeCase's limits); std::invalid_argument beyond.
+void require_dense(const io::DaeCase& c) {
+  if (!c.dense)
+    throw std::invalid_argument("E and A are " + std::to_string(c.rows) + " × " + std::to_string(c.variables.size()) +
+                                ": the exact route (CEF (1.6) on dense rational matrices) takes at most " +
+                                std::to_string(io::DaeCase::dense_limit) + " entries (m·N) and " +
+                                std::to_string(io::DaeCase::dense_side) +
+                                " rows or columns; `dcad solve --backend fast` takes the sparse route (simulate and "
+                                "check need the exact tower)");
+}
+
+/// The jet columns (of u's `u`) any output of the tower uses: G, the fresh G, the conditions, the rate of u.
+std::vector<bool> used_jets(const IdeTower<Rational>& t, Index u) {
+  std::vector<bool> used(u, false);
+  const auto mark = [&](const Matrix<Rational>& g) {
+    for (Index i = 0; i < g.rows(); ++i)
+      for (Index j = 0; j < g.cols(); ++j)
+        if (g(i, j) != 0) used[j] = true;
+  };
+  for (const IdeLevel<Rational>& l : t.levels) mark(l.g), mark(l.fresh_g), mark(l.conditions);
+  mark(t.u_rate);
+  return used;
+}
+
+}  // namespace
+
 dcad::Solution<Rational> dae_result(const io::DaeCase& c, const std::string& backend) {
   dcad::Solution<Rational> out;
   out.backend = backend;
@@ -108,38 +205,14 @@ dcad::Solution<Rational> dae_result(const io::DaeCase& c, const std::string& bac
 
 dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   using M = Matrix<Rational>;
-  if (!c.dense)
-    throw std::invalid_argument("E and A are " + std::to_string(c.rows) + " × " + std::to_string(c.variables.size()) +
-                                ": the exact route (CEF (1.6) on dense rational matrices) takes at most " +
-                                std::to_string(io::DaeCase::dense_limit) + " entries (m·N) and " +
-                                std::to_string(io::DaeCase::dense_side) +
-                                " rows or columns; `dcad solve --backend fast` takes the sparse route (simulate and "
-                                "check need the exact tower)");
+  require_dense(c);
   const Index n = c.variables.size(), m = c.equations();
   const Jets probe(c, 0);
   const Index s = probe.rows.size();
   M f(m, s);  // F: the sources' rows
   for (Index k = 0; k < s; ++k) f(probe.rows[k], k) = 1;
-  // u's blocks: as few as the tower uses — a result whose last block is used is recomputed with twice
-  // as many (N + 2 always suffice: at most N + 1 steps, each one derivative more)
-  const auto uses_last_block = [&](const IdeTower<Rational>& t) {
-    const auto any = [&](const M& g) {
-      for (Index i = 0; i < g.rows(); ++i)
-        for (Index j = s * (t.orders - 1); j < g.cols(); ++j)
-          if (g(i, j) != 0) return true;
-      return false;
-    };
-    if (t.orders == 0) return false;
-    for (const IdeLevel<Rational>& l : t.levels)
-      if (any(l.g) || any(l.conditions)) return true;
-    return any(t.u_rate);
-  };
-  Index orders = s == 0 ? 0 : std::min<Index>(4, n + 2);
-  IdeTower<Rational> t = linear_ide_tower(c.e, c.a, f, orders);
-  while (orders > 0 && orders < n + 2 && uses_last_block(t)) {
-    orders = std::min<Index>(2 * orders, n + 2);
-    t = linear_ide_tower(c.e, c.a, f, orders);
-  }
+  Index orders = 0;
+  const IdeTower<Rational> t = dae_tower(c, f, s, orders);
   const Jets jets(c, orders);
 
   dcad::Solution<Rational> out = dae_result(c, "reference");
@@ -148,14 +221,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
                                ex::to_text(c.f[jets.rows[k]], {c.time_name.empty() ? "t" : c.time_name}));
   // the jet columns any output uses, in u's order
   const Index u = s * orders;
-  std::vector<bool> used(u, false);
-  const auto mark = [&](const M& g) {
-    for (Index i = 0; i < g.rows(); ++i)
-      for (Index j = 0; j < g.cols(); ++j)
-        if (g(i, j) != 0) used[j] = true;
-  };
-  for (const IdeLevel<Rational>& l : t.levels) mark(l.g), mark(l.fresh_g), mark(l.conditions);
-  mark(t.u_rate);
+  const std::vector<bool> used = used_jets(t, u);
   std::vector<std::size_t> column(u, 0);
   for (Index j = 0; j < u; ++j)
     if (used[j]) {
@@ -177,25 +243,8 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
     const IdeLevel<Rational>& l = t.levels[k];
     bool empty = false, open = false;                  // a condition of this step fails; one is undecided
     for (Index i = 0; i < l.conditions.rows(); ++i) {  // 0 = Σ c_j u_j(t): decided against f
-      std::string text;
-      std::map<std::string, std::pair<Rational, ex::Expr>> same;  // identical formulas (two equal sources) summed first
-      for (Index j = 0; j < u; ++j)
-        if (l.conditions(i, j) != 0) {
-          const Rational& q = l.conditions(i, j);
-          auto& entry = same.try_emplace(ex::to_text(jets.at(j), {"t"}), Rational(0), jets.at(j)).first->second;
-          entry.first += q;
-          const std::string mag = abs(q) == 1 ? "" : Rational(abs(q)).str() + "*";
-          text += (text.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + jets.names[j];
-        }
-      if (!seen.insert(text).second) continue;  // found again at a later step: said once
-      ex::Expr g = ex::number(0);
-      for (const auto& [formula, term] : same)
-        if (term.first != 0) g = ex::add(g, ex::mul(ex::number(term.first), term.second));
-      SourceCondition sc;
-      sc.text = text + " = 0";
-      sc.holds = vanishes_identically(g, sc.evidence);
-      if (sc.holds.yes() && ex::is_number(g, 0) && same.size() > 0) sc.evidence = "identical formulas cancel";
-      sc.evidence = "found for M_" + std::to_string(k + 1) + "; " + sc.evidence;
+      SourceCondition sc = dae_condition(l.conditions, i, jets, k);
+      if (!seen.insert(sc.text).second) continue;  // found again at a later step: said once
       if (sc.holds.no()) empty = true;
       if (sc.holds.unknown()) open = true;
       out.source_conditions.push_back(sc);
@@ -224,20 +273,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
     std::vector<Equation<Rational>> fin;
     for (Index i = 0; i < last.c.rows(); ++i) fin.push_back(equation(last.c, last.g, i));
     out.final_constraints = fin;
-    Motion<Rational> mo;
-    for (Index i = 0; i < n; ++i) mo.coordinates.push_back(i);
-    mo.f_matrix.assign(n, std::vector<Rational>(n));
-    mo.f.assign(n, Rational(0));
-    mo.g.assign(n, std::vector<Rational>(t.gauge.cols()));
-    mo.source_columns = out.jets;
-    mo.s.assign(n, std::vector<Rational>(out.jets.size()));
-    for (Index i = 0; i < n; ++i) {
-      for (Index j = 0; j < n; ++j) mo.f_matrix[i][j] = t.x_rate(i, j);
-      for (Index j = 0; j < t.gauge.cols(); ++j) mo.g[i][j] = t.gauge(i, j);
-      for (Index j = 0; j < u; ++j)
-        if (used[j]) mo.s[i][column[j] - n] = t.u_rate(i, j);
-    }
-    out.motion = mo;
+    out.motion = dae_motion(t, n, used, column, out.jets);
   }
   if (c.e.rows() == c.e.cols()) out.regular_pencil = regular_pencil(c.e, c.a);
   out.certified = certain ? yes : unknown;

@@ -139,6 +139,27 @@ class Model {
   Eigen::SimplicialLLT<SpMat> cww_, grr_, schur_;
   Vec rdiag_g_, cdiag_;
   std::string name(long node) const;
+  std::size_t vertex(long node) const;  ///< a node's DC vertex: its supernode + 1 (0: ground's)
+  /// `.ic` holds at DC: a held node fixes its DC node's (forest root's) level P, e_node = P + t + o_node σ (`on`);
+  /// std::domain_error where two holds, or a hold and ground, contradict each other.
+  struct DcHolds {
+    std::vector<double> fixed;   ///< per root: its level where held
+    std::vector<bool> is_fixed;  ///< per root: held
+    std::vector<long> hold_at;   ///< per root: the vertex whose hold source feeds it (−1: none)
+  };
+  DcHolds dc_holds(const std::vector<std::pair<long, double>>& held, const rlc::Forest& fl,
+                   const std::vector<double>& t, const Vec& on) const;
+  /// The resistors on the DC nodes (`dc`: a root's unknown index, −1 when its level is known): a Laplacian grounded
+  /// at ground's DC node into `tg` and `rhs`, known levels and offsets moved to the right; their DC-node ends.
+  void dc_resistors(const rlc::Forest& fl, const std::vector<long>& dc, const std::vector<double>& t,
+                    const DcHolds& holds, const Vec& obs, std::vector<Eigen::Triplet<double>>& tg, Vec& rhs,
+                    std::vector<std::pair<std::size_t, std::size_t>>& rends, std::vector<bool>& rall) const;
+  /// The inductor currents at DC (operating_point): KCL along the inductor forest `fl`, leaves first, with the
+  /// outflow of resistors (at the supernode potentials E) and current sources; a hold source (`.ic`) delivers
+  /// what its DC node's KCL lacks, at its own vertex hold_at[root].
+  Vec dc_inductor_currents(const Vec& E, const double* sigma, const Vec& obs, const rlc::Forest& fl,
+                           const std::vector<std::pair<std::size_t, std::size_t>>& ends,
+                           const std::vector<bool>& is_fixed, const std::vector<long>& hold_at) const;
   /// ib (per branch) of the voltage sources and wires from KCL with every other branch's value in ib.
   void source_currents(std::vector<double>& ib) const;
 };
