@@ -2,6 +2,7 @@
 // constrained Lagrangian, and YM Thm 5.6: the implicit Lagrange–d'Alembert equations (5.6) hold along
 // the motion the CAD computes (CEF §5, reference/nonlinear/pointwise.hpp) — two routes to the same dynamics.
 // Goldens: YM §6's rolling disk (exactly, at rational points of the circle) and L-C circuit.
+#include "dcad/fast/implicit_lagrangian.hpp"
 #include "dcad/reference/nonlinear/ehresmann.hpp"
 #include "dcad/reference/nonlinear/pointwise.hpp"
 #include "expr_gen.hpp"
@@ -194,4 +195,144 @@ RC_GTEST_PROP(Ehresmann, HeisenbergCurvatureTermHoldsAlongTheCadMotion, ()) {
   RC_ASSERT(conn.s == std::vector<std::size_t>{0});
   const std::vector<Q> qv(x0.begin(), x0.begin() + 6), qv_dot(r.velocity.begin(), r.velocity.begin() + 6);
   for (const Q& e : reference::implicit_lagrange_dalembert_residual(s, conn, qv, qv_dot)) RC_ASSERT(e == 0);
+}
+
+namespace {
+
+double dbl(const Q& x) { return x.convert_to<double>(); }
+
+/// A(q), ∂A/∂q^i and K(q) of a connection at q (formulas evaluated exactly by `at`), in (r, s) order.
+struct ConnectionAt {
+  reference::Matrix<Q> a;
+  std::vector<reference::Matrix<Q>> da, k;
+};
+template <class At>
+ConnectionAt connection_at(const reference::EhresmannConnection& c, const At& at) {
+  const std::size_t m = c.s.size(), d = c.r.size();
+  ConnectionAt out{reference::Matrix<Q>(m, d), {}, {}};
+  std::vector<std::size_t> order = c.r;
+  order.insert(order.end(), c.s.begin(), c.s.end());
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t al = 0; al < d; ++al) out.a(b, al) = at(c.a[b][al]);
+  for (std::size_t i : order) {
+    reference::Matrix<Q> di(m, d);
+    for (std::size_t b = 0; b < m; ++b)
+      for (std::size_t al = 0; al < d; ++al) di(b, al) = at(ex::diff(c.a[b][al], i));
+    out.da.push_back(di);
+  }
+  const auto kf = reference::curvature(c);
+  for (std::size_t b = 0; b < m; ++b) {
+    reference::Matrix<Q> kb(d, d);
+    for (std::size_t al = 0; al < d; ++al)
+      for (std::size_t be = 0; be < d; ++be) kb(al, be) = at(kf[b][al][be]);
+    out.k.push_back(kb);
+  }
+  return out;
+}
+
+/// fast's B_P^♯ (the canonical brackets of P's coordinate functions) against the reference's (5.9) entries.
+void expect_twins_agree(const ConnectionAt& c, const std::vector<Q>& p_rs) {
+  const std::size_t m = c.a.rows(), d = c.a.cols();
+  const std::vector<Q> p_s(p_rs.begin() + static_cast<long>(d), p_rs.end());
+  const reference::Matrix<Q> exact = reference::constrained_poisson_tensor(c.a, c.k, p_s);
+  Eigen::MatrixXd a(m, d);
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t al = 0; al < d; ++al) a(b, al) = dbl(c.a(b, al));
+  std::vector<Eigen::MatrixXd> da;
+  for (const auto& di : c.da) {
+    Eigen::MatrixXd x(m, d);
+    for (std::size_t b = 0; b < m; ++b)
+      for (std::size_t al = 0; al < d; ++al) x(b, al) = dbl(di(b, al));
+    da.push_back(x);
+  }
+  Eigen::VectorXd p(p_rs.size());
+  for (std::size_t i = 0; i < p_rs.size(); ++i) p(static_cast<Eigen::Index>(i)) = dbl(p_rs[i]);
+  const Eigen::MatrixXd fast = fast::constrained_poisson_tensor(a, da, p);
+  ASSERT_EQ(static_cast<std::size_t>(fast.rows()), exact.rows());
+  double scale = 1;
+  for (std::size_t i = 0; i < exact.rows(); ++i)
+    for (std::size_t j = 0; j < exact.cols(); ++j) scale = std::max(scale, std::abs(dbl(exact(i, j))));
+  for (std::size_t i = 0; i < exact.rows(); ++i)
+    for (std::size_t j = 0; j < exact.cols(); ++j)
+      RC_ASSERT(std::abs(fast(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - dbl(exact(i, j))) <=
+                1e-12 * scale * static_cast<double>(2 * d + m));
+}
+
+}  // namespace
+
+// YM (5.9) on its own example, the rolling disk of §6 (r = (theta, phi), s = (x, y)): B_P^♯ is YM's printed
+// matrix except the (p~_1, p~_2) entry, printed +p_b K^b_12 — that matrix is not skew, while B_P = B|_{T*P×T*P}
+// of a Poisson tensor must be; (5.9) gives −p_b K^b_12 (ERRATA).  Exactly, at rational points of the circle and
+// momenta off P (where p_b K^b_12 ≠ 0; on P it vanishes for the disk).  fast reaches the same matrix from the
+// canonical brackets of p~_α = p_α − A^b_α p_b, without K.  Killed by: the printed sign, a transposed A block.
+TEST(Ehresmann, BpSharpOfTheRollingDiskIsYMsWithErratasSign) {
+  const Q m(2), inertia(1, 2), jj(1, 4), rr(1, 3);
+  const reference::EhresmannConnection conn =
+      reference::ehresmann_connection(rolling_disk(m, inertia, jj, rr), {Q(0), Q(0), Q(0), Q(0)});
+  for (int t = -3; t <= 3; ++t) {
+    const Q c = Q(1 - t * t, 1 + t * t), s = Q(2 * t, 1 + t * t);
+    const std::vector<Q> qv{Q(1, 2), Q(-2), Q(3), Q(0), Q(0), Q(0), Q(0), Q(0)};
+    const ConnectionAt at = connection_at(conn, [&](const ex::Expr& e) { return at_angle(e, qv, c, s); });
+    const std::vector<Q> p_rs{Q(3, 5), Q(-1, 7), Q(2), Q(-5, 3)};  // (p_theta, p_phi, p_x, p_y)
+    const reference::Matrix<Q> bp = reference::constrained_poisson_tensor(at.a, at.k, {p_rs[2], p_rs[3]});
+    const Q pk = p_rs[2] * rr * s - p_rs[3] * rr * c;  // p_b K^b_12 with K¹_12 = R sin phi, K²_12 = −R cos phi
+    ASSERT_NE(pk, 0);
+    std::vector<std::vector<Q>> printed = {{0, 0, 0, 0, 1, 0},
+                                           {0, 0, 0, 0, 0, 1},
+                                           {0, 0, 0, 0, rr * c, 0},
+                                           {0, 0, 0, 0, rr * s, 0},
+                                           {-1, 0, -rr * c, -rr * s, 0, pk},
+                                           {0, -1, 0, 0, pk, 0}};
+    bool printed_skew = true;
+    for (std::size_t i = 0; i < 6; ++i)
+      for (std::size_t j = 0; j < 6; ++j) printed_skew = printed_skew && printed[i][j] == -printed[j][i];
+    EXPECT_FALSE(printed_skew) << "YM's printed (5, 6) entry";
+    printed[4][5] = -pk;  // ERRATA: −p_b K^b_12
+    for (std::size_t i = 0; i < 6; ++i)
+      for (std::size_t j = 0; j < 6; ++j) EXPECT_EQ(bp(i, j), printed[i][j]) << i << ", " << j << " at t = " << t;
+    // (5.10): {p~_1, p~_2}_P = −p_b K^b_12 and {theta, p~_1}_P = 1
+    EXPECT_EQ(reference::constrained_bracket(bp, {0, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1}), -pk);
+    EXPECT_EQ(reference::constrained_bracket(bp, {1, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 1, 0}), 1);
+    expect_twins_agree(at, p_rs);
+  }
+}
+
+// YM's L-C circuit (§6): KCL is holonomic, K = 0, and B_P^♯ has no curvature term (YM's last matrix of §6).
+TEST(Ehresmann, BpSharpOfTheLcCircuitHasNoCurvatureTerm) {
+  reference::EhresmannConnection conn;  // s = (q_L, q_C1), r = (q_C2, q_C3), A = [[−1, 0], [−1, 1]]
+  conn.r = {2, 3};
+  conn.s = {0, 1};
+  conn.a = {{ex::number(-1), ex::number(0)}, {ex::number(-1), ex::number(1)}};
+  const ConnectionAt at =
+      connection_at(conn, [](const ex::Expr& e) { return reference::value_at(e, std::vector<Q>(8)); });
+  const reference::Matrix<Q> bp = reference::constrained_poisson_tensor(at.a, at.k, {Q(7), Q(-3)});
+  EXPECT_EQ(bp(4, 5), 0);
+  EXPECT_EQ(bp(2, 4), 1);   // {q_L, p~_1} = −A¹_1
+  EXPECT_EQ(bp(3, 5), -1);  // {q_C1, p~_2} = −A²_2
+  expect_twins_agree(at, {Q(1), Q(2), Q(7), Q(-3)});
+}
+
+// Over random connections affine in q (n ≤ 5, m ≤ 2): the reference's (5.9) with the curvature formula equals
+// fast's canonical brackets of P's coordinate functions — two routes to B_P = B|_{T*P×T*P} [YM §5].  Killed by: a
+// sign or index of K's four terms, of the A blocks, or of the bracket.
+RC_GTEST_PROP(Ehresmann, BpSharpIsTheCanonicalBracketOfPsCoordinates, ()) {
+  const std::size_t d = *rc::gen::inRange<std::size_t>(1, 4), m = *rc::gen::inRange<std::size_t>(1, 3), n = d + m;
+  const auto small = [] { return Q(*rc::gen::inRange(-4, 5), *rc::gen::inRange(1, 4)); };
+  reference::EhresmannConnection conn;
+  for (std::size_t i = 0; i < d; ++i) conn.r.push_back(i);
+  for (std::size_t i = 0; i < m; ++i) conn.s.push_back(d + i);
+  conn.a.assign(m, std::vector<ex::Expr>(d));
+  for (auto& row : conn.a)
+    for (auto& e : row) {  // A^b_α(q) = c + Σ g_i q^i + h q^i q^j: affine and one product
+      e = ex::number(small());
+      for (std::size_t i = 0; i < n; ++i) e = ex::add(e, ex::mul(ex::number(small()), ex::variable(i)));
+      const std::size_t i = *rc::gen::inRange<std::size_t>(0, n), j = *rc::gen::inRange<std::size_t>(0, n);
+      e = ex::add(e, ex::mul(ex::number(small()), ex::mul(ex::variable(i), ex::variable(j))));
+    }
+  std::vector<Q> q(2 * n);
+  for (std::size_t i = 0; i < n; ++i) q[i] = small();
+  const ConnectionAt at = connection_at(conn, [&](const ex::Expr& e) { return reference::value_at(e, q); });
+  std::vector<Q> p(n);
+  for (auto& x : p) x = small();
+  expect_twins_agree(at, p);
 }

@@ -162,4 +162,30 @@ LinearSystem implicit_hamiltonian_system(const HamiltonianInput& in, const Optio
   return s;
 }
 
+MatrixXd constrained_poisson_tensor(const MatrixXd& a, const std::vector<MatrixXd>& da, const VectorXd& p) {
+  const Eigen::Index m = a.rows(), d = a.cols(), n = d + m;
+  if (static_cast<Eigen::Index>(da.size()) != n || p.size() != n)
+    throw std::invalid_argument("constrained_poisson_tensor: expected dA for each of the " + std::to_string(n) +
+                                " coordinates and p of " + std::to_string(n) + ", found " + std::to_string(da.size()) +
+                                " and " + std::to_string(p.size()));
+  for (const MatrixXd& di : da)
+    if (di.rows() != m || di.cols() != d)
+      throw std::invalid_argument("constrained_poisson_tensor: expected each dA of " + std::to_string(m) + " × " +
+                                  std::to_string(d) + ", found " + std::to_string(di.rows()) + " × " +
+                                  std::to_string(di.cols()));
+  // each coordinate function's gradient (∂_q, ∂_p) on T*Q, as rows of gq and gp
+  MatrixXd gq = MatrixXd::Zero(2 * d + m, n), gp = MatrixXd::Zero(2 * d + m, n);
+  for (Eigen::Index i = 0; i < n; ++i) gq(i, i) = 1;  // r^α and s^a
+  const VectorXd ps = p.tail(m);
+  for (Eigen::Index al = 0; al < d; ++al) {  // p̃_α = p_α − Σ_b A^b_α p_b
+    for (Eigen::Index i = 0; i < n; ++i) gq(n + al, i) = -da[static_cast<std::size_t>(i)].col(al).dot(ps);
+    gp(n + al, al) = 1;
+    for (Eigen::Index b = 0; b < m; ++b) gp(n + al, d + b) = -a(b, al);
+  }
+  const MatrixXd out = gq * gp.transpose() - gp * gq.transpose();
+  if (!out.allFinite() || !a.allFinite() || !p.allFinite())
+    throw std::invalid_argument("constrained_poisson_tensor: expected finite A, dA and p");
+  return out;
+}
+
 }  // namespace dcad::fast

@@ -18,4 +18,11 @@ VectorXd dirac_differential(const PontryaginInput& in, const VectorXd& q, const 
 AffineSubspace implicit_lagrangian_fields(const PontryaginInput& in, const VectorXd& q, const VectorXd& v,
                                           const Options& opt = {});
 
+/// B_P^♯ of YM (5.9) by its definition B_P = B|_{T*P × T*P}: the canonical brackets {f, g} = ∂_q f·∂_p g − ∂_p f·∂_q g
+/// of P's coordinate functions (r^α, s^a, p̃_α), p̃_α = p_{r^α} − A^b_α(q) p_{s^b} = ∂L_c/∂u^α, at (q, p) — a
+/// different route from the reference's entries with the curvature K.  q and p ordered (r, s); `a` = A(q)
+/// (m × (n − m)); `da[i]` = ∂A/∂q^i for the n coordinates (r, s); `p` = (p_r, p_s).  std::invalid_argument on sizes
+/// or values that are not finite.
+MatrixXd constrained_poisson_tensor(const MatrixXd& a, const std::vector<MatrixXd>& da, const VectorXd& p);
+
 }  // namespace dcad::fast

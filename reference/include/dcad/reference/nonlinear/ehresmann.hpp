@@ -4,10 +4,12 @@
 // (expression.hpp); nothing is decided here but the choice of the fibre coordinates at a point.
 #pragma once
 
+#include "dcad/reference/matrix.hpp"
 #include "dcad/reference/nonlinear/jet.hpp"
 #include "dcad/reference/nonlinear/lagrangian_system.hpp"
 
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace dcad::reference {
@@ -89,6 +91,63 @@ inline std::vector<std::vector<std::vector<expr::Expr>>> curvature(const Ehresma
                                      expr::mul(c.a[a][be], expr::diff(c.a[b][al], c.s[a]))));
         out[b][al][be] = e;
       }
+  return out;
+}
+
+/// YM (5.9), literally: B_P^♯ at a point y = (q, p̃) of P = FL(Δ_Q), the (2n − m) × (2n − m) matrix in the
+/// coordinates (r^α, s^a, p̃_α) of P —
+///   [[0, 0, δ], [0, 0, −A^a_β], [−δ, (A^b_α)ᵀ, −p_b K^b_{αβ}]],
+/// from the connection's A^b_α(q) (`a`: m × (n − m)), its curvature K^b_{αβ}(q) (`k[b]`: (n − m) × (n − m),
+/// skew) and p_b = ∂L/∂w^b at y (`p_s`), all evaluated at q.  YM's own disk (§6) prints the (p̃_1, p̃_2) entry
+/// as +p_b K^b_12; (5.9) and the bracket {p̃_1, p̃_2} of B = the canonical Poisson tensor say −p_b K^b_12
+/// (ERRATA).  std::invalid_argument on sizes or a K that is not skew.
+inline Matrix<Rational> constrained_poisson_tensor(const Matrix<Rational>& a, const std::vector<Matrix<Rational>>& k,
+                                                   const std::vector<Rational>& p_s) {
+  const Index m = a.rows(), d = a.cols(), n = 2 * d + m;
+  if (k.size() != m || p_s.size() != m)
+    throw std::invalid_argument("constrained_poisson_tensor: expected K and p_s with one entry per fibre coordinate (" +
+                                std::to_string(m) + "), found " + std::to_string(k.size()) + " and " +
+                                std::to_string(p_s.size()));
+  Matrix<Rational> b(n, n);
+  for (Index al = 0; al < d; ++al) {
+    b(al, d + m + al) = 1;  // {r^α, p̃_β} = δ^α_β
+    b(d + m + al, al) = -1;
+  }
+  for (Index s = 0; s < m; ++s) {
+    if (k[s].rows() != d || k[s].cols() != d)
+      throw std::invalid_argument("constrained_poisson_tensor: expected K^" + std::to_string(s + 1) + " of " +
+                                  std::to_string(d) + " × " + std::to_string(d) + ", found " +
+                                  std::to_string(k[s].rows()) + " × " + std::to_string(k[s].cols()));
+    for (Index be = 0; be < d; ++be) {
+      b(d + s, d + m + be) = -a(s, be);  // {s^a, p̃_β} = −A^a_β
+      b(d + m + be, d + s) = a(s, be);   // (A^b_α)ᵀ
+    }
+  }
+  for (Index al = 0; al < d; ++al)
+    for (Index be = 0; be < d; ++be) {
+      Rational pk = 0;
+      for (Index s = 0; s < m; ++s) {
+        if (k[s](al, be) != -k[s](be, al))
+          throw std::invalid_argument("constrained_poisson_tensor: expected a skew curvature K^" +
+                                      std::to_string(s + 1) + ", found K(" + std::to_string(al + 1) + ", " +
+                                      std::to_string(be + 1) + ") = " + k[s](al, be).str() + " against " +
+                                      k[s](be, al).str());
+        pk += p_s[s] * k[s](al, be);
+      }
+      b(d + m + al, d + m + be) = -pk;  // −p_b K^b_{αβ}
+    }
+  return b;
+}
+
+/// YM (5.10): {F_P, G_P}_P = dF_P · B_P^♯ dG_P, with dF, dG in P's coordinates (r, s, p̃).
+inline Rational constrained_bracket(const Matrix<Rational>& bp, const std::vector<Rational>& df,
+                                    const std::vector<Rational>& dg) {
+  if (df.size() != bp.rows() || dg.size() != bp.cols())
+    throw std::invalid_argument("constrained_bracket: expected differentials of " + std::to_string(bp.rows()) +
+                                " entries, found " + std::to_string(df.size()) + " and " + std::to_string(dg.size()));
+  Rational out = 0;
+  for (Index i = 0; i < bp.rows(); ++i)
+    for (Index j = 0; j < bp.cols(); ++j) out += df[i] * bp(i, j) * dg[j];
   return out;
 }
 
