@@ -8,6 +8,7 @@
 #include "expr_gen.hpp"
 
 #include <gtest/gtest.h>
+#include <limits>
 #include <rapidcheck/gtest.h>
 
 using namespace dcad;
@@ -230,8 +231,9 @@ ConnectionAt connection_at(const reference::EhresmannConnection& c, const At& at
   return out;
 }
 
-/// fast's B_P^♯ (the canonical brackets of P's coordinate functions) against the reference's (5.9) entries.
-void expect_twins_agree(const ConnectionAt& c, const std::vector<Q>& p_rs) {
+/// fast's B_P^♯ (the canonical brackets of P's coordinate functions) less the reference's (5.9) entries: the largest
+/// difference relative to the allowance (1e-12 × the largest entry × the size), > 1 where the twins differ.
+double twins_difference(const ConnectionAt& c, const std::vector<Q>& p_rs) {
   const std::size_t m = c.a.rows(), d = c.a.cols();
   const std::vector<Q> p_s(p_rs.begin() + static_cast<long>(d), p_rs.end());
   const reference::Matrix<Q> exact = reference::constrained_poisson_tensor(c.a, c.k, p_s);
@@ -248,14 +250,16 @@ void expect_twins_agree(const ConnectionAt& c, const std::vector<Q>& p_rs) {
   Eigen::VectorXd p(p_rs.size());
   for (std::size_t i = 0; i < p_rs.size(); ++i) p(static_cast<Eigen::Index>(i)) = dbl(p_rs[i]);
   const Eigen::MatrixXd fast = fast::constrained_poisson_tensor(a, da, p);
-  ASSERT_EQ(static_cast<std::size_t>(fast.rows()), exact.rows());
-  double scale = 1;
+  if (static_cast<std::size_t>(fast.rows()) != exact.rows() || static_cast<std::size_t>(fast.cols()) != exact.cols())
+    return std::numeric_limits<double>::infinity();
+  double scale = 1, worst = 0;
   for (std::size_t i = 0; i < exact.rows(); ++i)
     for (std::size_t j = 0; j < exact.cols(); ++j) scale = std::max(scale, std::abs(dbl(exact(i, j))));
   for (std::size_t i = 0; i < exact.rows(); ++i)
     for (std::size_t j = 0; j < exact.cols(); ++j)
-      RC_ASSERT(std::abs(fast(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - dbl(exact(i, j))) <=
-                1e-12 * scale * static_cast<double>(2 * d + m));
+      worst = std::max(worst,
+                       std::abs(fast(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - dbl(exact(i, j))));
+  return worst / (1e-12 * scale * static_cast<double>(2 * d + m));
 }
 
 }  // namespace
@@ -293,23 +297,30 @@ TEST(Ehresmann, BpSharpOfTheRollingDiskIsYMsWithErratasSign) {
     // (5.10): {p~_1, p~_2}_P = −p_b K^b_12 and {theta, p~_1}_P = 1
     EXPECT_EQ(reference::constrained_bracket(bp, {0, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1}), -pk);
     EXPECT_EQ(reference::constrained_bracket(bp, {1, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 1, 0}), 1);
-    expect_twins_agree(at, p_rs);
+    EXPECT_LE(twins_difference(at, p_rs), 1.0);
   }
 }
 
-// YM's L-C circuit (§6): KCL is holonomic, K = 0, and B_P^♯ has no curvature term (YM's last matrix of §6).
-TEST(Ehresmann, BpSharpOfTheLcCircuitHasNoCurvatureTerm) {
-  reference::EhresmannConnection conn;  // s = (q_L, q_C1), r = (q_C2, q_C3), A = [[−1, 0], [−1, 1]]
-  conn.r = {2, 3};
-  conn.s = {0, 1};
-  conn.a = {{ex::number(-1), ex::number(0)}, {ex::number(-1), ex::number(1)}};
+// YM's L-C circuit (§6): the connection dcad derives from KCL, s = (q_L, q_C1), r = (q_C2, q_C3), A = [[−1, 0],
+// [−1, 1]], is holonomic (K = 0), and B_P^♯ is YM's last matrix of §6, [[0, 0, δ], [0, 0, −A], [−δ, Aᵀ, 0]], entry for
+// entry.  Killed by: a connection solved for the wrong coordinates or sign, a transposed A block.
+TEST(Ehresmann, BpSharpOfTheLcCircuitIsYMs) {
+  reference::LagrangianSystem lc;
+  lc.n = 4;
+  lc.names = {"q_L", "q_C1", "q_C2", "q_C3"};
+  const auto v = [](Index i) { return ex::variable(4 + i); };
+  lc.lagrangian = ex::mul(ex::number(Q(1, 2)), ex::pow(v(0), 2));
+  lc.constraints = {ex::add(ex::neg(v(0)), v(2)), ex::sub(ex::add(ex::neg(v(1)), v(2)), v(3))};
+  const reference::EhresmannConnection conn = reference::ehresmann_connection(lc, {Q(0), Q(0), Q(0), Q(0)});
+  ASSERT_EQ(conn.s, (std::vector<std::size_t>{0, 1}));
   const ConnectionAt at =
       connection_at(conn, [](const ex::Expr& e) { return reference::value_at(e, std::vector<Q>(8)); });
   const reference::Matrix<Q> bp = reference::constrained_poisson_tensor(at.a, at.k, {Q(7), Q(-3)});
-  EXPECT_EQ(bp(4, 5), 0);
-  EXPECT_EQ(bp(2, 4), 1);   // {q_L, p~_1} = −A¹_1
-  EXPECT_EQ(bp(3, 5), -1);  // {q_C1, p~_2} = −A²_2
-  expect_twins_agree(at, {Q(1), Q(2), Q(7), Q(-3)});
+  const std::vector<std::vector<Q>> ym = {{0, 0, 0, 0, 1, 0},  {0, 0, 0, 0, 0, 1},    {0, 0, 0, 0, 1, 0},
+                                          {0, 0, 0, 0, 1, -1}, {-1, 0, -1, -1, 0, 0}, {0, -1, 0, 1, 0, 0}};
+  for (std::size_t i = 0; i < 6; ++i)
+    for (std::size_t j = 0; j < 6; ++j) EXPECT_EQ(bp(i, j), ym[i][j]) << i << ", " << j;
+  EXPECT_LE(twins_difference(at, {Q(1), Q(2), Q(7), Q(-3)}), 1.0);
 }
 
 // Over random connections affine in q (n ≤ 5, m ≤ 2): the reference's (5.9) with the curvature formula equals
@@ -334,5 +345,5 @@ RC_GTEST_PROP(Ehresmann, BpSharpIsTheCanonicalBracketOfPsCoordinates, ()) {
   const ConnectionAt at = connection_at(conn, [&](const ex::Expr& e) { return reference::value_at(e, q); });
   std::vector<Q> p(n);
   for (auto& x : p) x = small();
-  expect_twins_agree(at, p);
+  RC_ASSERT(twins_difference(at, p) <= 1.0);
 }

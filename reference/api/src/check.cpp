@@ -679,14 +679,6 @@ void compare_dae_final_constraints(Checker& k, const json& r, const reference::S
         "compared)");
 }
 
-/// A linear DAE's equations of motion on M_c, claimed in the result's own coordinates z = P x (a subset of
-/// the variables, as an index reducer leaves the differential ones): ż = F z + f + S u + G λ with u the
-/// sources' jets (`sources.columns`, named as dcad names them) and λ free.  They are right iff along every
-/// solution — at every consistent (x, u) (M_c's equations, over x and u) and for every velocity the DAE
-/// allows there (ẋ = X x + W u + gauge·μ, the reference's) — P ẋ − (F P x + f + S u) lies in span(G), and
-/// span(G) is no more than the free directions P·gauge.  Compared exactly on a basis of the consistent
-/// (x, u) (the kernel of M_c's rows) and at a point of it; within 1e-9 × entries × scale for floats.  F
-/// itself is not unique where z does not parametrize M_c: any F that gives the right ż passes.
 /// The result's reduced coordinates z = P x: indices of the case's variables, each named once.
 std::vector<std::size_t> reduced_coordinates(Checker& k, const json& coords,
                                              const std::vector<std::string>& variables) {
@@ -775,6 +767,14 @@ std::optional<std::pair<std::size_t, std::size_t>> first_nonzero(
   return std::nullopt;
 }
 
+/// A linear DAE's equations of motion on M_c, claimed in the result's own coordinates z = P x (a subset of
+/// the variables, as an index reducer leaves the differential ones): ż = F z + f + S u + G λ with u the
+/// sources' jets (`sources.columns`, named as dcad names them) and λ free.  They are right iff along every
+/// solution — at every consistent (x, u) (M_c's equations, over x and u) and for every velocity the DAE
+/// allows there (ẋ = X x + W u + gauge·μ, the reference's) — P ẋ − (F P x + f + S u) lies in span(G), and
+/// span(G) is no more than the free directions P·gauge.  Compared exactly on a basis of the consistent
+/// (x, u) (the kernel of M_c's rows) and at a point of it; within 1e-9 × entries × scale for floats.  F
+/// itself is not unique where z does not parametrize M_c: any F that gives the right ż passes.
 void compare_dae_reduced(Checker& k, const json& red, const reference::Solution& truth,
                          const std::vector<std::string>& variables) {
   const std::string key = "reduced";

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -124,8 +125,10 @@ IdeTower<Rational> dae_tower(const io::DaeCase& c, const Matrix<Rational>& f, In
 }
 
 /// Row i of a step's conditions, 0 = Σ c_j u_j(t), decided against the sources' formulas (identical formulas, two
-/// equal sources, summed first); `k` the step it was found for.
-SourceCondition dae_condition(const Matrix<Rational>& conditions, Index i, const Jets& jets, std::size_t k) {
+/// equal sources, summed first); `k` the step it was found for.  nullopt for one in `seen` (found at an earlier
+/// step: said once, not decided again).
+std::optional<SourceCondition> dae_condition(const Matrix<Rational>& conditions, Index i, const Jets& jets,
+                                             std::size_t k, std::set<std::string>& seen) {
   std::string text;
   std::map<std::string, std::pair<Rational, ex::Expr>> same;
   for (Index j = 0; j < conditions.cols(); ++j)
@@ -136,6 +139,7 @@ SourceCondition dae_condition(const Matrix<Rational>& conditions, Index i, const
       const std::string mag = abs(q) == 1 ? "" : Rational(abs(q)).str() + "*";
       text += (text.empty() ? (q < 0 ? "-" : "") : (q < 0 ? " - " : " + ")) + mag + jets.names[j];
     }
+  if (!seen.insert(text).second) return std::nullopt;
   ex::Expr g = ex::number(0);
   for (const auto& [formula, term] : same)
     if (term.first != 0) g = ex::add(g, ex::mul(ex::number(term.first), term.second));
@@ -243,11 +247,11 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
     const IdeLevel<Rational>& l = t.levels[k];
     bool empty = false, open = false;                  // a condition of this step fails; one is undecided
     for (Index i = 0; i < l.conditions.rows(); ++i) {  // 0 = Σ c_j u_j(t): decided against f
-      SourceCondition sc = dae_condition(l.conditions, i, jets, k);
-      if (!seen.insert(sc.text).second) continue;  // found again at a later step: said once
-      if (sc.holds.no()) empty = true;
-      if (sc.holds.unknown()) open = true;
-      out.source_conditions.push_back(sc);
+      const std::optional<SourceCondition> sc = dae_condition(l.conditions, i, jets, k, seen);
+      if (!sc) continue;  // found again at a later step: said once
+      if (sc->holds.no()) empty = true;
+      if (sc->holds.unknown()) open = true;
+      out.source_conditions.push_back(*sc);
     }
     // an undecided condition leaves the tower undecided from here — unless another of the same step fails:
     // then M_{k+1} = ∅ whatever the undecided one does
