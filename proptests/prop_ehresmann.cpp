@@ -326,24 +326,126 @@ TEST(Ehresmann, BpSharpOfTheLcCircuitIsYMs) {
 // Over random connections affine in q (n ≤ 5, m ≤ 2): the reference's (5.9) with the curvature formula equals
 // fast's canonical brackets of P's coordinate functions — two routes to B_P = B|_{T*P×T*P} [YM §5].  Killed by: a
 // sign or index of K's four terms, of the A blocks, or of the bracket.
-RC_GTEST_PROP(Ehresmann, BpSharpIsTheCanonicalBracketOfPsCoordinates, ()) {
-  const std::size_t d = *rc::gen::inRange<std::size_t>(1, 4), m = *rc::gen::inRange<std::size_t>(1, 3), n = d + m;
-  const auto small = [] { return Q(*rc::gen::inRange(-4, 5), *rc::gen::inRange(1, 4)); };
+namespace {
+
+Q small_rational() { return Q(*rc::gen::inRange(-4, 5), *rc::gen::inRange(1, 4)); }
+
+/// A random connection on q = (r, s), r the first d coordinates: A^b_α(q) = c + Σ g_i q^i + h q^i q^j, affine
+/// and one product (so A, ∂A and K all depend on the point).
+reference::EhresmannConnection random_connection(std::size_t d, std::size_t m) {
+  const std::size_t n = d + m;
   reference::EhresmannConnection conn;
   for (std::size_t i = 0; i < d; ++i) conn.r.push_back(i);
   for (std::size_t i = 0; i < m; ++i) conn.s.push_back(d + i);
   conn.a.assign(m, std::vector<ex::Expr>(d));
   for (auto& row : conn.a)
-    for (auto& e : row) {  // A^b_α(q) = c + Σ g_i q^i + h q^i q^j: affine and one product
-      e = ex::number(small());
-      for (std::size_t i = 0; i < n; ++i) e = ex::add(e, ex::mul(ex::number(small()), ex::variable(i)));
+    for (auto& e : row) {
+      e = ex::number(small_rational());
+      for (std::size_t i = 0; i < n; ++i) e = ex::add(e, ex::mul(ex::number(small_rational()), ex::variable(i)));
       const std::size_t i = *rc::gen::inRange<std::size_t>(0, n), j = *rc::gen::inRange<std::size_t>(0, n);
-      e = ex::add(e, ex::mul(ex::number(small()), ex::mul(ex::variable(i), ex::variable(j))));
+      e = ex::add(e, ex::mul(ex::number(small_rational()), ex::mul(ex::variable(i), ex::variable(j))));
     }
+  return conn;
+}
+
+}  // namespace
+
+RC_GTEST_PROP(Ehresmann, BpSharpIsTheCanonicalBracketOfPsCoordinates, ()) {
+  const std::size_t d = *rc::gen::inRange<std::size_t>(1, 4), m = *rc::gen::inRange<std::size_t>(1, 3), n = d + m;
+  const auto small = [] { return small_rational(); };
+  const reference::EhresmannConnection conn = random_connection(d, m);
   std::vector<Q> q(2 * n);
   for (std::size_t i = 0; i < n; ++i) q[i] = small();
   const ConnectionAt at = connection_at(conn, [&](const ex::Expr& e) { return reference::value_at(e, q); });
   std::vector<Q> p(n);
   for (auto& x : p) x = small();
   RC_ASSERT(twins_difference(at, p) <= 1.0);
+}
+
+// YM Prop 5.1 and the constrained energy after it, on random connections (random_connection) and random Lagrangians
+// L = Σ c_i v_i²/2 + Σ g_i q^{j_i} v_i + Σ h_i (q^i)² (c_i > 0), at random (q, v ∈ Δ), q̇, v̇:
+//  - the proof's identity dω^b(v, ·) = K^b_{αβ} u^β dr^α on Δ: dω^b(hor u, hor w) by the definition of d
+//    (connection_form_differential) is Σ K^b_{αβ} u^β w^α with YM's coordinate K — so with the Remark's
+//    K^b(Y, Z) = K^b_{αβ} Y^α Z^β, dω^b(hor Y, hor Z) = K^b(Z, Y) = −K^b(Y, Z);
+//  - (5.7) ⇔ (5.6): with p̃ = ∂L_c/∂u and its rate along (q̇, v̇), the coefficients of the variation (5.7) less its
+//    right side (ldap_variation, dω literal) are the residuals of (5.6) (implicit_lagrange_dalembert_residual, with
+//    K): δr^α's is −(d/dt p̃_α − rhs_α), δu's is 0, δp̃_α's is ṙ^α − u^α — for every q̇, v̇, not only on solutions;
+//  - E_c(q, u, ∂L_c/∂u) = Σ p_i v_i − L(q, v) with p = ∂L/∂v: the constrained energy is the energy on Δ;
+//  - fast's dω^b(hor u, hor w) by the Lie bracket of horizontal lifts equals the reference's (1e-12).
+// Killed by: a sign of dω or of K, the s-part of the lift, the transposed K in (5.6).
+RC_GTEST_PROP(Ehresmann, Prop5_1_LdapPrincipleIsTheImplicitLagrangeDAlembertEquations, ()) {
+  const std::size_t d = *rc::gen::inRange<std::size_t>(1, 4), m = *rc::gen::inRange<std::size_t>(1, 3), n = d + m;
+  const reference::EhresmannConnection conn = random_connection(d, m);
+  reference::LagrangianSystem sys;
+  sys.n = n;
+  for (std::size_t i = 0; i < n; ++i) sys.names.push_back("q" + std::to_string(i));
+  sys.lagrangian = ex::number(0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ex::Expr v = ex::variable(sys.v(i)), q = ex::variable(*rc::gen::inRange<std::size_t>(0, n));
+    sys.lagrangian = ex::add(sys.lagrangian, ex::mul(ex::number(Q(*rc::gen::inRange(1, 5), 2)), ex::pow(v, 2)));
+    sys.lagrangian = ex::add(sys.lagrangian, ex::mul(ex::number(small_rational()), ex::mul(q, v)));
+    sys.lagrangian = ex::add(sys.lagrangian, ex::mul(ex::number(small_rational()), ex::pow(ex::variable(i), 2)));
+  }
+  std::vector<Q> q(n), u(d), w(d), q_dot(n), v_dot(n);
+  for (auto* vec : {&q, &u, &w, &q_dot, &v_dot})
+    for (Q& x : *vec) x = small_rational();
+  const std::vector<Q> v = reference::horizontal_lift(conn, q, u), hw = reference::horizontal_lift(conn, q, w);
+  // the proof's identity, and fast's route to dω
+  const std::vector<Q> dw = reference::connection_form_differential(conn, q, v, hw);
+  const auto kf = reference::curvature(conn);
+  const ConnectionAt at = connection_at(conn, [&](const ex::Expr& e) { return reference::value_at(e, q); });
+  Eigen::MatrixXd a(m, d);
+  std::vector<Eigen::MatrixXd> da;
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t al = 0; al < d; ++al) a(b, al) = dbl(at.a(b, al));
+  for (const auto& di : at.da) {
+    Eigen::MatrixXd x(m, d);
+    for (std::size_t b = 0; b < m; ++b)
+      for (std::size_t al = 0; al < d; ++al) x(b, al) = dbl(di(b, al));
+    da.push_back(x);
+  }
+  Eigen::VectorXd ud(d), wd(d);
+  for (std::size_t al = 0; al < d; ++al) ud(al) = dbl(u[al]), wd(al) = dbl(w[al]);
+  const Eigen::VectorXd fast_dw = fast::horizontal_form_differential(a, da, ud, wd);
+  for (std::size_t b = 0; b < m; ++b) {
+    Q k_uw = 0;
+    for (std::size_t al = 0; al < d; ++al)
+      for (std::size_t be = 0; be < d; ++be) k_uw += reference::value_at(kf[b][al][be], q) * u[be] * w[al];
+    RC_ASSERT(dw[b] == k_uw);
+    RC_ASSERT(std::abs(fast_dw(static_cast<Eigen::Index>(b)) - dbl(dw[b])) <= 1e-12 * (1 + std::abs(dbl(dw[b]))));
+  }
+  // (5.7) ⇔ (5.6): p̃ = ∂L_c/∂u and d/dt p̃ along (q̇, v̇), by first-order jets
+  std::vector<Q> qv(q);
+  qv.insert(qv.end(), v.begin(), v.end());
+  std::vector<Q> qv_dot(q_dot);
+  qv_dot.insert(qv_dot.end(), v_dot.begin(), v_dot.end());
+  auto sp = std::make_shared<const reference::JetSpace>(1, 1);
+  std::vector<reference::Jet<Q>> x;
+  for (std::size_t i = 0; i < 2 * n; ++i) {
+    reference::Jet<Q> j = reference::Jet<Q>::variable(sp, 0, qv[i]);
+    j.set_coefficient(1, qv_dot[i]);
+    x.push_back(j);
+  }
+  x.emplace_back(sp, Q(0));
+  const ex::Expr lc = reference::constrained_lagrangian(sys, conn);
+  std::vector<Q> pt, pt_dot;
+  for (std::size_t al = 0; al < d; ++al) {
+    const auto j = ex::evaluate<reference::Jet<Q>>(ex::diff(lc, sys.v(conn.r[al])), x,
+                                                   [&](const Q& c) { return reference::Jet<Q>(sp, c); });
+    pt.push_back(j.value());
+    pt_dot.push_back(j.gradient(0));
+  }
+  const reference::LdapVariation var = reference::ldap_variation(sys, conn, qv, q_dot, pt, pt_dot);
+  const std::vector<Q> res = reference::implicit_lagrange_dalembert_residual(sys, conn, qv, qv_dot);
+  for (std::size_t al = 0; al < d; ++al) {
+    RC_ASSERT(var.dr[al] == -res[m + d + al]);
+    RC_ASSERT(var.du[al] == 0);
+    RC_ASSERT(var.dp[al] == res[m + al]);
+  }
+  // E_c on P is the energy on Δ
+  std::vector<Q> at_t(qv);
+  at_t.push_back(Q(0));
+  Q energy = -reference::value_at(sys.lagrangian, at_t);
+  for (std::size_t i = 0; i < n; ++i) energy += reference::value_at(ex::diff(sys.lagrangian, sys.v(i)), at_t) * v[i];
+  RC_ASSERT(reference::constrained_energy(sys, conn, qv, pt) == energy);
 }

@@ -188,4 +188,31 @@ MatrixXd constrained_poisson_tensor(const MatrixXd& a, const std::vector<MatrixX
   return out;
 }
 
+VectorXd horizontal_form_differential(const MatrixXd& a, const std::vector<MatrixXd>& da, const VectorXd& y,
+                                      const VectorXd& z) {
+  const Eigen::Index m = a.rows(), d = a.cols(), n = d + m;
+  if (static_cast<Eigen::Index>(da.size()) != n || y.size() != d || z.size() != d)
+    throw std::invalid_argument("horizontal_form_differential: expected dA for each of the " + std::to_string(n) +
+                                " coordinates and y, z of " + std::to_string(d) + ", found " +
+                                std::to_string(da.size()) + ", " + std::to_string(y.size()) + " and " +
+                                std::to_string(z.size()));
+  for (const MatrixXd& di : da)
+    if (di.rows() != m || di.cols() != d)
+      throw std::invalid_argument("horizontal_form_differential: expected each dA of " + std::to_string(m) + " × " +
+                                  std::to_string(d) + ", found " + std::to_string(di.rows()) + " × " +
+                                  std::to_string(di.cols()));
+  VectorXd hy(n), hz(n);  // the horizontal lifts, (r, s)
+  hy << y, -a * y;
+  hz << z, -a * z;
+  VectorXd bracket_s = VectorXd::Zero(m);  // [hor y, hor z] on s: Σ_i (hor y)_i ∂_i(−A z) − (hor z)_i ∂_i(−A y)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const MatrixXd& di = da[static_cast<std::size_t>(i)];
+    bracket_s += -hy(i) * (di * z) + hz(i) * (di * y);
+  }
+  const VectorXd out = -bracket_s;  // −ω([hor y, hor z]): its r part is 0
+  if (!out.allFinite() || !a.allFinite())
+    throw std::invalid_argument("horizontal_form_differential: expected finite A, dA, y and z");
+  return out;
+}
+
 }  // namespace dcad::fast

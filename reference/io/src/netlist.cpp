@@ -313,7 +313,11 @@ class Reader {
   IncludeCard include_card(const Line& here, const std::string& head, const std::vector<std::string>& tok,
                            const std::string& text, int depth, const Locate& locate) {
     if (head == ".include" || head == ".inc" || head == ".incl") {  // Xyce takes all three
-      if (tok.size() != 2) fail(here, ".include FILE", "\"" + text + "\"");
+      if (tok.size() != 2)
+        fail(here, ".include FILE",
+             "\"" + text + "\"" +
+                 (tok.size() < 2 ? " (no file named: write the file's path after it)"
+                                 : " (more than one word: quote a path with spaces)"));
       read(locate(unquote(tok[1])), false, "", depth + 1, &here);
       return IncludeCard::stop_if_ended;
     }
@@ -1337,7 +1341,9 @@ class Flattener {
       if (it != subckts.end() || sc.empty()) break;
     }
     if (it == subckts.end())
-      fail(l, "a subcircuit defined by .subckt", "unknown subcircuit \"" + tok[k - 1] + "\" in " + tok[0]);
+      fail(l, "a subcircuit defined by .subckt",
+           "unknown subcircuit \"" + tok[k - 1] + "\" in " + tok[0] +
+               " (define it with .subckt … .ends, or .include the file that does)");
     const Subcircuit& s = it->second;
     if (k - 2 != s.ports.size())
       fail(l, std::to_string(s.ports.size()) + " nodes for " + tok[k - 1] + " (" + s.where.where() + ")",
@@ -1577,7 +1583,9 @@ class Flattener {
       if (value_ < 0)
         out.warnings.push_back(l.where() + ": negative inductance " + name + " is not physical (CEF Remark 6.7)");
     } else {
-      if (value_ == 0) fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)", "C = 0 for " + name);
+      if (value_ == 0)
+        fail(l, "a nonzero capacitance (C = 0 is an open branch, CEF §6)",
+             "C = 0 for " + name + " (remove it: an open branch carries no current)");
       b.kind = reference::BranchKind::capacitor;
       b.value = value_;
       rb.kind = reference::RlcKind::capacitor;
@@ -1597,8 +1605,8 @@ class Flattener {
     if (std::string("lcvrik").find(kind) == std::string::npos)
       fail(l, "an L, C, R, V, I, K or X element", "element " + tok[0] + " (not supported)");
     if (kind != 'k' && tok.size() >= 3) tok = without_node_parentheses(tok);
-    if (tok.size() < 4 && !(kind == 'v' || kind == 'i')) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
-    if (tok.size() < 3) fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"");
+    if (tok.size() < 3 || (tok.size() < 4 && !(kind == 'v' || kind == 'i')))
+      fail(l, "NAME NODE+ NODE- VALUE", "\"" + l.text + "\"" + (tok.size() == 3 ? " (no value after the nodes)" : ""));
     // ngspice's tokenizer (INPgetTok, INPgetNetTok) ends a name at , ( ) = and reads quotes and braces as
     // syntax: "v2, 2 0 1" is V2 there, "v4 , 0 1" a different source.  Such a name is refused, not guessed.
     for (std::size_t k = 0; k < (kind == 'k' ? 1u : 3u); ++k)

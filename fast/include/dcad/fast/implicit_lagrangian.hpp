@@ -25,4 +25,13 @@ AffineSubspace implicit_lagrangian_fields(const PontryaginInput& in, const Vecto
 /// or values that are not finite.
 MatrixXd constrained_poisson_tensor(const MatrixXd& a, const std::vector<MatrixXd>& da, const VectorXd& p);
 
+/// dω^b(hor y, hor z) of the connection's one-forms ω^b = ds^b + A^b_α dr^α at q (YM Prop 5.1's right side), by the
+/// Lie bracket of the horizontal lifts hor y = (y, −A y): every ω^b annihilates them, so dω(X, Y) = X ω(Y) − Y ω(X)
+/// − ω([X, Y]) leaves −ω^b([hor y, hor z]), and for constant y, z the bracket has no r part and the s part
+/// D(−A z)·hor y − D(−A y)·hor z — a different route from the reference's dω by its coordinates.  `a` = A(q)
+/// (m × (n − m)), `da[i]` = ∂A/∂q^i for the n coordinates (r, s); y, z of n − m.  std::invalid_argument on sizes or
+/// values that are not finite.
+VectorXd horizontal_form_differential(const MatrixXd& a, const std::vector<MatrixXd>& da, const VectorXd& y,
+                                      const VectorXd& z);
+
 }  // namespace dcad::fast

@@ -204,6 +204,92 @@ inline std::vector<Rational> implicit_lagrange_dalembert_residual(const Lagrangi
   return res;
 }
 
+/// dω^b(v, w) for each fibre index b, by the definition of the exterior derivative of the connection's
+/// one-forms ω^b = ds^b + A^b_α(q) dr^α: dω^b = Σ_{α,i} ∂A^b_α/∂q^i dq^i ∧ dr^α, so
+///   dω^b(v, w) = Σ_{α,i} ∂A^b_α/∂q^i (q) (v^i w^{r_α} − w^i v^{r_α})   [YM Prop 5.1, the right side of (5.7)].
+/// `q` the point (its first n entries are read), v and w tangent vectors at q (n each, the system's order).
+/// The proof of Prop 5.1 says dω^b(v, ·) = K^b_{αβ} u^β dr^α on Δ (u = v_r): prop_ehresmann holds it.
+inline std::vector<Rational> connection_form_differential(const EhresmannConnection& c, const std::vector<Rational>& q,
+                                                          const std::vector<Rational>& v,
+                                                          const std::vector<Rational>& w) {
+  const std::size_t m = c.s.size(), k = c.r.size(), n = m + k;
+  if (v.size() != n || w.size() != n || q.size() < n)
+    throw std::invalid_argument("connection_form_differential: expected q of at least " + std::to_string(n) +
+                                " and v, w of " + std::to_string(n) + " entries, found " + std::to_string(q.size()) +
+                                ", " + std::to_string(v.size()) + ", " + std::to_string(w.size()));
+  std::vector<Rational> out(m, Rational(0));
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t al = 0; al < k; ++al)
+      for (std::size_t i = 0; i < n; ++i)
+        out[b] += value_at(expr::diff(c.a[b][al], i), q) * (v[i] * w[c.r[al]] - w[i] * v[c.r[al]]);
+  return out;
+}
+
+/// The horizontal lift hor y = (y on r, −A(q) y on s) of y ∈ R^{n − m} at q: the vector of Δ over y  [YM §5].
+inline std::vector<Rational> horizontal_lift(const EhresmannConnection& c, const std::vector<Rational>& q,
+                                             const std::vector<Rational>& y) {
+  const std::size_t m = c.s.size(), k = c.r.size();
+  if (y.size() != k)
+    throw std::invalid_argument("horizontal_lift: expected " + std::to_string(k) + " base components, found " +
+                                std::to_string(y.size()));
+  std::vector<Rational> out(m + k, Rational(0));
+  for (std::size_t al = 0; al < k; ++al) out[c.r[al]] = y[al];
+  for (std::size_t b = 0; b < m; ++b)
+    for (std::size_t al = 0; al < k; ++al) out[c.s[b]] -= value_at(c.a[b][al], q) * y[al];
+  return out;
+}
+
+/// YM Prop 5.1, (5.7), literally: with F(r, s, u, ṙ, p̃) = L_c(r, s, u) + p̃_α (ṙ^α − u^α), the first variation
+/// δ∫F dt over variations tangent to Δ (δs = −A δr; δṙ integrated by parts) less its right side
+/// p_b dω^b(v, δq), as coefficients of δr^α, δu^α and δp̃_α:
+///   dr_α = ∂F/∂r^α − A^a_α ∂F/∂s^a − d/dt ∂F/∂ṙ^α − p_b dω^b(v, hor e_α),   du_α = ∂F/∂u^α,   dp_α = ∂F/∂p̃_α,
+/// at x = (q, v), v ∈ Δ (u = v_r), with p̃ = `p_tilde`, d/dt p̃ = `p_tilde_dot`, ṙ from `q_dot`, p_b = ∂L/∂w^b
+/// (w = v_s) at (q, v), dω by connection_form_differential.  (5.7) holds for all variations iff all vanish.
+struct LdapVariation {
+  std::vector<Rational> dr, du, dp;
+};
+inline LdapVariation ldap_variation(const LagrangianSystem& sys, const EhresmannConnection& c,
+                                    const std::vector<Rational>& qv, const std::vector<Rational>& q_dot,
+                                    const std::vector<Rational>& p_tilde, const std::vector<Rational>& p_tilde_dot) {
+  const std::size_t m = c.s.size(), k = c.r.size(), n = sys.n;
+  if (qv.size() != 2 * n || q_dot.size() != n || p_tilde.size() != k || p_tilde_dot.size() != k)
+    throw std::invalid_argument("ldap_variation: expected (q, v) of " + std::to_string(2 * n) + ", q̇ of " +
+                                std::to_string(n) + ", p̃ and its rate of " + std::to_string(k) + " entries");
+  std::vector<Rational> at(qv);
+  at.push_back(Rational(0));  // t
+  const expr::Expr lc = constrained_lagrangian(sys, c);
+  const std::vector<Rational> vel(qv.begin() + static_cast<long>(n), qv.end());
+  std::vector<Rational> pb;
+  for (std::size_t b = 0; b < m; ++b) pb.push_back(value_at(expr::diff(sys.lagrangian, sys.v(c.s[b])), at));
+  LdapVariation out;
+  for (std::size_t al = 0; al < k; ++al) {
+    Rational d = value_at(expr::diff(lc, c.r[al]), at) - p_tilde_dot[al];
+    for (std::size_t a = 0; a < m; ++a) d -= value_at(c.a[a][al], at) * value_at(expr::diff(lc, c.s[a]), at);
+    std::vector<Rational> e(k, Rational(0));
+    e[al] = 1;
+    const std::vector<Rational> dw = connection_form_differential(c, at, vel, horizontal_lift(c, at, e));
+    for (std::size_t b = 0; b < m; ++b) d -= pb[b] * dw[b];
+    out.dr.push_back(d);
+    out.du.push_back(value_at(expr::diff(lc, sys.v(c.r[al])), at) - p_tilde[al]);
+    out.dp.push_back(q_dot[c.r[al]] - qv[sys.v(c.r[al])]);
+  }
+  return out;
+}
+
+/// YM §5, after Prop 5.1: the constrained energy E_c(r, s, u, p̃) = p̃_α u^α − L_c(r, s, u) at (q, v) (u = v_r)
+/// and p̃.
+inline Rational constrained_energy(const LagrangianSystem& sys, const EhresmannConnection& c,
+                                   const std::vector<Rational>& qv, const std::vector<Rational>& p_tilde) {
+  if (qv.size() != 2 * sys.n || p_tilde.size() != c.r.size())
+    throw std::invalid_argument("constrained_energy: expected (q, v) of " + std::to_string(2 * sys.n) + " and p̃ of " +
+                                std::to_string(c.r.size()) + " entries");
+  std::vector<Rational> at(qv);
+  at.push_back(Rational(0));
+  Rational e = -value_at(constrained_lagrangian(sys, c), at);
+  for (std::size_t al = 0; al < c.r.size(); ++al) e += p_tilde[al] * qv[sys.v(c.r[al])];
+  return e;
+}
+
 /// e with sin(x_i) and cos(x_i) of the variables i in `angles` replaced by the variables sin_var[i]
 /// and cos_var[i]: formulas in which each angle occurs only under sin and cos can then be evaluated
 /// exactly at rational points of the circle (cos, sin) = ((1 − t²)/(1 + t²), 2t/(1 + t²)).
