@@ -978,3 +978,12 @@ TEST(Simulate, CertifiedEnclosesOrSaysWhyNot) {
   }
   EXPECT_EQ(n, 101);
 }
+
+// The published Akzo Nobel problem with the test set's own output grid (every 18 of 180): an explicit RK4
+// stage takes y2 below 0, where sqrt(y2) is not real.  That is the method failing on a stiff problem, not
+// an internal error: exit 1, the file, the time and the cause (issue 51: it was exit 4, "please report").
+TEST(Simulate, AStageOutsideTheFormulasDomainIsNamedNotInternal) {
+  const std::string akzo = (fs::path(DCAD_SOURCE_DIR) / "cases/published/akzo-nobel.json").string();
+  expect_input_error(run("simulate " + akzo + " --tstop 180 --step 18"), akzo, "inside the equations' domain",
+                     "sqrt of a value that is not positive");
+}

@@ -36,7 +36,12 @@ struct ImplicitField {
   void plan_at(double t, const std::vector<double>& q) {
     fast::ToleranceDecisions d;
     const std::vector<double> s = start(t, q);
-    plan = fast::pointwise_cad(c.system, s, std::vector<bool>(s.size(), false), d).plan;
+    try {
+      plan = fast::pointwise_cad(c.system, s, std::vector<bool>(s.size(), false), d).plan;
+    } catch (const std::domain_error& e) {
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
+                           ": expected a motion inside the equations' domain, found " + e.what());
+    }
   }
   struct At {
     std::vector<double> x, dx;
@@ -56,6 +61,11 @@ struct ImplicitField {
       }
     } catch (const std::range_error& e) {
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
+    } catch (const std::domain_error& e) {  // a stage of the explicit step left the formulas' domain (Akzo's sqrt)
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
+                           ": expected a motion inside the equations' domain, found " + e.what() +
+                           " (an explicit RK4 stage stepped outside it: a smaller --step may pass; dcad has no stiff "
+                           "integrator yet)");
     } catch (const reference::PointwiseNoPoint& e) {
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
                            ": expected the motion to stay near M_c, found " + e.what());

@@ -64,6 +64,10 @@ struct Field {
       }
     } catch (const std::range_error& e) {  // the motion left double's range: no row of NaN is ever written
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
+    } catch (const std::domain_error& e) {  // a stage of the explicit step left the formulas' domain
+      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
+                           ": expected a motion inside the formulas' domain, found " + e.what() +
+                           " (an explicit RK4 stage stepped outside it: a smaller --step may pass)");
     }
     if (!r.consistent || !r.regular)
       throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " +

@@ -226,9 +226,9 @@ void read_initial_values(const json& j, const Where& root, DaeCase& c) {
 
 DaeCase read_dae_case(const json& j, const std::string& file) {
   const Where root{file, ""};
-  require_known_keys(
-      j, root,
-      {"dcad", "name", "description", "variables", "parameters", "dae", "initial", "expect", "known_failures"});
+  require_known_keys(j, root,
+                     {"dcad", "name", "description", "variables", "parameters", "dae", "initial", "expect",
+                      "known_failures", "published"});
   if (!j.contains("dcad")) root.fail("the key \"dcad\": 1 (format version)", "no such key");
   if (!(j["dcad"].is_number_integer() && j["dcad"].get<long>() == 1))
     (root / "dcad").fail("format version 1", describe(j["dcad"]));
@@ -247,6 +247,7 @@ DaeCase read_dae_case(const json& j, const std::string& file) {
     if (!taken.insert(name).second) (root / "variables" / i).fail("a name not used before", "\"" + name + "\" again");
     c.variables.push_back(name);
   }
+  check_published(j, root, c.variables);
   const std::size_t n = c.variables.size();
   const json& d = j["dae"];
   const Where w = root / "dae";

@@ -222,6 +222,39 @@ void require_known_keys(const json& j, const Where& at, const std::vector<std::s
   }
 }
 
+void check_published(const json& j, const Where& root, const std::vector<std::string>& names) {
+  if (!j.contains("published")) return;
+  const json& p = j["published"];
+  const Where w = root / "published";
+  if (!p.is_object()) w.fail("an object {source, index, interval, solution}", describe(p));
+  require_known_keys(p, w, {"source", "index", "interval", "solution"});
+  if (!p.contains("source") || !p["source"].is_string() || p["source"].get<std::string>().empty())
+    (w / "source")
+        .fail("the source's citation as a nonempty string",
+              p.contains("source") ? describe(p["source"]) : "no such key");
+  if (p.contains("index") && !(p["index"].is_number_integer() && p["index"].get<long>() >= 0))
+    (w / "index").fail("the published index as an integer >= 0", describe(p["index"]));
+  if (p.contains("interval")) {
+    const json& iv = p["interval"];
+    if (!iv.is_array() || iv.size() != 2) (w / "interval").fail("[t0, t1]", describe(iv));
+    if (!(read_number(iv[0], w / "interval" / 0) < read_number(iv[1], w / "interval" / 1)))
+      (w / "interval").fail("t0 < t1", describe(iv));
+  }
+  if (!p.contains("solution")) return;
+  const json& s = p["solution"];
+  const Where ws = w / "solution";
+  if (!s.is_object()) ws.fail("an object {t, values}", describe(s));
+  require_known_keys(s, ws, {"t", "values"});
+  if (!s.contains("t") || !s.contains("values")) ws.fail("the keys \"t\" and \"values\"", describe(s));
+  read_number(s["t"], ws / "t");
+  if (!s["values"].is_object()) (ws / "values").fail("an object {name: number}", describe(s["values"]));
+  for (const auto& [key, v] : s["values"].items()) {
+    if (std::find(names.begin(), names.end(), key) == names.end())
+      (ws / "values" / key).fail("a variable of the case", "\"" + key + "\"");
+    read_number(v, ws / "values" / key);
+  }
+}
+
 json read_json_file(const std::string& file) { return parse_json_exact(slurp(file), file); }
 
 Rational read_number(const json& j, const Where& at) {

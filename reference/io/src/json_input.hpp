@@ -36,6 +36,12 @@ std::string nearest_name(const std::string& key, const std::vector<std::string>&
 /// be ignored and another system solved); the message suggests the nearest allowed key.
 void require_known_keys(const nlohmann::json& j, const Where& at, const std::vector<std::string>& allowed);
 
+/// The optional "published" block of a case gathered from a published source (the DAE benchmark set,
+/// cases/published/): {"source": text, "index": integer ≥ 0, "interval": [t0, t1], "solution": {"t": number,
+/// "values": {name: number}}}, every key but "source" optional, names among `names`, numbers exact strings.
+/// Provenance and the source's own values: checked, not used by the solvers (bench/published_daes.py compares).
+void check_published(const nlohmann::json& j, const Where& root, const std::vector<std::string>& names);
+
 Rational read_number(const nlohmann::json& j, const Where& at);
 QMatrix read_matrix(const nlohmann::json& j, const Where& at, long rows = -1, long cols = -1);
 std::string describe(const nlohmann::json& j);

@@ -144,7 +144,8 @@ void read_initial(const json& j, const Where& root, const std::map<std::string, 
 LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   const Where root{file, ""};
   require_known_keys(
-      j, root, {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures"});
+      j, root,
+      {"dcad", "name", "description", "parameters", "lagrangian", "initial", "expect", "known_failures", "published"});
   if (!j.contains("lagrangian")) root.fail("the key \"lagrangian\" (the expression form)", "\"parameters\" without it");
   LagrangianCase c = read_header(j, root, file);
   const json& lag = j["lagrangian"];
@@ -156,6 +157,7 @@ LagrangianCase read_lagrangian_case(const json& j, const std::string& file) {
   reference::LagrangianSystem& s = c.system;
   std::set<std::string> taken;
   read_names(j, lag, root, l, true, 64, c, taken);
+  check_published(j, root, s.names);
   const std::map<std::string, std::size_t> vars = formula_variables(s);  // the arguments of L, constraints and forces
   const auto parse = [&](const json& e, const Where& at, const std::string& what) {
     return parse_expression(read_string(e, at, what), vars, c.parameters, at);
@@ -205,8 +207,9 @@ bool is_implicit_case(const json& j) { return j.is_object() && j.contains("impli
 
 LagrangianCase read_implicit_case(const json& j, const std::string& file) {
   const Where root{file, ""};
-  require_known_keys(j, root,
-                     {"dcad", "name", "description", "parameters", "implicit", "initial", "expect", "known_failures"});
+  require_known_keys(
+      j, root,
+      {"dcad", "name", "description", "parameters", "implicit", "initial", "expect", "known_failures", "published"});
   LagrangianCase c = read_header(j, root, file);
   const json& im = j["implicit"];
   const Where l = root / "implicit";
@@ -219,6 +222,7 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
   s.lagrangian = reference::expr::number(0);
   std::set<std::string> taken;
   read_names(j, im, root, l, false, 1000, c, taken);
+  check_published(j, root, s.names);
   const std::map<std::string, std::size_t> vars = formula_variables(s);  // the arguments of the equations: t, x, v_x
   const json& k = im["equations"];
   const Where ke = l / "equations";
