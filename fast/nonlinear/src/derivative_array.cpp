@@ -101,6 +101,20 @@ Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<d
   return v;
 }
 
+/// Equation i of the array at z, alone (a probe of one row need not evaluate the array and its Jacobian).
+double row_value(const std::vector<ArrayEquation>& eqs, std::size_t i, const std::vector<double>& z) {
+  std::unordered_map<const ex::ExprNode*, double> memo;
+  return value(eqs[i].e, z, memo);
+}
+
+/// The array's values at z, without its Jacobian.
+Eigen::VectorXd array_values(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z) {
+  Eigen::VectorXd f(static_cast<Eigen::Index>(eqs.size()));
+  std::unordered_map<const ex::ExprNode*, double> memo;
+  for (std::size_t i = 0; i < eqs.size(); ++i) f(static_cast<Eigen::Index>(i)) = value(eqs[i].e, z, memo);
+  return f;
+}
+
 /// Rows, then columns, scaled by powers of two to a largest entry in [1, 2): exact in binary, and no
 /// rank, left null space of the derivative columns or rank of the x-gradients on it changes (row scaling
 /// D maps Z to D⁻¹Z; column scaling multiplies columns), while the array's graded rows (higher
@@ -327,8 +341,8 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
           std::vector<double> a = z, b = z;
           a[c] += h;
           b[c] += 2 * h;
-          const double da = std::abs(evaluate_array(eqs, a, cols).f(i) - f0),
-                       db = std::abs(evaluate_array(eqs, b, cols).f(i) - f0);
+          const double da = std::abs(row_value(eqs, static_cast<std::size_t>(i), a) - f0),
+                       db = std::abs(row_value(eqs, static_cast<std::size_t>(i), b) - f0);
           if (db > 3 * da && db > 0) return true;
         }
         return false;
@@ -408,7 +422,7 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
         for (std::size_t j = 0; j < n && out.certain.yes(); ++j) {
           std::vector<double> moved = z;
           moved[j] += 1e-2 * std::max(1.0, std::abs(z[j]));
-          const double val = y.col(w).dot(evaluate_array(eqs, moved, cols).f);
+          const double val = y.col(w).dot(array_values(eqs, moved));
           if (std::abs(val) > 1e-9 * y.col(w).cwiseAbs().sum() * fscale)
             uncertain("a combination of the constraints of M_" + std::to_string(k + 1) +
                       " vanishes with its differential at the point but is " + text(val) + " at " + sys.names[j] +
