@@ -755,3 +755,25 @@ TEST(Expression, LongFormulasAreReadAndCompared) {
   const std::string huge = write_temp("huge-formula.json", f.dump());
   expect_input_error(run("check " + huge + " " + deck), huge, "at most 10000000 characters", "a formula beyond 10^7");
 }
+
+// A product of more than 64 factors keeps its order when it is balanced: x/x·x/x… (80 factors) at x = 10¹⁰ is read
+// as pairs that meet first, not as x⁴⁰/x⁴⁰, which overflows in double (the review of the balanced chains: fast
+// refused it as "not finite").  And a published solution's time outside the published interval is refused.
+TEST(Expression, LongProductsKeepTheirOrderAndPublishedTimesTheirInterval) {
+  std::string chain = "x/x";
+  for (int k = 1; k < 40; ++k) chain += "*x/x";
+  const json c{
+      {"dcad", 1},
+      {"name", "long-product"},
+      {"implicit", {{"coordinates", {"x", "y"}}, {"equations", {"v_x - y*(" + chain + ")", "x - 2*y"}}, {"time", "t"}}},
+      {"initial", {{"x", "1e10"}, {"y", "5e9"}}}};
+  for (const std::string backend : {"fast", "reference"}) {
+    const Outcome r = run("solve " + write_temp("long-product.json", c.dump()) + " --backend " + backend + " --json");
+    EXPECT_EQ(r.rc, 0) << backend << ": " << r.err;
+  }
+  json p = c;
+  p["published"] = {
+      {"source", "a test"}, {"interval", {"0", "1"}}, {"solution", {{"t", "-5"}, {"values", {{"x", "1"}}}}}};
+  const std::string bad = write_temp("published-time.json", p.dump());
+  expect_input_error(run("solve " + bad), bad, "/published/solution/t", "a solution time outside the interval");
+}

@@ -27,6 +27,7 @@
 #include "dcad/io/problem.hpp"
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/pipeline/dae.hpp"
+#include "dcad/reference/nonlinear/ehresmann.hpp"
 #include "dcad/reference/pipeline/implicit.hpp"
 #include "gen.hpp"
 
@@ -578,4 +579,45 @@ RC_GTEST_PROP(Implicit, PulledBackLinearDaeHasThePlantedTower, ()) {
 }
 
 }  // namespace
+}  // namespace dcad::test
+
+namespace dcad::test {
+
+// CEF (1.6), M_1 = ∅ proved (pipeline::empty_m1_proof): random polynomial equations p_1..p_m in (x, y, z) without
+// derivatives, each vanishing at a random rational point x0 by construction (p_i − p_i(x0)), plus one more
+// equation Σ c_i p_i + κ.  With κ ≠ 0 no point satisfies them all and a proof must be found (the combination is
+// linear); with κ = 0 they share x0 and a proof would be false.  Killed by: skipping the identity columns (the
+// combination's rows), taking any row with a nonzero constant (not one whose first nonzero it is).
+RC_GTEST_PROP(Implicit, EmptyM1IsProvedExactlyWhenACombinationIsAConstant, ()) {
+  const std::size_t m = *rc::gen::inRange<std::size_t>(1, 4);
+  const auto small = [] { return Q(*rc::gen::inRange(-5, 6), *rc::gen::inRange(1, 4)); };
+  reference::LagrangianSystem s;
+  s.n = 3;
+  s.implicit = true;
+  s.names = {"x", "y", "z"};
+  s.lagrangian = ex::number(0);
+  std::vector<Q> x0{small(), small(), small()};
+  std::vector<Q> at(x0);
+  at.resize(2 * s.n + 1, Q(0));
+  const auto monomial = [&] {  // c x^a y^b z^c with a + b + c ≤ 2
+    ex::Expr e = ex::number(small());
+    for (std::size_t i = 0; i < 3; ++i) e = ex::mul(e, ex::pow(ex::variable(i), *rc::gen::inRange(0, 3)));
+    return e;
+  };
+  ex::Expr combined = ex::number(0);
+  for (std::size_t i = 0; i < m; ++i) {
+    ex::Expr p = ex::add(monomial(), ex::add(monomial(), monomial()));
+    p = ex::sub(p, ex::number(reference::value_at(p, at)));  // p(x0) = 0
+    s.constraints.push_back(p);
+    combined = ex::add(combined, ex::mul(ex::number(small()), p));
+  }
+  const bool empty = *rc::gen::arbitrary<bool>();
+  const Q kappa = empty ? Q(*rc::gen::inRange(1, 9)) : Q(0);
+  s.constraints.push_back(ex::add(combined, ex::number(kappa)));
+  s.constraints.push_back(ex::variable(s.v(0)));  // an equation with a derivative: not part of the combination
+  const std::optional<std::string> proof = reference::pipeline::empty_m1_proof(s);
+  RC_LOG() << (proof ? *proof : std::string("no proof")) << "\n";
+  RC_ASSERT(proof.has_value() == empty);
+}
+
 }  // namespace dcad::test

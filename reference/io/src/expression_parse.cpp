@@ -117,11 +117,10 @@ class Parser {
         e = factors[k].first ? ex::div(e, factors[k].second) : ex::mul(e, factors[k].second);
       return e;
     }
-    std::vector<ex::Expr> num, den;  // a * b / c * d = (a b d) / c
-    for (const auto& [divisor, f] : factors) (divisor ? den : num).push_back(f);
-    const auto mul = [](const ex::Expr& a, const ex::Expr& b) { return ex::mul(a, b); };
-    const ex::Expr top = balanced(num, 0, num.size(), mul);
-    return den.empty() ? top : ex::div(top, balanced(den, 0, den.size(), mul));
+    std::vector<ex::Expr> seq;  // in the order written, a divisor d as 1/d: neighbours x/x still meet first (in
+                                // double, x^40/x^40 overflows where the product of the pairs does not)
+    for (const auto& [divisor, f] : factors) seq.push_back(divisor ? ex::div(ex::number(1), f) : f);
+    return balanced(seq, 0, seq.size(), [](const ex::Expr& a, const ex::Expr& b) { return ex::mul(a, b); });
   }
   ex::Expr unary() {
     skip();

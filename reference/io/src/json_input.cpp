@@ -1,5 +1,7 @@
 #include "json_input.hpp"
 
+#include <optional>
+
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -234,11 +236,12 @@ void check_published(const json& j, const Where& root, const std::vector<std::st
               p.contains("source") ? describe(p["source"]) : "no such key");
   if (p.contains("index") && !(p["index"].is_number_integer() && p["index"].get<long>() >= 0))
     (w / "index").fail("the published index as an integer >= 0", describe(p["index"]));
+  std::optional<std::pair<Rational, Rational>> interval;
   if (p.contains("interval")) {
     const json& iv = p["interval"];
     if (!iv.is_array() || iv.size() != 2) (w / "interval").fail("[t0, t1]", describe(iv));
-    if (!(read_number(iv[0], w / "interval" / 0) < read_number(iv[1], w / "interval" / 1)))
-      (w / "interval").fail("t0 < t1", describe(iv));
+    interval.emplace(read_number(iv[0], w / "interval" / 0), read_number(iv[1], w / "interval" / 1));
+    if (!(interval->first < interval->second)) (w / "interval").fail("t0 < t1", describe(iv));
   }
   if (!p.contains("solution")) return;
   const json& s = p["solution"];
@@ -246,7 +249,11 @@ void check_published(const json& j, const Where& root, const std::vector<std::st
   if (!s.is_object()) ws.fail("an object {t, values}", describe(s));
   require_known_keys(s, ws, {"t", "values"});
   if (!s.contains("t") || !s.contains("values")) ws.fail("the keys \"t\" and \"values\"", describe(s));
-  read_number(s["t"], ws / "t");
+  const Rational t = read_number(s["t"], ws / "t");
+  if (interval && (t < interval->first || t > interval->second))
+    (ws / "t").fail(
+        "a time within the published interval [" + interval->first.str() + ", " + interval->second.str() + "]",
+        t.str());
   if (!s["values"].is_object()) (ws / "values").fail("an object {name: number}", describe(s["values"]));
   for (const auto& [key, v] : s["values"].items()) {
     if (std::find(names.begin(), names.end(), key) == names.end())

@@ -2,6 +2,7 @@
 // reference/nonlinear/pointwise.hpp on mpq_rational).
 #include "dcad/reference/nonlinear/calculus.hpp"
 #include "dcad/reference/nonlinear/ide_formulas.hpp"
+#include "dcad/reference/nonlinear/polynomial.hpp"
 #include "dcad/reference/pipeline/exact_place.hpp"
 #include "dcad/reference/pipeline/implicit.hpp"
 #include "dcad/reference/pipeline/pointwise.hpp"
@@ -290,7 +291,61 @@ dcad::Solution<Rational> solve_pointwise_exact_near(const io::LagrangianCase& c)
   return out;
 }
 
+std::optional<std::string> empty_m1_proof(const LagrangianSystem& s) {
+  std::vector<std::size_t> rows;  // the equations without derivatives: M_1 lies in their common zeros
+  for (std::size_t i = 0; i < s.constraints.size(); ++i) {
+    bool free_of_v = true;
+    for (std::size_t j = 0; j < s.n && free_of_v; ++j) free_of_v = !expr::depends_on(s.constraints[i], s.v(j));
+    if (free_of_v) rows.push_back(i);
+  }
+  if (rows.size() < 2) return std::nullopt;  // one equation: a nonzero constant is caught by the route itself
+  expr::Canonical canon;
+  std::vector<expr::Canonical::Poly> polys;
+  std::map<expr::Canonical::Mono, Index> column;  // the constant monomial (empty) sorts first: put it last below
+  try {
+    for (std::size_t i : rows) {
+      polys.push_back(canon.of(s.constraints[i]));
+      for (const auto& [mono, coef] : polys.back())
+        if (!mono.empty()) column.emplace(mono, static_cast<Index>(column.size()));
+    }
+  } catch (const std::length_error&) {
+    return std::nullopt;  // too large to expand: no proof either way
+  }
+  const Index k = static_cast<Index>(column.size()), m = static_cast<Index>(rows.size());
+  Matrix<Rational> a(m, k + 1 + m);  // [nonconstant monomials | constant | identity]: the combination rides along
+  for (Index r = 0; r < m; ++r) {
+    for (const auto& [mono, coef] : polys[static_cast<std::size_t>(r)]) a(r, mono.empty() ? k : column.at(mono)) = coef;
+    a(r, k + 1 + r) = 1;
+  }
+  const Rref<Rational> e = rref(a);
+  for (Index r = 0; r < static_cast<Index>(e.pivots.size()); ++r) {
+    if (e.pivots[static_cast<std::size_t>(r)] != k) continue;  // its first nonzero is the constant: 0 = c ≠ 0
+    std::string combo;
+    for (Index i = 0; i < m; ++i) {
+      const Rational& y = e.r(r, k + 1 + i);
+      if (y == 0) continue;
+      combo += (combo.empty() ? "" : " + ") + std::string("(") + y.str() + ")·equation " +
+               std::to_string(rows[static_cast<std::size_t>(i)] + 1);
+    }
+    return "M_1 = ∅: " + combo + " is the constant " + e.r(r, k).str() +
+           " wherever the equations are defined, so no point (at any time) satisfies them all";
+  }
+  return std::nullopt;
+}
+
 dcad::Solution<Rational> solve_implicit_exact(const io::LagrangianCase& c, ImplicitRoute route) {
+  if (const auto proof = empty_m1_proof(c.system)) {  // whatever `initial` says: the system has no point at all
+    PointwiseResult<Rational> r;
+    r.dims = {static_cast<long>(c.system.n), -1};
+    r.steps = 1;
+    r.consistent = false;
+    r.why = *proof;
+    r.time = c.initial[c.system.t()].value_or(Rational(0));
+    dcad::Solution<Rational> out = implicit_solution(r, c, "pointwise exact");
+    out.certified = yes;
+    out.note = *proof;
+    return out;
+  }
   std::vector<bool> fixed;
   PointwiseResult<Rational> r;
   std::optional<IdeFormulas> formulas;

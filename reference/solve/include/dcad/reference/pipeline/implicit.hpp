@@ -10,6 +10,7 @@
 #include "dcad/reference/pipeline/pointwise.hpp"
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,6 +57,12 @@ enum class ImplicitRoute { automatic, formulas, jets };
 struct FormulasUndecided : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+/// CEF (1.6) on the implicit form: a proof that M_1 = ∅ — a rational combination of the equations without
+/// derivatives that is a nonzero constant as a function (their canonical forms, nonlinear/polynomial.hpp; the two
+/// concentric circles x² + y² = 1, x² + y² = 4 give (1)·eq 1 + (−1)·eq 2 = 3) — as text naming it, else nullopt.
+/// No such combination proves nothing (the equations may still have no common zero).
+std::optional<std::string> empty_m1_proof(const LagrangianSystem& s);
 
 /// The reference's route: exact, at the given values (or dcad's default point); NotExactHere where a
 /// formula is irrational there, PointwiseNoPoint where no rational point of M_c is reached.
