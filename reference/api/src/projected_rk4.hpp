@@ -70,6 +70,12 @@ struct Richardson {
   long m = 1;  ///< substeps of the last output step (halved again where they agree far better)
   double estimate = 0, drift = 0;
   long substeps = 0;
+  /// Where the refinement is said while it runs (never a silent wait: an output step can take minutes of
+  /// substeps on a stiff or nearly singular stretch): a line at most every 2 s, and a note where 4096 substeps
+  /// still differ by more than 1e-9 (the step is kept; its difference is the run's estimate).
+  std::ostream* log = nullptr;
+  std::chrono::steady_clock::time_point said = std::chrono::steady_clock::now();
+  long capped = 0;  ///< output steps kept at 4096 substeps above 1e-9
 };
 
 /// y from t to t1: m and 2m RK4 substeps, m doubling until the two agree to 1e-9 relative (or m = 4096);
@@ -83,6 +89,16 @@ void output_step(Field& f, double t, double t1, std::vector<double>& y, Richards
     for (long j = 0; j < r.m; ++j) a = rk4(f, t + static_cast<double>(j) * h, a, h, da);
     for (long j = 0; j < 2 * r.m; ++j) b = rk4(f, t + static_cast<double>(j) * h / 2, b, h / 2, db);
     const double err = distance(b, a);
+    if (r.log && std::chrono::steady_clock::now() - r.said > std::chrono::seconds(2)) {
+      *r.log << "simulate: from t = " << io::float_text(t) << " to " << io::float_text(t1) << ": " << 2 * r.m
+             << " RK4 substeps differ from " << r.m << " by " << io::float_text(err) << " (relative; refining)\n";
+      r.said = std::chrono::steady_clock::now();
+    }
+    if (err > 1e-9 && r.m >= 4096 && r.log && r.capped++ == 0)
+      *r.log << "note: from t = " << io::float_text(t) << " to " << io::float_text(t1)
+             << ": 8192 RK4 substeps still differ from 4096 by " << io::float_text(err)
+             << " (relative): kept, and the run's error estimate says so (explicit RK4 on a stiff or nearly singular "
+                "stretch)\n";
     if (err <= 1e-9 || r.m >= 4096) {
       r.estimate = std::max(r.estimate, err);
       r.drift = std::max(r.drift, db);

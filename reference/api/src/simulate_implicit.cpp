@@ -124,6 +124,7 @@ Summary simulate_implicit(const io::LagrangianCase& c, const SimulateOptions& op
                          ", found " + io::float_text(opt.tstop));
   const long steps = static_cast<long>(std::floor((opt.tstop - t0) / opt.step + 1e-9));
   projected::Richardson rich;
+  rich.log = &log;
   for (long k = 1; k <= steps; ++k) {
     const double t1 = t0 + static_cast<double>(k) * opt.step;
     f.plan_at(t, y);

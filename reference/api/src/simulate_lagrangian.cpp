@@ -127,6 +127,7 @@ Summary simulate_pointwise(const io::LagrangianCase& c, const SimulateOptions& o
   const double e0 = energy(now.x);
   double emax = 0;
   projected::Richardson rich;
+  rich.log = &log;
   const double t0 = t;  // rows at t0 + k·step up to the final time --tstop
   if (opt.tstop < t0)
     throw io::InputError(c.file + ": simulate: expected --tstop at or after the initial time " + io::float_text(t0) +
