@@ -979,11 +979,14 @@ TEST(Simulate, CertifiedEnclosesOrSaysWhyNot) {
   EXPECT_EQ(n, 101);
 }
 
-// The published Akzo Nobel problem with the test set's own output grid (every 18 of 180): an explicit RK4
-// stage takes y2 below 0, where sqrt(y2) is not real.  That is the method failing on a stiff problem, not
-// an internal error: exit 1, the file, the time and the cause (issue 51: it was exit 4, "please report").
+// A motion that leaves its formulas' domain: x' = -1 from x = 1 with y = sqrt(x) reaches x = 0 at t = 1, where sqrt
+// is not differentiable and beyond which it is not real.  Substeps are refined first (a stage outside the domain
+// may only mean a step too long: the published Akzo Nobel problem on the test set's grid of 18 now runs through,
+// bench/published_daes.py); where 4096 of them still leave it, exit 1 names the file, the time and the cause — it
+// was exit 4, "internal error, please report" (issue 51).
 TEST(Simulate, AStageOutsideTheFormulasDomainIsNamedNotInternal) {
-  const std::string akzo = (fs::path(DCAD_SOURCE_DIR) / "cases/published/akzo-nobel.json").string();
-  expect_input_error(run("simulate " + akzo + " --tstop 180 --step 18"), akzo, "inside the equations' domain",
-                     "sqrt of a value that is not positive");
+  const std::string c = write_temp("leaves-domain.json", R"J({"dcad": 1, "name": "leaves-domain",
+    "implicit": {"coordinates": ["x", "y"], "equations": ["v_x + 1", "y - sqrt(x)"], "time": "t"},
+    "initial": {"x": "1"}})J");
+  expect_input_error(run("simulate " + c + " --tstop 2 --step 0.5"), c, "domain", "a motion that leaves sqrt's domain");
 }

@@ -7,6 +7,7 @@
 
 #include "simulate.hpp"
 
+#include "dcad/io/input_error.hpp"
 #include "dcad/io/report.hpp"
 
 #include <algorithm>
@@ -86,8 +87,15 @@ void output_step(Field& f, double t, double t1, std::vector<double>& y, Richards
     std::vector<double> a = y, b = y;
     double da = 0, db = 0;
     const double h = (t1 - t) / static_cast<double>(r.m);
-    for (long j = 0; j < r.m; ++j) a = rk4(f, t + static_cast<double>(j) * h, a, h, da);
-    for (long j = 0; j < 2 * r.m; ++j) b = rk4(f, t + static_cast<double>(j) * h / 2, b, h / 2, db);
+    try {  // a stage that leaves the field's domain (no point of M_c near it, a root of a negative, an overflow)
+           // says the substep is too long, not that the motion ends: the output grid is not the integrator's step
+      for (long j = 0; j < r.m; ++j) a = rk4(f, t + static_cast<double>(j) * h, a, h, da);
+      for (long j = 0; j < 2 * r.m; ++j) b = rk4(f, t + static_cast<double>(j) * h / 2, b, h / 2, db);
+    } catch (const io::InputError&) {
+      if (r.m >= 4096) throw;
+      r.m *= 2;
+      continue;
+    }
     const double err = distance(b, a);
     if (r.log && std::chrono::steady_clock::now() - r.said > std::chrono::seconds(2)) {
       *r.log << "simulate: from t = " << io::float_text(t) << " to " << io::float_text(t1) << ": " << 2 * r.m

@@ -62,10 +62,11 @@ struct ImplicitField {
     } catch (const std::range_error& e) {
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
     } catch (const std::domain_error& e) {  // a stage of the explicit step left the formulas' domain (Akzo's sqrt)
-      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
-                           ": expected a motion inside the equations' domain, found " + e.what() +
-                           " (an explicit RK4 stage stepped outside it: a smaller --step may pass; dcad has no stiff "
-                           "integrator yet)");
+      throw io::InputError(
+          c.file + ": simulate: at t = " + io::float_text(t) +
+          ": expected a motion inside the equations' domain, found " + e.what() +
+          " (RK4 stages left it even with the output step cut into 4096 substeps: the motion leaves the "
+          "domain there, or is too stiff for dcad's explicit integrator)");
     } catch (const reference::PointwiseNoPoint& e) {
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
                            ": expected the motion to stay near M_c, found " + e.what());

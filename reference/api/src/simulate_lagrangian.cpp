@@ -65,9 +65,11 @@ struct Field {
     } catch (const std::range_error& e) {  // the motion left double's range: no row of NaN is ever written
       throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) + ": " + e.what());
     } catch (const std::domain_error& e) {  // a stage of the explicit step left the formulas' domain
-      throw io::InputError(c.file + ": simulate: at t = " + io::float_text(t) +
-                           ": expected a motion inside the formulas' domain, found " + e.what() +
-                           " (an explicit RK4 stage stepped outside it: a smaller --step may pass)");
+      throw io::InputError(
+          c.file + ": simulate: at t = " + io::float_text(t) +
+          ": expected a motion inside the formulas' domain, found " + e.what() +
+          " (RK4 stages left it even with the output step cut into 4096 substeps: the motion leaves the "
+          "domain there, or is too stiff for dcad's explicit integrator)");
     }
     if (!r.consistent || !r.regular)
       throw io::InputError(c.file + ": simulate: expected the motion to stay on a regular M_c, found at t = " +
