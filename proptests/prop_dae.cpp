@@ -6,7 +6,7 @@
 //    dim M_k = r + Σ_ν max(0, ν − k) (block N_ν loses one coordinate per step), unique;
 //  - with a singular block L_ε (ε × (ε+1): E = [I 0], A = [0 I]) and its transpose L_ηᵀ the square
 //    pencil is singular (det(sE − A) ≡ 0) and the solution is not unique (L_ε leaves one velocity free);
-//  - the fast twin's Wong sequences (fast/exact/src/dae.cpp) reach the reference's RREF answers
+//  - the fast twin's Wong sequences (reference/fast_backend/src/dae.cpp) reach the reference's RREF answers
 //    (dims, steps, solution rank, regularity) wherever fast says certified;
 //  - sources f (polynomials in t) on a regular pencil change no dimension and stay consistent;
 //  - two routes to one tower: a linear Dirac system (x, ẋ) ⊕ dE(x) ∈ D (CEF §5) written as equations
@@ -211,7 +211,7 @@ io::DaeCase rc_ladder(long n, bool floating) {
   return c;
 }
 
-/// fast's sparse route (fast/exact/src/dae_sparse.cpp: the constraints' rows C_{k+1} = [C_k; Z_Eᵀ A] by
+/// fast's sparse route (reference/fast_backend/src/dae_sparse.cpp: the constraints' rows C_{k+1} = [C_k; Z_Eᵀ A] by
 /// sparse QR, the route of circuit DAEs beyond 2,000 variables) forced on circuit DAEs of 301 variables,
 /// with decimal capacitances (1e-9, rounded in double): the reference's tower, and for the grounded
 /// ladder the one derived by hand above.  (On planted integer pencils hidden by unimodular changes of

@@ -380,7 +380,7 @@ RC_GTEST_PROP(Chart, FormulasEqualTheExactPointwiseCad, ()) {
   }
   fast::Chart ch;
   try {
-    ch = fast::chart_near(s, doubles(at), r.dims, v.empty() ? nullptr : &v);
+    ch = fast::chart_near(s, doubles(at), r.dims, v.empty() ? nullptr : &v, fast::pointwise_completion(s));
   } catch (const fast::ChartFailure&
                e) {  // no formulas is not wrong formulas (the result says why); the tag shows how often
     RC_TAG("no chart");

@@ -72,10 +72,11 @@ TEST(Twins, PublicNamesDifferOnlyAsListed) {
   // the reference twin: the literal algorithms and, beside them, its pipelines (reference::solve)
   const std::set<std::string> ref =
       public_names({root / "reference/include/dcad/reference", root / "reference/solve/include/dcad/reference"});
-  // the fast twin: dcad::fast, and beside it dcad::fast_nonlinear and dcad::fast_exact (same namespace)
+  // namespace fast: the twin (dcad::fast, dcad::fast_nonlinear) and the fast backend (dcad::fast_exact, beside the
+  // reference since it borrows the reference's algorithms where fast has no route of its own)
   const std::set<std::string> fast =
       public_names({root / "fast/include/dcad/fast", root / "fast/nonlinear/include/dcad/fast",
-                    root / "fast/exact/include/dcad/fast"});
+                    root / "reference/fast_backend/include/dcad/fast"});
   const Listed listed = read_list(root / "proptests/twins.txt");
   ASSERT_GE(ref.size(), 100u);  // the scan sees the headers
   ASSERT_GE(fast.size(), 60u);
@@ -120,7 +121,10 @@ TEST(Twins, FastLinksNoReference) {
   }
   ASSERT_TRUE(folder.count("dcad_fast") && folder.count("dcad_reference")) << "the graph names the twins";
   const auto is_reference = [&](const std::string& t) {
-    return folder.count(t) && t != "dcad_core" && folder[t].rfind("reference", 0) == 0;
+    // dcad::core and dcad::symbolic (reference/core/: plain types and the shared exact algebra of formulas) are
+    // shared by both twins; every other target under reference/ is the reference or is built on it
+    return folder.count(t) && t != "dcad_core" && folder[t].rfind("reference/core", 0) != 0 &&
+           folder[t].rfind("reference", 0) == 0;
   };
   std::map<std::string, std::string> listed;  // target -> reason
   std::ifstream list(fs::path(DCAD_SOURCE_DIR) / "proptests/style/fast_links_reference.txt");
@@ -151,4 +155,33 @@ TEST(Twins, FastLinksNoReference) {
       EXPECT_TRUE(reached.empty()) << "a target under fast/ links the reference: " << reached;
   }
   for (const auto& [target, why] : listed) EXPECT_TRUE(folder.count(target)) << "listed and not a target: " << target;
+}
+
+// Issue 47: where the fast backend still runs the reference's code, each place is named.  Every
+// `#include "dcad/reference/…"` under reference/fast_backend must be listed in
+// proptests/style/fast_backend_borrows.txt, and every listed one must still be there: the list only shrinks.
+TEST(Twins, FastBackendBorrowsOnlyTheListed) {
+  const fs::path root = fs::path(DCAD_SOURCE_DIR) / "reference/fast_backend";
+  std::set<std::string> found;  // "FILE : HEADER"
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path());
+    const std::string file = fs::relative(entry.path(), root).generic_string();
+    const std::string tag = "#include \"dcad/reference/";
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(tag, 0) == 0) found.insert(file + " : " + line.substr(10, line.find('"', 10) - 10));
+  }
+  ASSERT_GE(found.size(), 1u) << "the scan sees " << root;
+  std::set<std::string> listed;
+  std::ifstream list(fs::path(DCAD_SOURCE_DIR) / "proptests/style/fast_backend_borrows.txt");
+  for (std::string line; std::getline(list, line);) {
+    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+    const std::size_t second = line.find(" : ", line.find(" : ") + 3);
+    EXPECT_NE(second, std::string::npos) << "fast_backend_borrows.txt: expected 'FILE : HEADER : why', found " << line;
+    if (second != std::string::npos) listed.insert(line.substr(0, second));
+  }
+  for (const std::string& f : found)
+    EXPECT_TRUE(listed.count(f)) << "the fast backend borrows the reference here and it is not listed: " << f;
+  for (const std::string& l : listed)
+    EXPECT_TRUE(found.count(l)) << "listed in fast_backend_borrows.txt and no longer borrowed: " << l;
 }

@@ -1,7 +1,6 @@
 // The CAD as formulas on a chart (chart.hpp: the route and its decisions).
 #include "dcad/fast/chart.hpp"
 
-#include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/tracked.hpp"
 
 #include <algorithm>
@@ -15,7 +14,7 @@
 
 namespace dcad::fast {
 
-namespace ex = reference::expr;
+namespace ex = symbolic::expr;
 using ex::Expr;
 using ex::ExprOp;
 
@@ -52,7 +51,7 @@ class Values {
   explicit Values(std::vector<double> at) : at_(std::move(at)) {}
   Tracked operator()(const Expr& e) {
     if (const auto it = memo_.find(e.get()); it != memo_.end()) return it->second.second;
-    using F = reference::JetFunctions<Tracked>;
+    using F = symbolic::JetFunctions<Tracked>;
     const auto x = [&](const Expr& y) { return (*this)(y); };
     Tracked r;
     switch (e->op) {
@@ -250,9 +249,9 @@ void Tape::evaluate(const double* vars, double* out) const {
 
 // ---- The chart ------------------------------------------------------------------------------
 
-Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& generic) {
+Chart chart_at(const symbolic::LagrangianSystem& s, const std::vector<double>& generic) {
   const std::size_t n = s.n, m = s.m(), w = n + m;
-  const reference::LagrangianDerivatives der = reference::derivatives(s);
+  const symbolic::LagrangianDerivatives der = symbolic::derivatives(s);
   Differentiator d;
   Values val(generic);
   const std::vector<std::string> names = s.variable_names();
@@ -410,7 +409,7 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
 
 // The chart must hold at `near` itself: M_c's constraints vanish there (the generic point may have
 // landed on another component: {x v_y = 0} is two) and none of its conditions does.  `why` says which failed.
-static bool chart_holds_at(const reference::LagrangianSystem& s, const Chart& c, const std::vector<double>& near,
+static bool chart_holds_at(const symbolic::LagrangianSystem& s, const Chart& c, const std::vector<double>& near,
                            const std::vector<double>* velocity, std::string& why) {
   const ChartField f(c);
   const std::vector<double> y(near.begin(), near.end() - 1);
@@ -448,8 +447,8 @@ static bool chart_holds_at(const reference::LagrangianSystem& s, const Chart& c,
   return true;
 }
 
-Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
-                 const std::vector<double>* velocity) {
+Chart chart_near(const symbolic::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
+                 const std::vector<double>* velocity, const Completion& complete) {
   const auto dims_text = [](const std::vector<long>& d) {
     std::string t;
     for (long x : d) t += (t.empty() ? "" : " ") + std::to_string(x);
@@ -483,18 +482,15 @@ Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>
       }
     }
   }
-  // the pointwise CAD's own completion of a perturbed point (its Newton moves on jets: another route onto M_c)
-  for (unsigned seed = 1; seed <= 2; ++seed) {
+  // the caller's completion of a perturbed point (the pointwise CAD's Newton moves on jets: another route onto M_c)
+  for (unsigned seed = 1; seed <= 2 && complete; ++seed) {
     std::vector<double> start(near);
     for (std::size_t i = 0; i < start.size(); ++i)
       if (i + 1 < start.size() || s.has_time) start[i] += 0.05 * u(rng) * std::max(1.0, std::abs(start[i]));
     try {
-      ToleranceDecisions dec;
-      const reference::PointwiseResult<double> r = pointwise_cad(s, start, std::vector<bool>(start.size(), false), dec);
-      if (!r.consistent || !r.regular) continue;
-      std::vector<double> at(r.point.begin(), r.point.begin() + static_cast<long>(2 * s.n));
-      at.push_back(r.time);
-      Chart c = chart_at(s, at);
+      const std::optional<std::vector<double>> at = complete(start);
+      if (!at) continue;
+      Chart c = chart_at(s, *at);
       if (c.dims == dims && chart_holds_at(s, c, near, velocity, why)) return c;
     } catch (const std::exception&) {
     }
@@ -541,7 +537,7 @@ bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::v
   return false;
 }
 
-std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start,
+std::vector<double> complete_on_chart(const symbolic::LagrangianSystem& s, const std::vector<double>& start,
                                       const std::vector<bool>& held) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);

@@ -1,9 +1,7 @@
 // Campbell's derivative array for the implicit form (derivative_array.hpp: the definitions).
 #include "dcad/fast/derivative_array.hpp"
 
-#include "dcad/reference/nonlinear/calculus.hpp"
-
-#include "dcad/reference/nonlinear/pointwise/result.hpp"
+#include "dcad/symbolic/calculus.hpp"
 
 #include <Eigen/Dense>
 
@@ -19,7 +17,7 @@ namespace dcad::fast {
 
 namespace {
 
-namespace ex = reference::expr;
+namespace ex = symbolic::expr;
 
 /// One equation of the array with its partial derivatives in the x^(j) (not t), symbolically.
 struct ArrayEquation {
@@ -34,7 +32,7 @@ void variables_of(const ex::Expr& e, std::set<std::size_t>& out, std::unordered_
   if (e->b) variables_of(e->b, out, seen);
 }
 
-using reference::expr::tree_size;
+using symbolic::expr::tree_size;
 
 ArrayEquation equation(const ex::Expr& e, std::size_t time) {
   ArrayEquation q{e, {}};
@@ -219,7 +217,7 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
 
 }  // namespace
 
-DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start,
+DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, const std::vector<double>& start,
                                        const std::vector<bool>& fixed, const Options& opt) {
   const std::size_t n = sys.n, kcap = std::min<std::size_t>(n + 1, 12);
   const std::size_t time = (kcap + 2) * n;  // x^(j)_l at j n + l (so x = q, x' = v of the system), then t
@@ -294,10 +292,10 @@ DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, c
           std::string given;
           for (std::size_t i = 0; i < n; ++i)
             if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
-          throw reference::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" +
-                                            std::to_string(k + 1) + " (the derivative array F_" + std::to_string(k) +
-                                            " has a zero without them, none with them: residual " + text(nw.residual) +
-                                            ")");
+          throw symbolic::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" +
+                                           std::to_string(k + 1) + " (the derivative array F_" + std::to_string(k) +
+                                           " has a zero without them, none with them: residual " + text(nw.residual) +
+                                           ")");
         }
       }
       out.consistent = false;

@@ -11,6 +11,7 @@
 #include "check_formulas.hpp"
 
 #include "dcad/fast/chart.hpp"
+#include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
 #include "dcad/reference/nonlinear/jet.hpp"
@@ -356,7 +357,8 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
   try {
     const std::vector<double> v(near.pointwise->velocity.begin(),
                                 near.pointwise->velocity.begin() + static_cast<long>(2 * n));
-    ch = fast::chart_near(s, us.at, near.dims(), near.pointwise->gauge.empty() ? &v : nullptr);
+    ch = fast::chart_near(s, us.at, near.dims(), near.pointwise->gauge.empty() ? &v : nullptr,
+                          fast::pointwise_completion(s));
   } catch (const fast::ChartFailure& e) {
     out.not_compared.push_back(std::string("formulas (dcad has no chart of M_c here: ") + e.what() + ")");
     return;

@@ -4,6 +4,7 @@
 #include "formulas.hpp"
 
 #include "dcad/certified/zero_enclosure.hpp"
+#include "dcad/fast/pointwise.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/report.hpp"
 
@@ -31,7 +32,8 @@ std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const 
   try {
     const std::vector<double> v(near.pointwise->velocity.begin(),
                                 near.pointwise->velocity.begin() + static_cast<long>(2 * n));
-    out.chart = fast::chart_near(c.system, out.point, dims, near.pointwise->gauge.empty() ? &v : nullptr);
+    out.chart = fast::chart_near(c.system, out.point, dims, near.pointwise->gauge.empty() ? &v : nullptr,
+                                 fast::pointwise_completion(c.system));
   } catch (const std::exception& e) {
     return std::string(e.what());
   }

@@ -167,10 +167,7 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
   auto fine = odeint::make_dense_output(tight, tight, odeint::runge_kutta_dopri5<State>());
   auto coarse = odeint::make_dense_output(loose, loose, odeint::runge_kutta_dopri5<State>());
   long evaluations = 0;
-  const auto sys = [&](const State& y, State& dy, double t) {
-    ++evaluations;
-    field->rates(y.data(), t, dy.data());
-  };
+  const auto sys = [&](const State& y, State& dy, double t) { ++evaluations, field->rates(y.data(), t, dy.data()); };
   State y(start.begin(), start.end() - 1), z = y;
   double t = start.back();
   const std::vector<std::string> st = c.system.state_names();
@@ -274,7 +271,8 @@ Summary simulate_on_chart(const io::LagrangianCase& c, const SimulateOptions& op
             v.assign(r.velocity.begin(), r.velocity.begin() + static_cast<long>(2 * n));
         } catch (const std::exception&) {
         }
-        chart = fast::chart_near(c.system, here, chart.dims, v.empty() ? nullptr : &v);
+        chart = fast::chart_near(c.system, here, chart.dims, v.empty() ? nullptr : &v,
+                                 fast::pointwise_completion(c.system));
       } catch (const fast::ChartFailure& e) {
         singular(std::string("no chart of M_c holds here (") + e.what() + ")");
       }
@@ -328,7 +326,8 @@ Summary simulate_lagrangian(const io::LagrangianCase& c, const SimulateOptions& 
   std::optional<fast::Chart> chart;
   try {
     const std::vector<double> v(at.velocity.begin(), at.velocity.begin() + static_cast<long>(2 * c.system.n));
-    chart = fast::chart_near(c.system, start, first.dims(), at.gauge.empty() ? &v : nullptr);
+    chart = fast::chart_near(c.system, start, first.dims(), at.gauge.empty() ? &v : nullptr,
+                             fast::pointwise_completion(c.system));
   } catch (const fast::ChartFailure& e) {
     log << "note: no chart of formulas (" << e.what() << "): the pointwise CAD at every evaluation (slow)\n";
     return simulate_pointwise(c, opt, first, out, log);

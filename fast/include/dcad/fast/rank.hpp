@@ -70,7 +70,7 @@ struct Options {
   /// Decisions on matrices with more than this many rows and columns go by pivoted QR first (see
   /// RankDecision); the properties set it to 0 to put every decision through that route.
   int qr_from = 48;
-  /// The dae form goes by the sparse route (fast/exact/src/dae_sparse.cpp) from this many variables on,
+  /// The dae form goes by the sparse route (reference/fast_backend/src/dae_sparse.cpp) from this many variables on,
   /// and always where E and A are too large to hold densely: only where the dense routes cannot run, as
   /// its answers are less sure (see there); the tests set it to 0 to compare it with the reference.
   int dae_sparse_from = 2001;

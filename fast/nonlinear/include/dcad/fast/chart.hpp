@@ -14,16 +14,18 @@
 // unknowns, solution_rank many, set to 0).
 //
 // Decisions (which pivot, which entry vanishes on M_k, which candidate is new) are made in double at a
-// generic point of M_c — a perturbed point completed onto M_c by the pointwise CAD — never at the
+// generic point of M_c — a perturbed point moved onto M_c level by level (or by the caller's completion) — never at the
 // user's point, where sin φ may vanish by accident.  The formulas themselves are exact: every number
 // in them is a rational of the case.  The caller compares the dims found here with its backend's tower;
 // a property (prop_chart) holds the formulas equal to the pointwise routes at points of M_c, exactly
 // where the point is rational.  This is a fast route: the reference is the pointwise CAD.
 #pragma once
 
-#include "dcad/reference/nonlinear/calculus.hpp"
-#include "dcad/reference/nonlinear/lagrangian_system.hpp"
+#include "dcad/symbolic/calculus.hpp"
+#include "dcad/symbolic/lagrangian_system.hpp"
 
+#include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,24 +36,24 @@ namespace dcad::fast {
 struct Chart {
   /// levels[k]: the constraints (formulas = 0) that cut M_{k+1} out of M_k; levels[0] are the given
   /// a·v + b (those independent at the point).  M_c = {every levels[k] formula = 0}, with p = ∂L/∂v.
-  std::vector<std::vector<reference::expr::Expr>> levels;
+  std::vector<std::vector<symbolic::expr::Expr>> levels;
   std::vector<long> dims;  ///< dim M_k, k = 0…c: 3n, then 2n − (the constraints so far)
   /// d/dt of q_i (= v_i) and of v_i, i = 0…n−1: the equations of motion on M_c.
-  std::vector<reference::expr::Expr> rates;
+  std::vector<symbolic::expr::Expr> rates;
   std::vector<std::size_t> free;  ///< velocities whose rate is free on M_c (solution_rank many): set to 0
   struct Condition {
-    std::string what;               ///< "pivot of M_k's system: row …, column …" or "chart: solve for …"
-    reference::expr::Expr formula;  ///< must not vanish
+    std::string what;              ///< "pivot of M_k's system: row …, column …" or "chart: solve for …"
+    symbolic::expr::Expr formula;  ///< must not vanish
   };
   std::vector<Condition> valid_where;
   std::vector<std::size_t> kept, solved;  ///< M_c's chart: (q, v) coordinates kept and those the constraints solve for
   std::vector<double> point;              ///< the generic point of M_c (q, v, t) where the decisions were made
-  std::vector<reference::expr::Expr> constraints;             ///< every level's, in order
-  std::vector<std::vector<reference::expr::Expr>> gradients;  ///< ∂/∂(q, v) of each constraint
-  std::vector<reference::expr::Expr> momenta;                 ///< p_i = ∂L/∂v_i
+  std::vector<symbolic::expr::Expr> constraints;             ///< every level's, in order
+  std::vector<std::vector<symbolic::expr::Expr>> gradients;  ///< ∂/∂(q, v) of each constraint
+  std::vector<symbolic::expr::Expr> momenta;                 ///< p_i = ∂L/∂v_i
   /// What the elimination took as zero on M_k (entries, implied candidates): each must vanish at any
   /// point where the chart is used (chart_near checks the given point).
-  std::vector<reference::expr::Expr> vanishing;
+  std::vector<symbolic::expr::Expr> vanishing;
 };
 
 /// The chart could not be built here (the decisions at the generic point disagree, a value is not finite).
@@ -62,14 +64,14 @@ struct ChartFailure : std::runtime_error {
 /// chart_at's point is not on a level: the constraints so far and the candidates that do not vanish there.
 struct NotOnLevel : ChartFailure {
   using ChartFailure::ChartFailure;
-  std::vector<reference::expr::Expr> constraints;
-  std::vector<std::vector<reference::expr::Expr>> gradients;  ///< ∂/∂(q, v)
+  std::vector<symbolic::expr::Expr> constraints;
+  std::vector<std::vector<symbolic::expr::Expr>> gradients;  ///< ∂/∂(q, v)
 };
 
 /// y (q, v) moved onto {constraints = 0} at time t by Gauss–Newton steps of least norm; false if 30
 /// steps do not bring max |constraint| below tol × max(1, |y|).
-bool project_onto(const std::vector<reference::expr::Expr>& constraints,
-                  const std::vector<std::vector<reference::expr::Expr>>& gradients, std::vector<double>& y, double t,
+bool project_onto(const std::vector<symbolic::expr::Expr>& constraints,
+                  const std::vector<std::vector<symbolic::expr::Expr>>& gradients, std::vector<double>& y, double t,
                   double tol, const std::vector<bool>* held = nullptr);
 
 /// `start` ((q, v, t)) completed onto M_c with the coordinates `held` kept (the user's given values):
@@ -77,11 +79,11 @@ bool project_onto(const std::vector<reference::expr::Expr>& constraints,
 /// caller's pointwise CAD recomputes the tower at the completed point), then least-norm Gauss–Newton on
 /// its constraints over the other coordinates.  Empty where no chart or no such point is reached.  For
 /// given values the pointwise CAD's own Newton moves do not settle (multiplier coordinates, index 3).
-std::vector<double> complete_on_chart(const reference::LagrangianSystem& s, const std::vector<double>& start,
+std::vector<double> complete_on_chart(const symbolic::LagrangianSystem& s, const std::vector<double>& start,
                                       const std::vector<bool>& held);
 
 /// The CAD as formulas, decided at `generic` ((q, v, t), a point of M_c that is not special).
-Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& generic);
+Chart chart_at(const symbolic::LagrangianSystem& s, const std::vector<double>& generic);
 
 /// The chart near `near`, decided at a generic point of M_c: `near` perturbed (by a relative 1/10, then
 /// less) and moved onto M_c level by level (NotOnLevel, project_onto); the chart's dims must be `dims`
@@ -89,20 +91,24 @@ Chart chart_at(const reference::LagrangianSystem& s, const std::vector<double>& 
 /// With `velocity` (d/dt of (q, v) at `near` by another route — the pointwise CAD in double — when the
 /// solution is unique), the chart's rates at `near` must equal it to 1e-7 relative: two routes to one
 /// motion, and a chart whose decisions do not hold at `near` is refused.
-Chart chart_near(const reference::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
-                 const std::vector<double>* velocity = nullptr);
+/// `complete`, if given, is one more way onto M_c tried last: a perturbed (q, v, t) in, a generic point of M_c
+/// ((q, v, t)) out, or nothing (the caller's other route, e.g. the pointwise CAD's Newton on jets; fast does not
+/// link the reference's).
+using Completion = std::function<std::optional<std::vector<double>>(const std::vector<double>& start)>;
+Chart chart_near(const symbolic::LagrangianSystem& s, const std::vector<double>& near, const std::vector<long>& dims,
+                 const std::vector<double>* velocity = nullptr, const Completion& complete = {});
 
 /// Compiled formulas: the DAG flattened once (shared subexpressions evaluated once), evaluated in double.
 class Tape {
  public:
-  explicit Tape(const std::vector<reference::expr::Expr>& outputs);
+  explicit Tape(const std::vector<symbolic::expr::Expr>& outputs);
   /// out[k] = outputs[k] at vars (indices of the expressions' variables).
   void evaluate(const double* vars, double* out) const;
   std::size_t size() const { return ops_.size(); }
 
  private:
   struct Op {
-    reference::expr::ExprOp op;
+    symbolic::expr::ExprOp op;
     std::size_t a = 0, b = 0;
     long k = 0;
     double c = 0;
@@ -138,7 +144,7 @@ class ChartField {
   mutable std::vector<double> buf_;
 };
 
-/// ∂e/∂x_i with shared subexpressions differentiated once (reference/nonlinear/calculus.hpp).
-using Differentiator = reference::expr::Differentiator;
+/// ∂e/∂x_i with shared subexpressions differentiated once (symbolic/calculus.hpp).
+using Differentiator = symbolic::expr::Differentiator;
 
 }  // namespace dcad::fast

@@ -14,7 +14,7 @@
 #pragma once
 
 #include "dcad/fast/rank.hpp"
-#include "dcad/reference/nonlinear/lagrangian_system.hpp"
+#include "dcad/symbolic/lagrangian_system.hpp"
 #include "dcad/truth.hpp"
 
 #include <string>
@@ -37,9 +37,9 @@ struct DerivativeArrayResult {
 };
 
 /// The derivative array route at `start` (values of x, v (ignored) and t, LagrangianSystem's indices;
-/// fixed[i]: a given value, held).  reference::PointwiseNoPoint when the given values cannot be held
+/// fixed[i]: a given value, held).  symbolic::PointwiseNoPoint when the given values cannot be held
 /// on {F_k = 0} but the others can (given values off M_c).
-DerivativeArrayResult derivative_array(const reference::LagrangianSystem& sys, const std::vector<double>& start,
+DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, const std::vector<double>& start,
                                        const std::vector<bool>& fixed, const Options& opt = {});
 
 }  // namespace dcad::fast

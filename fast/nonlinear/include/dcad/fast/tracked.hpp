@@ -12,7 +12,7 @@
 // Newton's iterations on jets.)
 #pragma once
 
-#include "dcad/reference/nonlinear/jet.hpp"
+#include "dcad/symbolic/jet.hpp"
 
 #include <cmath>
 #include <string>
@@ -56,7 +56,7 @@ struct Tracked {
 
 }  // namespace dcad::fast
 
-namespace dcad::reference {
+namespace dcad::symbolic {
 
 template <>
 struct JetFunctions<fast::Tracked> {
@@ -79,4 +79,4 @@ struct JetFunctions<fast::Tracked> {
   static std::string text(const T& x) { return std::to_string(x.v); }
 };
 
-}  // namespace dcad::reference
+}  // namespace dcad::symbolic

@@ -1,5 +1,5 @@
 // The linear DAE form E ẋ = A x + f(t) at circuit size, certified (issue 30): the tower of CEF (1.6) on the
-// constraints' rows, as fast's sparse route computes it (fast/exact/src/dae_sparse.cpp), but every
+// constraints' rows, as fast's sparse route computes it (reference/fast_backend/src/dae_sparse.cpp), but every
 // decision proved:
 //   M_k(t) = {C_k x = g_k(u(t))}, u the sources' jets; x ∈ M_{k+1} ⇔ x ∈ M_k and some v has E v = A x + f,
 //   C_k v = ġ_k ⇔ y_Eᵀ (A x + f) + y_Cᵀ ġ_k = 0 for every (y_E, y_C) in the left null space of S_k = [E; C_k],

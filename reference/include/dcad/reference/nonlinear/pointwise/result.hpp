@@ -2,6 +2,7 @@
 #pragma once
 
 #include "dcad/reference/nonlinear/jet.hpp"
+#include "dcad/symbolic/lagrangian_system.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -74,10 +75,6 @@ struct PointwiseResult {
   std::vector<std::vector<std::size_t>> plan;
 };
 
-/// Thrown when the point cannot be completed to a point of M_c (the exact route at a point with
-/// irrational coordinates, or given values that conflict with a constraint).
-struct PointwiseNoPoint : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
-};
+using symbolic::PointwiseNoPoint;
 
 }  // namespace dcad::reference

@@ -223,4 +223,15 @@ reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSyst
       where + ", found a value that overflowed in the elimination (every formula is finite there): rescale the case");
 }
 
+Completion pointwise_completion(const reference::LagrangianSystem& sys) {
+  return [&sys](const std::vector<double>& start) -> std::optional<std::vector<double>> {
+    ToleranceDecisions dec;
+    const reference::PointwiseResult<double> r = pointwise_cad(sys, start, std::vector<bool>(start.size(), false), dec);
+    if (!r.consistent || !r.regular) return std::nullopt;
+    std::vector<double> at(r.point.begin(), r.point.begin() + static_cast<long>(2 * sys.n));
+    at.push_back(r.time);
+    return at;
+  };
+}
+
 }  // namespace dcad::fast

@@ -144,7 +144,7 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
     certain &= both.certain();
     out.regular_pencil = vc.dim() + w.dim() == n && both.dim() == n;
   }
-  std::string note = "Wong sequences V_{k+1} = A^-1(E V_k) on orthonormal bases (fast/exact/src/dae.cpp)";
+  std::string note = "Wong sequences V_{k+1} = A^-1(E V_k) on orthonormal bases (reference/fast_backend/src/dae.cpp)";
   const bool regular = out.regular_pencil && *out.regular_pencil;
   if (has_f && !regular) {  // conditions on the sources: the exact route decides them
     if (!exact_source_conditions(c, out)) certain = unknown;

@@ -1,8 +1,11 @@
 // The pointwise CAD of a Lagrangian system given by formulas, in floating point: the reference's
 // own algorithm (reference/nonlinear/pointwise.hpp, written once over the scalar) on jets of Tracked doubles
 // (tracked.hpp), every zero test decided relative to the magnitude the number was computed from.
+// Not a route of the fast twin (it is the reference's algorithm): the fast backend uses it for the Lagrangian
+// form, and simulate for its projections; it lives here, beside the reference, for that reason.
 #pragma once
 
+#include "dcad/fast/chart.hpp"
 #include "dcad/fast/rank.hpp"
 #include "dcad/fast/tracked.hpp"
 #include "dcad/io/lagrangian_case.hpp"
@@ -65,5 +68,9 @@ reference::PointwiseResult<double> pointwise_cad(const reference::LagrangianSyst
 /// subexpression whose operands are finite), or two empty strings if every one is finite.
 std::pair<std::string, std::string> nonfinite_formula(const reference::LagrangianSystem& sys,
                                                       const std::vector<double>& at);
+
+/// chart_near's completion (chart.hpp) by this pointwise CAD: the point (q, v, t) of M_c its Newton moves on jets
+/// reach from `start`, where the CAD there is consistent and regular; nothing otherwise.
+Completion pointwise_completion(const reference::LagrangianSystem& sys);
 
 }  // namespace dcad::fast

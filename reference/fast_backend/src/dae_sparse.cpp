@@ -29,7 +29,6 @@
 // variables (Options::dae_sparse_from; the reference and the certified tier refuse there).
 #include "dcad/fast/exact.hpp"
 #include "dcad/fast/solve.hpp"
-#include "dcad/reference/pipeline/dae.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SVD>
@@ -497,8 +496,8 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
       }
       return;
     }
-    for (reference::Index i = 0; i < dense.rows(); ++i)
-      for (reference::Index j = 0; j < dense.cols(); ++j)
+    for (std::size_t i = 0; i < dense.rows(); ++i)
+      for (std::size_t j = 0; j < dense.cols(); ++j)
         if (dense(i, j) != 0) {
           t.emplace_back(static_cast<int>(i), static_cast<int>(j), to_double(dense(i, j), opt));
           values.push_back(t.back().value());
@@ -604,7 +603,7 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   if (m == n) out.regular_pencil = out.solution_rank == 0;
   std::ostringstream note;
   note << "sparse route: the constraints' rows C_{k+1} = [C_k; Z^T A], Z the left null space of [E; C_k] by sparse QR "
-          "(fast/exact/src/dae_sparse.cpp); rank decisions by a threshold on the remainders (the smallest pivot kept "
+          "(reference/fast_backend/src/dae_sparse.cpp); ranks by a threshold on remainders (the smallest pivot kept "
        << ev.smallest_pivot << ", the largest remainder taken as zero " << ev.largest_dropped << ", the threshold "
        << ev.threshold << ", relative to their matrices), which bounds no singular value: not certified";
   if (ev.smallest_pivot < 1e3 * ev.threshold || ev.largest_dropped > 1e-3 * ev.threshold)
