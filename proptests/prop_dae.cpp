@@ -136,6 +136,7 @@ RC_GTEST_PROP(Dae, PlantedRegularPencilHasItsIndexAndDims, ()) {
   RC_ASSERT(r.regular_pencil && *r.regular_pencil);
   RC_ASSERT(r.consistent);
   RC_ASSERT(r.steps == index);
+  RC_ASSERT(r.index() == std::optional<long>(index));  // the typed answer's index: the largest nilpotent block's
   RC_ASSERT(r.solution_rank && *r.solution_rank == 0);
   for (long k = 0; k <= r.steps; ++k) {
     long dim = p.ode;
@@ -149,6 +150,7 @@ RC_GTEST_PROP(Dae, PlantedRegularPencilHasItsIndexAndDims, ()) {
     RC_ASSERT(f.steps == r.steps);
     RC_ASSERT(f.solution_rank == r.solution_rank);
     RC_ASSERT(f.regular_pencil == r.regular_pencil);
+    RC_ASSERT(f.index() == r.index());
   }
 }
 
@@ -158,6 +160,7 @@ RC_GTEST_PROP(Dae, PlantedSingularPencilIsSingularAndNotUnique, ()) {
   const auto r = reference::pipeline::solve_dae(c);
   RC_ASSERT(r.consistent);  // f = 0: x = 0 solves it
   RC_ASSERT(r.regular_pencil && !*r.regular_pencil);
+  RC_ASSERT(!r.index());                                // a singular pencil has no index
   RC_ASSERT(r.solution_rank && *r.solution_rank >= 1);  // L_ε leaves a velocity free
   const fast::Solution f = fast_of(c);
   RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");

@@ -313,7 +313,7 @@ json cad_json(const Printed& r) {
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   if (r.regular_pencil) {  // a square linear DAE: for a regular pencil, steps is the differentiation index
     j["regular_pencil"] = *r.regular_pencil;
-    j["index"] = *r.regular_pencil && r.consistent ? json(r.steps) : json(nullptr);
+    j["index"] = r.index() ? json(*r.index()) : json(nullptr);
   }
   if (!r.jets.empty()) j["source_jets"] = r.jets;  // the columns after the variables in final_constraints
   json tower = json::array();
@@ -512,8 +512,7 @@ json pointwise_json(const Printed& r) {
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   // the implicit form: where ẋ is unique on M_c, steps is the index (Rabier–Rheinboldt's geometric
   // index, which is the differentiation index there); else none
-  if (r.algorithm == "CEF (1.6)")
-    j["index"] = r.consistent && r.solution_rank && *r.solution_rank == 0 ? json(r.steps) : json(nullptr);
+  if (r.algorithm == "CEF (1.6)") j["index"] = r.index() ? json(*r.index()) : json(nullptr);
   if (!r.name.empty()) j["name"] = r.name;
   j["variables"] = r.variables;
   j["route"] = p.route;

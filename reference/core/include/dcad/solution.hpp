@@ -237,6 +237,15 @@ struct Solution {
   std::vector<std::string> warnings;  ///< the reader's (a netlist's ignored cards …)
   std::string note;                   ///< how the result was reached; why it is not certified
 
+  /// The DAE's differentiation index (CONTRACT key `index`), none where there is none: a square linear DAE with a
+  /// regular pencil and a consistent tower has index `steps` (Kronecker); the implicit form, where ẋ is unique on
+  /// M_c, has Rabier–Rheinboldt's geometric index `steps`, the differentiation index there (CEF (1.6)).
+  std::optional<long> index() const {
+    if (regular_pencil) return *regular_pencil && consistent ? std::optional<long>(steps) : std::nullopt;
+    if (algorithm == "CEF (1.6)" && consistent && solution_rank && *solution_rank == 0) return steps;
+    return std::nullopt;
+  }
+
   std::vector<long> dims() const {
     std::vector<long> d;
     for (const Level<N>& l : tower) d.push_back(l.dim);

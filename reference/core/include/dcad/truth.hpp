@@ -16,8 +16,10 @@ namespace dcad {
 class Truth {
  public:
   enum class Value : unsigned char { yes, no, unknown };
-  /// Default yes: a certainty that nothing has put in doubt yet.
-  constexpr Truth(Value v = Value::yes) : v_(v) {}  // NOLINT: dcad::yes, dcad::no, dcad::unknown below
+  /// No default (issue 47): every Truth says what it starts as — `= yes` where a certainty starts that later
+  /// decisions may put in doubt, `= unknown` where nothing is proved yet.
+  Truth() = delete;
+  constexpr Truth(Value v) : v_(v) {}  // NOLINT: dcad::yes, dcad::no, dcad::unknown below
   /// A certain answer.
   static constexpr Truth of(bool b) { return Truth(b ? kYes : kNo); }
   /// The answer `guess` if `certain` is yes, else unknown.
