@@ -3,6 +3,7 @@
 #include "support/gen.hpp"
 
 #include "dcad/reference/adapted.hpp"
+#include "generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -47,7 +48,7 @@ bool parametrises_all(const Field& field, Index multipliers, const QM& w, const 
 // a' − s' = d^(c) (Remark 3.30); first class X_ψ ∈ ker ω_c.  Killed by: an abridged field that
 // drops a multiplier's term (then λ misses solutions).
 RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   std::vector<bool> primary(db.constraints.rows(), false);
@@ -77,7 +78,7 @@ RC_GTEST_PROP(Adapted, Theorem3_28, ()) {
 // S_0 (leaf constraints counted as primary), X_(χ),E_AT at any x ∈ S is tangent to the leaf S_C
 // through x and solves (7.7) there, for every λ.
 RC_GTEST_PROP(Adapted, Theorem7_4_Foliated, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const QM leaf = any_leaf_functions(s);
   if (leaf.rows() == 0 && leaf.cols() == 0) return;  // not defined regularly
   const QM both = vstack(s.primary, leaf);
@@ -108,7 +109,7 @@ RC_GTEST_PROP(Adapted, Theorem7_4_Foliated, ()) {
 // Hamiltonian field of E_{λ̃,T} on the extended Poisson manifold at (x, C) on the graph of C is (X, 0) for
 // any derivative of the section, tangent to that graph (the motion preserves it).
 RC_GTEST_PROP(Adapted, Section7_FoliatedMultipliersAndExtendedField, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const QM leaf = any_leaf_functions(s);
   if (leaf.rows() == 0 && leaf.cols() == 0) return;
   const FoliatedEmbedding<Q> f{s.omega, s.hessian, s.gradient, s.primary, leaf};

@@ -1,5 +1,6 @@
 // Properties of the exact CAD (CEF §5) on random linear systems in both input forms.
 #include "support/gen.hpp"
+#include "generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -19,7 +20,7 @@ void classify(const CadResult<Q>& r) {
 
 // §5: M_{k+1} ⊆ M_k, strictly until it stops, and c ≤ N.
 RC_GTEST_PROP(Cad, TowerDecreasesAndStops, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
   classify(r);
   RC_ASSERT(r.steps <= s.d.n);
@@ -46,7 +47,7 @@ RC_GTEST_PROP(Cad, PlantedLongTower, ()) {
 // Lemma 5.1 (iv) ⇔ (vi) ⇔ (vii) at random points x, with W = W_k of the tower:
 // ⟨dE(x)|E_D, W^{ω_D}⟩ = 0  ⇔  dE(x) ∈ D^♭(W)  ⇔  ⟨dE(x), W^D⟩ = 0.
 RC_GTEST_PROP(Cad, Lemma5_1_Equivalences, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
   const Index k = *rc::gen::inRange<Index>(0, r.tower.size());
   if (r.tower[k].m.empty) return;
@@ -72,7 +73,7 @@ RC_GTEST_PROP(Cad, Lemma5_1_Equivalences, ()) {
 // Thm 5.4(b): the velocities solving (5.7)–(5.8) at a point of M_c form an affine space of
 // dimension d^(c) = dim(ker ω_D ∩ T M_c) — and they exist at every point of M_c.
 RC_GTEST_PROP(Cad, Theorem5_4_SolutionRank, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
   classify(r);
   if (!r.consistent) return;
@@ -89,7 +90,7 @@ RC_GTEST_PROP(Cad, Theorem5_4_SolutionRank, ()) {
 // of (B) from W_c^{ω_D}.  Killed by: the solution rank or W_c computed from the wrong step, a
 // determinant or form kernel that ignores a row.
 RC_GTEST_PROP(Cad, Lemma5_5, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
   if (!r.consistent) return;
   const PresymplecticForm<Q> om = dirac_form(s.d);
@@ -111,7 +112,7 @@ RC_GTEST_PROP(Cad, Lemma5_5, ()) {
 // Solutions of the reduced equations (5.12) satisfy the original implicit system (1.1): for random
 // z ∈ M_c (in its coordinates) and λ, the ẋ built from ż is tangent to M_c and (ẋ, dE(x)) ∈ D.
 RC_GTEST_PROP(Cad, ReducedEquationsSolveTheImplicitSystem, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
   if (!r.consistent) return;
   const ReducedEquations<Q> red = reduced_equations(s, r);
@@ -139,7 +140,7 @@ RC_GTEST_PROP(Cad, ReducedEquationsSolveTheImplicitSystem, ()) {
 // Discrete outputs are invariant under linear changes of coordinates x = A y (A unimodular):
 // D pulls back to {(A^{-1} v, Aᵀ α)}, H to Aᵀ H A, g to Aᵀ g.
 RC_GTEST_PROP(Cad, InvariantUnderLinearCoordinateChanges, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const Index n = s.d.n;
   const LinearSystem<Q> moved = change_coordinates(s, unimodular(n));
   const CadResult<Q> r1 = constraint_tower(s), r2 = constraint_tower(moved);
@@ -152,7 +153,7 @@ RC_GTEST_PROP(Cad, InvariantUnderLinearCoordinateChanges, ()) {
 // Remark 5.3 (and §5, constant D): the CAD equals Gotay–Nester run on each presymplectic leaf
 // x0 + E_D — M_k ∩ (x0 + E_D) is the k-th Gotay–Nester constraint set of (E_D, ω_D, E|leaf).
 RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
-  const LinearSystem<Q> s = any_system();
+  const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
   const Subspace<Q> e = dirac_distribution(s.d);
   const std::vector<Q> x0 =

@@ -6,6 +6,7 @@
 #include "support/tally.hpp"
 
 #include "dcad/fast/dirac_bergmann.hpp"
+#include "generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -37,7 +38,7 @@ struct Twins {
 
 std::optional<Twins> consistent_twins() {
   Twins t;
-  t.s = any_system();
+  t.s = *systems();
   RC_LOG() << case_json(t.s);
   t.r = ref::constraint_tower(t.s);
   if (!t.r.consistent) return std::nullopt;
@@ -52,7 +53,7 @@ std::optional<Twins> consistent_twins() {
 
 // Gotay–Nester for (N, Ω, E, M) (the CAD of D_{(TM, Ω)} from M_0 = M) by both backends.
 RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
-  const ref::ConstrainedSystem<Q> s = any_constrained_system();
+  const ref::ConstrainedSystem<Q> s = *constrained_systems();
   const ref::CadResult<Q> r = ref::gotay_nester(s);
   fast::Options opt = any_route_options();
   const fast::CadResult f =
@@ -68,7 +69,7 @@ RC_GTEST_PROP(FastVsReference, GotayNesterWithPrimaryConstraints, ()) {
 }
 
 RC_GTEST_PROP(FastVsReference, Cad, ()) {
-  const ref::LinearSystem<Q> s = any_system();
+  const ref::LinearSystem<Q> s = *systems();
   RC_LOG() << case_json(s);
   fast::Options opt = any_route_options();
   const fast::LinearSystem fs = fast_twin(s, opt);

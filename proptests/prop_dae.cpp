@@ -30,6 +30,7 @@
 #include "dcad/reference/nonlinear/ehresmann.hpp"
 #include "dcad/reference/pipeline/implicit.hpp"
 #include "gen.hpp"
+#include "generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -412,7 +413,7 @@ RC_GTEST_PROP(Dae, CertifiedSparseRouteIsTheReferenceOnRandomCircuits, ()) {
 }
 
 RC_GTEST_PROP(Dae, DiracSystemAsEquationsHasTheCadTower, ()) {
-  const reference::LinearSystem<Q> sys = any_system();
+  const reference::LinearSystem<Q> sys = *systems();
   const reference::CadResult<Q> cad = reference::constraint_tower(sys);
   const Index n = sys.d.n;
   const QM pr = reference::nullspace(sys.d.d.basis());  // rows (P | R) with P v + R α = 0 for every (v, α) ∈ D

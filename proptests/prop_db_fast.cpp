@@ -10,6 +10,7 @@
 #include "dcad/fast/quotient.hpp"
 #include "dcad/reference/adapted.hpp"
 #include "dcad/reference/quotient.hpp"
+#include "generators.hpp"
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
@@ -31,7 +32,7 @@ struct Twins {
 };
 
 Twins any_twins() {
-  Twins t{any_constrained_system(), any_route_options(), {}, {}, {}};
+  Twins t{*constrained_systems(), any_route_options(), {}, {}, {}};
   t.fs = {to_double(t.s.omega, &t.opt), to_double(t.s.hessian, &t.opt),
           to_double(QM::column(t.s.gradient), &t.opt).col(0), to_double(t.s.primary, &t.opt)};
   t.r = ref::dirac_bergmann(t.s);
@@ -77,7 +78,7 @@ RC_GTEST_PROP(FastVsReference, DiracBergmann, ()) {
 // s', 2s and the abridged count equal unless fast is uncertain; the fast X_(χ),E_AT is tangent to
 // M_c and solves (3.18) up to rounding.
 RC_GTEST_PROP(FastVsReference, AdaptedConstraints, ()) {
-  const ref::ConstrainedSystem<Q> s = any_constrained_system();
+  const ref::ConstrainedSystem<Q> s = *constrained_systems();
   const ref::DiracBergmannResult<Q> r = ref::dirac_bergmann(s);
   if (!r.consistent) return;
   std::vector<bool> primary(r.constraints.rows(), false);
@@ -219,7 +220,7 @@ RC_GTEST_PROP(FastVsReference, FirstClassFunctions, ()) {
 // solved for λ) has the reference's dimension unless fast is uncertain, and fast's field (7.8) with its λ is
 // tangent to the exact leaf S_C and solves (7.7) there, up to rounding.
 RC_GTEST_PROP(FastVsReference, FoliatedMultipliers, ()) {
-  const ref::ConstrainedSystem<Q> s = any_constrained_system();
+  const ref::ConstrainedSystem<Q> s = *constrained_systems();
   const QM leaf = any_leaf_functions(s);
   if (leaf.rows() == 0 && leaf.cols() == 0) return;
   const ref::FoliatedEmbedding<Q> f{s.omega, s.hessian, s.gradient, s.primary, leaf};

@@ -4,6 +4,7 @@
 
 #include "dcad/reference/dirac_bergmann.hpp"
 #include "dcad/reference/quotient.hpp"
+#include "generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -47,7 +48,7 @@ std::string tilde_quotient_fails(const ConstrainedSystem<Q>& s, const GaugeQuoti
 
 // §2: the Dirac–Bergmann and the Gotay–Nester algorithms produce the same M_k.
 RC_GTEST_PROP(DiracBergmann, SameTowerAsGotayNester, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   const CadResult<Q> gn = gotay_nester(s);
   RC_CLASSIFY(!db.consistent, "inconsistent");
@@ -60,7 +61,7 @@ RC_GTEST_PROP(DiracBergmann, SameTowerAsGotayNester, ()) {
 // §2.2: Λ^(c) ≅ S^(c) by λ ↦ X_{E_T} — the image of the multipliers at x ∈ M_c is exactly the
 // Gotay–Nester solution set S^(c)_x, of the same dimension; and X_{E_T} is tangent to M_c.
 RC_GTEST_PROP(DiracBergmann, MultipliersMatchSolutions, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const CadResult<Q> gn = gotay_nester(s);
@@ -80,7 +81,7 @@ RC_GTEST_PROP(DiracBergmann, MultipliersMatchSolutions, ()) {
 // det Σ ≠ 0; the Dirac tensor J* is skew, kills every χ ({F, χ_j}* = 0 for all F), and
 // {ψ_i, ψ_j}* = 0.
 RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
@@ -119,7 +120,7 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
 // Lemma 5.5 (A)(iii) and (B)(ii) with the ambient Ω, for D = D_{(T M, Ω)} (E_D = T M):
 // uniqueness ⇔ W_c ∩ E_D^Ω = 0; ω_D|W_c symplectic ⇔ W_c ∩ W_c^Ω = 0.
 RC_GTEST_PROP(DiracBergmann, Lemma5_5_AmbientOmega, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const Subspace<Q> tm = kernel(gradients(s.primary));
   const LinearSystem<Q> ls{dirac_from_distribution(tm, s.omega), s.hessian, s.gradient, Q(0)};
   const CadResult<Q> r = constraint_tower(ls, s.primary);
@@ -133,7 +134,7 @@ RC_GTEST_PROP(DiracBergmann, Lemma5_5_AmbientOmega, ()) {
 // §2.1: the equations of motion by the Dirac bracket equal those by the canonical bracket on M_c:
 // J* (dE + λ^i dφ_i) = J (dE + λ^i dφ_i) at x ∈ M_c, λ ∈ Λ_x (E_T is first class).
 RC_GTEST_PROP(DiracBergmann, DiracBracketGivesTheSameMotion, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
@@ -150,7 +151,7 @@ RC_GTEST_PROP(DiracBergmann, DiracBracketGivesTheSameMotion, ()) {
 // (3.8) and Remark 3.21: every solution X of (3.4) at x ∈ M_c (any λ ∈ Λ^(c)_x) projects to the one
 // solution of (3.8), C X = X̄(C x); the section x(z) lies on M_c over z.
 RC_GTEST_PROP(DiracBergmann, Lemma3_9_GaugeQuotient, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const GaugeQuotient<Q> q = gauge_quotient(s, db);
@@ -193,7 +194,7 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_9_GaugeQuotient, ()) {
 // dχ′, dψ independent and det Σ′ ≠ 0; and the motion by χ′'s Dirac bracket is the canonical one,
 // J*′ dE_T = J dE_T on M_c (E_T is first class), whichever V.
 RC_GTEST_PROP(DiracBergmann, Lemma3_23d_AnySecondClassChoice, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const ConstraintClasses<Q> cl = classify_constraints(s.omega, db.constraints);
@@ -262,7 +263,7 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_23d_PlantedSecondClass, ()) {
 // Def 3.22 on M_c: first class (every function vanishing on it first class) ⇔ no second class constraint
 // (2s = 0) ⇔ coisotropic, (T M_c)^Ω ⊆ T M_c.
 RC_GTEST_PROP(DiracBergmann, Def3_22_FirstClassSubmanifold, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const Subspace<Q>& tmc = db.tower.back().direction;
@@ -278,7 +279,7 @@ RC_GTEST_PROP(DiracBergmann, Def3_22_FirstClassSubmanifold, ()) {
 // random first class constraint, f ∈ I^(c)); 3.17: (p_{K_c})_* is onto M̄_c's linear functions, its kernel
 // is I^(c), and it is a Poisson map, {f, h} = {f̄, h̄} in ω̄_c's bracket.
 RC_GTEST_PROP(DiracBergmann, Lemmas3_12_3_17_FirstClassFunctions, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const GaugeQuotient<Q> q = gauge_quotient(s, db);
@@ -311,7 +312,7 @@ RC_GTEST_PROP(DiracBergmann, Lemmas3_12_3_17_FirstClassFunctions, ()) {
 // solutions X, X′ of (3.4) at x ∈ M_c (any two multipliers) differ by K̃_c and project to the one X̃ = C̃ X —
 // uniqueness recovered on M̃_c; and the fibration p_{K_c K̃_c} (P) carries C̃ to C on TM_c, so X̃ to X̄.
 RC_GTEST_PROP(DiracBergmann, Lemma3_20_TildeQuotient, ()) {
-  const ConstrainedSystem<Q> s = any_constrained_system();
+  const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
   if (!db.consistent) return;
   const GaugeQuotient<Q> q = gauge_quotient(s, db);

@@ -9,6 +9,7 @@
 #include "dcad/reference/cad.hpp"
 #include "dcad/reference/fmpq.hpp"
 #include "dcad/reference/small_rational.hpp"
+#include "generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -186,14 +187,14 @@ TEST(SmallRational, OverflowAtTheWordLimit) {
 
 // The CAD of CEF §5 on SmallRational is the mpq_rational CAD (or an Overflow: then solve recomputes).
 RC_GTEST_PROP(SmallRational, ReferenceCadIsTheMpqCad, ()) {
-  RC_CLASSIFY(cad_is_the_mpq_cad<S>(any_system()), "fits in 64 bits");
+  RC_CLASSIFY(cad_is_the_mpq_cad<S>(*systems()), "fits in 64 bits");
 }
 
 // The same on WideRational, on random systems and on the sweep's perturbed family (ω moved by a shear
 // and perturbed by 2^-k, k up to 60: numbers that outgrow 64 bits, the reason WideRational exists).
 RC_GTEST_PROP(WideRational, ReferenceCadIsTheMpqCad, ()) {
   if (*rc::gen::arbitrary<bool>()) {
-    RC_CLASSIFY(cad_is_the_mpq_cad<W>(any_system()), "random system, fits in 128 bits");
+    RC_CLASSIFY(cad_is_the_mpq_cad<W>(*systems()), "random system, fits in 128 bits");
     return;
   }
   std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
@@ -234,7 +235,7 @@ RC_GTEST_PROP(Fmpq, ArithmeticIsMpq, ()) {
 // beyond 128 bits (where the reference and the certified cascade reach it).
 RC_GTEST_PROP(Fmpq, ReferenceCadIsTheMpqCad, ()) {
   if (*rc::gen::arbitrary<bool>()) {
-    RC_ASSERT(cad_is_the_mpq_cad<F>(any_system()));
+    RC_ASSERT(cad_is_the_mpq_cad<F>(*systems()));
     return;
   }
   std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());

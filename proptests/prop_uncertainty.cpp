@@ -14,6 +14,7 @@
 #include "support/case_json.hpp"
 #include "support/circuit_gen.hpp"
 #include "support/gen.hpp"
+#include "support/generators.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -101,8 +102,29 @@ std::string rlc_deck() {
 }  // namespace
 
 RC_GTEST_PROP(Uncertainty, LinearDiracSystems, ()) {
-  const std::string text = case_json(any_system());
+  const std::string text = case_json(*systems());
   every_decision_reaches_the_verdict(case_problem(text), "dirac (basis)", text);
+}
+
+// Issue 47: the generators are rc::Gen<T> whose values RapidCheck shows as the case file they are (generators.hpp),
+// so a counterexample is printed as a case, ready for `dcad cases freeze`: the shown text reads back as the same data.
+RC_GTEST_PROP(Generators, ShownValueIsTheCaseFileOfTheValue, ()) {
+  const reference::LinearSystem<Q> s = *systems();
+  const std::string shown = rc::toString(s), tag = "dcad case: ";
+  RC_ASSERT(shown.rfind(tag, 0) == 0);
+  const io::Problem p = case_problem(shown.substr(tag.size()));
+  RC_ASSERT(p.linear.has_dirac);
+  RC_ASSERT(p.linear.dirac.g == s.d.d.basis());
+  RC_ASSERT(p.linear.energy.hessian == s.hessian);
+  RC_ASSERT(p.linear.energy.gradient == s.gradient);
+  RC_ASSERT(p.linear.energy.constant == s.constant);
+  const reference::ConstrainedSystem<Q> c = *constrained_systems();
+  const std::string shown_c = rc::toString(c);
+  RC_ASSERT(shown_c.rfind(tag, 0) == 0);
+  const io::Problem pc = case_problem(shown_c.substr(tag.size()));
+  RC_ASSERT(pc.linear.has_constrained);
+  RC_ASSERT(pc.linear.constrained.w == c.omega);
+  RC_ASSERT(pc.linear.constrained.primary == c.primary);
 }
 
 /// A `dirac` member in one of the CONTRACT's other forms, with an energy of the right size.
@@ -138,7 +160,7 @@ RC_GTEST_PROP(Uncertainty, LinearDiracSystemsInEveryForm, ()) {
 }
 
 RC_GTEST_PROP(Uncertainty, ConstrainedSystems, ()) {
-  const std::string text = case_json(any_constrained_system());
+  const std::string text = case_json(*constrained_systems());
   every_decision_reaches_the_verdict(case_problem(text), "constrained", text);
 }
 
@@ -206,7 +228,7 @@ TEST(Uncertainty, ExpressionFormCasesOfTheCorpus) {
 }
 
 RC_GTEST_PROP(Uncertainty, Inspection, ()) {
-  const std::string text = case_json(any_system());
+  const std::string text = case_json(*systems());
   const io::Problem p = case_problem(text);
   fast::DecisionProbe count;
   fast::Options opt;
@@ -312,7 +334,7 @@ RC_GTEST_PROP(Uncertainty, DiracStructures, ()) {
 }
 
 RC_GTEST_PROP(Uncertainty, VelocitiesAndInitialPoints, ()) {
-  const reference::LinearSystem<Q> s = any_system(6);
+  const reference::LinearSystem<Q> s = *systems(6);
   const reference::CadResult<Q> r = reference::constraint_tower(s);
   RC_PRE(r.consistent);
   const std::vector<Q> x = some_point(r.final_step().m);
@@ -334,7 +356,7 @@ RC_GTEST_PROP(Uncertainty, VelocitiesAndInitialPoints, ()) {
 }
 
 RC_GTEST_PROP(Uncertainty, DiracBergmann, ()) {
-  const reference::ConstrainedSystem<Q> s = any_constrained_system();
+  const reference::ConstrainedSystem<Q> s = *constrained_systems();
   const reference::DiracBergmannResult<Q> r = reference::dirac_bergmann(s);
   RC_PRE(r.consistent);
   const std::vector<Q> x = some_point(r.tower.back());

@@ -1,14 +1,14 @@
 // A project outside dcad's tree that uses the installed package (README "dcad from C++"): the CAD on its
 // own matrices, a netlist given as a string, the typed Solution read and printed, a result checked —
 // all on in-memory data, no file written or read — and a property written with dcad's generators (dcad::testing).
-#include "dcad/api.hpp"              // every backend's solve, check, simulate
-#include "dcad/certified/solve.hpp"  // certified::solve: a Problem in, a typed Solution out
-#include "dcad/fast/cad.hpp"         // the double twin on your own matrices
-#include "dcad/io/problem.hpp"       // parse_netlist, parse_case: problems from text
-#include "dcad/io/report.hpp"        // text and JSON as `dcad solve` prints them
-#include "dcad/reference/cad.hpp"    // the exact reference on your own matrices
-#include "dcad/testing/convert.hpp"  // to_double: exact matrices as Eigen doubles
-#include "dcad/testing/gen.hpp"      // any_system(): random exact linear Dirac systems (CEF §5)
+#include "dcad/api.hpp"                 // every backend's solve, check, simulate
+#include "dcad/certified/solve.hpp"     // certified::solve: a Problem in, a typed Solution out
+#include "dcad/fast/cad.hpp"            // the double twin on your own matrices
+#include "dcad/io/problem.hpp"          // parse_netlist, parse_case: problems from text
+#include "dcad/io/report.hpp"           // text and JSON as `dcad solve` prints them
+#include "dcad/reference/cad.hpp"       // the exact reference on your own matrices
+#include "dcad/testing/convert.hpp"     // to_double: exact matrices as Eigen doubles
+#include "dcad/testing/generators.hpp"  // systems(): random exact linear Dirac systems (CEF §5), shown as case files
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -105,7 +105,7 @@ TEST(MyMotion, TheTrajectoryAsDoubles) {
 // 5. A property of *your* CAD against the reference, on dcad's random Dirac systems with planted structure.
 RC_GTEST_PROP(MyCad, AgreesWithTheReferenceWhereItIsCertain, ()) {
   using namespace dcad::test;
-  const ref::LinearSystem<Q> s = any_system();
+  const ref::LinearSystem<Q> s = *systems();  // a failing case prints as "dcad case: {…}"
   const ref::CadResult<Q> exact = ref::constraint_tower(s);
   fast::Options opt;  // the conversion records what the input's heights leave certain
   const fast::LinearSystem mine{fast::dirac_from_basis(to_double(s.d.d.basis(), &opt), opt), to_double(s.hessian, &opt),
