@@ -18,6 +18,12 @@
 #ifndef DCAD_CASES_DIR
 #define DCAD_CASES_DIR "cases"
 #endif
+#ifndef DCAD_DATA_DIR
+#define DCAD_DATA_DIR "share"
+#endif
+#ifndef DCAD_INSTALLED_CASES_DIR
+#define DCAD_INSTALLED_CASES_DIR "/usr/local/share/dcad/cases"
+#endif
 
 namespace dcad::api {
 
@@ -144,7 +150,16 @@ std::string freeze(const std::string& from_file, const std::string& wanted) {
 
 std::string cases_dir() {
   const char* env = std::getenv("DCAD_CASES");
-  return env && *env ? env : DCAD_CASES_DIR;
+  if (env && *env) return env;
+  std::error_code ec;
+  // an installed dcad, PREFIX/bin/dcad, reads PREFIX/share/dcad/cases (installed with it), wherever PREFIX is
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path beside = exe.parent_path().parent_path() / DCAD_DATA_DIR / "dcad" / "cases";
+    if (fs::is_directory(beside, ec)) return beside.string();
+  }
+  // the build tree reads its source checkout; a program linking the installed dcad::api, the configured prefix
+  return fs::is_directory(DCAD_CASES_DIR, ec) ? DCAD_CASES_DIR : DCAD_INSTALLED_CASES_DIR;
 }
 
 std::vector<CaseEntry> list_cases() {
