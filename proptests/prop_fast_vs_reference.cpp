@@ -1,5 +1,9 @@
 // fast = reference on every discrete output unless fast says uncertain; subspaces agree up to a
 // condition-aware principal-angle bound; on adversarial data fast must say uncertain, not be wrong.
+#include "dcad/fast/adapted.hpp"
+#include "dcad/fast/dirac_bergmann.hpp"
+#include "dcad/reference/adapted.hpp"
+#include "dcad/reference/dirac_bergmann.hpp"
 #include "support/convert.hpp"
 #include "support/fast_options.hpp"
 #include "support/tally.hpp"
@@ -14,6 +18,33 @@ using namespace dcad::test;
 namespace ref = dcad::reference;
 
 namespace {
+
+/// A Pontryagin input on Q^n (CEF §6's shape): Δ = ker K random, L = ½ vᵀ A v − ½ qᵀ B q with A, B symmetric of
+/// random ranks, no linear terms.
+ref::PontryaginInput<Q> lc_like_input(Index n) {
+  ref::PontryaginInput<Q> in;
+  in.n = n;
+  in.k = integer_matrix(*rc::gen::inRange<Index>(0, n + 1), n, 1);
+  in.vv = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  in.qq = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+  in.qv = QM(n, n);
+  in.q.assign(n, Q(0));
+  in.v.assign(n, Q(0));
+  return in;
+}
+
+/// The same input in double, for fast's own construction.
+fast::PontryaginInput as_fast(const ref::PontryaginInput<Q>& in) {
+  fast::PontryaginInput fin;
+  fin.n = static_cast<std::size_t>(in.n);
+  fin.k = to_double(in.k);
+  fin.vv = to_double(in.vv);
+  fin.qq = to_double(in.qq);
+  fin.qv = to_double(in.qv);
+  fin.q = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(in.n));
+  fin.v = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(in.n));
+  return fin;
+}
 
 #define DCAD_COMPARE(what, certain, fast_value, ref_value) \
   RC_ASSERT(!tally(what, certain, (fast_value) == (ref_value)));
@@ -167,14 +198,7 @@ RC_GTEST_PROP(FastVsReference, Graded, ()) {
 // fast's (its own D̄_Δ from the same data) unless fast is uncertain.
 RC_GTEST_PROP(FastVsReference, Section6_EFlatAndOrthogonal, ()) {
   const Index n = pick_size(1, 4);
-  ref::PontryaginInput<Q> in;
-  in.n = n;
-  in.k = integer_matrix(*rc::gen::inRange<Index>(0, n + 1), n, 1);
-  in.vv = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
-  in.qq = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
-  in.qv = QM(n, n);
-  in.q.assign(n, Q(0));
-  in.v.assign(n, Q(0));
+  const ref::PontryaginInput<Q> in = lc_like_input(n);
   const ref::DiracStructure<Q> d = ref::pontryagin_system(in).d;
   const QSub delta = ref::kernel(in.k), delta0 = ref::annihilator(delta);
   const auto place = [&](const QM& rows, Index block) {  // rows of Q^n into block 0 (q), 1 (v) or 2 (p) of Q^{3n}
@@ -191,14 +215,7 @@ RC_GTEST_PROP(FastVsReference, Section6_EFlatAndOrthogonal, ()) {
   RC_ASSERT(ref::dirac_distribution(d) == e);      // (6.10)
   RC_ASSERT(ref::dirac_flat(d, e) == flat);        // (6.11)
   RC_ASSERT(ref::dirac_orthogonal(d, e) == orth);  // (6.12)
-  fast::PontryaginInput fin;
-  fin.n = static_cast<std::size_t>(n);
-  fin.k = to_double(in.k);
-  fin.vv = to_double(in.vv);
-  fin.qq = to_double(in.qq);
-  fin.qv = to_double(in.qv);
-  fin.q = Eigen::VectorXd::Zero(n);
-  fin.v = Eigen::VectorXd::Zero(n);
+  const fast::PontryaginInput fin = as_fast(in);
   const fast::DiracStructure fd = fast::pontryagin_system(fin).d;
   const fast::Subspace fe = fast::dirac_distribution(fd);
   RC_ASSERT(!tally("(6.10) E_D", fe.certain().yes(), fast::equal(fe, to_fast(e)).yes()));
@@ -206,4 +223,37 @@ RC_GTEST_PROP(FastVsReference, Section6_EFlatAndOrthogonal, ()) {
   const fast::Subspace ff = fast::dirac_flat(fd, fe), fo = fast::dirac_orthogonal(fd, fe);
   RC_ASSERT(!tally("(6.11) E_D flat", ff.certain().yes(), fast::equal(ff, to_fast(flat)).yes()));
   RC_ASSERT(!tally("(6.12) E_D^D", fo.certain().yes(), fast::equal(fo, to_fast(orth)).yes()));
+}
+
+// CEF Remark 2.1 and Lemma A.1: φ(q, v, p) = (q, v, p, 0) embeds (TQ ⊕ T*Q, ω = pr*ω_{T*Q}) in (T*TQ, Ω) with
+// φ*Ω = ω — the pullback Φᵀ Ω Φ (Φ = [I; 0]) is dq∧dp written out by hand here.  The Remark ends "the embedding
+// given above is not coisotropic"; its image {ν = 0} is coisotropic: (T φM)^Ω = span ∂_v ⊆ T φM (the ν_i
+// Poisson-commute), and of Gotay's minimal dimension, dim T*TQ = dim M + dim ker ω (a candidate erratum, README).
+// Both twins decide it on tangent_cotangent_embedding's Ω: the reference by the definition ((TS)^Ω ⊆ TS), fast by
+// its bracket matrix (is_first_class_submanifold).
+RC_GTEST_PROP(FastVsReference, Remark2_1_EmbeddingPullsBackOmegaAndIsCoisotropic, ()) {
+  const Index n = pick_size(1, 5);
+  const ref::PontryaginInput<Q> in = lc_like_input(n);
+  const ref::FoliatedEmbedding<Q> f = ref::tangent_cotangent_embedding(in);
+  QM phi(4 * n, 3 * n), omega(3 * n, 3 * n);  // Φ, and ω = dq∧dp on (q, v, p)
+  for (Index i = 0; i < 3 * n; ++i) phi(i, i) = Q(1);
+  for (Index i = 0; i < n; ++i) {
+    omega(i, 2 * n + i) = Q(1);
+    omega(2 * n + i, i) = Q(-1);
+  }
+  RC_ASSERT(phi.transpose() * f.omega * phi == omega);        // φ*Ω = ω
+  const QSub image = ref::kernel(ref::gradients(f.primary));  // T φM = {ν = 0}
+  RC_ASSERT(image.dim() == 3 * n);
+  const QSub perp = ref::symplectic_complement(f.omega, image);
+  RC_ASSERT(ref::contains(image, perp));  // coisotropic, contrary to the Remark's last sentence
+  RC_ASSERT(ref::is_first_class_submanifold(f.omega, image));
+  const QSub ker = ref::form_kernel(ref::restrict_form(f.omega, image));  // ker ω, in T*TQ's coordinates
+  RC_ASSERT(ker == perp);                                                 // the characteristic directions ∂_v
+  RC_ASSERT(4 * n == image.dim() + ker.dim());                            // Gotay's minimal dimension
+  const fast::PontryaginInput fin = as_fast(in);
+  const fast::FoliatedEmbedding ff = fast::tangent_cotangent_embedding(fin);
+  RC_ASSERT(ff.omega.topLeftCorner(3 * n, 3 * n) == to_double(omega));
+  const fast::Subspace fimage = fast::kernel(ff.primary.leftCols(4 * n));
+  const Truth first = fast::is_first_class_submanifold(ff.omega, fimage);
+  RC_ASSERT(!tally("Remark 2.1 coisotropic", first.known(), first.yes()));
 }
