@@ -142,6 +142,10 @@ RC_GTEST_PROP(FastVsReference, Dirac, ()) {
   compare_subspace("D^flat(W)", fast::dirac_flat(fd, fw), ref::dirac_flat(rd, w), bound);
   compare_subspace("W^D", fast::dirac_orthogonal(fd, fw), ref::dirac_orthogonal(rd, w), bound);
   compare_subspace("W^omega_D", fast::orthogonal(fom, fw), ref::orthogonal(rom, w), bound);
+  // CEF Lemma 4.2 on (E_D, ω_D): W^♭ = (W^ω)°.  fast's route to the left side is ω^♭ of W's basis; to the right,
+  // the annihilator of its own W^ω: each equals the reference's W^♭
+  compare_subspace("W^flat (Lemma 4.2)", fast::flat(fom, fw), ref::flat(rom, w), bound);
+  compare_subspace("(W^omega)° (Lemma 4.2)", fast::annihilator(fast::orthogonal(fom, fw)), ref::flat(rom, w), bound);
 }
 
 // Adversarial: a form of planted rank 2h < n plus 2^-k times an integer skew matrix.  The exact
