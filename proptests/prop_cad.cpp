@@ -44,8 +44,9 @@ RC_GTEST_PROP(Cad, PlantedLongTower, ()) {
   RC_ASSERT(r.solution_rank == 0u);
 }
 
-// Lemma 5.1 (iv) ⇔ (vi) ⇔ (vii) at random points x, with W = W_k of the tower:
-// ⟨dE(x)|E_D, W^{ω_D}⟩ = 0  ⇔  dE(x) ∈ D^♭(W)  ⇔  ⟨dE(x), W^D⟩ = 0.
+// Lemma 5.1 (i)–(vii) at random points x, with W = W_k of the tower, each by its own construction:
+// (i) = (v) ∃ ẋ ∈ W, (ẋ, dE(x)) ∈ D  ⇔  (ii) ∃ ẋ ∈ W, ω_D(ẋ, ·) = dE(x)|E_D  ⇔  (iii) dE(x)|E_D ∈ W^♭
+// ⇔ (iv) ⟨dE(x)|E_D, W^{ω_D}⟩ = 0  ⇔  (vi) dE(x) ∈ D^♭(W)  ⇔  (vii) ⟨dE(x), W^D⟩ = 0.
 RC_GTEST_PROP(Cad, Lemma5_1_Equivalences, ()) {
   const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
@@ -60,10 +61,25 @@ RC_GTEST_PROP(Cad, Lemma5_1_Equivalences, ()) {
       if (dot(de, u.basis().row(i)) != 0) return false;
     return true;
   };
-  const bool iv = kills(orthogonal(dirac_form(s.d), w));
+  const PresymplecticForm<Q> om = dirac_form(s.d);
+  const Index n = s.d.n;
+  // (i) = (v): some (ẋ, dE(x)) ∈ D with ẋ ∈ W — D ∩ (W ⊕ (Q^n)*) projected onto its covectors contains dE(x)
+  const QSub w_any = QSub::span(vstack(hstack(w.basis(), QM(w.dim(), n)), hstack(QM(n, n), QM::identity(n))));
+  const QM covector_part = hstack(QM(n, n), QM::identity(n));
+  const bool i_v = contains(map(covector_part, intersection(s.d.d, w_any)), de);
+  // (ii): ẋ = Σ c_i w_i with ω_D(ẋ, e_j) = dE(e_j) for a basis e_j of E_D — a linear system in c
+  const QM& e = om.space.basis();
+  std::vector<Q> rhs;
+  for (Index j = 0; j < e.rows(); ++j) rhs.push_back(dot(de, e.row(j)));
+  const bool ii = !solve(e * om.matrix.transpose() * w.basis().transpose(), rhs).empty;
+  const bool iii = contains(flat(om, w), de);  // dE|_{E_D} ∈ W^♭ (flat: the covectors whose restriction is in it)
+  const bool iv = kills(orthogonal(om, w));
   const bool vi = contains(dirac_flat(s.d, w), de);
   const bool vii = kills(dirac_orthogonal(s.d, w));
   RC_CLASSIFY(vii, "condition holds");
+  RC_ASSERT(i_v == ii);
+  RC_ASSERT(ii == iii);
+  RC_ASSERT(iii == iv);
   RC_ASSERT(iv == vi);
   RC_ASSERT(vi == vii);
   // and M_{k+1} is exactly where it holds, on M_k
