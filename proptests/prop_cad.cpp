@@ -99,6 +99,31 @@ RC_GTEST_PROP(Cad, Theorem5_4_SolutionRank, ()) {
   RC_ASSERT(contains(r.final_step().w, v.direction));
 }
 
+// Thm 5.4(a): at every x ∈ M_c some ẋ ∈ W_c solves (5.10), and (5.10) and (5.11) have the same solutions — the
+// velocities (5.10) gives (`velocities`, by D's equations Γ_v ẋ = −Γ_α dE) are the affine space of ẋ ∈ W_c with
+// ω_D(ẋ, ·) = dE(x)|E_D, solved here in W_c's coordinates over a basis of E_D.
+RC_GTEST_PROP(Cad, Theorem5_4a_DiracSystemIsTheFormEquationOnMc, ()) {
+  const LinearSystem<Q> s = *systems();
+  const CadResult<Q> r = constraint_tower(s);
+  if (!r.consistent) return;
+  const std::vector<Q> x = some_point(r.final_step().m);
+  const std::vector<Q> de = energy_differential(s, x);
+  const PresymplecticForm<Q> om = dirac_form(s.d);
+  const QM& e = om.space.basis();
+  const QM wc = r.final_step().w.basis().transpose();  // columns: a basis of W_c
+  std::vector<Q> rhs;
+  for (Index j = 0; j < e.rows(); ++j) rhs.push_back(dot(de, e.row(j)));
+  const AffineSubspace<Q> c = solve(e * om.matrix.transpose() * wc, rhs);  // (5.11) in W_c's coordinates
+  RC_ASSERT(!c.empty);                                                     // existence on all of M_c
+  AffineSubspace<Q> form_side;
+  form_side.empty = false;
+  form_side.point = (wc * QM::column(c.point)).col(0);
+  form_side.direction = map(wc, c.direction);
+  const AffineSubspace<Q> dirac_side = velocities(s, r, x);  // (5.10)
+  RC_ASSERT(dirac_side == form_side);
+  RC_ASSERT(form_side.direction.dim() == r.solution_rank);
+}
+
 // Lemma 5.5 (A): uniqueness (d^(c) = 0) ⇔ (i) ker ω_D ∩ T M_c = 0 ⇔ (ii) W_c ∩ E_D^{ω_D} = 0;
 // (B) ω_D|W_c symplectic ⇔ W_c ∩ W_c^{ω_D} = 0, and then solutions are unique.  Each side by its own
 // route: uniqueness from the velocities (ẋ ∈ T M_c, (ẋ, dE(x)) ∈ D: D itself, not ω_D), (i) and (ii)
