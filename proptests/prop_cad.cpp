@@ -192,7 +192,7 @@ RC_GTEST_PROP(Cad, InvariantUnderLinearCoordinateChanges, ()) {
 }
 
 // Remark 5.3 (and §5, constant D): the CAD equals Gotay–Nester run on each presymplectic leaf
-// x0 + E_D — M_k ∩ (x0 + E_D) is the k-th Gotay–Nester constraint set of (E_D, ω_D, E|leaf).
+// x0 + E_D — M_k ∩ (x0 + E_D) is the k-th Gotay–Nester constraint set of (E_D, ω_D, E|leaf), as sets.
 RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
   const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
@@ -219,6 +219,7 @@ RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
       for (Index i = 0; i < eq.rows(); ++i) rhs[i] = dot(eq.row(i), ck.m.point) - dot(eq.row(i), x0);
       const AffineSubspace<Q> meet = solve(eq * b.transpose(), rhs);
       cad_dim = meet.empty ? -1 : static_cast<long>(meet.direction.dim());
+      RC_ASSERT(meet == gk.m);  // as sets, in the leaf's coordinates y: S_k = M_k ∩ S (5.9) = (5.6)
     }
     RC_ASSERT(cad_dim == gk.dim());
     if (cad_dim < 0) break;
