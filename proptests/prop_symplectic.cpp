@@ -69,15 +69,19 @@ RC_GTEST_PROP(Symplectic, Lemma3_4, ()) {
 
 // Lemmas 3.5–3.6 and Corollary 3.7: (3.1) is solvable iff β(V^ω) = 0; then every returned X
 // satisfies i_X ω = β|_V, the set has dimension r − 2s = dim ker ω, and equals the solution set
-// computed straight from the definition.
+// computed straight from the definition; where ω is symplectic and β^♯ ∈ V (β = v^♭, v ∈ V), λ = 0 and X = β^♯.
 RC_GTEST_PROP(Symplectic, Lemma3_5_3_6_Corollary3_7, ()) {
   const PlantedSymplectic p = planted_symplectic();
   const Index n = 2 * p.m;
-  std::vector<Q> beta = integer_vector(n);
-  if (*rc::gen::arbitrary<bool>()) {  // half the time, make β vanish on V^ω so a solution exists
+  std::vector<Q> beta = integer_vector(n), in_v;
+  const int kind = *rc::gen::inRange(0, 3);
+  if (kind == 1) {  // a third of the time, make β vanish on V^ω so a solution exists
     const QM k = intersection(p.v, symplectic_complement(p.w, p.v)).basis();
     const QM ann = annihilator(QSub::span(k)).basis();
     beta = ann.rows() ? (integer_matrix(1, ann.rows()) * ann).row(0) : std::vector<Q>(n, Q(0));
+  } else if (kind == 2 && p.v.dim() > 0) {  // and a third, β = v^♭ for some v ∈ V: β^♯ = v ∈ V
+    in_v = (integer_matrix(1, p.v.dim()) * p.v.basis()).row(0);
+    beta = flat(p.w, in_v);
   }
   const PresymplecticForm<Q> om = restrict_form(p.w, p.v);
   const QSub ker = form_kernel(om);
@@ -90,6 +94,12 @@ RC_GTEST_PROP(Symplectic, Lemma3_5_3_6_Corollary3_7, ()) {
   RC_ASSERT(sol.x.direction.dim() == annihilator(p.v).dim() - 2 * normal_form_basis(p.w, p.v).s);
   RC_ASSERT(sol.x.direction.dim() == ker.dim());
   RC_ASSERT(sol.lambda.direction.dim() == ker.dim());
+  // Lemma 3.6's last sentence: ω symplectic ⇒ (3.1) and (3.3) solve uniquely, and β^♯ ∈ V ⇒ λ = 0, X = β^♯
+  RC_CLASSIFY(ker.dim() == 0 && !in_v.empty(), "symplectic, beta^sharp in V");
+  if (ker.dim() == 0 && !in_v.empty()) {
+    RC_ASSERT(sol.lambda.point == std::vector<Q>(sol.lambda.point.size(), Q(0)));
+    RC_ASSERT(sol.x.point == in_v);
+  }
   // verify X = point + direction combination: X ∈ V and ω(X, b) = β(b) for every basis vector b of V
   std::vector<Q> x = sol.x.point;
   for (Index i = 0; i < sol.x.direction.dim(); ++i)
