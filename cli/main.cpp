@@ -453,8 +453,8 @@ struct CasesCommand {
     app = parent.add_subcommand(
         "cases",
         "The golden corpus: `list`, `show NAME`, `export DIR` (cases + their reference results + the result schema), "
-        "`freeze FILE [NAME]` (a property-test counterexample or any case → a golden case in cases/ with the "
-        "reference's expectations; DCAD_CASES overrides the directory).");
+        "`freeze FILE [NAME]` (a property-test counterexample or any case → a golden case in the corpus directory, "
+        "cases/ of the checkout, with the reference's expectations; DCAD_CASES overrides the directory).");
     app->add_option("ACTION", action, "list, show, export or freeze")
         ->required()
         ->check(CLI::IsMember({"list", "show", "export", "freeze"}));

@@ -23,8 +23,9 @@ endforeach()
 # The corpus is installed and the installed dcad reads it there (issue 47), not the build machine's checkout: a case
 # added to the installed copy only is listed.
 if(EXE STREQUAL "consumer")
-  file(COPY_FILE ${WORK}/prefix/share/dcad/cases/lc-4port.cir ${WORK}/prefix/share/dcad/cases/only-installed.cir)
-  execute_process(COMMAND ${WORK}/prefix/bin/dcad cases list RESULT_VARIABLE rc OUTPUT_VARIABLE listed)
+  configure_file(${WORK}/prefix/share/dcad/cases/lc-4port.cir ${WORK}/prefix/share/dcad/cases/only-installed.cir COPYONLY)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=DCAD_CASES ${WORK}/prefix/bin/dcad cases list
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE listed)
   if(NOT rc EQUAL 0 OR NOT listed MATCHES "only-installed")
     message(FATAL_ERROR "install_consumer: the installed dcad does not read PREFIX/share/dcad/cases (${rc}): ${listed}")
   endif()

@@ -18,6 +18,9 @@
 #ifndef DCAD_CASES_DIR
 #define DCAD_CASES_DIR "cases"
 #endif
+#ifndef DCAD_BIN_DIR
+#define DCAD_BIN_DIR "bin"
+#endif
 #ifndef DCAD_DATA_DIR
 #define DCAD_DATA_DIR "share"
 #endif
@@ -127,6 +130,9 @@ std::string freeze(const std::string& from_file, const std::string& wanted) {
     throw io::InputError(m);
   }
   std::ofstream o(to);
+  if (!o)
+    throw io::InputError(to.string() +
+                         ": expected a corpus directory dcad can write, found it cannot (set DCAD_CASES)");
   if (netlist) {
     std::istringstream in(text);
     std::string title;
@@ -143,6 +149,8 @@ std::string freeze(const std::string& from_file, const std::string& wanted) {
     c["expect"] = expectations(result);
     o << c.dump(2) << "\n";
   }
+  o.close();
+  if (!o) throw io::InputError(to.string() + ": the write failed");
   return "wrote " + to.string() + " (expectations by the reference backend: dims " + result["dims"].dump() + ")";
 }
 
@@ -154,7 +162,7 @@ std::string cases_dir() {
   std::error_code ec;
   // an installed dcad, PREFIX/bin/dcad, reads PREFIX/share/dcad/cases (installed with it), wherever PREFIX is
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
+  if (!ec && exe.parent_path().filename() == fs::path(DCAD_BIN_DIR).filename()) {
     const fs::path beside = exe.parent_path().parent_path() / DCAD_DATA_DIR / "dcad" / "cases";
     if (fs::is_directory(beside, ec)) return beside.string();
   }

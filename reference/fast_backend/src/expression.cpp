@@ -1,4 +1,4 @@
-// The expression form by the pointwise CAD in double (fast::pointwise_cad, dcad::fast_nonlinear), on the
+// The expression form by the pointwise CAD in double (fast::pointwise_cad, pointwise.hpp of this backend), on the
 // case's point rounded by the one exact-to-double conversion (exact.hpp).
 #include "dcad/fast/chart.hpp"
 #include "dcad/fast/derivative_array.hpp"

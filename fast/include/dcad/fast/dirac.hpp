@@ -27,8 +27,8 @@ inline const MatrixXd& dirac_data(const DiracStructure& d) {
 
 /// Lemma 4.1: dim D = n and ⟨⟨D, D⟩⟩ = 0; `why` explains a negative answer.
 struct DiracCheck {
-  Truth valid;
-  std::string why;  ///< why D is not Dirac (also when that is only likely: valid unknown)
+  Truth valid = unknown;  ///< unknown until dirac_defect decides
+  std::string why;        ///< why D is not Dirac (also when that is only likely: valid unknown)
 };
 DiracCheck dirac_defect(const DiracStructure& d, const Options& opt = {});
 /// Throws std::invalid_argument naming `fn` if D is certainly not Dirac; else the verdict, yes or

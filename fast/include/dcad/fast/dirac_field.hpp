@@ -14,8 +14,8 @@ namespace dcad::fast {
 using AffineSkewField = AffineSkewData<MatrixXd>;
 
 struct Integrability {
-  Truth integrable;       ///< yes, no, or unknown when the decision below is uncertain
-  RankDecision evidence;  ///< on the coefficients of dω or [P, P] (rank 0: integrable)
+  Truth integrable = unknown;  ///< yes, no, or unknown when the decision below is uncertain
+  RankDecision evidence;       ///< on the coefficients of dω or [P, P] (rank 0: integrable)
 };
 
 /// The graph of ω(x) is integrable iff dω = 0  [CEF §4 before Thm 4.7; Courant 1990].

@@ -193,8 +193,9 @@ std::string waveform_text(const WaveformChecked& c, const std::string& waveform_
                           const WaveformOptions& options);
 std::string waveform_json(const WaveformChecked& c, const WaveformOptions& options);
 
-/// The golden corpus: $DCAD_CASES; else, for an installed dcad (PREFIX/bin/dcad), PREFIX/share/dcad/cases, installed
-/// with it; else the source checkout's cases/ (the build tree); else the configured install prefix's.
+/// The golden corpus: $DCAD_CASES; else, for an installed dcad (PREFIX/bin/dcad, the executable in a directory named
+/// as CMAKE_INSTALL_BINDIR), PREFIX/share/dcad/cases, installed with it; else the source checkout's cases/ where it
+/// exists (the build tree, a program linking dcad::api on the build machine); else the configured install prefix's.
 std::string cases_dir();
 struct CaseEntry {
   std::string file, summary;

@@ -4,12 +4,11 @@
 //   x / y: e = (e_x + |x/y| e_y) / (|y| − e_y) + u|x/y|
 //   f(x) for sin, cos, exp, sqrt: e = |f'(x)| e_x + 2u|f(x)|   (the C library: < 1 ulp, plus margin)
 //   an input rounded to double: e = u|x|.
-// Not rigorous (the bound is itself computed in rounding arithmetic: the decisions in pointwise.hpp
-// keep a factor 8 of slack), but it follows the rounding actually committed, so a zero test can be
-// decided relative to each number's own error: an exact zero computed with rounding lands within e,
-// a value far above e is certainly not zero.  (Neither a global scale nor Σ|terms| works: the
-// magnitudes inside one run differ by many orders, and Σ|terms| grows multiplicatively through
-// Newton's iterations on jets.)
+// Not rigorous (the bound is itself computed in rounding arithmetic: the decisions in the fast backend's
+// dcad/fast/pointwise.hpp keep a factor 8 of slack), but it follows the rounding actually committed, so a zero test can
+// be decided relative to each number's own error: an exact zero computed with rounding lands within e, a value far
+// above e is certainly not zero.  (Neither a global scale nor Σ|terms| works: the magnitudes inside one run differ by
+// many orders, and Σ|terms| grows multiplicatively through Newton's iterations on jets.)
 #pragma once
 
 #include "dcad/symbolic/jet.hpp"

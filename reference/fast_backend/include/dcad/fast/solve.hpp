@@ -3,7 +3,7 @@
 //   linear cases        the CAD in E_D's coordinates, one rank decision per step      fast/cad.hpp
 //   LC netlists         the graph route on the dimensionless twin (dcad/units.hpp)    fast/circuit.hpp
 //   forces and sources  YM §4 with orthonormal jet rows                              fast/forced.hpp
-//   the expression form the pointwise CAD on tracked doubles (dcad::fast_nonlinear)
+//   the expression form the pointwise CAD on tracked doubles (pointwise.hpp, here in the fast backend)
 // A result rests on the separation hypothesis of fast/rank.hpp: `certified` says yes only when every
 // decision was on the right side of its threshold; otherwise unknown, and `note` names the cause.
 #pragma once
@@ -31,8 +31,8 @@ Solution solve(const io::Problem& p, const Parts& parts = {}, const Options& opt
 Inspection inspect(const io::CaseFile& c, const Options& opt = {});
 
 /// The routes, for dcad::api's fallbacks: the expression form in double (the pointwise CAD of
-/// fast_nonlinear at the case's point; certified when every zero test was; io::InputError for given
-/// values off M_c, as the exact route) and the LC graph route.
+/// the fast backend's pointwise CAD (pointwise.hpp) at the case's point; certified when every zero test was;
+/// io::InputError for given values off M_c, as the exact route) and the LC graph route.
 Solution solve_expression(const io::LagrangianCase& c, const Options& opt = {});
 /// The implicit form (CEF (1.6), pipeline/implicit.hpp) by the same pointwise algorithm in double.
 Solution solve_implicit(const io::LagrangianCase& c, const Options& opt = {});

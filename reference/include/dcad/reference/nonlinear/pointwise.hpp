@@ -1,7 +1,8 @@
 // The CAD of a Lagrangian system given by formulas, at a point (CEF §5–§6 for D̄_Δ, YM §4 forces,
 // V §3 time dependence), by local reduction in the sense of Rabier–Rheinboldt.  Written once over
 // the scalar T and a decision object: ExactDecisions<Rational> (zero means == 0), a tolerance with
-// evidence in dcad::fast_nonlinear (fast/pointwise.hpp).  The steps, each in its own file:
+// evidence in the fast backend (dcad::fast_exact, reference/fast_backend: dcad/fast/pointwise.hpp).  The steps, each in
+// its own file:
 //   pointwise/result.hpp     the result (tower, point, velocity, gauge) and the exact zero tests
 //   pointwise/system.hpp     the linear system for (ṡ, λ) on M_k, as jets in its chart
 //   pointwise/eliminate.hpp  elimination at the point, its Fredholm candidates

@@ -1,6 +1,6 @@
 // The expression form's pipeline around the pointwise CAD (reference/nonlinear/pointwise.hpp): where it starts,
 // the check that given values lie on M_c, and its result as a Solution — written once over the number
-// (the exact route here; the double route, dcad::fast_nonlinear, uses the same).
+// (the exact route here; the double route, the fast backend's dcad/fast/pointwise.hpp, uses the same).
 #pragma once
 
 #include "dcad/io/lagrangian_case.hpp"
