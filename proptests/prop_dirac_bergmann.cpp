@@ -79,7 +79,7 @@ RC_GTEST_PROP(DiracBergmann, MultipliersMatchSolutions, ()) {
 
 // Lemma 3.23 / Cor. 3.3 with V = T M_c: 2s = r − dim ker ω_c; ψ are first class ({ψ, φ_j} = 0),
 // det Σ ≠ 0; the Dirac tensor J* is skew, kills every χ ({F, χ_j}* = 0 for all F), and
-// {ψ_i, ψ_j}* = 0.
+// {ψ_i, ψ_j}* = 0; (3.9)–(3.11); (c) S^χ = {χ = 0}, symplectic, of dimension 2n − 2s, with S first class in it.
 RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
   const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
@@ -110,6 +110,17 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
   RC_ASSERT(vchi.dim() + kerw.dim() == symplectic_complement(s.omega, tmc).dim());
   RC_ASSERT(sum(vchi, kerw) == symplectic_complement(s.omega, tmc));
   RC_ASSERT(intersection(symplectic_complement(s.omega, vchi), symplectic_complement(s.omega, kerw)) == tmc);
+  // (c): S^χ = {χ = 0} has T S^χ = (V^χ)^Ω and T S^χ ⊕ V^χ = T P; it contains S, is symplectic, of dimension
+  // dim S + dim ker ω = 2n − 2s, and S is first class in it: (T S)^Ω ∩ T S^χ ⊆ T S
+  const Subspace<Q> schi = kernel(gchi);
+  RC_ASSERT(schi == symplectic_complement(s.omega, vchi));
+  RC_ASSERT(intersection(schi, vchi).dim() == 0u);
+  RC_ASSERT(schi.dim() + vchi.dim() == a.cols());
+  RC_ASSERT(contains(schi, tmc));
+  RC_ASSERT(form_kernel(restrict_form(s.omega, schi)).dim() == 0u);
+  RC_ASSERT(schi.dim() == tmc.dim() + kerw.dim());
+  RC_ASSERT(schi.dim() == a.cols() - 2 * cl.s);
+  RC_ASSERT(contains(tmc, intersection(symplectic_complement(s.omega, tmc), schi)));
   // Thm 3.24: the second class subbundle V^Ω contains T M_c, has dim M_c + dim ker ω_c, and is symplectic
   const Subspace<Q>& vo = cl.second_class_subbundle;
   RC_ASSERT(contains(vo, tmc));
