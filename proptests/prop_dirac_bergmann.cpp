@@ -79,7 +79,8 @@ RC_GTEST_PROP(DiracBergmann, MultipliersMatchSolutions, ()) {
 
 // Lemma 3.23 / Cor. 3.3 with V = T M_c: 2s = r − dim ker ω_c; ψ are first class ({ψ, φ_j} = 0),
 // det Σ ≠ 0; the Dirac tensor J* is skew, kills every χ ({F, χ_j}* = 0 for all F), and
-// {ψ_i, ψ_j}* = 0; (3.9)–(3.11); (c) S^χ = {χ = 0}, symplectic, of dimension 2n − 2s, with S first class in it.
+// {ψ_i, ψ_j}* = 0; (3.9)–(3.11); (c) S^χ = {χ = 0}, symplectic, of dimension 2n − 2s, with S first class in it;
+// (e) the Dirac bracket is the bracket of the restrictions to S^χ, and F_χ's; (f) shifted χ^C give the same.
 RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
   const ConstrainedSystem<Q> s = *constrained_systems();
   const DiracBergmannResult<Q> db = dirac_bergmann(s);
@@ -121,6 +122,29 @@ RC_GTEST_PROP(DiracBergmann, Lemma3_23_Classes, ()) {
   RC_ASSERT(schi.dim() == tmc.dim() + kerw.dim());
   RC_ASSERT(schi.dim() == a.cols() - 2 * cl.s);
   RC_ASSERT(contains(tmc, intersection(symplectic_complement(s.omega, tmc), schi)));
+  // (e): {F, G}_(χ) = {F|S^χ, G|S^χ}_χ and X_(χ),F = X_{F|S^χ} — the Dirac tensor J* is the Poisson tensor of
+  // ω^χ = Ω|S^χ in S^χ's coordinates (basis rows B), pushed forward: J* = Bᵀ poisson_tensor(B Ω Bᵀ) B; and for
+  // linear F, F_χ = F − χ_i c^{ij} {χ_j, F} Poisson-commutes with every χ_k and {F_χ, G_χ} = {F, G}_(χ)
+  const QM& bs = schi.basis();
+  RC_ASSERT(cl.dirac_tensor == bs.transpose() * poisson_tensor(bs * s.omega * bs.transpose()) * bs);
+  if (!cl.second.empty()) {
+    const QM alpha = integer_matrix(1, a.cols()), beta = integer_matrix(1, a.cols());
+    const QM cinv = inverse(gchi * j * gchi.transpose());
+    // dF_χ = α − Σ_i (Σ_j c^{ij} {χ_j, F}) dχ_i, {χ_j, F} = a_j J αᵀ, c^{ij} the inverse of c_ij = {χ_i, χ_j}
+    const auto chi_corrected = [&](const QM& f) { return f - (cinv * gchi * j * f.transpose()).transpose() * gchi; };
+    const QM fa = chi_corrected(alpha), fb = chi_corrected(beta);
+    RC_ASSERT((fa * j * gchi.transpose()).is_zero());
+    RC_ASSERT(fa * j * fb.transpose() == alpha * cl.dirac_tensor * beta.transpose());
+    // (f): χ^C = χ − C, C random: S^{χ^C} is nonempty (dχ independent) with the same tangent space, (3.14)
+    // c^{χ^C} = c^χ and (3.15) the same Dirac bracket
+    QM shifted = db.constraints;
+    for (Index p = 0; p < cl.second.size(); ++p)
+      shifted(cl.second[p], shifted.cols() - 1) += Q(*rc::gen::inRange(-3, 4));
+    const ConstraintClasses<Q> clc = classify_constraints(s.omega, shifted);
+    RC_ASSERT(rank(gchi) == 2 * cl.s);
+    RC_ASSERT(clc.sigma == cl.sigma);
+    RC_ASSERT(clc.dirac_tensor == cl.dirac_tensor);
+  }
   // Thm 3.24: the second class subbundle V^Ω contains T M_c, has dim M_c + dim ker ω_c, and is symplectic
   const Subspace<Q>& vo = cl.second_class_subbundle;
   RC_ASSERT(contains(vo, tmc));
