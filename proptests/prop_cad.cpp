@@ -192,7 +192,8 @@ RC_GTEST_PROP(Cad, InvariantUnderLinearCoordinateChanges, ()) {
 }
 
 // Remark 5.3 (and §5, constant D): the CAD equals Gotay–Nester run on each presymplectic leaf
-// x0 + E_D — M_k ∩ (x0 + E_D) is the k-th Gotay–Nester constraint set of (E_D, ω_D, E|leaf), as sets.
+// x0 + E_D — M_k ∩ (x0 + E_D) is the k-th Gotay–Nester constraint set of (E_D, ω_D, E|leaf), as sets; and
+// (5.2) ⇔ (5.4): at x0 ∈ M_c the CAD's velocities are those of Gotay–Nester on the leaf at y = 0.
 RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
   const LinearSystem<Q> s = *systems();
   const CadResult<Q> r = constraint_tower(s);
@@ -224,4 +225,15 @@ RC_GTEST_PROP(Cad, Remark5_3_GotayNesterOnLeaves, ()) {
     RC_ASSERT(cad_dim == gk.dim());
     if (cad_dim < 0) break;
   }
+  // (5.2) ⇔ (5.4) with y(0) = 0: at x0 ∈ M_c the CAD's velocities are Bᵀ of Gotay–Nester's on the leaf at y = 0
+  if (!r.consistent || !r.final_step().m.contains_point(x0)) return;
+  RC_ASSERT(gn.consistent);
+  const AffineSubspace<Q> on_leaf = velocities(leaf, gn, std::vector<Q>(e.dim(), Q(0)));
+  RC_ASSERT(!on_leaf.empty);
+  AffineSubspace<Q> pushed;
+  pushed.empty = false;
+  pushed.point = (b.transpose() * QM::column(on_leaf.point)).col(0);
+  pushed.direction = map(b.transpose(), on_leaf.direction);
+  RC_TAG("velocities compared on the leaf");
+  RC_ASSERT(velocities(s, r, x0) == pushed);
 }
