@@ -124,6 +124,63 @@ RC_GTEST_PROP(Cad, Theorem5_4a_DiracSystemIsTheFormEquationOnMc, ()) {
   RC_ASSERT(form_side.direction.dim() == r.solution_rank);
 }
 
+// CEF §2.2 (2.3): Gotay–Nester's final equation ω(ẋ, ·) = dE(x), ẋ ∈ T M_c implies ω_c(ẋ, ·) = d(E|M_c) on M_c,
+// and where ω_c (ω pulled back to M_c) is symplectic the two have the same solutions; where it is degenerate they
+// may not (Section2_2_DegenerateOmegaCAdmitsMoreThanGotayNester, by hand).  Presymplectic ω of planted rank, so the
+// CAD is Gotay–Nester.
+RC_GTEST_PROP(Cad, Section2_2_HamiltonianFormOnMc, ()) {
+  const PlantedPresymplectic p = planted_presymplectic(8);
+  LinearSystem<Q> s;
+  s.d = dirac_from_presymplectic(p.w);
+  s.hessian = symmetric_matrix(p.n, *rc::gen::inRange<Index>(0, p.n + 1));
+  s.gradient = integer_vector(p.n);
+  const CadResult<Q> r = constraint_tower(s);
+  if (!r.consistent) return;
+  const std::vector<Q> x = some_point(r.final_step().m);
+  const std::vector<Q> de = energy_differential(s, x);
+  const QM tmc = r.final_step().m.direction.basis().transpose();  // columns: a basis of T M_c
+  const QM& tb = r.final_step().m.direction.basis();
+  std::vector<Q> rhs;  // (2.3) in M_c's coordinates: ω(Σ c_i t_i, t_j) = dE(t_j)
+  for (Index j = 0; j < tb.rows(); ++j) rhs.push_back(dot(de, tb.row(j)));
+  const AffineSubspace<Q> c = solve(tb * p.w.transpose() * tmc, rhs);
+  RC_ASSERT(!c.empty);
+  AffineSubspace<Q> hamiltonian;
+  hamiltonian.empty = false;
+  hamiltonian.point = (tmc * QM::column(c.point)).col(0);
+  hamiltonian.direction = map(tmc, c.direction);
+  const AffineSubspace<Q> gotay_nester = velocities(s, r, x);  // ω(ẋ, ·) = dE(x) on all of Q^n, ẋ ∈ T M_c
+  RC_ASSERT(hamiltonian.contains_point(gotay_nester.point));
+  RC_ASSERT(contains(hamiltonian.direction, gotay_nester.direction));
+  const bool symplectic = form_kernel(restrict_form(p.w, r.final_step().m.direction)).dim() == 0;
+  RC_CLASSIFY(symplectic, "omega_c symplectic");
+  if (symplectic) RC_ASSERT(hamiltonian == gotay_nester);
+}
+
+// (2.3)'s warning, by hand: on (q, p, z) with ω = dq∧dp and E = z q, Gotay–Nester gives M_1 = {q = 0} = M_c
+// (dE(∂_z) = q), ω_c = 0, so (2.3) admits every ẋ ∈ T M_c = span(∂_p, ∂_z), while ω(ẋ, ·) = dE = z dq
+// forces ẋ_q = 0, ẋ_p = −z: a line.
+TEST(Cad, Section2_2_DegenerateOmegaCAdmitsMoreThanGotayNester) {
+  LinearSystem<Q> s;
+  QM w(3, 3), h(3, 3);
+  w(0, 1) = Q(1);
+  w(1, 0) = Q(-1);
+  h(0, 2) = h(2, 0) = Q(1);
+  s.d = dirac_from_presymplectic(w);
+  s.hessian = h;
+  s.gradient = {Q(0), Q(0), Q(0)};
+  const CadResult<Q> r = constraint_tower(s);
+  ASSERT_TRUE(r.consistent);
+  EXPECT_EQ(r.final_step().dim(), 2);
+  const std::vector<Q> x = {Q(0), Q(5), Q(2)};  // q = 0, p = 5, z = 2
+  ASSERT_TRUE(r.final_step().m.contains_point(x));
+  EXPECT_TRUE(form_kernel(restrict_form(w, r.final_step().m.direction)).dim() == 2u);  // ω_c = 0
+  const AffineSubspace<Q> v = velocities(s, r, x);
+  ASSERT_FALSE(v.empty);
+  EXPECT_EQ(v.direction.dim(), 1u);                    // ẋ = (0, −z, c)
+  EXPECT_TRUE(v.contains_point({Q(0), Q(-2), Q(7)}));  // any c
+  EXPECT_FALSE(v.contains_point({Q(0), Q(0), Q(0)}));  // (2.3) admits it: ω_c = 0, E|M_c = 0
+}
+
 // Lemma 5.5 (A): uniqueness (d^(c) = 0) ⇔ (i) ker ω_D ∩ T M_c = 0 ⇔ (ii) W_c ∩ E_D^{ω_D} = 0;
 // (B) ω_D|W_c symplectic ⇔ W_c ∩ W_c^{ω_D} = 0, and then solutions are unique.  Each side by its own
 // route: uniqueness from the velocities (ẋ ∈ T M_c, (ẋ, dE(x)) ∈ D: D itself, not ω_D), (i) and (ii)
