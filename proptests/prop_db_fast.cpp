@@ -163,7 +163,8 @@ RC_GTEST_PROP(FastVsReference, GaugeQuotient, ()) {
 
 // Lemma 3.23 (d)–(e) by both twins on the same random V (a complement of ker ω in (T M_c)^Ω): fast's Dirac
 // tensor — the Poisson tensor of Ω on V^Ω — is the reference's, Dirac's formula with χ′, up to rounding,
-// and V^Ω has the reference's dimension, unless fast says uncertain.
+// and V^Ω has the reference's dimension, unless fast says uncertain; Thm 3.24 for that V in both: S^V ⊇ S is
+// symplectic of dimension dim S + dim ker ω and the image of J*, a leaf of the Dirac bracket.
 RC_GTEST_PROP(FastVsReference, SecondClassChoice, ()) {
   const auto& [s, opt, fs, r, f] = any_twins();
   if (!r.consistent) return;
@@ -172,6 +173,12 @@ RC_GTEST_PROP(FastVsReference, SecondClassChoice, ()) {
   const QM e = ref::extending_rows(kerw.basis(), ref::symplectic_complement(s.omega, tmc).basis());
   const ref::Subspace<Q> v = ref::Subspace<Q>::span(e + integer_matrix(e.rows(), kerw.dim()) * kerw.basis());
   const ref::SecondClassChoice<Q> rch = ref::second_class_choice(s.omega, r.tower.back(), v);
+  // Thm 3.24 for this V: S^V ⊇ S is symplectic, of dimension dim S + dim ker ω, and a symplectic leaf of the Dirac
+  // bracket — the image of its tensor J* is T S^V = V^Ω
+  RC_ASSERT(ref::contains(rch.tangent, tmc));
+  RC_ASSERT(rch.tangent.dim() == tmc.dim() + kerw.dim());
+  RC_ASSERT(ref::form_kernel(ref::restrict_form(s.omega, rch.tangent)).dim() == 0u);
+  RC_ASSERT(ref::image(rch.dirac_tensor) == rch.tangent);
   fast::AffineSubspace mc;
   mc.empty = false;
   mc.point = to_double(r.tower.back().point);
@@ -186,6 +193,8 @@ RC_GTEST_PROP(FastVsReference, SecondClassChoice, ()) {
   RC_ASSERT(!tally("second class choice dim V^Omega", fch.certain.yes(),
                    fch.tangent.dim() == static_cast<int>(rch.tangent.dim())));
   if (fch.certain.unknown()) return;
+  const fast::RankDecision leaf = fast::form_rank(fast::restrict_form(fs.omega, fch.tangent), opt);
+  RC_ASSERT(!tally("Thm 3.24: S^V symplectic", leaf.certain.yes(), static_cast<int>(leaf.rank) == fch.tangent.dim()));
   const Eigen::MatrixXd jr = to_double(rch.dirac_tensor);
   const double tol = 1e-8 * (1 + fast::norm2(fs.omega)) * (1 + fast::norm2(jr)) * (1 + fast::norm2(jr));
   RC_LOG() << case_json(s) << "|J*_fast - J*_ref| = " << (fch.dirac_tensor - jr).norm() << ", tol " << tol << "\n";
