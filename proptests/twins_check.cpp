@@ -186,3 +186,26 @@ TEST(Twins, FastBackendBorrowsOnlyTheListed) {
   for (const std::string& l : listed)
     EXPECT_TRUE(found.count(l)) << "listed in fast_backend_borrows.txt and no longer borrowed: " << l;
 }
+
+// README "dcad from C++" says its C++ examples are proptests/consumer/consumer.cpp's tests, verbatim (the
+// install_consumer test builds and runs that file): each ```cpp block of the section must stand in the file as is.
+TEST(Readme, CppExamplesAreTheConsumersVerbatim) {
+  const auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    std::ostringstream o;
+    o << in.rdbuf();
+    return o.str();
+  };
+  const std::string readme = slurp(fs::path(DCAD_SOURCE_DIR) / "README.md");
+  const std::string consumer = slurp(fs::path(DCAD_SOURCE_DIR) / "proptests/consumer/consumer.cpp");
+  const std::size_t from = readme.find("\n## dcad from C++"), to = readme.find("\n## ", from + 1);
+  ASSERT_NE(from, std::string::npos);
+  int blocks = 0;
+  for (std::size_t at = readme.find("```cpp\n", from); at < to; at = readme.find("```cpp\n", at + 1)) {
+    const std::size_t begin = at + 7, end = readme.find("```", begin);
+    const std::string block = readme.substr(begin, end - begin);
+    EXPECT_NE(consumer.find(block), std::string::npos) << "README's block is not in consumer.cpp:\n" << block;
+    ++blocks;
+  }
+  EXPECT_GE(blocks, 7);  // the includes and six tests
+}

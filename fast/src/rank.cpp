@@ -335,6 +335,29 @@ RankDecision decide_from_sigma(const VectorXd& s, int rows, int cols, double sca
 
 }  // namespace
 
+Decision traced(const RankDecision& d, const std::string& what) {
+  Decision t;
+  t.what = what;
+  t.rows = d.rows;
+  t.cols = d.cols;
+  t.rank = d.rank;
+  t.by = d.by_two_routes ? DecidedBy::two_routes
+         : d.by_norm     ? DecidedBy::norm
+         : d.by_qr       ? DecidedBy::pivoted_qr
+                         : DecidedBy::singular_values;
+  t.certain = d.certain;
+  t.singular_values = d.singular_values;
+  t.zero_threshold = d.zero_threshold;
+  t.nonzero_threshold = d.nonzero_threshold;
+  t.gap = d.gap;
+  t.evidence = d.describe();
+  return t;
+}
+
+void append_traced(std::vector<Decision>& trace, const std::vector<RankDecision>& ds, const std::string& what) {
+  for (std::size_t i = 0; i < ds.size(); ++i) trace.push_back(traced(ds[i], what + " #" + std::to_string(i + 1)));
+}
+
 std::string RankDecision::describe() const {
   std::ostringstream o;
   o.precision(3);

@@ -4,7 +4,7 @@
 #include "dcad/api.hpp"                 // every backend's solve, check, simulate
 #include "dcad/certified/solve.hpp"     // certified::solve: a Problem in, a typed Solution out
 #include "dcad/fast/cad.hpp"            // the double twin on your own matrices
-#include "dcad/io/problem.hpp"          // parse_netlist, parse_case: problems from text
+#include "dcad/io/problem.hpp"          // problem(…): your data as a Problem; parse_netlist, parse_case: from text
 #include "dcad/io/report.hpp"           // text and JSON as `dcad solve` prints them
 #include "dcad/reference/cad.hpp"       // the exact reference on your own matrices
 #include "dcad/testing/convert.hpp"     // to_double: exact matrices as Eigen doubles
@@ -14,11 +14,60 @@
 #include <rapidcheck/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <variant>
 
 namespace ref = dcad::reference;
 namespace fast = dcad::fast;
 using Q = ref::Rational;
+
+// 0. Problems built in code, one per form, on every backend, with the decisions behind each answer (the trace).
+TEST(MyProblems, BuiltInCodeSolvedOnEveryBackend) {
+  // your own exact Dirac system (CEF §5): ω = dq∧dp on (q, p, z), E = ½ (q² + p² + z²) + z
+  ref::Matrix<Q> w(3, 3), h(3, 3);
+  w(0, 1) = Q(1);
+  w(1, 0) = Q(-1);
+  h(0, 0) = h(1, 1) = h(2, 2) = Q(1);
+  const dcad::io::Problem mine =
+      dcad::io::problem(ref::LinearSystem<Q>{ref::dirac_from_presymplectic(w), h, {Q(0), Q(0), Q(1)}}, {"q", "p", "z"});
+  // a linear DAE E ẋ = A x (CEF (1.6)): ẋ1 = x2, 0 = x1
+  dcad::io::DaeCase dae;
+  dae.variables = {"x1", "x2"};
+  dae.e = ref::Matrix<Q>(2, 2);
+  dae.a = ref::Matrix<Q>(2, 2);
+  dae.e(0, 0) = dae.a(0, 1) = dae.a(1, 0) = Q(1);
+  const dcad::io::Problem index2 = dcad::io::problem(dae);
+  using B = dcad::api::Backend;
+  for (const B b : {B::reference, B::certified, B::fast}) {
+    std::visit(
+        [](const auto& s) {  // each backend's own Solution: Rational, certified::Number or double
+          EXPECT_EQ(s.dims(), (std::vector<long>{3, 2}));  // ∂E/∂z = z + 1 = 0 cuts M_1; ż = 0 keeps it
+          EXPECT_EQ(s.solution_rank, 0L);
+          ASSERT_TRUE(s.certified.yes());
+          for (const dcad::Decision& d : s.trace)  // what was decided, how, and the evidence (σ's on fast)
+            EXPECT_TRUE(d.certain.yes()) << d.what << ": " << d.evidence;
+          ASSERT_FALSE(s.trace.empty());
+        },
+        dcad::api::solve(mine, b));
+    std::visit(
+        [](const auto& s) {
+          EXPECT_EQ(s.dims(), (std::vector<long>{2, 1, 0}));  // M_1 = {x1 = 0}, M_2 = {x1 = x2 = 0}
+          EXPECT_EQ(s.index(), std::optional<long>(2));
+          EXPECT_TRUE(s.certified.yes());
+        },
+        dcad::api::solve(index2, b));
+  }
+  const dcad::reference::Solution exact = std::get<dcad::reference::Solution>(dcad::api::solve(mine, B::reference));
+  EXPECT_EQ(exact.trace[0].what, "dim M_1");  // the exact tiers: one exact decision per level
+  EXPECT_EQ(exact.trace[0].by, dcad::DecidedBy::exact);
+  const dcad::fast::Solution twin = std::get<dcad::fast::Solution>(dcad::api::solve(mine, B::fast));
+  EXPECT_FALSE(twin.trace.back().singular_values.empty());  // fast: each rank with its singular values and gap
+  dae.e(0, 0) = Q(0);  // built in code, validated as a file is: a problem that is no DAE is refused, not solved
+  dae.f.clear();
+  dae.variables.pop_back();
+  EXPECT_THROW(dcad::api::solve(dcad::io::problem(dae), B::fast), dcad::io::InputError);
+}
 
 // 1. The CAD on your own matrices (CEF §5): (x, ẋ) ⊕ dE(x) ∈ D_ω for the presymplectic ω = dq1 ∧ dp1 on
 // R^3 (x3 is a gauge direction) and E = ½ (q1² + p1²) + x3: dE(x3) = 1 can never be met, so M_1 = ∅.

@@ -71,6 +71,7 @@ Solution graph_route(const io::Netlist& deck, const std::vector<std::string>& va
       "equations at any size "
       "(dcad/reference/rlc_state.hpp), the motion in (q, v, p) up to " +
       std::to_string(kDenseBranches) + " branches (dense)";
+  s.trace = exact_trace(s.dims(), DecidedBy::graph, "CEF Thms 6.4, 6.6, 6.8 on the circuit's graph: no rank decided");
   return s;
 }
 
@@ -94,6 +95,13 @@ void add_state(Solution& s, const io::Netlist& deck, const Parts& parts) {
   if (parts.reduced && reference::pipeline::graph_route_holds(deck.rlc))
     s.state = map_state<Number>(reference::pipeline::deck_state_equations<Rational>(deck),
                                 [](const Rational& q) { return exact_number(q); });
+}
+
+/// Which exact tier decided, for the trace's evidence.
+std::string tier(const Decisions& d) {
+  if (d.machine_words) return "exact " + std::to_string(d.word_bits) + "-bit rationals (the cascade's first tier)";
+  if (d.exact_recomputation) return "FLINT's exact rationals (fmpq), the cascade's second tier";
+  return "exact rational arithmetic";
 }
 
 }  // namespace
@@ -144,6 +152,7 @@ Solution solve(const io::Problem& p, const Parts& parts) {
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
   }
   s.backend = "certified";
+  trace_exact_levels(s, DecidedBy::exact, tier(s.decisions));
   s.warnings = p.warnings();
   keep_parts(s, parts);
   return s;

@@ -118,6 +118,15 @@ Solution solve_lc(const io::Netlist& deck, const io::CaseFile& names, const Part
   }
 }
 
+/// The tower's decisions: the graph's theorems (positive L, C: no rank decided), or the signed route's ranks.
+static std::vector<Decision> tower_trace(const CircuitTower& t, const std::vector<long>& dims) {
+  std::vector<Decision> tower =
+      t.physical ? exact_trace(dims, DecidedBy::graph, "CEF Thms 6.4, 6.6, 6.8 on the circuit's graph: no rank decided")
+                 : std::vector<Decision>{};
+  append_traced(tower, t.decisions, "circuit tower (CEF §6, signed values)");
+  return tower;
+}
+
 Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, const Parts& parts,
                            const Options& options) {
   // the twin without units: double sees values near 1 whatever the circuit's units (fF … kH)
@@ -137,6 +146,10 @@ Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, c
     const Solution generic = solve_linear(twin, Parts{false, false, false, true}, options);
     out.adapted = generic.adapted;
     out.certified = generic.certified;
+    for (Decision d : generic.trace) {
+      d.what = "T*TQ (CEF §7): " + d.what;
+      out.trace.push_back(d);
+    }
   }
   out.steps = t.steps;
   out.consistent = true;  // no sources: x = 0 solves
@@ -151,11 +164,14 @@ Solution solve_lc_in_range(const io::Netlist& deck, const io::CaseFile& names, c
     }
     out.tower.push_back(level);
   }
+  const std::vector<Decision> tower = tower_trace(t, out.dims());  // the tower's decisions come first
+  out.trace.insert(out.trace.begin(), tower.begin(), tower.end());
   if (dense && parts.reduced) {  // equations of motion by the structured route (fast/circuit_motion.hpp)
     const CircuitMotion mo =
         circuit_motion(graph_of(n, opt), t, std::vector<int>(names.coordinates.begin(), names.coordinates.end()), opt);
     out.certified &= mo.certain;
     out.decisions.float_tests += static_cast<long>(mo.decisions.size());
+    append_traced(out.trace, mo.decisions, "equations of motion on the graph (CEF (5.12))");
     Motion<double> m;
     m.coordinates.assign(mo.coords.begin(), mo.coords.end());
     const double tiny =

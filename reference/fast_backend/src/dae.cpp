@@ -63,19 +63,23 @@ Solution dae_solution(const io::DaeCase& c) {
 }
 
 /// ẋ = X x + K λ on M_c = V_c (`constrained`: V_c is not the whole space): X the minimum-norm solution
-/// of [E; C_c] v = [A x; 0], K spanning ker E ∩ V_c; its rank decision counted in `certain`, `decisions`.
+/// of [E; C_c] v = [A x; 0], K spanning ker E ∩ V_c; its rank decision counted in `certain`, `trace`.
 static Motion<double> dae_motion(const MatrixXd& e, const MatrixXd& a, const Subspace& vc, bool constrained,
-                                 double scale, const Options& opt, Truth& certain, long& decisions) {
+                                 double scale, const Options& opt, Truth& certain, std::vector<Decision>& trace) {
   const int n = static_cast<int>(e.cols());
   const MatrixXd cc = constrained ? MatrixXd(orthogonal_complement(vc.columns()).transpose()) : MatrixXd(0, n);
   MatrixXd stacked(e.rows() + cc.rows(), n), rhs = MatrixXd::Zero(e.rows() + cc.rows(), n);
   stacked << e, cc;
   rhs.topRows(e.rows()) = a;
   const RankRevealing rr(stacked, scale, opt);
-  ++decisions;
+  trace.push_back(traced(rr.decision(), "motion: rank [E; C_c] (CEF (5.12))"));
   certain &= rr.decision().certain;
   const MatrixXd x = rr.solve_range(rhs);
-  const Subspace gauge = intersection(kernel(e, opt), vc, opt);
+  const Subspace ker = kernel(e, opt);
+  trace.push_back(traced(ker, "motion: ker E"));
+  const Subspace gauge = intersection(ker, vc, opt);  // G: its certainty is the answer's too
+  trace.push_back(traced(gauge, "motion: the free directions ker E ∩ V_c"));
+  certain &= gauge.certain();
   Motion<double> mo;
   for (int i = 0; i < n; ++i) mo.coordinates.push_back(static_cast<std::size_t>(i));
   mo.f_matrix.assign(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
@@ -97,12 +101,14 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
   const int n = static_cast<int>(e.cols());
   const double scale = std::max({norm2(e), norm2(a), 1e-300});
   Truth certain = yes;
-  long decisions = 0;
+  std::vector<Decision> trace;
   std::vector<Subspace> v{Subspace::whole(n)};
   for (;;) {  // the first Wong sequence
     const Subspace ev = map(e, v.back(), opt);
     Subspace next = preimage(a, ev, opt, scale);
-    decisions += 2;
+    const std::string k = std::to_string(v.size());
+    trace.push_back(traced(ev, "Wong: E V_" + std::to_string(v.size() - 1)));
+    trace.push_back(traced(next, "Wong: V_" + k + " = A^-1(E V_" + std::to_string(v.size() - 1) + ")"));
     certain &= ev.certain() & next.certain();
     if (next.dim() >= v.back().dim()) break;  // V_{k+1} = V_k (never larger: nested)
     v.push_back(std::move(next));
@@ -126,7 +132,7 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
   out.steps = static_cast<long>(v.size()) - 1;
   const Subspace& vc = v.back();
   const RankRevealing evc(e * vc.columns(), scale, opt);
-  ++decisions;
+  trace.push_back(traced(evc.decision(), "solution rank: rank E V_c (CEF Thm 5.4(b))"));
   certain &= evc.decision().certain;
   out.solution_rank = vc.dim() - evc.rank();
   if (e.rows() == e.cols()) {  // the second Wong sequence and V* ⊕ W* = R^N
@@ -134,13 +140,14 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
     for (int i = 0; i <= n; ++i) {
       const Subspace aw = map(a, w, opt);
       Subspace next = preimage(e, aw, opt, scale);
-      decisions += 2;
+      trace.push_back(traced(aw, "second Wong sequence: A W_" + std::to_string(i)));
+      trace.push_back(traced(next, "second Wong sequence: W_" + std::to_string(i + 1)));
       certain &= aw.certain() & next.certain();
       if (next.dim() <= w.dim()) break;
       w = std::move(next);
     }
     const Subspace both = sum(vc, w, opt);
-    ++decisions;
+    trace.push_back(traced(both, "regular pencil: dim(V* + W*)"));
     certain &= both.certain();
     out.regular_pencil = vc.dim() + w.dim() == n && both.dim() == n;
   }
@@ -150,8 +157,9 @@ Solution solve_dae(const io::DaeCase& c, const Options& opt_in) {
     if (!exact_source_conditions(c, out)) certain = unknown;
     note += "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";
   }
-  if (out.consistent && !has_f) out.motion = dae_motion(e, a, vc, v.size() > 1, scale, opt, certain, decisions);
-  out.decisions.float_tests = decisions;
+  if (out.consistent && !has_f) out.motion = dae_motion(e, a, vc, v.size() > 1, scale, opt, certain, trace);
+  out.decisions.float_tests = static_cast<long>(trace.size());
+  out.trace = std::move(trace);
   out.certified = certain;
   const std::string caveat = input_caveat(opt);
   out.note = note + (caveat.empty() ? "" : "; " + caveat) +

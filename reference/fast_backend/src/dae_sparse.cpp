@@ -480,6 +480,24 @@ Solution dae_solution(const io::DaeCase& c);  // a result's name, variables and 
 /// left one undecided (dae.cpp).
 bool exact_source_conditions(const io::DaeCase& c, Solution& out);
 
+/// The route's decisions as one trace entry: thresholds on remainders bound no singular value, so it is uncertain.
+static Decision summary_decision(const Evidence& ev, long m, long n, long dim) {
+  Decision all;
+  all.what = "sparse QR: " + std::to_string(ev.decisions) + " rank decisions by their extremes (rank: dim M_c)";
+  all.rows = m;
+  all.cols = n;
+  all.rank = dim;
+  all.by = DecidedBy::pivoted_qr;
+  all.certain = unknown;
+  all.zero_threshold = all.nonzero_threshold = ev.threshold;
+  all.gap = ev.largest_dropped > 0 ? ev.smallest_pivot / ev.largest_dropped : HUGE_VAL;
+  std::ostringstream why;
+  why << "the smallest pivot kept " << ev.smallest_pivot << ", the largest remainder taken as zero "
+      << ev.largest_dropped << ", threshold " << ev.threshold << " (relative): not certified";
+  all.evidence = why.str();
+  return all;
+}
+
 Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
   Options opt = opt_in;
   const int n = static_cast<int>(c.variables.size());
@@ -624,11 +642,11 @@ Solution solve_dae_sparse(const io::DaeCase& c, const Options& opt_in) {
     note << "; the conditions on the sources (a singular or rectangular pencil with f) decided by the exact route";
   }
   note << "; the equations of motion are not formed on this route (dense N × N)";
-  const std::string caveat = input_caveat(opt);
-  if (!caveat.empty()) note << "; " << caveat;
+  if (!input_caveat(opt).empty()) note << "; " << input_caveat(opt);
   out.decisions.float_tests = ev.decisions;
   out.certified = unknown;
   out.note = note.str();
+  out.trace.push_back(summary_decision(ev, static_cast<long>(m), static_cast<long>(n), out.tower.back().dim));
   return out;
 }
 

@@ -66,6 +66,7 @@ Solution forced_tower_of(const reference::ForcedSystem<Q>& f, const Options& opt
   s.certified = r.certain;
   if (r.conditions.rows()) s.certified = unknown;  // a condition on the sources, not decided here
   s.decisions.float_tests = static_cast<long>(r.decisions.size());
+  append_traced(s.trace, r.decisions, "forced CAD (YM §4)");
   s.note = "forced route, fast twin (double, SVD rank decisions)";
   const std::string caveat = input_caveat(opt);
   if (r.certain.unknown() && !caveat.empty()) s.note += "; " + caveat + ": use --backend certified";

@@ -20,7 +20,7 @@ double energy_constant(const io::CaseFile& c) {
 }
 
 /// `why_uncertain`: set when an input property could not be decided (a result, not bad input).
-LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_uncertain) {
+LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_uncertain, std::vector<Decision>& trace) {
   if (c.has_constrained) {
     const MatrixXd w = to_double(c.constrained.w, opt), prim = to_double(c.constrained.primary, opt);
     const Truth symplectic = is_symplectic(w, opt);  // degenerate: bad input; undecided: the result says so
@@ -29,6 +29,13 @@ LinearSystem system_of(const io::CaseFile& c, Options& opt, std::string& why_unc
     if (symplectic.unknown())
       why_uncertain =
           "whether the symplectic form is nondegenerate is uncertain (" + decide_rank(w, -1, opt).describe() + ")";
+    Decision nondegenerate;
+    nondegenerate.what = "the symplectic form is nondegenerate (input)";
+    nondegenerate.rows = nondegenerate.cols = nondegenerate.rank = w.rows();
+    nondegenerate.by = DecidedBy::singular_values;
+    nondegenerate.certain = symplectic;
+    nondegenerate.evidence = symplectic.yes() ? "full rank, certain" : why_uncertain;
+    trace.push_back(nondegenerate);
     LinearSystem s =
         gotay_nester_system({w, to_double(c.energy.hessian, opt), to_double(c.energy.gradient, opt), prim}, opt);
     s.constant = energy_constant(c);
@@ -88,7 +95,8 @@ Motion<double> motion_of(const ReducedEquations& red) {
 
 /// First and second class among the tower's constraints (CEF §2.1, Lemma 3.23): 2s = rank {φ_i, φ_j} =
 /// rank A Ω⁻ᵀ Aᵀ, A the constraints' rows, decided with its evidence (certain &= the decision's).
-Classes<double> classes_of(const CadResult& r, const MatrixXd& omega, const Options& opt, Truth& certain) {
+Classes<double> classes_of(const CadResult& r, const MatrixXd& omega, const Options& opt, Truth& certain,
+                           std::vector<Decision>& trace) {
   const Eigen::Index n = omega.cols();
   MatrixXd a(0, n);
   for (const CadStep& st : r.tower) {
@@ -99,6 +107,7 @@ Classes<double> classes_of(const CadResult& r, const MatrixXd& omega, const Opti
   const MatrixXd j = omega.transpose().inverse();
   const RankDecision d = decide_rank(a * j * a.transpose(), norm2(j), opt);
   certain &= d.certain;
+  trace.push_back(traced(d, "classes: rank of {phi_i, phi_j} = A Omega^-T A^T (CEF Lemma 3.23)"));
   Classes<double> k;
   k.second_class = d.rank;
   k.first_class = a.rows() - d.rank;
@@ -111,11 +120,12 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
     throw std::invalid_argument("a case with `forces` goes by the forced route, not this one");
   Options opt = options;
   std::string why_uncertain;
-  const LinearSystem s = system_of(c, opt, why_uncertain);
+  Solution out;
+  const LinearSystem s = system_of(c, opt, why_uncertain, out.trace);
+  out.trace.push_back(traced(s.d.d, "the Dirac structure D (input, CEF §3.1)"));
   Options in_opt = opt;
   const MatrixXd initial = c.has_constrained ? to_double(c.constrained.primary, in_opt) : MatrixXd();
   const CadResult r = constraint_tower(s, opt, initial);
-  Solution out;
   out.file = c.file;
   out.name = c.name;
   out.variables = c.variables;
@@ -124,6 +134,7 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
   out.steps = r.steps;
   if (r.consistent) out.solution_rank = r.solution_rank;
   out.decisions.float_tests = static_cast<long>(r.decisions.size());
+  append_traced(out.trace, r.decisions, "CAD (CEF (5.5)-(5.6))");
   for (const CadStep& st : r.tower) {
     Level<double> level{st.dim(), {}};
     for (Eigen::Index i = 0; i < st.equations.rows(); ++i) level.constraints.push_back(display_row(st.equations, i));
@@ -132,7 +143,7 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
   // the classes and the adapted constraints need Ω⁻¹: not from a form whose nondegeneracy is undecided
   const bool invertible = why_uncertain.empty();
   if (c.has_constrained && r.consistent && parts.classes && invertible)  // 2s = rank {φ_i, φ_j} on M_c, decided
-    out.classes = classes_of(r, to_double(c.constrained.w, in_opt), opt, out.certified);
+    out.classes = classes_of(r, to_double(c.constrained.w, in_opt), opt, out.certified, out.trace);
   if (c.has_constrained && r.consistent && parts.adapted && invertible) {  // Theorem 3.28 on N
     Adapted<double> a = adapted_of(to_double(c.constrained.w, in_opt), r.tower[0].equations, secondary_constraints(r),
                                    MatrixXd(0, c.n + 1), opt, out.certified);
@@ -145,6 +156,7 @@ Solution solve_linear(const io::CaseFile& c, const Parts& parts, const Options& 
     const FoliatedEmbedding f = tangent_cotangent_embedding(to_fast(c.pontryagin, in_opt), opt);
     const CadResult rf = foliated_tower(f, opt);
     out.certified &= rf.certain;
+    append_traced(out.trace, rf.decisions, "CAD on T*TQ (CEF §7)");
     if (rf.consistent) {
       Adapted<double> a = adapted_of(f.omega, f.primary, secondary_constraints(rf), f.leaf, opt, out.certified);
       a.setting = "T*TQ";

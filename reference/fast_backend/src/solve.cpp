@@ -35,6 +35,7 @@ Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
   }
   s.backend = "fast";
+  uncertain_exact_entries(s);
   s.warnings = p.warnings();
   keep_parts(s, parts);
   return s;

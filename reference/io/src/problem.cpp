@@ -67,6 +67,47 @@ bool looks_like_json_case(const std::string& file) {
 }
 }  // namespace
 
+Problem problem(CaseFile c) {
+  Problem p;
+  p.form = Form::linear;
+  p.file = c.file;
+  p.linear = std::move(c);
+  return p;
+}
+
+Problem problem(const reference::LinearSystem<Rational>& s, std::vector<std::string> variables, std::string name) {
+  CaseFile c;
+  c.name = std::move(name);
+  c.n = s.d.n;
+  if (variables.empty())
+    for (std::size_t i = 0; i < c.n; ++i) variables.push_back("x" + std::to_string(i + 1));
+  c.variables = std::move(variables);
+  c.has_dirac = true;
+  c.dirac.form = "basis";
+  c.dirac.path = "LinearSystem::d";
+  c.dirac.g = s.d.d.basis();
+  c.energy = {s.hessian, s.gradient, s.constant};
+  return problem(std::move(c));
+}
+
+Problem problem(DaeCase c) {
+  if (c.f.empty()) c.f.assign(c.equations(), reference::expr::number(Rational(0)));
+  if (c.initial.empty()) c.initial.assign(c.variables.size(), std::nullopt);
+  Problem p;
+  p.form = Form::dae;
+  p.file = c.file;
+  p.dae = std::move(c);
+  return p;
+}
+
+Problem problem(LagrangianCase c) {
+  Problem p;
+  p.form = c.system.implicit ? Form::implicit : Form::expression;
+  p.file = c.file;
+  p.expression = std::move(c);
+  return p;
+}
+
 Problem read_problem(const std::string& file, const ReadOptions& options) {
   if (is_netlist_file(file) || !looks_like_json_case(file)) return from_netlist(read_netlist(file, options));
   return from_json(read_json_file(file), file);

@@ -115,6 +115,7 @@ Solution solve(const io::Problem& p, const Parts& parts) {
   }
   s.backend = "reference";
   s.exact = true;
+  trace_exact_levels(s, DecidedBy::exact, "exact rational arithmetic (the reference)");
   s.warnings = p.warnings();
   keep_parts(s, parts);
   return s;

@@ -3,6 +3,7 @@
 // its evidence and a verdict: certain or uncertain.
 #pragma once
 
+#include "dcad/trace.hpp"
 #include "dcad/truth.hpp"
 
 #include <Eigen/Core>
@@ -126,6 +127,11 @@ struct RankDecision {
   Truth certain = yes;           ///< yes, or unknown
   std::string describe() const;  ///< evidence in one line
 };
+
+/// The decision as an entry of Solution::trace (dcad/trace.hpp), `what` naming what was decided.
+Decision traced(const RankDecision& d, const std::string& what);
+/// Each decision of `ds`, in order, appended to `trace` with `what` and its place ("what #i").
+void append_traced(std::vector<Decision>& trace, const std::vector<RankDecision>& ds, const std::string& what);
 
 /// rank(A) with evidence.  `scale` < 0 means: the largest singular value of A itself.
 /// A claimed deficiency is cross-checked on A equilibrated by exact powers of two (rows and columns

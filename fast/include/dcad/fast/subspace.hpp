@@ -47,6 +47,16 @@ class Subspace {
   RankDecision evidence_;
 };
 
+/// The decision that produced `s` as a trace entry (dcad/trace.hpp): certain only where every decision behind `s` was.
+inline Decision traced(const Subspace& s, const std::string& what) {
+  Decision d = traced(s.evidence(), what);
+  if (!s.certain().yes() && d.certain.yes()) {
+    d.certain = s.certain();
+    d.evidence += "; a decision before it was uncertain";
+  }
+  return d;
+}
+
 Subspace sum(const Subspace& u, const Subspace& w, const Options& opt = {});
 Subspace annihilator(const Subspace& u);
 Subspace intersection(const Subspace& u, const Subspace& w, const Options& opt = {});

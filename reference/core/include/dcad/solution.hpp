@@ -9,6 +9,7 @@
 // adapted constraints (Thm 3.28 / 7.4); YM §4: forces and sources; V §3: moving M_k(t).
 #pragma once
 
+#include "dcad/trace.hpp"
 #include "dcad/truth.hpp"
 
 #include <cstddef>
@@ -234,6 +235,9 @@ struct Solution {
   std::vector<SourceCondition> source_conditions;
   std::optional<Pointwise<N>> pointwise;  ///< the expression form
   Decisions decisions;
+  /// Every decision behind the tower, in order, with its evidence (dcad/trace.hpp): fast's rank decisions (σ's,
+  /// thresholds, gap) on its linear, circuit and DAE routes; one exact decision per level on the exact tiers.
+  std::vector<Decision> trace;
   std::vector<std::string> warnings;  ///< the reader's (a netlist's ignored cards …)
   std::string note;                   ///< how the result was reached; why it is not certified
 
@@ -270,6 +274,26 @@ StateEquations<To> map_state(const StateEquations<From>& s, F f) {
     q.blocks.emplace_back(name, std::move(t));
   }
   return q;
+}
+
+/// Where the answer as a whole is not certified (a deck rounded to rationals, a condition on the sources decided in
+/// double), no exact or graph entry of its trace says certain: they were exact for data other than the problem's.
+template <class N>
+void uncertain_exact_entries(Solution<N>& s) {
+  if (s.certified.yes()) return;
+  for (Decision& d : s.trace)
+    if (d.by == DecidedBy::exact || d.by == DecidedBy::graph) {
+      d.certain = unknown;
+      d.evidence += "; the answer is not certified (its note says why)";
+    }
+}
+
+/// The exact tiers' trace where a route left none: one decision per level M_1 … M_c (dcad/trace.hpp), decided
+/// `by` exact zero tests or the graph's theorems in the tier `how` names; then uncertain_exact_entries.
+template <class N>
+void trace_exact_levels(Solution<N>& s, DecidedBy by, const std::string& how) {
+  if (s.trace.empty()) s.trace = exact_trace(s.dims(), by, how);
+  uncertain_exact_entries(s);
 }
 
 /// Drops what `parts` does not ask for (routes that compute everything keep only what was asked).
@@ -389,6 +413,7 @@ Solution<To> map_numbers(const Solution<From>& s, F f) {
   o.algorithm = s.algorithm;
   if (s.pointwise) o.pointwise = map_pointwise<To>(*s.pointwise, f);
   o.decisions = s.decisions;
+  o.trace = s.trace;
   o.warnings = s.warnings;
   o.note = s.note;
   return o;

@@ -7,6 +7,7 @@
 #include "dcad/io/dae_case.hpp"
 #include "dcad/io/lagrangian_case.hpp"
 #include "dcad/io/netlist.hpp"
+#include "dcad/reference/system.hpp"
 
 #include <string>
 #include <vector>
@@ -36,6 +37,20 @@ struct Problem {
   /// The reader's warnings (a netlist's ignored cards, non-physical values), each naming file:line.
   const std::vector<std::string>& warnings() const { return netlist.warnings; }
 };
+
+/// Problems built in code, one call per input form, each with every part a case file gets (final constraints,
+/// (5.12), classes, adapted; the DAE's index; the pointwise values) and validated by every solve as a file's is.
+/// A `dirac`, `pontryagin` or `constrained` case (CEF §2, §5, §7).
+Problem problem(CaseFile c);
+/// Your own exact linear Dirac system (D, E) (CEF §5: D as the rows of a basis, E = ½ xᵀ H x + gᵀ x + c), the
+/// `dirac` form `basis`; `variables` default to x1 … xN.
+Problem problem(const reference::LinearSystem<Rational>& s, std::vector<std::string> variables = {},
+                std::string name = "");
+/// A linear DAE E ẋ = A x + f(t) (CEF (1.6)); only `variables`, `e`, `a` are required (f is 0 where absent).
+Problem problem(DaeCase c);
+/// A Lagrangian system by formulas (YM §4–§6, V §3): Form::expression; an implicit DAE φ(t, x, ẋ) = 0 where
+/// `system.implicit` (Form::implicit).
+Problem problem(LagrangianCase c);
 
 /// A Problem built in code held to what the readers guarantee (issue 45 §5): sizes of every matrix and
 /// vector, unique non-empty names, node, source and variable indices in range, complete formulas.

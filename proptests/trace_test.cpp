@@ -1,0 +1,119 @@
+// Solution::trace (dcad/trace.hpp; issue 47: "a decision trace with its evidence"), on every linear case,
+// netlist and linear DAE of the corpus, on each twin:
+//  - the exact tiers (reference, certified): one decision per level M_1 … M_c, its rank the level's dimension,
+//    decided exactly (or by the graph's theorems), certain exactly where the answer is;
+//  - fast: an uncertain entry never stands under a certified answer, every entry's one-line evidence is its
+//    RankDecision's, and a decision that Options::probe reports uncertain shows as uncertain in the trace (the
+//    trace is the decisions themselves, not a summary written beside them).
+#include "dcad/certified/solve.hpp"
+#include "dcad/fast/solve.hpp"
+#include "dcad/io/problem.hpp"
+#include "dcad/reference/solve.hpp"
+#include "dcad/symbolic/jet.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace io = dcad::io;
+namespace fast = dcad::fast;
+using dcad::DecidedBy;
+using dcad::Decision;
+
+/// The corpus' problems the trace covers (not the expression and implicit forms: their pivots are in `pointwise`).
+std::vector<io::Problem> corpus() {
+  std::vector<io::Problem> out;
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(DCAD_SOURCE_DIR) + "/cases"))
+    if (e.path().extension() == ".json" || e.path().extension() == ".cir") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    try {
+      io::Problem p = io::read_problem(f.string());
+      if (p.form != io::Form::expression && p.form != io::Form::implicit) out.push_back(std::move(p));
+    } catch (const io::InputError&) {  // the corpus' bad-input cases
+    }
+  }
+  return out;
+}
+
+/// The exact tiers' trace: levels 1 … c with their dimensions, exact or graph, certain iff the answer is.
+template <class S>
+void exact_trace_is_the_tower(const S& s, const std::string& file) {
+  const std::vector<long> dims = s.dims();
+  ASSERT_EQ(s.trace.size() + 1, dims.size()) << file << " (" << s.backend << ")";
+  for (std::size_t k = 0; k < s.trace.size(); ++k) {
+    const Decision& d = s.trace[k];
+    EXPECT_EQ(d.rank, dims[k + 1]) << file << " level " << k + 1;
+    EXPECT_EQ(d.what, "dim M_" + std::to_string(k + 1)) << file;
+    EXPECT_TRUE(d.by == DecidedBy::exact || d.by == DecidedBy::graph) << file;
+    EXPECT_EQ(d.certain.yes(), s.certified.yes()) << file << " level " << k + 1;
+  }
+}
+
+TEST(Trace, ExactTiersTraceEveryLevelExactly) {
+  long reference = 0, certified = 0;
+  for (const io::Problem& p : corpus()) {
+    try {
+      exact_trace_is_the_tower(dcad::reference::solve(p), p.file);
+      ++reference;
+    } catch (const io::InputError&) {  // beyond the reference (a size, an irrational value)
+    }
+    try {
+      const dcad::certified::Solution s = dcad::certified::solve(p);
+      exact_trace_is_the_tower(s, p.file);
+      ++certified;
+    } catch (const dcad::symbolic::NotExactHere&) {
+    } catch (const io::InputError&) {
+    }
+  }
+  EXPECT_GE(reference, 40);  // a moved corpus must not pass this vacuously
+  EXPECT_GE(certified, 40);
+}
+
+TEST(Trace, FastTraceIsItsDecisions) {
+  long cases = 0, with_trace = 0, probed = 0;
+  for (const io::Problem& p : corpus()) {
+    fast::DecisionProbe count;
+    fast::Options opt;
+    opt.probe = &count;
+    fast::Solution s;
+    try {
+      s = fast::solve(p, dcad::Parts::none(), opt);
+    } catch (const io::InputError&) {
+      continue;
+    }
+    ++cases;
+    if (!s.trace.empty()) ++with_trace;
+    for (const Decision& d : s.trace) {
+      if (d.certain.unknown())
+        EXPECT_TRUE(s.certified.unknown()) << p.file << ": " << d.what << " under a certain answer";
+      EXPECT_FALSE(d.evidence.empty()) << p.file << ": " << d.what;
+      if (!d.singular_values.empty())  // the evidence is the RankDecision's
+        EXPECT_NE(d.evidence.find("rank " + std::to_string(d.rank) + " of " + std::to_string(d.rows) + "x"),
+                  std::string::npos)
+            << p.file << ": " << d.evidence;
+    }
+    if (!s.certified.yes() || count.made == 0 || count.made > 40) continue;
+    for (long i = 0; i < count.made; ++i) {  // each decision reported uncertain in turn: the trace shows it
+      fast::DecisionProbe inject{0, i};
+      fast::Options o;
+      o.probe = &inject;
+      const fast::Solution si = fast::solve(p, dcad::Parts::none(), o);
+      EXPECT_TRUE(std::any_of(si.trace.begin(), si.trace.end(), [](const Decision& d) { return d.certain.unknown(); }))
+          << p.file << ": decision " << i << " of " << count.made << " reported uncertain is not in the trace";
+      ++probed;
+    }
+  }
+  EXPECT_GE(cases, 40);
+  EXPECT_GE(with_trace, 30);
+  EXPECT_GE(probed, 100);
+  RecordProperty("probed", static_cast<int>(probed));
+}
+
+}  // namespace
