@@ -47,11 +47,11 @@ int main(int argc, char** argv) {
   std::printf("| case | variables | route | seconds | dims | certified |\n|---|---|---|---|---|---|\n");
   for (int a = 1; a < argc; ++a) {
     const dcad::io::Problem p = dcad::io::read_problem(argv[a]);
-    const std::size_t n = p.expression.system.n;
+    const std::size_t n = p.expression().system.n;
     for (const auto& [route, name] :
          {std::pair{ImplicitRoute::formulas, "exact, on formulas"}, std::pair{ImplicitRoute::jets, "exact, on jets"}})
       row(argv[a], n, name, [&, r = route] {
-        const auto s = dcad::reference::pipeline::solve_implicit_exact(p.expression, r);
+        const auto s = dcad::reference::pipeline::solve_implicit_exact(p.expression(), r);
         return std::make_pair(s.dims(), s.certified.yes());
       });
     row(argv[a], n, "fast (derivative array)", [&] {

@@ -392,8 +392,8 @@ struct InspectCommand {
     const dcad::Inspection r = dcad::api::inspect(p, dcad::api::backend_named(backend));
     std::cout << (as_json ? dcad::io::inspection_json(r) + "\n" : dcad::io::inspection_text(r));
     if (r.valid) return 0;
-    std::cerr << file << ": " << p.linear.dirac.path << ": expected a Dirac structure (CEF Lemma 4.1), found " << r.why
-              << "\n";
+    std::cerr << file << ": " << p.linear().dirac.path << ": expected a Dirac structure (CEF Lemma 4.1), found "
+              << r.why << "\n";
     return 1;
   }
 };

@@ -121,9 +121,8 @@ io::DaeCase as_case(const Planted& p, bool sources) {
 
 fast::Solution fast_of(const io::DaeCase& c) {
   io::Problem p;
-  p.form = io::Form::dae;
   p.file = c.file;
-  p.dae = c;
+  p.input = c;
   return fast::solve(p);
 }
 
@@ -177,9 +176,8 @@ RC_GTEST_PROP(Dae, PlantedSingularPencilIsSingularAndNotUnique, ()) {
 /// route of large sparse circuits, instead of the dense SVD.
 fast::Solution sparse_route(const io::DaeCase& c, bool sparse_qr = false) {
   io::Problem pr;
-  pr.form = io::Form::dae;
   pr.file = c.file;
-  pr.dae = c;
+  pr.input = c;
   fast::Options opt;
   opt.dae_sparse_from = 0;
   if (sparse_qr) opt.dae_sparse_qr_from = 0;
@@ -465,9 +463,8 @@ io::LagrangianCase as_implicit(const io::DaeCase& d) {
 /// fast's derivative array on the implicit case `c` reaches the tower `want` wherever it says certified.
 void fast_has_the_tower(const io::LagrangianCase& c, const dcad::Solution<Q>& want) {
   io::Problem pr;
-  pr.form = io::Form::implicit;
   pr.file = c.file;
-  pr.expression = c;
+  pr.input = io::ImplicitCase{c};
   const fast::Solution f = fast::solve(pr);
   RC_TAG(f.certified.yes() ? "fast certified" : "fast uncertain");
   if (!f.certified.yes()) return;

@@ -277,10 +277,10 @@ RC_GTEST_PROP(SparseSimulate, ModelIsTheExactStateEquations, ()) {
   const std::string text = random_deck(step, uic, r0, t0);
   RC_LOG() << text;
   const dcad::io::Problem p = dcad::io::parse_netlist(text, "random.cir");
-  if (!dcad::reference::pipeline::graph_route_holds(p.netlist.rlc)) RC_DISCARD("outside the graph route");
+  if (!dcad::reference::pipeline::graph_route_holds(p.netlist().rlc)) RC_DISCARD("outside the graph route");
   const dcad::StateEquations<dcad::reference::Rational> exact =
-      dcad::reference::pipeline::deck_state_equations<dcad::reference::Rational>(p.netlist);
-  const sr::Model model(network_of(p.netlist));
+      dcad::reference::pipeline::deck_state_equations<dcad::reference::Rational>(p.netlist());
+  const sr::Model model(network_of(p.netlist()));
   const sr::Model::Matrices& m = model.matrices();
   const std::map<std::string, const sr::SpMat*> fast{
       {"C_ww", &m.Cww}, {"G_ww", &m.Gww}, {"G_wr", &m.Gwr}, {"G_rr", &m.Grr}, {"L_w", &m.Lw},
@@ -401,7 +401,7 @@ RC_GTEST_PROP(Estimate, BoundsTheDenseRoutesError, ()) {
   // "… at least the state's size in the circuit's natural units": the largest |value| / natural scale
   // over the variables and rows, times the variable's natural scale (its kind's largest may be ~0)
   const std::vector<long double> natural =
-      dcad::io::units_of(d.p.netlist).variable_scales(d.p.netlist.circuit.branches.size(), false);
+      dcad::io::units_of(d.p.netlist()).variable_scales(d.p.netlist().circuit.branches.size(), false);
   RC_ASSERT(natural.size() + 1 == a.header.size());
   long double state = 0;
   for (std::size_t j = 1; j < a.header.size(); ++j)
@@ -438,7 +438,7 @@ RC_GTEST_PROP(Enclosures, StateEquationModelIsTheDenseModel, ()) {
   d.text = random_deck(d.step, d.uic, d.r0, d.t0, d.wide);
   RC_LOG() << d.text;
   d.p = dcad::io::parse_netlist(d.text, "random.cir");
-  if (!dcad::reference::pipeline::graph_route_holds(d.p.netlist.rlc)) RC_DISCARD("outside the graph route");
+  if (!dcad::reference::pipeline::graph_route_holds(d.p.netlist().rlc)) RC_DISCARD("outside the graph route");
   dcad::api::SimulateOptions opt;
   opt.step = d.step;
   opt.tstop = 20 * d.step;
@@ -492,7 +492,7 @@ TEST(Enclosures, BeyondTheDenseSizeHoldTheSparseRoute) {
          << k + 1 << " 0 1p\n";
   deck << ".end\n";
   const dcad::io::Problem p = dcad::io::parse_netlist(deck.str(), "ladder76.cir");
-  ASSERT_EQ(p.netlist.rlc.branches.size(), 76u);
+  ASSERT_EQ(p.netlist().rlc.branches.size(), 76u);
   dcad::api::SimulateOptions opt;
   opt.step = 0.5e-9;
   opt.tstop = 60e-9;

@@ -113,18 +113,18 @@ RC_GTEST_PROP(Generators, ShownValueIsTheCaseFileOfTheValue, ()) {
   const std::string shown = rc::toString(s), tag = "dcad case: ";
   RC_ASSERT(shown.rfind(tag, 0) == 0);
   const io::Problem p = case_problem(shown.substr(tag.size()));
-  RC_ASSERT(p.linear.has_dirac);
-  RC_ASSERT(p.linear.dirac.g == s.d.d.basis());
-  RC_ASSERT(p.linear.energy.hessian == s.hessian);
-  RC_ASSERT(p.linear.energy.gradient == s.gradient);
-  RC_ASSERT(p.linear.energy.constant == s.constant);
+  RC_ASSERT(p.linear().has_dirac);
+  RC_ASSERT(p.linear().dirac.g == s.d.d.basis());
+  RC_ASSERT(p.linear().energy.hessian == s.hessian);
+  RC_ASSERT(p.linear().energy.gradient == s.gradient);
+  RC_ASSERT(p.linear().energy.constant == s.constant);
   const reference::ConstrainedSystem<Q> c = *constrained_systems();
   const std::string shown_c = rc::toString(c);
   RC_ASSERT(shown_c.rfind(tag, 0) == 0);
   const io::Problem pc = case_problem(shown_c.substr(tag.size()));
-  RC_ASSERT(pc.linear.has_constrained);
-  RC_ASSERT(pc.linear.constrained.w == c.omega);
-  RC_ASSERT(pc.linear.constrained.primary == c.primary);
+  RC_ASSERT(pc.linear().has_constrained);
+  RC_ASSERT(pc.linear().constrained.w == c.omega);
+  RC_ASSERT(pc.linear().constrained.primary == c.primary);
 }
 
 /// A `dirac` member in one of the CONTRACT's other forms, with an energy of the right size.
@@ -198,7 +198,8 @@ TEST(Uncertainty, ExpressionFormCasesOfTheCorpus) {
     } catch (const io::InputError&) {  // the corpus' bad-input cases
       continue;
     }
-    if (p.form != io::Form::expression && p.form != io::Form::implicit) continue;  // implicit: fast's derivative array
+    if (p.form() != io::Form::expression && p.form() != io::Form::implicit)
+      continue;  // implicit: fast's derivative array
     ++cases;
     fast::DecisionProbe count;
     fast::Options opt;
@@ -233,13 +234,13 @@ RC_GTEST_PROP(Uncertainty, Inspection, ()) {
   fast::DecisionProbe count;
   fast::Options opt;
   opt.probe = &count;
-  const Inspection r = fast::inspect(p.linear, opt);
+  const Inspection r = fast::inspect(p.linear(), opt);
   if (!r.certified.yes() || !r.valid) return;
   for (long i : indices(count.made)) {
     fast::DecisionProbe inject{0, i};
     fast::Options o;
     o.probe = &inject;
-    const Inspection ri = fast::inspect(p.linear, o);
+    const Inspection ri = fast::inspect(p.linear(), o);
     if (!ri.certified.unknown()) {
       RC_LOG() << "decision " << i << " of " << count.made
                << " reported uncertain, and the inspection is still certified\ninput:\n"

@@ -35,7 +35,7 @@ std::vector<io::Problem> corpus() {
   for (const auto& f : files) {
     try {
       io::Problem p = io::read_problem(f.string());
-      if (p.form != io::Form::expression && p.form != io::Form::implicit) out.push_back(std::move(p));
+      if (p.form() != io::Form::expression && p.form() != io::Form::implicit) out.push_back(std::move(p));
     } catch (const io::InputError&) {  // the corpus' bad-input cases
     }
   }

@@ -8,15 +8,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string file = dcad::fuzz::as_file(data, size, ".json");
   try {
     const dcad::io::Problem p = dcad::io::read_problem(file);
-    if (p.form == dcad::io::Form::expression && p.expression.system.n <= 2 && size < 600) {
+    if (p.form() == dcad::io::Form::expression && p.expression().system.n <= 2 && size < 600) {
       (void)dcad::api::solve(p, dcad::api::Backend::certified);
       (void)dcad::api::solve(p, dcad::api::Backend::fast);
     }
-    if (p.form == dcad::io::Form::implicit && p.expression.system.n <= 3 && size < 600) {
+    if (p.form() == dcad::io::Form::implicit && p.expression().system.n <= 3 && size < 600) {
       (void)dcad::api::solve(p, dcad::api::Backend::certified);
       (void)dcad::api::solve(p, dcad::api::Backend::fast);
     }
-    if (p.form == dcad::io::Form::dae && p.dae.variables.size() <= 4 && size < 600) {
+    if (p.form() == dcad::io::Form::dae && p.dae().variables.size() <= 4 && size < 600) {
       (void)dcad::api::solve(p, dcad::api::Backend::certified);
       (void)dcad::api::solve(p, dcad::api::Backend::fast);
     }

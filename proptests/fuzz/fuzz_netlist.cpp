@@ -8,8 +8,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     const dcad::io::Problem p = dcad::io::read_problem(dcad::fuzz::as_file(data, size, ".cir"));
-    if (!p.netlist.forced) (void)dcad::fast::solve_lc(p.netlist, p.linear, dcad::Parts::none());
-    if (p.netlist.forced && p.netlist.rlc.branches.size() <= 8) {
+    if (!p.netlist().forced) (void)dcad::fast::solve_lc(p.netlist(), p.linear(), dcad::Parts::none());
+    if (p.netlist().forced && p.netlist().rlc.branches.size() <= 8) {
       (void)dcad::api::solve(p, dcad::api::Backend::reference);
       (void)dcad::api::solve(p, dcad::api::Backend::fast);
     }

@@ -51,7 +51,7 @@ inline std::vector<io::Problem> typed_bases() {
 /// (pushing a duplicate name and popping it restores the valid problem), so a composition malforms each
 /// field at most once.
 inline unsigned malformed_field(const io::Problem& p, unsigned which) {
-  switch (p.form) {
+  switch (p.form()) {
     case io::Form::linear: return which % 8 <= 2 ? 0 : which % 8;  // 0, 1, 2: the variables
     case io::Form::netlist: return which % 8;
     case io::Form::dae: return which % 6 == 2 ? 0 : which % 6;  // 0, 2: the variables
@@ -66,9 +66,9 @@ inline unsigned malformed_field(const io::Problem& p, unsigned which) {
 inline bool malform(io::Problem& p, unsigned which, unsigned k) {
   using io::Form;
   const auto pick = [&](std::size_t n) { return n ? k % n : 0; };
-  switch (p.form) {
+  switch (p.form()) {
     case Form::linear: {
-      io::CaseFile& c = p.linear;
+      io::CaseFile& c = p.linear();
       switch (which % 8) {
         case 0:
           if (c.variables.empty()) return false;
@@ -103,7 +103,7 @@ inline bool malform(io::Problem& p, unsigned which, unsigned k) {
       }
     }
     case Form::netlist: {
-      io::Netlist& d = p.netlist;
+      io::Netlist& d = p.netlist();
       const std::size_t nb = d.rlc.branches.size();
       switch (which % 8) {
         case 0: d.rlc.branches[pick(nb)].from = static_cast<long>(d.rlc.nodes + k % 4); return true;
@@ -117,7 +117,7 @@ inline bool malform(io::Problem& p, unsigned which, unsigned k) {
           if (d.waveforms.empty()) return false;
           d.waveforms[0].p.pop_back();
           return true;
-        case 5: p.linear.variables.pop_back(); return true;
+        case 5: p.linear().variables.pop_back(); return true;
         case 6:
           if (d.waveforms.empty()) return false;
           d.rlc.sources = d.waveforms.size() + 1;
@@ -126,7 +126,7 @@ inline bool malform(io::Problem& p, unsigned which, unsigned k) {
       }
     }
     case Form::dae: {
-      io::DaeCase& c = p.dae;
+      io::DaeCase& c = p.dae();
       switch (which % 6) {
         case 0: c.variables.pop_back(); return true;
         case 1:
@@ -146,7 +146,7 @@ inline bool malform(io::Problem& p, unsigned which, unsigned k) {
     }
     case Form::expression:
     case Form::implicit: {
-      io::LagrangianCase& c = p.expression;
+      io::LagrangianCase& c = p.expression();
       reference::LagrangianSystem& s = c.system;
       switch (which % 6) {
         case 0: s.names.pop_back(); return true;

@@ -53,9 +53,9 @@ namespace {
 /// The certified tier where no exact tier can run (the expression form at an irrational point):
 /// double precision, not certified, and the note says why.
 certified::Solution not_certified(const io::Problem& p, const reference::NotExactHere& e) {
-  const fast::Solution f = p.form == io::Form::implicit ? fast::solve_implicit(p.expression)
-                           : p.form == io::Form::dae    ? fast::solve(p)
-                                                        : fast::solve_expression(p.expression);
+  const fast::Solution f = p.form() == io::Form::implicit ? fast::solve_implicit(p.expression())
+                           : p.form() == io::Form::dae    ? fast::solve(p)
+                                                          : fast::solve_expression(p.expression());
   certified::Solution s = map_numbers<certified::Number>(f, [](double x) {
     return certified::Number{false, reference::Rational(0), x, HUGE_VAL};
   });  // no enclosure
@@ -78,13 +78,13 @@ void attach_formulas(const io::Problem& p, Backend backend, Solved& s) {
   std::visit(
       [&](auto& r) {
         if (!r.pointwise || !r.consistent || !r.pointwise->regular) return;
-        auto f = chart_for(p.expression, r.dims());
+        auto f = chart_for(p.expression(), r.dims());
         if (auto* ok = std::get_if<Charted>(&f)) {
-          r.pointwise->formulas = formulas_of(p.expression, ok->chart);
+          r.pointwise->formulas = formulas_of(p.expression(), ok->chart);
           const bool elsewhere = !r.pointwise->place.empty() || !r.exact;
-          if (backend == Backend::certified && p.expression.has_initial && elsewhere)
+          if (backend == Backend::certified && p.expression().has_initial && elsewhere)
             r.pointwise->at_given =
-                at_given(p.expression, *ok, !r.pointwise->place.empty(), r.certified.yes() || ok->fast_certain);
+                at_given(p.expression(), *ok, !r.pointwise->place.empty(), r.certified.yes() || ok->fast_certain);
         } else {
           r.pointwise->formulas_why = std::get<std::string>(f);
         }
@@ -110,7 +110,7 @@ Solved solve_form(const io::Problem& p, Backend backend, const Parts& parts) {
 
 Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
   Solved s = solve_form(p, backend, parts);
-  if (p.form == io::Form::expression)
+  if (p.form() == io::Form::expression)
     guarded(p, [&]() {
       attach_formulas(p, backend, s);
       return 0;

@@ -201,7 +201,7 @@ int export_waveforms(const std::string& dir_name, std::ostream& log) {
   std::sort(decks.begin(), decks.end());
   for (const fs::path& p : decks) {
     const io::Problem prob = io::read_problem(p.string());
-    const io::Netlist& deck = prob.netlist;
+    const io::Netlist& deck = prob.netlist();
     if (!deck.tran_step || !deck.tran_stop || !(*deck.tran_step > 0) || *deck.tran_stop < 0)
       throw io::InputError(p.string() +
                            ": expected a .tran TSTEP TSTOP card with numbers for its waveforms, found none");

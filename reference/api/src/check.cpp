@@ -338,8 +338,8 @@ json printed_json(const dcad::Solution<N>& s) {
 /// The reference's solution of a linear case or netlist: the structured circuit route (exact), or above
 /// certified::kDenseBranches with L, C > 0 the graph route (a theorem's answer, exact too).
 reference::Solution truth_of(const io::Problem& p) {
-  if (p.form == io::Form::netlist && !p.netlist.forced &&
-      p.netlist.circuit.branches.size() > certified::kDenseBranches) {
+  if (p.form() == io::Form::netlist && !p.netlist().forced &&
+      p.netlist().circuit.branches.size() > certified::kDenseBranches) {
     const certified::Solution c = certified::solve(p);
     return map_numbers<io::Rational>(c, [](const certified::Number& x) {
       if (!x.exact) throw InternalError("check: the certified graph route gave an inexact number");
@@ -372,7 +372,7 @@ Checked check_forced(const std::string& result_file, const json& r, const io::Pr
 }
 
 Checked check_linear(const std::string& result_file, const json& r, const io::Problem& p_in) {
-  const io::CaseFile& c_in = p_in.linear;
+  const io::CaseFile& c_in = p_in.linear();
   for (const char* key :
        {"dims", "steps", "consistent", "solution_rank"})  // formulas alone are for the expression form
     if (!r.contains(key))
@@ -386,7 +386,7 @@ Checked check_linear(const std::string& result_file, const json& r, const io::Pr
     bad(result_file, "/variables", "the variables of " + c_in.file,
         shown(r["variables"]) + ": a result for another case");
   io::Problem p = p_in;
-  io::CaseFile& c = p.linear;
+  io::CaseFile& c = p.linear();
   if (r.contains("reduced")) {  // the reference's reduced equations in the result's coordinates
     const json& coords = r["reduced"].value("coordinates", json());
     if (!coords.is_array()) bad(result_file, "/reduced/coordinates", "an array of variable names", shown(coords));
@@ -399,8 +399,8 @@ Checked check_linear(const std::string& result_file, const json& r, const io::Pr
       c.coordinates.push_back(static_cast<std::size_t>(it - c.variables.begin()));
     }
   }
-  const bool forced = (p.form == io::Form::netlist && p.netlist.forced) ||
-                      (p.form == io::Form::linear && c.has_pontryagin && c.pontryagin.has_forces);
+  const bool forced = (p.form() == io::Form::netlist && p.netlist().forced) ||
+                      (p.form() == io::Form::linear && c.has_pontryagin && c.pontryagin.has_forces);
   if (forced) return check_forced(result_file, r, p_in);
   const reference::Solution truth = truth_of(p);
   const json want = printed_json(truth);
@@ -544,7 +544,7 @@ bool read_result_point(const std::string& result_file, const json& pt, const io:
 }
 
 Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
-  const io::LagrangianCase& c = p.expression;
+  const io::LagrangianCase& c = p.expression();
   const std::vector<std::string> st = c.system.state_names();
   if (r.contains("name") && r["name"] != c.name)
     bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
@@ -596,7 +596,7 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   io::Printed truth_at;
   try {
     io::Problem there = p;
-    there.expression = at;
+    there.expression() = at;
     truth_at = exact ? io::printed(reference::solve(there)) : io::printed(fast::solve_expression(at));
   } catch (const io::InputError& e) {
     k.out.disagreements.push_back(std::string("point: expected a point of M_c, found one where ") + e.what());
@@ -858,7 +858,7 @@ void compare_dae_reduced(Checker& k, const json& red, const reference::Solution&
 /// consistency, solution rank, regularity of the pencil and its index — against the reference's
 /// CEF (1.6); its M_c (`final_constraints`) as a subspace, and its equations of motion (`reduced`).
 Checked check_dae(const std::string& result_file, const json& r, const io::Problem& p) {
-  const io::DaeCase& c = p.dae;
+  const io::DaeCase& c = p.dae();
   if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
   if (r.contains("name") && r["name"] != c.name)
     bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
@@ -898,7 +898,7 @@ Checked check_dae(const std::string& result_file, const json& r, const io::Probl
 /// steps, consistency, solution rank, uniqueness and index — against the reference's CEF (1.6) at the
 /// case's point (exact); its constraints of M_c and equations of motion as `formulas` (check_formulas.cpp).
 Checked check_implicit(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
-  const io::LagrangianCase& c = p.expression;
+  const io::LagrangianCase& c = p.expression();
   if (!r.is_object()) bad(result_file, "", "a result object", shown(r));
   if (r.contains("name") && r["name"] != c.name)
     bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
@@ -938,10 +938,10 @@ Checked checked(const std::string& result_file, const std::string* text, const i
   return guarded(p, [&] {
     io::validate(p);
     const json r = read_result(result_file, text);
-    Checked o = p.form == io::Form::expression ? check_expression(result_file, r, p, points)
-                : p.form == io::Form::dae      ? check_dae(result_file, r, p)
-                : p.form == io::Form::implicit ? check_implicit(result_file, r, p, points)
-                                               : check_linear(result_file, r, p);
+    Checked o = p.form() == io::Form::expression ? check_expression(result_file, r, p, points)
+                : p.form() == io::Form::dae      ? check_dae(result_file, r, p)
+                : p.form() == io::Form::implicit ? check_implicit(result_file, r, p, points)
+                                                 : check_linear(result_file, r, p);
     o.agrees = o.disagreements.empty();
     // every top-level key of the result that nothing above compared is named, never ignored in silence
     std::string quiet;

@@ -383,8 +383,8 @@ void check_expression_formulas(const Theirs& th, const io::LagrangianCase& c, st
   bool exactly = false;
   try {
     io::Problem p;
-    p.form = io::Form::expression;
-    p.expression = c;
+    p.file = c.file;
+    p.input = io::ExpressionCase{c};
     const dcad::Solution<reference::Rational> r = reference::solve(p);
     if (r.pointwise && r.consistent && r.pointwise->regular && r.pointwise->point_text.empty()) {
       std::vector<reference::Rational> x(r.pointwise->point.begin(),
@@ -467,7 +467,7 @@ Ours ours_of_formulas(const std::string& file, const io::LagrangianCase& c, cons
 /// read back: what is printed is what is compared), decided at its exact point of M_c.
 void check_implicit_formulas(const std::string& file, const Theirs& th, const io::Problem& p, std::size_t points,
                              Checked& out) {
-  const io::LagrangianCase& c = p.expression;
+  const io::LagrangianCase& c = p.expression();
   const reference::LagrangianSystem& s = c.system;
   const std::size_t n = s.n;
   const std::vector<std::string> names = s.variable_names();
@@ -515,7 +515,7 @@ void check_implicit_formulas(const std::string& file, const Theirs& th, const io
 
 void check_formulas(const std::string& file, const nlohmann::json& f, const io::Problem& p, std::size_t points,
                     Checked& out) {
-  const io::LagrangianCase& c = p.expression;
+  const io::LagrangianCase& c = p.expression();
   const std::size_t n = c.system.n;
   std::vector<std::size_t> rated;  // what an equation may give d/dt of: (q, v), or q for the implicit form
   for (std::size_t i = 0; i < (c.system.implicit ? n : 2 * n); ++i) rated.push_back(i);

@@ -211,10 +211,10 @@ class Encloser {
 
 Encloser::Encloser(const io::Problem& p, const std::vector<Functional>& fs, const WaveformOptions& opt, double step,
                    long precision, double first, double last) {
-  const io::Netlist& deck = p.netlist;
+  const io::Netlist& deck = p.netlist();
   const std::size_t nb = deck.rlc.branches.size(), nodes = deck.node_names.size();
   try {
-    cm_ = certified_motion(deck, p.linear, opt.initial, step, precision);
+    cm_ = certified_motion(deck, p.linear(), opt.initial, step, precision);
   } catch (const std::exception& e) {
     why_ = e.what();
     return;
@@ -380,12 +380,12 @@ Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<F
 WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names,
                                      const std::vector<double>& times, Initial initial, double step) {
   io::Traces tr;
-  tr.file = p.netlist.file;
+  tr.file = p.netlist().file;
   tr.names = names;
   tr.time = times;
-  const Names nm = names_of(p.netlist);
+  const Names nm = names_of(p.netlist());
   std::vector<Functional> fs;
-  for (const std::string& name : names) fs.push_back(functional(name, nm, p.netlist, p.netlist.file));
+  for (const std::string& name : names) fs.push_back(functional(name, nm, p.netlist(), p.netlist().file));
   WaveformOptions opt;
   opt.initial = initial;
   Enclosed e = enclose(tr, p, fs, opt, step);
@@ -497,7 +497,7 @@ WaveformVector verdict(const Reduced& a, const std::string& name, const std::str
 /// The variables that jump onto M_c at t = 0: decided exactly (in rationals) where the circuit is small
 /// enough, else the sparse flow's own decision `flow_jumped` (its start was computed the same way).
 std::vector<std::string> exact_jumps(const io::Problem& p, Initial initial, std::vector<std::string> flow_jumped) {
-  const io::Netlist& deck = p.netlist;
+  const io::Netlist& deck = p.netlist();
   if (nb_of(deck) > reference::pipeline::kForcedBranches) return flow_jumped;
   namespace pl = reference::pipeline;
   try {
@@ -505,7 +505,7 @@ std::vector<std::string> exact_jumps(const io::Problem& p, Initial initial, std:
                                                   initial == Initial::op    ? pl::InitialRule::op
                                                   : initial == Initial::uic ? pl::InitialRule::uic
                                                                             : pl::InitialRule::deck,
-                                                  p.linear.variables);
+                                                  p.linear().variables);
     if (!st.computed) return flow_jumped;
     std::vector<std::string> jumped;
     for (const pl::Jump& j : st.jumps) jumped.push_back(j.variable);
@@ -634,11 +634,11 @@ std::vector<Functional> functionals_of(const io::TraceStream& tr, const io::Prob
     log << "note: skipped a simulator's message inside the table at " << skipped[k] << "\n";
   if (skipped.size() > 5) log << "note: … and " << skipped.size() - 5 << " more messages skipped\n";
   for (const std::string& n : tr.notes()) log << "note: " << n << "\n";
-  if (p.form != io::Form::netlist)
-    throw io::InputError(p.netlist.file.empty()
+  if (p.form() != io::Form::netlist)
+    throw io::InputError(p.netlist().file.empty()
                              ? tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file"
-                             : p.netlist.file + ": check: expected a netlist for a waveform");
-  const io::Netlist& deck = p.netlist;
+                             : p.netlist().file + ": check: expected a netlist for a waveform");
+  const io::Netlist& deck = p.netlist();
   if (!deck.indefinite_inductance.empty())
     throw io::InputError(
         deck.indefinite_inductance +
@@ -763,11 +763,11 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
 
 WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt,
                                std::ostream& log) {
-  if (const auto which = io::without_exact_flow(p.netlist.waveforms))
+  if (const auto which = io::without_exact_flow(p.netlist().waveforms))
     throw io::InputError(p.file + ": check: expected continuous sources with a finite exosystem, found " + *which +
                          ": dcad has no exact flow for it; write the waveform as a continuous PWL(t1 v1 t2 v2 …)");
   const std::vector<Functional> fs = functionals_of(tr, p, opt, log);
-  const io::Netlist& deck = p.netlist;
+  const io::Netlist& deck = p.netlist();
   WaveformChecked out;
   out.format = tr.format();
   out.points = static_cast<long>(tr.points());
@@ -798,7 +798,7 @@ WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const 
     jumped = exact_jumps(p, opt.initial, flow->jumped());
   } else {
     long jumps = 0;
-    netlist_start(deck, p.linear.variables, opt.initial, log, &jumps, &jumped);
+    netlist_start(deck, p.linear().variables, opt.initial, log, &jumps, &jumped);
   }
   const std::vector<bool> touched = touched_by(fs, deck, jumped);
   // One pass over the file per precision of the enclosures; the first also runs the double flow (graph

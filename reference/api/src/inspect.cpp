@@ -5,22 +5,22 @@ namespace dcad::api {
 
 Inspection inspect(const io::Problem& p, Backend backend) {
   io::validate(p);
-  if (p.form == io::Form::expression)
+  if (p.form() == io::Form::expression)
     throw io::InputError(p.file +
                          ": /lagrangian: expected a linear case (dirac, pontryagin or constrained) here; the "
                          "expression form is taken by "
                          "solve, check and simulate, found the expression form");
-  if (p.form == io::Form::implicit)
+  if (p.form() == io::Form::implicit)
     throw io::InputError(p.file +
                          ": /implicit: expected a case file with a `dirac` member for inspect, found the implicit form "
                          "(taken by solve, check and simulate)");
-  if (p.form == io::Form::dae)
+  if (p.form() == io::Form::dae)
     throw io::InputError(p.file +
                          ": /dae: expected a case file with a `dirac` member for inspect, found the dae form (taken by "
                          "solve and check)");
-  if (p.form == io::Form::netlist)
+  if (p.form() == io::Form::netlist)
     throw io::InputError(p.file + ": expected a case file with a `dirac` member for inspect, found a netlist");
-  const io::CaseFile& c = p.linear;
+  const io::CaseFile& c = p.linear();
   if (!c.has_dirac)
     throw io::InputError(p.file + ": /dirac: expected a `dirac` member for inspect, found a " +
                          (c.has_pontryagin ? "`pontryagin`" : "`constrained`") + " case");

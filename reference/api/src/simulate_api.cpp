@@ -135,16 +135,18 @@ bool sparse_netlist(const io::Netlist& d, const SimulateOptions& opt) {
 /// the pointwise CEF (1.6), projected onto M_c) or an expression-form system (RK4 on the pointwise CAD, projected).
 Summary simulate_formulas(const io::Problem& p, const SimulateOptions& options, RowSink& rows, std::ostream& log,
                           std::ostream* energy) {
-  const std::string form = p.form == io::Form::dae ? "dae" : p.form == io::Form::implicit ? "implicit" : "expression";
+  const std::string form = p.form() == io::Form::dae        ? "dae"
+                           : p.form() == io::Form::implicit ? "implicit"
+                                                            : "expression";
   if (energy)
     throw UsageError(p.file + ": --energy: expected a netlist with resistors or sources, found the " + form + " form");
-  if (p.form != io::Form::expression && (options.route == Route::sparse || options.enclose))
+  if (p.form() != io::Form::expression && (options.route == Route::sparse || options.enclose))
     throw UsageError(p.file + ": --route sparse and --enclose: expected a netlist, found the " + form + " form");
   if (options.route == Route::sparse)
     throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
-  if (p.form == io::Form::dae) return simulate_dae(p.dae, options, rows, log);
-  if (p.form == io::Form::implicit) return simulate_implicit(p.expression, options, rows, log);
-  return simulate_lagrangian(p.expression, options, rows, log);
+  if (p.form() == io::Form::dae) return simulate_dae(p.dae(), options, rows, log);
+  if (p.form() == io::Form::implicit) return simulate_implicit(p.expression(), options, rows, log);
+  return simulate_lagrangian(p.expression(), options, rows, log);
 }
 
 }  // namespace
@@ -195,9 +197,9 @@ Simulated simulate_guarded(const io::Problem& p, const SimulateOptions& options,
                            std::ostream* energy) {
   return guarded(p, [&] {
     io::validate(p);
-    if (p.form == io::Form::netlist && !p.netlist.indefinite_inductance.empty())
+    if (p.form() == io::Form::netlist && !p.netlist().indefinite_inductance.empty())
       throw io::InputError(
-          p.netlist.indefinite_inductance +
+          p.netlist().indefinite_inductance +
           "; simulate: expected a positive semidefinite inductance matrix, found another (lower the couplings)");
     if (!options.columns.empty()) {  // checked before any row is computed
       std::vector<std::string> all = simulate_columns(p);
@@ -208,29 +210,29 @@ Simulated simulate_guarded(const io::Problem& p, const SimulateOptions& options,
     }
     ColumnFilter filtered(csv, options.columns);
     RowSink& rows = options.columns.empty() ? csv : filtered;
-    if (p.form == io::Form::dae || p.form == io::Form::implicit || p.form == io::Form::expression)
+    if (p.form() == io::Form::dae || p.form() == io::Form::implicit || p.form() == io::Form::expression)
       return simulate_formulas(p, options, rows, log, energy);
-    const bool netlist = p.form == io::Form::netlist;
+    const bool netlist = p.form() == io::Form::netlist;
     if (netlist)
-      if (const auto which = io::without_exact_flow(p.netlist.waveforms))
+      if (const auto which = io::without_exact_flow(p.netlist().waveforms))
         throw io::InputError(p.file +
                              ": simulate: expected continuous sources with a finite exosystem (DC, SIN, PULSE, PWL, "
                              "EXP), found " +
                              *which +
                              ": solve decides its circuit; write the waveform as a continuous PWL(t1 v1 t2 v2 …) to "
                              "simulate it");
-    const io::CaseFile& c = p.linear;
-    const bool forced_deck = netlist && p.netlist.forced,
+    const io::CaseFile& c = p.linear();
+    const bool forced_deck = netlist && p.netlist().forced,
                forced_case = !netlist && c.has_pontryagin && c.pontryagin.has_forces;
-    if (energy && !forced_deck && !forced_case && !(netlist && sparse_netlist(p.netlist, options)))
+    if (energy && !forced_deck && !forced_case && !(netlist && sparse_netlist(p.netlist(), options)))
       throw UsageError(
           p.file +
           ": --energy: expected a netlist with resistors or sources, found a lossless system (E is conserved)");
     for (const std::string& w : p.warnings()) log << "warning: " << w << "\n";
     if (!netlist && options.route == Route::sparse)
       throw UsageError(p.file + ": --route sparse: expected a netlist, found a case file");
-    if (netlist && sparse_netlist(p.netlist, options) && !options.enclose) {
-      const Summary sum = simulate_sparse(p.netlist, c, options, csv, log, energy);
+    if (netlist && sparse_netlist(p.netlist(), options) && !options.enclose) {
+      const Summary sum = simulate_sparse(p.netlist(), c, options, csv, log, energy);
       log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate) << " ("
           << sum.estimate_kind << ")\n";
       return sum;
@@ -240,15 +242,15 @@ Simulated simulate_guarded(const io::Problem& p, const SimulateOptions& options,
         throw UsageError(p.file +
                          ": --certified: expected a netlist, found a case file (enclosures are built for circuits)");
       if (energy) throw UsageError(p.file + ": --certified and --energy: expected one of them");
-      return simulate_enclosed(p.netlist, c, options, rows, log);
+      return simulate_enclosed(p.netlist(), c, options, rows, log);
     }
     std::vector<std::optional<io::Rational>> init(c.n);
-    if (netlist) init = netlist_start(p.netlist, c.variables, options.initial, log);
+    if (netlist) init = netlist_start(p.netlist(), c.variables, options.initial, log);
     if (!c.initial.empty())
       for (std::size_t i = 0; i < c.n; ++i) init[i] = c.initial[i];
-    const Summary sum = forced_deck   ? simulate_forced(p.netlist, c, init, options, rows, log, energy)
+    const Summary sum = forced_deck   ? simulate_forced(p.netlist(), c, init, options, rows, log, energy)
                         : forced_case ? simulate_forced_case(c, init, options, rows, log, energy)
-                                      : simulate_linear(c, netlist ? &p.netlist : nullptr, init, options, rows, log);
+                                      : simulate_linear(c, netlist ? &p.netlist() : nullptr, init, options, rows, log);
     log << "simulate: " << sum.rows << " rows; estimated error " << io::float_text(sum.error_estimate)
         << " relative to the largest magnitude of each variable's kind, at least the state's size in the circuit's "
            "natural units (worst "

@@ -77,13 +77,13 @@ Solution graph_route(const io::Netlist& deck, const std::vector<std::string>& va
 
 Solution lc_circuit(const io::Problem& p, const Parts& parts) {
   namespace pl = reference::pipeline;
-  const io::Netlist& deck = p.netlist;
+  const io::Netlist& deck = p.netlist();
   const std::vector<lc::Branch<Rational>> graph = reference::pipeline::lc_graph_of(deck);
   const bool physical = lc::physical(graph);
-  if (deck.circuit.branches.size() > kDenseBranches && physical) return graph_route(deck, p.linear.variables);
+  if (deck.circuit.branches.size() > kDenseBranches && physical) return graph_route(deck, p.linear().variables);
   Solution s = from_cascade(
-      cascade<Solution>([&](int& bits) { return exact_solution(pl::solve_lc_words(deck, p.linear, parts, bits)); },
-                        [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear, parts)); }));
+      cascade<Solution>([&](int& bits) { return exact_solution(pl::solve_lc_words(deck, p.linear(), parts, bits)); },
+                        [&] { return exact_solution(pl::solve_lc_fmpq(deck, p.linear(), parts)); }));
   if (physical && lc::physical_tower(deck.circuit.nodes, graph).dims !=
                       s.dims())  // a theorem disagrees with a certified computation
     throw std::logic_error("graph route and certified CAD disagree on " + deck.file + "; please report it");
@@ -109,13 +109,13 @@ std::string tier(const Decisions& d) {
 Solution solve(const io::Problem& p, const Parts& parts) {
   io::validate(p);
   Solution s;
-  if (p.form == io::Form::expression) {
+  if (p.form() == io::Form::expression) {
     s = exact_solution(reference::pipeline::pointwise_input_errors(
-        p.expression, [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression); }));
-  } else if (p.form == io::Form::implicit) {  // CEF (1.6) at a point, exact: every decision an exact zero test
-    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression, [&] {
+        p.expression(), [&] { return reference::pipeline::solve_pointwise_exact_near(p.expression()); }));
+  } else if (p.form() == io::Form::implicit) {  // CEF (1.6) at a point, exact: every decision an exact zero test
+    s = exact_solution(reference::pipeline::pointwise_input_errors(p.expression(), [&] {
       try {
-        return reference::pipeline::solve_implicit_exact(p.expression);
+        return reference::pipeline::solve_implicit_exact(p.expression());
       } catch (const std::length_error&
                    e) {  // jets too large for the exact tier: no exact tier here (api falls back, not certified)
         throw reference::NotExactHere(std::string("the exact route's jets are too large (") + e.what() + ")");
@@ -126,30 +126,30 @@ Solution solve(const io::Problem& p, const Parts& parts) {
                                       ")");
       }
     }));
-  } else if (p.form == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
+  } else if (p.form() == io::Form::dae) {  // the reference's CEF (1.6), exact: every decision is an exact zero test
     // beyond 200 variables or equations, the sparse route: modular elimination, every null vector verified in
     // rationals (dae_sparse.hpp; a 1,001-node ladder: 0.2 s against the dense route's 2–24 s, a random graded
     // circuit of 516 variables: against more than 300 s) — it forms no equations of motion (dense N × N; the
     // reference backend does, up to 2,000); where it reaches no proof, NotExactHere (api: fast, not certified)
-    const bool sparse = !p.dae.dense || p.dae.variables.size() > 200 || p.dae.equations() > 200;
-    s = exact_solution(sparse ? solve_dae_sparse(p.dae) : reference::pipeline::solve_dae(p.dae));
-  } else if (p.form == io::Form::netlist) {
-    if (p.netlist.forced) {
-      s = exact_solution(reference::pipeline::solve_forced(p.netlist, p.linear.variables));
+    const bool sparse = !p.dae().dense || p.dae().variables.size() > 200 || p.dae().equations() > 200;
+    s = exact_solution(sparse ? solve_dae_sparse(p.dae()) : reference::pipeline::solve_dae(p.dae()));
+  } else if (p.form() == io::Form::netlist) {
+    if (p.netlist().forced) {
+      s = exact_solution(reference::pipeline::solve_forced(p.netlist(), p.linear().variables));
     } else {
       s = lc_circuit(p, parts);
-      add_state(s, p.netlist, parts);
+      add_state(s, p.netlist(), parts);
     }
-    s.file = p.netlist.file;
-    s.name = p.netlist.title;
-    s.circuit = io::circuit_facts(p.netlist);
+    s.file = p.netlist().file;
+    s.name = p.netlist().title;
+    s.circuit = io::circuit_facts(p.netlist());
   } else {
-    s = linear(p.linear, parts);
+    s = linear(p.linear(), parts);
   }
-  if (p.form == io::Form::netlist &&
-      !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+  if (p.form() == io::Form::netlist &&
+      !p.netlist().rounded.empty()) {  // irrational values: exact only for the rounded deck
     s.certified = unknown;
-    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
+    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist());
   }
   s.backend = "certified";
   trace_exact_levels(s, DecidedBy::exact, tier(s.decisions));

@@ -8,17 +8,62 @@
 
 namespace dcad::io {
 
+static_assert(
+    std::variant_size_v<decltype(Problem::input)> == 5 &&
+        std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(Form::implicit), decltype(Problem::input)>,
+                       ImplicitCase>,
+    "Problem::input's alternatives are in Form's order");
+
+namespace {
+[[noreturn]] void wrong_form(const Problem& p, const char* wanted) {
+  static const char* const names[] = {"linear", "netlist", "expression", "dae", "implicit"};
+  throw std::logic_error(std::string("Problem::") + wanted + "(): the problem (" + p.file + ") is of the form " +
+                         names[p.input.index()]);
+}
+template <class P>
+auto& linear_of(P& p) {
+  if (auto* c = std::get_if<CaseFile>(&p.input)) return *c;
+  if (auto* c = std::get_if<CircuitCase>(&p.input)) return c->names;
+  wrong_form(p, "linear");
+}
+template <class P>
+auto& expression_of(P& p) {
+  if (auto* c = std::get_if<ExpressionCase>(&p.input)) return c->c;
+  if (auto* c = std::get_if<ImplicitCase>(&p.input)) return c->c;
+  wrong_form(p, "expression");
+}
+template <class T, class P>
+auto& alternative(P& p, const char* wanted) {
+  if (auto* c = std::get_if<T>(&p.input)) return *c;
+  wrong_form(p, wanted);
+}
+}  // namespace
+
+const CaseFile& Problem::linear() const { return linear_of(*this); }
+CaseFile& Problem::linear() { return linear_of(*this); }
+const Netlist& Problem::netlist() const { return alternative<CircuitCase>(*this, "netlist").deck; }
+Netlist& Problem::netlist() { return alternative<CircuitCase>(*this, "netlist").deck; }
+const LagrangianCase& Problem::expression() const { return expression_of(*this); }
+LagrangianCase& Problem::expression() { return expression_of(*this); }
+const DaeCase& Problem::dae() const { return alternative<DaeCase>(*this, "dae"); }
+DaeCase& Problem::dae() { return alternative<DaeCase>(*this, "dae"); }
+
+const std::vector<std::string>& Problem::warnings() const {
+  static const std::vector<std::string> none;
+  return form() == Form::netlist ? netlist().warnings : none;
+}
+
 std::vector<std::string> Problem::variables() const {
-  return form == Form::expression || form == Form::implicit ? expression.system.state_names()
-         : form == Form::dae                                ? dae.variables
-                                                            : linear.variables;
+  return form() == Form::expression || form() == Form::implicit ? expression().system.state_names()
+         : form() == Form::dae                                  ? dae().variables
+                                                                : linear().variables;
 }
 
 std::string Problem::name() const {
-  return form == Form::expression || form == Form::implicit ? expression.name
-         : form == Form::dae                                ? dae.name
-         : form == Form::netlist                            ? netlist.title
-                                                            : linear.name;
+  return form() == Form::expression || form() == Form::implicit ? expression().name
+         : form() == Form::dae                                  ? dae().name
+         : form() == Form::netlist                              ? netlist().title
+                                                                : linear().name;
 }
 
 namespace {
@@ -26,28 +71,14 @@ namespace {
 Problem from_json(const nlohmann::json& j, const std::string& file) {
   Problem p;
   p.file = file;
-  if (is_dae_case(j)) {
-    p.form = Form::dae;
-    p.dae = read_dae_case(j, file);
-  } else if (is_implicit_case(j)) {
-    p.form = Form::implicit;
-    p.expression = read_implicit_case(j, file);
-  } else if (is_expression_case(j)) {
-    p.form = Form::expression;
-    p.expression = read_lagrangian_case(j, file);
-  } else {
-    p.form = Form::linear;
-    p.linear = read_case(j, file);
-  }
-  return p;
-}
-
-Problem from_netlist(Netlist deck) {
-  Problem p;
-  p.form = Form::netlist;
-  p.file = deck.file;
-  p.linear = netlist_case(deck, false);  // the names; a route that needs the dense system builds it
-  p.netlist = std::move(deck);
+  if (is_dae_case(j))
+    p.input = read_dae_case(j, file);
+  else if (is_implicit_case(j))
+    p.input = ImplicitCase{read_implicit_case(j, file)};
+  else if (is_expression_case(j))
+    p.input = ExpressionCase{read_lagrangian_case(j, file)};
+  else
+    p.input = read_case(j, file);
   return p;
 }
 
@@ -69,9 +100,16 @@ bool looks_like_json_case(const std::string& file) {
 
 Problem problem(CaseFile c) {
   Problem p;
-  p.form = Form::linear;
   p.file = c.file;
-  p.linear = std::move(c);
+  p.input = std::move(c);
+  return p;
+}
+
+Problem problem(Netlist deck) {
+  Problem p;
+  p.file = deck.file;
+  CaseFile names = netlist_case(deck, false);  // the names; a route that needs the dense system builds it
+  p.input = CircuitCase{std::move(deck), std::move(names)};
   return p;
 }
 
@@ -94,28 +132,29 @@ Problem problem(DaeCase c) {
   if (c.f.empty()) c.f.assign(c.equations(), reference::expr::number(Rational(0)));
   if (c.initial.empty()) c.initial.assign(c.variables.size(), std::nullopt);
   Problem p;
-  p.form = Form::dae;
   p.file = c.file;
-  p.dae = std::move(c);
+  p.input = std::move(c);
   return p;
 }
 
 Problem problem(LagrangianCase c) {
   Problem p;
-  p.form = c.system.implicit ? Form::implicit : Form::expression;
   p.file = c.file;
-  p.expression = std::move(c);
+  if (c.system.implicit)
+    p.input = ImplicitCase{std::move(c)};
+  else
+    p.input = ExpressionCase{std::move(c)};
   return p;
 }
 
 Problem read_problem(const std::string& file, const ReadOptions& options) {
-  if (is_netlist_file(file) || !looks_like_json_case(file)) return from_netlist(read_netlist(file, options));
+  if (is_netlist_file(file) || !looks_like_json_case(file)) return problem(read_netlist(file, options));
   return from_json(read_json_file(file), file);
 }
 
 Problem parse_netlist(const std::string& text, const std::string& name, const std::string& directory,
                       const ReadOptions& options) {
-  return from_netlist(read_netlist_text(text, name, directory, options));
+  return problem(read_netlist_text(text, name, directory, options));
 }
 
 Problem parse_case(const std::string& text, const std::string& name) {

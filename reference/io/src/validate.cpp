@@ -148,7 +148,7 @@ void waveform(const std::string& f, const std::string& field, const Waveform& w)
 }
 
 void netlist(const Problem& p) {
-  const Netlist& d = p.netlist;
+  const Netlist& d = p.netlist();
   const std::string& f = d.file;
   const std::size_t nb = d.rlc.branches.size();
   if (nb == 0) bad(f, "Netlist::rlc.branches", "at least one element", "none");
@@ -188,7 +188,7 @@ void netlist(const Problem& p) {
     if (d.node_ic[i].first < 0 || d.node_ic[i].first >= nodes)
       bad(f, "Netlist::node_ic[" + n_of(i) + "]", "a node index in 0 ... " + n_of(d.rlc.nodes - 1),
           std::to_string(d.node_ic[i].first));
-  names(f, "Problem::linear.variables (q_, v_, p_ per branch)", p.linear.variables, 3 * nb);
+  names(f, "Problem::linear.variables (q_, v_, p_ per branch)", p.linear().variables, 3 * nb);
 }
 
 void expression(const LagrangianCase& c) {
@@ -237,19 +237,20 @@ void dae(const DaeCase& c) {
 }  // namespace
 
 void validate(const Problem& p) {
-  switch (p.form) {
-    case Form::linear: return linear(p.linear);
+  switch (p.form()) {
+    case Form::linear: return linear(p.linear());
     case Form::netlist: return netlist(p);
     case Form::expression:
     case Form::implicit:
-      if (p.expression.system.implicit != (p.form == Form::implicit))
-        bad(p.expression.file, "LagrangianCase::system.implicit",
-            p.form == Form::implicit ? "true for Form::implicit" : "false for Form::expression",
-            p.expression.system.implicit ? "true" : "false");
-      return expression(p.expression);
-    case Form::dae: return dae(p.dae);
+      if (p.expression().system.implicit != (p.form() == Form::implicit))
+        bad(p.expression().file, "LagrangianCase::system.implicit",
+            p.form() == Form::implicit ? "true for Form::implicit" : "false for Form::expression",
+            p.expression().system.implicit ? "true" : "false");
+      return expression(p.expression());
+    case Form::dae: return dae(p.dae());
   }
-  bad(p.file, "Problem::form", "linear, netlist, expression, dae or implicit", n_of(static_cast<std::size_t>(p.form)));
+  bad(p.file, "Problem::form", "linear, netlist, expression, dae or implicit",
+      n_of(static_cast<std::size_t>(p.form())));
 }
 
 void validate(const Traces& t) {

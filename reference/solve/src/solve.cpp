@@ -24,9 +24,9 @@ Solution linear(const io::CaseFile& c, const Parts& parts) {
 }
 
 Solution netlist(const io::Problem& p, const Parts& parts) {
-  const io::Netlist& deck = p.netlist;
+  const io::Netlist& deck = p.netlist();
   if (deck.forced) {
-    Solution s = pipeline::solve_forced(deck, p.linear.variables);
+    Solution s = pipeline::solve_forced(deck, p.linear().variables);
     s.circuit = io::circuit_facts(deck);
     return s;
   }
@@ -39,7 +39,7 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
                            " branches for an LC circuit with a negative L or C (dense exact " +
                            "elimination, O(n^3)), found " + n +
                            " (physical circuits take the graph route at any size)");
-    s = pipeline::lc_graph_solution<Rational>(deck, p.linear.variables, [](const Rational& q) { return q; });
+    s = pipeline::lc_graph_solution<Rational>(deck, p.linear().variables, [](const Rational& q) { return q; });
     s.circuit = io::circuit_facts(deck);
     s.note =
         "graph route (forests and fundamental loops, CEF Thms 6.4, 6.6, 6.8: L, C > 0 decide nothing), exact: the "
@@ -54,9 +54,9 @@ Solution netlist(const io::Problem& p, const Parts& parts) {
   }
   int bits = 0;
   try {
-    s = pipeline::solve_lc_words(deck, p.linear, parts, bits);
+    s = pipeline::solve_lc_words(deck, p.linear(), parts, bits);
   } catch (const Overflow&) {
-    s = pipeline::solve_lc_fmpq(deck, p.linear, parts);
+    s = pipeline::solve_lc_fmpq(deck, p.linear(), parts);
   }
   s.circuit = io::circuit_facts(deck);
   if (parts.reduced && pipeline::graph_route_holds(deck.rlc)) s.state = pipeline::deck_state_equations<Rational>(deck);
@@ -103,15 +103,15 @@ Solution implicit(const io::LagrangianCase& c) {
 
 Solution solve(const io::Problem& p, const Parts& parts) {
   io::validate(p);
-  Solution s = p.form == io::Form::expression ? expression(p.expression)
-               : p.form == io::Form::implicit ? implicit(p.expression)
-               : p.form == io::Form::dae      ? pipeline::solve_dae(p.dae)
-               : p.form == io::Form::netlist  ? netlist(p, parts)
-                                              : linear(p.linear, parts);
-  if (p.form == io::Form::netlist &&
-      !p.netlist.rounded.empty()) {  // irrational values: exact only for the rounded deck
+  Solution s = p.form() == io::Form::expression ? expression(p.expression())
+               : p.form() == io::Form::implicit ? implicit(p.expression())
+               : p.form() == io::Form::dae      ? pipeline::solve_dae(p.dae())
+               : p.form() == io::Form::netlist  ? netlist(p, parts)
+                                                : linear(p.linear(), parts);
+  if (p.form() == io::Form::netlist &&
+      !p.netlist().rounded.empty()) {  // irrational values: exact only for the rounded deck
     s.certified = unknown;
-    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist);
+    s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist());
   }
   s.backend = "reference";
   s.exact = true;

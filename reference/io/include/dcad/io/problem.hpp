@@ -10,6 +10,7 @@
 #include "dcad/reference/system.hpp"
 
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace dcad::io {
@@ -22,26 +23,59 @@ enum class Form {
   implicit,    ///< an implicit DAE φ(t, x, ẋ) = 0 affine in ẋ (CEF (1.6)), held in `expression` (system.implicit)
 };
 
+/// A circuit: its deck, and the names of its state's variables (q_*, v_*, p_* per branch, CONTRACT) as the `pontryagin`
+/// case it stands for names them (io::netlist_case without the dense matrices).
+struct CircuitCase {
+  Netlist deck;
+  CaseFile names;
+};
+
+/// The expression form: a Lagrangian system by formulas (YM §4–§6, V §3).
+struct ExpressionCase {
+  LagrangianCase c;
+};
+
+/// The implicit form φ(t, x, ẋ) = 0 (CEF (1.6)), read into a LagrangianCase whose `system.implicit` is set.
+struct ImplicitCase {
+  LagrangianCase c;
+};
+
+/// One problem: exactly one input form, whose alternative is the form (no tag beside the data that could disagree
+/// with it).  Read by read_problem, parse_netlist, parse_case, or built in code by io::problem(…); `file` names it in
+/// every message.
 struct Problem {
-  Form form = Form::linear;
-  std::string file;           ///< where it was read from (names every message)
-  CaseFile linear;            ///< Form::linear: the case; Form::netlist: the circuit's variable names (q_*, v_*, p_*)
-  Netlist netlist;            ///< Form::netlist
-  LagrangianCase expression;  ///< Form::expression; Form::implicit (its system is `implicit`)
-  DaeCase dae;                ///< Form::dae
+  std::string file;  ///< where it was read from (names every message)
+  /// In Form's order: a linear case, a circuit, the expression form, a linear DAE, the implicit form.
+  std::variant<CaseFile, CircuitCase, ExpressionCase, DaeCase, ImplicitCase> input;
+
+  Form form() const { return static_cast<Form>(input.index()); }
+  /// Form::linear: the case; Form::netlist: the circuit's variable names.  std::logic_error for another form.
+  const CaseFile& linear() const;
+  CaseFile& linear();
+  /// Form::netlist.
+  const Netlist& netlist() const;
+  Netlist& netlist();
+  /// Form::expression or Form::implicit (its system is `implicit`).
+  const LagrangianCase& expression() const;
+  LagrangianCase& expression();
+  /// Form::dae.
+  const DaeCase& dae() const;
+  DaeCase& dae();
 
   /// The state's variable names, in order: x of a linear case, (q, v, p) of a circuit or a Lagrangian system.
   std::vector<std::string> variables() const;
   /// The case's `name`, the netlist's title, or "".
   std::string name() const;
   /// The reader's warnings (a netlist's ignored cards, non-physical values), each naming file:line.
-  const std::vector<std::string>& warnings() const { return netlist.warnings; }
+  const std::vector<std::string>& warnings() const;
 };
 
 /// Problems built in code, one call per input form, each with every part a case file gets (final constraints,
 /// (5.12), classes, adapted; the DAE's index; the pointwise values) and validated by every solve as a file's is.
 /// A `dirac`, `pontryagin` or `constrained` case (CEF §2, §5, §7).
 Problem problem(CaseFile c);
+/// A circuit's deck (its `circuit`, `rlc`, waveforms … as the reader makes them), its variables named from it.
+Problem problem(Netlist deck);
 /// Your own exact linear Dirac system (D, E) (CEF §5: D as the rows of a basis, E = ½ xᵀ H x + gᵀ x + c), the
 /// `dirac` form `basis`; `variables` default to x1 … xN.
 Problem problem(const reference::LinearSystem<Rational>& s, std::vector<std::string> variables = {},
