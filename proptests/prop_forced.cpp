@@ -408,7 +408,7 @@ RC_GTEST_PROP(ForcedTower, GraphRouteIsTheDenseRoute, ()) {
   RC_TAG(c.mutuals.empty() ? "no coupling" : "coupled");
   RC_LOG() << deck(c);
   std::vector<rlc::Branch> branches;
-  for (const auto& b : c.branches) branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+  for (const auto& b : c.branches) branches.push_back({b.kind, b.from, b.to});
   const rlc::Tower t = rlc::tower(c.nodes, branches);
   const ref::ForcedResult<Q> r = ref::forced_tower(ref::rlc_system(c));
   RC_ASSERT(r.consistent);  // symbolic sources: never 1 = 0
@@ -470,8 +470,7 @@ RC_GTEST_PROP(ForcedTower, GraphRouteHoldsThroughPositiveDefiniteCouplings, ()) 
       RC_ASSERT((v.transpose() * block * v)(0, 0) > 0);
     }
     std::vector<rlc::Branch> branches;
-    for (const auto& b : c.branches)
-      branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+    for (const auto& b : c.branches) branches.push_back({b.kind, b.from, b.to});
     const rlc::Tower t = rlc::tower(c.nodes, branches);
     RC_ASSERT(r.dims == t.dims);
     RC_ASSERT(static_cast<long>(r.solution_rank) == t.solution_rank);

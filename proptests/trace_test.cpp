@@ -46,7 +46,7 @@ std::vector<io::Problem> corpus() {
 template <class S>
 void exact_trace_is_the_tower(const S& s, const std::string& file) {
   const std::vector<long> dims = s.dims();
-  ASSERT_EQ(s.trace.size() + 1, dims.size()) << file << " (" << s.backend << ")";
+  ASSERT_EQ(s.trace.size() + 1, dims.size()) << file << " (" << dcad::backend_name(s.backend) << ")";
   for (std::size_t k = 0; k < s.trace.size(); ++k) {
     const Decision& d = s.trace[k];
     EXPECT_EQ(d.rank, dims[k + 1]) << file << " level " << k + 1;

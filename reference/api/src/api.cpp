@@ -59,7 +59,7 @@ certified::Solution not_certified(const io::Problem& p, const reference::NotExac
   certified::Solution s = map_numbers<certified::Number>(f, [](double x) {
     return certified::Number{false, reference::Rational(0), x, HUGE_VAL};
   });  // no enclosure
-  s.backend = "certified";
+  s.backend = Backend::certified;
   s.exact = false;
   s.certified = unknown;
   s.note = std::string("the exact route cannot run here (") + e.what() + "): double precision" +

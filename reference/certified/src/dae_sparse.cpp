@@ -315,7 +315,7 @@ dcad::Solution<Rational> solve_dae_sparse(const io::DaeCase& c) {
   for (std::size_t i = 0; i < m && i < c.f.size(); ++i) has_f[i] = !ex::is_number(c.f[i], 0);
   const long ml = static_cast<long>(m);
 
-  dcad::Solution<Rational> out = reference::pipeline::dae_result(c, "certified");
+  dcad::Solution<Rational> out = reference::pipeline::dae_result(c, Backend::certified);
   out.tower.push_back({static_cast<long>(n), {}});
   std::vector<Constraint> cons;
   std::vector<std::vector<std::size_t>> added;  // per step, indices into cons

@@ -151,7 +151,7 @@ Solution solve(const io::Problem& p, const Parts& parts) {
     s.certified = unknown;
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist());
   }
-  s.backend = "certified";
+  s.backend = Backend::certified;
   trace_exact_levels(s, DecidedBy::exact, tier(s.decisions));
   s.warnings = p.warnings();
   keep_parts(s, parts);

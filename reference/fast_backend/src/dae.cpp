@@ -53,11 +53,11 @@ bool exact_source_conditions(const io::DaeCase& c, Solution& out) {
 
 Solution dae_solution(const io::DaeCase& c) {
   Solution out;
-  out.backend = "fast";
+  out.backend = Backend::fast;
   out.file = c.file;
   out.name = c.name;
   out.variables = c.variables;
-  out.algorithm = "CEF (1.6)";
+  out.algorithm = Algorithm::implicit_equation;
   out.tower.push_back({static_cast<long>(c.variables.size()), {}});
   return out;
 }

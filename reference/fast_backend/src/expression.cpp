@@ -52,7 +52,7 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
         },
         [](const double& v) { return io::float_text(v); });
     Solution out = pl::pointwise_solution(r, c, "pointwise double");
-    out.backend = "fast";
+    out.backend = Backend::fast;
     // a point that rounding moved (a value of large height) may sit off the locus the exact point is on
     const Truth point = opt.input_exact ? yes : unknown;
     out.certified = decide.certain & (r.regular ? yes : unknown) & point;
@@ -93,7 +93,7 @@ Solution solve_implicit(const io::LagrangianCase& c, const Options& options) {
     out.file = c.file;
     out.name = c.name;
     out.variables = c.system.names;
-    out.algorithm = "CEF (1.6)";
+    out.algorithm = Algorithm::implicit_equation;
     for (long d : r.dims) out.tower.push_back({d, {}});
     out.steps = r.steps;
     out.consistent = r.consistent;
@@ -112,7 +112,7 @@ Solution solve_implicit(const io::LagrangianCase& c, const Options& options) {
     for (std::size_t k = 1; k < r.dims.size() && r.dims[k] >= 0; ++k) p.levels.push_back({r.dims[k], {}, {}});
     if (r.consistent && ended) p.checked_order = 1;
     out.pointwise = p;
-    out.backend = "fast";
+    out.backend = Backend::fast;
     const Truth point = opt.input_exact ? yes : unknown;
     out.certified = r.certain & point;
     if (!r.certain.yes())

@@ -19,7 +19,7 @@ void note(Inspection& r, const std::string& what, Truth certain, const std::stri
 Inspection inspect(const io::CaseFile& c, const Options& options) {
   namespace fa = dcad::fast;
   Inspection r;
-  r.backend = "fast";
+  r.backend = Backend::fast;
   r.certified = yes;  // until a decision below is not certain (note)
   r.file = c.file;
   r.name = c.name;

@@ -34,7 +34,7 @@ Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
     s.certified = unknown;
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist());
   }
-  s.backend = "fast";
+  s.backend = Backend::fast;
   uncertain_exact_entries(s);
   s.warnings = p.warnings();
   keep_parts(s, parts);

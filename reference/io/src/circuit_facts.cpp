@@ -101,9 +101,7 @@ CircuitFacts circuit_facts(const Netlist& n) {
     if (b.value < 0) f.physical = false;
     if (b.kind == BranchKind::empty) f.has_empty_branch = true;
     f.branch_names.push_back(b.name);
-    f.branch_kinds.push_back(b.kind == BranchKind::inductor    ? "inductive"
-                             : b.kind == BranchKind::capacitor ? "capacitive"
-                                                               : "empty");
+    f.branch_kinds.push_back(b.kind);
   }
   lc_loops(n, f);
   return f;

@@ -214,8 +214,12 @@ json circuit_json(const Printed& s) {
           {"source_cutsets", f.source_cutsets}};
 }
 
+const char* kind_text(BranchKind k) {
+  return k == BranchKind::inductor ? "inductive" : k == BranchKind::capacitor ? "capacitive" : "empty";
+}
+
 std::string circuit_text(const Printed& s, const std::vector<std::string>& branch_names,
-                         const std::vector<std::string>& branch_kinds) {
+                         const std::vector<BranchKind>& branch_kinds) {
   const CircuitFacts& f = *s.circuit;
   std::ostringstream o;
   if (f.forced) {
@@ -239,7 +243,8 @@ std::string circuit_text(const Printed& s, const std::vector<std::string>& branc
   }
   o << "  circuit \"" << s.name << "\": " << f.branches << " branches, " << f.nodes
     << " nodes (ground included)\n    branches:";
-  for (std::size_t b = 0; b < branch_names.size(); ++b) o << " " << branch_names[b] << " (" << branch_kinds[b] << ")";
+  for (std::size_t b = 0; b < branch_names.size(); ++b)
+    o << " " << branch_names[b] << " (" << kind_text(branch_kinds[b]) << ")";
   o << "\n    purely capacitive loops: " << pc_loops(s)
     << " independent KVLPC equation(s) on q (the M_2 constraints, CEF Thm 6.4)"
     << "; graph count " << f.kvlpc_graph << "\n";
@@ -307,8 +312,9 @@ void final_constraints_json(const std::vector<Eq>& rows_of_mc, const std::vector
 
 json cad_json(const Printed& r) {
   const std::vector<std::string> names = r.columns();
-  json j = {{"dcad", 1},        {"backend", r.backend},       {"certified", r.certified.yes()}, {"dims", r.dims()},
-            {"steps", r.steps}, {"consistent", r.consistent}, {"variables", r.variables}};
+  json j = {
+      {"dcad", 1},        {"backend", backend_name(r.backend)}, {"certified", r.certified.yes()}, {"dims", r.dims()},
+      {"steps", r.steps}, {"consistent", r.consistent},         {"variables", r.variables}};
   j["solution_rank"] = r.solution_rank ? json(*r.solution_rank) : json(nullptr);
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   if (r.regular_pencil) {  // a square linear DAE: for a regular pencil, steps is the differentiation index
@@ -414,10 +420,10 @@ void motion_text(const Printed& r, bool ide, std::ostream& o) {
 std::string cad_text(const Printed& r) {
   const std::vector<std::string> names = r.columns();
   std::ostringstream o;
-  const bool ide =
-      r.regular_pencil.has_value() || r.algorithm == "CEF (1.6)";  // a DAE: the implicit-equation algorithm
+  const bool ide = r.regular_pencil.has_value() ||
+                   r.algorithm == Algorithm::implicit_equation;  // a DAE: the implicit-equation algorithm
   o << r.file << (r.name.empty() ? "" : " (" + r.name + ")")
-    << (ide ? ": the constraint algorithm of CEF (1.6)" : ": CAD (CEF §5)") << ", backend " << r.backend
+    << (ide ? ": the constraint algorithm of CEF (1.6)" : ": CAD (CEF §5)") << ", backend " << backend_name(r.backend)
     << (r.certified.yes() ? ", certified" : ", NOT certified") << "\n";
   for (std::size_t k = 0; k < r.tower.size(); ++k) {
     o << "  M_" << k << ": " << (r.tower[k].dim < 0 ? std::string("empty") : "dim " + std::to_string(r.tower[k].dim))
@@ -502,7 +508,7 @@ json pointwise_json(const Printed& r) {
   const std::vector<long> dims = r.dims();
   json j;
   j["dcad"] = 1;
-  j["backend"] = r.backend;
+  j["backend"] = backend_name(r.backend);
   j["certified"] = r.certified.yes();
   j["dims"] = dims;
   j["steps"] = r.steps;
@@ -512,7 +518,7 @@ json pointwise_json(const Printed& r) {
   j["unique"] = r.solution_rank ? json(*r.solution_rank == 0) : json(nullptr);
   // the implicit form: where ẋ is unique on M_c, steps is the index (Rabier–Rheinboldt's geometric
   // index, which is the differentiation index there); else none
-  if (r.algorithm == "CEF (1.6)") j["index"] = r.index() ? json(*r.index()) : json(nullptr);
+  if (r.algorithm == Algorithm::implicit_equation) j["index"] = r.index() ? json(*r.index()) : json(nullptr);
   if (!r.name.empty()) j["name"] = r.name;
   j["variables"] = r.variables;
   j["route"] = p.route;
@@ -621,10 +627,10 @@ std::string pointwise_text(const Printed& r) {
   const std::vector<long> dims = r.dims();
   const std::vector<std::string>& st = r.variables;
   std::ostringstream o;
-  const bool ide = r.algorithm == "CEF (1.6)";
+  const bool ide = r.algorithm == Algorithm::implicit_equation;
   o << r.file << (r.name.empty() ? "" : " (" + r.name + ")")
     << (ide ? ": the constraint algorithm of CEF (1.6) at a point, " : ": CAD (CEF §5) at a point, ") << p.route
-    << ", backend " << r.backend << ", " << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
+    << ", backend " << backend_name(r.backend) << ", " << (r.certified.yes() ? "certified" : "NOT certified") << "\n";
   o << "  point" << (!p.time_name.empty() ? " at " + p.time_name + " = " + p.time : "") << ":";
   std::vector<std::string> shown = p.point;
   for (const auto& [i, text] : p.point_text) shown[i] = text;
@@ -700,8 +706,12 @@ std::string report_text(const Printed& s) {
 }
 
 std::string inspection_json(const Inspection& r) {
-  json j = {{"dcad", 1}, {"backend", r.backend}, {"certified", r.certified.yes()},
-            {"n", r.n},  {"form", r.form},       {"valid", r.valid}};
+  json j = {{"dcad", 1},
+            {"backend", backend_name(r.backend)},
+            {"certified", r.certified.yes()},
+            {"n", r.n},
+            {"form", r.form},
+            {"valid", r.valid}};
   if (!r.valid) {
     j["why"] = r.why;
     return j.dump(2);
@@ -722,7 +732,7 @@ std::string inspection_text(const Inspection& r) {
   std::ostringstream o;
   const auto yes_no = [](bool b) { return b ? "yes" : "no"; };
   o << r.file << (r.name.empty() ? "" : " (" + r.name + ")") << ": D on R^" << r.n << " given as `" << r.form
-    << "`, backend " << r.backend << "\n";
+    << "`, backend " << backend_name(r.backend) << "\n";
   o << "  Dirac structure (CEF Lemma 4.1): " << yes_no(r.valid) << (r.valid ? "" : " -- " + r.why) << "\n";
   if (r.valid) {
     o << "  dim E_D          = " << r.dim_e << "\n";

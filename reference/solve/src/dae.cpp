@@ -196,14 +196,14 @@ std::vector<bool> used_jets(const IdeTower<Rational>& t, Index u) {
 
 }  // namespace
 
-dcad::Solution<Rational> dae_result(const io::DaeCase& c, const std::string& backend) {
+dcad::Solution<Rational> dae_result(const io::DaeCase& c, Backend backend) {
   dcad::Solution<Rational> out;
   out.backend = backend;
   out.exact = true;
   out.file = c.file;
   out.name = c.name;
   out.variables = c.variables;
-  out.algorithm = "CEF (1.6)";
+  out.algorithm = Algorithm::implicit_equation;
   return out;
 }
 
@@ -219,7 +219,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c) {
   const IdeTower<Rational> t = dae_tower(c, f, s, orders);
   const Jets jets(c, orders);
 
-  dcad::Solution<Rational> out = dae_result(c, "reference");
+  dcad::Solution<Rational> out = dae_result(c, Backend::reference);
   for (std::size_t k = 0; k < s; ++k)
     out.source_names.push_back(io::source_name(jets.rows[k], 0) + " = " +
                                ex::to_text(c.f[jets.rows[k]], {c.time_name.empty() ? "t" : c.time_name}));

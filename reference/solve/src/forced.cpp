@@ -386,8 +386,7 @@ GraphForced graph_forced(const io::Netlist& deck) {
   const RlcCircuit<Q>& c = deck.rlc;
   std::vector<rlc::Branch> branches;
   branches.reserve(c.branches.size());
-  for (const RlcBranch<Q>& b : c.branches)
-    branches.push_back({static_cast<rlc::Kind>(static_cast<int>(b.kind)), b.from, b.to});
+  for (const RlcBranch<Q>& b : c.branches) branches.push_back({b.kind, b.from, b.to});
   const rlc::Tower t = rlc::tower(c.nodes, branches);
   GraphForced g;
   g.dims = t.dims;

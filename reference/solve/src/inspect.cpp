@@ -6,7 +6,7 @@ namespace dcad::reference {
 
 Inspection inspect(const io::CaseFile& c) {
   Inspection r;
-  r.backend = "reference";
+  r.backend = Backend::reference;
   r.certified = yes;  // every decision exact
   r.file = c.file;
   r.name = c.name;

@@ -113,7 +113,7 @@ Solution solve(const io::Problem& p, const Parts& parts) {
     s.certified = unknown;
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist());
   }
-  s.backend = "reference";
+  s.backend = Backend::reference;
   s.exact = true;
   trace_exact_levels(s, DecidedBy::exact, "exact rational arithmetic (the reference)");
   s.warnings = p.warnings();

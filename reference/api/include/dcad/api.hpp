@@ -41,7 +41,7 @@ struct InternalError : std::runtime_error {
 /// The CLI's exit code for an exception these functions throw: 1 input, 2 usage, 4 anything else.
 int exit_code(const std::exception& e) noexcept;
 
-enum class Backend { certified, reference, fast };
+using dcad::Backend;  // certified, reference, fast (dcad/backend.hpp)
 /// "certified", "reference" or "fast" (UsageError otherwise).
 Backend backend_named(const std::string& name);
 /// `--with`: "all", "none" or a comma-separated list of final, reduced, classes, adapted (UsageError otherwise).

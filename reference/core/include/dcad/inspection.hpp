@@ -1,6 +1,7 @@
 // What a linear Dirac structure is (CEF §4): `dcad inspect` by either twin.
 #pragma once
 
+#include "dcad/backend.hpp"
 #include "dcad/truth.hpp"
 
 #include <string>
@@ -9,7 +10,7 @@
 namespace dcad {
 
 struct Inspection {
-  std::string backend;
+  Backend backend = Backend::reference;  ///< which twin answered (each twin's inspect sets it)
   Truth certified = unknown;  ///< yes: every decision exact, or certain in the fast sense (each route sets it)
   /// The answers.  Where fast could not decide one, it is the likely answer, named in `uncertain` with
   /// its evidence, and `certified` is unknown.

@@ -9,8 +9,10 @@
 // adapted constraints (Thm 3.28 / 7.4); YM §4: forces and sources; V §3: moving M_k(t).
 #pragma once
 
+#include "dcad/backend.hpp"
 #include "dcad/trace.hpp"
 #include "dcad/truth.hpp"
+#include "dcad/types.hpp"
 
 #include <cstddef>
 #include <optional>
@@ -20,6 +22,10 @@
 #include <vector>
 
 namespace dcad {
+
+/// Which algorithm made the tower: the CAD of a Dirac system (CEF §5), or the algorithm of an implicit differential
+/// equation (CEF (1.6)) that the DAE forms run.
+enum class Algorithm { cad, implicit_equation };
 
 /// What a solve computes beyond the CONTRACT's required keys and the tower (`dcad solve --with`): a
 /// CI that wants dims and the solution rank need not pay for the §7 embedding (4n variables).
@@ -125,8 +131,8 @@ struct CircuitFacts {
   long kvlpc_graph = 0;          ///< Thm 6.4's count of KVL equations of purely capacitive loops
   bool physical = true;          ///< no negative L or C (Remark 6.7)
   bool has_empty_branch = false;
-  std::vector<std::string> branch_names,
-      branch_kinds;  ///< LC decks: each branch and "inductive", "capacitive" or "empty"
+  std::vector<std::string> branch_names;  ///< LC decks: each branch
+  std::vector<BranchKind> branch_kinds;   ///< and its kind: an inductor, a capacitor or empty (CEF §6)
   std::vector<std::vector<std::string>> pc_loop_branches, empty_loop_branches;
   /// with resistors, sources or couplings (YM §4): the element counts and the loops and cutsets that
   /// constrain the circuit — CV loops fix charges by the sources, LI cutsets currents
@@ -212,7 +218,7 @@ struct Pointwise {
 
 template <class N>
 struct Solution {
-  std::string backend;                 ///< reference | fast | certified
+  Backend backend = Backend::reference;  ///< which twin answered (each twin's solve sets it)
   Truth certified = yes;               ///< every decision behind the result exact or provably right: yes; else unknown
   bool exact = false;                  ///< every number is exact (a row's absent entries are exact zeros)
   std::string file, name;              ///< the problem's
@@ -221,9 +227,9 @@ struct Solution {
   std::vector<Level<N>> tower;         ///< M_0 … M_c, or M_0 … M_k with M_k = ∅
   long steps = 0;                      ///< c (or k of the empty M_k)
   bool consistent = true;
-  std::optional<long> solution_rank;   ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]; none when inconsistent or singular
-  std::optional<bool> regular_pencil;  ///< a square linear DAE: det(sE − A) ≢ 0
-  std::string algorithm;               ///< "CEF (1.6)" for the DAE forms; "" for the CAD (CEF §5)
+  std::optional<long> solution_rank;     ///< dim(ker ω_D ∩ T M_c)  [Thm 5.4(b)]; none when inconsistent or singular
+  std::optional<bool> regular_pencil;    ///< a square linear DAE: det(sE − A) ≢ 0
+  Algorithm algorithm = Algorithm::cad;  ///< Algorithm::implicit_equation for the DAE forms
   std::optional<std::vector<Equation<N>>> final_constraints;  ///< M_c = {a·x = b}
   std::optional<ExactSubspace<N>> final_exact;                ///< M_c as point + span (exact routes)
   std::optional<Motion<N>> motion;
@@ -246,7 +252,7 @@ struct Solution {
   /// M_c, has Rabier–Rheinboldt's geometric index `steps`, the differentiation index there (CEF (1.6)).
   std::optional<long> index() const {
     if (regular_pencil) return *regular_pencil && consistent ? std::optional<long>(steps) : std::nullopt;
-    if (algorithm == "CEF (1.6)" && consistent && solution_rank && *solution_rank == 0) return steps;
+    if (algorithm == Algorithm::implicit_equation && consistent && solution_rank && *solution_rank == 0) return steps;
     return std::nullopt;
   }
 

@@ -13,12 +13,14 @@
 
 #include "dcad/reference/circuit.hpp"
 #include "dcad/reference/forced.hpp"
+#include "dcad/rlc_graph.hpp"
 
 #include <optional>
 
 namespace dcad::reference {
 
-enum class RlcKind { inductor, capacitor, resistor, voltage, current, wire };
+/// An element's kind: the one enum the core's graph (dcad/rlc_graph.hpp) and the reference share.
+using RlcKind = rlc::Kind;
 
 template <class T>
 struct RlcBranch {

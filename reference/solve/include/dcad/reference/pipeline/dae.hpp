@@ -16,7 +16,7 @@ dcad::Solution<Rational> solve_dae(const io::DaeCase& c);
 
 /// A result for the case with nothing decided yet: its file, name, variables and the algorithm's name
 /// (CEF (1.6)), exact, from `backend`.
-dcad::Solution<Rational> dae_result(const io::DaeCase& c, const std::string& backend);
+dcad::Solution<Rational> dae_result(const io::DaeCase& c, Backend backend);
 
 /// Whether g(t) = 0 for all t, for g a formula in the time (variable 0): yes when g is a polynomial
 /// in t (degree d) that vanishes at t = 0, 1, …, d, or the number 0; no when some exact value is not

@@ -40,7 +40,7 @@ dcad::Solution<T> implicit_solution(const PointwiseResult<T>& r, const io::Lagra
   out.file = c.file;
   out.name = c.name;
   out.variables = c.system.names;
-  out.algorithm = "CEF (1.6)";
+  out.algorithm = Algorithm::implicit_equation;
   for (long d : r.dims) out.tower.push_back({d, {}});
   out.steps = static_cast<long>(r.steps);
   out.consistent = r.consistent;
