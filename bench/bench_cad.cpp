@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
       c = static_cast<long>(rr.steps);
       dcad::certified::CertifiedTower ct;
       tc = seconds([&] { ct = dcad::certified::constraint_tower(p.exact); }, 1);
-      route = dcad::certified::route_name(ct.route);
+      route = dcad::certified::tier_name(ct.tier);
     }
     std::printf("%6zu %4ld %12.4g %12.4g %12.4g %10.3g %10.3g %s %s\n", n, c, tr, tf, tc, tr > 0 ? tr / tf : 0.0,
                 tc / tf, fr.certain.yes() ? "yes" : "no", route);

@@ -69,16 +69,15 @@ RC_GTEST_PROP(Certified, LibraryTowerIsTheExactTower, ()) {
   const reference::LinearSystem<Q> s = fam::system_over<Q>(in, [](const Q& q) { return q; });
   const certified::CertifiedTower t = certified::constraint_tower(s);
   const Discrete truth = exact_run(in);
-  RC_TAG(in.family + ": " + certified::route_name(t.route) +
+  RC_TAG(in.family + ": " + certified::tier_name(t.tier) +
          (t.word_bits ? " (" + std::to_string(t.word_bits) + " bits)" : ""));
   RC_ASSERT(t.dims == truth.dims);
   RC_ASSERT(static_cast<long>(t.solution_rank) == truth.solution_rank);
   RC_ASSERT(t.consistent == truth.consistent);
   if (in.planted) RC_ASSERT(t.dims == in.dims && static_cast<long>(t.solution_rank) == in.solution_rank);
   RC_ASSERT(t.steps + 1 == t.dims.size());
-  RC_ASSERT((t.route == certified::Route::machine_words) == (t.word_bits == 64 || t.word_bits == 128));
-  RC_ASSERT((t.route == certified::Route::machine_words && t.word_bits == 64) ==
-            t.why.empty());  // else: why it gave up
+  RC_ASSERT((t.tier == certified::Tier::machine_words) == (t.word_bits == 64 || t.word_bits == 128));
+  RC_ASSERT((t.tier == certified::Tier::machine_words && t.word_bits == 64) == t.why.empty());  // else: why it gave up
 }
 
 // Beyond 128 bits, the cascade reaches fmpq, says why, and still answers exactly: the perturbed family
@@ -93,10 +92,10 @@ RC_GTEST_PROP(Certified, BeyondTheWordsTheCascadeIsExactInFmpq, ()) {
     for (Index j = 0; j < in.omega.cols(); ++j) in.omega(i, j) *= scale;
   const certified::CertifiedTower t =
       certified::constraint_tower(fam::system_over<Q>(in, [](const Q& q) { return q; }));
-  RC_ASSERT(t.route == certified::Route::exact);
+  RC_ASSERT(t.tier == certified::Tier::fmpq);
   RC_ASSERT(t.dims == in.dims);
   RC_ASSERT(static_cast<long>(t.solution_rank) == in.solution_rank);
-  if (t.route == certified::Route::exact) {
+  if (t.tier == certified::Tier::fmpq) {
     RC_ASSERT(t.word_bits == 0);
     RC_ASSERT(t.why.find("128-bit words") != std::string::npos);
   }

@@ -69,6 +69,54 @@ TEST(MyProblems, BuiltInCodeSolvedOnEveryBackend) {
   EXPECT_THROW(dcad::api::solve(dcad::io::problem(dae), B::fast), dcad::io::InputError);
 }
 
+// 0'. The other forms built in code: a `pontryagin` case (YM §4) and a Lagrangian system by formulas (YM §5), its
+// motion taken as a typed Trajectory.
+TEST(MyProblems, PontryaginAndFormulasBuiltInCode) {
+  // masses 2 and 1 on springs 8 and 2, tied by v1 = v2: L = ½ vᵀ A v + ½ qᵀ C q, Δ = ker K, K = [1 −1]
+  dcad::io::CaseFile pair;
+  pair.n = 6;
+  pair.variables = {"q1", "q2", "v1", "v2", "p1", "p2"};
+  pair.has_pontryagin = true;
+  dcad::io::PontryaginInput& l = pair.pontryagin;
+  l.n = 2;
+  l.k = ref::Matrix<Q>(1, 2);
+  l.k(0, 0) = Q(1);
+  l.k(0, 1) = Q(-1);
+  l.vv = l.qv = l.qq = ref::Matrix<Q>(2, 2);
+  l.vv(0, 0) = Q(2);
+  l.vv(1, 1) = Q(1);
+  l.qq(0, 0) = Q(-8);
+  l.qq(1, 1) = Q(-2);
+  l.q = l.v = {Q(0), Q(0)};
+  const dcad::certified::Solution tied = dcad::certified::solve(dcad::io::problem(pair));
+  EXPECT_EQ(tied.dims(), (std::vector<long>{6, 3}));  // M_1 = {p = A v, v1 = v2}: 6 − 2 − 1, and M_2 = M_1
+  EXPECT_EQ(tied.solution_rank, 0L);                  // the multiplier is fixed: 3 q̈ = −10 q
+
+  // a particle in the plane that may not move in y: L = ½ (v_x² + v_y²), v_y = 0, from x = y = 0 at v_x = 1
+  namespace ex = dcad::symbolic::expr;
+  dcad::io::LagrangianCase planar;
+  planar.system.n = 2;
+  planar.system.names = {"x", "y"};
+  const ex::Expr vx = ex::variable(planar.system.v(0)), vy = ex::variable(planar.system.v(1));
+  planar.system.lagrangian = ex::div(ex::add(ex::pow(vx, 2), ex::pow(vy, 2)), ex::number(Q(2)));
+  planar.system.constraints = {vy};
+  planar.initial = {Q(0), Q(0), Q(1), Q(0), std::nullopt};  // x, y, v_x, v_y, t
+  planar.initial_p = {std::nullopt, std::nullopt};
+  planar.has_initial = true;
+  const dcad::io::Problem particle = dcad::io::problem(planar);
+  const dcad::reference::Solution exact = dcad::reference::solve(particle);
+  EXPECT_EQ(exact.dims(), (std::vector<long>{6, 3}));  // p = ∂L/∂v and v_y = 0; v̇_y = 0 keeps it (λ = 0)
+  ASSERT_TRUE(exact.pointwise.has_value());
+  EXPECT_EQ(exact.pointwise->velocity[0], Q(1));  // ẋ = v_x = 1 at the point
+  dcad::api::SimulateOptions opt;
+  opt.tstop = 1;
+  opt.step = 0.25;
+  std::ostringstream log;
+  const dcad::api::Trajectory t = dcad::api::simulate_trajectory(particle, opt, log);
+  EXPECT_NEAR(t.column("x").back(), 1.0, 1e-12);  // x(t) = t
+  EXPECT_EQ(t.column("y").back(), 0.0);
+}
+
 // 1. The CAD on your own matrices (CEF §5): (x, ẋ) ⊕ dE(x) ∈ D_ω for the presymplectic ω = dq1 ∧ dp1 on
 // R^3 (x3 is a gauge direction) and E = ½ (q1² + p1²) + x3: dE(x3) = 1 can never be met, so M_1 = ∅.
 TEST(MyMatrices, TheCadOnMyOwnMatrices) {

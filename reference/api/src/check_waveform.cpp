@@ -501,11 +501,7 @@ std::vector<std::string> exact_jumps(const io::Problem& p, Initial initial, std:
   if (nb_of(deck) > reference::pipeline::kForcedBranches) return flow_jumped;
   namespace pl = reference::pipeline;
   try {
-    const pl::InitialState st = pl::initial_state(deck,
-                                                  initial == Initial::op    ? pl::InitialRule::op
-                                                  : initial == Initial::uic ? pl::InitialRule::uic
-                                                                            : pl::InitialRule::deck,
-                                                  p.linear().variables);
+    const pl::InitialState st = pl::initial_state(deck, initial, p.linear().variables);
     if (!st.computed) return flow_jumped;
     std::vector<std::string> jumped;
     for (const pl::Jump& j : st.jumps) jumped.push_back(j.variable);

@@ -26,11 +26,7 @@ std::vector<std::optional<io::Rational>> netlist_start(const io::Netlist& deck,
                                                        std::ostream& log, long* jumps,
                                                        std::vector<std::string>* jumped) {
   namespace pl = reference::pipeline;
-  const pl::InitialState st = pl::initial_state(deck,
-                                                rule == Initial::op    ? pl::InitialRule::op
-                                                : rule == Initial::uic ? pl::InitialRule::uic
-                                                                       : pl::InitialRule::deck,
-                                                variables);
+  const pl::InitialState st = pl::initial_state(deck, rule, variables);
   log << "initial state: " << st.rule << "\n";
   if (jumps) *jumps = static_cast<long>(st.jumps.size());
   if (jumped)

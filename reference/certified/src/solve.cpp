@@ -36,7 +36,7 @@ std::string joined(const std::string& note, const std::string& more) {
 /// The result of the cascade with its route in `decisions` and `note`.
 Solution from_cascade(const Cascaded<Solution>& c) {
   Solution r = c.result;
-  if (c.route == Route::machine_words) {
+  if (c.tier == Tier::machine_words) {
     r.decisions.machine_words = 1;
     r.decisions.word_bits = c.word_bits;
     r.note = joined(r.note, "the reference algorithm in exact " + std::to_string(c.word_bits) +

@@ -16,6 +16,7 @@
 
 #include "dcad/certified/solve.hpp"
 #include "dcad/fast/solve.hpp"
+#include "dcad/initial_rule.hpp"
 #include "dcad/inspection.hpp"
 #include "dcad/io/problem.hpp"
 #include "dcad/io/report.hpp"
@@ -77,7 +78,7 @@ Inspection inspect(const io::Problem& p, Backend backend);
 
 /// Where a netlist starts (CONTRACT "Circuit initial state"): as its `.tran` says (uic, or the DC
 /// operating point without it; no `.tran`: uic), or forced by `--initial op|uic`.
-enum class Initial { deck, op, uic };
+using Initial = InitialRule;  // deck, op, uic (dcad/initial_rule.hpp)
 /// Netlists: the dense route (the exact model's matrix exponential: ≤ 60 branches with R, sources or
 /// couplings, ≤ 400 LC) or the sparse one (any size where every R, L, C > 0 and |k| < 1: Krylov on the
 /// sparse equations of motion); automatic takes the dense route where it fits.

@@ -23,7 +23,7 @@ using reference::Matrix;
 using reference::Rational;
 
 struct CertifiedTower {
-  Route route = Route::exact;
+  Tier tier = Tier::fmpq;
   int word_bits = 0;       ///< machine_words: 64, or 128 when a number outgrew 64 bits
   std::vector<long> dims;  ///< dim M_0 … M_c (−1 for an empty M_k)
   Index steps = 0;         ///< c
@@ -44,7 +44,7 @@ Matrix<S> lift(const Matrix<Rational>& m, Lift f) {
 
 /// The system and the initial equations over S, entry by entry (the Dirac structure by its canonical basis).
 template <class S, class Lift>
-CertifiedTower run(const reference::LinearSystem<Rational>& s, const Matrix<Rational>& initial, Route route, Lift f) {
+CertifiedTower run(const reference::LinearSystem<Rational>& s, const Matrix<Rational>& initial, Tier tier, Lift f) {
   reference::LinearSystem<S> t;
   t.d.n = s.d.n;
   t.d.d = reference::Subspace<S>::span(lift<S>(s.d.d.basis(), f));
@@ -53,7 +53,7 @@ CertifiedTower run(const reference::LinearSystem<Rational>& s, const Matrix<Rati
   t.constant = f(s.constant);
   const reference::CadResult<S> r = reference::constraint_tower(t, lift<S>(initial, f));
   CertifiedTower out;
-  out.route = route;
+  out.tier = tier;
   for (const auto& st : r.tower) out.dims.push_back(st.dim());
   out.steps = r.steps;
   out.consistent = r.consistent;
@@ -73,20 +73,20 @@ inline CertifiedTower constraint_tower(const reference::LinearSystem<Rational>& 
         try {
           bits = 64;
           return detail::run<reference::SmallRational>(
-              s, initial, Route::machine_words, [](const Rational& q) { return reference::SmallRational::from(q); });
+              s, initial, Tier::machine_words, [](const Rational& q) { return reference::SmallRational::from(q); });
         } catch (const reference::Overflow& e) {
           narrow = std::string("64-bit words: ") + e.what() + "; ";
           bits = 128;
           return detail::run<reference::WideRational>(
-              s, initial, Route::machine_words, [](const Rational& q) { return reference::WideRational::from(q); });
+              s, initial, Tier::machine_words, [](const Rational& q) { return reference::WideRational::from(q); });
         }
       },
       [&] {
-        return detail::run<reference::Fmpq>(s, initial, Route::exact,
+        return detail::run<reference::Fmpq>(s, initial, Tier::fmpq,
                                             [](const Rational& q) { return reference::Fmpq::from(q); });
       });
   CertifiedTower out = c.result;
-  out.route = c.route;
+  out.tier = c.tier;
   out.word_bits = c.word_bits;
   out.why = narrow;
   if (!c.overflow.empty()) out.why += "128-bit words: " + c.overflow;

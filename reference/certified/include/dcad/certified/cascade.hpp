@@ -21,14 +21,14 @@
 
 namespace dcad::certified {
 
-enum class Route { machine_words, exact };
+enum class Tier { machine_words, fmpq };
 
-inline const char* route_name(Route r) { return r == Route::machine_words ? "exact in machine words" : "exact (fmpq)"; }
+inline const char* tier_name(Tier r) { return r == Tier::machine_words ? "exact in machine words" : "exact (fmpq)"; }
 
 template <class R>
 struct Cascaded {
   R result;
-  Route route = Route::exact;
+  Tier tier = Tier::fmpq;
   int word_bits = 0;     ///< machine_words: 64, or 128 when a number outgrew 64 bits; 0 on the other route
   std::string overflow;  ///< why the words gave up ("" if they did not)
 };
@@ -40,14 +40,14 @@ Cascaded<R> cascade(Words words, Exact exact) {
   Cascaded<R> out;
   try {
     out.result = words(out.word_bits);
-    out.route = Route::machine_words;
+    out.tier = Tier::machine_words;
     return out;
   } catch (const reference::Overflow& e) {
     out.overflow = e.what();
     out.word_bits = 0;
   }
   out.result = exact();
-  out.route = Route::exact;
+  out.tier = Tier::fmpq;
   return out;
 }
 

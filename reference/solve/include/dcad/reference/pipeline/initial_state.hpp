@@ -17,12 +17,14 @@
 #include "dcad/reference/rational.hpp"
 
 #include <optional>
+#include "dcad/initial_rule.hpp"
+
 #include <string>
 #include <vector>
 
 namespace dcad::reference::pipeline {
 
-enum class InitialRule { deck, op, uic };
+using dcad::InitialRule;  // dcad/initial_rule.hpp
 
 struct Jump {
   std::string variable;
