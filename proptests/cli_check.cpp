@@ -550,3 +550,12 @@ TEST(Cases, FreezeOfBadInputNamesTheLog) {
 }
 
 // ---- issue 12: forced decks (R, sources) against closed forms, ngspice and their own structure ----
+
+// A waveform checked against a case file (not a deck) is bad input, exit 1 naming the waveform (an independent
+// review found it an internal error, exit 4, once io::Problem became a variant and the deck was read first).
+TEST(Check, AWaveformAgainstACaseFileIsBadInput) {
+  const std::string csv = write_temp("dcad_waveform_for_case.csv", "time,v(1)\n0,0\n1e-9,0\n");
+  const std::string case_file = (fs::path(DCAD_SOURCE_DIR) / "cases/lc-4port.json").string();
+  expect_input_error(run("check " + csv + " " + case_file), csv, "expected a netlist as DECK",
+                     "a waveform against a case file");
+}

@@ -379,6 +379,8 @@ Enclosed enclose(const io::Traces& tr, const io::Problem& p, const std::vector<F
 
 WaveformEnclosures enclose_waveforms(const io::Problem& p, const std::vector<std::string>& names,
                                      const std::vector<double>& times, Initial initial, double step) {
+  if (p.form() != io::Form::netlist)
+    throw io::InputError(p.file + ": enclose_waveforms: expected a netlist, found another form");
   io::Traces tr;
   tr.file = p.netlist().file;
   tr.names = names;
@@ -631,9 +633,7 @@ std::vector<Functional> functionals_of(const io::TraceStream& tr, const io::Prob
   if (skipped.size() > 5) log << "note: … and " << skipped.size() - 5 << " more messages skipped\n";
   for (const std::string& n : tr.notes()) log << "note: " << n << "\n";
   if (p.form() != io::Form::netlist)
-    throw io::InputError(p.netlist().file.empty()
-                             ? tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file"
-                             : p.netlist().file + ": check: expected a netlist for a waveform");
+    throw io::InputError(tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file");
   const io::Netlist& deck = p.netlist();
   if (!deck.indefinite_inductance.empty())
     throw io::InputError(
@@ -757,11 +757,18 @@ WaveformChecked check_waveform(const io::Traces& tr, const io::Problem& p, const
   return check_waveform(*stream, p, opt, log);
 }
 
-WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt,
-                               std::ostream& log) {
+/// The deck a waveform is checked against: a netlist (a case file is no deck) whose sources have an exact flow.
+static void require_checkable_deck(const io::TraceStream& tr, const io::Problem& p) {
+  if (p.form() != io::Form::netlist)  // before any read of the deck
+    throw io::InputError(tr.file() + ": check: expected a netlist as DECK for a waveform, found a case file");
   if (const auto which = io::without_exact_flow(p.netlist().waveforms))
     throw io::InputError(p.file + ": check: expected continuous sources with a finite exosystem, found " + *which +
                          ": dcad has no exact flow for it; write the waveform as a continuous PWL(t1 v1 t2 v2 …)");
+}
+
+WaveformChecked check_waveform(io::TraceStream& tr, const io::Problem& p, const WaveformOptions& opt,
+                               std::ostream& log) {
+  require_checkable_deck(tr, p);
   const std::vector<Functional> fs = functionals_of(tr, p, opt, log);
   const io::Netlist& deck = p.netlist();
   WaveformChecked out;

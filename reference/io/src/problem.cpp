@@ -18,7 +18,7 @@ namespace {
 [[noreturn]] void wrong_form(const Problem& p, const char* wanted) {
   static const char* const names[] = {"linear", "netlist", "expression", "dae", "implicit"};
   throw std::logic_error(std::string("Problem::") + wanted + "(): the problem (" + p.file + ") is of the form " +
-                         names[p.input.index()]);
+                         (p.input.valueless_by_exception() ? "none" : names[p.input.index()]));
 }
 template <class P>
 auto& linear_of(P& p) {
@@ -129,7 +129,8 @@ Problem problem(const reference::LinearSystem<Rational>& s, std::vector<std::str
 }
 
 Problem problem(DaeCase c) {
-  if (c.f.empty()) c.f.assign(c.equations(), reference::expr::number(Rational(0)));
+  // f ≡ 0 where none is given, for a dense case (a sparse one's `rows` is validate's to check, not to trust here)
+  if (c.f.empty() && c.dense) c.f.assign(c.equations(), reference::expr::number(Rational(0)));
   if (c.initial.empty()) c.initial.assign(c.variables.size(), std::nullopt);
   Problem p;
   p.file = c.file;

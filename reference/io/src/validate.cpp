@@ -188,7 +188,7 @@ void netlist(const Problem& p) {
     if (d.node_ic[i].first < 0 || d.node_ic[i].first >= nodes)
       bad(f, "Netlist::node_ic[" + n_of(i) + "]", "a node index in 0 ... " + n_of(d.rlc.nodes - 1),
           std::to_string(d.node_ic[i].first));
-  names(f, "Problem::linear.variables (q_, v_, p_ per branch)", p.linear().variables, 3 * nb);
+  names(f, "CircuitCase::names.variables (q_, v_, p_ per branch)", p.linear().variables, 3 * nb);
 }
 
 void expression(const LagrangianCase& c) {

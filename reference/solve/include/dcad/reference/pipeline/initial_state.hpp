@@ -13,12 +13,11 @@
 // the nearest to the state before is taken.
 #pragma once
 
+#include "dcad/initial_rule.hpp"
 #include "dcad/io/netlist.hpp"
 #include "dcad/reference/rational.hpp"
 
 #include <optional>
-#include "dcad/initial_rule.hpp"
-
 #include <string>
 #include <vector>
 
