@@ -90,6 +90,8 @@ TEST(Trace, FastTraceIsItsDecisions) {
     }
     ++cases;
     if (!s.trace.empty()) ++with_trace;
+    if (s.dims().size() > 1)  // every route of fast traces its tower (the graph routes by their theorems)
+      EXPECT_FALSE(s.trace.empty()) << p.file << ": a tower of " << s.dims().size() << " levels and no trace";
     for (const Decision& d : s.trace) {
       if (d.certain.unknown())
         EXPECT_TRUE(s.certified.unknown()) << p.file << ": " << d.what << " under a certain answer";

@@ -71,7 +71,6 @@ Solution graph_route(const io::Netlist& deck, const std::vector<std::string>& va
       "equations at any size "
       "(dcad/reference/rlc_state.hpp), the motion in (q, v, p) up to " +
       std::to_string(kDenseBranches) + " branches (dense)";
-  s.trace = exact_trace(s.dims(), DecidedBy::graph, "CEF Thms 6.4, 6.6, 6.8 on the circuit's graph: no rank decided");
   return s;
 }
 

@@ -96,21 +96,25 @@ bool looks_like_json_case(const std::string& file) {
     if (!std::isspace(static_cast<unsigned char>(ch))) return ch == '{';
   return true;
 }
+/// A Problem holding `in`, named `file` in messages.
+template <class Input>
+Problem holding(std::string file, Input in) {
+  Problem p;
+  p.file = std::move(file);
+  p.input = std::move(in);
+  return p;
+}
 }  // namespace
 
 Problem problem(CaseFile c) {
-  Problem p;
-  p.file = c.file;
-  p.input = std::move(c);
-  return p;
+  std::string file = c.file;
+  return holding(std::move(file), std::move(c));
 }
 
 Problem problem(Netlist deck) {
-  Problem p;
-  p.file = deck.file;
+  std::string file = deck.file;
   CaseFile names = netlist_case(deck, false);  // the names; a route that needs the dense system builds it
-  p.input = CircuitCase{std::move(deck), std::move(names)};
-  return p;
+  return holding(std::move(file), CircuitCase{std::move(deck), std::move(names)});
 }
 
 Problem problem(const reference::LinearSystem<Rational>& s, std::vector<std::string> variables, std::string name) {
@@ -132,20 +136,14 @@ Problem problem(DaeCase c) {
   // f ≡ 0 where none is given, for a dense case (a sparse one's `rows` is validate's to check, not to trust here)
   if (c.f.empty() && c.dense) c.f.assign(c.equations(), reference::expr::number(Rational(0)));
   if (c.initial.empty()) c.initial.assign(c.variables.size(), std::nullopt);
-  Problem p;
-  p.file = c.file;
-  p.input = std::move(c);
-  return p;
+  std::string file = c.file;
+  return holding(std::move(file), std::move(c));
 }
 
 Problem problem(LagrangianCase c) {
-  Problem p;
-  p.file = c.file;
-  if (c.system.implicit)
-    p.input = ImplicitCase{std::move(c)};
-  else
-    p.input = ExpressionCase{std::move(c)};
-  return p;
+  std::string file = c.file;
+  if (c.system.implicit) return holding(std::move(file), ImplicitCase{std::move(c)});
+  return holding(std::move(file), ExpressionCase{std::move(c)});
 }
 
 Problem read_problem(const std::string& file, const ReadOptions& options) {

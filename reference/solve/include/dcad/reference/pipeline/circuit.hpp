@@ -48,6 +48,7 @@ dcad::Solution<N> lc_graph_solution(const io::Netlist& deck, const std::vector<s
   s.consistent = true;  // no sources: x = 0 solves
   s.solution_rank = t.solution_rank;
   s.exact = true;
+  s.trace = exact_trace(s.dims(), DecidedBy::graph, "CEF Thms 6.4, 6.6, 6.8 on the circuit's graph: no rank decided");
   return s;
 }
 

@@ -83,6 +83,9 @@ dcad::Solution<N> graph_solution(const io::Netlist& deck, const std::vector<std:
   s.source_conditions = g.conditions;
   for (const io::Waveform& w : deck.waveforms) s.source_names.push_back(w.element);
   s.certified = g.certified;
+  s.trace = exact_trace(s.dims(), DecidedBy::graph,
+                        "cycle ranks of subgraphs (YM §4; C, R > 0, Φ positive definite): "
+                        "no rank decided");
   s.variables = variables;
   s.file = deck.file;
   s.name = deck.title;
