@@ -106,6 +106,14 @@ TEST_P(GoldenSolve, EveryBackend) {
         EXPECT_TRUE(got.contains(key)) << key;
       if (backend != "fast") EXPECT_TRUE(got["certified"].get<bool>());
       expect_tower_is_dims(got, path.string() + " " + backend);
+      // fast's own decisions are held to the reference on every case: its confirmation by the certified tier
+      // (reference/fast_backend/src/solve.cpp) keeps a wrong certain answer from saying certified, and saying why
+      // here is a failure of the fast twin unless the case documents it. Killed by: the separation hypothesis
+      // missing on cases/regression-pointwise-height.json with its known failure removed.
+      const bool refuted =
+          got.value("note", "").find("the exact route (the certified tier) finds") != std::string::npos;
+      EXPECT_TRUE(!refuted || (c.contains("known_failures") && c["known_failures"].contains(backend)))
+          << path << " " << backend << ": " << got.value("note", "");
       if (c.contains("known_failures") && c["known_failures"].contains(backend)) {  // documented, must stay visible
         const bool differs = got["dims"] != want["dims"] || got["solution_rank"] != want["solution_rank"];
         EXPECT_TRUE(!got["certified"].get<bool>() || differs)

@@ -10,6 +10,7 @@
 //    (YM §6) and a Heisenberg-type constraint; the time-dependent family of V §3.5.
 #include "dcad/fast/chart.hpp"
 #include "dcad/fast/pointwise.hpp"
+#include "dcad/fast/solve.hpp"
 #include "dcad/reference/cad.hpp"
 #include "expr_gen.hpp"
 #include "tally.hpp"
@@ -233,14 +234,35 @@ RC_GTEST_PROP(Pointwise, FastEqualsReferenceOnPulledBackSystems, ()) {
     tally("pointwise dims", false, true);
     return;
   }
-  const bool certain = d.certain.yes() && f.regular;
+  // The double route's own verdict is certain under the separation hypothesis only (fast/pointwise.hpp), which
+  // pulled-back kinetic matrices can break: at q ~ 10^3 their entries reach 10^6 with determinant 2, and the
+  // last pivot (1.7e-10) is below rounding (seed 918873982, cases/regression-pointwise-pulled-back.json).
+  // Such a miss is tagged, not failed; what must hold is the backend's answer: `--backend fast` (fast::solve) confirms
+  // a certain answer by the reference before it says certified, and a certified answer is the reference's.
+  const bool hypothesis = d.certain.yes() && f.regular;
   RC_LOG() << "exact dims" << to_text(r.dims) << " rank " << r.solution_rank << "; double dims" << to_text(f.dims)
            << " rank " << f.solution_rank << " moves " << f.moves << " certain " << d.certain.text() << "\n";
   for (Index i = 0; i < r.velocity.size() && i < f.velocity.size(); ++i)
     RC_LOG() << "  x " << (i < start.size() ? start[i].str() : "") << " exact " << r.velocity[i].convert_to<double>()
              << " double " << f.velocity[i] << "\n";
-  RC_ASSERT(!tally("pointwise dims", certain, f.dims == r.dims));
-  RC_ASSERT(!tally("pointwise solution rank", certain, f.solution_rank == r.solution_rank));
+  if (hypothesis && (f.dims != r.dims || f.solution_rank != r.solution_rank))
+    RC_TAG("double: the separation hypothesis missed (the exact confirmation must catch it)");
+  io::LagrangianCase c;
+  c.system = s;
+  c.has_initial = true;
+  c.initial.assign(2 * n + 1, std::nullopt);
+  c.initial_p.assign(n, std::nullopt);
+  for (Index i = 0; i < 2 * n; ++i) c.initial[i] = start[i];
+  io::Problem pr;
+  pr.input = io::ExpressionCase{c};
+  const fast::Solution b = fast::solve(pr);
+  const bool certain = b.certified.yes();
+  RC_ASSERT(!certain || hypothesis);  // the confirmation only ever takes certainty away
+  RC_ASSERT(!certain || b.decisions.exact_verifications == 1);
+  RC_ASSERT(!tally("pointwise dims", certain, b.dims() == r.dims && f.dims == r.dims));
+  RC_ASSERT(!tally("pointwise solution rank", certain,
+                   b.solution_rank == std::optional<long>(static_cast<long>(r.solution_rank)) &&
+                       f.solution_rank == r.solution_rank));
   if (certain && f.dims == r.dims && f.moves == 0) {  // same point: same velocity (modulo the gauge)
     double scale = 1, worst = 0;
     for (Index i = 0; i < 3 * n; ++i) scale = std::max(scale, std::abs(r.velocity[i].convert_to<double>()));

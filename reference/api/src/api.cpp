@@ -78,7 +78,7 @@ void attach_formulas(const io::Problem& p, Backend backend, Solved& s) {
   std::visit(
       [&](auto& r) {
         if (!r.pointwise || !r.consistent || !r.pointwise->regular) return;
-        auto f = chart_for(p.expression(), r.dims());
+        auto f = chart_for(p.expression(), r.dims(), r.solution_rank);
         if (auto* ok = std::get_if<Charted>(&f)) {
           r.pointwise->formulas = formulas_of(p.expression(), ok->chart);
           const bool elsewhere = !r.pointwise->place.empty() || !r.exact;

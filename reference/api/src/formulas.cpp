@@ -15,7 +15,8 @@ namespace dcad::api {
 
 namespace ex = reference::expr;
 
-std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const std::vector<long>& dims) {
+std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const std::vector<long>& dims,
+                                             std::optional<long> solution_rank) {
   fast::Solution near;
   try {  // a point on (or near) M_c in double; its failure is no formulas, never a failed solve
     near = fast::solve_expression(c);
@@ -37,6 +38,12 @@ std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const 
   } catch (const std::exception& e) {
     return std::string(e.what());
   }
+  // the chart's pivots are decided in double: a last pivot below rounding (an integer kinetic matrix of height
+  // 10^6 with determinant 2, cases/regression-pointwise-pulled-back.json) leaves a rate free that the result
+  // determines — then its equations are another system's, and there are none
+  if (solution_rank && static_cast<long>(out.chart.free.size()) != *solution_rank)
+    return "the chart's pivots, decided in double, leave " + std::to_string(out.chart.free.size()) +
+           " rate(s) free where this result's solution rank is " + std::to_string(*solution_rank);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "dcad/io/lagrangian_case.hpp"
 #include "dcad/solution.hpp"
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -19,8 +20,10 @@ struct Charted {
   bool fast_certain = false;  ///< every decision of that double route was certain
 };
 
-/// The chart near the double route's point, its tower required to have `dims` (the backend's); else why not.
-std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const std::vector<long>& dims);
+/// The chart near the double route's point, its tower required to have `dims` and `solution_rank` free rates (the
+/// backend's); else why not.
+std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const std::vector<long>& dims,
+                                             std::optional<long> solution_rank);
 
 /// The chart as text in the case's names.
 Formulas formulas_of(const io::LagrangianCase& c, const fast::Chart& ch);

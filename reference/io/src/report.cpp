@@ -308,6 +308,14 @@ void final_constraints_json(const std::vector<Eq>& rows_of_mc, const std::vector
     j["final_constraints"] = rows;
   }
 }
+
+/// How the answers were reached (CONTRACT `decisions`), for every form.
+json decisions_json(const Decisions& d) {
+  return {{"float", d.float_tests},
+          {"exact_verification", d.exact_verifications},
+          {"exact_recomputation", d.exact_recomputation},
+          {"exact_machine_words", d.machine_words}};
+}
 }  // namespace
 
 json cad_json(const Printed& r) {
@@ -356,10 +364,7 @@ json cad_json(const Printed& r) {
                     {"abridged_total_energy_constraints", terms},
                     {"secondary_first_class", r.adapted->secondary_first_class}};
   }
-  j["decisions"] = {{"float", r.decisions.float_tests},
-                    {"exact_verification", r.decisions.exact_verifications},
-                    {"exact_recomputation", r.decisions.exact_recomputation},
-                    {"exact_machine_words", r.decisions.machine_words}};
+  j["decisions"] = decisions_json(r.decisions);
   if (!r.note.empty()) j["note"] = r.note;
   if (r.circuit) j["circuit"] = circuit_json(r);
   json conds = json::array();
@@ -523,6 +528,7 @@ json pointwise_json(const Printed& r) {
   j["variables"] = r.variables;
   j["route"] = p.route;
   j["regular"] = p.regular;
+  j["decisions"] = decisions_json(r.decisions);
   if (!p.why.empty()) j["why"] = p.why;
   json pt = json::object();
   if (!p.time_name.empty()) pt[p.time_name] = p.time;

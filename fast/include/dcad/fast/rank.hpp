@@ -79,6 +79,12 @@ struct Options {
   /// this many constraints on, where it is at most 5 % filled; 0: always (the tests, to compare both).
   int dae_sparse_qr_from = 201;
   DecisionProbe* probe = nullptr;  ///< testing: see DecisionProbe (shared by copies of these options)
+  /// The fast backend (fast::solve, `--backend fast`) confirms a certain answer that rests on a rank decided in
+  /// double by the certified tier (exact), up to 2000 variables, before it says certified
+  /// (reference/fast_backend/src/solve.cpp: the separation hypothesis above fails on integer data of height 10^6).
+  /// False: the answer's certainty is fast's own decisions' — for the properties that hold those decisions to the
+  /// reference, never for a user.
+  bool confirm_exactly = true;
 };
 
 /// τ0 of a decision on a rows × cols matrix at `scale` (no decision is made).
