@@ -543,30 +543,12 @@ bool read_result_point(const std::string& result_file, const json& pt, const io:
   return exact;
 }
 
-Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
+/// The velocity at the result's own point against the reference there (exact if the point is; else fast's answer,
+/// confirmed, at the decimal point), modulo the gauge.
+void compare_velocity(Checker& k, const json& r, const io::Problem& p, const json& want) {
+  const std::string& result_file = k.file;
   const io::LagrangianCase& c = p.expression();
   const std::vector<std::string> st = c.system.state_names();
-  if (r.contains("name") && r["name"] != c.name)
-    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
-        shown(r["name"]) + ": a result for another case");
-  if (r.contains("variables") && r["variables"] != json(st))
-    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
-  Checker k{result_file, {}};
-  if (r.contains("formulas") &&
-      r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
-    k.out.not_compared.push_back("formulas (null in the result)");
-  } else if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
-    check_formulas(result_file, r["formulas"], p, points, k.out);
-    if (!r.contains("dims")) return k.out;
-  }
-  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
-  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
-  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
-  if (!r.contains("point") || !r.contains("velocity")) {
-    if (r.contains("velocity") || r.contains("point"))
-      k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
-    return k.out;
-  }
   // the velocity at the result's own point: the reference there (exact if the point is), modulo the gauge
   const json& pt = r["point"];
   const json& vel = r["velocity"];
@@ -597,15 +579,27 @@ Checked check_expression(const std::string& result_file, const json& r, const io
   try {
     io::Problem there = p;
     there.expression() = at;
-    truth_at = exact ? io::printed(reference::solve(there)) : io::printed(fast::solve_expression(at));
+    truth_at = exact ? io::printed(reference::solve(there)) : io::printed(fast::solve(there));
   } catch (const io::InputError& e) {
     k.out.disagreements.push_back(std::string("point: expected a point of M_c, found one where ") + e.what());
-    return k.out;
+    return;
   }
   const Pointwise<std::string>& truth = *truth_at.pointwise;
+  // fast's answer at a decimal point: judged where it is certified, or where its tower and solution rank are the
+  // certified tier's (exact at the case's point or a rational place on the component); else a zero assumed in
+  // double may have left a spurious gauge direction, and no verdict rests on it
+  const bool structure =
+      json(truth_at.dims()) == want["dims"] &&
+      (truth_at.solution_rank ? json(*truth_at.solution_rank) : json(nullptr)) == want["solution_rank"];
+  if (!truth_at.certified.yes() && !structure) {
+    k.out.compared.pop_back();
+    k.out.not_compared.push_back(
+        "velocity (dcad's double answer at the result's decimal point is not certified: " + truth_at.note + ")");
+    return;
+  }
   if (!truth.regular || !truth_at.consistent) {
     k.out.disagreements.push_back("point: expected a regular point of M_c, found one where " + truth.why);
-    return k.out;
+    return;
   }
   if (!equal_modulo(found, truth.velocity, truth.gauge, exact)) {
     std::string w;
@@ -615,6 +609,41 @@ Checked check_expression(const std::string& result_file, const json& r, const io
         (truth.gauge.empty() ? "" : " modulo " + std::to_string(truth.gauge.size()) + " gauge directions") +
         " at the result's point, found " + shown(vel));
   }
+}
+
+Checked check_expression(const std::string& result_file, const json& r, const io::Problem& p, std::size_t points) {
+  const io::LagrangianCase& c = p.expression();
+  const std::vector<std::string> st = c.system.state_names();
+  if (r.contains("name") && r["name"] != c.name)
+    bad(result_file, "/name", "the name of " + c.file + " (\"" + c.name + "\")",
+        shown(r["name"]) + ": a result for another case");
+  if (r.contains("variables") && r["variables"] != json(st))
+    bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
+  Checker k{result_file, {}};
+  if (r.contains("formulas") &&
+      r["formulas"].is_null()) {  // a result without formulas (dcad's own, formulas_why says why)
+    k.out.not_compared.push_back("formulas (null in the result)");
+  } else if (r.contains("formulas")) {  // another tool's formulas (CONTRACT "Formulas for nonlinear results")
+    check_formulas(result_file, r["formulas"], p, points, k.out);
+    if (!r.contains("dims")) return k.out;
+  }
+  const json want = json::parse(io::result_json(printed(solve(p, Backend::certified)), -1));
+  if (!want.value("certified", false)) {  // the certified tier fell back to double: no verdict rests on that
+    const std::string why = " (dcad's own answer is not certified here: " + want.value("note", std::string()) + ")";
+    for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique"})
+      if (r.contains(key)) k.out.not_compared.push_back(key + why);
+    if (k.out.compared.empty())  // nothing judged is no agreement
+      k.out.disagreements.push_back("no claim could be judged" + why);
+    return k.out;
+  }
+  for (const char* key : {"dims", "steps", "consistent", "solution_rank"}) k.compare(key, want[key], r[key]);
+  if (r.contains("unique")) k.compare("unique", want["unique"], r["unique"]);
+  if (!r.contains("point") || !r.contains("velocity")) {
+    if (r.contains("velocity") || r.contains("point"))
+      k.out.not_compared.push_back("velocity (it needs both `point` and `velocity`)");
+    return k.out;
+  }
+  compare_velocity(k, r, p, want);
   return k.out;
 }
 

@@ -27,7 +27,9 @@ std::variant<Charted, std::string> chart_for(const io::LagrangianCase& c, const 
     return std::string("the double route reaches no regular point of M_c");
   const std::size_t n = c.system.n;
   Charted out;
-  out.fast_certain = near.certified.yes();
+  // certain without the separation hypothesis only: no zero was assumed (the balls at the given values rest on it
+  // where no exact route runs, as at an irrational angle)
+  out.fast_certain = near.certified.yes() && near.decisions.float_tests == 0;
   out.point.assign(near.pointwise->point.begin(), near.pointwise->point.begin() + static_cast<long>(2 * n));
   out.point.push_back(near.pointwise->time);
   try {

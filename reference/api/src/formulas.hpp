@@ -17,7 +17,7 @@ namespace dcad::api {
 struct Charted {
   fast::Chart chart;
   std::vector<double> point;  ///< (q, v, t): the double route's point of M_c at the given values
-  bool fast_certain = false;  ///< every decision of that double route was certain
+  bool fast_certain = false;  ///< every decision of that double route was proved (no zero assumed)
 };
 
 /// The chart near the double route's point, its tower required to have `dims` and `solution_rank` free rates (the

@@ -53,6 +53,7 @@ Solution solve_expression(const io::LagrangianCase& c, const Options& options) {
         [](const double& v) { return io::float_text(v); });
     Solution out = pl::pointwise_solution(r, c, "pointwise double");
     out.backend = Backend::fast;
+    out.decisions.float_tests = static_cast<long>(decide.assumed);  // the zeros that rest on the hypothesis
     // a point that rounding moved (a value of large height) may sit off the locus the exact point is on
     const Truth point = opt.input_exact ? yes : unknown;
     out.certified = decide.certain & (r.regular ? yes : unknown) & point;

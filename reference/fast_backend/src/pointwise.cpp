@@ -33,7 +33,10 @@ bool ToleranceDecisions::zero(const Tracked& x) {
   const double a = std::abs(x.v), tiny = 1e-300;
   if (a > nonzero_factor * x.e + tiny) return probed(false);
   if (x.v == 0 && x.e == 0) return probed(true);  // nothing was ever added to it
-  if (a <= zero_factor * x.e + tiny && well_scaled && x.e <= 0x1p-26 * scale) return probed(true);
+  if (a <= zero_factor * x.e + tiny && well_scaled && x.e <= 0x1p-26 * scale) {
+    ++assumed;
+    return probed(true);
+  }
   if (probe) ++probe->made;  // an uncertain decision, counted as one
   if (certain.yes()) {
     std::ostringstream s;

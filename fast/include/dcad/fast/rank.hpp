@@ -33,8 +33,10 @@ using Eigen::VectorXd;
 /// τ1 = √ε·scale (≈1.5e-8) keeps a margin of three or more orders of magnitude above τ0 (for
 /// max(m, n) ≤ 10^3), so that a value reported nonzero is far from anything rounding produces.
 /// A dropped σ ≤ τ0 is *assumed* to be an exact zero: that is sound only under the separation
-/// hypothesis that the exact data's nonzero singular values exceed τ1 — true for the small-height
-/// rational data dcad is built for, and exactly what the `certified` backend will check.
+/// hypothesis that the exact data's nonzero singular values exceed τ1 — true for most small-height
+/// rational data, not all: an integer matrix's smallest nonzero σ can be 1/(σ₁σ₂⋯) (Cauchy–Binet), and a 3×3 one of
+/// height 1.3e7 with determinant 6 has σ₃ = 3.9e-10 (cases/regression-pointwise-height.json).  So fast::solve
+/// confirms a certain answer by the certified tier (Options::confirm_exactly, below) before it says certified.
 /// Two properties of the *input* void that hypothesis, and then no rank deficiency is ever certain:
 ///  * `input_exact` false — some input value was rounded to double in a digit that may decide the
 ///    answer, so rounding the input may have destroyed the very degeneracy being decided (1 + 2^-60

@@ -117,8 +117,10 @@ struct ExactSubspace {
 
 /// How the answers were reached (the CONTRACT's `decisions`).
 struct Decisions {
-  long float_tests = 0;          ///< zero tests certified in floating point (balls), or fast's rank decisions
-  long exact_verifications = 0;  ///< settled by comparing exact input numbers
+  long float_tests = 0;  ///< zero tests certified in floating point (balls), or fast's rank decisions (the Lagrangian
+                         ///< form: its zeros that rest on the separation hypothesis)
+  long exact_verifications = 0;  ///< settled by comparing exact input numbers; fast::solve: 1 if its answer was
+                                 ///< confirmed by the certified tier
   long exact_recomputation = 0;  ///< 1 if recomputed exactly
   long machine_words = 0;        ///< 1 if the whole run was exact in 64- or 128-bit rationals
   int word_bits = 0;             ///< that run's word: 64, or 128 when a number outgrew 64 bits

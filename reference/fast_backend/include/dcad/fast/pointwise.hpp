@@ -36,6 +36,10 @@ struct ToleranceDecisions {
   double scale = 0;         ///< its largest constant term
   Truth certain = yes;
   std::size_t decisions = 0;
+  /// Zeros taken as certain that rest on the separation hypothesis (a value within 8 rounding bounds of 0, not one
+  /// nothing was added to): 0 means every decision was proved in double — a nonzero beyond its rounding bound, or a
+  /// zero no rounding touched — and the answer is certain without a hypothesis.
+  std::size_t assumed = 0;
   std::string evidence;            ///< the first uncertain decision
   DecisionProbe* probe = nullptr;  ///< testing (fast/rank.hpp): each decision above counts once
 

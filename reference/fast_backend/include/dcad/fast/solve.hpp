@@ -24,15 +24,22 @@ constexpr std::size_t kAdaptedBranches = 24;
 
 /// io::InputError for bad input: a value beyond double's range, a form that is certainly not Dirac or
 /// certainly degenerate.  `opt`: the decisions' thresholds (the input assessment is made here).
+/// `certified` is yes only where every decision was proved in double (a nonzero beyond its rounding bound, a zero no
+/// rounding touched) or the certified tier confirmed the answer (decisions.exact_verifications = 1, up to 2000
+/// variables; Options::confirm_exactly): a zero decided in double rests on the separation hypothesis of rank.hpp,
+/// which integer data of height 10^6 break (cases/regression-pointwise-height.json).
 Solution solve(const io::Problem& p, const Parts& parts = {}, const Options& opt = {});
 
 /// What a `dirac` case's structure is (CEF §4): each answer with its verdict; an uncertain one is
-/// listed in `uncertain` with its evidence, and its value is the likely one.
+/// listed in `uncertain` with its evidence, and its value is the likely one.  A certain one is confirmed by the exact
+/// reference::inspect up to 2000 variables (Options::confirm_exactly), as solve's answers are.
 Inspection inspect(const io::CaseFile& c, const Options& opt = {});
 
 /// The routes, for dcad::api's fallbacks: the expression form in double (the pointwise CAD of
-/// the fast backend's pointwise CAD (pointwise.hpp) at the case's point; certified when every zero test was;
-/// io::InputError for given values off M_c, as the exact route) and the LC graph route.
+/// the fast backend's pointwise CAD (pointwise.hpp) at the case's point; io::InputError for given values off M_c, as
+/// the exact route) and the LC graph route.  Their `certified` is fast's own verdict, NOT confirmed: certain under
+/// the separation hypothesis wherever a zero was assumed (decisions.float_tests > 0 on the expression form) — call
+/// solve for an answer whose `certified` is never wrong.
 Solution solve_expression(const io::LagrangianCase& c, const Options& opt = {});
 /// The implicit form (CEF (1.6), pipeline/implicit.hpp) by the same pointwise algorithm in double.
 Solution solve_implicit(const io::LagrangianCase& c, const Options& opt = {});
