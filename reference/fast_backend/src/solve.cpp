@@ -59,8 +59,6 @@ std::string discrete(const dcad::Solution<N>& s, const Carried& both) {
   return o.str();
 }
 
-}  // namespace
-
 /// A zero decided in double is certain only under the separation hypothesis (dcad/fast/rank.hpp): an exact nonzero is
 /// never within a few rounding-error bounds of 0.  Integer data of height 10^6–10^7 break it: the kinetic matrix
 /// [[13400166, −1023502, 9211667], …] has determinant 6 and a last singular value 3.9e-10 (cases/
@@ -87,8 +85,10 @@ void confirm_exactly(const io::Problem& p, const Parts& parts, Solution& s) {
         s.decisions.exact_verifications = 1;
         return;
       }
-      why = "the exact route (the certified tier) finds " + want + " where double found " + got +
-            ": a zero decided in double was not one (the separation hypothesis of dcad/fast/rank.hpp failed)";
+      why = want != got ? "the exact route (the certified tier) finds " + want + " where double found " + got +
+                              ": a zero decided in double was not one (the separation hypothesis of "
+                              "dcad/fast/rank.hpp failed)"
+                        : "the certified tier agrees (" + want + ") but is not certified itself (" + e.note + ")";
     } catch (const std::bad_alloc&) {
       throw;
     } catch (const std::exception& x) {
@@ -102,6 +102,8 @@ void confirm_exactly(const io::Problem& p, const Parts& parts, Solution& s) {
   s.certified = unknown;
   s.note = "not certified: " + why + (s.note.empty() ? "" : "; " + s.note);
 }
+
+}  // namespace
 
 Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
   io::validate(p);
