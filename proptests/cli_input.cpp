@@ -1051,7 +1051,7 @@ TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   EXPECT_EQ(undecided["certified"], false);
   EXPECT_NE(undecided["sources"]["conditions"][0]["evidence"].get<std::string>().find("cannot decide exactly"),
             std::string::npos);
-  // a failure is certified only where the double evaluation is proved within a tenth of the cut: sin(ωt) and
+  // a failure is certified only where an Arb ball of the exact combination excludes 0: sin(ωt) and
   // sin(ωt + 360°) at 1 GHz in a loop with a PWL that lasts 1 s are one function, but at the samples spread over
   // that second (phases to 6e9 rad) sin in double is off by ~1e-6: "fails", certified, before; now undecided.
   // A 1 GHz sine beside that PWL does fail, at the samples within its first 1e4 rad: certified.
@@ -1067,6 +1067,13 @@ TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   const nlohmann::json differ = solved("dcad_cond_ghz.cir", "SIN(0 1 1G)", "DC 0");
   EXPECT_EQ(differ["sources"]["conditions"][0]["holds"], false) << differ["sources"];
   EXPECT_EQ(differ["certified"], true);
+  // A failure below double's resolution is proved by Arb balls at an exact time, not guessed: sin(ωt) and
+  // sin(ωt + 1e-12°) differ by about 1.7e-14 cos(ωt), which double cannot see beside values of 1 (it was
+  // "agree to rounding", undecided); a 128-bit ball of the exact difference at one sample time excludes 0.
+  const nlohmann::json tiny = solved("dcad_cond_tiny.cir", "SIN(0 1 1k)", "SIN(0 1 1k 0 0 1e-12)");
+  EXPECT_EQ(tiny["sources"]["conditions"][0]["holds"], false) << tiny["sources"];
+  EXPECT_EQ(tiny["certified"], true);
+  EXPECT_NE(tiny["sources"]["conditions"][0]["evidence"].get<std::string>().find("excludes 0"), std::string::npos);
 }
 
 TEST(Cli, MissingFile) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "dcad/certified/enclosure.hpp"
+#include "dcad/reference/arb_ball.hpp"
 
 #include <arb.h>
 #include <arb_mat.h>
@@ -14,14 +15,9 @@ namespace dcad::certified {
 
 namespace detail {
 
-/// RAII for arb_t and arb_mat_t (the C types are arrays: not copyable).
-struct Ball {
-  arb_t v;
-  Ball() { arb_init(v); }
-  ~Ball() { arb_clear(v); }
-  Ball(const Ball&) = delete;
-  Ball& operator=(const Ball&) = delete;
-};
+/// RAII for arb_t (dcad/reference/arb_ball.hpp) and arb_mat_t (the C types are arrays: not copyable).
+using reference::arb::Ball;
+using reference::arb::set_q;
 struct BallMat {
   arb_mat_t m;
   BallMat(slong r, slong c) { arb_mat_init(m, r, c); }
@@ -32,14 +28,6 @@ struct BallMat {
   slong cols() const { return arb_mat_ncols(m); }
   arb_ptr at(slong i, slong j) { return arb_mat_entry(m, i, j); }
 };
-
-inline void set_q(arb_t out, const Q& q, slong prec) {
-  fmpq_t f;
-  fmpq_init(f);
-  fmpq_set_mpq(f, q.backend().data());
-  arb_set_fmpq(out, f, prec);
-  fmpq_clear(f);
-}
 
 inline Enclosure enclosure_of(const arb_t x) {
   Enclosure e;

@@ -3,6 +3,7 @@
 #include "dcad/io/input_error.hpp"
 #include "dcad/reference/rlc.hpp"
 #include "dcad/rlc_graph.hpp"
+#include "source_balls.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -45,8 +46,8 @@ std::string row_text(const QM& row, const std::vector<std::string>& names) {
 }
 
 /// How fast σ_w's argument turns (per second: SIN's |ω| + |θ|, SFFM's 2π(FC + MDI·FS), EXP's 1/TAU1 + 1/TAU2),
-/// and the radians it holds from the start (SIN's PHASE): its double rounding is ε·(rate·t + that), TD's
-/// and TAU's rounding included (t, not t − TD: ω·TD is rounded too).
+/// and the radians it holds from the start (SIN's PHASE): where the double samples stay near the waveform's
+/// values (a phase below 1e4 rad), so their largest values point at times where a ball proves a failure.
 double phase_rate(const io::Waveform& w) {
   if (w.kind == io::Waveform::Kind::sin) return std::abs(w.omega()) + std::abs(w.decay());
   if (w.kind == io::Waveform::Kind::sffm)
@@ -60,28 +61,15 @@ double phase_held(const io::Waveform& w) {  // SIN's PHASE, and ω·|TD| for a n
          phase_rate(w) * std::max(0.0, -w.p[3].convert_to<double>());
 }
 
-/// Whether σ_w's value in double at t is within 1e-10 of its scale of the exact value (the rounding of a
-/// few operations, c·ε·(1 + argument), the argument below 1e4): not within 1e-9 of the horizon of a corner
-/// (a corner that is not a double may lie on either side of t); on a PULSE's or PWL's piece only where it
-/// is longer than 4e10·ε·t (v0 + slope·(t − t0) with t0 rounded is off by ε·t·|slope|, 1e-10 of the
-/// piece's rise there); SIN, SFFM and EXP only to 1e4 of argument (phase_rate, phase_held).
-bool evaluation_holds(const io::Waveform& w, double t, const std::vector<double>& corners, double horizon) {
-  for (double c : corners)
-    if (std::abs(t - c) <= 1e-9 * horizon) return false;
-  if (w.kind == io::Waveform::Kind::pulse || w.kind == io::Waveform::Kind::pwl) {
-    const auto next = std::upper_bound(corners.begin(), corners.end(), t);  // corners: sorted (breakpoints)
-    const double from = next == corners.begin() ? 0.0 : *(next - 1), to = next == corners.end() ? HUGE_VAL : *next;
-    return to - from >= 4e10 * std::numeric_limits<double>::epsilon() * t;
-  }
-  return phase_rate(w) * t + phase_held(w) <= 1e4;
-}
-
-/// The combination sampled at times that show every feature of the waveforms (breakpoints, their
-/// midpoints, 97 times spread over the horizon): its largest |value| and where (`worst`, `at`), the
-/// largest where every evaluation holds (`proved`, `proved_at`: evaluation_holds), and its scale.
+/// The combination sampled in double at times that show every feature of the waveforms (breakpoints, their
+/// midpoints, 97 times spread over the horizon, 17 within a fast SIN's, SFFM's or EXP's first 1e4 rad): its
+/// largest |value| and where (`worst`, `at`), its scale, and the times of its largest values first (`candidates`,
+/// where condition_ball tries to prove it nonzero).
+constexpr std::size_t kCandidates = 8;
 struct Sampled {
-  double worst = 0, at = 0, proved = 0, proved_at = 0, scale = 0;
+  double worst = 0, at = 0, scale = 0;
   std::size_t samples = 0;
+  std::vector<double> candidates;
 };
 Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long orders) {
   const std::size_t m = waveforms.size();
@@ -93,17 +81,16 @@ Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long o
     if (in_row[j]) horizon = std::max(horizon, waveforms[j].horizon());
   if (horizon == 0) horizon = 1;
   std::vector<double> ts{0};
-  std::vector<std::vector<double>> corners(m);
   for (std::size_t j = 0; j < m; ++j)
     if (in_row[j]) {
-      corners[j] = waveforms[j].breakpoints(horizon);
-      ts.insert(ts.end(), corners[j].begin(), corners[j].end());
+      const std::vector<double> corners = waveforms[j].breakpoints(horizon);
+      ts.insert(ts.end(), corners.begin(), corners.end());
     }
   std::sort(ts.begin(), ts.end());
   const std::size_t k = ts.size();
   for (std::size_t i = 1; i < k; ++i) ts.push_back((ts[i - 1] + ts[i]) / 2);
   for (int i = 1; i <= 97; ++i) ts.push_back(horizon * std::fmod(i * 0.6180339887498949, 1.0));
-  for (std::size_t j = 0; j < m; ++j) {  // and 17 where a fast SIN, SFFM or EXP is evaluated well (evaluation_holds)
+  for (std::size_t j = 0; j < m; ++j) {  // and 17 within a fast SIN's, SFFM's or EXP's first 1e4 rad
     const double rate = in_row[j] ? phase_rate(waveforms[j]) : 0.0, reach = (1e4 - phase_held(waveforms[j])) / rate;
     const double from =
         waveforms[j].kind == io::Waveform::Kind::sin ? std::max(0.0, waveforms[j].p[3].convert_to<double>()) : 0.0;
@@ -112,9 +99,9 @@ Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long o
   }
   Sampled out;
   out.scale = std::abs(row(0, 0).convert_to<double>());
+  std::vector<std::pair<double, double>> by_size;  // (|value|, t)
   for (double t : ts) {
     double s = row(0, 0).convert_to<double>();
-    bool holds = true;
     for (std::size_t j = 0; j < m; ++j)
       for (long d = 0; d < orders && in_row[j]; ++d) {
         const double c = row(0, 1 + d * m + j).convert_to<double>();
@@ -122,11 +109,13 @@ Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long o
         const double term = c * waveforms[j].value(t, static_cast<int>(d));
         s += term;
         out.scale = std::max(out.scale, std::abs(term));
-        holds = holds && evaluation_holds(waveforms[j], t, corners[j], horizon);
       }
     if (std::abs(s) > out.worst) out.worst = std::abs(s), out.at = t;
-    if (holds && std::abs(s) > out.proved) out.proved = std::abs(s), out.proved_at = t;
+    if (std::isfinite(t) && t >= 0) by_size.emplace_back(std::isfinite(s) ? std::abs(s) : HUGE_VAL, t);
   }
+  std::stable_sort(by_size.begin(), by_size.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  for (std::size_t i = 0; i < by_size.size() && out.candidates.size() < kCandidates; ++i)
+    out.candidates.push_back(by_size[i].second);
   out.samples = ts.size();
   return out;
 }
@@ -171,23 +160,26 @@ SourceCondition decide_condition(const QM& row, const std::vector<io::Waveform>&
   }
   const Sampled sm = sample(row, waveforms, orders);
   const double cut = kConditionFails * std::max(sm.scale, 1e-300);
-  long terms = 0;  // each term's evaluation is within 1e-10 of the scale where it holds: their sum within terms·1e-10
-  for (Index j = 1; j < row.cols(); ++j) terms += row(0, j) != 0 ? 1 : 0;
   std::ostringstream o;
   o.precision(6);
-  if (sm.proved > std::max(cut, 2e-10 * static_cast<double>(terms) * sm.scale)) {  // beyond rounding: not 0
-    v.holds = no;
-    o << "fails at t = " << sm.proved_at << " s: the left side is " << sm.proved
-      << " (sources evaluated in double, within 1e-10 of the scale " << sm.scale << ")";
-  } else if (sm.worst > cut) {
-    v.holds = unknown;
-    o << "the left side is " << sm.worst << " at t = " << sm.at
-      << " s in double, where the evaluation is not proved (near a corner, or a phase beyond 1e4 rad): "
-         "cannot decide exactly";
-  } else {
-    v.holds = unknown;
-    o << "different waveforms agree to " << sm.worst << " at " << sm.samples << " sample times: cannot decide exactly";
-  }
+  for (long bits : {128L, 1024L})  // the largest values first; more bits only for the two largest
+    for (std::size_t i = 0; i < sm.candidates.size() && (bits == 128 || i < 2); ++i) {
+      const std::optional<ConditionBall> ball = condition_ball(row, waveforms, orders, Q(sm.candidates[i]), bits);
+      if (!ball || !ball->excludes_zero) continue;
+      v.holds = no;
+      o.precision(17);
+      o << "fails at t = " << sm.candidates[i] << " s (exactly this double): the left side is in " << ball->text
+        << " (Arb balls at " << bits << " bits, the PULSE and PWL values exact), which excludes 0";
+      v.evidence = o.str();
+      return v;
+    }
+  v.holds = unknown;
+  if (sm.worst > cut)
+    o << "the left side is " << sm.worst << " at t = " << sm.at << " s in double, but no ball at the " << sm.samples
+      << " sample times' largest values excludes 0 (not proved nonzero): cannot decide exactly";
+  else
+    o << "different waveforms agree to " << sm.worst << " at " << sm.samples
+      << " sample times and no ball there excludes 0 (not proved nonzero): cannot decide exactly";
   v.evidence = o.str();
   return v;
 }

@@ -24,10 +24,11 @@ ForcedSystem<Rational> forced_system(const io::CaseFile& c);
 std::vector<std::string> jet_names(const std::vector<io::Waveform>& w, long orders);
 
 /// Whether a source condition b + Σ c_{j,d} σ_j^{(d)}(t) = 0 (a row [b | σ⁽⁰⁾ | σ⁽¹⁾ | …]) holds for all
-/// t ≥ 0: exactly where the waveforms allow (DC values, equal waveforms that cancel); otherwise no when
-/// the combination, evaluated in double at the breakpoints, their midpoints and 97 spread times, exceeds
-/// kConditionFails × its largest term at a time where the evaluation's rounding is below a tenth of that
-/// (away from corners, phases below 1e4 rad), else unknown.
+/// t ≥ 0: exactly where the waveforms allow (DC values, equal waveforms that cancel); no with a proof — the
+/// combination sampled in double (breakpoints, their midpoints, spread times) points at its largest values,
+/// and an Arb ball of the exact combination at one of those exact times excludes 0 (PULSE and PWL exact
+/// rationals there; SIN, EXP, SFFM rigorous balls: src/source_balls.hpp); otherwise unknown, with the
+/// evidence.  kConditionFails only words the evidence (values that agree to it look equal in double).
 SourceCondition decide_condition(const Matrix<Rational>& row, const std::vector<io::Waveform>& w);
 constexpr double kConditionFails = 1e-9;
 
