@@ -233,6 +233,21 @@ TEST(Check, ImplicitPendulumIndexClaimsAreJudged) {
   EXPECT_NE(bad.out.find("index: expected 3, found 2"), std::string::npos) << bad.out;
 }
 
+// Issue 51: at a published start whose values are irrational (the test set's Akzo Nobel, sqrt(y2) with y2 =
+// 0.00123) the exact route cannot run, and check says so as a verdict — no claim judged, exit 3 — naming the value,
+// never as bad input advising a --backend that check does not take.
+TEST(Check, ImplicitClaimsAtAnIrrationalPointAreNotJudged) {
+  const std::string akzo = (fs::path(DCAD_SOURCE_DIR) / "cases/published/akzo-nobel.json").string();
+  const std::string claim = write_temp(
+      "dcad_akzo_index.json", R"({"dims": [6, 5], "steps": 1, "consistent": true, "solution_rank": 0, "index": 1})");
+  const Outcome r = run("check " + claim + " " + akzo);
+  EXPECT_EQ(r.rc, 3) << r.out << r.err;
+  EXPECT_NE(r.out.find("no claim could be judged: the exact route cannot run at the case's point (sqrt(123/100000)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ((r.out + r.err).find("--backend"), std::string::npos) << r.out << r.err;
+}
+
 // Issue 30 / CONTRACT "Formulas for nonlinear results": a DAE tool's reduced pendulum (index 3) as formulas,
 // derived by hand — M_c = {x² + y² = 1, x u + y w = 0, λ (x² + y²) = u² + w² − g y}, and on it
 // λ' = d/dt (u² + w² − g y)/(x² + y²) = (−2λ (x u + y w) − 3 g w)/(x² + y²) = −3 g w/(x² + y²) — agrees; a sign

@@ -56,6 +56,43 @@ void exact_trace_is_the_tower(const S& s, const std::string& file) {
   }
 }
 
+// Nothing is certified by default: an answer whose route decided nothing about its certainty says unknown, and
+// a source condition no decision reached neither holds nor fails (each route sets yes where it completes exactly:
+// the linear and LC pipelines in exact scalars, the graph's theorems, the forced route's decided conditions).
+TEST(Trace, NothingIsCertifiedByDefault) {
+  EXPECT_TRUE(dcad::Solution<double>{}.certified.unknown());
+  EXPECT_TRUE(dcad::Solution<dcad::reference::Rational>{}.certified.unknown());
+  EXPECT_TRUE(dcad::SourceCondition{}.holds.unknown());
+}
+
+// A tower that cannot be one is named (dcad::api then refuses it, exit 4): the dims fast once printed for the test
+// set's index-3 slider crank, [24, 14, 11, 3, 4, -1] (dim M_4 > dim M_3 against M_4 ⊆ M_3, CEF §5 (5.1)–(5.3)),
+// then each other invariant broken in turn on a tower that keeps them.
+TEST(Trace, ATowerThatCannotBeOneIsNamed) {
+  dcad::Solution<double> s;
+  for (long d : {24, 14, 11, 3, 4, -1}) s.tower.push_back({d, {}});
+  s.steps = 5;
+  s.consistent = false;
+  ASSERT_TRUE(s.broken_invariant());
+  EXPECT_NE(s.broken_invariant()->find("dim M_4 = 4 is not below dim M_3 = 3"), std::string::npos);
+  s.tower[4].dim = 2;
+  EXPECT_FALSE(s.broken_invariant()) << *s.broken_invariant();
+  s.consistent = true;
+  EXPECT_EQ(s.broken_invariant().value_or(""), "consistent with dim M_5 = -1");
+  s.consistent = false;
+  s.steps = 4;
+  EXPECT_EQ(s.broken_invariant().value_or(""), "steps = 4 beside the levels M_0 … M_5");
+  s.tower.pop_back();
+  s.consistent = true;
+  s.solution_rank = 3;
+  EXPECT_EQ(s.broken_invariant().value_or(""), "solution rank 3 beside dim M_4 = 2");
+  s.solution_rank = 2;
+  EXPECT_FALSE(s.broken_invariant());
+  s.tower.push_back({-1, {}});
+  s.tower.push_back({-1, {}});
+  EXPECT_EQ(s.broken_invariant().value_or(""), "M_5 is empty and the tower goes on");
+}
+
 TEST(Trace, ExactTiersTraceEveryLevelExactly) {
   long reference = 0, certified = 0;
   for (const io::Problem& p : corpus()) {

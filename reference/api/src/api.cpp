@@ -110,6 +110,13 @@ Solved solve_form(const io::Problem& p, Backend backend, const Parts& parts) {
 
 Solved solve(const io::Problem& p, Backend backend, const Parts& parts) {
   Solved s = solve_form(p, backend, parts);
+  std::visit(
+      [&](const auto& r) {  // a tower that cannot be one is dcad's bug: never an answer (issue 51)
+        if (const std::optional<std::string> why = r.broken_invariant())
+          throw InternalError("solve: the " + std::string(backend_name(r.backend)) +
+                              " backend's answer breaks a tower's invariant: " + *why + "; please report it");
+      },
+      s);
   if (p.form() == io::Form::expression)
     guarded(p, [&]() {
       attach_formulas(p, backend, s);

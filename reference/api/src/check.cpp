@@ -934,27 +934,35 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
         shown(r["name"]) + ": a result for another case");
   if (r.contains("variables") && r["variables"] != json(c.system.names))
     bad(result_file, "/variables", "the variables of " + c.file, shown(r["variables"]) + ": a result for another case");
-  const reference::Solution truth = reference::solve(p);
-  const json want = printed_json(truth);
+  reference::Solution truth;
+  std::string unjudged;  // why no claim can be judged, if none can
+  try {
+    truth = reference::solve(p);
+    if (!truth.certified.yes())
+      unjudged = "the reference is not certified at its point (" +
+                 (truth.note.empty() ? truth.pointwise->why : truth.note) +
+                 "); give `initial` at a regular point of M_c";
+  } catch (const reference::NoExactPoint& e) {  // an irrational point (a published start): the exact route cannot run
+    unjudged = "the exact route cannot run at the case's point (" + e.cause +
+               "); give `initial` at a point of M_c where every value of the equations is rational";
+  }
+  const json want = unjudged.empty() ? printed_json(truth) : json();
   Checker k{result_file, {}};
   bool any = false;
   for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "index"})
     if (r.contains(key)) {
       any = true;
-      if (!truth.certified.yes()) continue;  // judged below: nothing can be
+      if (!unjudged.empty()) continue;  // judged below: nothing can be
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
   const bool formulas = r.contains("formulas") && !r["formulas"].is_null();
   if (!any && !formulas)
     bad(result_file, "", "at least one of dims, steps, consistent, solution_rank, unique, index, or formulas",
         "none of them");
-  if (!truth.certified.yes())  // nothing judged is no agreement
-    k.out.disagreements.push_back("no claim could be judged: the reference is not certified at its point (" +
-                                  (truth.note.empty() ? truth.pointwise->why : truth.note) +
-                                  "); give `initial` at a regular point of M_c");
+  if (!unjudged.empty()) k.out.disagreements.push_back("no claim could be judged: " + unjudged);  // none: no agreement
   if (r.contains("formulas") && r["formulas"].is_null())
     k.out.not_compared.push_back("formulas (null in the result)");
-  else if (formulas && truth.certified.yes())
+  else if (formulas && unjudged.empty())
     check_formulas(result_file, r["formulas"], p, points, k.out);  // their constraints and equations of motion
   for (const char* key : {"tower", "final_constraints", "reduced"})
     if (r.contains(key))

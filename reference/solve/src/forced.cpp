@@ -150,6 +150,7 @@ SourceCondition decide_condition(const QM& row, const std::vector<io::Waveform>&
   bool zero = constant == 0;
   for (const auto& [k, c] : sums) zero = zero && c == 0;
   if (zero) {
+    v.holds = yes;
     v.evidence = all_constant ? "exact (DC values)" : "exact (equal waveforms cancel)";
     return v;
   }
@@ -381,6 +382,7 @@ GraphForced graph_forced(const io::Netlist& deck) {
   for (const RlcBranch<Q>& b : c.branches) branches.push_back({b.kind, b.from, b.to});
   const rlc::Tower t = rlc::tower(c.nodes, branches);
   GraphForced g;
+  g.certified = yes;  // the graph decides the tower; each condition below may make it unknown
   g.dims = t.dims;
   g.solution_rank = t.solution_rank;
   long empty_at = -1;  // cutsets bound M_1, loops of voltage sources M_2

@@ -73,10 +73,11 @@ Solution expression(const io::LagrangianCase& c) {
     try {
       return pipeline::solve_pointwise_exact_near(c);
     } catch (const NotExactHere& e) {
-      throw io::InputError(
+      throw NoExactPoint(
           c.file +
-          ": /initial: expected a point where every value of the formulas is rational (the exact route), found " +
-          e.what() + "; give such a point (e.g. angles 0) or use --backend fast or certified");
+              ": /initial: expected a point where every value of the formulas is rational (the exact route), found " +
+              e.what() + "; give such a point (e.g. angles 0) or use --backend fast or certified",
+          e.what());
     }
   });
 }
@@ -87,14 +88,16 @@ Solution implicit(const io::LagrangianCase& c) {
       return pipeline::solve_implicit_exact(c);
     } catch (const NotExactHere& e) {
       if (!c.has_initial)
-        throw io::InputError(c.file +
-                             ": /implicit: expected equations whose values are rational at dcad's default points (the "
-                             "exact route), found " +
-                             e.what() + "; give `initial` values where they are, or use --backend fast or certified");
-      throw io::InputError(
+        throw NoExactPoint(c.file +
+                               ": /implicit: expected equations whose values are rational at dcad's default points "
+                               "(the exact route), found " +
+                               e.what() + "; give `initial` values where they are, or use --backend fast or certified",
+                           e.what());
+      throw NoExactPoint(
           c.file +
-          ": /initial: expected a point where every value of the equations is rational (the exact route), found " +
-          e.what() + "; give such a point or use --backend fast or certified");
+              ": /initial: expected a point where every value of the equations is rational (the exact route), found " +
+              e.what() + "; give such a point or use --backend fast or certified",
+          e.what());
     }
   });
 }

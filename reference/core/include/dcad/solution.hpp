@@ -146,9 +146,9 @@ struct CircuitFacts {
 /// A condition on the sources alone that the tower found (KVL of a loop of voltage sources, KCL of a
 /// cutset of current sources): b + Σ c σ^(d)(t) = 0, decided against the waveforms.
 struct SourceCondition {
-  std::string text;      ///< "V1(t) - V2(t) = 0"
-  Truth holds = yes;     ///< for all t ≥ 0: yes, no, or unknown (different waveforms that agree where sampled)
-  std::string evidence;  ///< why
+  std::string text;       ///< "V1(t) - V2(t) = 0"
+  Truth holds = unknown;  ///< for all t ≥ 0: yes, no, or unknown (different waveforms that agree where sampled)
+  std::string evidence;   ///< why
 };
 
 /// The CAD of the expression form as formulas on a chart (CONTRACT "Formulas for nonlinear results";
@@ -221,9 +221,9 @@ struct Pointwise {
 template <class N>
 struct Solution {
   Backend backend = Backend::reference;  ///< which twin answered (each twin's solve sets it)
-  Truth certified = yes;               ///< every decision behind the result exact or provably right: yes; else unknown
-  bool exact = false;                  ///< every number is exact (a row's absent entries are exact zeros)
-  std::string file, name;              ///< the problem's
+  Truth certified = unknown;  ///< every decision behind the result exact or provably right: yes (each route sets it)
+  bool exact = false;         ///< every number is exact (a row's absent entries are exact zeros)
+  std::string file, name;     ///< the problem's
   std::vector<std::string> variables;  ///< x's names
   std::vector<std::string> jets;       ///< more columns of the tower's equations after x: the sources' jets (forced)
   std::vector<Level<N>> tower;         ///< M_0 … M_c, or M_0 … M_k with M_k = ∅
@@ -264,6 +264,27 @@ struct Solution {
     return d;
   }
   bool unique() const { return consistent && solution_rank && *solution_rank == 0; }
+  /// The first invariant of a tower this answer breaks, in words, or none: CEF §5 (5.1)–(5.3) and (1.6) build
+  /// M_{k+1} ⊆ M_k and stop at the first c with M_{c+1} = M_c, so dim M_0 > … > dim M_c, an empty M_k (−1)
+  /// only last; c = steps; consistent iff M_c ≠ ∅; dim(ker ω_D ∩ T M_c) ≤ dim M_c (Thm 5.4(b)).  A singular
+  /// point of the pointwise routes claims its dims only.  dcad::api refuses to print a broken answer (exit 4).
+  std::optional<std::string> broken_invariant() const {
+    const std::vector<long> d = dims();
+    if (d.empty()) return std::string("no level M_0");
+    const auto dim = [&](std::size_t k) { return "dim M_" + std::to_string(k) + " = " + std::to_string(d[k]); };
+    for (std::size_t k = 0; k + 1 < d.size(); ++k) {
+      if (d[k] < 0) return "M_" + std::to_string(k) + " is empty and the tower goes on";
+      if (d[k + 1] >= d[k]) return dim(k + 1) + " is not below " + dim(k) + " (M_{k+1} ⊆ M_k, strictly until c)";
+    }
+    if (pointwise && !pointwise->regular) return std::nullopt;
+    const std::size_t c = d.size() - 1;
+    if (steps != static_cast<long>(c))
+      return "steps = " + std::to_string(steps) + " beside the levels M_0 … M_" + std::to_string(c);
+    if (consistent != (d[c] >= 0)) return std::string(consistent ? "consistent" : "inconsistent") + " with " + dim(c);
+    if (solution_rank && (*solution_rank < 0 || *solution_rank > d[c]))
+      return "solution rank " + std::to_string(*solution_rank) + " beside " + dim(c);
+    return std::nullopt;
+  }
   /// The names of the equations' columns: the variables, then the jets.
   std::vector<std::string> columns() const {
     std::vector<std::string> c = variables;

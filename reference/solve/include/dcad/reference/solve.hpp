@@ -10,9 +10,13 @@
 #pragma once
 
 #include "dcad/inspection.hpp"
+#include "dcad/io/input_error.hpp"
 #include "dcad/io/problem.hpp"
 #include "dcad/reference/rational.hpp"
 #include "dcad/solution.hpp"
+
+#include <string>
+#include <utility>
 
 namespace dcad::reference {
 
@@ -21,6 +25,14 @@ using Solution = dcad::Solution<Rational>;
 /// io::InputError for bad input (naming the file and the JSON path or line), e.g. a form that is not
 /// a Dirac structure or an expression-form point where a formula is irrational.
 Solution solve(const io::Problem& p, const Parts& parts = {});
+
+/// The bad input reference::solve reports where its exact route cannot run at the case's point (the expression
+/// and implicit forms: a value of the formulas there is irrational): an io::InputError (exit 1) whose `cause`
+/// says which value ("sqrt(123/100000) is irrational").  dcad check takes it as "no claim could be judged".
+struct NoExactPoint : io::InputError {
+  NoExactPoint(const std::string& message, std::string why) : io::InputError(message), cause(std::move(why)) {}
+  std::string cause;
+};
 
 /// What a `dirac` case's structure is (CEF Lemma 4.1, Prop. 4.3): valid, dim E_D, rank and kernel of ω_D,
 /// presymplectic or Poisson.

@@ -33,6 +33,7 @@ dcad::Solution<N> lc_graph_solution(const io::Netlist& deck, const std::vector<s
                                     Convert number) {
   const lc::Tower<Rational> t = lc::physical_tower(deck.circuit.nodes, lc_graph_of(deck));
   dcad::Solution<N> s;
+  s.certified = yes;  // the graph's theorems decide every step: no rank is decided
   s.variables = variables;
   for (std::size_t k = 0; k < t.dims.size(); ++k) {
     Level<N> level{t.dims[k], {}};
@@ -70,6 +71,7 @@ dcad::Solution<T> solve_lc(const io::Netlist& deck, const std::vector<std::strin
   const std::vector<ProductStep<T>> tower = circuit_tower(circ);
   const std::vector<Matrix<T>> added = circuit_tower_equations(circ, tower);
   dcad::Solution<T> out;
+  out.certified = Numbers<T>::exact ? yes : unknown;  // every rank an exact zero test in exact T
   out.file = deck.file;
   out.name = deck.title;
   out.variables = variables;

@@ -39,7 +39,7 @@ struct GraphForced {
   long steps = 0, solution_rank = 0;
   bool consistent = true;
   std::vector<SourceCondition> conditions;
-  Truth certified = yes;  ///< unknown where a condition could not be decided exactly
+  Truth certified = unknown;  ///< yes: the graph's theorems and every condition decided exactly (graph_forced)
 };
 /// Whether the graph route holds: every C and R positive and the inductance matrix Φ positive
 /// definite (every L positive; couplings with |k| < 1 on a pair, decided exactly per coupled group).

@@ -104,6 +104,7 @@ dcad::Solution<T> solve_linear(const io::CaseFile& c, const Parts& parts) {
   const Matrix<T> primary = c.has_constrained ? lift<T>(c.constrained.primary) : Matrix<T>();
   const CadResult<T> r = constraint_tower(s, primary);
   dcad::Solution<T> out;
+  out.certified = Numbers<T>::exact ? yes : unknown;  // every rank an exact zero test in exact T
   out.file = c.file;
   out.name = c.name;
   out.variables = c.variables;
