@@ -168,6 +168,30 @@ TEST(DecideRank, InexactInputNeverCertifiesADeficiency) {
   EXPECT_TRUE(decide_rank(MatrixXd::Identity(2, 2), -1, opt).certain.yes());  // full rank is still certain
 }
 
+// A deficiency the pattern explains is proved whatever the input's rounding (rank.hpp, proved_by_structure): a
+// matrix with a zero row (an algebraic equation's row of dF/dx') has rank at most its structural rank 2, and σ_2
+// = 1 beyond τ1 gives at least 2 — certain, though the rounded input makes the plain decision uncertain.  Not
+// where the pattern allows more (structural 3: the deficiency is numerical), nor where σ_rank lies in the band, nor
+// where the probe reported the decision uncertain.
+TEST(DecideRank, AStructuralDeficiencyIsProved) {
+  MatrixXd a(3, 3);
+  a << 1, 2, 0, 3, 4, 0, 0, 0, 0;
+  Options opt = vouched();
+  opt.input_exact = false;
+  const RankDecision d = decide_rank(a, -1, opt);
+  ASSERT_EQ(d.rank, 2);
+  EXPECT_FALSE(d.certain.yes());
+  EXPECT_TRUE(proved_by_structure(d, 2).certain.yes()) << proved_by_structure(d, 2).describe();
+  EXPECT_FALSE(proved_by_structure(d, 3).certain.yes());
+  MatrixXd band = a;
+  band(1, 1) = 6 + 1e-10;  // σ_2 ≈ 1e-10/√10: inside (τ0, τ1]
+  EXPECT_FALSE(proved_by_structure(decide_rank(band, -1, opt), 2).certain.yes());
+  DecisionProbe inject{0, 0};
+  Options probed = vouched();
+  probed.probe = &inject;
+  EXPECT_FALSE(proved_by_structure(decide_rank(a, -1, probed), 2).certain.yes());
+}
+
 // Regression (shrunk counterexample of FastVsReference.Graded): exact rank 4, entries 2^-20, 2^-15
 // and 64 — within the dynamic range that assess_input accepts — with singular values 4.5e-13 that
 // look like rounding noise.  It was decided "rank 2, certain"; the equilibration cross-check makes

@@ -89,7 +89,7 @@ namespace {
 
 /// Every decision leaves through here once (DecisionProbe: testing).
 RankDecision& counted(RankDecision& d, const Options& opt) {
-  if (opt.probe && opt.probe->made++ == opt.probe->uncertain_at) d.certain = unknown;
+  if (opt.probe && opt.probe->made++ == opt.probe->uncertain_at) d.certain = unknown, d.probed = true;
   return d;
 }
 
@@ -358,6 +358,12 @@ void append_traced(std::vector<Decision>& trace, const std::vector<RankDecision>
   for (std::size_t i = 0; i < ds.size(); ++i) trace.push_back(traced(ds[i], what + " #" + std::to_string(i + 1)));
 }
 
+RankDecision proved_by_structure(RankDecision d, int structural) {
+  d.structural = structural;
+  if (!d.certain.yes() && !d.probed && d.rank == structural && d.kept_lower > d.nonzero_threshold) d.certain = yes;
+  return d;
+}
+
 std::string RankDecision::describe() const {
   std::ostringstream o;
   o.precision(3);
@@ -373,6 +379,9 @@ std::string RankDecision::describe() const {
   o << "]";
   if (by_qr) o << ", sigma_rank >= " << kept_lower << ", sigma_rank+1 <= " << dropped_upper;
   o << ", zero below " << zero_threshold << ", nonzero above " << nonzero_threshold << ", gap " << gap;
+  if (structural >= 0)
+    o << "; structural rank " << structural
+      << (structural == rank ? " (the pattern of entries not identically 0 allows no more)" : "");
   return o.str();
 }
 

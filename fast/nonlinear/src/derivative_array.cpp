@@ -99,6 +99,33 @@ Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<d
   return v;
 }
 
+/// The structural rank of the array's Jacobian in the columns [from, cols): a maximum matching of equations to
+/// variables through the partial derivatives that are not identically 0 (ArrayEquation::grad; an algebraic
+/// equation has none in x'), by augmenting paths (Kuhn).  It bounds the rank at every point (rank.hpp,
+/// proved_by_structure).
+int structural_rank(const std::vector<ArrayEquation>& eqs, std::size_t from, std::size_t cols) {
+  std::vector<long> owner(cols, -1);  // the equation matched to each column
+  std::vector<std::size_t> seen(cols, 0);
+  std::size_t round = 0;
+  const auto augment = [&](auto&& self, std::size_t i) -> bool {
+    for (const auto& [var, g] : eqs[i].grad) {
+      if (var < from || var >= cols || seen[var] == round) continue;
+      seen[var] = round;
+      if (owner[var] < 0 || self(self, static_cast<std::size_t>(owner[var]))) {
+        owner[var] = static_cast<long>(i);
+        return true;
+      }
+    }
+    return false;
+  };
+  int rank = 0;
+  for (std::size_t i = 0; i < eqs.size(); ++i) {
+    ++round;
+    if (augment(augment, i)) ++rank;
+  }
+  return rank;
+}
+
 /// Equation i of the array at z, alone (a probe of one row need not evaluate the array and its Jacobian).
 double row_value(const std::vector<ArrayEquation>& eqs, std::size_t i, const std::vector<double>& z) {
   std::unordered_map<const ex::ExprNode*, double> memo;
@@ -383,9 +410,9 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
     const Eigen::MatrixXd jd = v.j.rightCols(static_cast<Eigen::Index>(cols) - nn), jx = v.j.leftCols(nn),
                           jr = v.j.rightCols(static_cast<Eigen::Index>(cols) - 2 * nn);
     const RankRevealing rd(jd, scale, opt);
-    decided(rd.decision(), "rank of dF_" + std::to_string(k) + "/d(x', ...)");
-    if (out.certain
-            .yes()) {  // the rank at the point is the rank near it (x v_x = u at x = 0 drops it: a singular point)
+    decided(proved_by_structure(rd.decision(), structural_rank(eqs, n, cols)),
+            "rank of dF_" + std::to_string(k) + "/d(x', ...)");
+    if (out.certain.yes()) {  // the rank here is the rank near it (x v_x = u at x = 0 drops it: a singular point)
       std::vector<double> near = z;
       for (std::size_t i = 0; i < n; ++i)
         near[i] += 1e-3 * std::max(1.0, std::abs(z[i])) * (1 + 0.37 * static_cast<double>(i % 5));
@@ -436,7 +463,7 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
     // M_{k+1} = M_k: the tower ends; the velocities that F_k leaves
     int rr = 0;
     if (jr.cols() > 0) {
-      const RankDecision dr = decide_rank(jr, scale, opt);
+      const RankDecision dr = proved_by_structure(decide_rank(jr, scale, opt), structural_rank(eqs, 2 * n, cols));
       decided(dr, "rank of dF_" + std::to_string(k) + "/d(x'', ...)");
       rr = dr.rank;
     }

@@ -133,8 +133,17 @@ struct RankDecision {
   bool by_norm = false;          ///< rank 0 because ‖A‖_F ≤ τ0 (then σ₁ ≤ ‖A‖_F): no factorization
   bool by_two_routes = false;    ///< decide_rank_either: the verdict of two routes
   Truth certain = yes;           ///< yes, or unknown
+  bool probed = false;           ///< testing: the DecisionProbe reported this decision uncertain
+  int structural = -1;           ///< the rank of A's pattern (proved_by_structure); −1: not used
   std::string describe() const;  ///< evidence in one line
 };
+
+/// A deficiency explained by the pattern of A: `structural` is the structural rank of A (a maximum matching of
+/// rows to columns through entries that are not identically 0 as functions — the entries' values play no part),
+/// which bounds rank(A) at every value, since a nonzero minor needs a perfect matching of nonzero entries.  Where it
+/// equals the decided rank and σ_rank is beyond τ1 (so the rank is at least that), the rank is proved whatever
+/// the input's rounding or grading: certain (unless the probe reported the decision uncertain).  Else `d` as it was.
+RankDecision proved_by_structure(RankDecision d, int structural);
 
 /// The decision as an entry of Solution::trace (dcad/trace.hpp), `what` naming what was decided.
 Decision traced(const RankDecision& d, const std::string& what);
