@@ -952,7 +952,10 @@ Checked check_implicit(const std::string& result_file, const json& r, const io::
   for (const char* key : {"dims", "steps", "consistent", "solution_rank", "unique", "index"})
     if (r.contains(key)) {
       any = true;
-      if (!unjudged.empty()) continue;  // judged below: nothing can be
+      if (!unjudged.empty()) {  // judged below: nothing can be
+        k.out.not_compared.push_back(std::string(key) + " (no claim could be judged: see the disagreement)");
+        continue;
+      }
       k.compare(key, want.contains(key) ? want[key] : json(nullptr), r[key]);
     }
   const bool formulas = r.contains("formulas") && !r["formulas"].is_null();

@@ -216,6 +216,7 @@ dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::W
   s.note = "forced route (YM §4 forces and affine constraints, moving M_k(t) as in V §3), exact";
   const std::size_t nv = f.s.d.n;
   long empty_at = r.consistent ? -1 : static_cast<long>(r.dims.size()) - 1;
+  long undecided_at = -1;  // the first level with a condition left undecided: it matters below the first empty M_k
   for (std::size_t k = 0; k < r.conditions_at.size() && (empty_at < 0 || static_cast<long>(k) < empty_at); ++k) {
     const QM& ck = r.conditions_at[k];
     for (std::size_t i = 0; i < ck.rows(); ++i) {
@@ -224,9 +225,10 @@ dcad::Solution<Q> exact_forced(const ForcedSystem<Q>& f, const std::vector<io::W
                                     [&](const SourceCondition& o) { return o.text == v.text; });
       if (!seen) s.source_conditions.push_back(v);
       if (v.holds.no() && empty_at < 0) empty_at = static_cast<long>(k);
-      s.certified &= v.holds.known() ? yes : unknown;
+      if (v.holds.unknown() && undecided_at < 0) undecided_at = static_cast<long>(k);
     }
   }
+  if (undecided_at >= 0 && (empty_at < 0 || undecided_at < empty_at)) s.certified = unknown;  // else M_k is ∅ anyway
   for (std::size_t k = 0; k < r.dims.size(); ++k) {
     Level<Q> st;
     st.dim = empty_at >= 0 && static_cast<long>(k) >= empty_at ? -1 : r.dims[k];
@@ -385,17 +387,19 @@ GraphForced graph_forced(const io::Netlist& deck) {
   g.certified = yes;  // the graph decides the tower; each condition below may make it unknown
   g.dims = t.dims;
   g.solution_rank = t.solution_rank;
-  long empty_at = -1;  // cutsets bound M_1, loops of voltage sources M_2
+  long empty_at = -1, undecided_at = -1;  // cutsets bound M_1, loops of voltage sources M_2
   std::set<std::string> seen;
   const auto decide = [&](const std::vector<graph::LoopBranch>& path, long level) {
     if (empty_at >= 0 && level > empty_at) return;  // beyond the first empty M_k nothing is asked
     const SourceCondition v = decide_path(path, c, deck.waveforms);
     if (seen.insert(v.text).second) g.conditions.push_back(v);
-    g.certified &= v.holds.known() ? yes : unknown;
+    if (v.holds.unknown() && (undecided_at < 0 || level < undecided_at)) undecided_at = level;
     if (v.holds.no() && (empty_at < 0 || level < empty_at)) empty_at = level;
   };
   for (const graph::Cutset& cut : t.current_cutsets) decide(cut, 1);
   for (const graph::Loop& loop : t.voltage_loops) decide(loop, 2);
+  // a condition left undecided matters below the first empty M_k only (one that fails beside it empties M_k anyway)
+  if (undecided_at >= 0 && (empty_at < 0 || undecided_at < empty_at)) g.certified = unknown;
   if (empty_at >= 0) {
     g.dims.resize(std::min<std::size_t>(g.dims.size(), static_cast<std::size_t>(empty_at)));
     g.dims.push_back(-1);

@@ -7,6 +7,7 @@
 #include <arb_poly.h>
 #include <flint/fmpq.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace dcad::reference::pipeline {
@@ -123,7 +124,11 @@ bool waveform_ball(arb_t out, const Waveform& w, const Rational& t, long order, 
   switch (w.kind) {
     case Waveform::Kind::sin: sin_ball(out, w, t, order, prec); return true;
     case Waveform::Kind::sffm: sffm_ball(out, w, t, order, prec); return true;
-    case Waveform::Kind::exp: return w.period == 0 && exp_ball(out, w, t, order, prec);
+    case Waveform::Kind::exp:
+      if (w.period == 0) return exp_ball(out, w, t, order, prec);
+      if (!(t < std::min(w.p[2], w.p[4]))) return false;  // gnucap's periodic EXP: its closed-form sum has no ball here
+      set_q(out, order == 0 ? w.p[0] : Rational(0), prec);  // before TD1 and TD2 no period has started: IV (bm_exp.cc)
+      return true;
     default: {  // DC, PULSE, PWL: exact
       Rational v, slope;
       w.exact_piece(t, v, slope);
