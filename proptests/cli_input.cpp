@@ -1087,6 +1087,13 @@ TEST(Cli, SourceConditionsAreDecidedAgainstTheWaveforms) {
   // fast's graph route picks the loops V1 V2 and V1 V3: certified, M_2 = ∅.
   const std::string three = write_temp(
       "dcad_cond_three.cir", "t\nV1 a 0 DC 1\nV2 a 0 PULSE(1 1 0 1u 1u 1m 2m)\nV3 a 0 SIN(0 2 1k)\nR1 a 0 1\n.end\n");
+  // A 4 ns PULSE beside a 1 Hz SIN: the samples take each waveform's corners up to its own horizon (two periods), not
+  // the slow one's 4 s (a billion periods: refused as bad input before, found by the review)
+  const std::string fast_pulse =
+      write_temp("dcad_cond_fast_pulse.cir", "t\nV1 a 0 SIN(0 1 1)\nV2 a 0 PULSE(0 1 0 1n 1n 1n 4n)\nR1 a 0 1\n.end\n");
+  const Outcome fp = run("solve " + fast_pulse + " --json --backend reference");
+  ASSERT_EQ(fp.rc, 0) << fp.err;
+  EXPECT_EQ(nlohmann::json::parse(fp.out)["sources"]["conditions"][0]["holds"], false) << fp.out;
   for (const std::string backend : {"reference", "fast", "certified"}) {
     const nlohmann::json r3 = nlohmann::json::parse(run("solve " + three + " --json --backend " + backend).out);
     EXPECT_EQ(r3["dims"], nlohmann::json::array({12, 7, -1})) << backend;

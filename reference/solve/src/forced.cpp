@@ -82,8 +82,9 @@ Sampled sample(const QM& row, const std::vector<io::Waveform>& waveforms, long o
   if (horizon == 0) horizon = 1;
   std::vector<double> ts{0};
   for (std::size_t j = 0; j < m; ++j)
-    if (in_row[j]) {
-      const std::vector<double> corners = waveforms[j].breakpoints(horizon);
+    if (in_row[j]) {  // each waveform's corners up to its own horizon (a 4 ns PULSE beside a 1 Hz SIN: two periods)
+      const double own = waveforms[j].horizon();
+      const std::vector<double> corners = waveforms[j].breakpoints(own > 0 ? std::min(own, horizon) : horizon);
       ts.insert(ts.end(), corners.begin(), corners.end());
     }
   std::sort(ts.begin(), ts.end());
