@@ -126,16 +126,6 @@ int structural_rank(const std::vector<ArrayEquation>& eqs, std::size_t from, std
   return rank;
 }
 
-/// Whether the array is affine in the unknowns at the point's time (Gauss–Newton holds t): every gradient depends
-/// on t alone.  Its least residual is then the exact least-squares residual at that t.
-bool affine_in_unknowns(const std::vector<ArrayEquation>& eqs, std::size_t time) {
-  std::set<std::size_t> vars;
-  std::unordered_set<const ex::ExprNode*> seen;
-  for (const ArrayEquation& q : eqs)
-    for (const auto& [v, g] : q.grad) variables_of(g, vars, seen);
-  return vars.empty() || (vars.size() == 1 && *vars.begin() == time);
-}
-
 /// Equation i of the array at z, alone (a probe of one row need not evaluate the array and its Jacobian).
 double row_value(const std::vector<ArrayEquation>& eqs, std::size_t i, const std::vector<double>& z) {
   std::unordered_map<const ex::ExprNode*, double> memo;
@@ -303,6 +293,13 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
       ceiling = 1024 * std::max(1.0, v0.j.size() ? v0.j.cwiseAbs().maxCoeff() : 0.0) * zmax;
     }
     Newton nw = gauss_newton(eqs, z, cols, held, ceiling);
+    const auto affine = [&] {  // in the unknowns at the point's time (Newton holds t): gradients of t alone
+      std::set<std::size_t> vars;
+      std::unordered_set<const ex::ExprNode*> seen;
+      for (const ArrayEquation& q : eqs)
+        for (const auto& [v, g] : q.grad) variables_of(g, vars, seen);
+      return vars.empty() || (vars.size() == 1 && *vars.begin() == time);
+    };
     if (!nw.zero()) {  // no zero of F_k found near the point
       if (any_held) {  // first from a nudged start (x² + y² = 1 with x given, y at 0: ∂/∂y = 0 there)
         std::vector<double> nudged = before;
@@ -338,7 +335,7 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
       if (nw.residual <= 1e-6 * nw.scale)
         uncertain("F_" + std::to_string(k) + "'s least residual " + text(nw.residual) + " is small against its scale " +
                   text(nw.scale) + ": a zero missed by rounding?");
-      else if (!affine_in_unknowns(eqs, time))
+      else if (!affine())
         uncertain("F_" + std::to_string(k) +
                   " is nonlinear in the unknowns: Gauss–Newton from one start proves no "
                   "emptiness");
