@@ -628,28 +628,3 @@ RC_GTEST_PROP(Implicit, EmptyM1IsProvedExactlyWhenACombinationIsAConstant, ()) {
 }
 
 }  // namespace dcad::test
-
-namespace dcad::test {
-
-// fast's derivative array on equations affine in the unknowns at the point's time (Gauss–Newton holds t): a
-// least residual beyond rounding proves M_{k+1} empty there, whatever t's coefficients.  t x = 1, t x + t y = 2,
-// x' = y at t = 1: M_1 = {(1, 1)}, its tangency x + t x' = 0 gives x' = −1 against x' = y = 1, so M_2 = ∅ — by hand.
-// fast's own verdict is certain (it blamed nonlinearity before, for the coefficients t), and the backend, whose
-// exact route reaches no point of an empty M_c, says not certified rather than guess.
-TEST(Implicit, AffineInTheUnknownsAtItsTimeIsDecided) {
-  const io::Problem p = io::parse_case(
-      R"({"dcad": 1, "implicit": {"coordinates": ["x", "y"], "equations": ["v_x - y", "t*x - 1", "t*x + t*y - 2"],
-          "time": "t"}, "initial": {"t": "1"}})",
-      "affine-time-varying.json");
-  fast::Options own;
-  own.confirm_exactly = false;
-  const fast::Solution f = fast::solve(p, {}, own);
-  EXPECT_EQ(f.dims(), (std::vector<long>{2, 0, -1}));
-  EXPECT_FALSE(f.consistent);
-  EXPECT_TRUE(f.certified.yes()) << f.note;
-  const fast::Solution b = fast::solve(p);
-  EXPECT_EQ(b.dims(), f.dims());
-  EXPECT_FALSE(b.certified.yes());
-}
-
-}  // namespace dcad::test
