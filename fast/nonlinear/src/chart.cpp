@@ -606,7 +606,10 @@ double ChartField::drift(const std::vector<double>& y, double t) const {
   if (k_) constraints_.evaluate(at.data(), phi.data());
   double scale = 1, d = 0;
   for (std::size_t i = 0; i < 2 * n_; ++i) scale = std::max(scale, std::abs(y[i]));
-  for (double x : phi) d = std::max(d, std::abs(x));
+  for (double x : phi) {
+    if (!std::isfinite(x)) return HUGE_VAL;  // a constraint undefined there (a root of a negative …) is not on M_c
+    d = std::max(d, std::abs(x));
+  }
   return d / scale;
 }
 

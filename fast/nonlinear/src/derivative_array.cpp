@@ -126,6 +126,15 @@ int structural_rank(const std::vector<ArrayEquation>& eqs, std::size_t from, std
   return rank;
 }
 
+/// Whether every gradient of the array is a constant (F_k affine with constant coefficients): Gauss–Newton's least
+/// residual is then the least-squares residual of one linear system.
+bool constant_gradients(const std::vector<ArrayEquation>& eqs) {
+  for (const ArrayEquation& q : eqs)
+    for (const auto& [v, g] : q.grad)
+      if (!ex::is_number(g)) return false;
+  return true;
+}
+
 /// Equation i of the array at z, alone (a probe of one row need not evaluate the array and its Jacobian).
 double row_value(const std::vector<ArrayEquation>& eqs, std::size_t i, const std::vector<double>& z) {
   std::unordered_map<const ex::ExprNode*, double> memo;
@@ -293,12 +302,6 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
       ceiling = 1024 * std::max(1.0, v0.j.size() ? v0.j.cwiseAbs().maxCoeff() : 0.0) * zmax;
     }
     Newton nw = gauss_newton(eqs, z, cols, held, ceiling);
-    const auto affine = [&] {
-      for (const ArrayEquation& q : eqs)
-        for (const auto& [v, g] : q.grad)
-          if (!ex::is_number(g)) return false;
-      return true;
-    };
     if (!nw.zero()) {  // no zero of F_k found near the point
       if (any_held) {  // first from a nudged start (x² + y² = 1 with x given, y at 0: ∂/∂y = 0 there)
         std::vector<double> nudged = before;
@@ -334,8 +337,10 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
       if (nw.residual <= 1e-6 * nw.scale)
         uncertain("F_" + std::to_string(k) + "'s least residual " + text(nw.residual) + " is small against its scale " +
                   text(nw.scale) + ": a zero missed by rounding?");
-      else if (!affine())
-        uncertain("F_" + std::to_string(k) + " is nonlinear: Gauss–Newton from one start proves no emptiness");
+      else if (!constant_gradients(eqs))
+        uncertain("F_" + std::to_string(k) +
+                  "'s gradients are not constant (nonlinear, or coefficients that vary with t): "
+                  "Gauss–Newton from one start proves no emptiness");
       break;
     }
     if (eqs.empty()) {  // no equation: every velocity is free

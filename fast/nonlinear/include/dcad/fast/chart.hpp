@@ -125,7 +125,7 @@ class ChartField {
   std::size_t n() const { return n_; }
   /// d/dt (q, v) at (q, v) (2n values) and time t.
   void rates(const double* y, double t, double* dy) const;
-  /// The largest |constraint| at (y, t), relative to the magnitude of y (at least 1).
+  /// The largest |constraint| at (y, t), relative to the magnitude of y (at least 1); HUGE_VAL where one is not finite.
   double drift(const std::vector<double>& y, double t) const;
   /// y moved onto M_c by Gauss–Newton steps of least norm (the constraints' Jacobian has full row rank on
   /// a regular M_c); false if 20 steps do not bring the drift below `tol`.
