@@ -511,11 +511,18 @@ bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::v
     std::copy(y.begin(), y.end(), at.begin());
     at[w] = t;
     phi_tape.evaluate(at.data(), phi.data());
-    double scale = 1, d = 0;
-    for (double x : y) scale = std::max(scale, std::abs(x));
-    for (double x : phi) d = std::max(d, std::abs(x));
+    jac_tape.evaluate(at.data(), jac.data());
+    double d = 0;
+    bool small = true;  // each constraint against its own terms: x − 1 beside y/2^60 − 1 at y = 2^60 is not on it at
+                        // x = 0.86 (a tolerance relative to the largest coordinate took it: a false alarm of check)
+    for (std::size_t i = 0; i < k; ++i) {
+      double terms = 0;
+      for (std::size_t j = 0; j < w; ++j) terms += std::abs(jac[i * w + j] * y[j]);
+      d = std::max(d, std::abs(phi[i]));
+      small = small && std::abs(phi[i]) <= tol * terms;
+    }
     if (!std::isfinite(d)) return false;
-    if (d <= tol * scale) return true;
+    if (small) return true;
     stalled = d < previous / 2 ? 0 : stalled + 1;
     previous = std::min(previous, d);
     if (stalled >= 3) {  // Newton no longer gains: at rounding level if every residual is within its rounding bound
@@ -524,7 +531,6 @@ bool project_onto(const std::vector<Expr>& constraints, const std::vector<std::v
         if (!val.zero(c)) return false;
       return true;
     }
-    jac_tape.evaluate(at.data(), jac.data());
     Eigen::MatrixXd J(k, w);
     for (std::size_t i = 0; i < k; ++i)
       for (std::size_t j = 0; j < w; ++j) J(i, j) = held && j < held->size() && (*held)[j] ? 0.0 : jac[i * w + j];

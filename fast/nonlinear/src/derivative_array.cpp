@@ -23,6 +23,7 @@ namespace ex = symbolic::expr;
 struct ArrayEquation {
   ex::Expr e;
   std::vector<std::pair<std::size_t, ex::Expr>> grad;
+  ex::Expr dt;  ///< ∂e/∂t
 };
 
 void variables_of(const ex::Expr& e, std::set<std::size_t>& out, std::unordered_set<const ex::ExprNode*>& seen) {
@@ -35,7 +36,7 @@ void variables_of(const ex::Expr& e, std::set<std::size_t>& out, std::unordered_
 using symbolic::expr::tree_size;
 
 ArrayEquation equation(const ex::Expr& e, std::size_t time) {
-  ArrayEquation q{e, {}};
+  ArrayEquation q{e, {}, ex::diff(e, time)};
   std::set<std::size_t> vars;
   std::unordered_set<const ex::ExprNode*> seen;
   variables_of(e, vars, seen);
@@ -49,7 +50,7 @@ ArrayEquation equation(const ex::Expr& e, std::size_t time) {
 
 /// d/dt e = ∂_t e + Σ_v ∂e/∂v · (v's next derivative), v's next derivative n indices on.
 ex::Expr total_derivative(const ArrayEquation& q, std::size_t n, std::size_t time) {
-  ex::Expr d = ex::diff(q.e, time);
+  ex::Expr d = q.dt;
   for (const auto& [v, g] : q.grad) d = ex::add(d, ex::mul(g, ex::variable(v + n)));
   return d;
 }
@@ -82,6 +83,77 @@ double value(const ex::Expr& e, const std::vector<double>& z, std::unordered_map
   return r;
 }
 
+/// e at z with a bound on the rounding of its evaluation in double (a running error analysis: each operation's
+/// own rounding, u |result| with u = 2^-53, plus its operands' bounds carried through the operation's first
+/// derivative; the elementary functions within two units).  An identically zero bracket of terms of 10^16 rounds to
+/// about 2 in double — its bound says so, where the bare value says "2".
+struct Rounded {
+  double v = 0, err = 0;
+};
+Rounded rounded(const ex::Expr& e, const std::vector<double>& z,
+                std::unordered_map<const ex::ExprNode*, Rounded>& memo) {
+  if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
+  constexpr double u = 0x1p-53, inf = HUGE_VAL;
+  const auto sub = [&](const ex::Expr& x) { return rounded(x, z, memo); };
+  Rounded r;
+  switch (e->op) {
+    case ex::ExprOp::Number: r.v = e->value.convert_to<double>(), r.err = u * std::abs(r.v); break;
+    case ex::ExprOp::Variable: r.v = z.at(e->var); break;
+    case ex::ExprOp::Add:
+    case ex::ExprOp::Sub: {
+      const Rounded a = sub(e->a), b = sub(e->b);
+      r.v = e->op == ex::ExprOp::Add ? a.v + b.v : a.v - b.v;
+      r.err = a.err + b.err + u * std::abs(r.v);
+      break;
+    }
+    case ex::ExprOp::Neg: r = sub(e->a), r.v = -r.v; break;
+    case ex::ExprOp::Mul: {
+      const Rounded a = sub(e->a), b = sub(e->b);
+      r.v = a.v * b.v;
+      r.err = std::abs(a.v) * b.err + std::abs(b.v) * a.err + a.err * b.err + u * std::abs(r.v);
+      break;
+    }
+    case ex::ExprOp::Div: {  // |a/b − (a+α)/(b+β)| ≤ (|α| + |a/b| |β|) / (|b| − |β|)
+      const Rounded a = sub(e->a), b = sub(e->b);
+      r.v = a.v / b.v;
+      r.err =
+          std::abs(b.v) > b.err ? (a.err + std::abs(r.v) * b.err) / (std::abs(b.v) - b.err) + u * std::abs(r.v) : inf;
+      break;
+    }
+    case ex::ExprOp::Pow: {  // |(a+α)^n − a^n| ≤ |n| |α| max_{|x − a| ≤ |α|} |x|^(n−1)
+      const Rounded a = sub(e->a);
+      const double n = static_cast<double>(e->exponent), lo = std::abs(a.v) - a.err, hi = std::abs(a.v) + a.err;
+      r.v = std::pow(a.v, n);
+      const double m = n >= 1 ? std::pow(hi, n - 1) : (lo > 0 ? std::pow(lo, n - 1) : inf);
+      r.err = (n == 0 ? 0.0 : std::abs(n) * a.err * m) + 2 * u * std::abs(r.v);
+      break;
+    }
+    case ex::ExprOp::Sin:
+    case ex::ExprOp::Cos: {  // 1-Lipschitz
+      const Rounded a = sub(e->a);
+      r.v = e->op == ex::ExprOp::Sin ? std::sin(a.v) : std::cos(a.v);
+      r.err = a.err + 2 * u * std::max(std::abs(r.v), 0x1p-60);
+      break;
+    }
+    case ex::ExprOp::Exp: {
+      const Rounded a = sub(e->a);
+      r.v = std::exp(a.v);
+      r.err = r.v * std::expm1(a.err) + 2 * u * r.v;
+      break;
+    }
+    case ex::ExprOp::Sqrt: {  // |√(a+α) − √a| ≤ min(√|α|, |α|/√a)
+      const Rounded a = sub(e->a);
+      r.v = std::sqrt(a.v);
+      r.err = std::min(std::sqrt(a.err), a.v > 0 ? a.err / r.v : inf) + u * std::abs(r.v);
+      break;
+    }
+  }
+  if (!std::isfinite(r.v)) r.err = inf;
+  if (std::isnan(r.err)) r.err = inf;
+  memo.emplace(e.get(), r);
+  return r;
+}
+
 struct Values {
   Eigen::VectorXd f;
   Eigen::MatrixXd j;  ///< over the first `cols` variables
@@ -103,13 +175,15 @@ Values evaluate_array(const std::vector<ArrayEquation>& eqs, const std::vector<d
 /// variables through the partial derivatives that are not identically 0 (ArrayEquation::grad; an algebraic
 /// equation has none in x'), by augmenting paths (Kuhn).  It bounds the rank at every point (rank.hpp,
 /// proved_by_structure).
-int structural_rank(const std::vector<ArrayEquation>& eqs, std::size_t from, std::size_t cols) {
+/// `skip`: columns left out as well (the given values, held).
+int structural_rank(const std::vector<ArrayEquation>& eqs, std::size_t from, std::size_t cols,
+                    const std::vector<bool>* skip = nullptr) {
   std::vector<long> owner(cols, -1);  // the equation matched to each column
   std::vector<std::size_t> seen(cols, 0);
   std::size_t round = 0;
   const auto augment = [&](auto&& self, std::size_t i) -> bool {
     for (const auto& [var, g] : eqs[i].grad) {
-      if (var < from || var >= cols || seen[var] == round) continue;
+      if (var < from || var >= cols || seen[var] == round || (skip && (*skip)[var])) continue;
       seen[var] = round;
       if (owner[var] < 0 || self(self, static_cast<std::size_t>(owner[var]))) {
         owner[var] = static_cast<long>(i);
@@ -251,6 +325,163 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
   return out;
 }
 
+/// F_k affine with constant coefficients, F(z) = A z + b(t), where Gauss–Newton found no zero with the columns
+/// `held` fixed: decided on A's free columns scaled by powers of two (a column of 2^-60 beside 1 is data, which
+/// Gauss–Newton's noise cut drops).  A zero, by one least-squares step on the decided rank; or no zero, when A's
+/// rank there is certain and a combination of the rows that no free column moves stays off 0 by more than the
+/// rounding bound of its terms (`rounded`); else undecided, with the reason.
+struct AffineVerdict {
+  enum Kind { zero, empty, undecided } kind = undecided;
+  Newton newton;         ///< zero: at the zero
+  RankDecision rank;     ///< of the free columns, equilibrated
+  std::string evidence;  ///< undecided: why
+  double off = 0;        ///< empty: the largest combination's value beyond its bound (their ratio)
+};
+AffineVerdict affine_verdict(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols,
+                             const std::vector<bool>& held, double ceiling, const Options& opt) {
+  AffineVerdict out;
+  std::vector<Eigen::Index> free;
+  for (std::size_t c = 0; c < cols; ++c)
+    if (!held[c]) free.push_back(static_cast<Eigen::Index>(c));
+  const Values v = evaluate_array(eqs, z, cols);
+  Eigen::MatrixXd a(v.j.rows(), static_cast<Eigen::Index>(free.size()));
+  for (std::size_t k = 0; k < free.size(); ++k) a.col(static_cast<Eigen::Index>(k)) = v.j.col(free[k]);
+  Eigen::VectorXd rs;
+  const Eigen::VectorXd cs = equilibrate(a, rs);
+  const RankRevealing rr(a, -1, opt, false);  // the step's factorization; the decision is counted where it decides
+  // one least-squares step on the decided rank: F's zero if it has one, else its least residual (whose part in
+  // A's range is then at rounding level, so the combinations below are not the sum of large cancelling parts)
+  std::vector<double> w = z;
+  const Eigen::VectorXd step = cs.asDiagonal() * rr.solve_range(-(rs.asDiagonal() * v.f));
+  if (step.allFinite())
+    for (std::size_t k = 0; k < free.size(); ++k)
+      w[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
+  if (const Newton nw = gauss_newton(eqs, w, cols, held, ceiling); nw.zero()) {
+    z = w;
+    out.kind = AffineVerdict::zero;
+    out.newton = nw;
+    return out;
+  }
+  out.rank = proved_by_structure(decide_rank(a, -1, opt), structural_rank(eqs, 0, cols, &held));
+  if (!out.rank.certain.yes() || out.rank.rank != rr.rank()) {
+    out.evidence = "the rank of its Jacobian in the free coordinates: " + out.rank.describe();
+    return out;
+  }
+  const Values at = evaluate_array(eqs, w, cols);
+  std::unordered_map<const ex::ExprNode*, Rounded> memo;
+  Eigen::VectorXd bound(at.f.size());
+  for (Eigen::Index i = 0; i < at.f.size(); ++i) {
+    double terms = 0;  // the coefficients' own rounding (numbers of the formulas), at w
+    for (std::size_t c = 0; c < cols; ++c) terms += std::abs(at.j(i, static_cast<Eigen::Index>(c)) * w[c]);
+    const double err = rounded(eqs[static_cast<std::size_t>(i)].e, w, memo).err;
+    bound(i) = rs(i) * (4 * err + 0x1p-48 * (terms + std::abs(at.f(i))));
+  }
+  const Eigen::MatrixXd n = rr.corange();  // combinations of the (scaled) rows that no free column moves
+  const Eigen::VectorXd value = n.transpose() * (rs.asDiagonal() * at.f), slack = n.cwiseAbs().transpose() * bound;
+  for (Eigen::Index w = 0; w < value.size(); ++w)
+    if (std::abs(value(w)) > slack(w)) out.off = std::max(out.off, std::abs(value(w)) / slack(w));
+  if (out.off > 0)
+    out.kind = AffineVerdict::empty;
+  else
+    out.evidence = "each combination of its rows that no free coordinate moves is within the rounding of its terms";
+  return out;
+}
+
+void withdraw(DerivativeArrayResult& out, const std::string& why) {
+  if (out.certain.yes()) out.evidence = why;
+  out.certain = unknown;
+}
+
+/// The array's level: F_k over its first `cols` columns, and gauss_newton's ceiling.
+struct Level {
+  std::size_t k, cols;
+  double ceiling;
+};
+
+/// Gauss–Newton found no zero of F_k near the point (`nw`): a zero after all where F_k is affine (true: `z` and `nw`
+/// at it), given values that F_k has a zero without (symbolic::PointwiseNoPoint), or M_{k+1} empty in `out` — certain
+/// only where F_k is affine and affine_verdict proves it with and without the given values (Gauss–Newton from one
+/// start proves no emptiness, and its least residual none where it dropped a column or the t-only terms round).
+bool zero_after_all(const symbolic::LagrangianSystem& sys, const std::vector<ArrayEquation>& eqs,
+                    std::vector<double>& z, const std::vector<double>& before, const Level& at,
+                    const std::vector<bool>& held, Newton& nw, const Options& opt, DerivativeArrayResult& out) {
+  const std::string fk = "F_" + std::to_string(at.k);
+  const bool affine = constant_gradients(eqs);
+  AffineVerdict av;
+  if (affine) {
+    av = affine_verdict(eqs, z, at.cols, held, at.ceiling, opt);
+    if (av.kind == AffineVerdict::zero) {
+      nw = av.newton;
+      return true;
+    }
+  }
+  if (std::find(held.begin(), held.end(), true) != held.end()) {  // without the given values: then they are what is off
+    std::vector<double> loose = before;
+    const std::vector<bool> none(held.size(), false);
+    Newton lw = gauss_newton(eqs, loose, at.cols, none, at.ceiling);
+    if (!lw.zero() && affine) {
+      const AffineVerdict lv = affine_verdict(eqs, loose, at.cols, none, at.ceiling, opt);
+      if (lv.kind == AffineVerdict::zero) lw = lv.newton;
+      if (lv.kind == AffineVerdict::undecided && av.kind == AffineVerdict::empty)
+        av.kind = AffineVerdict::undecided, av.evidence = "without the given values, " + lv.evidence;
+    }
+    if (lw.zero()) {
+      std::string given;
+      for (std::size_t i = 0; i < sys.n; ++i)
+        if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
+      throw symbolic::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" +
+                                       std::to_string(at.k + 1) + " (the derivative array " + fk +
+                                       " has a zero without them, none with them: residual " + text(nw.residual) + ")");
+    }
+  }
+  out.consistent = false;
+  out.dims.push_back(-1);
+  out.steps = static_cast<long>(at.k + 1);
+  const std::string empty = ": M_" + std::to_string(at.k + 1) + " is empty";
+  if (av.kind == AffineVerdict::empty)
+    out.why = "the derivative array " + fk + " is affine and a combination of its equations that no coordinate moves " +
+              "stays off 0 by " + text(av.off) + " times its rounding bound" + empty;
+  else
+    out.why = "the derivative array " + fk + " has no zero near the point (Gauss–Newton's least residual " +
+              text(nw.residual) + ")" + empty;
+  if (!affine)
+    withdraw(out, fk + "'s gradients are not constant (nonlinear, or coefficients that vary with t): Gauss–Newton "
+                       "from one start proves no emptiness");
+  else if (av.kind != AffineVerdict::empty)
+    withdraw(out, fk + " is affine, but its emptiness is not proved: " + av.evidence);
+  return false;
+}
+
+/// Whether M_{k+1}'s constraints fix the time: a combination of them that no coordinate moves but t does (t³ x = 1
+/// and y = −3 with x' = y: step 1 asks 3 t² x + t³ y = 0, which with the others fixes t = 1), so M_{k+1}(t) is empty
+/// at generic times — the reference's "condition on the time alone" (pointwise/run.hpp), which a derivative array at
+/// one fixed t never sees by its zeros.  `corange` combines F_k's rows scaled by `rs` (those no derivative moves),
+/// `g` is their gradient in x.  Sets `out` (empty, with its certainty) where it does.
+bool time_alone(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, const Eigen::MatrixXd& corange,
+                const Eigen::VectorXd& rs, const Eigen::MatrixXd& g, int rg, double scale, std::size_t k,
+                const Options& opt, DerivativeArrayResult& out) {
+  Eigen::VectorXd jt(static_cast<Eigen::Index>(eqs.size()));
+  std::unordered_map<const ex::ExprNode*, double> memo;
+  for (std::size_t i = 0; i < eqs.size(); ++i)
+    jt(static_cast<Eigen::Index>(i)) = rs(static_cast<Eigen::Index>(i)) * value(eqs[i].dt, z, memo);
+  Eigen::MatrixXd aug(g.rows(), g.cols() + 1);
+  aug << g, corange.transpose() * jt;
+  const double m = aug.col(g.cols()).cwiseAbs().maxCoeff();
+  if (!(m > 0)) return false;
+  aug.col(g.cols()) *= std::ldexp(1.0, -std::ilogb(m));  // a power of two: no rank changes
+  const RankDecision d = decide_rank(aug, scale, opt);
+  if (d.rank <= rg) return false;
+  out.consistent = false;
+  out.dims.push_back(-1);
+  out.steps = static_cast<long>(k + 1);
+  out.why = "step " + std::to_string(k) + " gives a condition on the time alone: M_" + std::to_string(k + 1) +
+            "(t) is empty at generic times";
+  // the rank beyond rg is what is claimed: σ_{rg+1} beyond τ1
+  if (!(d.singular_values[static_cast<std::size_t>(rg)] > d.nonzero_threshold) || d.probed)
+    withdraw(out, "the condition on the time alone at step " + std::to_string(k) + ": " + d.describe());
+  return true;
+}
+
 }  // namespace
 
 DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, const std::vector<double>& start,
@@ -269,10 +500,7 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
   std::vector<ArrayEquation> eqs;
   for (const ex::Expr& c : sys.constraints)
     eqs.push_back(equation(ex::substitute(c, sys.t(), ex::variable(time)), time));
-  const auto uncertain = [&](const std::string& why) {
-    if (out.certain.yes()) out.evidence = why;
-    out.certain = unknown;
-  };
+  const auto uncertain = [&](const std::string& why) { withdraw(out, why); };
   const auto decided = [&](const RankDecision& d, const std::string& what) {
     if (!d.certain.yes()) uncertain(what + ": " + d.describe());
   };
@@ -314,35 +542,7 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
         }
       }
     }
-    if (!nw.zero()) {
-      if (any_held) {  // the same without the given values: then they are what is off
-        std::vector<double> loose = before;
-        const Newton lw = gauss_newton(eqs, loose, cols, std::vector<bool>(time, false), ceiling);
-        if (lw.zero()) {
-          std::string given;
-          for (std::size_t i = 0; i < n; ++i)
-            if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
-          throw symbolic::PointwiseNoPoint("the given values (" + given + ") violate a constraint of M_" +
-                                           std::to_string(k + 1) + " (the derivative array F_" + std::to_string(k) +
-                                           " has a zero without them, none with them: residual " + text(nw.residual) +
-                                           ")");
-        }
-      }
-      out.consistent = false;
-      out.dims.push_back(-1);
-      out.steps = static_cast<long>(k + 1);
-      out.why = "the derivative array F_" + std::to_string(k) +
-                " has no zero near the point (Gauss–Newton's least residual " + text(nw.residual) + "): M_" +
-                std::to_string(k + 1) + " is empty";
-      if (nw.residual <= 1e-6 * nw.scale)
-        uncertain("F_" + std::to_string(k) + "'s least residual " + text(nw.residual) + " is small against its scale " +
-                  text(nw.scale) + ": a zero missed by rounding?");
-      else if (!constant_gradients(eqs))
-        uncertain("F_" + std::to_string(k) +
-                  "'s gradients are not constant (nonlinear, or coefficients that vary with t): "
-                  "Gauss–Newton from one start proves no emptiness");
-      break;
-    }
+    if (!nw.zero() && !zero_after_all(sys, eqs, z, before, Level{k, cols, ceiling}, held, nw, opt, out)) break;
     if (eqs.empty()) {  // no equation: every velocity is free
       out.steps = 0;
       out.solution_rank = static_cast<long>(n);
@@ -460,6 +660,7 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
                       std::to_string(k + 1) + " may be smaller here than its rank says)");
         }
     }
+    if (g.rows() > rg && time_alone(eqs, z, rd.corange(), rs, g, rg, scale, k, opt, out)) return out;
     const long dim = static_cast<long>(n) - rg;
     if (dim != out.dims.back()) {
       out.dims.push_back(dim);

@@ -69,7 +69,8 @@ struct NotOnLevel : ChartFailure {
 };
 
 /// y (q, v) moved onto {constraints = 0} at time t by Gauss–Newton steps of least norm; false if 30
-/// steps do not bring max |constraint| below tol × max(1, |y|).
+/// steps do not bring each |constraint_i| below tol × Σ_j |∂_j constraint_i · y_j| (its own terms), or, where Newton
+/// stalls, within the rounding bound of its evaluation.
 bool project_onto(const std::vector<symbolic::expr::Expr>& constraints,
                   const std::vector<std::vector<symbolic::expr::Expr>>& gradients, std::vector<double>& y, double t,
                   double tol, const std::vector<bool>* held = nullptr);
