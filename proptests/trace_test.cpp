@@ -8,6 +8,8 @@
 #include "dcad/certified/solve.hpp"
 #include "dcad/fast/solve.hpp"
 #include "dcad/io/problem.hpp"
+#include "dcad/fast/chart.hpp"
+#include "dcad/reference/pipeline/exact_place.hpp"
 #include "dcad/reference/solve.hpp"
 #include "dcad/symbolic/jet.hpp"
 
@@ -199,3 +201,43 @@ TEST(Trace, FastOwnVerdictOnTheImplicitCasesIsTheirTowerWhereCertain) {
 }
 
 }  // namespace dcad_own_verdict
+
+namespace dcad_gradient_routes {
+
+namespace ex = dcad::symbolic::expr;
+using dcad::reference::Rational;
+
+// Two routes to a formula's gradient at a point, as dcad check takes them (a formula of 10⁶ characters is not
+// differentiated symbolically once per column): fast::Tape::jacobian (forward differentiation of the compiled
+// formula) against the tape of the symbolic derivatives ex::diff, in double; reference::pipeline::exact_gradient (jets
+// of order 1) against exact_value of ex::diff, in rationals — on a formula with every operation of the grammar.
+TEST(Trace, GradientsByJetsAndTapesEqualTheDerivativeFormulas) {
+  const ex::Expr x = ex::variable(0), y = ex::variable(1), t = ex::variable(2);
+  const ex::Expr poly =
+      ex::add(ex::mul(ex::pow(x, 3), y), ex::div(ex::sub(x, ex::number(Rational(2, 7))), ex::add(y, t)));
+  const ex::Expr inv = ex::neg(ex::pow(ex::add(x, y), -2));
+  const ex::Expr fns =
+      ex::add(ex::mul(ex::sin(x), ex::cos(y)), ex::add(ex::exp(ex::mul(x, t)), ex::sqrt(ex::add(x, ex::pow(y, 2)))));
+  const std::vector<ex::Expr> formulas{poly, inv, fns};
+  const std::vector<double> at{0.7, -1.3, 0.4};
+  std::vector<ex::Expr> derivatives;
+  for (const ex::Expr& f : formulas)
+    for (std::size_t j = 0; j < 2; ++j) derivatives.push_back(ex::diff(f, j));  // over x and y (t is no column)
+  std::vector<double> values(3), jac(6), expect_values(3), expect_jac(6);
+  fast::Tape(formulas).jacobian(at.data(), 2, values.data(), jac.data());
+  fast::Tape(formulas).evaluate(at.data(), expect_values.data());
+  fast::Tape(derivatives).evaluate(at.data(), expect_jac.data());
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(values[i], expect_values[i]) << i;
+  for (std::size_t i = 0; i < 6; ++i)
+    EXPECT_NEAR(jac[i], expect_jac[i], 1e-13 * std::max(1.0, std::abs(expect_jac[i]))) << i;
+  const std::vector<Rational> q{Rational(7, 10), Rational(-13, 10), Rational(2, 5)};
+  for (const ex::Expr& f : {poly, inv}) {  // rational there (fns is not: NotExactHere, as exact_value)
+    Rational value;
+    const std::vector<Rational> g = dcad::reference::pipeline::exact_gradient(f, q, 2, &value);
+    EXPECT_EQ(value, dcad::reference::pipeline::exact_value(f, q));
+    for (std::size_t j = 0; j < 2; ++j) EXPECT_EQ(g[j], dcad::reference::pipeline::exact_value(ex::diff(f, j), q)) << j;
+  }
+  EXPECT_THROW(dcad::reference::pipeline::exact_gradient(fns, q, 2), dcad::symbolic::NotExactHere);
+}
+
+}  // namespace dcad_gradient_routes

@@ -247,6 +247,46 @@ void Tape::evaluate(const double* vars, double* out) const {
   for (std::size_t k = 0; k < out_.size(); ++k) out[k] = val_[out_[k]];
 }
 
+void Tape::jacobian(const double* vars, std::size_t width, double* out, double* jac) const {
+  evaluate(vars, out);
+  std::vector<double> d(ops_.size() * width, 0.0);
+  for (std::size_t i = 0; i < ops_.size(); ++i) {
+    const Op& o = ops_[i];
+    double* di = d.data() + i * width;
+    const double *da = d.data() + o.a * width, *db = d.data() + o.b * width, a = val_[o.a], b = val_[o.b];
+    const auto chain = [&](double f) {  // d(g(a)) = g'(a) da
+      for (std::size_t j = 0; j < width; ++j) di[j] = f * da[j];
+    };
+    switch (o.op) {
+      case ExprOp::Number: break;
+      case ExprOp::Variable:
+        if (static_cast<std::size_t>(o.k) < width) di[o.k] = 1;
+        break;
+      case ExprOp::Add:
+        for (std::size_t j = 0; j < width; ++j) di[j] = da[j] + db[j];
+        break;
+      case ExprOp::Sub:
+        for (std::size_t j = 0; j < width; ++j) di[j] = da[j] - db[j];
+        break;
+      case ExprOp::Mul:
+        for (std::size_t j = 0; j < width; ++j) di[j] = b * da[j] + a * db[j];
+        break;
+      case ExprOp::Div:
+        for (std::size_t j = 0; j < width; ++j) di[j] = (da[j] - val_[i] * db[j]) / b;
+        break;
+      case ExprOp::Neg: chain(-1); break;
+      case ExprOp::Pow:
+        chain(o.k == 0 ? 0.0 : static_cast<double>(o.k) * std::pow(a, static_cast<double>(o.k - 1)));
+        break;
+      case ExprOp::Sin: chain(std::cos(a)); break;
+      case ExprOp::Cos: chain(-std::sin(a)); break;
+      case ExprOp::Exp: chain(val_[i]); break;
+      case ExprOp::Sqrt: chain(0.5 / val_[i]); break;
+    }
+  }
+  for (std::size_t k = 0; k < out_.size(); ++k) std::copy_n(d.data() + out_[k] * width, width, jac + k * width);
+}
+
 // ---- The chart ------------------------------------------------------------------------------
 
 Chart chart_at(const symbolic::LagrangianSystem& s, const std::vector<double>& generic) {

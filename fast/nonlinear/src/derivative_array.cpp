@@ -325,18 +325,42 @@ Newton gauss_newton(const std::vector<ArrayEquation>& eqs, std::vector<double>& 
   return out;
 }
 
-/// F_k affine with constant coefficients, F(z) = A z + b(t), where Gauss–Newton found no zero with the columns
-/// `held` fixed: decided on A's free columns scaled by powers of two (a column of 2^-60 beside 1 is data, which
-/// Gauss–Newton's noise cut drops).  A zero, by one least-squares step on the decided rank; or no zero, when A's
-/// rank there is certain and a combination of the rows that no free column moves stays off 0 by more than the
-/// rounding bound of its terms (`rounded`); else undecided, with the reason.
+/// F_k affine with constant coefficients, F(z) = A z + b(t), with the columns `held` fixed, decided on A's free
+/// columns scaled by powers of two (a column of 2^-60 beside 1 is data, which Gauss–Newton's noise cut drops): a zero
+/// by a least-squares step on the decided rank or on every column (v_x + v_y/2^60 beside v_x: a zero at v_y = −2^120
+/// that the decided rank truncates), taken by Gauss–Newton's test; "empty" where a combination of the rows that no
+/// free column moves stays off 0 by more than the rounding bound of its terms (`rounded`) — also against a zero that
+/// Gauss–Newton's relative test took (x = 2^40 beside x = 2^40 + 1/16) — certain only with A's rank certain;
+/// undecided otherwise, with the reason.
 struct AffineVerdict {
   enum Kind { zero, empty, undecided } kind = undecided;
-  Newton newton;         ///< zero: at the zero
-  RankDecision rank;     ///< of the free columns, equilibrated
-  std::string evidence;  ///< undecided: why
-  double off = 0;        ///< empty: the largest combination's value beyond its bound (their ratio)
+  Newton newton;          ///< zero: at the zero
+  std::string evidence;   ///< undecided (or a zero in double that a combination contradicts): why
+  double off = 0;         ///< empty: the largest combination's value beyond its bound (their ratio)
+  bool unproved = false;  ///< a combination within its rounding bound but not 0: a zero in double, not proved one
 };
+
+/// The largest ratio of a combination's value (the columns of `n`, over rows scaled by `rs`) to the rounding bound of
+/// its terms at w: beyond 1, F_k has no zero (A's rank being what `n` says).  `nonzero`: whether a value is not 0.
+double off_by(const std::vector<ArrayEquation>& eqs, const std::vector<double>& w, std::size_t cols,
+              const Eigen::MatrixXd& n, const Eigen::VectorXd& rs, bool& nonzero) {
+  const Values at = evaluate_array(eqs, w, cols);
+  std::unordered_map<const ex::ExprNode*, Rounded> memo;
+  Eigen::VectorXd bound(at.f.size());
+  for (Eigen::Index i = 0; i < at.f.size(); ++i) {
+    double terms = 0;  // the coefficients' own rounding (numbers of the formulas), at w
+    for (std::size_t c = 0; c < cols; ++c) terms += std::abs(at.j(i, static_cast<Eigen::Index>(c)) * w[c]);
+    const double err = rounded(eqs[static_cast<std::size_t>(i)].e, w, memo).err;
+    bound(i) = rs(i) * (4 * err + 0x1p-48 * (terms + std::abs(at.f(i))));
+  }
+  const Eigen::VectorXd value = n.transpose() * (rs.asDiagonal() * at.f), slack = n.cwiseAbs().transpose() * bound;
+  double off = 0;
+  for (Eigen::Index k = 0; k < value.size(); ++k)
+    if (std::abs(value(k)) > slack(k)) off = std::max(off, std::abs(value(k)) / slack(k));
+  nonzero = value.size() > 0 && value.cwiseAbs().maxCoeff() != 0;
+  return off;
+}
+
 AffineVerdict affine_verdict(const std::vector<ArrayEquation>& eqs, std::vector<double>& z, std::size_t cols,
                              const std::vector<bool>& held, double ceiling, const Options& opt) {
   AffineVerdict out;
@@ -348,42 +372,53 @@ AffineVerdict affine_verdict(const std::vector<ArrayEquation>& eqs, std::vector<
   for (std::size_t k = 0; k < free.size(); ++k) a.col(static_cast<Eigen::Index>(k)) = v.j.col(free[k]);
   Eigen::VectorXd rs;
   const Eigen::VectorXd cs = equilibrate(a, rs);
-  const RankRevealing rr(a, -1, opt, false);  // the step's factorization; the decision is counted where it decides
-  // one least-squares step on the decided rank: F's zero if it has one, else its least residual (whose part in
-  // A's range is then at rounding level, so the combinations below are not the sum of large cancelling parts)
-  std::vector<double> w = z;
-  const Eigen::VectorXd step = cs.asDiagonal() * rr.solve_range(-(rs.asDiagonal() * v.f));
-  if (step.allFinite())
-    for (std::size_t k = 0; k < free.size(); ++k)
-      w[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
-  if (const Newton nw = gauss_newton(eqs, w, cols, held, ceiling); nw.zero()) {
-    z = w;
-    out.kind = AffineVerdict::zero;
-    out.newton = nw;
+  const RankRevealing rr(a, -1, opt, false);  // the steps' factorization; the decision is counted where it decides
+  const Eigen::VectorXd rhs = -(rs.asDiagonal() * v.f);
+  // Gaussian elimination on every column besides: its row operations on exact binary data are exact (v_x + v_y/2^60
+  // less v_x leaves v_y/2^60, which a Householder reflection drowns in its rounding of 1e-16)
+  Eigen::FullPivLU<Eigen::MatrixXd> full(a);
+  full.setThreshold(0.0);
+  // the least-residual point (the decided rank's step: its part in A's range at rounding level, so the combinations
+  // are not sums of large cancelling parts), then a zero if a step reaches one
+  std::vector<double> least = z;
+  bool first = true;
+  for (const Eigen::VectorXd& step :
+       {Eigen::VectorXd(cs.asDiagonal() * rr.solve_range(rhs)), Eigen::VectorXd(cs.asDiagonal() * full.solve(rhs))}) {
+    std::vector<double> w = z;
+    if (step.allFinite())
+      for (std::size_t k = 0; k < free.size(); ++k)
+        w[static_cast<std::size_t>(free[k])] += step(static_cast<Eigen::Index>(k));
+    const Newton nw = gauss_newton(eqs, w, cols, held, ceiling);
+    if (first || nw.zero()) least = w, first = false;
+    if (nw.zero()) {
+      out.kind = AffineVerdict::zero;
+      out.newton = nw;
+      break;
+    }
+  }
+  bool nonzero = false;
+  const double off = rr.rank() < a.rows() ? off_by(eqs, least, cols, rr.corange(), rs, nonzero) : 0.0;
+  if (off == 0) {
+    if (out.kind == AffineVerdict::zero) z = least;
+    // within the rounding of its terms but not 0: x − 1 beside x − 1 − y/2^60 and y = 1 (off by 2^-60) is no zero
+    out.unproved = nonzero;
+    out.evidence = "each combination of its rows that no free coordinate moves is within the rounding of its terms" +
+                   std::string(nonzero ? ", but not 0: a contradiction below double's resolution is not excluded" : "");
     return out;
   }
-  out.rank = proved_by_structure(decide_rank(a, -1, opt), structural_rank(eqs, 0, cols, &held));
-  if (!out.rank.certain.yes() || out.rank.rank != rr.rank()) {
-    out.evidence = "the rank of its Jacobian in the free coordinates: " + out.rank.describe();
-    return out;
-  }
-  const Values at = evaluate_array(eqs, w, cols);
-  std::unordered_map<const ex::ExprNode*, Rounded> memo;
-  Eigen::VectorXd bound(at.f.size());
-  for (Eigen::Index i = 0; i < at.f.size(); ++i) {
-    double terms = 0;  // the coefficients' own rounding (numbers of the formulas), at w
-    for (std::size_t c = 0; c < cols; ++c) terms += std::abs(at.j(i, static_cast<Eigen::Index>(c)) * w[c]);
-    const double err = rounded(eqs[static_cast<std::size_t>(i)].e, w, memo).err;
-    bound(i) = rs(i) * (4 * err + 0x1p-48 * (terms + std::abs(at.f(i))));
-  }
-  const Eigen::MatrixXd n = rr.corange();  // combinations of the (scaled) rows that no free column moves
-  const Eigen::VectorXd value = n.transpose() * (rs.asDiagonal() * at.f), slack = n.cwiseAbs().transpose() * bound;
-  for (Eigen::Index w = 0; w < value.size(); ++w)
-    if (std::abs(value(w)) > slack(w)) out.off = std::max(out.off, std::abs(value(w)) / slack(w));
-  if (out.off > 0)
+  // a combination off 0 beyond its rounding: no zero, if A's rank is what the combinations assume
+  const RankDecision d = proved_by_structure(decide_rank(a, -1, opt), structural_rank(eqs, 0, cols, &held));
+  if (d.certain.yes() && d.rank == rr.rank()) {
     out.kind = AffineVerdict::empty;
-  else
-    out.evidence = "each combination of its rows that no free coordinate moves is within the rounding of its terms";
+    out.off = off;
+    return out;
+  }
+  out.off = off;  // (kind zero or undecided: a contradiction the rank does not settle)
+  out.evidence = "a combination of its rows that no free coordinate moves is " + text(off) +
+                 " times its rounding bound off 0, but the rank of its Jacobian in the free coordinates is not "
+                 "certain: " +
+                 d.describe();
+  if (out.kind == AffineVerdict::zero) z = least;
   return out;
 }
 
@@ -398,10 +433,11 @@ struct Level {
   double ceiling;
 };
 
-/// Gauss–Newton found no zero of F_k near the point (`nw`): a zero after all where F_k is affine (true: `z` and `nw`
-/// at it), given values that F_k has a zero without (symbolic::PointwiseNoPoint), or M_{k+1} empty in `out` — certain
-/// only where F_k is affine and affine_verdict proves it with and without the given values (Gauss–Newton from one
-/// start proves no emptiness, and its least residual none where it dropped a column or the t-only terms round).
+/// Gauss–Newton found no zero of F_k near the point (`nw`), or F_k is affine and its zero has a residual: a zero after
+/// all (true: `z` and `nw` at it), given values that F_k has a zero without (symbolic::PointwiseNoPoint), or M_{k+1}
+/// empty in `out` — certain only where F_k is affine and affine_verdict proves it with and without the given values
+/// (Gauss–Newton from one start proves no emptiness, and its least residual none where it dropped a column or the
+/// t-only terms round; its relative test no zero where 2^40 beside 2^40 + 1/16 is a contradiction).
 bool zero_after_all(const symbolic::LagrangianSystem& sys, const std::vector<ArrayEquation>& eqs,
                     std::vector<double>& z, const std::vector<double>& before, const Level& at,
                     const std::vector<bool>& held, Newton& nw, const Options& opt, DerivativeArrayResult& out) {
@@ -410,22 +446,23 @@ bool zero_after_all(const symbolic::LagrangianSystem& sys, const std::vector<Arr
   AffineVerdict av;
   if (affine) {
     av = affine_verdict(eqs, z, at.cols, held, at.ceiling, opt);
-    if (av.kind == AffineVerdict::zero) {
-      nw = av.newton;
-      return true;
-    }
+    if (av.kind != AffineVerdict::empty && (av.off > 0 || av.unproved)) withdraw(out, fk + ": " + av.evidence);
+    if (av.kind == AffineVerdict::zero) nw = av.newton;
+    if (av.kind == AffineVerdict::zero || (av.kind == AffineVerdict::undecided && nw.zero())) return true;
   }
   if (std::find(held.begin(), held.end(), true) != held.end()) {  // without the given values: then they are what is off
     std::vector<double> loose = before;
     const std::vector<bool> none(held.size(), false);
     Newton lw = gauss_newton(eqs, loose, at.cols, none, at.ceiling);
-    if (!lw.zero() && affine) {
+    bool off = false;  // the loose zero proved not one
+    if (affine) {
       const AffineVerdict lv = affine_verdict(eqs, loose, at.cols, none, at.ceiling, opt);
       if (lv.kind == AffineVerdict::zero) lw = lv.newton;
+      off = lv.kind == AffineVerdict::empty;
       if (lv.kind == AffineVerdict::undecided && av.kind == AffineVerdict::empty)
         av.kind = AffineVerdict::undecided, av.evidence = "without the given values, " + lv.evidence;
     }
-    if (lw.zero()) {
+    if (lw.zero() && !off) {
       std::string given;
       for (std::size_t i = 0; i < sys.n; ++i)
         if (held[i]) given += (given.empty() ? "" : ", ") + sys.names[i];
@@ -460,12 +497,25 @@ bool zero_after_all(const symbolic::LagrangianSystem& sys, const std::vector<Arr
 bool time_alone(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, const Eigen::MatrixXd& corange,
                 const Eigen::VectorXd& rs, const Eigen::MatrixXd& g, int rg, double scale, std::size_t k,
                 const Options& opt, DerivativeArrayResult& out) {
-  Eigen::VectorXd jt(static_cast<Eigen::Index>(eqs.size()));
-  std::unordered_map<const ex::ExprNode*, double> memo;
-  for (std::size_t i = 0; i < eqs.size(); ++i)
-    jt(static_cast<Eigen::Index>(i)) = rs(static_cast<Eigen::Index>(i)) * value(eqs[i].dt, z, memo);
+  Eigen::VectorXd jt(static_cast<Eigen::Index>(eqs.size())), err(jt.size());
+  std::unordered_map<const ex::ExprNode*, Rounded> memo;
+  for (std::size_t i = 0; i < eqs.size(); ++i) {
+    const Rounded r = rounded(eqs[i].dt, z, memo);
+    const Eigen::Index ii = static_cast<Eigen::Index>(i);
+    jt(ii) = rs(ii) * r.v, err(ii) = rs(ii) * r.err;
+  }
   Eigen::MatrixXd aug(g.rows(), g.cols() + 1);
   aug << g, corange.transpose() * jt;
+  // a combination's t-derivative that cancels to rounding level is 0 (x' = t, y' = t, x = y: the rows' ∂t cancel to
+  // 1e-16, which scaled up was a time condition), as is one within the evaluation's bound (2^60 (1/(1/t) − t))
+  const Eigen::VectorXd terms = corange.cwiseAbs().transpose() * jt.cwiseAbs(),
+                        bound = corange.cwiseAbs().transpose() * err;
+  // (and against the whole column: a combination's coefficient at rounding level on a row with ∂t ≠ 0 is noise of the
+  // factorization, 5.6e-17 on the doubled circle x² + y² = 25 + t²)
+  const double largest = jt.size() ? jt.cwiseAbs().maxCoeff() : 0.0;
+  for (Eigen::Index w = 0; w < aug.rows(); ++w)
+    if (!(std::abs(aug(w, g.cols())) > opt.nonzero_factor * std::max(terms(w), largest) + 4 * bound(w)))
+      aug(w, g.cols()) = 0;
   const double m = aug.col(g.cols()).cwiseAbs().maxCoeff();
   if (!(m > 0)) return false;
   aug.col(g.cols()) *= std::ldexp(1.0, -std::ilogb(m));  // a power of two: no rank changes
@@ -480,6 +530,26 @@ bool time_alone(const std::vector<ArrayEquation>& eqs, const std::vector<double>
   if (!(d.singular_values[static_cast<std::size_t>(rg)] > d.nonzero_threshold) || d.probed)
     withdraw(out, "the condition on the time alone at step " + std::to_string(k) + ": " + d.describe());
   return true;
+}
+
+/// A zero whose coordinates span more than 1/√ε in magnitude (x1 = 4.3 beside x5 = 1.8e13 for a pencil pulled back
+/// by x_i = y_i + c y_{i-1}², completed from dcad's default point): its Jacobian's entries carry rounding at the large
+/// ones' scale into the small ones, which no equilibration undoes — the rank of M_3's constraints came out one short,
+/// certified (Implicit.PulledBackLinearDaeHasThePlantedTower); no rank deficiency is certain there (rank.hpp's
+/// separation hypothesis, as for graded input).  Their ratio where they do, else 0.
+double graded_zero(const std::vector<double>& z, std::size_t cols, const Options& opt) {
+  double lo = HUGE_VAL, hi = 0;
+  for (std::size_t c = 0; c < cols; ++c)
+    if (std::isfinite(z[c])) hi = std::max(hi, std::abs(z[c]));
+  for (std::size_t c = 0; c < cols; ++c) {
+    // values at rounding level beside the largest (and 1) are zeros, not grading — unless they are 1 or more
+    // (y = 2^60 beside v_y = −2^120 is data: below 1e-12 of the largest it was not counted)
+    const double x = std::abs(z[c]);
+    if ((x > 1e-12 * std::max(1.0, hi) || x >= 1) && std::isfinite(x)) lo = std::min(lo, x);
+  }
+  // (only where the largest is itself beyond 1/√ε: small values beside unit ones — a chain's derivatives of 1e-10
+  // beside multipliers of 30, pF currents beside volts — are the data's own grading, which the equilibration handles)
+  return hi > 1 / opt.nonzero_factor && lo < hi * opt.nonzero_factor ? hi / lo : 0.0;
 }
 
 }  // namespace
@@ -542,7 +612,9 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
         }
       }
     }
-    if (!nw.zero() && !zero_after_all(sys, eqs, z, before, Level{k, cols, ceiling}, held, nw, opt, out)) break;
+    if ((!nw.zero() || (nw.residual > 0 && constant_gradients(eqs))) &&
+        !zero_after_all(sys, eqs, z, before, Level{k, cols, ceiling}, held, nw, opt, out))
+      break;
     if (eqs.empty()) {  // no equation: every velocity is free
       out.steps = 0;
       out.solution_rank = static_cast<long>(n);
@@ -590,26 +662,9 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
     }
     Eigen::VectorXd rs;
     const Eigen::VectorXd cs = equilibrate(v.j, rs);
-    {  // a zero whose coordinates span more than 1/√ε in magnitude (x1 = 4.3 beside x5 = 1.8e13 for a pencil pulled
-       // back by x_i = y_i + c y_{i-1}², completed from dcad's default point): its Jacobian's entries carry rounding
-       // at the large ones' scale into the small ones, which no equilibration undoes — the rank of M_3's
-       // constraints came out one short, certified (Implicit.PulledBackLinearDaeHasThePlantedTower); no rank
-       // deficiency is certain there (rank.hpp's separation hypothesis, as for graded input)
-      double lo = HUGE_VAL, hi = 0;
-      for (std::size_t c = 0; c < cols; ++c)
-        if (std::isfinite(z[c])) hi = std::max(hi, std::abs(z[c]));
-      for (std::size_t c = 0; c < cols;
-           ++c) {  // values at rounding level beside the largest (and 1) are zeros, not grading
-        const double x = std::abs(z[c]);
-        if (x > 1e-12 * std::max(1.0, hi) && std::isfinite(x)) lo = std::min(lo, x);
-      }
-      // (only where the largest is itself beyond 1/√ε: small values beside unit ones — a chain's derivatives of
-      // 1e-10 beside multipliers of 30, pF currents beside volts — are the data's own grading, which the
-      // equilibration handles)
-      if (hi > 1 / opt.nonzero_factor && lo < hi * opt.nonzero_factor)
-        uncertain("the derivative array F_" + std::to_string(k) + "'s zero spans " + text(hi / lo) +
-                  " in magnitude (its coordinates and derivatives): graded beyond a certain rank decision in double");
-    }
+    if (const double span = graded_zero(z, cols, opt); span > 0)
+      uncertain("the derivative array F_" + std::to_string(k) + "'s zero spans " + text(span) +
+                " in magnitude (its coordinates and derivatives): graded beyond a certain rank decision in double");
     const double scale = v.j.norm();
     const Eigen::Index nn = static_cast<Eigen::Index>(n);
     const Eigen::MatrixXd jd = v.j.rightCols(static_cast<Eigen::Index>(cols) - nn), jx = v.j.leftCols(nn),

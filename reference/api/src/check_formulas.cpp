@@ -188,13 +188,9 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
   const std::size_t w = us.width;
   // their formulas and their gradients over the state columns, compiled (variables indexed as in the case:
   // a point is padded to the time's index)
-  fast::Differentiator d;
-  std::vector<ex::Expr> grads;
-  for (const ex::Expr& e : th.constraints)
-    for (std::size_t j = 0; j < w; ++j) grads.push_back(d(e, j));
   std::vector<ex::Expr> eq_formulas;
   for (const auto& [k, e] : th.equations) eq_formulas.push_back(e);
-  const fast::Tape con_tape(th.constraints), grad_tape(grads), eq_tape(eq_formulas);
+  const fast::Tape con_tape(th.constraints), eq_tape(eq_formulas);
   const std::size_t t_index = names.size() - 1, needed = w - static_cast<std::size_t>(us.dim);
   std::mt19937_64 rng(20261127);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -221,9 +217,8 @@ std::size_t compare_at_points(const Theirs& th, const Ours& us, const std::vecto
     double scale = 1;
     for (double v : y) scale = std::max(scale, std::abs(v));
     if (!th.constraints.empty()) {
-      std::vector<double> phi(th.constraints.size()), g(grads.size());
-      con_tape.evaluate(x.data(), phi.data());
-      grad_tape.evaluate(x.data(), g.data());
+      std::vector<double> phi(th.constraints.size()), g(th.constraints.size() * w);
+      con_tape.jacobian(x.data(), w, phi.data(), g.data());
       std::vector<std::vector<double>> jac(th.constraints.size(), std::vector<double>(w));
       for (std::size_t i = 0; i < th.constraints.size(); ++i) {
         double gn = 0;
@@ -260,12 +255,15 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
                        Checked& out) {
   std::string where;
   for (std::size_t i = 0; i < width; ++i) where += (i ? ", " : "") + names[i] + " = " + x[i].str();
+  std::vector<reference::Rational> values(th.constraints.size());  // their constraints' exact values at x
   try {
     {  // the rank in rationals (reference::rank: RREF, no threshold)
-      fast::Differentiator d;
       reference::Matrix<reference::Rational> m(th.constraints.size(), width);
-      for (std::size_t i = 0; i < th.constraints.size(); ++i)
-        for (std::size_t j = 0; j < width; ++j) m(i, j) = reference::pipeline::exact_value(d(th.constraints[i], j), x);
+      for (std::size_t i = 0; i < th.constraints.size(); ++i) {
+        const std::vector<reference::Rational> g =
+            reference::pipeline::exact_gradient(th.constraints[i], x, width, &values[i]);
+        for (std::size_t j = 0; j < width; ++j) m(i, j) = g[j];
+      }
       const std::size_t r = static_cast<std::size_t>(reference::rank(m));
       full_rank = r >= needed;
       if (r < needed)
@@ -273,7 +271,7 @@ bool exact_point_check(const Theirs& th, const std::vector<reference::Rational>&
                       std::to_string(r) + " exactly at the point of M_c " + where;
     }
     for (std::size_t i = 0; i < th.constraints.size(); ++i) {
-      const reference::Rational val = reference::pipeline::exact_value(th.constraints[i], x);
+      const reference::Rational& val = values[i];
       if (val != 0)
         out.disagreements.push_back("formulas.constraints/" + std::to_string(i) + ": expected 0 on M_c, found " +
                                     val.str() + " exactly at the point of M_c " + where);

@@ -18,7 +18,7 @@ namespace {
 
 constexpr std::size_t kMaxDepth = 200;        // nesting of parentheses and unary signs
 constexpr long kMaxExponent = 64;             // x^k with |k| ≤ 64: larger ones only make huge derivatives
-constexpr std::size_t kMaxLength = 10000000;  // 10⁷ characters (1.3·10⁶ check in 8.5 s, 0.5 GB)
+constexpr std::size_t kMaxLength = 10000000;  // 10⁷ characters (a check of 1.1·10⁶: 1.9 s, 0.22 GB)
 
 class Parser {
  public:

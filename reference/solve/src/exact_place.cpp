@@ -344,6 +344,20 @@ std::vector<expr::Expr> holonomic_constraints(const LagrangianSystem& s) {
 
 Rational exact_value(const expr::Expr& e, const std::vector<Rational>& x) { return value_at(e, x); }
 
+std::vector<Rational> exact_gradient(const expr::Expr& e, const std::vector<Rational>& x, std::size_t width,
+                                     Rational* value) {
+  const auto space = std::make_shared<const JetSpace>(width, 1);
+  std::vector<Jet<Rational>> vars;
+  vars.reserve(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    vars.push_back(i < width ? Jet<Rational>::variable(space, i, x[i]) : Jet<Rational>(space, x[i]));
+  const Jet<Rational> j = expr::evaluate(e, vars, [&](const Rational& q) { return Jet<Rational>(space, q); });
+  std::vector<Rational> out(width);
+  for (std::size_t i = 0; i < width; ++i) out[i] = j.gradient(i);
+  if (value) *value = j.value();
+  return out;
+}
+
 Rational simplest_near(const Rational& x, long max_den) {
   using boost::multiprecision::mpz_int;
   // convergents h/k of the continued fraction of x, stopped before k exceeds max_den

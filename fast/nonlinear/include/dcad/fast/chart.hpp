@@ -105,6 +105,9 @@ class Tape {
   explicit Tape(const std::vector<symbolic::expr::Expr>& outputs);
   /// out[k] = outputs[k] at vars (indices of the expressions' variables).
   void evaluate(const double* vars, double* out) const;
+  /// The same, with jac[k·width + j] = ∂outputs[k]/∂vars[j] for j < width, by forward differentiation of the tape (no
+  /// derivative formulas are built: their trees, one per column, cost more than the formula itself).
+  void jacobian(const double* vars, std::size_t width, double* out, double* jac) const;
   std::size_t size() const { return ops_.size(); }
 
  private:

@@ -56,6 +56,11 @@ std::vector<expr::Expr> holonomic_constraints(const LagrangianSystem& s);
 /// The exact value of e at x (variables as in LagrangianSystem: q, v, t); NotExactHere where a
 /// function's value is irrational there.
 Rational exact_value(const expr::Expr& e, const std::vector<Rational>& x);
+/// ∂e/∂x_j at x for j < width, exactly, in one pass (jets of order 1 in the first `width` variables: a formula of 10⁶
+/// characters is not differentiated symbolically once per column); NotExactHere where a value is irrational there.
+/// `value`, if given, gets e's exact value at x (the same pass).
+std::vector<Rational> exact_gradient(const expr::Expr& e, const std::vector<Rational>& x, std::size_t width,
+                                     Rational* value = nullptr);
 
 /// The best rational approximation of x with denominator ≤ max_den (continued fractions).
 Rational simplest_near(const Rational& x, long max_den);
