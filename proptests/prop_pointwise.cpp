@@ -427,6 +427,13 @@ RC_GTEST_PROP(Chart, FormulasEqualTheExactPointwiseCad, ()) {
   for (Index i = 0; i < 2 * n; ++i)
     RC_LOG() << "  " << s.variable_names()[i] << " = " << at[i].str() << ": chart " << u[i].str() << " reference "
              << r.velocity[i].str() << "\n";
+  for (const auto& g : r.gauge) {
+    RC_LOG() << "  gauge";
+    for (const Q& x : g) RC_LOG() << " " << x.str();
+    RC_LOG() << "\n";
+  }
+  for (const auto& z : ch.vanishing) RC_LOG() << "  taken as 0 on M_c: " << exact_value(z, at).str() << "\n";
+  for (const auto& c : ch.valid_where) RC_LOG() << "  valid where: " << exact_value(c.formula, at).str() << " != 0\n";
   if (r.gauge.empty()) {
     for (Index i = 0; i < 2 * n; ++i) RC_ASSERT(u[i] == r.velocity[i]);
   } else {  // u − velocity ∈ span(gauge) on the (q, v) coordinates
