@@ -176,7 +176,7 @@ namespace dcad_own_verdict {
 // never counted: consistent, certain, where M_2(t) is empty).
 TEST(Trace, FastOwnVerdictOnTheImplicitCasesIsTheirTowerWhereCertain) {
   int certain = 0, seen = 0;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(DCAD_SOURCE_DIR) + "/cases")) {
+  for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(DCAD_SOURCE_DIR) + "/cases")) {
     if (e.path().extension() != ".json") continue;
     std::ifstream in(e.path());
     const nlohmann::json c = nlohmann::json::parse(in);
