@@ -241,3 +241,44 @@ TEST(Trace, GradientsByJetsAndTapesEqualTheDerivativeFormulas) {
 }
 
 }  // namespace dcad_gradient_routes
+
+namespace dcad_flat_rows {
+
+/// fast's own verdict (no exact confirmation) on an implicit case given as JSON text.
+dcad::fast::Solution own_verdict(const std::string& name, const std::string& text) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / ("dcad_trace_" + name + ".json");
+  std::ofstream(file) << text;
+  dcad::fast::Options opt;
+  opt.confirm_exactly = false;
+  return dcad::fast::solve(dcad::io::read_problem(file.string()), {}, opt);
+}
+
+// A row that vanishes with its differential at the point is a singular point, which fast's own verdict leaves
+// uncertain, however its gradient rounds: (x² − 1/100)² eᵗ at x = 1/10 has a gradient of 7e-19 in double (0.1² −
+// 0.01), all rounding, and is linear in t — the review of 2771ed1 found it certain, [1, 0] (the exact tiers: a
+// singular point).  And a row small only beside the array's largest entry is not flat: ROBER at its published
+// y2 = y3 = 0 (y2' = 0.04 y1 − 10⁴ y2 y3 − 3·10⁷ y2², gradient 1 in y2') is certain, its tower [3, 2].
+TEST(Trace, FlatRowsAreSingularAndSmallOnesAreNot) {
+  const auto implicit = [](const nlohmann::json& coordinates, const nlohmann::json& equations,
+                           const nlohmann::json& initial) {
+    return nlohmann::json{{"dcad", 1},
+                          {"name", "flat"},
+                          {"implicit", {{"coordinates", coordinates}, {"equations", equations}, {"time", "t"}}},
+                          {"initial", initial}}
+        .dump();
+  };
+  const dcad::fast::Solution singular =
+      own_verdict("flat", implicit({"x"}, {"(x^2-1/100)^2*exp(t)"}, {{"x", "1/10"}, {"t", "0"}}));
+  EXPECT_FALSE(singular.certified.yes()) << singular.note;
+  const dcad::fast::Solution product = own_verdict(
+      "flat2", implicit({"x", "y"}, {"v_y - 1", "(x^2-1/100)^2 + y*(x^2-1/100)^2"}, {{"x", "1/10"}, {"y", "0"}}));
+  EXPECT_FALSE(product.certified.yes()) << product.note;
+  dcad::fast::Options opt;
+  opt.confirm_exactly = false;
+  const dcad::fast::Solution rober =
+      dcad::fast::solve(dcad::io::read_problem(std::string(DCAD_SOURCE_DIR) + "/cases/published/rober.json"), {}, opt);
+  EXPECT_TRUE(rober.certified.yes()) << rober.note;
+  EXPECT_EQ(rober.dims(), (std::vector<long>{3, 2}));
+}
+
+}  // namespace dcad_flat_rows

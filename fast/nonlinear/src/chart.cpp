@@ -254,8 +254,8 @@ void Tape::jacobian(const double* vars, std::size_t width, double* out, double* 
     const Op& o = ops_[i];
     double* di = d.data() + i * width;
     const double *da = d.data() + o.a * width, *db = d.data() + o.b * width, a = val_[o.a], b = val_[o.b];
-    const auto chain = [&](double f) {  // d(g(a)) = g'(a) da
-      for (std::size_t j = 0; j < width; ++j) di[j] = f * da[j];
+    const auto chain = [&](double f) {  // d(g(a)) = g'(a) da (0 where a does not move: √(t⁴) at t = 0 is no NaN in x)
+      for (std::size_t j = 0; j < width; ++j) di[j] = da[j] == 0 ? 0.0 : f * da[j];
     };
     switch (o.op) {
       case ExprOp::Number: break;

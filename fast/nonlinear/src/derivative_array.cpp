@@ -552,27 +552,47 @@ double graded_zero(const std::vector<double>& z, std::size_t cols, const Options
   return hi > 1 / opt.nonzero_factor && lo < hi * opt.nonzero_factor ? hi / lo : 0.0;
 }
 
-/// Whether equation i of the array grows faster than linearly away from z (x² does, 2.2e-12·x does not), moving
-/// one of the first `cols` columns or t (`time`) at a time: t⁶⁴ = 0 at t = 0 is a zero of every order there, and a
-/// constraint nowhere else.  A column in which it is linear means its differential is not 0 (ROBER's y2' = … − 3·10⁷
-/// y2² at y2 = 0 is small only beside 3·10⁷).
-bool superlinear(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, std::size_t i, std::size_t cols,
-                 std::size_t time) {
+/// Whether equation i of the array vanishes with its differential at z (a constraint that is not reduced, x² = 0, or
+/// a singular point), as far as double tells:
+///  * its gradient is within the rounding bound of its evaluation (`rounded`; an exact 0 too: y·(eˣ − Σ_{j<8} xʲ/j!) at
+///    x = 0 is flat to order 8; (x² − 1/100)² eᵗ at x = 0.1 has a gradient of 7e-19, all rounding);
+///  * or it is small beside the array's largest entry `jmax` (1e-6: 2.2 pF beside 1000 is not zero) and the row grows
+///    faster than linearly away from z, moving one of the first `cols` columns or t (`time`: t⁶⁴ = 0 at t = 0 is a
+///    zero of every order there, a constraint nowhere else), while its gradient is not resolved by its value and
+///    curvature: Newton stops near x = 1e-9 on x² = 0, where |∇f|² ≈ 2 |f| f''; ROBER's y2' = … − 3·10⁷ y2² at
+///    y2 = 0 has |∇f|² = 1 against |f| f'' ≈ 0, small only beside 3·10⁷.
+bool flat_here(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, std::size_t i, std::size_t cols,
+               std::size_t time, double jmax) {
+  if (ex::is_number(eqs[i].e)) return false;
+  std::unordered_map<const ex::ExprNode*, Rounded> memo;
+  double g2 = 0, gmax = 0;
+  bool resolved = false;
+  for (const auto& [var, g] : eqs[i].grad) {
+    if (var >= cols) continue;
+    const Rounded r = rounded(g, z, memo);
+    g2 += r.v * r.v;
+    gmax = std::max(gmax, std::abs(r.v));
+    resolved = resolved || std::abs(r.v) > 64 * r.err;
+  }
+  if (!resolved) return true;
+  if (gmax > 1e-6 * jmax) return false;
   const double f0 = row_value(eqs, i, z);
   std::vector<std::size_t> moved(cols);
   for (std::size_t c = 0; c < cols; ++c) moved[c] = c;
   moved.push_back(time);
   bool super = false;
+  double curvature = 0;
   for (std::size_t c : moved) {
     const double h = 1e-2 * std::max(1.0, std::abs(z[c]));
     std::vector<double> a = z, b = z;
     a[c] += h;
     b[c] += 2 * h;
-    const double da = std::abs(row_value(eqs, i, a) - f0), db = std::abs(row_value(eqs, i, b) - f0);
-    if (da > 0 && db <= 2.5 * da) return false;
+    const double fa = row_value(eqs, i, a), fb = row_value(eqs, i, b);
+    const double da = std::abs(fa - f0), db = std::abs(fb - f0);
     super = super || (db > 3 * da && db > 0);
+    curvature = std::max(curvature, std::abs(fb - 2 * fa + f0) / (h * h));
   }
-  return super;
+  return super && !(g2 > 100 * std::abs(f0) * curvature);
 }
 
 }  // namespace
@@ -653,14 +673,8 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
     {  // an equation that vanishes with its whole differential at the zero (x² = 0; a singular point): its rank
        // contribution there is not the one nearby — nothing decided from these ranks is certain
       const double jmax = std::max(1.0, v.j.cwiseAbs().maxCoeff());
-      // small against the array is not zero (2.2 pF beside 1000): the row must also grow faster than
-      // linearly away from the point (x² does, 2.2e-12·x does not)
-      // (t moved too: t⁶⁴ = 0 at t = 0 is a zero of every order there, and a constraint nowhere else)
       for (Eigen::Index i = 0; i < v.j.rows(); ++i)
-        // an exactly zero differential needs no probe: y·(eˣ − Σ_{j<8} xʲ/j!) at x = 0 is flat to order 8, below
-        // what double resolves beside it (an exact zero is no pF scale)
-        if (!ex::is_number(eqs[static_cast<std::size_t>(i)].e) && v.j.row(i).cwiseAbs().maxCoeff() <= 1e-6 * jmax &&
-            (v.j.row(i).cwiseAbs().maxCoeff() == 0 || superlinear(eqs, z, static_cast<std::size_t>(i), cols, time))) {
+        if (flat_here(eqs, z, static_cast<std::size_t>(i), cols, time, jmax)) {
           uncertain("equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) +
                     " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a "
                     "singular point)");

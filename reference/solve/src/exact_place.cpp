@@ -235,6 +235,29 @@ std::optional<std::vector<Rational>> second_intersection(const Expr& h, const st
   return p;
 }
 
+/// x moved towards {h = 0} along the coordinates of `vars` that are not `anchored` (least-norm Newton steps in
+/// rationals, each rounded to a denominator ≤ 10¹²), where some are: the line from a rational point of the quadric
+/// through it meets the quadric again beside it, so the anchored values move by ~1e-8 only (x1 = 1/2 given on the
+/// unit circle: y1 = ±√3/2 has no rational value, and the line through (1/2, 0) landed far from x1 = 1/2).
+std::vector<Rational> aimed(const Expr& h, const std::vector<std::size_t>& vars, const std::vector<char>& anchored,
+                            const std::vector<Rational>& x) {
+  std::vector<std::size_t> loose;
+  for (std::size_t w : vars)
+    if (!anchored[w]) loose.push_back(w);
+  std::vector<Rational> aim = x;
+  if (loose.empty() || loose.size() == vars.size()) return aim;
+  for (int it = 0; it < 40; ++it) {
+    const Rational f = value_at(h, aim);
+    if (f == 0) break;
+    const std::vector<Rational> g = exact_gradient(h, aim, aim.size());
+    Rational nn = 0;
+    for (std::size_t w : loose) nn += g[w] * g[w];
+    for (std::size_t w : loose)  // at a critical point (y1 = 0 on the circle), a step off it first
+      aim[w] = nn == 0 ? aim[w] + Rational(1, 2) : simplest_near(aim[w] - f * g[w] / nn, 1000000000000L);
+  }
+  return aim;
+}
+
 /// Puts x on {h = 0} by moving the coordinates in `vars` (h affine in one of them: solved for it; h
 /// quadratic in them: the second intersection of the line from a rational point R of the quadric
 /// through x; of the points found, the nearest to x in the `anchored` coordinates — the given ones —
@@ -255,6 +278,7 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
   if (affine_step(h, vars, x)) return true;
   if (expr::degree_in(h, [&](std::size_t i) { return std::find(vars.begin(), vars.end(), i) != vars.end(); }) != 2)
     return false;
+  const std::vector<Rational> aim = aimed(h, vars, anchored, x);
   const std::vector<Rational> cand = candidate_values(vars, x);
   const std::size_t nc = cand.size();
   std::optional<std::vector<Rational>> best;
@@ -278,7 +302,7 @@ bool land(const Expr& h, const std::vector<std::size_t>& vars, const std::vector
         std::vector<Rational> rp = y;
         rp[z] = root;
         if (value_at(h, rp) != 0) continue;
-        const std::optional<std::vector<Rational>> p = second_intersection(h, vars, x, rp, budget);
+        const std::optional<std::vector<Rational>> p = second_intersection(h, vars, aim, rp, budget);
         if (p && distance(*p) < best_distance) {
           best = p;
           best_distance = distance(*p);
