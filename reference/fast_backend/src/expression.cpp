@@ -89,7 +89,19 @@ Solution solve_implicit(const io::LagrangianCase& c, const Options& options) {
         if (e->b) todo.push_back(e->b.get());
       }
     }
-    const DerivativeArrayResult r = derivative_array(c.system, x, fixed, opt);
+    const long made = opt.probe ? opt.probe->made : 0;
+    const DerivativeArrayResult r = [&] {
+      try {
+        return derivative_array(c.system, x, fixed, opt);
+      } catch (const symbolic::PointwiseNoPoint&) {
+        // given values without a time may hold at the reference's default t = 0 only (x = 0 given on x = t²);
+        // the attempt's decisions are not the answer's (DecisionProbe counts the retry's from where it began)
+        if (!c.system.has_time || fixed[c.system.t()] || x[c.system.t()] == 0) throw;
+        x[c.system.t()] = 0;
+        if (opt.probe) opt.probe->made = made;
+        return derivative_array(c.system, x, fixed, opt);
+      }
+    }();
     Solution out;
     out.file = c.file;
     out.name = c.name;
