@@ -343,7 +343,7 @@ struct AffineVerdict {
 /// The largest ratio of a combination's value (the columns of `n`, over rows scaled by `rs`) to the rounding bound of
 /// its terms at w: beyond 1, F_k has no zero (A's rank being what `n` says).  `nonzero`: whether a value is not 0.
 double off_by(const std::vector<ArrayEquation>& eqs, const std::vector<double>& w, std::size_t cols,
-              const Eigen::MatrixXd& n, const Eigen::VectorXd& rs, bool& nonzero) {
+              const Eigen::MatrixXd& n, const Eigen::VectorXd& rs, double nonzero_factor, bool& nonzero) {
   const Values at = evaluate_array(eqs, w, cols);
   std::unordered_map<const ex::ExprNode*, Rounded> memo;
   Eigen::VectorXd bound(at.f.size());
@@ -353,11 +353,16 @@ double off_by(const std::vector<ArrayEquation>& eqs, const std::vector<double>& 
     const double err = rounded(eqs[static_cast<std::size_t>(i)].e, w, memo).err;
     bound(i) = rs(i) * (4 * err + 0x1p-48 * (terms + std::abs(at.f(i))));
   }
-  const Eigen::VectorXd value = n.transpose() * (rs.asDiagonal() * at.f), slack = n.cwiseAbs().transpose() * bound;
+  // (and the combinations' own rounding: a coefficient of 5.6e-17 in place of 0 times a row's 2e-47 was "off" by
+  // 1.3e14 times the rows' bounds, on a consistent linear system whose zero Gauss–Newton left at 1e-47 — Dae.
+  // LinearFormEqualsImplicitFormOnLinearData; √ε of the rows' values, as for a rank decided certain)
+  const Eigen::VectorXd scaled = rs.asDiagonal() * at.f, value = n.transpose() * scaled,
+                        slack = (n.cwiseAbs().transpose() * bound).array() + nonzero_factor * scaled.cwiseAbs().sum();
   double off = 0;
   for (Eigen::Index k = 0; k < value.size(); ++k)
     if (std::abs(value(k)) > slack(k)) off = std::max(off, std::abs(value(k)) / slack(k));
-  nonzero = value.size() > 0 && value.cwiseAbs().maxCoeff() != 0;
+  // not 0: beyond the combinations' own rounding (a consistent system's zero left at 1e-47 is no contradiction)
+  nonzero = value.size() > 0 && value.cwiseAbs().maxCoeff() > nonzero_factor * scaled.cwiseAbs().sum();
   return off;
 }
 
@@ -397,7 +402,8 @@ AffineVerdict affine_verdict(const std::vector<ArrayEquation>& eqs, std::vector<
     }
   }
   bool nonzero = false;
-  const double off = rr.rank() < a.rows() ? off_by(eqs, least, cols, rr.corange(), rs, nonzero) : 0.0;
+  const double off =
+      rr.rank() < a.rows() ? off_by(eqs, least, cols, rr.corange(), rs, opt.nonzero_factor, nonzero) : 0.0;
   if (off == 0) {
     if (out.kind == AffineVerdict::zero) z = least;
     // within the rounding of its terms but not 0: x − 1 beside x − 1 − y/2^60 and y = 1 (off by 2^-60) is no zero
