@@ -1,6 +1,7 @@
 // Campbell's derivative array for the implicit form (derivative_array.hpp: the definitions).
 #include "dcad/fast/derivative_array.hpp"
 
+#include "dcad/fast/tracked.hpp"
 #include "dcad/symbolic/calculus.hpp"
 
 #include <Eigen/Dense>
@@ -83,73 +84,36 @@ double value(const ex::Expr& e, const std::vector<double>& z, std::unordered_map
   return r;
 }
 
-/// e at z with a bound on the rounding of its evaluation in double (a running error analysis: each operation's
-/// own rounding, u |result| with u = 2^-53, plus its operands' bounds carried through the operation's first
-/// derivative; the elementary functions within two units).  An identically zero bracket of terms of 10^16 rounds to
-/// about 2 in double — its bound says so, where the bare value says "2".
-struct Rounded {
-  double v = 0, err = 0;
-};
-Rounded rounded(const ex::Expr& e, const std::vector<double>& z,
-                std::unordered_map<const ex::ExprNode*, Rounded>& memo) {
+/// e at z with a bound on the rounding of its evaluation in double (fast/tracked.hpp's forward error analysis; z's
+/// coordinates are the point itself, exact): an identically zero bracket of terms of 10^16 rounds to about 2 in double
+/// — its bound says so, where the bare value says "2".
+Tracked rounded(const ex::Expr& e, const std::vector<double>& z,
+                std::unordered_map<const ex::ExprNode*, Tracked>& memo) {
   if (const auto it = memo.find(e.get()); it != memo.end()) return it->second;
-  constexpr double u = 0x1p-53, inf = HUGE_VAL;
+  using F = symbolic::JetFunctions<Tracked>;
   const auto sub = [&](const ex::Expr& x) { return rounded(x, z, memo); };
-  Rounded r;
+  Tracked r;
   switch (e->op) {
-    case ex::ExprOp::Number: r.v = e->value.convert_to<double>(), r.err = u * std::abs(r.v); break;
-    case ex::ExprOp::Variable: r.v = z.at(e->var); break;
-    case ex::ExprOp::Add:
-    case ex::ExprOp::Sub: {
-      const Rounded a = sub(e->a), b = sub(e->b);
-      r.v = e->op == ex::ExprOp::Add ? a.v + b.v : a.v - b.v;
-      r.err = a.err + b.err + u * std::abs(r.v);
+    case ex::ExprOp::Number: r = Tracked::input(e->value.convert_to<double>()); break;
+    case ex::ExprOp::Variable: r = Tracked(z.at(e->var), 0.0); break;
+    case ex::ExprOp::Add: r = sub(e->a) + sub(e->b); break;
+    case ex::ExprOp::Sub: r = sub(e->a) - sub(e->b); break;
+    case ex::ExprOp::Neg: r = -sub(e->a); break;
+    case ex::ExprOp::Mul: r = sub(e->a) * sub(e->b); break;
+    case ex::ExprOp::Div: r = sub(e->a) / sub(e->b); break;
+    case ex::ExprOp::Pow: {  // as the chart's Values evaluate it (repeated products)
+      const Tracked a = sub(e->a);
+      r = Tracked(1);
+      for (long k = 0; k < std::abs(e->exponent); ++k) r = r * a;
+      if (e->exponent < 0) r = Tracked(1) / r;
       break;
     }
-    case ex::ExprOp::Neg: r = sub(e->a), r.v = -r.v; break;
-    case ex::ExprOp::Mul: {
-      const Rounded a = sub(e->a), b = sub(e->b);
-      r.v = a.v * b.v;
-      r.err = std::abs(a.v) * b.err + std::abs(b.v) * a.err + a.err * b.err + u * std::abs(r.v);
-      break;
-    }
-    case ex::ExprOp::Div: {  // |a/b − (a+α)/(b+β)| ≤ (|α| + |a/b| |β|) / (|b| − |β|)
-      const Rounded a = sub(e->a), b = sub(e->b);
-      r.v = a.v / b.v;
-      r.err =
-          std::abs(b.v) > b.err ? (a.err + std::abs(r.v) * b.err) / (std::abs(b.v) - b.err) + u * std::abs(r.v) : inf;
-      break;
-    }
-    case ex::ExprOp::Pow: {  // |(a+α)^n − a^n| ≤ |n| |α| max_{|x − a| ≤ |α|} |x|^(n−1)
-      const Rounded a = sub(e->a);
-      const double n = static_cast<double>(e->exponent), lo = std::abs(a.v) - a.err, hi = std::abs(a.v) + a.err;
-      r.v = std::pow(a.v, n);
-      const double m = n >= 1 ? std::pow(hi, n - 1) : (lo > 0 ? std::pow(lo, n - 1) : inf);
-      r.err = (n == 0 ? 0.0 : std::abs(n) * a.err * m) + 2 * u * std::abs(r.v);
-      break;
-    }
-    case ex::ExprOp::Sin:
-    case ex::ExprOp::Cos: {  // 1-Lipschitz
-      const Rounded a = sub(e->a);
-      r.v = e->op == ex::ExprOp::Sin ? std::sin(a.v) : std::cos(a.v);
-      r.err = a.err + 2 * u * std::max(std::abs(r.v), 0x1p-60);
-      break;
-    }
-    case ex::ExprOp::Exp: {
-      const Rounded a = sub(e->a);
-      r.v = std::exp(a.v);
-      r.err = r.v * std::expm1(a.err) + 2 * u * r.v;
-      break;
-    }
-    case ex::ExprOp::Sqrt: {  // |√(a+α) − √a| ≤ min(√|α|, |α|/√a)
-      const Rounded a = sub(e->a);
-      r.v = std::sqrt(a.v);
-      r.err = std::min(std::sqrt(a.err), a.v > 0 ? a.err / r.v : inf) + u * std::abs(r.v);
-      break;
-    }
+    case ex::ExprOp::Sin: r = F::sin(sub(e->a)); break;
+    case ex::ExprOp::Cos: r = F::cos(sub(e->a)); break;
+    case ex::ExprOp::Exp: r = F::exp(sub(e->a)); break;
+    case ex::ExprOp::Sqrt: r = F::sqrt(sub(e->a)); break;
   }
-  if (!std::isfinite(r.v)) r.err = inf;
-  if (std::isnan(r.err)) r.err = inf;
+  if (!std::isfinite(r.v) || std::isnan(r.e)) r.e = HUGE_VAL;
   memo.emplace(e.get(), r);
   return r;
 }
@@ -345,12 +309,12 @@ struct AffineVerdict {
 double off_by(const std::vector<ArrayEquation>& eqs, const std::vector<double>& w, std::size_t cols,
               const Eigen::MatrixXd& n, const Eigen::VectorXd& rs, double nonzero_factor, bool& nonzero) {
   const Values at = evaluate_array(eqs, w, cols);
-  std::unordered_map<const ex::ExprNode*, Rounded> memo;
+  std::unordered_map<const ex::ExprNode*, Tracked> memo;
   Eigen::VectorXd bound(at.f.size());
   for (Eigen::Index i = 0; i < at.f.size(); ++i) {
     double terms = 0;  // the coefficients' own rounding (numbers of the formulas), at w
     for (std::size_t c = 0; c < cols; ++c) terms += std::abs(at.j(i, static_cast<Eigen::Index>(c)) * w[c]);
-    const double err = rounded(eqs[static_cast<std::size_t>(i)].e, w, memo).err;
+    const double err = rounded(eqs[static_cast<std::size_t>(i)].e, w, memo).e;
     bound(i) = rs(i) * (4 * err + 0x1p-48 * (terms + std::abs(at.f(i))));
   }
   // (and the combinations' own rounding: a coefficient of 5.6e-17 in place of 0 times a row's 2e-47 was "off" by
@@ -504,11 +468,11 @@ bool time_alone(const std::vector<ArrayEquation>& eqs, const std::vector<double>
                 const Eigen::VectorXd& rs, const Eigen::MatrixXd& g, int rg, double scale, std::size_t k,
                 const Options& opt, DerivativeArrayResult& out) {
   Eigen::VectorXd jt(static_cast<Eigen::Index>(eqs.size())), err(jt.size());
-  std::unordered_map<const ex::ExprNode*, Rounded> memo;
+  std::unordered_map<const ex::ExprNode*, Tracked> memo;
   for (std::size_t i = 0; i < eqs.size(); ++i) {
-    const Rounded r = rounded(eqs[i].dt, z, memo);
+    const Tracked r = rounded(eqs[i].dt, z, memo);
     const Eigen::Index ii = static_cast<Eigen::Index>(i);
-    jt(ii) = rs(ii) * r.v, err(ii) = rs(ii) * r.err;
+    jt(ii) = rs(ii) * r.v, err(ii) = rs(ii) * r.e;
   }
   Eigen::MatrixXd aug(g.rows(), g.cols() + 1);
   aug << g, corange.transpose() * jt;
@@ -568,17 +532,16 @@ double graded_zero(const std::vector<double>& z, std::size_t cols, const Options
 ///    curvature: Newton stops near x = 1e-9 on x² = 0, where |∇f|² ≈ 2 |f| f''; ROBER's y2' = … − 3·10⁷ y2² at
 ///    y2 = 0 has |∇f|² = 1 against |f| f'' ≈ 0, small only beside 3·10⁷.
 bool flat_here(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, std::size_t i, std::size_t cols,
-               std::size_t time, double jmax) {
+               std::size_t time, double jmax, std::unordered_map<const ex::ExprNode*, Tracked>& memo) {
   if (ex::is_number(eqs[i].e)) return false;
-  std::unordered_map<const ex::ExprNode*, Rounded> memo;
   double g2 = 0, gmax = 0;
   bool resolved = false;
   for (const auto& [var, g] : eqs[i].grad) {
     if (var >= cols) continue;
-    const Rounded r = rounded(g, z, memo);
+    const Tracked r = rounded(g, z, memo);
     g2 += r.v * r.v;
     gmax = std::max(gmax, std::abs(r.v));
-    resolved = resolved || std::abs(r.v) > 64 * r.err;
+    resolved = resolved || std::abs(r.v) > 64 * r.e;
   }
   if (!resolved) return true;
   if (gmax > 1e-6 * jmax) return false;
@@ -676,14 +639,14 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
       return out;
     }
     Values v = evaluate_array(eqs, z, cols);
-    {  // an equation that vanishes with its whole differential at the zero (x² = 0; a singular point): its rank
-       // contribution there is not the one nearby — nothing decided from these ranks is certain
+    {  // a row vanishing with its differential at the zero (x² = 0; singular): no rank decided here is certain
       const double jmax = std::max(1.0, v.j.cwiseAbs().maxCoeff());
+      std::unordered_map<const ex::ExprNode*, Tracked> memo;
       for (Eigen::Index i = 0; i < v.j.rows(); ++i)
-        if (flat_here(eqs, z, static_cast<std::size_t>(i), cols, time, jmax)) {
-          uncertain("equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) +
-                    " vanishes with its differential at the point (a constraint that is not reduced, x² = 0, or a "
-                    "singular point)");
+        if (flat_here(eqs, z, static_cast<std::size_t>(i), cols, time, jmax, memo)) {
+          uncertain(
+              "equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) + " vanishes " +
+              "with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)");
           break;
         }
     }
