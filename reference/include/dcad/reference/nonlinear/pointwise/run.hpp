@@ -183,7 +183,7 @@ class Run {
     if (e.candidates.empty()) ord = K;
     if (!on_next_level(e)) {  // values at the point not all zero: move the point onto M_{k+1}
       if (ord < 1) return Outcome::MoreOrder;
-      if (move(e.candidates, st.chart, st.x, point, k, out)) return Outcome::Moved;
+      if (const Outcome m = move(e.candidates, st.chart, st.x, point, k, K, out); m != Outcome::Done) return m;
       out.levels.push_back(st.level);
       finish(out, point, st.x);
       return Outcome::Done;  // inconsistent (out says so)
@@ -451,12 +451,14 @@ class Run {
   }
 
   /// The point is not on M_{k+1}: one Newton step on the candidates in the coordinates that may
-  /// move.  False (and `out` says why) if no move can satisfy them: M_{k+1} is empty near here.
-  bool move(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<J>& x,
-            std::vector<T>& point, std::size_t k, PointwiseResult<T>& out) {
+  /// move (Moved).  Done (and `out` says why) if no move can satisfy them: M_{k+1} is empty near
+  /// here; MoreOrder if the jets are too short to tell.
+  Outcome move(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<J>& x,
+               std::vector<T>& point, std::size_t k, long K, PointwiseResult<T>& out) {
     Step st = newton_step(cand, chart, k);
-    const Reach reach = reachable(cand, chart, point, k, st, out);
-    if (reach == Reach::empty) return false;
+    const Reach reach = reachable(cand, chart, point, k, K, st, out);
+    if (reach == Reach::empty) return Outcome::Done;
+    if (reach == Reach::more_order) return Outcome::MoreOrder;
     std::vector<T> delta = step_of(st, chart);
     if (reach == Reach::critical)  // Newton cannot leave a critical point of a combination: start from a nearby point
       for (std::size_t j : st.movable) delta[j] += constant_(Rational(1, 3));
@@ -472,7 +474,7 @@ class Run {
     for (std::size_t v = 0; v < x.size(); ++v)
       if (fixed_[v]) next[v] = point[v];
     point = next;
-    return true;
+    return Outcome::Moved;
   }
 
   /// The linearized candidates g·δ = −ψ at the point, reduced on the coordinates that may move.
@@ -583,9 +585,9 @@ class Run {
   /// Whether the step can bring the point onto M_{k+1}: a candidate without a pivot must vanish there
   /// or be redundant; a nonzero constant, or a condition on the time alone, makes M_{k+1} empty (false,
   /// `out` says why); given values that no other coordinate can meet are bad input (PointwiseNoPoint).
-  enum class Reach { go, empty, critical };
+  enum class Reach { go, empty, critical, more_order };
   Reach reachable(const std::vector<J>& cand, const std::vector<std::size_t>& chart, const std::vector<T>& point,
-                  std::size_t k, const Step& st, PointwiseResult<T>& out) {
+                  std::size_t k, long K, const Step& st, PointwiseResult<T>& out) {
     const std::vector<std::vector<T>>& g = st.g;
     std::vector<char> prow(cand.size(), 0);
     for (const auto& pc : st.piv) prow[pc.first] = 1;
@@ -613,14 +615,7 @@ class Run {
         critical = true;
         continue;
       }
-      if (constant) {
-        out.consistent = false;
-        out.dims.push_back(-1);
-        out.steps = out.dims.size() - 1;
-        out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(comb.value()) +
-                  " (its constraints combined): M_" + std::to_string(k + 1) + " is empty";
-        return Reach::empty;
-      }
+      if (constant) return empty_by_constant(k, comb, out);
       if (flat && st.piv.empty()) {  // every candidate's differential vanishes here: a critical point, not a verdict
         critical = true;
         continue;
@@ -640,6 +635,7 @@ class Run {
         continue;
       }
       if (st.piv.size() < st.rank_all) {  // the constraints need more freedom than the movable coordinates give
+        if (const std::optional<Reach> r = constant_over_all(cand, chart, k, K, st, out)) return *r;
         std::string given;
         for (std::size_t j = 0; j < chart.size(); ++j)
           if (fixed_[chart[j]] && !decide_.zero(g[i][j])) given += (given.empty() ? "" : ", ") + names_[chart[j]];
@@ -650,6 +646,48 @@ class Run {
       // otherwise a redundant candidate: it vanishes on M_{k+1}, where the independent ones bring the point
     }
     return critical && !st.movable.empty() ? Reach::critical : Reach::go;
+  }
+
+  /// M_{k+1} is empty: `comb`, a combination of its constraints, is a nonzero constant.
+  Reach empty_by_constant(std::size_t k, const J& comb, PointwiseResult<T>& out) {
+    out.consistent = false;
+    out.dims.push_back(-1);
+    out.steps = out.dims.size() - 1;
+    out.why = "step " + std::to_string(k) + " requires 0 = " + JetFunctions<T>::text(comb.value()) +
+              " (its constraints combined): M_" + std::to_string(k + 1) + " is empty";
+    return Reach::empty;
+  }
+
+  /// Given values that the movable coordinates cannot bring onto M_{k+1}: the candidates reduced over
+  /// every coordinate of the chart, given ones too.  A combination that none of them moves and that is a
+  /// nonzero constant makes M_{k+1} empty whatever was given (x² + y² = 1 beside x² + y² = 4 with x and y
+  /// given: 0 = 3, an inconsistent system, not a bad given value); nothing otherwise.  A constant to the
+  /// jets' low order only (no nearby point can be tried: the given values stay) asks for longer jets.
+  std::optional<Reach> constant_over_all(const std::vector<J>& cand, const std::vector<std::size_t>& chart,
+                                         std::size_t k, long K, const Step& st, PointwiseResult<T>& out) {
+    std::vector<std::vector<T>> aug = st.g;
+    std::vector<T> rhs(cand.size());
+    for (std::size_t i = 0; i < aug.size(); ++i) {
+      rhs[i] = -cand[i].value();
+      aug[i].resize(chart.size() + cand.size(), T(0));
+      aug[i][chart.size() + i] = T(1);
+    }
+    std::vector<std::size_t> all(chart.size());
+    for (std::size_t j = 0; j < chart.size(); ++j) all[j] = j;
+    std::vector<char> prow(cand.size(), 0);
+    for (const auto& pc : eliminate_constants(aug, rhs, all, decide_)) prow[pc.first] = 1;
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+      if (prow[i] || decide_.zero(rhs[i])) continue;
+      J comb = cand[i] * J(cand[i].space(), T(0));
+      for (std::size_t j = 0; j < cand.size(); ++j)
+        if (!decide_.zero(aug[i][chart.size() + j])) comb += cand[j] * J(cand[j].space(), aug[i][chart.size() + j]);
+      bool constant = true;
+      for (const auto& [idx, c] : comb.entries()) constant = constant && (idx == 0 || decide_.zero(c));
+      if (!constant) continue;
+      if (comb.order() < 6 && K + 2 <= static_cast<long>(2 * s_.n + 6)) return Reach::more_order;
+      return empty_by_constant(k, comb, out);
+    }
+    return std::nullopt;
   }
 
   /// Jets in d variables to order k have at most 5,000 monomials.
