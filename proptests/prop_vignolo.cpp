@@ -12,6 +12,9 @@
 //  - Prop 3.5 with (3.11): with (3.9), (3.3) on 𝓛(𝒜) and (2.13) on 𝒜 have solutions together, π_* maps the
 //    first onto the second, the lift maps back, and dφ_l vanishes on every solution — for any L; Prop 3.7:
 //    J̃ maps each solution into 𝒪̃_l;
+//  - §3.3: z ∈ M_1 by (3.12), by (3.15)'s directions and by the solvability of (3.2), (3.9), one answer;
+//  - §3.5 as printed: Ω̃_l, dφ_l, M_1 = {ẋ + t = 0}, the family (3.26) (with ERRATA's Ż^w ∂/∂ẇ; as printed it
+//    fails), (3.27)'s tangency, J̃(Ẑ) = (1 − ẇ)∂/∂ẇ, 𝒪̃_l = span ∂/∂ẇ and (3.28) on S = {ẇ = 1};
 //  - §3.4, (3.17), (3.21): 𝒪_l = ker Ω_l ∩ V(D^v) is (3.17b)'s; 𝒪̃_l ⌟ Ω̃_l = 0 and ⟨𝒪̃_l, dφ_l⟩ = 0;
 //  - fast = reference on each (fast goes by (2.3), (2.10), (2.12), l*Ω̃_l, Ω̃_l = dφ_l ∧ dt + π*Ω_l, Thm 3.1's
 //    formula and (3.17b)).
@@ -257,7 +260,15 @@ RC_GTEST_PROP(Vignolo, Prop3_5_SolutionsOnTheBundleAndOnAAreOneByProjection, ())
     RC_ASSERT(
         all_points(zhat, [&](const std::vector<Q>& x) { return ref::contains(ot, ref::vertical_endomorphism(d, x)); }));
   }
+  // §3.3: z ∈ M_1 by (3.12) ⇔ dφ_l vanishes on (3.15)'s directions ⇔ (3.2), (3.9) have a solution at z
+  const bool m1 = ref::in_first_constraint_manifold(d);
+  RC_ASSERT(m1 == !zhat.empty);
+  const QSub a = ref::first_constraint_directions(d);
+  RC_ASSERT(m1 == (times(a.basis(), ref::trivialization_differential(d)) == std::vector<Q>(a.dim())));
   const fast::VignoloPoint f = to_fast_point(d);
+  RC_ASSERT(!tally("V (3.12) z in M_1", !fast::in_first_constraint_manifold(f).unknown(),
+                   fast::in_first_constraint_manifold(f).yes() == m1));
+  RC_ASSERT(near(a, fast::first_constraint_directions(f), "V (3.15) directions"));
   RC_ASSERT(near(z, fast::lagrange_chetaev_fields(f, true), "V (2.13)+(3.9)"));
   RC_ASSERT(near(zhat, fast::nonholonomic_fields(f, true), "V (3.3)+(3.9) by Prop 3.5"));
 }
@@ -325,4 +336,90 @@ TEST(Vignolo, BadDataIsRefusedNamingTheField) {
   dependent.phi_t = {Q(0), Q(0)};
   dependent.phi_q = QM(2, 2);
   both(dependent, "independent constraints");
+}
+
+namespace {
+
+/// V §3.5 at (t; x, y, z, w; ẋ, ẏ, ż = w, ẇ): L = ½(ẋ² + ẏ²) + w(ẋ + t) + z with the constraint ż − w = 0,
+/// its derivatives taken by hand.
+Point vignolo_3_5(const std::vector<Q>& v) {
+  const Q &t = v[0], &w = v[4], &xd = v[5], &yd = v[6], &wd = v[7];
+  Point d;
+  d.n = 4;
+  d.qdot = {xd, yd, w, wd};
+  d.lt = w;
+  d.lq = {Q(0), Q(0), Q(1), xd + t};
+  d.lv = {xd + w, yd, Q(0), Q(0)};
+  d.ltv = std::vector<Q>(4);
+  d.lqv = QM(4, 4);
+  d.lqv(0, 3) = Q(1);  // ∂²L/∂w∂ẋ
+  d.lvv = QM(4, 4);
+  d.lvv(0, 0) = d.lvv(1, 1) = Q(1);
+  d.g = QM::from_rows({{Q(0), Q(0), Q(1), Q(0)}}, 4);
+  d.g0 = {-w};
+  d.phi_t = {Q(0)};
+  d.phi_q = QM::from_rows({{Q(0), Q(0), Q(0), Q(-1)}}, 4);
+  return d;
+}
+
+/// A vector of 𝓛 (t, x, y, z, w, ẋ, ẏ, ż, ẇ, u̇) from its nonzero components.
+std::vector<Q> bundle_vector(std::initializer_list<std::pair<Index, Q>> entries) {
+  std::vector<Q> x(10);
+  for (const auto& [i, c] : entries) x[i] = c;
+  return x;
+}
+
+}  // namespace
+
+RC_GTEST_PROP(Vignolo, Section3_5_ExampleAsPrinted, ()) {
+  std::vector<Q> v = integer_vector(8, 4);
+  if (*rc::gen::arbitrary<bool>()) v[5] = -v[0];  // M_1 = {ẋ + t = 0}
+  const bool on_m1 = v[5] + v[0] == 0;
+  const Point d = vignolo_3_5(v);
+  const Q &t = v[0], &w = v[4], &xd = v[5], &yd = v[6], &wd = v[7];
+  enum { T, X, Y, Z, W, XD, YD, ZD, WD, U };
+  // Ω̃_l and dφ_l as printed
+  QM printed(10, 10);
+  const auto add = [&](const std::vector<Q>& a, const std::vector<Q>& b, const Q& c) {
+    for (Index i = 0; i < 10; ++i)
+      for (Index j = 0; j < 10; ++j) printed(i, j) += c * (a[i] * b[j] - b[i] * a[j]);
+  };
+  const auto e = [](Index i) { return bundle_vector({{i, Q(1)}}); };
+  const std::vector<Q> omx = bundle_vector({{X, Q(1)}, {T, -xd}}), omy = bundle_vector({{Y, Q(1)}, {T, -yd}});
+  add(e(U), e(T), Q(1));
+  add(e(XD), omx, Q(1));
+  add(e(W), omx, Q(1));
+  add(e(YD), omy, Q(1));
+  add(e(XD), e(T), -(xd + w));
+  add(e(YD), e(T), -yd);
+  RC_ASSERT(ref::lagrangian_bundle_form(d) == printed);
+  RC_ASSERT(ref::trivialization_differential(d) ==
+            bundle_vector({{U, Q(1)}, {XD, -xd - w}, {YD, -yd}, {W, -(xd + t)}, {T, -w}, {Z, Q(-1)}}));
+  // (3.25) — (3.3) with (3.9) — has solutions exactly on M_1, the family (3.26) (ERRATA: Ż^w ∂/∂ẇ)
+  const Aff sol = ref::nonholonomic_fields(d, true);
+  RC_ASSERT(sol.empty == !on_m1);
+  RC_ASSERT(ref::in_first_constraint_manifold(d) == on_m1);  // (3.12)
+  if (!on_m1) return;
+  const std::vector<Q> z0 = {Q(1), xd, yd, w, Q(0), Q(0), Q(0), Q(0), Q(0)};          // Z^w = Ż^w = 0
+  const std::vector<Q> zw = {Q(0), Q(0), Q(0), Q(0), Q(1), Q(-1), Q(0), Q(1), Q(0)};  // ∂w − ∂ẋ + ∂ż
+  const std::vector<Q> zwd = {Q(0), Q(0), Q(0), Q(0), Q(0), Q(0), Q(0), Q(0), Q(1)};  // ∂ẇ
+  RC_ASSERT(sol.direction ==
+            QSub::span(QM::from_rows({ref::bundle_horizontal_lift(d, zw), ref::bundle_horizontal_lift(d, zwd)}, 10)));
+  RC_ASSERT(sol.contains_point(ref::bundle_horizontal_lift(d, z0)));  // (3.26a): Ẑ = Z + Z(L) ∂/∂u̇
+  RC_ASSERT(!ref::contains(sol.direction, e(U)));  // as printed, Ż^w ∂/∂u̇: not a direction of (3.25)'s solutions
+  // (3.27): tangent to M_1 iff Ẑ(ẋ + t) = Ẋ + Ż^0 = 0, i.e. Z^w = 1; J̃(Ẑ) = (1 − ẇ) ∂/∂ẇ and 𝒪̃_l = span ∂/∂ẇ
+  std::vector<Q> z27 = z0;
+  for (Index i = 0; i < 9; ++i) z27[i] += zw[i] + Q(*rc::gen::inRange(-3, 4)) * zwd[i];
+  const std::vector<Q> zhat = ref::bundle_horizontal_lift(d, z27);
+  RC_ASSERT(sol.contains_point(zhat));
+  RC_ASSERT(zhat[XD] + zhat[T] == 0);
+  RC_ASSERT(ref::vertical_endomorphism(d, zhat) == bundle_vector({{WD, 1 - wd}}));
+  RC_ASSERT(ref::lifted_sode_obstruction(d) == QSub::span(QM::from_rows({e(WD)}, 10)));
+  // (3.28) on S = {ẇ = 1}: Z̄ = ∂t + ẋ∂x + ẏ∂y + ż∂z + ∂w − ∂ẋ + ∂ż + (ż + t) ∂/∂u̇, a dynamical flow there
+  const std::vector<Q> zbar =
+      bundle_vector({{T, Q(1)}, {X, xd}, {Y, yd}, {Z, w}, {W, Q(1)}, {XD, Q(-1)}, {ZD, Q(1)}, {U, w + t}});
+  RC_ASSERT(sol.contains_point(zbar));
+  RC_ASSERT((ref::vertical_endomorphism(d, zbar) == std::vector<Q>(10)) == (wd == 1));
+  const fast::VignoloPoint f = to_fast_point(d);
+  RC_ASSERT(near(sol, fast::nonholonomic_fields(f, true), "V §3.5 (3.26)"));
 }

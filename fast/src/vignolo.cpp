@@ -313,6 +313,32 @@ VectorXd constrained_projection(const VignoloPoint& d, const VectorXd& x) {
   return x - cols * coef;
 }
 
+Subspace first_level_directions(const VignoloPoint& d, const Options& opt) {
+  check(d, "first_level_directions");
+  const Index m = rows_of(d);
+  MatrixXd rows(1 + 2 * m, 2 * static_cast<Index>(d.n) + 2);
+  rows << trivialization_differential(d).transpose(), bundle_constraint_differentials(d), chetaev_forms(d);
+  return Subspace::solutions(rows, -1, assessed_point(d, opt));
+}
+
+Subspace first_constraint_directions(const VignoloPoint& d, const Options& opt_in) {
+  const Options opt = assessed_point(d, opt_in);
+  const MatrixXd w = lagrangian_bundle_form(d);
+  const Subspace chi0 =
+      rows_of(d) ? Subspace::solutions(chetaev_forms(d), -1, opt) : Subspace::whole(static_cast<int>(w.rows()));
+  return intersection(symplectic_complement(w, first_level_directions(d, opt), opt), chi0, opt);
+}
+
+Truth in_first_constraint_manifold(const VignoloPoint& d, const Options& opt_in) {
+  const Options opt = assessed_point(d, opt_in);
+  const Subspace a = first_constraint_directions(d, opt);
+  if (a.dim() == 0) return a.certain();
+  const VectorXd dphil = trivialization_differential(d);
+  const MatrixXd values = (a.columns().transpose() * dphil).transpose();
+  const RankDecision r = decide_rank(values, dphil.norm(), opt);
+  return Truth::decided(r.rank == 0, a.certain() & r.certain);
+}
+
 Subspace sode_obstruction(const VignoloPoint& d, const Options& opt) {
   check(d, "sode_obstruction");
   const Index n = static_cast<Index>(d.n), m = rows_of(d);

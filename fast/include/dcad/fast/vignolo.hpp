@@ -61,6 +61,12 @@ struct ConstrainedSplitting {
 ConstrainedSplitting constrained_splitting(const VignoloPoint& d, const Options& opt = {});
 /// 𝒫(X) = X − η_σ X_{dφ^σ} − λ_σ X_{ν^σ} with ⟨𝒫(X), ν^γ⟩ = ⟨𝒫(X), dφ^γ⟩ = 0 (L regular)  [V (3.8), Thm 3.1].
 VectorXd constrained_projection(const VignoloPoint& d, const VectorXd& x);
+/// TM_0 ∩ χ̂(𝒜)° at z ∈ M_0 = l(𝒜)  [V (3.10)].
+Subspace first_level_directions(const VignoloPoint& d, const Options& opt = {});
+/// z ∈ M_1, decided by (3.15): dφ_l vanishes on (TM_0 ∩ χ̂°)^⊥ ∩ χ̂°  [V (3.12), (3.15)].
+Truth in_first_constraint_manifold(const VignoloPoint& d, const Options& opt = {});
+/// (TM_0 ∩ χ̂(𝒜)°)^⊥ ∩ χ̂(𝒜)°  [V (3.15), k = 0].
+Subspace first_constraint_directions(const VignoloPoint& d, const Options& opt = {});
 /// 𝒪_l = {V^i ∂/∂q̇^i : Γ V = 0, g V = 0}  [V (3.17)].
 Subspace sode_obstruction(const VignoloPoint& d, const Options& opt = {});
 /// 𝒪̃_l = {Ṽ^i (∂L/∂q̇^i ∂/∂u̇ + ∂/∂q̇^i) : Ṽ ∈ 𝒪_l}  [V (3.21)].

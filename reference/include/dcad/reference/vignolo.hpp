@@ -8,6 +8,7 @@
 //   section l: u̇ = L, its trivialization φ_l = u̇ − L and horizontal lift (2.17), J̃ (2.18)  [V §2.2];
 //   the non-holonomic problems (2.13) on 𝒜 and (3.3) on 𝓛(𝒜), each with or without (3.9)  [V §2.1, §3.1–3.2];
 //   the unconstrained problem (2.20) and the decomposition (3.7) with its projector 𝒫  [V Prop 3.1, Thm 3.1];
+//   the algorithm's first step at z ∈ M_0: M_1 by (3.12) and (3.15)'s directions  [V §3.3];
 //   𝒪_l = ker Ω_l ∩ V(D^v) and its lift 𝒪̃_l = l_*(𝒪_l)  [V §3.4, (3.17), (3.21)].
 // Covectors are rows in the same coordinates; Ω(X, Y) = Xᵀ W Y and X ⌟ Ω = Wᵀ X (symplectic.hpp's flat).
 #pragma once
@@ -380,6 +381,29 @@ std::vector<T> constrained_projection(const VignoloPoint<T>& d, const std::vecto
   for (Index k = 0; k < s.constrained.dim(); ++k)
     for (Index j = 0; j < x.size(); ++j) p[j] += c[k] * s.constrained.basis()(k, j);
   return p;
+}
+
+/// TM_0 ∩ χ̂(𝒜)° at z ∈ M_0 = l(𝒜) (3.10): ker dφ_l ∩ ker dφ^σ ∩ ker ν^σ on 𝓛.
+template <class T>
+Subspace<T> first_level_directions(const VignoloPoint<T>& d) {
+  const Matrix<T> rows = vstack(Matrix<T>::from_rows({trivialization_differential(d)}, 2 * d.n + 2),
+                                vstack(bundle_constraint_differentials(d), chetaev_forms(d)));
+  return Subspace<T>::solutions(rows);
+}
+
+/// z ∈ M_1 by (3.12): dφ_l(z) ∈ (TM_0 ∩ χ̂(𝒜)°)^♭ + χ̂(𝒜)  [V (3.12)].
+template <class T>
+bool in_first_constraint_manifold(const VignoloPoint<T>& d) {
+  const Subspace<T> s = first_level_directions(d);
+  const Subspace<T> flats = Subspace<T>::span(s.basis() * lagrangian_bundle_form(d));  // rows sᵀ Ω̃: s ⌟ Ω̃
+  return contains(sum(flats, Subspace<T>::span(chetaev_forms(d))), trivialization_differential(d));
+}
+
+/// (TM_0 ∩ χ̂(𝒜)°)^⊥ ∩ χ̂(𝒜)°, whose pairings with dφ_l are M_1's constraints at z  [V (3.15), k = 0].
+template <class T>
+Subspace<T> first_constraint_directions(const VignoloPoint<T>& d) {
+  return intersection(symplectic_complement(lagrangian_bundle_form(d), first_level_directions(d)),
+                      Subspace<T>::solutions(chetaev_forms(d)));
 }
 
 /// 𝒪_l at z = ker Ω_l ∩ V_z(D^v): vertical vectors V^i ∂/∂q̇^i with ⟨V ‖ g^σ⟩ = V^i g^σ_i = 0 (2.5) in Ω_l's
