@@ -96,7 +96,19 @@ AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_pl
   for (const auto& v : ch.valid_where) z.nonzero.push_back(v.formula);
   z.outputs = ch.rates;
   z.outputs.insert(z.outputs.end(), ch.momenta.begin(), ch.momenta.end());
-  const certified::ZeroEnclosure e = certified::enclose_zero(z);
+  const std::size_t zeros = z.outputs.size();  // what the chart's elimination took as 0 on M_c, enclosed there too
+  z.outputs.insert(z.outputs.end(), ch.vanishing.begin(), ch.vanishing.end());
+  certified::ZeroEnclosure e = certified::enclose_zero(z);
+  for (std::size_t k = 0; e.proved && k < ch.vanishing.size(); ++k)
+    if (const certified::Enclosure& b = e.outputs[zeros + k]; !(std::abs(b.mid) <= b.rad)) {
+      // a ball without 0: the chart's zero decision, made in double at a generic point, fails at the given values
+      // (an entry of -4/5625 beside terms of 10^5, below the double route's drift tolerance): its equations are
+      // another component's there, whatever the balls of its constraints say
+      e.proved = false;
+      e.why = "the chart took " + ex::to_text(ch.vanishing[k], names) +
+              " as 0 on M_c (decided in double at a generic point); at the given values it is " +
+              io::float_text(b.mid) + " +- " + io::float_text(b.rad) + ", not 0";
+    }
   AtGiven a;
   a.proved = e.proved && tower_certain;
   a.why = !e.proved       ? e.why
@@ -129,7 +141,8 @@ AtGiven at_given(const io::LagrangianCase& c, const Charted& charted, bool at_pl
       "the given values held exactly" +
       std::string(a.moved.empty() ? "" : " (except those in `moved`, whose decimals miss M_c)") +
       (held.empty() ? "" : " and " + held + " (not given) held at the double route's values, exactly as printed") +
-      "; the chart's conditions (`valid_where`) are nonzero there, and the velocity is the chart's equations of motion "
+      "; the chart's conditions (`valid_where`) are nonzero there, what its elimination took as 0 has balls "
+      "containing 0, and the velocity is the chart's equations of motion "
       "there; that this "
       "chart is M_c's near the given values rests on " +
       (at_place ? std::string("the tower decided exactly at the rational place (`place`), generic on the component")
