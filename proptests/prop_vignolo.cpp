@@ -17,7 +17,8 @@
 //    fails), (3.27)'s tangency, J̃(Ẑ) = (1 − ẇ)∂/∂ẇ, 𝒪̃_l = span ∂/∂ẇ and (3.28) on S = {ẇ = 1};
 //  - §3.4, (3.17), (3.21): 𝒪_l = ker Ω_l ∩ V(D^v) is (3.17b)'s; 𝒪̃_l ⌟ Ω̃_l = 0 and ⟨𝒪̃_l, dφ_l⟩ = 0;
 //  - fast = reference on each (fast goes by (2.3), (2.10), (2.12), l*Ω̃_l, Ω̃_l = dφ_l ∧ dt + π*Ω_l, Thm 3.1's
-//    formula and (3.17b)).
+//    formula and (3.17b));
+//  - V's "L regular" is not enough: C = g Γ⁻¹ gᵀ must be invertible too (Γ indefinite: a line of solutions or none).
 #include "support/convert.hpp"
 #include "support/gen.hpp"
 #include "support/tally.hpp"
@@ -37,8 +38,12 @@ namespace {
 using Point = ref::VignoloPoint<Q>;
 using Aff = ref::AffineSubspace<Q>;
 
-/// A random point of 𝒜 with its data; `regular`: Γ = ∂²L/∂q̇∂q̇ positive definite.
-Point random_point(bool regular, Index min_constraints = 0) {
+/// Γ = ∂²L/∂q̇∂q̇ positive definite (V's regular L with C = g Γ⁻¹ gᵀ invertible), invertible of any signature, or
+/// of any rank.
+enum class Gamma { definite, invertible, any };
+
+/// A random point of 𝒜 with its data.
+Point random_point(Gamma gamma, Index min_constraints = 0) {
   Point d;
   const Index n = pick_size(std::max<Index>(1, min_constraints), 4);
   d.n = n;
@@ -52,11 +57,11 @@ Point random_point(bool regular, Index min_constraints = 0) {
   d.lv = integer_vector(n);
   d.ltv = integer_vector(n);
   d.lqv = integer_matrix(n, n);
-  if (regular) {
+  if (gamma == Gamma::definite) {
     const QM a = integer_matrix(n, n);
     d.lvv = a.transpose() * a + QM::identity(n);
   } else {
-    d.lvv = symmetric_matrix(n, *rc::gen::inRange<Index>(0, n + 1));
+    d.lvv = symmetric_matrix(n, gamma == Gamma::invertible ? n : *rc::gen::inRange<Index>(0, n + 1));
   }
   d.phi_t = integer_vector(m);
   d.phi_q = m ? integer_matrix(m, n) : QM(0, n);
@@ -120,7 +125,7 @@ bool all_points(const Aff& a, Pred pred) {
 }  // namespace
 
 RC_GTEST_PROP(Vignolo, Section2_1_ContactFormsSpanTheAnnihilatorOfTheDynamicalFlows, ()) {
-  const Point d = random_point(*rc::gen::arbitrary<bool>());
+  const Point d = random_point(*rc::gen::arbitrary<bool>() ? Gamma::definite : Gamma::any);
   const Index n = d.n;
   const Aff j2 = ref::dynamical_flows(d);
   RC_ASSERT(!j2.empty);
@@ -138,7 +143,7 @@ RC_GTEST_PROP(Vignolo, Section2_1_ContactFormsSpanTheAnnihilatorOfTheDynamicalFl
 }
 
 RC_GTEST_PROP(Vignolo, Eq2_7_to_2_12_TauChetaevAndTheVelocitiesOfA, ()) {
-  const Point d = random_point(*rc::gen::arbitrary<bool>());
+  const Point d = random_point(*rc::gen::arbitrary<bool>() ? Gamma::definite : Gamma::any);
   const Index n = d.n, m = d.g.rows(), r = n - m;
   const Aff psi = ref::constraint_velocities(d);
   RC_ASSERT(psi.direction.dim() == r);  // rank ψ_A = r
@@ -168,12 +173,13 @@ RC_GTEST_PROP(Vignolo, Eq2_7_to_2_12_TauChetaevAndTheVelocitiesOfA, ()) {
   const fast::VignoloPoint f = to_fast_point(d);
   RC_ASSERT(near(psi, fast::constraint_velocities(f), "V (2.7b) velocities"));
   RC_ASSERT(near(tau, fast::tau_constraint(f), "V (2.9) tau"));
+  RC_ASSERT(near(ref::constraint_tangent(d), fast::constraint_tangent(f), "V T_zA"));
   RC_ASSERT(near(chi, fast::chetaev_bundle(f), "V (2.11) Chetaev bundle"));
 }
 
 RC_GTEST_PROP(Vignolo, Section2_2_PoincareCartanIsThePullBackOfTheBundleForm, ()) {
   const bool regular = *rc::gen::arbitrary<bool>();
-  const Point d = random_point(regular);
+  const Point d = random_point(regular ? Gamma::definite : Gamma::any);
   const QM w = ref::lagrangian_bundle_form(d), s = ref::section_tangent(d), pc = ref::poincare_cartan(d);
   RC_ASSERT(ref::is_skew(w));
   RC_ASSERT(s.transpose() * w * s == pc);  // Ω_l = l*(Ω̃_l)
@@ -183,14 +189,29 @@ RC_GTEST_PROP(Vignolo, Section2_2_PoincareCartanIsThePullBackOfTheBundleForm, ()
   const fast::VignoloPoint f = to_fast_point(d);
   RC_ASSERT(near(w, fast::lagrangian_bundle_form(f)));
   RC_ASSERT(near(pc, fast::poincare_cartan(f)));
+  RC_ASSERT(near(s, fast::section_tangent(f)));
+  RC_ASSERT(near(QM::column(ref::trivialization_differential(d)), fast::trivialization_differential(f)));
+  RC_ASSERT(near(QM::column(ref::lagrangian_differential(d)), fast::lagrangian_differential(f)));
+  RC_ASSERT(near(ref::chetaev_forms(d), fast::chetaev_forms(f)));
+  RC_ASSERT(near(ref::bundle_constraint_differentials(d), fast::bundle_constraint_differentials(f)));
+  const std::vector<Q> x = integer_vector(2 * d.n + 1);  // (2.17) and (2.18) on a random vector
+  RC_ASSERT(near(QM::column(ref::bundle_horizontal_lift(d, x)), fast::bundle_horizontal_lift(f, to_double(x))));
+  const std::vector<Q> y = integer_vector(2 * d.n + 2);
+  RC_ASSERT(near(QM::column(ref::vertical_endomorphism(d, y)), fast::vertical_endomorphism(f, to_double(y))));
 }
 
 RC_GTEST_PROP(Vignolo, Eq3_4_RegularSolutionIsTheHorizontalLiftOfTheLagrangeChetaevFlow, ()) {
-  const Point d = random_point(true);
+  const Point d = random_point(Gamma::definite);
   const Aff z = ref::lagrange_chetaev_fields(d, false), zhat = ref::nonholonomic_fields(d, true);
   RC_ASSERT(!z.empty);  // L regular, g of full rank: one dynamical flow (2.13)–(2.14)
   RC_ASSERT(z.direction.dim() == 0);
   RC_ASSERT(ref::tau_constraint(d).contains_point(z.point));  // a dynamical flow tangent to 𝒜
+  // (2.14): d/dt ∂L/∂q̇ − ∂L/∂q = Γ q̈ + ∂²L/∂t∂q̇ + ∂²L/∂q∂q̇ q̇ − ∂L/∂q ∈ span{g^σ} (the reaction λ_σ g^σ)
+  const std::vector<Q> acc(z.point.begin() + 1 + static_cast<long>(d.n), z.point.end());
+  std::vector<Q> reaction = times(d.lvv, acc);
+  const std::vector<Q> bq = times(d.lqv, d.qdot);
+  for (Index i = 0; i < d.n; ++i) reaction[i] += d.ltv[i] + bq[i] - d.lq[i];
+  RC_ASSERT(ref::contains(QSub::span(d.g.rows() ? d.g : QM(0, d.n)), reaction));
   RC_ASSERT(!zhat.empty);
   RC_ASSERT(zhat.direction.dim() == 0);
   RC_ASSERT(zhat.point == ref::bundle_horizontal_lift(d, z.point));  // (3.4): Ẑ = Z + Z(L) ∂/∂u̇
@@ -205,7 +226,7 @@ RC_GTEST_PROP(Vignolo, Eq3_4_RegularSolutionIsTheHorizontalLiftOfTheLagrangeChet
 }
 
 RC_GTEST_PROP(Vignolo, Prop3_1_Thm3_1_TheConstrainedFlowIsTheProjectionOfTheFreeOne, ()) {
-  const Point d = random_point(true, 1);
+  const Point d = random_point(Gamma::definite);
   const Index n = d.n, m = d.g.rows(), dim = 2 * n + 2;
   const QM w = ref::lagrangian_bundle_form(d);
   const ref::ConstrainedSplitting<Q> s = ref::constrained_splitting(d);
@@ -230,10 +251,12 @@ RC_GTEST_PROP(Vignolo, Prop3_1_Thm3_1_TheConstrainedFlowIsTheProjectionOfTheFree
       RC_ASSERT(x_nu[1 + n + i] == -gi[i]);
     }
     RC_ASSERT(x_nu[0] == 0);
+    RC_ASSERT(x_dphi[0] == 0);  // (3.5): no ∂/∂t
     RC_ASSERT(x_nu[dim - 1] == -dot(gi, d.lv));
     RC_ASSERT(ref::constrained_projection(d, x_dphi) == std::vector<Q>(dim));  // Prop 3.2(i): φ^σ are Casimirs
   }
   const fast::VignoloPoint f = to_fast_point(d);
+  RC_ASSERT(near(free, fast::unconstrained_fields(f), "V (2.20)"));
   const Eigen::VectorXd pf = fast::constrained_projection(f, to_double(free.point));
   RC_ASSERT((pf - to_double(zhat.point)).norm() <= 1e-8 * (1 + pf.norm()));
   const fast::ConstrainedSplitting fs = fast::constrained_splitting(f);
@@ -243,7 +266,7 @@ RC_GTEST_PROP(Vignolo, Prop3_1_Thm3_1_TheConstrainedFlowIsTheProjectionOfTheFree
 }
 
 RC_GTEST_PROP(Vignolo, Prop3_5_SolutionsOnTheBundleAndOnAAreOneByProjection, ()) {
-  const Point d = random_point(false);  // any rank of Γ
+  const Point d = random_point(Gamma::any);  // any rank of Γ
   const Index dim = 2 * d.n + 1;
   const Aff z = ref::lagrange_chetaev_fields(d, true), zhat = ref::nonholonomic_fields(d, true);
   RC_ASSERT(z.empty == zhat.empty);  // Prop 3.5: algebraic solutions together
@@ -269,12 +292,13 @@ RC_GTEST_PROP(Vignolo, Prop3_5_SolutionsOnTheBundleAndOnAAreOneByProjection, ())
   RC_ASSERT(!tally("V (3.12) z in M_1", !fast::in_first_constraint_manifold(f).unknown(),
                    fast::in_first_constraint_manifold(f).yes() == m1));
   RC_ASSERT(near(a, fast::first_constraint_directions(f), "V (3.15) directions"));
+  RC_ASSERT(near(ref::first_level_directions(d), fast::first_level_directions(f), "V TM_0 ∩ chi0"));
   RC_ASSERT(near(z, fast::lagrange_chetaev_fields(f, true), "V (2.13)+(3.9)"));
   RC_ASSERT(near(zhat, fast::nonholonomic_fields(f, true), "V (3.3)+(3.9) by Prop 3.5"));
 }
 
 RC_GTEST_PROP(Vignolo, Section3_4_TheObstructionDistributionIsInTheKernel, ()) {
-  const Point d = random_point(false);
+  const Point d = random_point(Gamma::any);
   const Index n = d.n;
   const QSub o = ref::sode_obstruction(d), ot = ref::lifted_sode_obstruction(d);
   QM vg = ref::vstack(d.lvv, d.g.rows() ? d.g : QM(0, n));  // (3.17b): Γ V = 0, g V = 0
@@ -329,7 +353,22 @@ TEST(Vignolo, BadDataIsRefusedNamingTheField) {
   both(asym, "symmetric lvv");
   Point shortv = d;
   shortv.lq = {Q(0)};
-  both(shortv, "lq of length 2");
+  both(shortv, "lq of length 2, found length 1");
+  EXPECT_NE(message([&] { ref::vertical_endomorphism(shortv, std::vector<Q>(6)); }).find("lq of length 2"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              fast::vertical_endomorphism(to_fast_point(shortv), Eigen::VectorXd::Zero(6));
+            }).find("lq of length 2"),
+            std::string::npos);
+  EXPECT_NE(
+      message([&] { ref::constrained_projection(d, std::vector<Q>(3)); }).find("X of length 2n + 2, found length 3"),
+      std::string::npos);
+  Point unconstrained = d;  // no constraint: g may be 0x0 (a default matrix) as well as 0xn
+  unconstrained.g = QM();
+  unconstrained.g0 = unconstrained.phi_t = {};
+  unconstrained.phi_q = QM();
+  EXPECT_EQ(ref::sode_obstruction(unconstrained).dim(), 0u);
+  EXPECT_EQ(fast::sode_obstruction(to_fast_point(unconstrained)).dim(), 0);
   Point dependent = d;
   dependent.g = QM::from_rows({{Q(1), Q(1)}, {Q(2), Q(2)}}, 2);
   dependent.g0 = {Q(-1), Q(-2)};
@@ -374,6 +413,7 @@ std::vector<Q> bundle_vector(std::initializer_list<std::pair<Index, Q>> entries)
 RC_GTEST_PROP(Vignolo, Section3_5_ExampleAsPrinted, ()) {
   std::vector<Q> v = integer_vector(8, 4);
   if (*rc::gen::arbitrary<bool>()) v[5] = -v[0];  // M_1 = {ẋ + t = 0}
+  if (*rc::gen::arbitrary<bool>()) v[7] = Q(1);   // S = {ẇ = 1}
   const bool on_m1 = v[5] + v[0] == 0;
   const Point d = vignolo_3_5(v);
   const Q &t = v[0], &w = v[4], &xd = v[5], &yd = v[6], &wd = v[7];
@@ -413,6 +453,7 @@ RC_GTEST_PROP(Vignolo, Section3_5_ExampleAsPrinted, ()) {
   const std::vector<Q> zhat = ref::bundle_horizontal_lift(d, z27);
   RC_ASSERT(sol.contains_point(zhat));
   RC_ASSERT(zhat[XD] + zhat[T] == 0);
+  RC_ASSERT(ref::bundle_horizontal_lift(d, z0)[XD] + 1 != 0);  // Z^w = 0: not tangent to M_1
   RC_ASSERT(ref::vertical_endomorphism(d, zhat) == bundle_vector({{WD, 1 - wd}}));
   RC_ASSERT(ref::lifted_sode_obstruction(d) == QSub::span(QM::from_rows({e(WD)}, 10)));
   // (3.28) on S = {ẇ = 1}: Z̄ = ∂t + ẋ∂x + ẏ∂y + ż∂z + ∂w − ∂ẋ + ∂ż + (ż + t) ∂/∂u̇, a dynamical flow there
@@ -420,6 +461,98 @@ RC_GTEST_PROP(Vignolo, Section3_5_ExampleAsPrinted, ()) {
       bundle_vector({{T, Q(1)}, {X, xd}, {Y, yd}, {Z, w}, {W, Q(1)}, {XD, Q(-1)}, {ZD, Q(1)}, {U, w + t}});
   RC_ASSERT(sol.contains_point(zbar));
   RC_ASSERT((ref::vertical_endomorphism(d, zbar) == std::vector<Q>(10)) == (wd == 1));
+  if (wd == 1) {  // Ẑ|_S = Z̄|_S + V|_S with V = Ż^w ∂/∂ẇ ∈ 𝒪̃_l
+    std::vector<Q> rest = zhat;
+    for (Index i = 0; i < 10; ++i) rest[i] -= zbar[i];
+    RC_ASSERT(ref::contains(ref::lifted_sode_obstruction(d), rest));
+  }
   const fast::VignoloPoint f = to_fast_point(d);
   RC_ASSERT(near(sol, fast::nonholonomic_fields(f, true), "V §3.5 (3.26)"));
+}
+
+// V's "L regular" (det Γ ≠ 0 and rank g maximal) makes C = g Γ⁻¹ gᵀ invertible only where Γ is definite (V's proof of
+// Prop 3.1 says "in view of the regularity assumptions … the matrix C is non-singular").  For Γ invertible of any
+// signature: (2.13) and (3.3) have one solution exactly where C is invertible, and (3.7) is a direct sum exactly there.
+RC_GTEST_PROP(Vignolo, IndefiniteGammaSolvesUniquelyExactlyWhereCIsInvertible, ()) {
+  const Point d = random_point(Gamma::invertible, 1);
+  const Index m = d.g.rows();
+  const QM c = d.g * ref::inverse(d.lvv) * d.g.transpose();
+  const bool invertible = ref::rank(c) == m;
+  const Aff z = ref::lagrange_chetaev_fields(d, false), zhat = ref::nonholonomic_fields(d, false);
+  RC_TAG(invertible ? "C invertible" : "C singular");
+  if (invertible) {
+    RC_ASSERT(!z.empty && z.direction.dim() == 0);
+    RC_ASSERT(!zhat.empty && zhat.direction.dim() == 0);
+    RC_ASSERT(zhat.point == ref::bundle_horizontal_lift(d, z.point));  // (3.4)
+    const Aff free = ref::unconstrained_fields(d);
+    RC_ASSERT(ref::constrained_projection(d, free.point) == zhat.point);  // Thm 3.1
+  } else {
+    RC_ASSERT(z.empty || z.direction.dim() > 0);  // none, or a family: not "the unique solution"
+    RC_ASSERT(zhat.empty == z.empty);
+    bool refused = false;
+    try {
+      ref::constrained_projection(d, std::vector<Q>(2 * d.n + 2));
+    } catch (const std::invalid_argument&) {
+      refused = true;
+    }
+    RC_ASSERT(refused);  // (3.7) is not a direct sum
+  }
+  const fast::VignoloPoint f = to_fast_point(d);
+  RC_ASSERT(near(z, fast::lagrange_chetaev_fields(f, false), "V (2.13) indefinite"));
+  RC_ASSERT(near(zhat, fast::nonholonomic_fields(f, false), "V (3.3) indefinite"));
+}
+
+namespace {
+
+/// L = ½(ẋ² − ẏ²) + a x with the constraint ẋ + ẏ = 0 at (t, x, y, ẋ, ẏ) = (0, 0, 0, 1, −1): Γ = diag(1, −1) is
+/// invertible, C = g Γ⁻¹ gᵀ = 1 − 1 = 0.
+Point hyperbolic(const Q& a) {
+  Point d;
+  d.n = 2;
+  d.qdot = {Q(1), Q(-1)};
+  d.lq = {a, Q(0)};
+  d.lv = {Q(1), Q(1)};  // (ẋ, −ẏ)
+  d.ltv = std::vector<Q>(2);
+  d.lqv = QM(2, 2);
+  d.lvv = QM::from_rows({{Q(1), Q(0)}, {Q(0), Q(-1)}}, 2);
+  d.g = QM::from_rows({{Q(1), Q(1)}}, 2);
+  d.g0 = {Q(0)};
+  d.phi_t = {Q(0)};
+  d.phi_q = QM(1, 2);
+  return d;
+}
+
+}  // namespace
+
+// The two ways V's uniqueness fails with Γ invertible and indefinite (candidate erratum to V Prop 3.1 and §3.1):
+// ẍ = a + λ, ÿ = −λ (2.14) with ẍ + ÿ = 0 — every λ when a = 0 (a line of solutions), none when a = 1.
+TEST(Vignolo, IndefiniteGammaLineOrNothing) {
+  const Aff line = ref::lagrange_chetaev_fields(hyperbolic(Q(0)), false);
+  ASSERT_FALSE(line.empty);
+  EXPECT_EQ(line.direction.dim(), 1u);
+  EXPECT_EQ(ref::nonholonomic_fields(hyperbolic(Q(0)), false).direction.dim(), 1u);
+  EXPECT_TRUE(ref::lagrange_chetaev_fields(hyperbolic(Q(1)), false).empty);
+  EXPECT_TRUE(ref::nonholonomic_fields(hyperbolic(Q(1)), false).empty);
+  EXPECT_TRUE(ref::is_symplectic(ref::lagrangian_bundle_form(hyperbolic(Q(1)))));  // L is regular all the same
+  EXPECT_THROW(fast::constrained_projection(to_fast_point(hyperbolic(Q(1))), Eigen::VectorXd::Zero(6)),
+               std::invalid_argument);
+}
+
+// fast's certainty covers every input value: ∂L/∂t = 1e20 beside derivatives of 1 changes no answer exactly but
+// swamps the scale of the decisions it enters (dφ_l's dt part), so fast must not call z ∈ M_1 certain where, exactly,
+// z ∉ M_1 (n = 1, no constraint, Γ = 0, ∂L/∂q = ∂L/∂q̇ = 1: dφ_l(∂/∂q) = −1 on (3.15)'s direction ∂/∂q).
+TEST(Vignolo, HugeTimeDerivativeLeavesFastUncertainNotWrong) {
+  Point d;
+  d.n = 1;
+  d.qdot = {Q(0)};
+  d.lq = d.lv = {Q(1)};
+  d.ltv = {Q(0)};
+  d.lqv = d.lvv = QM(1, 1);
+  d.g = QM(0, 1);
+  d.phi_q = QM(0, 1);
+  EXPECT_FALSE(ref::in_first_constraint_manifold(d));
+  fast::VignoloPoint f = to_fast_point(d);
+  EXPECT_TRUE(fast::in_first_constraint_manifold(f).no());
+  f.lt = 1e20;
+  EXPECT_FALSE(fast::in_first_constraint_manifold(f).yes());
 }

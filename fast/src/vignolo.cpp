@@ -1,6 +1,7 @@
 #include "dcad/fast/vignolo.hpp"
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 #include <cmath>
 #include <stdexcept>
@@ -22,13 +23,13 @@ void check(const VignoloPoint& d, const char* fn) {
   const auto vec = [&](const VectorXd& v, Index len, const char* name) {
     if (v.size() != len)
       fail(std::string(name) + " of length " + std::to_string(len), "length " + std::to_string(v.size()));
-    require_finite(v, fn);
+    require_finite(v, std::string(fn) + " (" + name + ")");
   };
   const auto mat = [&](const MatrixXd& a, Index r, Index c, const char* name) {
     if (a.rows() != r || a.cols() != c)
       fail(std::string(name) + " " + std::to_string(r) + "x" + std::to_string(c),
            std::to_string(a.rows()) + "x" + std::to_string(a.cols()));
-    require_finite(a, fn);
+    require_finite(a, std::string(fn) + " (" + name + ")");
   };
   vec(d.qdot, n, "qdot");
   vec(d.lq, n, "lq");
@@ -42,7 +43,10 @@ void check(const VignoloPoint& d, const char* fn) {
   vec(d.g0, m, "g0");
   vec(d.phi_t, m, "phi_t");
   if (m) mat(d.phi_q, m, n, "phi_q");
-  if (m && decide_rank(d.g).rank < m) fail("independent constraints (rank g = rows, V (2.6))", "a rank deficiency");
+  if (m)
+    if (const int r = decide_rank(d.g).rank; r < m)
+      fail("independent constraints (rank g = rows, V (2.6))",
+           "rank " + std::to_string(r) + " of " + std::to_string(m));
   for (Index s = 0; s < m; ++s) {
     const double phi = d.g.row(s).dot(d.qdot) + d.g0(s);
     const double terms = d.g.row(s).cwiseAbs().dot(d.qdot.cwiseAbs()) + std::abs(d.g0(s));
@@ -58,6 +62,14 @@ MatrixXd dphi_j1(const VignoloPoint& d) {
   MatrixXd a(m, 2 * n + 1);
   if (m) a << d.phi_t, d.phi_q, d.g;
   return a;
+}
+
+/// The span of `cols`, known to have full column rank (the image of a basis under an injective map): no decision.
+Subspace injective_image(const MatrixXd& cols, Truth certain) {
+  if (cols.cols() == 0) return Subspace::zero(static_cast<int>(cols.rows()));
+  const Eigen::HouseholderQR<MatrixXd> qr(cols);
+  const MatrixXd q = qr.householderQ() * MatrixXd::Identity(cols.rows(), cols.cols());
+  return Subspace::from_orthonormal_columns(q, certain);
 }
 
 /// Z ⌟ Ω_l + c dt ∈ span(χ rows), dt(Z) = 1, dφ Z = 0 (and χ Z = 0): (Z, c) in j₁ × R (c = 0 fixed unless
@@ -83,15 +95,14 @@ AffineSubspace solve_on_j1(const VignoloPoint& d, bool with_c, bool constrained,
   AffineSubspace out;
   out.certain = full.certain;
   out.empty = full.empty;
-  MatrixXd head = MatrixXd::Zero(dim + extra, unknowns);
-  head.leftCols(dim + extra).setIdentity();
-  out.direction = map(head, full.direction, opt);
+  // the multipliers are functions of (Z, c) (χ's rows are independent): dropping them is injective on the solutions
+  out.direction = injective_image(full.direction.columns().topRows(dim + extra), full.direction.certain());
   if (!full.empty) out.point = full.point.head(dim + extra);
   return out;
 }
 
 /// (Z, c) ↦ Ẑ = (Z, dL(Z) + c): the field on 𝓛 whose dφ_l is c.
-AffineSubspace lift_with_c(const VignoloPoint& d, const AffineSubspace& zc, const Options& opt) {
+AffineSubspace lift_with_c(const VignoloPoint& d, const AffineSubspace& zc) {
   const Index dim = 2 * static_cast<Index>(d.n) + 1;
   MatrixXd t = MatrixXd::Zero(dim + 1, dim + 1);
   t.topLeftCorner(dim, dim).setIdentity();
@@ -100,13 +111,14 @@ AffineSubspace lift_with_c(const VignoloPoint& d, const AffineSubspace& zc, cons
   AffineSubspace out;
   out.certain = zc.certain;
   out.empty = zc.empty;
-  out.direction = map(t, zc.direction, opt);
+  out.direction = injective_image(t * zc.direction.columns(), zc.direction.certain());  // t is invertible
   if (!zc.empty) out.point = t * zc.point;
   return out;
 }
 
 Options assessed_point(const VignoloPoint& d, const Options& opt) {
-  return assessed(opt, {d.qdot, d.lq, d.lv, d.ltv, d.lqv, d.lvv, d.g, d.g0, d.phi_t, d.phi_q});
+  return assessed(opt,
+                  {VectorXd::Constant(1, d.lt), d.qdot, d.lq, d.lv, d.ltv, d.lqv, d.lvv, d.g, d.g0, d.phi_t, d.phi_q});
 }
 
 }  // namespace
@@ -274,13 +286,13 @@ AffineSubspace lagrange_chetaev_fields(const VignoloPoint& d, bool chetaev_condi
 AffineSubspace nonholonomic_fields(const VignoloPoint& d, bool chetaev_condition, const Options& opt_in) {
   check(d, "nonholonomic_fields");
   const Options opt = assessed_point(d, opt_in);
-  return lift_with_c(d, solve_on_j1(d, true, true, chetaev_condition, opt), opt);
+  return lift_with_c(d, solve_on_j1(d, true, true, chetaev_condition, opt));
 }
 
 AffineSubspace unconstrained_fields(const VignoloPoint& d, const Options& opt_in) {
   check(d, "unconstrained_fields");
   const Options opt = assessed_point(d, opt_in);
-  return lift_with_c(d, solve_on_j1(d, true, false, false, opt), opt);
+  return lift_with_c(d, solve_on_j1(d, true, false, false, opt));
 }
 
 ConstrainedSplitting constrained_splitting(const VignoloPoint& d, const Options& opt_in) {
@@ -300,16 +312,25 @@ VectorXd constrained_projection(const VignoloPoint& d, const VectorXd& x) {
   if (x.size() != 2 * static_cast<Index>(d.n) + 2)
     throw std::invalid_argument("constrained_projection: expected X of length 2n + 2, found length " +
                                 std::to_string(x.size()));
-  if (m == 0) return x;
+  require_finite(x, "constrained_projection (X)");
   const MatrixXd w = lagrangian_bundle_form(d), nu = chetaev_forms(d), dphi = bundle_constraint_differentials(d);
+  if (const int r = decide_rank(w).rank; r < w.rows())
+    throw std::invalid_argument("constrained_projection: expected L regular (Ω̃_l symplectic), found rank " +
+                                std::to_string(r) + " of " + std::to_string(w.rows()) + " (decided in double)");
+  if (m == 0) return x;
   MatrixXd cols(x.size(), 2 * m);  // X_{dφ^σ} and X_{ν^σ}: α^♯ with ♯(α) ⌟ Ω̃_l = α
   const Eigen::FullPivLU<MatrixXd> lu(w.transpose());
-  if (!lu.isInvertible()) throw std::invalid_argument("constrained_projection: expected L regular (Ω̃_l symplectic)");
   cols.leftCols(m) = lu.solve(MatrixXd(dphi.transpose()));
   cols.rightCols(m) = lu.solve(MatrixXd(nu.transpose()));
   MatrixXd conditions(2 * m, x.size());
   conditions << nu, dphi;
-  const VectorXd coef = (conditions * cols).fullPivLu().solve(conditions * x);
+  const MatrixXd c = conditions * cols;  // [0 C; −C ·]: singular iff C = g Γ⁻¹ gᵀ is (V's proof of Prop 3.1)
+  if (const int r = decide_rank(c, conditions.norm() * cols.norm()).rank; r < 2 * m)
+    throw std::invalid_argument(
+        "constrained_projection: expected C = g Γ⁻¹ gᵀ invertible (the direct sum (3.7), V Prop 3.1), found the "
+        "conditions' matrix of rank " +
+        std::to_string(r) + " of " + std::to_string(2 * m) + " (decided in double)");
+  const VectorXd coef = c.fullPivLu().solve(conditions * x);
   return x - cols * coef;
 }
 
@@ -343,7 +364,8 @@ Subspace sode_obstruction(const VignoloPoint& d, const Options& opt) {
   check(d, "sode_obstruction");
   const Index n = static_cast<Index>(d.n), m = rows_of(d);
   MatrixXd a(n + m, n);
-  a << d.lvv, d.g;
+  a.topRows(n) = d.lvv;
+  if (m) a.bottomRows(m) = d.g;
   const Subspace v = kernel(a, assessed_point(d, opt));
   MatrixXd embed = MatrixXd::Zero(2 * n + 1, v.dim());
   embed.bottomRows(n) = v.columns();

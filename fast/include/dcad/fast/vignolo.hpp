@@ -59,7 +59,8 @@ struct ConstrainedSplitting {
   Subspace constrained = Subspace::zero(0);
 };
 ConstrainedSplitting constrained_splitting(const VignoloPoint& d, const Options& opt = {});
-/// 𝒫(X) = X − η_σ X_{dφ^σ} − λ_σ X_{ν^σ} with ⟨𝒫(X), ν^γ⟩ = ⟨𝒫(X), dφ^γ⟩ = 0 (L regular)  [V (3.8), Thm 3.1].
+/// 𝒫(X) = X − η_σ X_{dφ^σ} − λ_σ X_{ν^σ} with ⟨𝒫(X), ν^γ⟩ = ⟨𝒫(X), dφ^γ⟩ = 0  [V (3.8), Thm 3.1]; Γ and
+/// C = g Γ⁻¹ gᵀ invertible (decided in double), else std::invalid_argument.
 VectorXd constrained_projection(const VignoloPoint& d, const VectorXd& x);
 /// TM_0 ∩ χ̂(𝒜)° at z ∈ M_0 = l(𝒜)  [V (3.10)].
 Subspace first_level_directions(const VignoloPoint& d, const Options& opt = {});

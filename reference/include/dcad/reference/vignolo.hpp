@@ -245,6 +245,7 @@ Matrix<T> lagrangian_bundle_form(const VignoloPoint<T>& d) {
 /// dL at z over (t, q, q̇).
 template <class T>
 std::vector<T> lagrangian_differential(const VignoloPoint<T>& d) {
+  require_vignolo(d, "lagrangian_differential");
   std::vector<T> dl(2 * d.n + 1);
   dl[0] = d.lt;
   for (Index i = 0; i < d.n; ++i) {
@@ -287,6 +288,7 @@ std::vector<T> bundle_horizontal_lift(const VignoloPoint<T>& d, const std::vecto
 /// J̃(X) = ⟨X, ω^i⟩ (∂L/∂q̇^i ∂/∂u̇ + ∂/∂q̇^i) for X ∈ T𝓛  [V (2.18)].
 template <class T>
 std::vector<T> vertical_endomorphism(const VignoloPoint<T>& d, const std::vector<T>& x) {
+  require_vignolo(d, "vertical_endomorphism");
   require(x.size() == 2 * d.n + 2, "vertical_endomorphism", "X of length 2n + 2", "length " + std::to_string(x.size()));
   std::vector<T> out(x.size());
   for (Index i = 0; i < d.n; ++i) {
@@ -321,8 +323,9 @@ Matrix<T> chetaev_forms(const VignoloPoint<T>& d) {
 /// The solutions at z of (2.13): Z ⌟ Ω_l at z in χ(𝒜), ⟨Z, dt⟩ = 1, Z(φ^σ) = 0, and with `chetaev_condition`
 /// also (3.9): ⟨Z, ν⟩ = 0 for ν ∈ χ(𝒜)  [V (2.13), (3.9)].  "|_𝒜" is the form along 𝒜, a section of T*j₁
 /// over 𝒜 (χ(𝒜) = D^v|_𝒜, V's footnote 1), not its pull-back to T𝒜: read as pull-backs, (2.13) would leave
-/// more solutions where V proves them unique (L regular: one more for (2.13) at n = 3 with two constraints, one
-/// more for (3.3) at n = 2 with one; Vignolo.Eq3_4_… asserts the uniqueness).
+/// more solutions where V proves them unique (Γ definite: one more for (2.13) at n = 3 with two constraints, one
+/// more for (3.3) at n = 2 with one; Vignolo.Eq3_4_… asserts the uniqueness).  V's "L regular" needs C = g Γ⁻¹ gᵀ
+/// invertible too: with Γ = diag(1, −1) and ẋ + ẏ = 0 the solutions are a line, or none (Vignolo.IndefiniteGamma…).
 template <class T>
 AffineSubspace<T> lagrange_chetaev_fields(const VignoloPoint<T>& d, bool chetaev_condition) {
   const Index dim = 2 * d.n + 1;
@@ -367,14 +370,19 @@ ConstrainedSplitting<T> constrained_splitting(const VignoloPoint<T>& d) {
   return {symplectic_complement(w, chi0), symplectic_complement(w, tan), intersection(chi0, tan)};
 }
 
-/// 𝒫(X): X's part in χ̂° ∩ T(𝓛(𝒜)) along (3.7)'s other summand; L regular and g of full rank.
+/// 𝒫(X): X's part in χ̂° ∩ T(𝓛(𝒜)) along (3.7)'s other summand.  (3.7) is a direct sum where Γ and
+/// C = g Γ⁻¹ gᵀ are invertible (Γ definite suffices); V's proof of Prop 3.1 takes C's invertibility from det Γ ≠ 0
+/// and rank g, which an indefinite Γ breaks (Γ = diag(1, −1), g = (1, 1): C = 0; Vignolo.IndefiniteGamma…).
 template <class T>
 std::vector<T> constrained_projection(const VignoloPoint<T>& d, const std::vector<T>& x) {
+  require(x.size() == 2 * d.n + 2, "constrained_projection", "X of length 2n + 2",
+          "length " + std::to_string(x.size()));
   const ConstrainedSplitting<T> s = constrained_splitting(d);
   const Matrix<T> basis =
       vstack(s.constrained.basis(), vstack(s.chetaev_complement.basis(), s.tangent_complement.basis()));
   require(basis.rows() == x.size() && rank(basis) == x.size(), "constrained_projection",
-          "the direct sum (3.7) (L regular, V Prop 3.1)", "summands spanning dimension " + std::to_string(rank(basis)));
+          "the direct sum (3.7) (Γ and C = g Γ⁻¹ gᵀ invertible, V Prop 3.1)",
+          "summands spanning dimension " + std::to_string(rank(basis)) + " of " + std::to_string(x.size()));
   std::vector<T> c;
   solve_particular(basis.transpose(), x, c);
   std::vector<T> p(x.size());
@@ -386,6 +394,7 @@ std::vector<T> constrained_projection(const VignoloPoint<T>& d, const std::vecto
 /// TM_0 ∩ χ̂(𝒜)° at z ∈ M_0 = l(𝒜) (3.10): ker dφ_l ∩ ker dφ^σ ∩ ker ν^σ on 𝓛.
 template <class T>
 Subspace<T> first_level_directions(const VignoloPoint<T>& d) {
+  require_vignolo(d, "first_level_directions");
   const Matrix<T> rows = vstack(Matrix<T>::from_rows({trivialization_differential(d)}, 2 * d.n + 2),
                                 vstack(bundle_constraint_differentials(d), chetaev_forms(d)));
   return Subspace<T>::solutions(rows);
