@@ -823,3 +823,31 @@ TEST(Expression, RightFormulasNotDifferentiableAtThePointAreComparedInDouble) {
 }
 
 }  // namespace
+
+// CEF (1.6) with φ not affine in ẋ (PAPER-ITEMS N1): x'^2 = 1 + x^2 is solved on TQ in the coordinates (x, x_dot), the
+// branch the one through the given derivative — by hand x' = ±1 at x = 0 and (x')' = x = 0 — on every backend,
+// with the result saying how it read the equations; an IDE whose φ = 0 has no real point is refused, not solved.
+TEST(Expression, ImplicitEquationsNotAffineInTheDerivativesAreSolvedOnTheTangentBundle) {
+  json c = json::parse(slurp(case_path("ide-not-affine-cosh")));
+  for (const std::string sign : {"1", "-1"}) {
+    c["initial"]["v_x"] = sign;
+    const std::string file = write_temp("dcad_ide_cosh" + sign + ".json", c.dump());
+    for (const std::string backend : {"reference", "fast", "certified"}) {
+      const Outcome r = run("solve " + file + " --backend " + backend + " --json");
+      ASSERT_EQ(r.rc, 0) << backend << ": " << r.err;
+      const json got = json::parse(r.out);
+      EXPECT_EQ(got["dims"], json::parse("[2, 1]")) << backend;
+      EXPECT_EQ(got["variables"], json::parse("[\"x\", \"x_dot\"]")) << backend;
+      const double v = std::stod(sign);
+      EXPECT_NEAR(std::stod(got["velocity"]["x"].get<std::string>()), v, 1e-12) << backend << r.out;
+      EXPECT_NEAR(std::stod(got["velocity"]["x_dot"].get<std::string>()), 0, 1e-12) << backend << r.out;
+      EXPECT_NE(r.err.find("warning: "), std::string::npos) << backend << r.err;  // how the equations were read
+      EXPECT_NE(r.err.find("/implicit/equations/0"), std::string::npos) << backend << r.err;
+    }
+  }
+  c["implicit"]["equations"][0] = "v_x^2 + 1 + x^2";  // no real derivative anywhere
+  const std::string none = write_temp("dcad_ide_none.json", c.dump());
+  const Outcome r = run("solve " + none + " --backend reference");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.err.find("/initial"), std::string::npos) << r.err;
+}

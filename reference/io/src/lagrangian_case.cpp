@@ -205,6 +205,31 @@ LagrangianCase read_lagrangian_case(const std::string& file) {
 
 bool is_implicit_case(const json& j) { return j.is_object() && j.contains("implicit"); }
 
+/// CEF (1.6) with φ not affine in ẋ (PAPER-ITEMS N1): the IDE φ(t, x, ẋ) = 0 on Q is the first-order system
+/// {ẋ = w, φ(t, x, w) = 0} on TQ, affine in the derivatives of its coordinates (x, w) — the implicit form again, with
+/// 2n coordinates named x and x_dot (with more underscores where a coordinate already has that name).  Its tower N_0 =
+/// TQ ⊃ N_1 = {φ = 0} ⊃ … projects onto CEF's: τ(N_k) = M_k where the ranks are constant (M_{k+1} = {x ∈ M_k : ∃ v ∈
+/// T_xM_k, φ(x, v) = 0} = τ(N_{k+1}), as T_xτ(N_k) = Tτ(T N_k)); near a point (x, w) it is the branch of φ = 0 through
+/// w.  Returns the names that give w in "initial" (v_x, x_dot).
+std::map<std::string, std::size_t> lift_to_tangent_bundle(reference::LagrangianSystem& s) {
+  namespace ex = reference::expr;
+  const std::size_t n = s.n;
+  std::map<std::string, std::size_t> derivative_state;
+  for (ex::Expr& e : s.constraints)  // v_i (index n + i) is now the coordinate w_i (index n + i); t moves to 4n
+    if (s.has_time) e = ex::substitute(e, 2 * n, ex::variable(4 * n));
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string name = s.names[i] + "_dot";  // a name the formulas can use (check reads results back)
+    while (std::find(s.names.begin(), s.names.end(), name) != s.names.end()) name += "_";
+    s.names.push_back(name);
+    derivative_state["v_" + s.names[i]] = n + i;
+    derivative_state[name] = n + i;
+  }
+  s.n = 2 * n;
+  for (std::size_t i = 0; i < n; ++i)  // ẋ_i − w_i = 0
+    s.constraints.push_back(ex::sub(ex::variable(s.v(i)), ex::variable(s.q(n + i))));
+  return derivative_state;
+}
+
 LagrangianCase read_implicit_case(const json& j, const std::string& file) {
   const Where root{file, ""};
   require_known_keys(
@@ -233,14 +258,22 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
         parse_expression(read_string(k[a], ke / a, "an equation as a string expression"), vars, c.parameters, ke / a));
   std::vector<std::size_t> vs;
   for (std::size_t i = 0; i < s.n; ++i) vs.push_back(s.v(i));
+  std::map<std::string, std::size_t> derivative_state;  // the lifted form's v_x: the coordinate x'
   for (std::size_t bad;
        (bad = reference::first_non_affine_constraint(s)) < s.m();) {  // as for constraints: affine after expanding
     const auto form =
         reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
-    if (!form)
-      (ke / bad).fail(
-          "an equation affine in the derivatives v_*, E(t, x)·v + g(t, x) (CONTRACT)",
-          "\"" + k[bad].get<std::string>() + "\", not affine in the v_* (after expanding and collecting terms)");
+    if (!form) {
+      derivative_state = lift_to_tangent_bundle(s);
+      c.warnings.push_back(
+          file + ": " + (ke / bad).path + ": \"" + k[bad].get<std::string>() +
+          "\" is not affine in the derivatives: the equations are solved as CEF (1.6)'s IDE on TQ, the first-order "
+          "system {x' = w, phi(t, x, w) = 0} in the coordinates (x, x_dot) (x_dot = w, the derivatives as "
+          "coordinates, given as v_x or x_dot in \"initial\"): its tower lies on TQ (dims over 2n coordinates), CEF's "
+          "M_k are its "
+          "projections to the x, and the branch of phi = 0 is the one through the given (or default) derivatives");
+      break;
+    }
     reference::expr::Expr e = form->second;
     for (std::size_t i = 0; i < s.n; ++i)
       e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
@@ -255,9 +288,14 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
     c.has_initial = true;
     std::vector<std::string> known = s.names;
     if (s.has_time) known.push_back(s.time_name);
+    const std::map<std::string, std::size_t> lifted = formula_variables(s);  // the lifted form's names, if lifted
     for (const auto& [key, v] : in.items()) {
       const Rational value = read_number(v, w / key);
-      const auto it = vars.find(key);
+      if (const auto d = derivative_state.find(key); d != derivative_state.end()) {
+        c.initial[d->second] = value;
+        continue;
+      }
+      const auto it = derivative_state.empty() ? vars.find(key) : lifted.find(key);
       if (it != vars.end() && !(it->second >= s.n && it->second < 2 * s.n)) {
         c.initial[it->second] = value;
         continue;

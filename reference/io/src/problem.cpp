@@ -50,6 +50,7 @@ DaeCase& Problem::dae() { return alternative<DaeCase>(*this, "dae"); }
 
 const std::vector<std::string>& Problem::warnings() const {
   static const std::vector<std::string> none;
+  if (form() == Form::expression || form() == Form::implicit) return expression().warnings;
   return form() == Form::netlist ? netlist().warnings : none;
 }
 

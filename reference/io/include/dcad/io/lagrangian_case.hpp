@@ -22,6 +22,8 @@ struct LagrangianCase {
   std::vector<std::optional<Rational>> initial;    ///< size 2n + 1: q, v, t
   std::vector<std::optional<Rational>> initial_p;  ///< size n
   bool has_initial = false;
+  /// What the reader did that the result should say (the implicit form's lift to TQ), each naming file and JSON path.
+  std::vector<std::string> warnings;
 };
 
 /// FILE is a .json case in the expression form (false if it is not, or cannot be read: read_case
