@@ -59,26 +59,6 @@ std::string discrete(const dcad::Solution<N>& s, const Carried& both) {
   return o.str();
 }
 
-/// An uncertain answer decided in double, recomputed by the certified tier (exact rationals) up to kConfirmExactlyUpTo
-/// variables: certified where that tier proves the same discrete answer; unchanged otherwise.  Not under a
-/// DecisionProbe: its injected uncertainties test how fast's own verdicts propagate (prop_uncertainty).
-void confirm_uncertain(const io::Problem& p, const Parts& parts, const Options& opt, Solution& s) {
-  if (!s.certified.unknown() || s.variables.size() > kConfirmExactlyUpTo || opt.probe) return;
-  try {
-    const certified::Solution e = certified::solve(p, parts);
-    const Carried both{e.classes && s.classes, e.adapted && s.adapted, e.motion && s.motion};
-    if (!e.certified.yes() || discrete(e, both) != discrete(s, both)) return;
-    s.certified = yes;
-    s.decisions.exact_verifications = 1;
-    s.note = "certified by the exact route (the certified tier proves the same " + discrete(e, both) +
-             "); double alone left it uncertain" + (s.note.empty() ? "" : " (" + s.note + ")");
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& x) {
-    if (typeid(x) == typeid(std::logic_error)) throw;  // the exact tier's internal disagreement: never hidden
-  }
-}
-
 /// A zero decided in double is certain only under the separation hypothesis (dcad/fast/rank.hpp): an exact nonzero is
 /// never within a few rounding-error bounds of 0.  Integer data of height 10^6–10^7 break it: the kinetic matrix
 /// [[13400166, −1023502, 9211667], …] has determinant 6 and a last singular value 3.9e-10 (cases/
@@ -87,12 +67,8 @@ void confirm_uncertain(const io::Problem& p, const Parts& parts, const Options& 
 /// dcad/certified/solve.hpp, `--backend certified`) up to kConfirmExactlyUpTo variables: certified where every discrete
 /// key agrees (decisions.exact_verification = 1), not certified otherwise, saying what the exact route found.  Beyond
 /// that size, or where the exact route cannot run, it is not certified: `--backend certified` proves it.
-/// An answer that double left uncertain (a σ near its cut, a graded zero) is put to the same exact route: where the
-/// certified tier finds the same discrete answer and proves it, the answer is certified (by that route, as the note
-/// says); else it stays uncertain with its own note.
-void confirm_exactly(const io::Problem& p, const Parts& parts, const Options& opt, Solution& s) {
-  if (!decided_in_double(s)) return;
-  if (!s.certified.yes()) return confirm_uncertain(p, parts, opt, s);
+void confirm_exactly(const io::Problem& p, const Parts& parts, Solution& s) {
+  if (!s.certified.yes() || !decided_in_double(s)) return;
   std::string why;
   if (s.variables.size() > kConfirmExactlyUpTo) {
     why =
@@ -154,7 +130,7 @@ Solution solve(const io::Problem& p, const Parts& parts, const Options& opt) {
     s.note += (s.note.empty() ? "" : "; ") + io::rounded_note(p.netlist());
   }
   s.backend = Backend::fast;
-  if (opt.confirm_exactly) confirm_exactly(p, parts, opt, s);
+  if (opt.confirm_exactly) confirm_exactly(p, parts, s);
   uncertain_exact_entries(s);
   s.warnings = p.warnings();
   keep_parts(s, parts);
