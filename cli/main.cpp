@@ -192,6 +192,8 @@ struct SimulateCommand {
   int run(const dcad::io::ReadOptions& read) {
     if (!read_options()) return 2;
     const dcad::io::Problem problem = dcad::io::read_problem(file, read);
+    if (problem.form() == dcad::io::Form::implicit)  // how the equations were read (lifted to TQ)
+      for (const std::string& w : problem.warnings()) std::cerr << "warning: " << w << "\n";
     std::vector<std::string> header = dcad::api::simulate_columns(problem);
     if (!opt.columns.empty()) {
       header.assign(1, "t");

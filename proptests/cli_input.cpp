@@ -149,6 +149,9 @@ TEST(Cli, BadImplicitCasesNameTheirPath) {
   const std::string circle = R"I({"coordinates": ["x", "y"], "equations": ["v_x - y", "x^2 + y^2 - 1"]})I";
   const std::vector<std::pair<std::string, std::string>> bad = {
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x^2 - x"]})I", R"I({"v_x_dot": "1"})I"), "/initial/v_x_dot"},
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x^2 - x"]})I", R"I({"zz": "1"})I"), "/initial/zz"},
+      {imp(R"I({"coordinates": ["x"], "equations": ["v_x^2 - x"]})I", R"I({"v_x": "1", "x_dot": "-1"})I"),
+       "/initial/x_dot: expected one value for x_dot"},
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x - z"]})I"), "/implicit/equations/0: column 7"},
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x - x"]})I", R"I({"v_x": "1"})I"), "/initial/v_x"},
       {imp(R"I({"coordinates": ["x"], "equations": ["v_x - x"], "L": "0"})I"), "/implicit/L"},

@@ -109,15 +109,23 @@ std::map<std::string, std::size_t> formula_variables(const reference::Lagrangian
 namespace {
 /// "initial": exact values by name — coordinates, velocities v_*, momenta p_* and the time — into c.initial
 /// (q, v, t) and c.initial_p; every slot not named stays free.
+/// c.initial and c.initial_p empty for the system's size, and the case's "initial" object (null if none).
+const json* initial_object(const json& j, const Where& w, const char* expected, LagrangianCase& c) {
+  c.initial.assign(2 * c.system.n + 1, std::nullopt);
+  c.initial_p.assign(c.system.n, std::nullopt);
+  if (!j.contains("initial")) return nullptr;
+  const json& in = j["initial"];
+  if (!in.is_object()) w.fail(expected, describe(in));
+  c.has_initial = true;
+  return &in;
+}
+
 void read_initial(const json& j, const Where& root, const std::map<std::string, std::size_t>& vars, LagrangianCase& c) {
   const reference::LagrangianSystem& s = c.system;
-  c.initial.assign(2 * s.n + 1, std::nullopt);
-  c.initial_p.assign(s.n, std::nullopt);
-  if (j.contains("initial")) {
-    const json& in = j["initial"];
-    const Where w = root / "initial";
-    if (!in.is_object()) w.fail("an object {name: exact value} (coordinates, v_*, p_*, the time)", describe(in));
-    c.has_initial = true;
+  const Where w = root / "initial";
+  if (const json* initial =
+          initial_object(j, w, "an object {name: exact value} (coordinates, v_*, p_*, the time)", c)) {
+    const json& in = *initial;
     std::vector<std::string> known;
     for (const auto& [k, v] : vars) known.push_back(k);
     for (const std::string& n : s.names) known.push_back("p_" + n);
@@ -207,19 +215,24 @@ bool is_implicit_case(const json& j) { return j.is_object() && j.contains("impli
 
 /// CEF (1.6) with φ not affine in ẋ (PAPER-ITEMS N1): the IDE φ(t, x, ẋ) = 0 on Q is the first-order system
 /// {ẋ = w, φ(t, x, w) = 0} on TQ, affine in the derivatives of its coordinates (x, w) — the implicit form again, with
-/// 2n coordinates named x and x_dot (with more underscores where a coordinate already has that name).  Its tower N_0 =
-/// TQ ⊃ N_1 = {φ = 0} ⊃ … projects onto CEF's: τ(N_k) = M_k where the ranks are constant (M_{k+1} = {x ∈ M_k : ∃ v ∈
-/// T_xM_k, φ(x, v) = 0} = τ(N_{k+1}), as T_xτ(N_k) = Tτ(T N_k)); near a point (x, w) it is the branch of φ = 0 through
-/// w.  Returns the names that give w in "initial" (v_x, x_dot).
-std::map<std::string, std::size_t> lift_to_tangent_bundle(reference::LagrangianSystem& s) {
+/// 2n coordinates named x and x_dot (with more underscores where that name, or v_ of it, is taken: a coordinate, the
+/// time, a parameter).  Its tower N_0 = TQ ⊃ N_1 = {φ = 0} ⊃ … is, near the point (x, w), the branch of φ = 0 through
+/// w: τ(N_k) ⊆ M_k = {x ∈ M_{k−1} : ∃ v ∈ T_xM_{k−1}, φ(x, v) = 0}, CEF's M_k the union over the branches (equal
+/// where τ maps N_k onto M_k as a submersion).  Returns the names that give w in "initial" (v_x, x_dot).
+std::map<std::string, std::size_t> lift_to_tangent_bundle(reference::LagrangianSystem& s,
+                                                          const std::map<std::string, Rational>& parameters) {
   namespace ex = reference::expr;
   const std::size_t n = s.n;
   std::map<std::string, std::size_t> derivative_state;
   for (ex::Expr& e : s.constraints)  // v_i (index n + i) is now the coordinate w_i (index n + i); t moves to 4n
     if (s.has_time) e = ex::substitute(e, 2 * n, ex::variable(4 * n));
   for (std::size_t i = 0; i < n; ++i) {
+    const auto taken = [&](const std::string& x) {
+      return std::find(s.names.begin(), s.names.end(), x) != s.names.end() || x == s.time_name ||
+             parameters.count(x) > 0;
+    };
     std::string name = s.names[i] + "_dot";  // a name the formulas can use (check reads results back)
-    while (std::find(s.names.begin(), s.names.end(), name) != s.names.end()) name += "_";
+    while (taken(name) || taken("v_" + name) || (name.rfind("v_", 0) == 0 && taken(name.substr(2)))) name += "_";
     s.names.push_back(name);
     derivative_state["v_" + s.names[i]] = n + i;
     derivative_state[name] = n + i;
@@ -228,6 +241,39 @@ std::map<std::string, std::size_t> lift_to_tangent_bundle(reference::LagrangianS
   for (std::size_t i = 0; i < n; ++i)  // ẋ_i − w_i = 0
     s.constraints.push_back(ex::sub(ex::variable(s.v(i)), ex::variable(s.q(n + i))));
   return derivative_state;
+}
+
+/// The implicit form's "initial": coordinates and the time by name (in the lifted form also the derivatives, as v_x or
+/// x_dot, once each) into c.initial; a derivative v_* of the form's own coordinates is not state.
+void read_implicit_initial(const json& j, const Where& root, const std::map<std::string, std::size_t>& vars,
+                           const std::map<std::string, std::size_t>& derivative_state, LagrangianCase& c) {
+  const reference::LagrangianSystem& s = c.system;
+  const Where w = root / "initial";
+  if (const json* initial = initial_object(j, w, "an object {name: exact value} (coordinates, the time)", c)) {
+    const json& in = *initial;
+    std::vector<std::string> known = s.names;
+    if (s.has_time) known.push_back(s.time_name);
+    const std::map<std::string, std::size_t> lifted = formula_variables(s);  // the lifted form's names, if lifted
+    const std::map<std::string, std::size_t>& names = derivative_state.empty() ? vars : lifted;
+    for (const auto& [key, v] : in.items()) {
+      const Rational value = read_number(v, w / key);
+      if (const auto d = derivative_state.find(key); d != derivative_state.end()) {
+        if (c.initial[d->second])  // v_x and x_dot name one coordinate
+          (w / key).fail("one value for " + s.names[d->second] + " (given as v_ of its coordinate or by its name)",
+                         "a second one");
+        c.initial[d->second] = value;
+        continue;
+      }
+      const auto it = names.find(key);
+      if (it != names.end() && !(it->second >= s.n && it->second < 2 * s.n)) {
+        c.initial[it->second] = value;
+        continue;
+      }
+      const std::string best = nearest_name(key, known);
+      (w / key).fail("a coordinate or the time name (the derivatives v_* are not state: the equations give them)",
+                     "\"" + key + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+    }
+  }
 }
 
 LagrangianCase read_implicit_case(const json& j, const std::string& file) {
@@ -258,20 +304,24 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
         parse_expression(read_string(k[a], ke / a, "an equation as a string expression"), vars, c.parameters, ke / a));
   std::vector<std::size_t> vs;
   for (std::size_t i = 0; i < s.n; ++i) vs.push_back(s.v(i));
-  std::map<std::string, std::size_t> derivative_state;  // the lifted form's v_x: the coordinate x'
+  std::map<std::string, std::size_t> derivative_state;  // the lifted form's v_x and x_dot: the coordinate x_dot
   for (std::size_t bad;
        (bad = reference::first_non_affine_constraint(s)) < s.m();) {  // as for constraints: affine after expanding
     const auto form =
         reference::expr::affine_form(s.constraints[bad], vs, [&](std::size_t i) { return i >= s.n && i < 2 * s.n; });
     if (!form) {
-      derivative_state = lift_to_tangent_bundle(s);
+      const std::size_t n0 = s.n;
+      derivative_state = lift_to_tangent_bundle(s, c.parameters);
+      std::string lifted;
+      for (std::size_t i = 0; i < n0; ++i) lifted += (i ? ", " : "") + s.names[n0 + i] + " = v_" + s.names[i];
       c.warnings.push_back(
           file + ": " + (ke / bad).path + ": \"" + k[bad].get<std::string>() +
-          "\" is not affine in the derivatives: the equations are solved as CEF (1.6)'s IDE on TQ, the first-order "
-          "system {x' = w, phi(t, x, w) = 0} in the coordinates (x, x_dot) (x_dot = w, the derivatives as "
-          "coordinates, given as v_x or x_dot in \"initial\"): its tower lies on TQ (dims over 2n coordinates), CEF's "
-          "M_k are its "
-          "projections to the x, and the branch of phi = 0 is the one through the given (or default) derivatives");
+          "\" is not affine in the derivatives: the equations are solved as CEF (1.6)'s IDE lifted to TQ, "
+          "{x' = w, phi(t, x, w) = 0}, with the derivatives as coordinates (" +
+          lifted +
+          ", given by either name in \"initial\"): the tower is the lifted system's on TQ (dims over 2n coordinates; "
+          "steps and index count its differentiations) on the branch of phi = 0 through the given (or completed) "
+          "derivatives, whose projection to the x lies in CEF's M_k (the union over the branches)");
       break;
     }
     reference::expr::Expr e = form->second;
@@ -279,32 +329,7 @@ LagrangianCase read_implicit_case(const json& j, const std::string& file) {
       e = reference::expr::add(reference::expr::mul(form->first[i], reference::expr::variable(s.v(i))), e);
     s.constraints[bad] = e;
   }
-  c.initial.assign(2 * s.n + 1, std::nullopt);
-  c.initial_p.assign(s.n, std::nullopt);
-  if (j.contains("initial")) {
-    const json& in = j["initial"];
-    const Where w = root / "initial";
-    if (!in.is_object()) w.fail("an object {name: exact value} (coordinates, the time)", describe(in));
-    c.has_initial = true;
-    std::vector<std::string> known = s.names;
-    if (s.has_time) known.push_back(s.time_name);
-    const std::map<std::string, std::size_t> lifted = formula_variables(s);  // the lifted form's names, if lifted
-    for (const auto& [key, v] : in.items()) {
-      const Rational value = read_number(v, w / key);
-      if (const auto d = derivative_state.find(key); d != derivative_state.end()) {
-        c.initial[d->second] = value;
-        continue;
-      }
-      const auto it = derivative_state.empty() ? vars.find(key) : lifted.find(key);
-      if (it != vars.end() && !(it->second >= s.n && it->second < 2 * s.n)) {
-        c.initial[it->second] = value;
-        continue;
-      }
-      const std::string best = nearest_name(key, known);
-      (w / key).fail("a coordinate or the time name (the derivatives v_* are not state: the equations give them)",
-                     "\"" + key + "\"" + (best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
-    }
-  }
+  read_implicit_initial(j, root, vars, derivative_state, c);
   return c;
 }
 
