@@ -220,6 +220,24 @@ std::string text(double x) {
   return o.str();
 }
 
+/// The first entry of the array's Jacobian in the columns [from, cols) whose nonzero value at z is not resolved from
+/// its own rounding (|value| ≤ 64 × its forward error bound, fast/tracked.hpp) although it is not identically 0 — ((t +
+/// 10^6)² − t² − 2·10^6 t − 10^12 + t − r) v_x at t = r is exactly 0 there and 1/8192 in double — as "entry (i, j)", or
+/// "". The structural rank (proved_by_structure) assumes computed entries that are their values up to rounding of the
+/// data; a cancellation within one entry voids that, and any rank decided on it.
+std::string cancelled_entry(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z, std::size_t from,
+                            std::size_t cols) {
+  std::unordered_map<const ex::ExprNode*, Tracked> memo;
+  for (std::size_t i = 0; i < eqs.size(); ++i)
+    for (const auto& [var, g] : eqs[i].grad) {
+      if (var < from || var >= cols || ex::is_number(g)) continue;
+      const Tracked t = rounded(g, z, memo);
+      if (t.v != 0 && std::abs(t.v) <= 64 * t.e)  // a nonzero that may be rounding alone (a computed 0 is a zero)
+        return "entry (" + std::to_string(i) + ", " + std::to_string(var) + ") = " + text(t.v) + " ± " + text(64 * t.e);
+    }
+  return "";
+}
+
 /// Gauss–Newton with minimum-norm steps on the free columns: the residual it ends at, and its scale.
 struct Newton {
   double residual = 0, scale = 1;
@@ -566,6 +584,23 @@ bool flat_here(const std::vector<ArrayEquation>& eqs, const std::vector<double>&
 
 }  // namespace
 
+/// Why no rank of F_k's Jacobian at its zero z is certain, or "": a row vanishing with its differential there (x² = 0;
+/// singular), or an entry of dF_k/d(x', ...) that its own rounding may have made nonzero (cancelled_entry).
+std::string unresolved_at_zero(const std::vector<ArrayEquation>& eqs, const std::vector<double>& z,
+                               const Eigen::MatrixXd& j, std::size_t cols, std::size_t time, std::size_t n,
+                               std::size_t k) {
+  const double jmax = std::max(1.0, j.cwiseAbs().maxCoeff());
+  std::unordered_map<const ex::ExprNode*, Tracked> memo;
+  for (Eigen::Index i = 0; i < j.rows(); ++i)
+    if (flat_here(eqs, z, static_cast<std::size_t>(i), cols, time, jmax, memo))
+      return "equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) + " vanishes " +
+             "with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)";
+  if (const std::string c = cancelled_entry(eqs, z, n, cols); !c.empty())
+    return c + " of dF_" + std::to_string(k) +
+           "/d(x', ...) is within its evaluation's rounding bound (a cancellation): no rank of it is certain";
+  return "";
+}
+
 DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, const std::vector<double>& start,
                                        const std::vector<bool>& fixed, const Options& opt) {
   const std::size_t n = sys.n, kcap = std::min<std::size_t>(n + 1, 12);
@@ -639,17 +674,7 @@ DerivativeArrayResult derivative_array(const symbolic::LagrangianSystem& sys, co
       return out;
     }
     Values v = evaluate_array(eqs, z, cols);
-    {  // a row vanishing with its differential at the zero (x² = 0; singular): no rank decided here is certain
-      const double jmax = std::max(1.0, v.j.cwiseAbs().maxCoeff());
-      std::unordered_map<const ex::ExprNode*, Tracked> memo;
-      for (Eigen::Index i = 0; i < v.j.rows(); ++i)
-        if (flat_here(eqs, z, static_cast<std::size_t>(i), cols, time, jmax, memo)) {
-          uncertain(
-              "equation " + std::to_string(i) + " of the derivative array F_" + std::to_string(k) + " vanishes " +
-              "with its differential at the point (a constraint that is not reduced, x² = 0, or a singular point)");
-          break;
-        }
-    }
+    if (const std::string why = unresolved_at_zero(eqs, z, v.j, cols, time, n, k); !why.empty()) uncertain(why);
     Eigen::VectorXd rs;
     const Eigen::VectorXd cs = equilibrate(v.j, rs);
     if (const double span = graded_zero(z, cols, opt); span > 0)
